@@ -1,0 +1,17 @@
+// The explicit list of planners. Adding a planner: one folder under algorithms/ and one line here.
+#include "coverbench/registry.hpp"
+
+#include "spiral/spiral.hpp"
+#include "zigzag/zigzag.hpp"
+
+namespace coverbench {
+
+const std::vector<PlannerInfo>& registeredPlanners() {
+  static const std::vector<PlannerInfo> planners = {
+      zigzag::info(),
+      spiral::info(),
+  };
+  return planners;
+}
+
+}  // namespace coverbench

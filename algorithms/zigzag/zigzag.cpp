@@ -1,0 +1,233 @@
+#include "zigzag.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "coverbench/region_ops.hpp"
+#include "coverbench/workspace.hpp"
+
+namespace coverbench::zigzag {
+namespace {
+
+/// Where a row crosses a ring edge of the row region.
+struct Crossing {
+  double x = 0.0;
+  std::size_t ring = 0;
+  std::size_t edge = 0;
+};
+
+/// One free interval of one row: [lo.x, hi.x] at height y.
+struct Interval {
+  std::size_t row = 0;
+  double y = 0.0;
+  Crossing lo, hi;
+  bool done = false;
+  Point lowEnd() const { return {lo.x, y}; }
+  Point highEnd() const { return {hi.x, y}; }
+};
+
+/// Evenly spaced row heights over [y_min, y_max]: the first and last rows lie on the extremes (a
+/// hair inside, so they cross the region properly) and no gap exceeds `max_spacing`.
+std::vector<double> rowHeights(double y_min, double y_max, double max_spacing) {
+  const double inset = std::min(1e-6, (y_max - y_min) / 4.0);
+  const double lo = y_min + inset, hi = y_max - inset;
+  if (hi <= lo) return {(y_min + y_max) / 2.0};
+  const auto gaps = static_cast<std::size_t>(std::ceil((hi - lo) / max_spacing));
+  std::vector<double> ys(gaps + 1);
+  for (std::size_t i = 0; i <= gaps; ++i) ys[i] = lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(gaps);
+  return ys;
+}
+
+/// Free intervals of every row: crossings of each row with the region's rings, paired even-odd.
+std::vector<std::vector<Interval>> rowIntervals(const std::vector<Ring>& rings, const std::vector<double>& ys) {
+  std::vector<std::vector<Crossing>> crossings(ys.size());
+  const double y0 = ys.front();
+  const double dy = ys.size() > 1 ? ys[1] - ys[0] : 1.0;
+  for (std::size_t r = 0; r < rings.size(); ++r) {
+    const Ring& ring = rings[r];
+    for (std::size_t e = 0; e < ring.size(); ++e) {
+      const Point a = ring[e], b = ring[(e + 1) % ring.size()];
+      if (a.y == b.y) continue;
+      const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
+      // Rows with lo <= y < hi cross this edge (half-open, so shared vertices count once).
+      long first = static_cast<long>(std::floor((lo - y0) / dy)) - 1;
+      first = std::max(first, 0L);
+      for (auto i = static_cast<std::size_t>(first); i < ys.size() && ys[i] < hi + dy; ++i) {
+        const double y = ys[i];
+        if (!((a.y > y) != (b.y > y))) continue;
+        crossings[i].push_back({a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y), r, e});
+      }
+    }
+  }
+  std::vector<std::vector<Interval>> rows(ys.size());
+  for (std::size_t i = 0; i < ys.size(); ++i) {
+    auto& c = crossings[i];
+    std::sort(c.begin(), c.end(), [](const Crossing& p, const Crossing& q) { return p.x < q.x; });
+    for (std::size_t k = 0; k + 1 < c.size(); k += 2) rows[i].push_back({i, ys[i], c[k], c[k + 1], false});
+  }
+  return rows;
+}
+
+/// The shorter walk along a ring from a point on edge e1 to a point on edge e2.
+std::vector<Point> ringWalk(const Ring& ring, Point from, std::size_t e1, Point to, std::size_t e2) {
+  if (e1 == e2) return {from, to};
+  const std::size_t n = ring.size();
+  std::vector<Point> forward{from}, backward{from};
+  for (std::size_t e = e1; e != e2; e = (e + 1) % n) forward.push_back(ring[(e + 1) % n]);
+  forward.push_back(to);
+  for (std::size_t e = e1; e != e2; e = (e + n - 1) % n) backward.push_back(ring[e]);
+  backward.push_back(to);
+  auto length = [](const std::vector<Point>& pts) {
+    double l = 0.0;
+    for (std::size_t i = 1; i < pts.size(); ++i) l += distance(pts[i - 1], pts[i]);
+    return l;
+  };
+  return length(forward) <= length(backward) ? forward : backward;
+}
+
+double polylineLength(const std::vector<Point>& pts) {
+  double l = 0.0;
+  for (std::size_t i = 1; i < pts.size(); ++i) l += distance(pts[i - 1], pts[i]);
+  return l;
+}
+
+class ZigzagPlanner final : public Planner {
+ public:
+  PlanResult plan(const Problem& problem, const Budget& budget) override {
+    const double angle = problem.params.number("sweep_angle") * M_PI / 180.0;
+    const double spacing = problem.tool.tool_width * (1.0 - problem.params.number("overlap"));
+    const auto passes = static_cast<std::size_t>(problem.params.integer("boundary_passes"));
+
+    // Work in a frame where rows are horizontal; rotate the result back at the end.
+    Workspace ws(rotateWall(*problem.wall, -angle), problem.tool);
+    const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
+    if (components.empty())
+      return PlanResult::failure(PlanStatus::NoReachableArea,
+                                 "the tool fits nowhere: the free region F is empty for this tool and clearance");
+    const Region main{components.front()};
+
+    PathBuilder builder(ws);
+    std::size_t unreachable = 0;
+    for (std::size_t k = 0; k < passes; ++k) {
+      const Region level = k == 0 ? main : offsetRegion(main, -static_cast<double>(k) * spacing, kArcTolerance);
+      unreachable += coverRings(builder, allRings(level), 1.01 * spacing);
+      if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in boundary passes");
+    }
+    const Region row_region =
+        passes <= 1 ? main : offsetRegion(main, -static_cast<double>(passes - 1) * spacing, kArcTolerance);
+    const std::vector<Ring> rings = allRings(row_region);
+    const Box box = boundingBox(row_region);
+    std::vector<std::vector<Interval>> rows;
+    if (!box.empty()) rows = rowIntervals(rings, rowHeights(box.min_y, box.max_y, spacing));
+    const double row_gap = rows.size() > 1 ? rows[1].front().y - rows[0].front().y : 0.0;
+
+    std::size_t remaining = 0, pieces = 0;
+    for (const auto& row : rows) remaining += row.size();
+    const std::size_t interval_count = remaining;
+    while (remaining > 0) {
+      if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in rows");
+      // Start a new piece at the unvisited interval end nearest to where we are.
+      Interval* cur = nullptr;
+      bool rightward = true;
+      double best = INFINITY;
+      for (auto& row : rows)
+        for (Interval& iv : row) {
+          if (iv.done) continue;
+          const double dl = builder.empty() ? iv.y * 1e6 + iv.lo.x : distance(builder.current(), iv.lowEnd());
+          const double dh = builder.empty() ? INFINITY : distance(builder.current(), iv.highEnd());
+          if (dl < best) best = dl, cur = &iv, rightward = true;
+          if (dh < best) best = dh, cur = &iv, rightward = false;
+        }
+      const Point entry = rightward ? cur->lowEnd() : cur->highEnd();
+      cur->done = true;
+      --remaining;
+      if (!builder.moveTo(entry, !builder.empty() && distance(builder.current(), entry) <= 1.01 * row_gap)) {
+        ++unreachable;
+        continue;
+      }
+      ++pieces;
+      int vertical = 0;  // +1 up, -1 down, 0 not chosen yet
+      while (true) {
+        builder.moveTo(rightward ? cur->highEnd() : cur->lowEnd(), true);
+        const Crossing& exit = rightward ? cur->hi : cur->lo;
+        const Point exit_point{exit.x, cur->y};
+        Interval* next = nullptr;
+        std::vector<Point> link;
+        for (int dir : {1, -1}) {
+          if (vertical != 0 && dir != vertical) continue;
+          const long j = static_cast<long>(cur->row) + dir;
+          if (j < 0 || j >= static_cast<long>(rows.size())) continue;
+          // Candidates: unvisited intervals overlapping this one, nearest entry first.
+          std::vector<Interval*> candidates;
+          for (Interval& iv : rows[static_cast<std::size_t>(j)])
+            if (!iv.done && iv.lo.x <= cur->hi.x && iv.hi.x >= cur->lo.x) candidates.push_back(&iv);
+          std::sort(candidates.begin(), candidates.end(), [&](Interval* p, Interval* q) {
+            const double xp = rightward ? p->hi.x : p->lo.x, xq = rightward ? q->hi.x : q->lo.x;
+            return std::fabs(xp - exit.x) < std::fabs(xq - exit.x);
+          });
+          for (Interval* c : candidates) {
+            const Crossing& in = rightward ? c->hi : c->lo;
+            const Point entry_point{in.x, c->y};
+            if (ws.router().isFree(exit_point, entry_point)) {
+              link = {entry_point};
+            } else if (in.ring == exit.ring) {
+              // Follow the region's own boundary between the rows: it lies in F.
+              std::vector<Point> walk = ringWalk(rings[exit.ring], exit_point, exit.edge, entry_point, in.edge);
+              if (polylineLength(walk) <= 2.0 * spacing + 2.0 * distance(exit_point, entry_point)) link = walk;
+            }
+            if (!link.empty()) {
+              next = c;
+              vertical = dir;
+              break;
+            }
+          }
+          if (next) break;
+        }
+        if (!next) break;
+        builder.follow(link, true);
+        cur = next;
+        cur->done = true;
+        --remaining;
+        rightward = !rightward;
+      }
+    }
+
+    PlanResult result;
+    result.status = PlanStatus::Ok;
+    result.path = builder.take();
+    for (Point& p : result.path.waypoints) p = rotate(p, angle);
+    result.stats["rows"] = static_cast<double>(rows.size());
+    result.stats["row_spacing"] = row_gap;
+    result.stats["intervals"] = static_cast<double>(interval_count);
+    result.stats["pieces"] = static_cast<double>(pieces);
+    result.stats["routed_transits"] = static_cast<double>(builder.transits());
+    result.stats["free_components"] = static_cast<double>(components.size());
+    result.stats["unreachable_parts"] = static_cast<double>(unreachable);
+    result.stats["sweep_angle_deg"] = problem.params.number("sweep_angle");
+    if (components.size() > 1)
+      result.reason = "covered the largest of " + std::to_string(components.size()) +
+                      " disconnected free components; the others cannot be reached without leaving F";
+    return result;
+  }
+};
+
+}  // namespace
+
+PlannerInfo info() {
+  PlannerInfo info;
+  info.name = "zigzag";
+  info.summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes";
+  info.reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013";
+  info.params = {
+      {"sweep_angle", ParamType::Number, 0.0, 0.0, 180.0, {}, "deg", "direction of the rows, counter-clockwise from +x"},
+      {"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent rows overlap"},
+      {"boundary_passes", ParamType::Integer, 1LL, 0, 10, {}, "",
+       "boundary-following loops around the wall and each obstacle before the rows"},
+  };
+  info.capabilities.polygon_boundary = true;
+  info.capabilities.circle_obstacles = true;
+  info.make = [] { return std::make_unique<ZigzagPlanner>(); };
+  return info;
+}
+
+}  // namespace coverbench::zigzag

@@ -1,0 +1,31 @@
+#pragma once
+/// The sub-commands of `coverbench`, kept apart from argument parsing (which only main.cpp does).
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "coverbench/planner.hpp"
+
+namespace coverbench::cli {
+
+void listPlanners(std::ostream& out);
+
+struct PlanOptions {
+  std::string wall, planner, out, svg;
+  ToolParams tool;
+  std::vector<std::string> params;  ///< key=value
+  double time_limit_s = 60.0;
+};
+/// Returns 0 when the plan is ok and valid, 3 when the planner reported a failure or its path is
+/// invalid (the plan file is still written and says which). Bad input throws InputError.
+int planCommand(const PlanOptions& options);
+
+struct ShowcaseOptions {
+  std::string walls, out;
+  ToolParams tool;
+};
+/// Returns 0 when every plan is ok and valid, 3 otherwise.
+int showcaseCommand(const ShowcaseOptions& options);
+
+}  // namespace coverbench::cli

@@ -1,0 +1,62 @@
+// The `coverbench` command. Every user error surfaces here as one line on stderr and exit code 2.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "commands.hpp"
+#include "coverbench/wall.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"CoverBench: benchmark 2-D coverage path planners"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "coverbench 0.1.0");
+
+  app.add_subcommand("planners", "List the registered planners and their parameters")
+      ->callback([] { coverbench::cli::listPlanners(std::cout); });
+
+  coverbench::cli::PlanOptions plan;
+  CLI::App* plan_cmd = app.add_subcommand("plan", "Plan one wall with one planner and write a plan file");
+  plan_cmd->add_option("--wall", plan.wall, "wall file (JSON)")->required();
+  plan_cmd->add_option("--planner", plan.planner, "planner name (see `coverbench planners`)")->required();
+  plan_cmd->add_option("--tool-width", plan.tool.tool_width, "tool diameter s in metres")->capture_default_str();
+  plan_cmd->add_option("--clearance", plan.tool.clearance, "gap c between tool and obstacles, metres")
+      ->capture_default_str();
+  plan_cmd->add_option("--param", plan.params, "planner parameter key=value (repeatable)");
+  plan_cmd->add_option("--time-limit", plan.time_limit_s, "seconds before the planner must stop")
+      ->capture_default_str();
+  plan_cmd->add_option("--out", plan.out, "plan file to write (JSON)")->required();
+  plan_cmd->add_option("--svg", plan.svg, "picture to write (SVG)");
+  int plan_exit = 0;
+  plan_cmd->callback([&] { plan_exit = coverbench::cli::planCommand(plan); });
+
+  coverbench::cli::ShowcaseOptions showcase;
+  CLI::App* show_cmd = app.add_subcommand(
+      "showcase", "Plan every wall of a folder with every planner: plan files, pictures and a summary table");
+  show_cmd->add_option("--walls", showcase.walls, "folder of wall files")->required();
+  show_cmd->add_option("--out", showcase.out, "output folder")->required();
+  show_cmd->add_option("--tool-width", showcase.tool.tool_width, "tool diameter s in metres")->capture_default_str();
+  show_cmd->add_option("--clearance", showcase.tool.clearance, "gap c in metres")->capture_default_str();
+  show_cmd->callback([&] { plan_exit = coverbench::cli::showcaseCommand(showcase); });
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "coverbench: " << e.what() << "\n";
+    return 2;
+  } catch (const coverbench::InputError& e) {
+    std::cerr << "coverbench: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "coverbench: internal error: " << e.what() << "\n";
+    return 70;
+  }
+  return plan_exit;
+}

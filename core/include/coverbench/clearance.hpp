@@ -1,0 +1,50 @@
+#pragma once
+/// Exact clearance queries of segments against a wall: the single source of truth for "does the
+/// tool stay inside the wall and away from every obstacle". Used by the metrics engine to validate
+/// every path and by planners to decide whether a straight move is allowed.
+///
+/// A segment is a moving tool centre. Distances are closed-form (point/segment/polygon/circle),
+/// never sampled.
+
+#include <cmath>
+#include <vector>
+
+#include "coverbench/geometry.hpp"
+#include "coverbench/wall.hpp"
+
+namespace coverbench {
+
+/// Validity tolerance (metres): a gap this much smaller than required still counts as kept,
+/// absorbing floating-point rounding only.
+inline constexpr double kValidityTolerance = 1e-9;
+
+/// Distances from one segment to the wall's features.
+struct SegmentClearance {
+  bool inside = false;             ///< the segment lies inside the boundary polygon
+  double boundary_distance = 0.0;  ///< distance from the segment to the boundary's edges
+  double obstacle_distance = INFINITY;  ///< distance to the nearest obstacle (0 if it touches one)
+};
+
+class ClearanceField {
+ public:
+  explicit ClearanceField(const Wall& wall);
+
+  /// All distances for the segment [a, b] (a == b for a point). Obstacles farther than
+  /// `obstacle_cutoff` may be reported as exactly `obstacle_cutoff` (saves work when the caller
+  /// only needs to know "at least this far").
+  SegmentClearance measure(Point a, Point b, double obstacle_cutoff = INFINITY) const;
+
+  /// True when a tool disk of `radius` moving along [a, b] stays inside the boundary with at least
+  /// `margin` to spare and keeps at least `clearance + margin` from every obstacle.
+  bool segmentFree(Point a, Point b, double radius, double clearance, double margin) const;
+
+  const Wall& wall() const { return *wall_; }
+
+ private:
+  double obstacleDistance(std::size_t i, Point a, Point b) const;
+
+  const Wall* wall_;
+  std::vector<Box> obstacle_boxes_;
+};
+
+}  // namespace coverbench

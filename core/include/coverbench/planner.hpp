@@ -1,0 +1,141 @@
+#pragma once
+/// The planner plug-in interface: a problem goes in, a result value comes out.
+///
+/// A planner implements exactly one method, `plan(problem, budget)`. Everything else a benchmark
+/// needs to know about it (name, parameters with units and ranges, capabilities) is declared in
+/// its `PlannerInfo`, registered in algorithms/registry.cpp. See docs/ADDING_A_PLANNER.md.
+
+#include <chrono>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "coverbench/geometry.hpp"
+#include "coverbench/wall.hpp"
+
+namespace coverbench {
+
+/// A polyline of waypoints; `tool_on[i]` says whether segment i (waypoints[i] -> waypoints[i+1])
+/// covers (tool on) or only moves (transit, tool off). tool_on.size() == waypoints.size() - 1.
+struct Path {
+  std::vector<Point> waypoints;
+  std::vector<bool> tool_on;
+
+  /// Appends a waypoint reached by a segment with the given tool state (the first waypoint
+  /// starts the path). Repeated points are dropped.
+  void moveTo(Point p, bool tool);
+  std::size_t segments() const { return tool_on.size(); }
+};
+
+/// A parameter value: numbers, integers, booleans or a choice among names.
+using ParamValue = std::variant<double, long long, bool, std::string>;
+
+enum class ParamType { Number, Integer, Bool, Choice };
+
+/// A declared planner parameter: experiments list, validate and sweep these without knowing the
+/// planner.
+struct ParamSpec {
+  std::string name;
+  ParamType type = ParamType::Number;
+  ParamValue default_value;
+  double min = 0.0;  ///< inclusive, for Number and Integer
+  double max = 0.0;  ///< inclusive, for Number and Integer
+  std::vector<std::string> choices;  ///< for Choice
+  std::string unit;                  ///< "m", "deg", "" ...
+  std::string description;
+};
+
+/// Resolved parameter values (every declared parameter present).
+class Params {
+ public:
+  void set(const std::string& name, ParamValue value) { values_[name] = std::move(value); }
+  double number(const std::string& name) const;
+  long long integer(const std::string& name) const;
+  bool flag(const std::string& name) const;
+  const std::string& choice(const std::string& name) const;
+  const std::map<std::string, ParamValue>& all() const { return values_; }
+
+ private:
+  const ParamValue& get(const std::string& name) const;
+  std::map<std::string, ParamValue> values_;
+};
+
+/// Formats a value as text (for plan files, tables and messages).
+std::string toString(const ParamValue& value);
+
+/// What a planner supports; experiments use these to skip inputs a planner declares it cannot do.
+struct Capabilities {
+  bool polygon_boundary = true;   ///< walls given as arbitrary polygons
+  bool circle_obstacles = true;   ///< circles handled exactly (not as coarse polygons)
+  bool disconnected_free_space = false;  ///< can cover several free components in one path
+  bool deterministic = true;
+};
+
+/// The tool and clearance of a problem (metres).
+struct ToolParams {
+  double tool_width = 0.1;  ///< s: the tool is a disk of diameter s centred on the path
+  double clearance = 0.02;  ///< c: minimum gap between the tool disk and any obstacle
+  double radius() const { return tool_width / 2.0; }
+};
+
+/// One planning problem: a wall, the tool, and the planner's resolved parameters.
+struct Problem {
+  const Wall* wall = nullptr;
+  ToolParams tool;
+  Params params;
+};
+
+/// Limits for one plan call. Planners poll `expired()` in their loops.
+class Budget {
+ public:
+  using Clock = std::chrono::steady_clock;
+  Budget() = default;
+  explicit Budget(std::chrono::duration<double> limit) : deadline_(Clock::now() + std::chrono::duration_cast<Clock::duration>(limit)), limited_(true) {}
+  bool expired() const { return limited_ && Clock::now() > deadline_; }
+
+ private:
+  Clock::time_point deadline_{};
+  bool limited_ = false;
+};
+
+enum class PlanStatus { Ok, NoReachableArea, InvalidInput, Timeout, Error };
+std::string toString(PlanStatus status);
+
+/// What a planner returns. A planner that cannot handle an input says so here, with a reason;
+/// it never returns a wrong path silently.
+struct PlanResult {
+  PlanStatus status = PlanStatus::Error;
+  std::string reason;
+  Path path;
+  std::map<std::string, double> stats;  ///< planner statistics (counts, sub-timings in ms)
+  double plan_time_ms = 0.0;  ///< wall-clock time of the plan call, measured by runPlanner
+
+  static PlanResult failure(PlanStatus status, std::string reason) {
+    PlanResult r;
+    r.status = status;
+    r.reason = std::move(reason);
+    return r;
+  }
+};
+
+/// The plug-in interface.
+class Planner {
+ public:
+  virtual ~Planner() = default;
+  virtual PlanResult plan(const Problem& problem, const Budget& budget) = 0;
+};
+
+/// A registered planner: its name, what it does, its parameters and how to make one.
+struct PlannerInfo {
+  std::string name;
+  std::string summary;
+  std::string reference;  ///< the paper or document the algorithm comes from
+  std::vector<ParamSpec> params;
+  Capabilities capabilities;
+  std::function<std::unique_ptr<Planner>()> make;
+};
+
+}  // namespace coverbench

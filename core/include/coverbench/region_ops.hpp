@@ -1,0 +1,38 @@
+#pragma once
+/// Boolean operations and offsets on regions. Implemented with Clipper (integer coordinates at
+/// 1 micrometre); callers see only CoverBench value types.
+///
+/// Offsets use round joins. Clipper places arc vertices on the true arc, so chords lie inside the
+/// exact rounded offset; callers that need a conservative result add the arc tolerance to their
+/// margin (see FreeSpace).
+
+#include "coverbench/geometry.hpp"
+#include "coverbench/wall.hpp"
+
+namespace coverbench {
+
+/// Coordinates are snapped to this grid (metres) when entering Clipper.
+inline constexpr double kRegionResolution = 1e-6;
+
+/// Rings of a region (outer rings and holes), each as a closed ring.
+std::vector<Ring> allRings(const Region& region);
+
+/// Offsets the region by `delta` metres (positive grows, negative shrinks) with round joins whose
+/// chords deviate at most `arc_tolerance` metres from the true arc.
+Region offsetRegion(const Region& region, double delta, double arc_tolerance);
+/// Drops vertices that lie within `tolerance` metres of the line through their neighbours (so the
+/// boundary moves by at most `tolerance`, either way). Keeps later offsets from multiplying the
+/// many short chords of fine arcs.
+Region simplifyRegion(const Region& region, double tolerance);
+Region unite(const Region& a, const Region& b);
+Region intersect(const Region& a, const Region& b);
+Region subtract(const Region& a, const Region& b);
+/// Builds a region from rings of any orientation (non-zero fill), e.g. obstacles that overlap.
+Region regionFromRings(const std::vector<Ring>& rings);
+
+/// A polygon containing the circle, with every vertex within `tolerance` of the circle.
+Ring circumscribedCircle(Point center, double radius, double tolerance);
+/// The obstacle as a region (circles circumscribed within `tolerance`).
+Region obstacleRegion(const Obstacle& obstacle, double tolerance);
+
+}  // namespace coverbench

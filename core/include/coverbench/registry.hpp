@@ -1,0 +1,31 @@
+#pragma once
+/// The planner registry: every planner by name, and parameter resolution against its
+/// declarations. The list itself lives in algorithms/registry.cpp.
+
+#include <string>
+#include <vector>
+
+#include "coverbench/planner.hpp"
+
+namespace coverbench {
+
+/// Every registered planner, in registration order.
+const std::vector<PlannerInfo>& registeredPlanners();
+
+/// The planner called `name`; throws InputError (naming `source`) if there is none.
+const PlannerInfo& findPlanner(const std::string& name, const std::string& source = "--planner");
+
+/// Resolves `key=value` settings against the planner's declared parameters: unknown keys,
+/// unparsable values and values out of range throw InputError naming `source` and the key.
+/// Parameters not given take their defaults.
+Params resolveParams(const PlannerInfo& planner, const std::vector<std::pair<std::string, std::string>>& settings,
+                     const std::string& source = "--param");
+
+/// Validates tool parameters: tool_width in (0, 10] m, clearance in [0, 10] m.
+void validateTool(const ToolParams& tool, const std::string& source);
+
+/// Runs one planner on one problem, catching every exception at this boundary and turning it
+/// into an Error status; fills `plan_time_ms` with the wall-clock time of the call.
+PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const Budget& budget);
+
+}  // namespace coverbench

@@ -1,0 +1,114 @@
+#pragma once
+/// What every planner needs about one problem: the free centre region F, exact segment checks,
+/// shortest collision-free transits, and a path builder that never writes an unchecked move.
+///
+/// F = erode(boundary, r) minus dilate(obstacles, r + c), r = s / 2. `free()` is a polygonal
+/// inner approximation of F: its boundary lies between kFreeSpaceMargin - kArcTolerance - 1e-6 m
+/// and kFreeSpaceMargin + 1e-6 m inside the exact F, so any path drawn inside it is valid and
+/// it misses at most a band of kFreeSpaceMargin along F's boundary.
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "coverbench/clearance.hpp"
+#include "coverbench/geometry.hpp"
+#include "coverbench/planner.hpp"
+#include "coverbench/wall.hpp"
+
+namespace coverbench {
+
+/// Largest distance between an arc and the chords approximating it in the free region (metres).
+inline constexpr double kArcTolerance = 5e-5;
+/// How far inside the exact F the approximated free region is drawn (metres).
+inline constexpr double kFreeSpaceMargin = kArcTolerance + 5e-6;
+/// Spare distance planners demand of their own straight moves beyond the exact requirement.
+inline constexpr double kPlanningMargin = 1e-6;
+
+/// Rotates every coordinate of the wall about the origin (for sweep directions).
+Wall rotateWall(const Wall& wall, double radians);
+
+/// The conservative free centre region of a wall for a tool.
+Region freeRegion(const Wall& wall, const ToolParams& tool);
+
+/// Shortest collision-free polylines between free points, on a visibility graph whose nodes sit
+/// just outside the rounded corners of F (around convex obstacle corners, circles and reflex wall
+/// corners). Edges are checked exactly; the graph is built on the first query that needs it.
+class TransitRouter {
+ public:
+  TransitRouter(const ClearanceField& field, const ToolParams& tool);
+  ~TransitRouter();
+  TransitRouter(const TransitRouter&) = delete;
+  TransitRouter& operator=(const TransitRouter&) = delete;
+
+  /// A straight move from a to b keeps the tool valid (with kPlanningMargin to spare).
+  bool isFree(Point a, Point b) const;
+  /// The shortest polyline a, ..., b whose segments are all free; nullopt when b is unreachable.
+  std::optional<std::vector<Point>> route(Point a, Point b);
+  std::size_t nodeCount();
+
+ private:
+  struct Graph;
+  void build();
+
+  const ClearanceField* field_;
+  ToolParams tool_;
+  std::unique_ptr<Graph> graph_;
+};
+
+/// The geometry of one problem, built once and shared by a planner's stages.
+class Workspace {
+ public:
+  Workspace(const Wall& wall, const ToolParams& tool);
+  const Wall& wall() const { return wall_; }
+  const ToolParams& tool() const { return tool_; }
+  const Region& free() const { return free_; }
+  const ClearanceField& field() const { return field_; }
+  TransitRouter& router() { return router_; }
+
+ private:
+  Wall wall_;
+  ToolParams tool_;
+  ClearanceField field_;
+  Region free_;
+  TransitRouter router_;
+};
+
+/// Appends moves to a path, checking every straight move and routing around obstacles when a
+/// straight move is not free.
+class PathBuilder {
+ public:
+  explicit PathBuilder(Workspace& workspace) : ws_(&workspace) {}
+
+  bool empty() const { return path_.waypoints.empty(); }
+  Point current() const { return path_.waypoints.back(); }
+  /// Starts the path (or teleports nowhere: only valid on an empty path).
+  void start(Point p) { path_.moveTo(p, false); }
+  /// Moves along points known to lie in the free region (e.g. a ring of `free()`), tool state
+  /// as given. The first point must be the current position or reachable straight from it.
+  void follow(const std::vector<Point>& points, bool tool_on);
+  /// Moves to `to`: straight if free (tool as `tool_on_if_straight`), else along the shortest
+  /// route with the tool off. Returns false (and leaves the path unchanged) if `to` is unreachable.
+  bool moveTo(Point to, bool tool_on_if_straight);
+  /// How many moves so far went along a routed detour with the tool off.
+  std::size_t transits() const { return transits_; }
+  Path take() { return std::move(path_); }
+  const Path& path() const { return path_; }
+
+ private:
+  Workspace* ws_;
+  Path path_;
+  std::size_t transits_ = 0;
+};
+
+/// Covers each ring with one closed loop (tool on), visiting rings in greedy nearest order and
+/// starting each loop at its vertex nearest to the current position. The move onto a loop keeps
+/// the tool on when it is straight and no longer than `max_painted_link`. Returns the number of
+/// rings that could not be reached.
+std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max_painted_link);
+
+/// The connected components of a region, largest area first (ties broken by position, so the
+/// order is deterministic).
+std::vector<PolygonWithHoles> componentsByArea(const Region& region);
+
+}  // namespace coverbench

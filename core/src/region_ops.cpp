@@ -1,0 +1,145 @@
+#include "coverbench/region_ops.hpp"
+
+#include <clipper.hpp>
+
+#include <cmath>
+
+namespace coverbench {
+namespace {
+
+namespace cl = ClipperLib;
+constexpr double kScale = 1.0 / kRegionResolution;
+
+cl::IntPoint toInt(Point p) {
+  return {static_cast<cl::cInt>(std::llround(p.x * kScale)),
+          static_cast<cl::cInt>(std::llround(p.y * kScale))};
+}
+Point toPoint(const cl::IntPoint& p) {
+  return {static_cast<double>(p.X) / kScale, static_cast<double>(p.Y) / kScale};
+}
+
+cl::Path toPath(const Ring& ring) {
+  cl::Path path;
+  path.reserve(ring.size());
+  for (const Point& p : ring) path.push_back(toInt(p));
+  return path;
+}
+
+Ring toRing(const cl::Path& path) {
+  Ring ring;
+  ring.reserve(path.size());
+  for (const cl::IntPoint& p : path) ring.push_back(toPoint(p));
+  return ring;
+}
+
+cl::Paths toPaths(const Region& region) {
+  cl::Paths paths;
+  for (const PolygonWithHoles& poly : region) {
+    paths.push_back(toPath(poly.outer));
+    for (const Ring& hole : poly.holes) paths.push_back(toPath(hole));
+  }
+  return paths;
+}
+
+void collect(const cl::PolyNode& node, Region& out) {
+  // `node` is an outer ring; its children are holes, their children outer rings again.
+  PolygonWithHoles poly;
+  poly.outer = toRing(node.Contour);
+  if (signedArea(poly.outer) < 0) std::reverse(poly.outer.begin(), poly.outer.end());
+  for (const cl::PolyNode* hole : node.Childs) {
+    Ring h = toRing(hole->Contour);
+    if (signedArea(h) > 0) std::reverse(h.begin(), h.end());
+    poly.holes.push_back(std::move(h));
+  }
+  out.push_back(std::move(poly));
+  for (const cl::PolyNode* hole : node.Childs)
+    for (const cl::PolyNode* island : hole->Childs) collect(*island, out);
+}
+
+Region fromTree(const cl::PolyTree& tree) {
+  Region out;
+  for (const cl::PolyNode* node : tree.Childs) collect(*node, out);
+  return out;
+}
+
+Region boolean(const Region& a, const Region& b, cl::ClipType type) {
+  cl::Clipper clipper;
+  clipper.AddPaths(toPaths(a), cl::ptSubject, true);
+  clipper.AddPaths(toPaths(b), cl::ptClip, true);
+  cl::PolyTree tree;
+  clipper.Execute(type, tree, cl::pftNonZero, cl::pftNonZero);
+  return fromTree(tree);
+}
+
+}  // namespace
+
+std::vector<Ring> allRings(const Region& region) {
+  std::vector<Ring> rings;
+  for (const PolygonWithHoles& poly : region) {
+    rings.push_back(poly.outer);
+    for (const Ring& hole : poly.holes) rings.push_back(hole);
+  }
+  return rings;
+}
+
+Region offsetRegion(const Region& region, double delta, double arc_tolerance) {
+  if (region.empty()) return {};
+  cl::ClipperOffset offset;
+  // Clipper rounds the number of arc steps, so its last chord on an arc can span up to 1.5 steps
+  // and deviate up to 2.25 times its ArcTolerance: divide so the bound we promise holds.
+  offset.ArcTolerance = arc_tolerance * kScale / 2.25;
+  offset.AddPaths(toPaths(region), cl::jtRound, cl::etClosedPolygon);
+  cl::PolyTree tree;
+  offset.Execute(tree, delta * kScale);
+  return fromTree(tree);
+}
+
+Region simplifyRegion(const Region& region, double tolerance) {
+  cl::Paths paths = toPaths(region);
+  cl::CleanPolygons(paths, tolerance * kScale);
+  cl::Clipper clipper;
+  clipper.AddPaths(paths, cl::ptSubject, true);
+  cl::PolyTree tree;
+  clipper.Execute(cl::ctUnion, tree, cl::pftEvenOdd, cl::pftEvenOdd);
+  return fromTree(tree);
+}
+
+Region unite(const Region& a, const Region& b) { return boolean(a, b, cl::ctUnion); }
+Region intersect(const Region& a, const Region& b) { return boolean(a, b, cl::ctIntersection); }
+Region subtract(const Region& a, const Region& b) { return boolean(a, b, cl::ctDifference); }
+
+Region regionFromRings(const std::vector<Ring>& rings) {
+  cl::Clipper clipper;
+  for (const Ring& ring : rings) {
+    cl::Path path = toPath(ring);
+    if (!cl::Orientation(path)) cl::ReversePath(path);
+    clipper.AddPath(path, cl::ptSubject, true);
+  }
+  cl::PolyTree tree;
+  clipper.Execute(cl::ctUnion, tree, cl::pftNonZero, cl::pftNonZero);
+  return fromTree(tree);
+}
+
+Ring circumscribedCircle(Point center, double radius, double tolerance) {
+  // A regular n-gon with inradius `radius` has circumradius radius / cos(pi / n).
+  const double ratio = radius / (radius + tolerance);
+  int n = static_cast<int>(std::ceil(M_PI / std::acos(ratio)));
+  n = std::max(n, 8);
+  const double circumradius = radius / std::cos(M_PI / n);
+  Ring ring;
+  ring.reserve(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const double angle = 2.0 * M_PI * i / n;
+    ring.push_back({center.x + circumradius * std::cos(angle),
+                    center.y + circumradius * std::sin(angle)});
+  }
+  return ring;
+}
+
+Region obstacleRegion(const Obstacle& obstacle, double tolerance) {
+  if (obstacle.type == ObstacleType::Circle)
+    return regionFromRings({circumscribedCircle(obstacle.center, obstacle.radius, tolerance)});
+  return regionFromRings({obstacle.polygon});
+}
+
+}  // namespace coverbench

@@ -1,0 +1,138 @@
+#include "coverbench/registry.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+
+namespace coverbench {
+
+const ParamValue& Params::get(const std::string& name) const {
+  const auto it = values_.find(name);
+  if (it == values_.end()) throw std::logic_error("parameter '" + name + "' is not declared");
+  return it->second;
+}
+double Params::number(const std::string& name) const { return std::get<double>(get(name)); }
+long long Params::integer(const std::string& name) const { return std::get<long long>(get(name)); }
+bool Params::flag(const std::string& name) const { return std::get<bool>(get(name)); }
+const std::string& Params::choice(const std::string& name) const { return std::get<std::string>(get(name)); }
+
+std::string toString(const ParamValue& value) {
+  struct Visitor {
+    std::string operator()(double d) const {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.10g", d);
+      return buf;
+    }
+    std::string operator()(long long i) const { return std::to_string(i); }
+    std::string operator()(bool b) const { return b ? "true" : "false"; }
+    std::string operator()(const std::string& s) const { return s; }
+  };
+  return std::visit(Visitor{}, value);
+}
+
+std::string toString(PlanStatus status) {
+  switch (status) {
+    case PlanStatus::Ok: return "ok";
+    case PlanStatus::NoReachableArea: return "no_reachable_area";
+    case PlanStatus::InvalidInput: return "invalid_input";
+    case PlanStatus::Timeout: return "timeout";
+    case PlanStatus::Error: return "error";
+  }
+  return "error";
+}
+
+const PlannerInfo& findPlanner(const std::string& name, const std::string& source) {
+  std::string known;
+  for (const PlannerInfo& p : registeredPlanners()) {
+    if (p.name == name) return p;
+    known += (known.empty() ? "" : ", ") + p.name;
+  }
+  throw InputError(source, name, "unknown planner (registered: " + known + ")");
+}
+
+namespace {
+
+ParamValue parseValue(const ParamSpec& spec, const std::string& text, const std::string& source) {
+  const std::string field = spec.name;
+  auto fail = [&](const std::string& problem) -> ParamValue { throw InputError(source, field, problem); };
+  switch (spec.type) {
+    case ParamType::Number: {
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !std::isfinite(v)) return fail("'" + text + "' is not a finite number");
+      if (v < spec.min || v > spec.max)
+        return fail(text + " is out of range [" + toString(spec.min) + ", " + toString(spec.max) + "]" +
+                    (spec.unit.empty() ? "" : " " + spec.unit));
+      return v;
+    }
+    case ParamType::Integer: {
+      char* end = nullptr;
+      const long long v = std::strtoll(text.c_str(), &end, 10);
+      if (text.empty() || *end != '\0') return fail("'" + text + "' is not an integer");
+      if (static_cast<double>(v) < spec.min || static_cast<double>(v) > spec.max)
+        return fail(text + " is out of range [" + toString(spec.min) + ", " + toString(spec.max) + "]");
+      return v;
+    }
+    case ParamType::Bool:
+      if (text == "true" || text == "1" || text == "on") return true;
+      if (text == "false" || text == "0" || text == "off") return false;
+      return fail("'" + text + "' is not a boolean (true or false)");
+    case ParamType::Choice:
+      for (const std::string& c : spec.choices)
+        if (c == text) return text;
+      {
+        std::string list;
+        for (const std::string& c : spec.choices) list += (list.empty() ? "" : ", ") + c;
+        return fail("'" + text + "' is not one of: " + list);
+      }
+  }
+  return fail("unsupported parameter type");
+}
+
+}  // namespace
+
+Params resolveParams(const PlannerInfo& planner, const std::vector<std::pair<std::string, std::string>>& settings,
+                     const std::string& source) {
+  Params params;
+  for (const ParamSpec& spec : planner.params) params.set(spec.name, spec.default_value);
+  for (const auto& [key, value] : settings) {
+    const ParamSpec* spec = nullptr;
+    for (const ParamSpec& s : planner.params)
+      if (s.name == key) spec = &s;
+    if (!spec) {
+      std::string known;
+      for (const ParamSpec& s : planner.params) known += (known.empty() ? "" : ", ") + s.name;
+      throw InputError(source, key,
+                       "planner '" + planner.name + "' has no such parameter (it has: " +
+                           (known.empty() ? "none" : known) + ")");
+    }
+    params.set(key, parseValue(*spec, value, source));
+  }
+  return params;
+}
+
+void validateTool(const ToolParams& tool, const std::string& source) {
+  if (!std::isfinite(tool.tool_width) || tool.tool_width <= 0.0 || tool.tool_width > 10.0)
+    throw InputError(source, "tool_width", "must be in (0, 10] m, got " + toString(tool.tool_width));
+  if (!std::isfinite(tool.clearance) || tool.clearance < 0.0 || tool.clearance > 10.0)
+    throw InputError(source, "clearance", "must be in [0, 10] m, got " + toString(tool.clearance));
+}
+
+PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const Budget& budget) {
+  const auto start = std::chrono::steady_clock::now();
+  PlanResult result;
+  try {
+    result = planner.make()->plan(problem, budget);
+  } catch (const std::exception& e) {
+    result = PlanResult::failure(PlanStatus::Error, std::string("planner threw: ") + e.what());
+  } catch (...) {
+    result = PlanResult::failure(PlanStatus::Error, "planner threw an unknown exception");
+  }
+  result.plan_time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (result.status != PlanStatus::Ok) result.path = Path{};
+  return result;
+}
+
+}  // namespace coverbench

@@ -1,0 +1,221 @@
+// Wall files: JSON parsing with one-line errors, validation and serialisation.
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "coverbench/region_ops.hpp"
+#include "coverbench/wall.hpp"
+
+namespace coverbench {
+
+InputError::InputError(std::string source, std::string field, std::string problem)
+    : std::runtime_error(source + ": " + field + ": " + problem),
+      source_(std::move(source)),
+      field_(std::move(field)),
+      problem_(std::move(problem)) {}
+
+namespace {
+
+using nlohmann::json;
+
+std::string show(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+/// Reads JSON values with the file name and field path at hand for errors.
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+    throw InputError(source_, field, problem);
+  }
+
+  void onlyKeys(const json& obj, const std::string& where, const std::set<std::string>& allowed) const {
+    for (auto it = obj.begin(); it != obj.end(); ++it)
+      if (!allowed.count(it.key()))
+        fail(where.empty() ? it.key() : where + "." + it.key(), "unknown key");
+  }
+
+  double number(const json& obj, const std::string& key, const std::string& field) const {
+    if (!obj.contains(key)) fail(field, "missing");
+    return numberValue(obj.at(key), field);
+  }
+
+  double numberValue(const json& v, const std::string& field) const {
+    if (!v.is_number()) fail(field, "must be a number, got " + std::string(v.type_name()));
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(field, "must be finite");
+    if (std::fabs(d) > kMaxExtent) fail(field, "absurd value " + show(d) + " (beyond 10 km)");
+    return d;
+  }
+
+  double positiveSize(const json& obj, const std::string& key, const std::string& field) const {
+    const double d = number(obj, key, field);
+    if (d <= 0.0) fail(field, "must be positive, got " + show(d));
+    return d;
+  }
+
+  Ring points(const json& v, const std::string& field) const {
+    if (!v.is_array()) fail(field, "must be an array of [x, y] points");
+    Ring ring;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::string f = field + "[" + std::to_string(i) + "]";
+      const json& p = v[i];
+      if (!p.is_array() || p.size() != 2) fail(f, "must be an [x, y] pair");
+      Point pt{numberValue(p[0], f + "[0]"), numberValue(p[1], f + "[1]")};
+      if (!ring.empty() && ring.back() == pt) continue;  // repeated vertex: harmless, dropped
+      ring.push_back(pt);
+    }
+    if (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();  // explicitly closed
+    if (ring.size() < 3) fail(field, "needs at least 3 distinct points, got " + std::to_string(ring.size()));
+    if (!ringIsSimple(ring)) fail(field, "polygon is self-intersecting or degenerate");
+    if (signedArea(ring) < 0) std::reverse(ring.begin(), ring.end());
+    return ring;
+  }
+
+  void checkExtent(const Ring& ring, const std::string& field) const {
+    const Box b = boundingBox(ring);
+    if (b.width() > kMaxExtent || b.height() > kMaxExtent) fail(field, "absurd size (over 10 km)");
+  }
+
+ private:
+  std::string source_;
+};
+
+Obstacle parseObstacle(const Reader& r, const json& v, const std::string& field) {
+  if (!v.is_object()) r.fail(field, "must be an object");
+  if (!v.contains("type")) r.fail(field + ".type", "missing");
+  if (!v["type"].is_string()) r.fail(field + ".type", "must be a string");
+  const std::string type = v["type"].get<std::string>();
+  Obstacle o;
+  if (v.contains("label")) {
+    if (!v["label"].is_string()) r.fail(field + ".label", "must be a string");
+    o.label = v["label"].get<std::string>();
+  }
+  if (type == "rect") {
+    r.onlyKeys(v, field, {"type", "label", "x", "y", "width", "height"});
+    const double x = r.number(v, "x", field + ".x"), y = r.number(v, "y", field + ".y");
+    const double w = r.positiveSize(v, "width", field + ".width");
+    const double h = r.positiveSize(v, "height", field + ".height");
+    o.type = ObstacleType::Rect;
+    o.polygon = {{x, y}, {x + w, y}, {x + w, y + h}, {x, y + h}};
+  } else if (type == "polygon") {
+    r.onlyKeys(v, field, {"type", "label", "points"});
+    if (!v.contains("points")) r.fail(field + ".points", "missing");
+    o.type = ObstacleType::Polygon;
+    o.polygon = r.points(v["points"], field + ".points");
+    r.checkExtent(o.polygon, field + ".points");
+  } else if (type == "circle") {
+    r.onlyKeys(v, field, {"type", "label", "x", "y", "radius"});
+    o.type = ObstacleType::Circle;
+    o.center = {r.number(v, "x", field + ".x"), r.number(v, "y", field + ".y")};
+    o.radius = r.positiveSize(v, "radius", field + ".radius");
+    if (2 * o.radius > kMaxExtent) r.fail(field + ".radius", "absurd size (over 10 km)");
+  } else {
+    r.fail(field + ".type", "unknown obstacle type '" + type + "' (expected rect, polygon or circle)");
+  }
+  return o;
+}
+
+}  // namespace
+
+void validateWall(const Wall& wall, const std::string& source) {
+  const Region boundary = regionFromRings({wall.boundary});
+  std::vector<Ring> obstacle_rings;
+  for (std::size_t i = 0; i < wall.obstacles.size(); ++i) {
+    const Region o = obstacleRegion(wall.obstacles[i], 1e-6);
+    if (area(intersect(o, boundary)) <= 0.0)
+      throw InputError(source, "obstacles[" + std::to_string(i) + "]", "lies entirely outside the wall");
+    for (const Ring& ring : allRings(o)) obstacle_rings.push_back(ring);
+  }
+  if (!obstacle_rings.empty()) {
+    const Region free = subtract(boundary, regionFromRings(obstacle_rings));
+    if (area(free) <= 1e-9) throw InputError(source, "obstacles", "leave nothing of the wall to cover");
+  }
+}
+
+Wall parseWallJson(const std::string& text, const std::string& source) {
+  Reader r(source);
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    std::string what = e.what();
+    const auto pos = what.find("] ");
+    if (pos != std::string::npos) what = what.substr(pos + 2);
+    r.fail("(document)", "malformed JSON: " + what);
+  }
+  if (!doc.is_object()) r.fail("(document)", "must be a JSON object");
+  r.onlyKeys(doc, "", {"name", "width", "height", "boundary", "obstacles", "description", "metadata"});
+
+  Wall wall;
+  if (doc.contains("name")) {
+    if (!doc["name"].is_string()) r.fail("name", "must be a string");
+    wall.name = doc["name"].get<std::string>();
+  }
+  const bool has_size = doc.contains("width") || doc.contains("height");
+  if (doc.contains("boundary")) {
+    if (has_size) r.fail("boundary", "give either width/height or boundary, not both");
+    wall.boundary = r.points(doc["boundary"], "boundary");
+    r.checkExtent(wall.boundary, "boundary");
+  } else {
+    if (!has_size) r.fail("width", "missing (give width and height, or boundary)");
+    const double w = r.positiveSize(doc, "width", "width");
+    const double h = r.positiveSize(doc, "height", "height");
+    wall.boundary = {{0, 0}, {w, 0}, {w, h}, {0, h}};
+  }
+  if (doc.contains("obstacles")) {
+    const json& obs = doc["obstacles"];
+    if (!obs.is_array()) r.fail("obstacles", "must be an array");
+    for (std::size_t i = 0; i < obs.size(); ++i)
+      wall.obstacles.push_back(parseObstacle(r, obs[i], "obstacles[" + std::to_string(i) + "]"));
+  }
+  validateWall(wall, source);
+  return wall;
+}
+
+Wall loadWallFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "(file)", "cannot be read");
+  std::ostringstream text;
+  text << in.rdbuf();
+  Wall wall = parseWallJson(text.str(), path);
+  if (wall.name.empty()) {
+    std::string stem = path.substr(path.find_last_of('/') + 1);
+    wall.name = stem.substr(0, stem.rfind('.'));
+  }
+  return wall;
+}
+
+std::string wallToJson(const Wall& wall) {
+  auto points = [](const Ring& ring) {
+    json arr = json::array();
+    for (const Point& p : ring) arr.push_back({p.x, p.y});
+    return arr;
+  };
+  json doc;
+  doc["name"] = wall.name;
+  doc["boundary"] = points(wall.boundary);
+  json obs = json::array();
+  for (const Obstacle& o : wall.obstacles) {
+    json j;
+    if (o.type == ObstacleType::Circle) {
+      j = {{"type", "circle"}, {"x", o.center.x}, {"y", o.center.y}, {"radius", o.radius}};
+    } else {
+      j = {{"type", "polygon"}, {"points", points(o.polygon)}};
+    }
+    if (!o.label.empty()) j["label"] = o.label;
+    obs.push_back(j);
+  }
+  doc["obstacles"] = obs;
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace coverbench

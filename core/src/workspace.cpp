@@ -1,0 +1,118 @@
+#include "coverbench/workspace.hpp"
+
+#include <algorithm>
+
+#include "coverbench/region_ops.hpp"
+
+namespace coverbench {
+
+void Path::moveTo(Point p, bool tool) {
+  if (!waypoints.empty() && waypoints.back() == p) return;
+  if (!waypoints.empty()) tool_on.push_back(tool);
+  waypoints.push_back(p);
+}
+
+Wall rotateWall(const Wall& wall, double radians) {
+  Wall out = wall;
+  for (Point& p : out.boundary) p = rotate(p, radians);
+  for (Obstacle& o : out.obstacles) {
+    for (Point& p : o.polygon) p = rotate(p, radians);
+    o.center = rotate(o.center, radians);
+  }
+  return out;
+}
+
+Region freeRegion(const Wall& wall, const ToolParams& tool) {
+  const double r = tool.radius();
+  const Region boundary = regionFromRings({wall.boundary});
+  const Region inner = offsetRegion(boundary, -(r + kFreeSpaceMargin), kArcTolerance);
+  if (inner.empty() || wall.obstacles.empty()) return inner;
+  std::vector<Ring> rings;
+  for (const Obstacle& o : wall.obstacles)
+    for (const Ring& ring : allRings(obstacleRegion(o, kArcTolerance))) rings.push_back(ring);
+  const Region blocked =
+      offsetRegion(regionFromRings(rings), r + tool.clearance + kFreeSpaceMargin, kArcTolerance);
+  return subtract(inner, blocked);
+}
+
+Workspace::Workspace(const Wall& wall, const ToolParams& tool)
+    : wall_(wall), tool_(tool), field_(wall_), free_(freeRegion(wall_, tool_)), router_(field_, tool_) {}
+
+void PathBuilder::follow(const std::vector<Point>& points, bool tool_on) {
+  for (const Point& p : points) path_.moveTo(p, tool_on);
+}
+
+bool PathBuilder::moveTo(Point to, bool tool_on_if_straight) {
+  if (path_.waypoints.empty()) {
+    path_.moveTo(to, false);
+    return true;
+  }
+  const Point from = current();
+  if (from == to) return true;
+  if (ws_->router().isFree(from, to)) {
+    path_.moveTo(to, tool_on_if_straight);
+    return true;
+  }
+  const auto route = ws_->router().route(from, to);
+  if (!route) return false;
+  for (std::size_t i = 1; i < route->size(); ++i) path_.moveTo((*route)[i], false);
+  ++transits_;
+  return true;
+}
+
+std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max_painted_link) {
+  std::size_t unreachable = 0;
+  std::vector<Box> boxes;
+  boxes.reserve(rings.size());
+  for (const Ring& ring : rings) boxes.push_back(boundingBox(ring));
+  std::vector<bool> done(rings.size(), false);
+  for (std::size_t left = rings.size(); left > 0; --left) {
+    // Nearest vertex of any remaining ring; boxes prune rings that cannot beat the best so far.
+    std::size_t best_ring = 0, best_vertex = 0;
+    double best = INFINITY;
+    Box here;
+    if (!builder.empty()) here.add(builder.current());
+    for (std::size_t i = 0; i < rings.size(); ++i) {
+      if (done[i]) continue;
+      if (!builder.empty() && squaredBoxDistance(here, boxes[i]) >= best) continue;
+      for (std::size_t k = 0; k < rings[i].size(); ++k) {
+        const Point p = rings[i][k];
+        // The very first loop starts at the lowest, then leftmost, vertex. (Squared distances.)
+        const Point v = builder.empty() ? Point{} : p - builder.current();
+        const double d = builder.empty() ? p.y * 1e6 + p.x : dot(v, v);
+        if (d < best) {
+          best = d;
+          best_ring = i;
+          best_vertex = k;
+        }
+      }
+    }
+    done[best_ring] = true;
+    const Ring& ring = rings[best_ring];
+    const Point entry = ring[best_vertex];
+    const bool short_link = !builder.empty() && distance(builder.current(), entry) <= max_painted_link;
+    if (!builder.moveTo(entry, short_link)) {
+      ++unreachable;
+      continue;
+    }
+    std::vector<Point> loop;
+    loop.reserve(ring.size());
+    for (std::size_t k = 1; k <= ring.size(); ++k) loop.push_back(ring[(best_vertex + k) % ring.size()]);
+    builder.follow(loop, true);
+  }
+  return unreachable;
+}
+
+std::vector<PolygonWithHoles> componentsByArea(const Region& region) {
+  std::vector<PolygonWithHoles> parts(region.begin(), region.end());
+  std::stable_sort(parts.begin(), parts.end(), [](const PolygonWithHoles& a, const PolygonWithHoles& b) {
+    const double aa = area(a), ab = area(b);
+    if (aa != ab) return aa > ab;
+    const Box ba = boundingBox(a.outer), bb = boundingBox(b.outer);
+    if (ba.min_y != bb.min_y) return ba.min_y < bb.min_y;
+    return ba.min_x < bb.min_x;
+  });
+  return parts;
+}
+
+}  // namespace coverbench

@@ -1,0 +1,41 @@
+#include <cmath>
+
+#include "coverbench/clearance.hpp"
+#include "coverbench/metrics.hpp"
+
+namespace coverbench {
+
+Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path) {
+  Validity v;
+  const ClearanceField field(wall);
+  const double r = tool.radius();
+  const std::size_t n = path.waypoints.size();
+  auto check = [&](Point a, Point b) {
+    const SegmentClearance c = field.measure(a, b, std::fmax(v.min_clearance, tool.clearance) + r);
+    const double boundary_gap = c.inside ? c.boundary_distance - r : -c.boundary_distance - r;
+    const double obstacle_gap = c.obstacle_distance - r;
+    v.min_boundary_gap = std::fmin(v.min_boundary_gap, boundary_gap);
+    v.min_clearance = std::fmin(v.min_clearance, obstacle_gap);
+    const bool outside = boundary_gap < -kValidityTolerance;
+    const bool close = obstacle_gap < tool.clearance - kValidityTolerance;
+    v.outside_boundary += outside;
+    v.too_close += close;
+    v.violations += outside || close;
+  };
+  if (n == 1) check(path.waypoints[0], path.waypoints[0]);
+  for (std::size_t i = 0; i + 1 < n; ++i) check(path.waypoints[i], path.waypoints[i + 1]);
+  v.valid = v.violations == 0;
+  return v;
+}
+
+Lengths pathLengths(const Path& path) {
+  Lengths l;
+  for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
+    const double d = distance(path.waypoints[i], path.waypoints[i + 1]);
+    l.total += d;
+    (path.tool_on[i] ? l.cover : l.transit) += d;
+  }
+  return l;
+}
+
+}  // namespace coverbench

@@ -1,0 +1,147 @@
+#include "coverbench/svg.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace coverbench {
+namespace {
+
+constexpr double kMaxWidthPx = 1000.0;
+constexpr double kMaxHeightPx = 700.0;
+constexpr double kPadPx = 24.0;
+constexpr double kLegendPx = 64.0;
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", v);
+  return buf;
+}
+
+std::string escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+/// Maps wall metres to picture pixels (y up in the wall, down in SVG).
+struct View {
+  Box box;
+  double k = 1.0;
+  double top = 0.0;
+  double px(double x) const { return kPadPx + (x - box.min_x) * k; }
+  double py(double y) const { return top + (box.max_y - y) * k; }
+  std::string pt(Point p) const { return fmt(px(p.x)) + "," + fmt(py(p.y)); }
+  std::string ringPath(const Ring& ring) const {
+    std::string d;
+    for (std::size_t i = 0; i < ring.size(); ++i) d += (i == 0 ? "M" : "L") + pt(ring[i]);
+    return d + "Z";
+  }
+};
+
+/// A "nice" scale-bar length: 1, 2 or 5 times a power of ten, about a fifth of the width.
+double niceLength(double span) {
+  const double target = span / 5.0;
+  const double p = std::pow(10.0, std::floor(std::log10(target)));
+  for (double m : {5.0, 2.0, 1.0})
+    if (m * p <= target) return m * p;
+  return p;
+}
+
+}  // namespace
+
+std::string renderSvg(const SvgContent& c) {
+  const Wall& wall = *c.wall;
+  View v;
+  v.box = boundingBox(wall.boundary);
+  v.k = std::min(kMaxWidthPx / v.box.width(), kMaxHeightPx / v.box.height());
+  v.top = kPadPx + 20.0;
+  const double w_px = std::max(v.box.width() * v.k + 2 * kPadPx, 740.0);  // room for the legend
+  const double h_px = v.top + v.box.height() * v.k + kPadPx + kLegendPx;
+  const double tool_px = c.tool.tool_width * v.k;
+
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fmt(w_px) << "\" height=\"" << fmt(h_px)
+    << "\" viewBox=\"0 0 " << fmt(w_px) << " " << fmt(h_px) << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  s << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
+  s << "<text x=\"" << fmt(kPadPx) << "\" y=\"" << fmt(kPadPx + 6) << "\" font-size=\"14\" font-weight=\"bold\">"
+    << escape(c.title) << "</text>\n";
+  s << "<path d=\"" << v.ringPath(wall.boundary)
+    << "\" fill=\"#f3efe6\" stroke=\"#333333\" stroke-width=\"1.5\"/>\n";
+  if (c.free) {
+    std::string d;
+    for (const PolygonWithHoles& poly : *c.free) {
+      d += v.ringPath(poly.outer);
+      for (const Ring& hole : poly.holes) d += v.ringPath(hole);
+    }
+    s << "<path d=\"" << d << "\" fill=\"#cfe8cf\" fill-rule=\"evenodd\" stroke=\"#7fb27f\" stroke-width=\"0.8\"/>\n";
+  }
+  for (const Obstacle& o : wall.obstacles) {
+    if (o.type == ObstacleType::Circle) {
+      s << "<circle cx=\"" << fmt(v.px(o.center.x)) << "\" cy=\"" << fmt(v.py(o.center.y)) << "\" r=\""
+        << fmt(o.radius * v.k) << "\" fill=\"#9a9a9a\" fill-opacity=\"0.85\" stroke=\"#444444\"/>\n";
+    } else {
+      s << "<path d=\"" << v.ringPath(o.polygon)
+        << "\" fill=\"#9a9a9a\" fill-opacity=\"0.85\" stroke=\"#444444\"/>\n";
+    }
+    if (!o.label.empty()) {
+      const Point at = o.type == ObstacleType::Circle ? o.center : [&] {
+        const Box b = boundingBox(o.polygon);
+        return Point{(b.min_x + b.max_x) / 2, (b.min_y + b.max_y) / 2};
+      }();
+      s << "<text x=\"" << fmt(v.px(at.x)) << "\" y=\"" << fmt(v.py(at.y) + 4)
+        << "\" text-anchor=\"middle\" fill=\"#ffffff\" font-size=\"11\">" << escape(o.label) << "</text>\n";
+    }
+  }
+  if (c.path && !c.path->waypoints.empty()) {
+    const Path& path = *c.path;
+    // Runs of consecutive segments with the same tool state become one polyline each.
+    std::string on_runs, off_runs;
+    for (std::size_t i = 0; i < path.tool_on.size();) {
+      std::size_t j = i;
+      std::string pts = v.pt(path.waypoints[i]);
+      while (j < path.tool_on.size() && path.tool_on[j] == path.tool_on[i]) pts += " " + v.pt(path.waypoints[++j]);
+      (path.tool_on[i] ? on_runs : off_runs) += "<polyline points=\"" + pts + "\"/>\n";
+      i = j;
+    }
+    s << "<g fill=\"none\" stroke=\"#2f6fd0\" stroke-opacity=\"0.18\" stroke-width=\"" << fmt(tool_px)
+      << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n" << on_runs << "</g>\n";
+    s << "<g fill=\"none\" stroke=\"#1f4f9f\" stroke-width=\"" << fmt(std::clamp(tool_px * 0.12, 0.5, 2.0))
+      << "\" stroke-linejoin=\"round\">\n" << on_runs << "</g>\n";
+    s << "<g fill=\"none\" stroke=\"#e07b00\" stroke-width=\"1.6\" stroke-dasharray=\"5,3\">\n" << off_runs << "</g>\n";
+    const Point a = path.waypoints.front(), b = path.waypoints.back();
+    s << "<circle cx=\"" << fmt(v.px(a.x)) << "\" cy=\"" << fmt(v.py(a.y))
+      << "\" r=\"6\" fill=\"#19a33a\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>\n";
+    s << "<rect x=\"" << fmt(v.px(b.x) - 5) << "\" y=\"" << fmt(v.py(b.y) - 5)
+      << "\" width=\"10\" height=\"10\" fill=\"#d02f2f\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>\n";
+  }
+  // Legend and scale bar.
+  const double ly = v.top + v.box.height() * v.k + kPadPx + 8;
+  const double bar = niceLength(v.box.width());
+  s << "<g transform=\"translate(" << fmt(kPadPx) << "," << fmt(ly) << ")\">\n"
+    << "<line x1=\"0\" y1=\"0\" x2=\"" << fmt(bar * v.k) << "\" y2=\"0\" stroke=\"#000\" stroke-width=\"2\"/>"
+    << "<text x=\"0\" y=\"16\">" << toString(bar) << " m</text>\n"
+    << "<g transform=\"translate(0,34)\">"
+    << "<rect width=\"14\" height=\"10\" fill=\"#cfe8cf\" stroke=\"#7fb27f\"/><text x=\"20\" y=\"10\">free region F</text>"
+    << "<rect x=\"120\" width=\"14\" height=\"10\" fill=\"#9a9a9a\"/><text x=\"140\" y=\"10\">obstacle</text>"
+    << "<line x1=\"220\" y1=\"5\" x2=\"250\" y2=\"5\" stroke=\"#1f4f9f\" stroke-width=\"2\"/>"
+    << "<text x=\"256\" y=\"10\">tool on (band = tool width)</text>"
+    << "<line x1=\"440\" y1=\"5\" x2=\"470\" y2=\"5\" stroke=\"#e07b00\" stroke-width=\"2\" stroke-dasharray=\"5,3\"/>"
+    << "<text x=\"476\" y=\"10\">transit (tool off)</text>"
+    << "<circle cx=\"600\" cy=\"5\" r=\"5\" fill=\"#19a33a\"/><text x=\"610\" y=\"10\">start</text>"
+    << "<rect x=\"655\" width=\"10\" height=\"10\" fill=\"#d02f2f\"/><text x=\"670\" y=\"10\">end</text>"
+    << "</g>\n</g>\n";
+  s << "</svg>\n";
+  return s.str();
+}
+
+}  // namespace coverbench
