@@ -66,8 +66,14 @@ bool ClearanceField::segmentFree(Point a, Point b, double radius, double clearan
   const std::size_t n = ring.size();
   const double need_boundary = radius + margin;
   const double need_boundary2 = need_boundary * need_boundary;
-  for (std::size_t i = 0; i < n; ++i)
-    if (squaredDistanceSegmentSegment(a, b, ring[i], ring[(i + 1) % n]) < need_boundary2) return false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point p = ring[i], q = ring[(i + 1) % n];
+    Box edge;
+    edge.add(p);
+    edge.add(q);
+    if (squaredBoxDistance(seg, edge) >= need_boundary2) continue;
+    if (squaredDistanceSegmentSegment(a, b, p, q) < need_boundary2) return false;
+  }
   return pointInRing(a, ring);
 }
 

@@ -94,14 +94,58 @@ Region offsetRegion(const Region& region, double delta, double arc_tolerance) {
   return fromTree(tree);
 }
 
+namespace {
+
+/// Douglas-Peucker on the open chain ring[first..last] (indices modulo n): marks the vertices to
+/// keep so that every dropped vertex lies within `tolerance` of the kept chain.
+void douglasPeucker(const Ring& ring, std::size_t first, std::size_t last, double tolerance, std::vector<bool>& keep) {
+  const std::size_t n = ring.size();
+  std::vector<std::pair<std::size_t, std::size_t>> stack{{first, last}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    double worst = -1.0;
+    std::size_t at = i;
+    for (std::size_t k = (i + 1) % n; k != j; k = (k + 1) % n) {
+      const double d = distancePointSegment(ring[k], ring[i], ring[j]);
+      if (d > worst) worst = d, at = k;
+    }
+    if (worst > tolerance) {
+      keep[at] = true;
+      stack.push_back({i, at});
+      stack.push_back({at, j});
+    }
+  }
+}
+
+Ring simplifyRing(const Ring& ring, double tolerance) {
+  const std::size_t n = ring.size();
+  if (n <= 4) return ring;
+  // Split the closed ring at vertex 0 and the vertex farthest from it.
+  std::size_t far = 0;
+  for (std::size_t k = 1; k < n; ++k)
+    if (distance(ring[k], ring[0]) > distance(ring[far], ring[0])) far = k;
+  std::vector<bool> keep(n, false);
+  keep[0] = keep[far] = true;
+  douglasPeucker(ring, 0, far, tolerance, keep);
+  douglasPeucker(ring, far, 0, tolerance, keep);
+  Ring out;
+  for (std::size_t k = 0; k < n; ++k)
+    if (keep[k]) out.push_back(ring[k]);
+  return out.size() >= 3 ? out : ring;
+}
+
+}  // namespace
+
 Region simplifyRegion(const Region& region, double tolerance) {
-  cl::Paths paths = toPaths(region);
-  cl::CleanPolygons(paths, tolerance * kScale);
-  cl::Clipper clipper;
-  clipper.AddPaths(paths, cl::ptSubject, true);
-  cl::PolyTree tree;
-  clipper.Execute(cl::ctUnion, tree, cl::pftEvenOdd, cl::pftEvenOdd);
-  return fromTree(tree);
+  // Simplified rings can touch or cross where the region is thinner than 2 * tolerance; a
+  // non-zero union of the outer rings minus the holes turns them back into a valid region.
+  std::vector<Ring> outers, holes;
+  for (const PolygonWithHoles& poly : region) {
+    outers.push_back(simplifyRing(poly.outer, tolerance));
+    for (const Ring& h : poly.holes) holes.push_back(simplifyRing(h, tolerance));
+  }
+  return subtract(regionFromRings(outers), regionFromRings(holes));
 }
 
 Region unite(const Region& a, const Region& b) { return boolean(a, b, cl::ctUnion); }

@@ -14,7 +14,7 @@ namespace {
 /// node always passes the planners' own checks).
 constexpr double kNodeMargin = 5e-6;
 /// Largest angle a node chain turns through per step around a corner.
-constexpr double kMaxStep = M_PI / 4.0;
+constexpr double kMaxStep = M_PI / 2.0;
 
 Point unit(double angle) { return {std::cos(angle), std::sin(angle)}; }
 double angleOf(Point v) { return std::atan2(v.y, v.x); }

@@ -20,9 +20,9 @@ std::vector<Ring> allRings(const Region& region);
 /// Offsets the region by `delta` metres (positive grows, negative shrinks) with round joins whose
 /// chords deviate at most `arc_tolerance` metres from the true arc.
 Region offsetRegion(const Region& region, double delta, double arc_tolerance);
-/// Drops vertices that lie within `tolerance` metres of the line through their neighbours (so the
-/// boundary moves by at most `tolerance`, either way). Keeps later offsets from multiplying the
-/// many short chords of fine arcs.
+/// Douglas-Peucker simplification of every ring: the result's boundary stays within `tolerance`
+/// metres of the original (either way). Keeps later offsets from multiplying the many short
+/// chords of fine arcs.
 Region simplifyRegion(const Region& region, double tolerance);
 Region unite(const Region& a, const Region& b);
 Region intersect(const Region& a, const Region& b);

@@ -1,0 +1,122 @@
+// The command line: bad input gives one line naming file, field and problem, a non-zero exit and
+// no output file; good input gives a plan file and a picture.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandRun {
+  int exit_code;
+  std::string err;
+};
+
+class Cli : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("coverbench_cli_" + std::to_string(::getpid()) + "_" +
+                                        testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  CommandRun run(const std::string& args) {
+    const std::string err_file = (dir_ / "stderr.txt").string();
+    const std::string cmd = std::string(COVERBENCH_BINARY) + " " + args + " > /dev/null 2> " + err_file;
+    const int status = std::system(cmd.c_str());
+    std::ifstream in(err_file);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return {WEXITSTATUS(status), ss.str()};
+  }
+  std::string write(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  fs::path dir_;
+};
+
+int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+
+TEST_F(Cli, PlansAWallAndWritesPlanAndPicture) {
+  const std::string out = (dir_ / "plan.json").string(), svg = (dir_ / "plan.svg").string();
+  const CommandRun r = run("plan --wall " + test::sourcePath("datasets/canonical/living_room_north.json") +
+                    " --planner zigzag --out " + out + " --svg " + svg);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream plan(out);
+  std::stringstream text;
+  text << plan.rdbuf();
+  EXPECT_NE(text.str().find("\"status\": \"ok\""), std::string::npos);
+  EXPECT_NE(text.str().find("\"valid\":true"), std::string::npos);
+  EXPECT_TRUE(fs::file_size(svg) > 1000);
+}
+
+TEST_F(Cli, BadWallGivesOneLineAndNoOutput) {
+  const std::string wall = write("bad.json", R"({"width": 5, "height": -1})");
+  const std::string out = (dir_ / "plan.json").string();
+  const CommandRun r = run("plan --wall " + wall + " --planner zigzag --out " + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(wall + ": height: must be positive"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, BadParameterGivesOneLineAndNoOutput) {
+  const std::string out = (dir_ / "plan.json").string();
+  const CommandRun r = run("plan --wall " + test::sourcePath("datasets/canonical/seed_1x1_empty.json") +
+                    " --planner spiral --param overlap=1.5 --out " + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("--param: overlap: 1.5 is out of range"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, BadToolWidthAndUnknownPlanner) {
+  const std::string wall = test::sourcePath("datasets/canonical/seed_1x1_empty.json");
+  const std::string out = (dir_ / "plan.json").string();
+  CommandRun r = run("plan --wall " + wall + " --planner zigzag --tool-width -0.1 --out " + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("tool_width: must be in (0, 10] m"), std::string::npos) << r.err;
+  r = run("plan --wall " + wall + " --planner nope --out " + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--planner: nope: unknown planner"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, PlannerFailureIsWrittenWithStatusAndNonZeroExit) {
+  const std::string out = (dir_ / "plan.json").string();
+  const CommandRun r = run("plan --wall " + test::sourcePath("tests/data/conformance/exactly_tool_height.json") +
+                    " --planner zigzag --out " + out);
+  EXPECT_EQ(r.exit_code, 3);
+  std::ifstream plan(out);
+  std::stringstream text;
+  text << plan.rdbuf();
+  EXPECT_NE(text.str().find("\"status\": \"no_reachable_area\""), std::string::npos) << text.str();
+}
+
+TEST_F(Cli, SameInputsGiveByteIdenticalPlanFilesApartFromTiming) {
+  const std::string wall = test::sourcePath("datasets/canonical/gable_round_window.json");
+  auto plan_text = [&](const std::string& name) {
+    const std::string out = (dir_ / name).string();
+    EXPECT_EQ(run("plan --wall " + wall + " --planner spiral --out " + out).exit_code, 0);
+    std::ifstream in(out);
+    std::string text, line;
+    while (std::getline(in, line))
+      if (line.find("\"timing\"") == std::string::npos) text += line + "\n";
+    return text;
+  };
+  EXPECT_EQ(plan_text("a.json"), plan_text("b.json"));
+}
+
+}  // namespace
+}  // namespace coverbench

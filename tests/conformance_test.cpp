@@ -1,0 +1,139 @@
+// The conformance suite every registered planner must pass: on every conformance wall, a valid
+// path or a clear failure status, deterministically; and the same over many generated walls.
+#include <gtest/gtest.h>
+
+#include "coverbench/registry.hpp"
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+struct Case {
+  std::string planner;
+  std::string wall_file;
+  ToolParams tool;
+  std::vector<std::pair<std::string, std::string>> params;
+};
+
+std::string caseName(const Case& c) {
+  std::string name = c.planner + "__" + c.wall_file.substr(c.wall_file.find_last_of('/') + 1);
+  name = name.substr(0, name.rfind('.'));
+  if (c.tool.tool_width != 0.1) name += "__s" + std::to_string(static_cast<int>(c.tool.tool_width * 1000));
+  for (const auto& [k, v] : c.params) name += "__" + k + v;
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return name;
+}
+
+void PrintTo(const Case& c, std::ostream* os) { *os << caseName(c); }
+
+/// Plans and checks the planner contract: ok means a well-formed, exactly valid path; anything
+/// else means no path and a reason.
+testing::AssertionResult honours(const PlannerInfo& info, const Wall& wall, const ToolParams& tool,
+                                 const Params& params, PlanResult* out = nullptr) {
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = tool;
+  problem.params = params;
+  PlanResult r = runPlanner(info, problem, Budget(std::chrono::seconds(60)));
+  if (out) *out = r;
+  if (r.status == PlanStatus::Ok) {
+    testing::AssertionResult valid = test::isValidPath(wall, tool, r.path);
+    if (!valid) return valid << " (" << info.name << " on " << wall.name << ")";
+    return testing::AssertionSuccess();
+  }
+  if (r.status == PlanStatus::Error) return testing::AssertionFailure() << "error status: " << r.reason;
+  if (r.reason.empty()) return testing::AssertionFailure() << "failure status without a reason";
+  if (!r.path.waypoints.empty()) return testing::AssertionFailure() << "failure status with a path";
+  return testing::AssertionSuccess();
+}
+
+class Conformance : public testing::TestWithParam<Case> {};
+
+TEST_P(Conformance, ValidOrClearFailureAndDeterministic) {
+  const Case& c = GetParam();
+  const Wall wall = loadWallFile(c.wall_file);
+  const PlannerInfo& info = findPlanner(c.planner);
+  const Params params = resolveParams(info, c.params);
+  PlanResult first, second;
+  ASSERT_TRUE(honours(info, wall, c.tool, params, &first));
+  ASSERT_TRUE(honours(info, wall, c.tool, params, &second));
+  ASSERT_EQ(first.path.waypoints.size(), second.path.waypoints.size());
+  for (std::size_t i = 0; i < first.path.waypoints.size(); ++i) {
+    ASSERT_EQ(first.path.waypoints[i].x, second.path.waypoints[i].x) << "waypoint " << i;
+    ASSERT_EQ(first.path.waypoints[i].y, second.path.waypoints[i].y) << "waypoint " << i;
+  }
+  EXPECT_EQ(first.path.tool_on, second.path.tool_on);
+}
+
+std::vector<Case> allCases() {
+  std::vector<Case> cases;
+  for (const PlannerInfo& p : registeredPlanners())
+    for (const std::string& f : test::conformanceWallFiles()) {
+      cases.push_back({p.name, f, ToolParams{0.1, 0.02}, {}});
+      cases.push_back({p.name, f, ToolParams{0.05, 0.0}, {}});
+    }
+  // Variants as parameters.
+  for (const char* angle : {"30", "90", "137.5"})
+    cases.push_back({"zigzag", test::sourcePath("datasets/canonical/living_room_north.json"), {}, {{"sweep_angle", angle}}});
+  for (const char* passes : {"0", "3"})
+    cases.push_back({"zigzag", test::sourcePath("tests/data/conformance/garden_circles.json"), {}, {{"boundary_passes", passes}}});
+  cases.push_back({"zigzag", test::sourcePath("tests/data/conformance/stairwell.json"), {}, {{"overlap", "0.3"}}});
+  cases.push_back({"spiral", test::sourcePath("tests/data/conformance/stairwell.json"), {}, {{"overlap", "0.3"}}});
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllPlanners, Conformance, testing::ValuesIn(allCases()),
+                         [](const testing::TestParamInfo<Case>& info) { return caseName(info.param); });
+
+TEST(ConformanceWalls, ExpectedOutcomes) {
+  // Hand-known outcomes on the edge-case walls, for every planner.
+  for (const PlannerInfo& p : registeredPlanners()) {
+    const Params params = resolveParams(p, {});
+    PlanResult r;
+    const Wall exact = loadWallFile(test::sourcePath("tests/data/conformance/exactly_tool_height.json"));
+    ASSERT_TRUE(honours(p, exact, {0.1, 0.02}, params, &r));
+    EXPECT_EQ(r.status, PlanStatus::NoReachableArea) << p.name;
+
+    const Wall thin = loadWallFile(test::sourcePath("tests/data/conformance/barely_wider_than_tool.json"));
+    ASSERT_TRUE(honours(p, thin, {0.1, 0.02}, params, &r));
+    EXPECT_EQ(r.status, PlanStatus::Ok) << p.name << ": " << r.reason;
+
+    const Wall split = loadWallFile(test::sourcePath("tests/data/conformance/narrow_gap_disconnected.json"));
+    ASSERT_TRUE(honours(p, split, {0.1, 0.02}, params, &r));
+    EXPECT_EQ(r.status, PlanStatus::Ok) << p.name;
+    EXPECT_EQ(r.stats["free_components"], 2.0) << p.name;
+    EXPECT_NE(r.reason.find("disconnected"), std::string::npos) << p.name << " must say what it left out";
+
+    const Wall open = loadWallFile(test::sourcePath("tests/data/conformance/narrow_passage_open.json"));
+    ASSERT_TRUE(honours(p, open, {0.1, 0.02}, params, &r));
+    EXPECT_EQ(r.stats["free_components"], 1.0) << p.name;
+  }
+}
+
+class GeneratedWalls : public testing::TestWithParam<std::string> {};
+
+TEST_P(GeneratedWalls, ValidOnManyRandomWalls) {
+  const PlannerInfo& info = findPlanner(GetParam());
+  const Params params = resolveParams(info, {});
+  int ok = 0;
+  for (unsigned seed = 1; seed <= 60; ++seed) {
+    const Wall wall = test::randomWall(seed);
+    PlanResult r;
+    ASSERT_TRUE(honours(info, wall, {0.1, 0.02}, params, &r)) << "seed " << seed;
+    ok += r.status == PlanStatus::Ok;
+  }
+  EXPECT_GE(ok, 55) << "almost every random wall has room for the tool";
+}
+
+std::vector<std::string> plannerNames() {
+  std::vector<std::string> names;
+  for (const PlannerInfo& p : registeredPlanners()) names.push_back(p.name);
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllPlanners, GeneratedWalls, testing::ValuesIn(plannerNames()),
+                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
+
+}  // namespace
+}  // namespace coverbench

@@ -1,0 +1,76 @@
+// Geometry predicates against hand-computed values.
+#include <gtest/gtest.h>
+
+#include "coverbench/geometry.hpp"
+#include "coverbench/region_ops.hpp"
+
+namespace coverbench {
+namespace {
+
+TEST(Geometry, SignedAreaFollowsOrientation) {
+  const Ring ccw{{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  EXPECT_DOUBLE_EQ(signedArea(ccw), 2.0);
+  const Ring cw(ccw.rbegin(), ccw.rend());
+  EXPECT_DOUBLE_EQ(signedArea(cw), -2.0);
+}
+
+TEST(Geometry, PointSegmentDistance) {
+  EXPECT_DOUBLE_EQ(distancePointSegment({1, 1}, {0, 0}, {2, 0}), 1.0);   // above the middle
+  EXPECT_DOUBLE_EQ(distancePointSegment({3, 4}, {0, 0}, {0, 0}), 5.0);   // degenerate segment
+  EXPECT_DOUBLE_EQ(distancePointSegment({5, 4}, {0, 0}, {2, 0}), 5.0);   // beyond the end: 3-4-5
+}
+
+TEST(Geometry, SegmentSegmentDistance) {
+  EXPECT_DOUBLE_EQ(distanceSegmentSegment({0, 0}, {2, 2}, {0, 2}, {2, 0}), 0.0);  // crossing
+  EXPECT_DOUBLE_EQ(distanceSegmentSegment({0, 0}, {1, 0}, {0, 0.5}, {1, 0.5}), 0.5);  // parallel
+  EXPECT_DOUBLE_EQ(distanceSegmentSegment({0, 0}, {1, 0}, {1, 0}, {2, 1}), 0.0);  // touching at an end
+  EXPECT_DOUBLE_EQ(distanceSegmentSegment({0, 0}, {1, 0}, {2, 0}, {3, 0}), 1.0);  // collinear, apart
+}
+
+TEST(Geometry, SegmentThroughFilledPolygonHasZeroDistance) {
+  const Ring square{{1, 1}, {2, 1}, {2, 2}, {1, 2}};
+  // Both ends outside, clipping the corner near (2, 2) over 2.8 cm only.
+  EXPECT_DOUBLE_EQ(distanceSegmentFilledRing({0, 3.98}, {3.98, 0}, square), 0.0);
+  // Passing the corner (1, 2) at distance 0.5 / sqrt(2).
+  EXPECT_NEAR(distanceSegmentFilledRing({0, 1.5}, {1.5, 3.0}, square), 0.5 / std::sqrt(2.0), 1e-15);
+  // A segment entirely inside.
+  EXPECT_DOUBLE_EQ(distanceSegmentFilledRing({1.2, 1.5}, {1.8, 1.5}, square), 0.0);
+}
+
+TEST(Geometry, RingSimplicity) {
+  EXPECT_TRUE(ringIsSimple({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+  EXPECT_FALSE(ringIsSimple({{0, 0}, {1, 1}, {1, 0}, {0, 1}}));  // bow tie
+  EXPECT_FALSE(ringIsSimple({{0, 0}, {2, 0}, {1, 0}}));         // folds back, zero area
+  EXPECT_FALSE(ringIsSimple({{0, 0}, {4, 0}, {4, 4}, {2, 0}, {0, 4}}));  // vertex on an edge
+}
+
+TEST(RegionOps, OffsetOfSquareHasRoundCorners) {
+  const Region square = regionFromRings({{{0, 0}, {1, 0}, {1, 1}, {0, 1}}});
+  const Region grown = offsetRegion(square, 0.1, 1e-6);
+  // Area of a rounded square: 1 + 4 * 0.1 + pi * 0.01 (chords cut at most 1e-6 off).
+  EXPECT_NEAR(area(grown), 1.4 + M_PI * 0.01, 1e-4);
+  const Region shrunk = offsetRegion(square, -0.1, 1e-6);
+  EXPECT_NEAR(area(shrunk), 0.64, 1e-9);
+}
+
+TEST(RegionOps, SubtractMakesHoles) {
+  const Region outer = regionFromRings({{{0, 0}, {4, 0}, {4, 4}, {0, 4}}});
+  const Region hole = regionFromRings({{{1, 1}, {2, 1}, {2, 2}, {1, 2}}});
+  const Region result = subtract(outer, hole);
+  ASSERT_EQ(result.size(), 1u);
+  EXPECT_EQ(result[0].holes.size(), 1u);
+  EXPECT_NEAR(area(result), 15.0, 1e-9);
+}
+
+TEST(RegionOps, CircumscribedCircleContainsCircleWithinTolerance) {
+  const Ring ring = circumscribedCircle({0, 0}, 1.0, 1e-4);
+  for (const Point& p : ring) {
+    EXPECT_GE(norm(p), 1.0);
+    EXPECT_LE(norm(p), 1.0 + 1e-4);
+  }
+  for (std::size_t i = 0; i < ring.size(); ++i)  // every edge stays outside the circle
+    EXPECT_GE(distancePointSegment({0, 0}, ring[i], ring[(i + 1) % ring.size()]), 1.0 - 1e-12);
+}
+
+}  // namespace
+}  // namespace coverbench

@@ -1,0 +1,113 @@
+#include "test_support.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <sstream>
+
+#include "coverbench/clearance.hpp"
+
+namespace coverbench::test {
+
+std::string sourcePath(const std::string& relative) { return std::string(COVERBENCH_SOURCE_DIR) + "/" + relative; }
+
+std::vector<std::string> conformanceWallFiles() {
+  std::vector<std::string> files;
+  for (const char* dir : {"datasets/canonical", "tests/data/conformance"})
+    for (const auto& e : std::filesystem::directory_iterator(sourcePath(dir)))
+      if (e.path().extension() == ".json") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+Wall rectWall(double width, double height, std::vector<Obstacle> obstacles) {
+  Wall w;
+  w.name = "test";
+  w.boundary = {{0, 0}, {width, 0}, {width, height}, {0, height}};
+  w.obstacles = std::move(obstacles);
+  return w;
+}
+
+Obstacle rect(double x, double y, double w, double h) {
+  Obstacle o;
+  o.type = ObstacleType::Rect;
+  o.polygon = {{x, y}, {x + w, y}, {x + w, y + h}, {x, y + h}};
+  return o;
+}
+
+Obstacle circle(double x, double y, double radius) {
+  Obstacle o;
+  o.type = ObstacleType::Circle;
+  o.center = {x, y};
+  o.radius = radius;
+  return o;
+}
+
+Wall randomWall(unsigned seed) {
+  std::mt19937 rng(seed);
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  const double w = uniform(1.0, 8.0), h = uniform(1.0, 4.0);
+  Wall wall = rectWall(w, h);
+  wall.name = "random-" + std::to_string(seed);
+  if (seed % 3 == 0) {  // a gable or a sloped top: a polygon boundary
+    const double peak = h + uniform(0.3, 1.5);
+    wall.boundary = {{0, 0}, {w, 0}, {w, h}, {uniform(0.2, 0.8) * w, peak}, {0, h}};
+  }
+  const int count = std::uniform_int_distribution<int>(0, 6)(rng);
+  for (int i = 0; i < count; ++i) {
+    const double x = uniform(-0.2, w), y = uniform(-0.2, h);
+    switch (std::uniform_int_distribution<int>(0, 2)(rng)) {
+      case 0: wall.obstacles.push_back(rect(x, y, uniform(0.05, 1.5), uniform(0.05, 1.5))); break;
+      case 1: wall.obstacles.push_back(circle(x, y, uniform(0.03, 0.6))); break;
+      default: {
+        Obstacle o;
+        o.type = ObstacleType::Polygon;
+        const double size = uniform(0.1, 0.8), turn = uniform(0, M_PI);
+        for (int k = 0; k < 3; ++k)
+          o.polygon.push_back({x + size * std::cos(turn + 2.1 * k), y + size * std::sin(turn + 2.1 * k)});
+        if (signedArea(o.polygon) < 0) std::reverse(o.polygon.begin(), o.polygon.end());
+        wall.obstacles.push_back(o);
+      }
+    }
+  }
+  // Keep only obstacles the validator accepts (inside the wall, something left to cover).
+  Wall kept = wall;
+  kept.obstacles.clear();
+  for (const Obstacle& o : wall.obstacles) {
+    Wall trial = kept;
+    trial.obstacles.push_back(o);
+    try {
+      validateWall(trial, wall.name);
+      kept = trial;
+    } catch (const InputError&) {
+    }
+  }
+  return kept;
+}
+
+testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, const Path& path) {
+  if (path.waypoints.empty()) return testing::AssertionFailure() << "path has no waypoints";
+  if (path.tool_on.size() + 1 != path.waypoints.size())
+    return testing::AssertionFailure() << "tool_on has " << path.tool_on.size() << " entries for "
+                                       << path.waypoints.size() << " waypoints";
+  for (const Point& p : path.waypoints)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return testing::AssertionFailure() << "non-finite waypoint";
+  const Validity v = checkValidity(wall, tool, path);
+  if (v.valid) return testing::AssertionSuccess();
+  // Name the first offending segment.
+  const ClearanceField field(wall);
+  for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
+    const Point a = path.waypoints[i], b = path.waypoints[i + 1];
+    if (!field.segmentFree(a, b, tool.radius(), tool.clearance, -kValidityTolerance)) {
+      const SegmentClearance c = field.measure(a, b);
+      return testing::AssertionFailure()
+             << v.violations << " violating segments; first is #" << i << " (" << a.x << ", " << a.y << ") -> ("
+             << b.x << ", " << b.y << "), tool " << (path.tool_on[i] ? "on" : "off") << ", inside=" << c.inside
+             << ", boundary distance " << c.boundary_distance << ", obstacle distance " << c.obstacle_distance;
+    }
+  }
+  return testing::AssertionFailure() << v.violations << " violating segments";
+}
+
+}  // namespace coverbench::test

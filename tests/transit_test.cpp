@@ -1,0 +1,69 @@
+// Transits go around obstacles, never through them, and are as short as the graph allows.
+#include <gtest/gtest.h>
+
+#include "coverbench/metrics.hpp"
+#include "coverbench/workspace.hpp"
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+using test::rect;
+using test::rectWall;
+
+double length(const std::vector<Point>& pts) {
+  double l = 0;
+  for (std::size_t i = 1; i < pts.size(); ++i) l += distance(pts[i - 1], pts[i]);
+  return l;
+}
+
+TEST(Transit, StraightWhenFree) {
+  const Wall w = rectWall(4, 2);
+  Workspace ws(w, {0.1, 0.02});
+  const auto route = ws.router().route({0.5, 0.5}, {3.5, 1.5});
+  ASSERT_TRUE(route);
+  EXPECT_EQ(route->size(), 2u);
+}
+
+TEST(Transit, GoesAroundAWindowWithTheShortestDetour) {
+  // A 1 m wide window from y = 0.3 to 1.3 between the two points; going over it is shorter.
+  const Wall w = rectWall(4, 2.5, {rect(1.5, 0.3, 1, 1.0)});
+  const ToolParams tool{0.1, 0.02};
+  Workspace ws(w, tool);
+  const Point a{0.5, 1.0}, b{3.5, 1.0};
+  EXPECT_FALSE(ws.router().isFree(a, b));
+  const auto route = ws.router().route(a, b);
+  ASSERT_TRUE(route);
+  Path p;
+  for (const Point& q : *route) p.moveTo(q, false);
+  EXPECT_TRUE(test::isValidPath(w, tool, p));
+  // Lower bound: the straight line. Upper bound: over the two top corners at distance
+  // R = r + c = 0.07, plus slack for the polygonal nodes around each corner.
+  const double R = 0.07;
+  const double over_top = distance(a, {1.5 - R, 1.3 + R}) + (1.0 + 2 * R) + distance({2.5 + R, 1.3 + R}, b);
+  EXPECT_LE(length(*route), over_top + 0.05);
+  EXPECT_GT(length(*route), distance(a, b));
+  for (const Point& q : *route) EXPECT_GE(q.y, 1.0);  // over, not under (the bottom is longer)
+}
+
+TEST(Transit, UnreachableAcrossAClosedGap) {
+  // The window leaves 0.1 m at the top: less than s + 2c = 0.14, so the two sides are separate.
+  const Wall w = rectWall(3, 1.2, {rect(1.4, 0, 0.2, 1.1)});
+  Workspace ws(w, {0.1, 0.02});
+  EXPECT_FALSE(ws.router().route({0.5, 0.6}, {2.5, 0.6}).has_value());
+}
+
+TEST(Transit, ThroughANarrowPassageWhenItFits) {
+  // 0.16 m at the top: wider than s + 2c = 0.14, so the tool passes above the window.
+  const Wall w = rectWall(3, 1.2, {rect(1.4, 0, 0.2, 1.04)});
+  const ToolParams tool{0.1, 0.02};
+  Workspace ws(w, tool);
+  const auto route = ws.router().route({0.5, 0.6}, {2.5, 0.6});
+  ASSERT_TRUE(route.has_value());
+  Path p;
+  for (const Point& q : *route) p.moveTo(q, false);
+  EXPECT_TRUE(test::isValidPath(w, tool, p));
+}
+
+}  // namespace
+}  // namespace coverbench
