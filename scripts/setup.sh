@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs CoverBench's build dependencies (Debian packages) when any is missing, then configures
+# and builds everything in build/ (Release). Safe to run again: it only does what is missing.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(g++ cmake ninja-build pkg-config ccache
+          libpolyclipping-dev nlohmann-json3-dev libcli11-dev libboost-graph-dev
+          libgtest-dev libbenchmark-dev)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "== installing: ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq -o DPkg::Lock::Timeout=300 "${missing[@]}" >/dev/null
+fi
+
+export CCACHE_BASEDIR="$(cd .. && pwd)"
+if [ ! -f build/build.ninja ]; then
+  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
+echo "== building (first build takes about a minute on 2 cores)"
+cmake --build build -j 2
