@@ -126,6 +126,7 @@ int showcaseCommand(const ShowcaseOptions& options) {
       "| wall | planner | status | valid | violations | min clearance (m) | waypoints | length (m) | transit (m) | "
       "plan time (ms) |\n|---|---|---|---|---|---|---|---|---|---|\n";
   std::string csv = "wall,planner,status,valid,violations,min_clearance_m,waypoints,length_m,transit_m,plan_time_ms\n";
+  std::string html_rows, gallery;
   int exit_code = 0;
   for (const Wall& wall : walls) {
     for (const PlannerInfo& planner : registeredPlanners()) {
@@ -143,6 +144,11 @@ int showcaseCommand(const ShowcaseOptions& options) {
                     l.transit, o.plan.result.plan_time_ms);
       std::string line = row;
       table += "| " + line + " |\n";
+      std::string cells = line;
+      for (std::size_t pos; (pos = cells.find(" | ")) != std::string::npos;) cells.replace(pos, 3, "</td><td>");
+      html_rows += "<tr><td>" + cells + "</td></tr>\n";
+      gallery += "<figure><img src=\"plans/" + stem + ".svg\" alt=\"" + stem + "\"><figcaption><a href=\"plans/" + stem +
+                 ".json\">" + stem + ".json</a></figcaption></figure>\n";
       for (char& ch : line)
         if (ch == '|') ch = ',';
       line.erase(std::remove(line.begin(), line.end(), ' '), line.end());
@@ -157,8 +163,20 @@ int showcaseCommand(const ShowcaseOptions& options) {
                           toString(options.tool.clearance) +
                           " m, default planner parameters. Pictures and plan files are in `plans/`.\n\n" + table);
   writeFileAtomically((out / "summary.csv").string(), csv);
-  std::cout << "summary table: " << (out / "summary.md").string() << "\npictures: " << (out / "plans").string()
-            << "/*.svg\n";
+  writeFileAtomically(
+      (out / "index.html").string(),
+      "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>CoverBench showcase</title><style>"
+      "body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #ccc;"
+      "padding:2px 8px;text-align:right}td:first-child,td:nth-child(2){text-align:left}"
+      "figure{display:inline-block;margin:1em;vertical-align:top}img{max-width:760px}</style></head><body>\n"
+      "<h1>CoverBench showcase</h1>\n<p>Tool width " + toString(options.tool.tool_width) + " m, clearance " +
+          toString(options.tool.clearance) +
+          " m, default planner parameters. Every path is validated exactly.</p>\n<table>\n<tr><th>wall</th>"
+          "<th>planner</th><th>status</th><th>valid</th><th>violations</th><th>min clearance (m)</th>"
+          "<th>waypoints</th><th>length (m)</th><th>transit (m)</th><th>plan time (ms)</th></tr>\n" +
+          html_rows + "</table>\n" + gallery + "</body></html>\n");
+  std::cout << "summary table: " << (out / "summary.md").string() << "\nreport: " << (out / "index.html").string()
+            << "\n";
   return exit_code;
 }
 

@@ -85,6 +85,10 @@ std::string renderSvg(const SvgContent& c) {
     }
     s << "<path d=\"" << d << "\" fill=\"#cfe8cf\" fill-rule=\"evenodd\" stroke=\"#7fb27f\" stroke-width=\"0.8\"/>\n";
   }
+  // Obstacles may reach beyond the wall: draw them clipped to the wall's bounding box.
+  s << "<clipPath id=\"wallbox\"><rect x=\"" << fmt(v.px(v.box.min_x)) << "\" y=\"" << fmt(v.py(v.box.max_y))
+    << "\" width=\"" << fmt(v.box.width() * v.k) << "\" height=\"" << fmt(v.box.height() * v.k) << "\"/></clipPath>\n"
+    << "<g clip-path=\"url(#wallbox)\">\n";
   for (const Obstacle& o : wall.obstacles) {
     if (o.type == ObstacleType::Circle) {
       s << "<circle cx=\"" << fmt(v.px(o.center.x)) << "\" cy=\"" << fmt(v.py(o.center.y)) << "\" r=\""
@@ -102,6 +106,7 @@ std::string renderSvg(const SvgContent& c) {
         << "\" text-anchor=\"middle\" fill=\"#ffffff\" font-size=\"11\">" << escape(o.label) << "</text>\n";
     }
   }
+  s << "</g>\n";
   if (c.path && !c.path->waypoints.empty()) {
     const Path& path = *c.path;
     // Runs of consecutive segments with the same tool state become one polyline each.

@@ -1,0 +1,38 @@
+// A complete, tiny planner: one loop around every ring of the free region (wall edge and each
+// obstacle). It is the example of docs/ADDING_A_PLANNER.md and is compiled and tested by
+// tests/example_planner_test.cpp, so the guide cannot drift from the real interface.
+#include "coverbench/planner.hpp"
+#include "coverbench/region_ops.hpp"
+#include "coverbench/workspace.hpp"
+
+namespace coverbench::perimeter {
+
+class PerimeterPlanner final : public Planner {
+ public:
+  PlanResult plan(const Problem& problem, const Budget& /*budget*/) override {
+    Workspace ws(*problem.wall, problem.tool);       // F, exact checks, transits
+    if (ws.free().empty())
+      return PlanResult::failure(PlanStatus::NoReachableArea, "the tool fits nowhere on this wall");
+    const Region largest{componentsByArea(ws.free()).front()};
+    PathBuilder builder(ws);                          // never writes an unchecked move
+    const double inset = problem.params.number("inset");
+    const Region rings = inset > 0 ? offsetRegion(largest, -inset, 1e-4) : largest;
+    coverRings(builder, allRings(rings), problem.tool.tool_width);
+    PlanResult result;
+    result.status = PlanStatus::Ok;
+    result.path = builder.take();
+    return result;
+  }
+};
+
+PlannerInfo info() {
+  PlannerInfo info;
+  info.name = "perimeter";
+  info.summary = "One loop around the wall edge and around each obstacle";
+  info.reference = "docs/ADDING_A_PLANNER.md";
+  info.params = {{"inset", ParamType::Number, 0.0, 0.0, 1.0, {}, "m", "how far inside F the loops run"}};
+  info.make = [] { return std::make_unique<PerimeterPlanner>(); };
+  return info;
+}
+
+}  // namespace coverbench::perimeter
