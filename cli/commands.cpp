@@ -10,7 +10,9 @@
 #include "coverbench/plan_file.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/svg.hpp"
+#include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
+#include "memory_meter.hpp"
 
 namespace coverbench::cli {
 namespace {
@@ -43,6 +45,25 @@ struct Outcome {
   std::string svg;
 };
 
+/// The picture of a path with its coverage layer.
+std::string picture(const Wall& wall, const ToolParams& tool, const Path& path, const std::string& title) {
+  const Region free = freeRegion(wall, tool);
+  const CoverageRegions regions = coverageRegions(wall, tool, path);
+  const Region uncovered = subtract(regions.reachable, regions.swept);
+  // Draw the overlap with strips about a pixel high (at most 1500 of them over the wall).
+  const Box box = boundingBox(wall.boundary);
+  const Region overlap = overlapRegion(path, tool.radius(), std::max(tool.radius() / 10.0, box.height() / 1500.0));
+  SvgContent content;
+  content.wall = &wall;
+  content.tool = tool;
+  content.free = &free;
+  content.path = &path;
+  content.uncovered = &uncovered;
+  content.overlap = &overlap;
+  content.title = title;
+  return renderSvg(content);
+}
+
 /// Plans one wall with one planner and renders its outputs (nothing is written here).
 Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams& tool, Params params,
                  double time_limit_s) {
@@ -55,25 +76,32 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   o.plan.wall = wall.name;
   o.plan.tool = tool;
   o.plan.params = std::move(params);
+  resetPeakMemory();
   o.plan.result = runPlanner(planner, problem, Budget(std::chrono::duration<double>(time_limit_s)));
-  o.plan.validity = checkValidity(wall, tool, o.plan.result.path);
+  o.plan.peak_memory_bytes = static_cast<double>(peakMemorySinceReset());
+  o.plan.metrics = computeMetrics(wall, tool, o.plan.result.path);
   o.plan_json = planFileJson(o.plan);
-  const Region free = freeRegion(wall, tool);
-  SvgContent content;
-  content.wall = &wall;
-  content.tool = tool;
-  content.free = &free;
-  content.path = &o.plan.result.path;
   char title[256];
   std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s%s", wall.name.c_str(), planner.name.c_str(),
                 tool.tool_width, tool.clearance, toString(o.plan.result.status).c_str(),
-                o.plan.result.status == PlanStatus::Ok ? (o.plan.validity.valid ? ", valid" : ", INVALID") : "");
-  content.title = title;
-  o.svg = renderSvg(content);
+                o.plan.result.status == PlanStatus::Ok ? (o.plan.metrics.validity.valid ? ", valid" : ", INVALID") : "");
+  o.svg = picture(wall, tool, o.plan.result.path, title);
   return o;
 }
 
-bool succeeded(const PlanFile& plan) { return plan.result.status == PlanStatus::Ok && plan.validity.valid; }
+bool succeeded(const PlanFile& plan) { return plan.result.status == PlanStatus::Ok && plan.metrics.validity.valid; }
+
+std::string replaceAll(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t pos = 0; (pos = text.find(from, pos)) != std::string::npos; pos += to.size())
+    text.replace(pos, from.size(), to);
+  return text;
+}
+
+std::string percent(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f%%", 100.0 * v);
+  return buf;
+}
 
 }  // namespace
 
@@ -101,12 +129,31 @@ int planCommand(const PlanOptions& options) {
   writeFileAtomically(options.out, o.plan_json);
   if (!options.svg.empty()) writeFileAtomically(options.svg, o.svg);
   const PlanResult& r = o.plan.result;
+  const PathMetrics& m = o.plan.metrics;
   std::cout << planner.name << " on " << wall.name << ": " << toString(r.status)
             << (r.reason.empty() ? "" : " (" + r.reason + ")") << ", " << r.path.waypoints.size() << " waypoints, "
-            << (o.plan.validity.valid ? "valid" : "INVALID: " + std::to_string(o.plan.validity.violations) +
-                                                      " violating segments")
-            << ", " << r.plan_time_ms << " ms\n";
+            << (m.validity.valid ? "valid" : "INVALID: " + std::to_string(m.validity.violations) + " violating segments")
+            << ", coverage " << percent(m.coverage.coverage_reachable) << " of reachable, " << r.plan_time_ms
+            << " ms\n";
   return succeeded(o.plan) ? 0 : 3;
+}
+
+int metricsCommand(const MetricsOptions& options) {
+  const Wall wall = loadWallFile(options.wall);
+  const LoadedPlan plan = loadPlanFile(options.plan);
+  ToolParams tool;
+  tool.tool_width = options.tool_width ? *options.tool_width : plan.tool_width.value_or(tool.tool_width);
+  tool.clearance = options.clearance ? *options.clearance : plan.clearance.value_or(tool.clearance);
+  validateTool(tool, options.tool_width || options.clearance ? "command line" : options.plan);
+  MotionLimits limits;
+  limits.speed = options.speed;
+  limits.acceleration = options.acceleration;
+  if (!(limits.speed > 0.0)) throw InputError("--speed", "speed", "must be positive");
+  if (!(limits.acceleration > 0.0)) throw InputError("--acceleration", "acceleration", "must be positive");
+  const PathMetrics m = computeMetrics(wall, tool, plan.path, limits);
+  std::cout << metricsJson(m, std::nullopt, std::nullopt);
+  if (!options.svg.empty()) writeFileAtomically(options.svg, picture(wall, tool, plan.path, wall.name + " / " + options.plan));
+  return m.validity.valid ? 0 : 3;
 }
 
 int showcaseCommand(const ShowcaseOptions& options) {
@@ -122,10 +169,15 @@ int showcaseCommand(const ShowcaseOptions& options) {
 
   const fs::path out = options.out;
   fs::create_directories(out / "plans");
-  std::string table =
-      "| wall | planner | status | valid | violations | min clearance (m) | waypoints | length (m) | transit (m) | "
-      "plan time (ms) |\n|---|---|---|---|---|---|---|---|---|---|\n";
-  std::string csv = "wall,planner,status,valid,violations,min_clearance_m,waypoints,length_m,transit_m,plan_time_ms\n";
+  const std::string header =
+      "wall | planner | status | valid | violations | min clearance (m) | coverage reachable | coverage wall | "
+      "overlap | length (m) | transit (m) | length ratio | turns | duration (s) | waypoints | plan time (ms)";
+  std::string table = "| " + header + " |\n|";
+  for (std::size_t k = 0; k < 16; ++k) table += "---|";
+  table += "\n";
+  std::string csv =
+      "wall,planner,status,valid,violations,min_clearance_m,coverage_reachable,coverage_wall,overlap,length_m,"
+      "transit_m,length_ratio,turns,duration_s,waypoints,plan_time_ms\n";
   std::string html_rows, gallery;
   int exit_code = 0;
   for (const Wall& wall : walls) {
@@ -134,19 +186,19 @@ int showcaseCommand(const ShowcaseOptions& options) {
       const std::string stem = wall.name + "__" + planner.name;
       writeFileAtomically((out / "plans" / (stem + ".json")).string(), o.plan_json);
       writeFileAtomically((out / "plans" / (stem + ".svg")).string(), o.svg);
-      const Lengths l = pathLengths(o.plan.result.path);
-      char row[512];
-      const double mc = o.plan.validity.min_clearance;
-      std::snprintf(row, sizeof row, "%s | %s | %s | %s | %zu | %s | %zu | %.2f | %.2f | %.2f", wall.name.c_str(),
-                    planner.name.c_str(), toString(o.plan.result.status).c_str(),
-                    o.plan.validity.valid ? "yes" : "NO", o.plan.validity.violations,
-                    std::isfinite(mc) ? toString(mc).c_str() : "-", o.plan.result.path.waypoints.size(), l.total,
-                    l.transit, o.plan.result.plan_time_ms);
+      const PathMetrics& m = o.plan.metrics;
+      char row[768];
+      const double mc = m.validity.min_clearance;
+      std::snprintf(row, sizeof row,
+                    "%s | %s | %s | %s | %zu | %s | %.4f | %.4f | %.4f | %.2f | %.2f | %.3f | %zu | %.1f | %zu | %.2f",
+                    wall.name.c_str(), planner.name.c_str(), toString(o.plan.result.status).c_str(),
+                    m.validity.valid ? "yes" : "NO", m.validity.violations,
+                    std::isfinite(mc) ? toString(mc).c_str() : "-", m.coverage.coverage_reachable,
+                    m.coverage.coverage_wall, m.passes.overlap, m.lengths.total, m.lengths.transit, m.length_ratio,
+                    m.motion.turns, m.motion.duration_s, m.waypoints, o.plan.result.plan_time_ms);
       std::string line = row;
       table += "| " + line + " |\n";
-      std::string cells = line;
-      for (std::size_t pos; (pos = cells.find(" | ")) != std::string::npos;) cells.replace(pos, 3, "</td><td>");
-      html_rows += "<tr><td>" + cells + "</td></tr>\n";
+      html_rows += "<tr><td>" + replaceAll(line, " | ", "</td><td>") + "</td></tr>\n";
       gallery += "<figure><img src=\"plans/" + stem + ".svg\" alt=\"" + stem + "\"><figcaption><a href=\"plans/" + stem +
                  ".json\">" + stem + ".json</a></figcaption></figure>\n";
       for (char& ch : line)
@@ -155,7 +207,8 @@ int showcaseCommand(const ShowcaseOptions& options) {
       csv += line + "\n";
       if (!succeeded(o.plan)) exit_code = 3;
       std::cout << "  " << stem << ": " << toString(o.plan.result.status)
-                << (o.plan.validity.valid ? ", valid" : ", INVALID") << "\n";
+                << (m.validity.valid ? ", valid" : ", INVALID") << ", coverage "
+                << percent(m.coverage.coverage_reachable) << " of reachable\n";
     }
   }
   writeFileAtomically((out / "summary.md").string(),
@@ -171,9 +224,8 @@ int showcaseCommand(const ShowcaseOptions& options) {
       "figure{display:inline-block;margin:1em;vertical-align:top}img{max-width:760px}</style></head><body>\n"
       "<h1>CoverBench showcase</h1>\n<p>Tool width " + toString(options.tool.tool_width) + " m, clearance " +
           toString(options.tool.clearance) +
-          " m, default planner parameters. Every path is validated exactly.</p>\n<table>\n<tr><th>wall</th>"
-          "<th>planner</th><th>status</th><th>valid</th><th>violations</th><th>min clearance (m)</th>"
-          "<th>waypoints</th><th>length (m)</th><th>transit (m)</th><th>plan time (ms)</th></tr>\n" +
+          " m, default planner parameters. Every path is validated exactly. Metric definitions: "
+          "docs/metrics.md.</p>\n<table>\n<tr><th>" + replaceAll(header, " | ", "</th><th>") + "</th></tr>\n" +
           html_rows + "</table>\n" + gallery + "</body></html>\n");
   std::cout << "summary table: " << (out / "summary.md").string() << "\nreport: " << (out / "index.html").string()
             << "\n";

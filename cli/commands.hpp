@@ -1,6 +1,7 @@
 #pragma once
 /// The sub-commands of `coverbench`, kept apart from argument parsing (which only main.cpp does).
 
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -20,6 +21,15 @@ struct PlanOptions {
 /// Returns 0 when the plan is ok and valid, 3 when the planner reported a failure or its path is
 /// invalid (the plan file is still written and says which). Bad input throws InputError.
 int planCommand(const PlanOptions& options);
+
+struct MetricsOptions {
+  std::string wall, plan, svg;
+  std::optional<double> tool_width, clearance;  ///< default: the plan file's, else 0.1 / 0.02
+  double speed = 0.3, acceleration = 0.5;
+};
+/// Prints every metric of a plan file (from any source) as JSON. Returns 0 when the path is
+/// valid, 3 when it is not.
+int metricsCommand(const MetricsOptions& options);
 
 struct ShowcaseOptions {
   std::string walls, out;

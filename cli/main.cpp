@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "coverbench 0.1.0");
 
+  int plan_exit = 0;
   app.add_subcommand("planners", "List the registered planners and their parameters")
       ->callback([] { coverbench::cli::listPlanners(std::cout); });
 
@@ -28,8 +29,20 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   plan_cmd->add_option("--out", plan.out, "plan file to write (JSON)")->required();
   plan_cmd->add_option("--svg", plan.svg, "picture to write (SVG)");
-  int plan_exit = 0;
   plan_cmd->callback([&] { plan_exit = coverbench::cli::planCommand(plan); });
+
+  coverbench::cli::MetricsOptions metrics;
+  CLI::App* metrics_cmd =
+      app.add_subcommand("metrics", "Score a plan file from any source against a wall; prints JSON");
+  metrics_cmd->add_option("--wall", metrics.wall, "wall file (JSON)")->required();
+  metrics_cmd->add_option("--plan", metrics.plan, "plan file: needs only waypoints and tool_on")->required();
+  metrics_cmd->add_option("--tool-width", metrics.tool_width, "tool diameter s in metres (default: the plan's, else 0.1)");
+  metrics_cmd->add_option("--clearance", metrics.clearance, "gap c in metres (default: the plan's, else 0.02)");
+  metrics_cmd->add_option("--speed", metrics.speed, "tool speed v for duration_s, m/s")->capture_default_str();
+  metrics_cmd->add_option("--acceleration", metrics.acceleration, "acceleration a for duration_s, m/s^2")
+      ->capture_default_str();
+  metrics_cmd->add_option("--svg", metrics.svg, "picture with the coverage layer (SVG)");
+  metrics_cmd->callback([&] { plan_exit = coverbench::cli::metricsCommand(metrics); });
 
   coverbench::cli::ShowcaseOptions showcase;
   CLI::App* show_cmd = app.add_subcommand(

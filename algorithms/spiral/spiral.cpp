@@ -41,25 +41,43 @@ class EdgeGrid {
   std::unordered_map<long long, std::vector<std::pair<Point, Point>>> cells_;
 };
 
+/// Interior angle of a ring at vertex i when the region lies to the left of its edges (outer
+/// rings counter-clockwise, holes clockwise); pi or more where the region is not convex.
+double interiorAngle(const Ring& ring, std::size_t i) {
+  const std::size_t n = ring.size();
+  const Point u = ring[i] - ring[(i + n - 1) % n], w = ring[(i + 1) % n] - ring[i];
+  return M_PI - std::atan2(cross(u, w), dot(u, w));
+}
+
 /// Whether eroding `outer` (a level) by `step` into `inner` (the next level) lost more than its
-/// corners: in an erosion by `step`, every boundary point of the outer level has the inner level
-/// within `step` (straight and reflex parts) or `step / sin(a / 2)` (a convex corner of interior
-/// angle a). A vertex with no inner ring that close marks a part that vanished (a peninsula or a
-/// whole component), where a leftover centre may be left uncovered. `slack` absorbs chord error.
+/// corners. In an erosion by `step`, every boundary point of the outer level has the inner level
+/// within `step`, except near a convex corner of interior angle a, where the inner corner lies
+/// up to `step / sin(a / 2)` away. A boundary point (vertices, and points every `step` along
+/// edges) with nothing of the inner level that close marks a part that vanished (a peninsula, a
+/// strip, a whole component), where a leftover centre may remain. `slack` absorbs chord error.
 bool somethingVanished(const std::vector<Ring>& outer, const std::vector<Ring>& inner, double step, double slack) {
   if (inner.empty()) return true;
   const EdgeGrid grid(inner, 2.0 * step);
+  // Distance to the inner level expected at distance t along an edge from a corner of angle a.
+  auto expected = [&](double a, double t) {
+    if (a >= M_PI) return step;
+    const double half = std::fmax(a / 2.0, 0.02);
+    const double reach = std::fmax(0.0, step / std::tan(half) - t);
+    return std::sqrt(step * step + reach * reach);
+  };
   for (const Ring& ring : outer) {
     const std::size_t n = ring.size();
     for (std::size_t i = 0; i < n; ++i) {
-      const Point prev = ring[(i + n - 1) % n], v = ring[i], next = ring[(i + 1) % n];
-      const Point u = v - prev, w = next - v;
-      double expected = step;
-      if (cross(u, w) > 0.0) {  // convex: the region lies to the left of every ring edge
-        const double turn = std::atan2(cross(u, w), dot(u, w));
-        expected = step / std::fmax(std::sin((M_PI - turn) / 2.0), 0.05);
+      const Point a = ring[i], b = ring[(i + 1) % n];
+      const double angle_a = interiorAngle(ring, i), angle_b = interiorAngle(ring, (i + 1) % n);
+      const double len = distance(a, b);
+      const auto samples = static_cast<std::size_t>(std::ceil(len / step));
+      for (std::size_t k = 0; k < std::max<std::size_t>(samples, 1); ++k) {
+        const double t = samples == 0 ? 0.0 : len * static_cast<double>(k) / static_cast<double>(samples);
+        const Point p = len == 0.0 ? a : a + (b - a) * (t / len);
+        const double want = std::fmax(expected(angle_a, t), expected(angle_b, len - t));
+        if (!grid.anyWithin(p, want + slack)) return true;
       }
-      if (!grid.anyWithin(v, expected + slack)) return true;
     }
   }
   return false;

@@ -148,6 +148,19 @@ Region simplifyRegion(const Region& region, double tolerance) {
   return subtract(regionFromRings(outers), regionFromRings(holes));
 }
 
+Region sweptRegion(const std::vector<std::vector<Point>>& polylines, double radius, double arc_tolerance) {
+  cl::ClipperOffset offset;
+  offset.ArcTolerance = arc_tolerance * kScale / 2.25;
+  for (const std::vector<Point>& line : polylines) {
+    cl::Path path = toPath(line);
+    // Clipper drops repeated points itself; a lone point becomes a disk with etOpenRound.
+    offset.AddPath(path, cl::jtRound, cl::etOpenRound);
+  }
+  cl::PolyTree tree;
+  offset.Execute(tree, radius * kScale);
+  return fromTree(tree);
+}
+
 Region unite(const Region& a, const Region& b) { return boolean(a, b, cl::ctUnion); }
 Region intersect(const Region& a, const Region& b) { return boolean(a, b, cl::ctIntersection); }
 Region subtract(const Region& a, const Region& b) { return boolean(a, b, cl::ctDifference); }

@@ -22,16 +22,15 @@ Wall rotateWall(const Wall& wall, double radians) {
   return out;
 }
 
-Region freeRegion(const Wall& wall, const ToolParams& tool) {
+Region freeRegion(const Wall& wall, const ToolParams& tool, double margin, double arc_tolerance) {
   const double r = tool.radius();
   const Region boundary = regionFromRings({wall.boundary});
-  const Region inner = offsetRegion(boundary, -(r + kFreeSpaceMargin), kArcTolerance);
+  const Region inner = offsetRegion(boundary, -(r + margin), arc_tolerance);
   if (inner.empty() || wall.obstacles.empty()) return inner;
   std::vector<Ring> rings;
   for (const Obstacle& o : wall.obstacles)
-    for (const Ring& ring : allRings(obstacleRegion(o, kArcTolerance))) rings.push_back(ring);
-  const Region blocked =
-      offsetRegion(regionFromRings(rings), r + tool.clearance + kFreeSpaceMargin, kArcTolerance);
+    for (const Ring& ring : allRings(obstacleRegion(o, arc_tolerance))) rings.push_back(ring);
+  const Region blocked = offsetRegion(regionFromRings(rings), r + tool.clearance + margin, arc_tolerance);
   return subtract(inner, blocked);
 }
 

@@ -11,7 +11,7 @@ namespace {
 constexpr double kMaxWidthPx = 1000.0;
 constexpr double kMaxHeightPx = 700.0;
 constexpr double kPadPx = 24.0;
-constexpr double kLegendPx = 64.0;
+constexpr double kLegendPx = 82.0;
 
 std::string fmt(double v) {
   char buf[32];
@@ -85,6 +85,16 @@ std::string renderSvg(const SvgContent& c) {
     }
     s << "<path d=\"" << d << "\" fill=\"#cfe8cf\" fill-rule=\"evenodd\" stroke=\"#7fb27f\" stroke-width=\"0.8\"/>\n";
   }
+  auto region = [&](const Region* r, const char* fill, const char* opacity) {
+    if (!r || r->empty()) return;
+    std::string d;
+    for (const PolygonWithHoles& poly : *r) {
+      d += v.ringPath(poly.outer);
+      for (const Ring& hole : poly.holes) d += v.ringPath(hole);
+    }
+    s << "<path d=\"" << d << "\" fill=\"" << fill << "\" fill-opacity=\"" << opacity
+      << "\" fill-rule=\"evenodd\" stroke=\"none\"/>\n";
+  };
   // Obstacles may reach beyond the wall: draw them clipped to the wall's bounding box.
   s << "<clipPath id=\"wallbox\"><rect x=\"" << fmt(v.px(v.box.min_x)) << "\" y=\"" << fmt(v.py(v.box.max_y))
     << "\" width=\"" << fmt(v.box.width() * v.k) << "\" height=\"" << fmt(v.box.height() * v.k) << "\"/></clipPath>\n"
@@ -120,6 +130,8 @@ std::string renderSvg(const SvgContent& c) {
     }
     s << "<g fill=\"none\" stroke=\"#2f6fd0\" stroke-opacity=\"0.18\" stroke-width=\"" << fmt(tool_px)
       << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n" << on_runs << "</g>\n";
+    region(c.uncovered, "#e8383d", "0.75");
+    region(c.overlap, "#9b3fd1", "0.45");
     s << "<g fill=\"none\" stroke=\"#1f4f9f\" stroke-width=\"" << fmt(std::clamp(tool_px * 0.12, 0.5, 2.0))
       << "\" stroke-linejoin=\"round\">\n" << on_runs << "</g>\n";
     s << "<g fill=\"none\" stroke=\"#e07b00\" stroke-width=\"1.6\" stroke-dasharray=\"5,3\">\n" << off_runs << "</g>\n";
@@ -144,7 +156,14 @@ std::string renderSvg(const SvgContent& c) {
     << "<text x=\"476\" y=\"10\">transit (tool off)</text>"
     << "<circle cx=\"600\" cy=\"5\" r=\"5\" fill=\"#19a33a\"/><text x=\"610\" y=\"10\">start</text>"
     << "<rect x=\"655\" width=\"10\" height=\"10\" fill=\"#d02f2f\"/><text x=\"670\" y=\"10\">end</text>"
-    << "</g>\n</g>\n";
+    << "</g>\n";
+  if (c.uncovered || c.overlap)
+    s << "<g transform=\"translate(0,52)\">"
+      << "<rect width=\"14\" height=\"10\" fill=\"#e8383d\" fill-opacity=\"0.75\"/>"
+      << "<text x=\"20\" y=\"10\">reachable, not covered</text>"
+      << "<rect x=\"180\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>"
+      << "<text x=\"200\" y=\"10\">covered twice or more</text></g>\n";
+  s << "</g>\n";
   s << "</svg>\n";
   return s.str();
 }

@@ -20,6 +20,10 @@ std::vector<Ring> allRings(const Region& region);
 /// Offsets the region by `delta` metres (positive grows, negative shrinks) with round joins whose
 /// chords deviate at most `arc_tolerance` metres from the true arc.
 Region offsetRegion(const Region& region, double delta, double arc_tolerance);
+/// The union of the capsules of `radius` around every segment of every polyline (a one-point
+/// polyline gives a disk). Round caps and joins; chords within `arc_tolerance` of the arcs.
+Region sweptRegion(const std::vector<std::vector<Point>>& polylines, double radius, double arc_tolerance);
+
 /// Douglas-Peucker simplification of every ring: the result's boundary stays within `tolerance`
 /// metres of the original (either way). Keeps later offsets from multiplying the many short
 /// chords of fine arcs.

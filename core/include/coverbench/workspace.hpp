@@ -28,8 +28,11 @@ inline constexpr double kPlanningMargin = 1e-6;
 /// Rotates every coordinate of the wall about the origin (for sweep directions).
 Wall rotateWall(const Wall& wall, double radians);
 
-/// The conservative free centre region of a wall for a tool.
-Region freeRegion(const Wall& wall, const ToolParams& tool);
+/// The free centre region of a wall for a tool, drawn `margin` metres inside the exact F with arcs
+/// within `arc_tolerance`. The defaults give the planners' conservative F; the metrics engine asks
+/// for margin 0 and a fine tolerance.
+Region freeRegion(const Wall& wall, const ToolParams& tool, double margin = kFreeSpaceMargin,
+                  double arc_tolerance = kArcTolerance);
 
 /// Shortest collision-free polylines between free points, on a visibility graph whose nodes sit
 /// just outside the rounded corners of F (around convex obstacle corners, circles and reflex wall

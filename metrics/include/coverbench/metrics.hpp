@@ -5,7 +5,9 @@
 #include <cstddef>
 #include <map>
 #include <string>
+#include <vector>
 
+#include "coverbench/geometry.hpp"
 #include "coverbench/planner.hpp"
 #include "coverbench/wall.hpp"
 
@@ -37,5 +39,75 @@ struct Lengths {
   double transit = 0.0;  ///< tool off
 };
 Lengths pathLengths(const Path& path);
+
+/// Arc tolerance of every polygon the coverage metrics build (circles, round offsets, capsule
+/// ends): chords lie within 10 micrometres of the true arcs.
+inline constexpr double kMetricArcTolerance = 1e-5;
+
+/// Areas (m^2) and coverage ratios, computed on polygons (see docs/metrics.md).
+struct Coverage {
+  double reachable_area = 0.0;   ///< |R|, R = F dilated by r
+  double paintable_area = 0.0;   ///< |P|, P = wall minus obstacles
+  double swept_area = 0.0;       ///< |S|, the union of tool-on capsules
+  double coverage_reachable = 0.0;  ///< |S and R| / |R|
+  double coverage_wall = 0.0;       ///< |S and P| / |P|
+};
+/// The polygons behind the coverage figures (for pictures and tests).
+struct CoverageRegions {
+  Region reachable;  ///< R
+  Region paintable;  ///< P
+  Region swept;      ///< S
+};
+CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const Path& path);
+Coverage coverage(const CoverageRegions& regions);
+Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path);
+
+/// Pass counts over the swept area, integrated on horizontal scanlines: exact intervals along each
+/// line, midpoint rule across lines spaced `resolution` apart.
+struct Passes {
+  double overlap = 0.0;            ///< |{q in S : passes(q) >= 2}| / |S|
+  std::vector<double> histogram;   ///< histogram[k-1] = |{passes == k}| / |S|; last bin is ">= k"
+  double resolution = 0.0;         ///< scanline spacing (m)
+  double swept_area_estimate = 0.0;  ///< |S| by the same scanlines, a check on the resolution
+};
+/// `resolution` <= 0 picks r / 25.
+Passes passes(const Path& path, double radius, double resolution = 0.0, std::size_t bins = 4);
+/// The points passed over twice or more, as strips one scanline high (for pictures).
+Region overlapRegion(const Path& path, double radius, double resolution);
+/// Number of passes over one point (the definition, point by point).
+int passCount(const Path& path, double radius, Point q);
+
+/// Turns and the time to drive the path.
+struct Motion {
+  std::size_t turns = 0;     ///< heading changes > 1 degree at interior waypoints
+  std::size_t turns_30 = 0;  ///< heading changes > 30 degrees
+  double turning_angle = 0.0;  ///< sum of |heading change|, radians
+  double duration_s = 0.0;     ///< trapezoidal speed profile, stopping at every turn > 30 degrees
+};
+struct MotionLimits {
+  double speed = 0.3;         ///< v, m/s
+  double acceleration = 0.5;  ///< a, m/s^2
+};
+Motion motion(const Path& path, const MotionLimits& limits = {});
+
+/// Every metric of one path.
+struct PathMetrics {
+  Validity validity;
+  Lengths lengths;
+  Coverage coverage;
+  Passes passes;
+  Motion motion;
+  std::size_t waypoints = 0;
+  double length_ratio = 0.0;  ///< length_total / (|R| / s)
+};
+PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path,
+                           const MotionLimits& limits = {});
+
+/// One named metric value, in the order metrics are written (plan files, tables).
+struct NamedMetric {
+  std::string name;
+  double value;
+};
+std::vector<NamedMetric> flatten(const PathMetrics& m);
 
 }  // namespace coverbench

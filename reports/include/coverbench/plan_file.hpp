@@ -2,6 +2,7 @@
 /// Plan files (JSON): what `coverbench plan` writes and `coverbench metrics` reads.
 /// Format: docs/file_formats.md.
 
+#include <optional>
 #include <string>
 
 #include "coverbench/metrics.hpp"
@@ -15,12 +16,27 @@ struct PlanFile {
   ToolParams tool;
   Params params;
   PlanResult result;
-  Validity validity;
+  PathMetrics metrics;
+  std::optional<double> peak_memory_bytes;  ///< heap high-water mark of the plan call, if measured
 };
 
-/// The plan file as JSON text. Everything but the "timing" object is a deterministic function of
-/// the inputs.
+/// The plan file as JSON text: one top-level key per line and one metric per line. Only the
+/// `plan_time_ms` and `peak_memory_bytes` lines depend on anything but the inputs.
 std::string planFileJson(const PlanFile& plan);
+
+/// The metrics object alone (what `coverbench metrics` prints).
+std::string metricsJson(const PathMetrics& metrics, std::optional<double> plan_time_ms,
+                        std::optional<double> peak_memory_bytes);
+
+/// A path read from a plan file of any source: only `waypoints` and `tool_on` are required;
+/// `tool_width` and `clearance` are read when present.
+struct LoadedPlan {
+  Path path;
+  std::optional<double> tool_width;
+  std::optional<double> clearance;
+};
+/// Throws InputError (file, field, problem) for anything malformed.
+LoadedPlan loadPlanFile(const std::string& file);
 
 /// Writes `text` to `path` atomically (a temporary file renamed into place), so a failure never
 /// leaves a partial file. Throws InputError naming the path if it cannot be written.

@@ -1,6 +1,7 @@
 #pragma once
-/// SVG pictures of a wall and a path: wall, obstacles, free region, swept band, path (tool on
-/// solid, transit dashed), start and end. Scaled to a fixed picture size so a 20 m facade and a
+/// SVG pictures of a wall and a path: wall, obstacles, free region, swept band, coverage layer
+/// (uncovered reachable area, areas passed twice or more), path (tool on solid, transit dashed),
+/// start and end. Scaled to a fixed picture size so a 20 m facade and a
 /// 1 m strip are equally readable; a scale bar gives metres.
 
 #include <string>
@@ -16,6 +17,8 @@ struct SvgContent {
   ToolParams tool;
   const Region* free = nullptr;  ///< optional: the free centre region F
   const Path* path = nullptr;    ///< optional
+  const Region* uncovered = nullptr;  ///< optional coverage layer: reachable but not swept
+  const Region* overlap = nullptr;    ///< optional coverage layer: passed over twice or more
   std::string title;
 };
 

@@ -1,0 +1,54 @@
+// All metrics of one path, and their flat, ordered form.
+#include "coverbench/metrics.hpp"
+
+namespace coverbench {
+
+PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const MotionLimits& limits) {
+  PathMetrics m;
+  m.validity = checkValidity(wall, tool, path);
+  m.lengths = pathLengths(path);
+  m.coverage = coverage(wall, tool, path);
+  m.passes = passes(path, tool.radius());
+  m.motion = motion(path, limits);
+  m.waypoints = path.waypoints.size();
+  const double ideal = m.coverage.reachable_area / tool.tool_width;
+  m.length_ratio = ideal > 0.0 ? m.lengths.total / ideal : 0.0;
+  return m;
+}
+
+std::vector<NamedMetric> flatten(const PathMetrics& m) {
+  std::vector<NamedMetric> out = {
+      {"valid", m.validity.valid ? 1.0 : 0.0},
+      {"violations", static_cast<double>(m.validity.violations)},
+      {"outside_boundary", static_cast<double>(m.validity.outside_boundary)},
+      {"too_close", static_cast<double>(m.validity.too_close)},
+      {"min_clearance", m.validity.min_clearance},
+      {"min_boundary_gap", m.validity.min_boundary_gap},
+      {"coverage_reachable", m.coverage.coverage_reachable},
+      {"coverage_wall", m.coverage.coverage_wall},
+      {"reachable_area", m.coverage.reachable_area},
+      {"paintable_area", m.coverage.paintable_area},
+      {"swept_area", m.coverage.swept_area},
+      {"overlap", m.passes.overlap},
+  };
+  for (std::size_t k = 0; k < m.passes.histogram.size(); ++k) {
+    const bool last = k + 1 == m.passes.histogram.size();
+    out.push_back({"passes_" + std::to_string(k + 1) + (last ? "_or_more" : ""), m.passes.histogram[k]});
+  }
+  const std::vector<NamedMetric> rest = {
+      {"overlap_resolution", m.passes.resolution},
+      {"length_total", m.lengths.total},
+      {"length_cover", m.lengths.cover},
+      {"length_transit", m.lengths.transit},
+      {"length_ratio", m.length_ratio},
+      {"turns", static_cast<double>(m.motion.turns)},
+      {"turns_30", static_cast<double>(m.motion.turns_30)},
+      {"turning_angle", m.motion.turning_angle},
+      {"duration_s", m.motion.duration_s},
+      {"waypoints", static_cast<double>(m.waypoints)},
+  };
+  out.insert(out.end(), rest.begin(), rest.end());
+  return out;
+}
+
+}  // namespace coverbench

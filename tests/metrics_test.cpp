@@ -1,0 +1,265 @@
+// The metrics engine against hand-computed values, and its invariances over generated walls.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "coverbench/metrics.hpp"
+#include "coverbench/registry.hpp"
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+using test::rect;
+using test::rectWall;
+
+struct Move {
+  Point to;
+  bool on;
+};
+Path makePath(Point start, std::vector<Move> moves) {
+  Path p;
+  p.moveTo(start, false);
+  for (const Move& m : moves) {
+    p.waypoints.push_back(m.to);  // keeps zero-length and repeated moves as given
+    p.tool_on.push_back(m.on);
+  }
+  return p;
+}
+
+double overlapArea(const PathMetrics& m) { return m.passes.overlap * m.passes.swept_area_estimate; }
+
+bool contains(const Region& region, Point p) {
+  for (const PolygonWithHoles& poly : region) {
+    if (!pointInRing(p, poly.outer)) continue;
+    bool in_hole = false;
+    for (const Ring& h : poly.holes) in_hole = in_hole || pointInRing(p, h);
+    if (!in_hole) return true;
+  }
+  return false;
+}
+
+const double kR = 0.1;
+const ToolParams kTool{2 * kR, 0.0};
+const double kCapsule3 = 2 * kR * 3.0 + M_PI * kR * kR;  // one 3 m pass
+
+TEST(Metrics, OneStraightPassOnAnEmptyWall) {
+  const Wall w = rectWall(4, 2);
+  const PathMetrics m = computeMetrics(w, kTool, makePath({0.5, 1}, {{{3.5, 1}, true}}));
+  const double reachable = 4 * 2 - (4 - M_PI) * kR * kR;  // the wall with its corners rounded by r
+  EXPECT_NEAR(m.coverage.swept_area, kCapsule3, 1e-4);
+  EXPECT_NEAR(m.coverage.reachable_area, reachable, 1e-4);
+  EXPECT_NEAR(m.coverage.paintable_area, 8.0, 1e-9);
+  EXPECT_NEAR(m.coverage.coverage_reachable, kCapsule3 / reachable, 1e-5);
+  EXPECT_NEAR(m.coverage.coverage_wall, kCapsule3 / 8.0, 1e-5);
+  EXPECT_NEAR(m.passes.overlap, 0.0, 1e-12);
+  EXPECT_NEAR(m.passes.histogram[0], 1.0, 1e-12);
+  EXPECT_NEAR(m.passes.swept_area_estimate, kCapsule3, 0.002 * kCapsule3);
+  EXPECT_DOUBLE_EQ(m.lengths.total, 3.0);
+  EXPECT_EQ(m.motion.turns, 0u);
+  EXPECT_DOUBLE_EQ(m.motion.turning_angle, 0.0);
+  EXPECT_NEAR(m.motion.duration_s, 3.0 / 0.3 + 0.3 / 0.5, 1e-12);  // cruise plus ramps
+  EXPECT_NEAR(m.length_ratio, 3.0 / (reachable / (2 * kR)), 1e-6);
+  EXPECT_EQ(m.waypoints, 2u);
+}
+
+TEST(Metrics, TwoParallelPassesCloserThanTheToolWidth) {
+  // Rows 0.1 apart with a 0.2 tool, joined by a transit: two passes over a band 0.1 wide, plus
+  // the lens where the end disks overlap.
+  const Wall w = rectWall(4, 2);
+  const Path p = makePath({0.5, 1.0}, {{{3.5, 1.0}, true}, {{0.5, 1.1}, false}, {{3.5, 1.1}, true}});
+  const PathMetrics m = computeMetrics(w, kTool, p);
+  const double d = 0.1;
+  const double lens = 2 * kR * kR * std::acos(d / (2 * kR)) - d / 2 * std::sqrt(4 * kR * kR - d * d);
+  const double both = (2 * kR - d) * 3.0 + lens;
+  const double swept = 2 * kCapsule3 - both;
+  EXPECT_NEAR(m.coverage.swept_area, swept, 1e-4);
+  EXPECT_NEAR(overlapArea(m), both, 0.005 * both);  // well inside the 0.5 % of |S| promised
+  EXPECT_NEAR(m.passes.histogram[1], both / swept, 0.005);
+  EXPECT_EQ(passCount(p, kR, {2.0, 1.05}), 2);
+  EXPECT_EQ(passCount(p, kR, {2.0, 0.95}), 1);
+}
+
+TEST(Metrics, LTurnHasACornerCoveredTwice) {
+  // Inside the corner, points within r of both legs but farther than r from the corner
+  // waypoint are passed twice: a square r x r minus a quarter disk.
+  const Wall w = rectWall(4, 4);
+  const Path p = makePath({1, 1}, {{{3, 1}, true}, {{3, 3}, true}});
+  const PathMetrics m = computeMetrics(w, kTool, p);
+  const double twice = kR * kR * (1 - M_PI / 4);
+  const double swept = 0.8 + M_PI * kR * kR - kR * kR + M_PI * kR * kR / 4;
+  EXPECT_NEAR(m.coverage.swept_area, swept, 1e-4);
+  EXPECT_NEAR(overlapArea(m), twice, 0.05 * twice);
+  EXPECT_LE(std::fabs(overlapArea(m) - twice), 0.005 * swept);
+  EXPECT_EQ(passCount(p, kR, {2.95, 1.05}), 1);  // near the corner: one continuous pass
+  EXPECT_EQ(passCount(p, kR, {2.92, 1.08}), 2);  // in the inner corner, beyond r of the waypoint
+  EXPECT_EQ(passCount(p, kR, {3.05, 0.95}), 1);  // outer corner
+  EXPECT_EQ(m.motion.turns, 1u);
+  EXPECT_EQ(m.motion.turns_30, 1u);
+  EXPECT_NEAR(m.motion.turning_angle, M_PI / 2, 1e-12);
+  EXPECT_NEAR(m.motion.duration_s, 2 * (2.0 / 0.3 + 0.3 / 0.5), 1e-12);  // stops at the corner
+}
+
+TEST(Metrics, UTurnPassCounts) {
+  const Path p = makePath({1, 1}, {{{3, 1}, true}, {{3, 1.1}, true}, {{1, 1.1}, true}});
+  EXPECT_EQ(passCount(p, kR, {2.0, 1.05}), 2);  // between the rows: both rows, no continuation
+  EXPECT_EQ(passCount(p, kR, {3.0, 1.05}), 1);  // on the turn: one continuous pass
+  EXPECT_EQ(passCount(p, kR, {2.0, 0.95}), 1);
+  EXPECT_EQ(passCount(p, kR, {2.0, 1.25}), 0);
+  const Motion mo = motion(p);
+  EXPECT_EQ(mo.turns_30, 2u);
+  EXPECT_NEAR(mo.turning_angle, M_PI, 1e-12);
+  // Runs of 2, 0.1 and 2 m: the short one never reaches v (triangular profile).
+  EXPECT_NEAR(mo.duration_s, 2 * (2 / 0.3 + 0.3 / 0.5) + 2 * std::sqrt(0.1 / 0.5), 1e-12);
+}
+
+TEST(Metrics, TransitOverPaintedAreaPaintsNothing) {
+  const Wall w = rectWall(4, 2);
+  const Path p = makePath({0.5, 1}, {{{3.5, 1}, true}, {{0.5, 1}, false}, {{0.5, 1.5}, true}});
+  const PathMetrics m = computeMetrics(w, kTool, p);
+  EXPECT_EQ(passCount(p, kR, {2.0, 1.0}), 1);  // the transit back over the row is not a pass
+  EXPECT_DOUBLE_EQ(m.lengths.transit, 3.0);
+  EXPECT_DOUBLE_EQ(m.lengths.cover, 3.5);
+  // Only around the shared start point is anything passed twice: a square r x r and three
+  // quarter disks.
+  const double twice = kR * kR + 3 * M_PI * kR * kR / 4;
+  EXPECT_NEAR(overlapArea(m), twice, 0.05 * twice);
+  const double swept = kCapsule3 + (2 * kR * 0.5 + M_PI * kR * kR) - twice;
+  EXPECT_NEAR(m.coverage.swept_area, swept, 1e-4);
+}
+
+TEST(Metrics, PathThroughAnObstacleIsInvalidButStillScored) {
+  const Wall w = rectWall(4, 2, {rect(1.5, 0.5, 1, 1)});
+  const PathMetrics m = computeMetrics(w, {0.2, 0.05}, makePath({0.5, 1}, {{{3.5, 1}, true}}));
+  EXPECT_FALSE(m.validity.valid);
+  EXPECT_EQ(m.validity.violations, 1u);
+  EXPECT_NEAR(m.validity.min_clearance, -0.1, 1e-12);
+  // The swept capsule minus the window is what the path painted of the wall.
+  EXPECT_NEAR(m.coverage.coverage_wall, (kCapsule3 - 0.2 * 1.0) / (8.0 - 1.0), 1e-4);
+}
+
+TEST(Metrics, SlitNarrowerThanToolPlusClearanceIsNotReachable) {
+  // A 0.12 m slit between two windows: less than s + 2c = 0.14, so no valid path reaches into it.
+  const Wall w = rectWall(3, 2, {rect(1.0, 0, 0.5, 1.5), rect(1.62, 0, 0.5, 1.5)});
+  const ToolParams tool{0.1, 0.02};
+  const CoverageRegions regions = coverageRegions(w, tool, Path{});
+  EXPECT_TRUE(contains(regions.paintable, {1.56, 0.75}));
+  EXPECT_FALSE(contains(regions.reachable, {1.56, 0.75}));
+  EXPECT_TRUE(contains(regions.reachable, {0.5, 0.75}));
+  // A planner covering everything reachable leaves the slit: coverage of the wall stays lower.
+  Problem problem;
+  problem.wall = &w;
+  problem.tool = tool;
+  const PlannerInfo& z = findPlanner("zigzag");
+  problem.params = resolveParams(z, {});
+  const PlanResult r = runPlanner(z, problem, Budget());
+  ASSERT_EQ(r.status, PlanStatus::Ok);
+  const Coverage c = coverage(w, tool, r.path);
+  EXPECT_GE(c.coverage_reachable, 0.995);
+  EXPECT_LT(c.coverage_wall, c.coverage_reachable);
+}
+
+TEST(Metrics, ZeroLengthToolOnSegmentSweepsADisk) {
+  const Wall w = rectWall(2, 2);
+  const Path p = makePath({1, 1}, {{{1, 1}, true}});
+  EXPECT_NEAR(coverage(w, kTool, p).swept_area, M_PI * kR * kR, 1e-5);
+  EXPECT_EQ(motion(p).turns, 0u);
+}
+
+// ---- properties over generated walls ------------------------------------------------------
+
+Path planFor(const Wall& wall, const ToolParams& tool, const std::string& planner) {
+  const PlannerInfo& info = findPlanner(planner);
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = tool;
+  problem.params = resolveParams(info, {});
+  PlanResult r = runPlanner(info, problem, Budget());
+  return r.path;
+}
+
+/// Share of the wall's paintable area swept, estimated on a grid of points with brute force.
+double rasterCoverageWall(const Wall& wall, const ToolParams& tool, const Path& path, int n) {
+  const Box box = boundingBox(wall.boundary);
+  long inside = 0, swept = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Point q{box.min_x + (i + 0.5) * box.width() / n, box.min_y + (j + 0.5) * box.height() / n};
+      if (!pointInRing(q, wall.boundary)) continue;
+      bool blocked = false;
+      for (const Obstacle& o : wall.obstacles)
+        blocked = blocked || (o.type == ObstacleType::Circle ? distance(q, o.center) < o.radius
+                                                               : pointInRing(q, o.polygon));
+      if (blocked) continue;
+      ++inside;
+      for (std::size_t k = 0; k < path.tool_on.size(); ++k)
+        if (path.tool_on[k] && distancePointSegment(q, path.waypoints[k], path.waypoints[k + 1]) <= tool.radius()) {
+          ++swept;
+          break;
+        }
+    }
+  return inside ? static_cast<double>(swept) / static_cast<double>(inside) : 0.0;
+}
+
+TEST(MetricsProperties, ExactCoverageAgreesWithAFineRaster) {
+  const ToolParams tool{0.2, 0.02};
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    const Wall wall = test::randomWall(seed);
+    for (const char* planner : {"zigzag", "spiral"}) {
+      const Path path = planFor(wall, tool, planner);
+      if (path.waypoints.empty()) continue;
+      const double exact = coverage(wall, tool, path).coverage_wall;
+      const double raster = rasterCoverageWall(wall, tool, path, 160);
+      EXPECT_NEAR(exact, raster, 0.01) << planner << " on seed " << seed;
+    }
+  }
+}
+
+TEST(MetricsProperties, InvariantUnderTranslation) {
+  const ToolParams tool{0.1, 0.02};
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const Wall wall = test::randomWall(seed);
+    const Path path = planFor(wall, tool, "zigzag");
+    const Point shift{123.456, -78.9};
+    Wall moved = wall;
+    for (Point& p : moved.boundary) p = p + shift;
+    for (Obstacle& o : moved.obstacles) {
+      for (Point& p : o.polygon) p = p + shift;
+      o.center = o.center + shift;
+    }
+    Path moved_path = path;
+    for (Point& p : moved_path.waypoints) p = p + shift;
+    const std::vector<NamedMetric> a = flatten(computeMetrics(wall, tool, path));
+    const std::vector<NamedMetric> b = flatten(computeMetrics(moved, tool, moved_path));
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i].name == "min_clearance" && std::isinf(a[i].value)) continue;
+      // Areas go through a 1 micrometre grid; everything else is the same up to rounding.
+      EXPECT_NEAR(a[i].value, b[i].value, 1e-5 * std::fmax(1.0, std::fabs(a[i].value)))
+          << a[i].name << ", seed " << seed;
+    }
+  }
+}
+
+TEST(MetricsProperties, ReversingAPathChangesNoMetric) {
+  const ToolParams tool{0.1, 0.02};
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const Wall wall = test::randomWall(seed);
+    for (const char* planner : {"zigzag", "spiral"}) {
+      const Path path = planFor(wall, tool, planner);
+      Path reversed;
+      reversed.waypoints.assign(path.waypoints.rbegin(), path.waypoints.rend());
+      reversed.tool_on.assign(path.tool_on.rbegin(), path.tool_on.rend());
+      const std::vector<NamedMetric> a = flatten(computeMetrics(wall, tool, path));
+      const std::vector<NamedMetric> b = flatten(computeMetrics(wall, tool, reversed));
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        if (a[i].name == "min_clearance" && std::isinf(a[i].value)) continue;
+        EXPECT_NEAR(a[i].value, b[i].value, 1e-9 * std::fmax(1.0, std::fabs(a[i].value)))
+            << a[i].name << ", " << planner << ", seed " << seed;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace coverbench
