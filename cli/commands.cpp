@@ -66,7 +66,7 @@ std::string picture(const Wall& wall, const ToolParams& tool, const Path& path, 
 
 /// Plans one wall with one planner and renders its outputs (nothing is written here).
 Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams& tool, Params params,
-                 double time_limit_s) {
+                 double time_limit_s, bool with_picture) {
   Problem problem;
   problem.wall = &wall;
   problem.tool = tool;
@@ -85,7 +85,7 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s%s", wall.name.c_str(), planner.name.c_str(),
                 tool.tool_width, tool.clearance, toString(o.plan.result.status).c_str(),
                 o.plan.result.status == PlanStatus::Ok ? (o.plan.metrics.validity.valid ? ", valid" : ", INVALID") : "");
-  o.svg = picture(wall, tool, o.plan.result.path, title);
+  if (with_picture) o.svg = picture(wall, tool, o.plan.result.path, title);
   return o;
 }
 
@@ -125,7 +125,7 @@ int planCommand(const PlanOptions& options) {
   const Wall wall = loadWallFile(options.wall);
   const PlannerInfo& planner = findPlanner(options.planner);
   Params params = resolveParams(planner, splitSettings(options.params));
-  const Outcome o = planOnce(wall, planner, options.tool, std::move(params), options.time_limit_s);
+  const Outcome o = planOnce(wall, planner, options.tool, std::move(params), options.time_limit_s, !options.svg.empty());
   writeFileAtomically(options.out, o.plan_json);
   if (!options.svg.empty()) writeFileAtomically(options.svg, o.svg);
   const PlanResult& r = o.plan.result;
@@ -182,7 +182,7 @@ int showcaseCommand(const ShowcaseOptions& options) {
   int exit_code = 0;
   for (const Wall& wall : walls) {
     for (const PlannerInfo& planner : registeredPlanners()) {
-      const Outcome o = planOnce(wall, planner, options.tool, resolveParams(planner, {}), 60.0);
+      const Outcome o = planOnce(wall, planner, options.tool, resolveParams(planner, {}), 60.0, true);
       const std::string stem = wall.name + "__" + planner.name;
       writeFileAtomically((out / "plans" / (stem + ".json")).string(), o.plan_json);
       writeFileAtomically((out / "plans" / (stem + ".svg")).string(), o.svg);

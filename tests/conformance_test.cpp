@@ -2,6 +2,7 @@
 // path or a clear failure status, deterministically; and the same over many generated walls.
 #include <gtest/gtest.h>
 
+#include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
 #include "test_support.hpp"
 
@@ -64,6 +65,13 @@ TEST_P(Conformance, ValidOrClearFailureAndDeterministic) {
     ASSERT_EQ(first.path.waypoints[i].y, second.path.waypoints[i].y) << "waypoint " << i;
   }
   EXPECT_EQ(first.path.tool_on, second.path.tool_on);
+
+  // The declared minimum coverage, with default parameters, where the free region is connected
+  // (a planner covers one component; the others cannot be reached without leaving F).
+  if (c.params.empty() && first.status == PlanStatus::Ok && first.stats["free_components"] <= 1.0) {
+    const double covered = coverage(wall, c.tool, first.path).coverage_reachable;
+    EXPECT_GE(covered, info.min_coverage_reachable) << c.planner << " declares this minimum";
+  }
 }
 
 std::vector<Case> allCases() {
@@ -84,7 +92,7 @@ std::vector<Case> allCases() {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllPlanners, Conformance, testing::ValuesIn(allCases()),
-                         [](const testing::TestParamInfo<Case>& info) { return caseName(info.param); });
+                         [](const testing::TestParamInfo<Case>& param_info) { return caseName(param_info.param); });
 
 TEST(ConformanceWalls, ExpectedOutcomes) {
   // Hand-known outcomes on the edge-case walls, for every planner.
@@ -133,7 +141,7 @@ std::vector<std::string> plannerNames() {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllPlanners, GeneratedWalls, testing::ValuesIn(plannerNames()),
-                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
+                         [](const testing::TestParamInfo<std::string>& param_info) { return param_info.param; });
 
 }  // namespace
 }  // namespace coverbench

@@ -82,7 +82,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadWall{"label_not_string",
                 R"({"width": 3, "height": 2, "obstacles": [{"type": "circle", "x": 1, "y": 1, "radius": 0.1, "label": 3}]})",
                 "obstacles[0].label", "must be a string"}),
-    [](const testing::TestParamInfo<BadWall>& info) { return std::string(info.param.label); });
+    [](const testing::TestParamInfo<BadWall>& param_info) { return std::string(param_info.param.label); });
 
 TEST(WallParser, ReadsTheDocumentedExample) {
   const Wall w = loadWallFile(test::sourcePath("datasets/canonical/living_room_north.json"));

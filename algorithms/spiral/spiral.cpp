@@ -83,6 +83,40 @@ bool somethingVanished(const std::vector<Ring>& outer, const std::vector<Ring>& 
   return false;
 }
 
+/// An inner ring with out-and-back spurs at its convex corners. Between two levels `spacing`
+/// apart the bands of the two loops meet along the edges, but at a convex corner of interior
+/// angle a the inner loop sweeps a disk, leaving a curved triangle uncovered beyond the corner;
+/// a spur of r / sin(a / 2) - r along the outward bisector reaches its far point. A spur is kept
+/// only when it is free (exact check), shortened by halves otherwise; a corner sharper than
+/// 30 degrees gets a spur of at most 2 r.
+Ring withCornerSpurs(const Ring& ring, double r, const TransitRouter& router, std::size_t& spurs) {
+  const std::size_t n = ring.size();
+  Ring out;
+  out.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.push_back(ring[i]);
+    const double angle = interiorAngle(ring, i);
+    if (angle >= M_PI - 0.09) continue;  // nearly straight or reflex: nothing left beyond it
+    const Point v = ring[i];
+    const Point u = ring[i] - ring[(i + n - 1) % n], w = ring[(i + 1) % n] - ring[i];
+    const double lu = norm(u), lw = norm(w);
+    if (lu == 0.0 || lw == 0.0) continue;
+    const Point outward = u * (1.0 / lu) - w * (1.0 / lw);  // minus the inward bisector
+    const double lo = norm(outward);
+    if (lo == 0.0) continue;
+    double length = std::fmin(r / std::sin(angle / 2.0) - r, 2.0 * r);
+    for (int attempt = 0; attempt < 3; ++attempt, length /= 2.0) {
+      const Point tip = v + outward * (length / lo);
+      if (!router.isFree(v, tip)) continue;
+      out.push_back(tip);
+      out.push_back(v);
+      ++spurs;
+      break;
+    }
+  }
+  return out;
+}
+
 class SpiralPlanner final : public Planner {
  public:
   PlanResult plan(const Problem& problem, const Budget& budget) override {
@@ -106,7 +140,7 @@ class SpiralPlanner final : public Planner {
     // Ring j is the boundary of F eroded by j * spacing (outer rings shrink, rings around
     // obstacles grow, until they meet).
     std::vector<Ring> rings = allRings(main);
-    std::size_t levels = 1, centres = 0, leftover_checks = 0;
+    std::size_t levels = 1, centres = 0, leftover_checks = 0, spurs = 0;
     // Every level is eroded from one simplified copy of F (eroding level from level would double
     // the chords of every arc each time).
     const Region base = simplifyRegion(main, tolerance);
@@ -133,7 +167,7 @@ class SpiralPlanner final : public Planner {
         }
       }
       if (inner.empty()) break;
-      rings.insert(rings.end(), inner_rings.begin(), inner_rings.end());
+      for (const Ring& ring : inner_rings) rings.push_back(withCornerSpurs(ring, r, ws.router(), spurs));
       previous = inner_rings;
       ++levels;
     }
@@ -149,6 +183,7 @@ class SpiralPlanner final : public Planner {
     result.stats["levels"] = static_cast<double>(levels);
     result.stats["centre_loops"] = static_cast<double>(centres);
     result.stats["leftover_checks"] = static_cast<double>(leftover_checks);
+    result.stats["corner_spurs"] = static_cast<double>(spurs);
     result.stats["routed_transits"] = static_cast<double>(builder.transits());
     result.stats["free_components"] = static_cast<double>(components.size());
     result.stats["unreachable_parts"] = static_cast<double>(unreachable);
@@ -169,6 +204,7 @@ PlannerInfo info() {
   info.params = {
       {"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent rings overlap"},
   };
+  info.min_coverage_reachable = 0.995;
   info.make = [] { return std::make_unique<SpiralPlanner>(); };
   return info;
 }

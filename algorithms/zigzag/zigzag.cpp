@@ -226,6 +226,7 @@ PlannerInfo info() {
   };
   info.capabilities.polygon_boundary = true;
   info.capabilities.circle_obstacles = true;
+  info.min_coverage_reachable = 0.995;
   info.make = [] { return std::make_unique<ZigzagPlanner>(); };
   return info;
 }

@@ -146,7 +146,7 @@ void scanPasses(const Path& path, double radius, double h, Visit visit) {
 Passes passes(const Path& path, double radius, double resolution, std::size_t bins) {
   Passes out;
   out.histogram.assign(bins, 0.0);
-  const double h = resolution > 0.0 ? resolution : radius / 25.0;
+  const double h = resolution > 0.0 ? resolution : radius / 10.0;
   out.resolution = h;
   std::vector<double> length_with(bins + 1, 0.0);  // index = pass count (capped at bins)
   scanPasses(path, radius, h, [&](double, double x0, double x1, int count) {
@@ -163,13 +163,91 @@ Passes passes(const Path& path, double radius, double resolution, std::size_t bi
 }
 
 Region overlapRegion(const Path& path, double radius, double resolution) {
-  std::vector<Ring> strips;
+  // Strips one scanline high where passes >= 2, stacked into staircase polygons: a stack grows
+  // while its strip in the previous row overlaps exactly one strip in this row and vice versa.
+  // The polygons do not overlap, so no union (which is quadratic in Clipper for many strips).
+  struct Strip {
+    double x0, x1;
+  };
+  struct Stack {
+    double y0;                // bottom of the first strip
+    std::vector<Strip> rows;  // one strip per row, bottom to top
+  };
+  Region out;
+  auto close = [&](const Stack& st) {
+    Ring ring;
+    auto y = [&](std::size_t k) { return st.y0 + static_cast<double>(k) * resolution; };
+    for (std::size_t k = 0; k < st.rows.size(); ++k) {  // left side, upwards
+      ring.push_back({st.rows[k].x0, y(k)});
+      ring.push_back({st.rows[k].x0, y(k + 1)});
+    }
+    for (std::size_t k = st.rows.size(); k-- > 0;) {  // right side, downwards
+      ring.push_back({st.rows[k].x1, y(k + 1)});
+      ring.push_back({st.rows[k].x1, y(k)});
+    }
+    // Drop repeated points and the middle of straight runs (rows sharing an x).
+    auto straight = [](Point a, Point b, Point c) { return (a.x == b.x && b.x == c.x) || (a.y == b.y && b.y == c.y); };
+    Ring clean;
+    for (const Point& p : ring) {
+      if (!clean.empty() && clean.back() == p) continue;
+      if (clean.size() >= 2 && straight(clean[clean.size() - 2], clean.back(), p)) clean.back() = p;
+      else clean.push_back(p);
+    }
+    while (clean.size() >= 3 && straight(clean[clean.size() - 2], clean.back(), clean[0])) clean.pop_back();
+    PolygonWithHoles poly;
+    poly.outer = std::move(clean);
+    out.push_back(std::move(poly));
+  };
+  std::vector<Stack> open;  // stacks whose top strip is in row `last_y`, in x order
+  std::vector<Strip> row;   // the strips of row `row_y`, in x order
+  double row_y = NAN, last_y = NAN;
+  auto overlaps = [](const Strip& a, const Strip& b) { return a.x0 < b.x1 && b.x0 < a.x1; };
+  auto finishRow = [&] {
+    if (!(row_y - last_y < 1.5 * resolution)) {  // a gap of empty rows ends every stack
+      for (const Stack& st : open) close(st);
+      open.clear();
+    }
+    // How many strips each stack touches and how many stacks each strip touches.
+    std::vector<Strip> tops;
+    for (const Stack& st : open) tops.push_back(st.rows.back());
+    std::vector<int> stack_hits(open.size(), 0), strip_hits(row.size(), 0);
+    for (std::size_t i = 0, first = 0; i < row.size(); ++i) {
+      while (first < tops.size() && tops[first].x1 <= row[i].x0) ++first;
+      for (std::size_t m = first; m < tops.size() && tops[m].x0 < row[i].x1; ++m)
+        if (overlaps(tops[m], row[i])) ++stack_hits[m], ++strip_hits[i];
+    }
+    std::vector<Stack> next;
+    for (std::size_t i = 0, m = 0; i < row.size(); ++i) {
+      while (m < open.size() && tops[m].x1 <= row[i].x0) ++m;
+      bool extended = false;
+      if (strip_hits[i] == 1)
+        for (std::size_t q = m; q < open.size() && tops[q].x0 < row[i].x1; ++q)
+          if (overlaps(tops[q], row[i]) && stack_hits[q] == 1) {
+            open[q].rows.push_back(row[i]);
+            next.push_back(std::move(open[q]));
+            stack_hits[q] = -1;  // moved
+            extended = true;
+          }
+      if (!extended) next.push_back({row_y - resolution / 2, {row[i]}});
+    }
+    for (std::size_t m = 0; m < open.size(); ++m)
+      if (stack_hits[m] != -1) close(open[m]);
+    open = std::move(next);
+    last_y = row_y;
+    row.clear();
+  };
   scanPasses(path, radius, resolution, [&](double y, double x0, double x1, int count) {
-    if (count < 2) return;
-    const double y0 = y - resolution / 2, y1 = y + resolution / 2;
-    strips.push_back({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
+    if (count < 2 || x1 - x0 < 1e-9) return;  // rounding slivers are not drawn
+    if (y != row_y) {
+      if (!std::isnan(row_y)) finishRow();
+      row_y = y;
+    }
+    if (!row.empty() && row.back().x1 >= x0) row.back().x1 = std::fmax(row.back().x1, x1);
+    else row.push_back({x0, x1});
   });
-  return regionFromRings(strips);
+  if (!std::isnan(row_y)) finishRow();
+  for (const Stack& st : open) close(st);
+  return out;
 }
 
 }  // namespace coverbench

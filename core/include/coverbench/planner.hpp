@@ -135,6 +135,9 @@ struct PlannerInfo {
   std::string reference;  ///< the paper or document the algorithm comes from
   std::vector<ParamSpec> params;
   Capabilities capabilities;
+  /// The planner's promise, checked by the conformance suite: with default parameters, the
+  /// coverage_reachable it reaches on every conformance wall whose free region is connected.
+  double min_coverage_reachable = 0.0;
   std::function<std::unique_ptr<Planner>()> make;
 };
 

@@ -41,8 +41,8 @@ struct Lengths {
 Lengths pathLengths(const Path& path);
 
 /// Arc tolerance of every polygon the coverage metrics build (circles, round offsets, capsule
-/// ends): chords lie within 10 micrometres of the true arcs.
-inline constexpr double kMetricArcTolerance = 1e-5;
+/// ends): chords lie within 50 micrometres of the true arcs (the spec asks for under 0.1 mm).
+inline constexpr double kMetricArcTolerance = 5e-5;
 
 /// Areas (m^2) and coverage ratios, computed on polygons (see docs/metrics.md).
 struct Coverage {
@@ -70,7 +70,7 @@ struct Passes {
   double resolution = 0.0;         ///< scanline spacing (m)
   double swept_area_estimate = 0.0;  ///< |S| by the same scanlines, a check on the resolution
 };
-/// `resolution` <= 0 picks r / 25.
+/// `resolution` <= 0 picks r / 10.
 Passes passes(const Path& path, double radius, double resolution = 0.0, std::size_t bins = 4);
 /// The points passed over twice or more, as strips one scanline high (for pictures).
 Region overlapRegion(const Path& path, double radius, double resolution);

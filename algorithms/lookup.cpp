@@ -1,3 +1,4 @@
+// Finding a registered planner by name, resolving its parameters, and running it under a budget.
 #include "coverbench/registry.hpp"
 
 #include <chrono>
