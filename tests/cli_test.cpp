@@ -29,14 +29,18 @@ class Cli : public testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  CommandRun run(const std::string& args) {
-    const std::string err_file = (dir_ / "stderr.txt").string();
-    const std::string cmd = std::string(COVERBENCH_BINARY) + " " + args + " > /dev/null 2> " + err_file;
+  CommandRun run(const std::string& args, std::string* out = nullptr) {
+    const std::string err_file = (dir_ / "stderr.txt").string(), out_file = (dir_ / "stdout.txt").string();
+    const std::string cmd = std::string(COVERBENCH_BINARY) + " " + args + " > " + out_file + " 2> " + err_file;
     const int status = std::system(cmd.c_str());
-    std::ifstream in(err_file);
+    if (out) *out = slurp(out_file);
+    return {WEXITSTATUS(status), slurp(err_file)};
+  }
+  static std::string slurp(const std::string& file) {
+    std::ifstream in(file);
     std::stringstream ss;
     ss << in.rdbuf();
-    return {WEXITSTATUS(status), ss.str()};
+    return ss.str();
   }
   std::string write(const std::string& name, const std::string& text) {
     const fs::path p = dir_ / name;
@@ -59,6 +63,48 @@ TEST_F(Cli, PlansAWallAndWritesPlanAndPicture) {
   EXPECT_NE(text.str().find("\"status\": \"ok\""), std::string::npos);
   EXPECT_NE(text.str().find("\"valid\": true"), std::string::npos);
   EXPECT_TRUE(fs::file_size(svg) > 1000);
+}
+
+/// The value of `"key": number` in a JSON text (one key per line, as the metrics command prints).
+double jsonNumber(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find("\"" + key + "\":");
+  if (at == std::string::npos) return NAN;
+  return std::stod(text.substr(at + key.size() + 3));
+}
+
+TEST_F(Cli, MetricsScoresAHandWrittenPlan) {
+  // A 4 m x 2 m wall, tool 0.2 m, no clearance needed; one 2 m pass written by hand, with only
+  // the two required fields. Closed forms: |S| = 0.2 * 2 + pi * 0.1^2; R is the 4 x 2 rectangle
+  // with corners rounded to r = 0.1, |R| = 8 - (4 - pi) * 0.01.
+  const std::string wall = write("wall.json", R"({ "name": "hand", "width": 4.0, "height": 2.0, "obstacles": [] })");
+  const std::string plan = write("plan.json", R"({ "waypoints": [[1, 1], [3, 1], [3.5, 1.5]], "tool_on": [true, false] })");
+  std::string out;
+  const CommandRun r = run("metrics --wall " + wall + " --plan " + plan + " --tool-width 0.2 --clearance 0", &out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double swept = 0.4 + M_PI * 0.01, reachable = 8.0 - (4.0 - M_PI) * 0.01;
+  EXPECT_NEAR(jsonNumber(out, "swept_area"), swept, 1e-4);
+  EXPECT_NEAR(jsonNumber(out, "reachable_area"), reachable, 1e-4);
+  EXPECT_NEAR(jsonNumber(out, "coverage_reachable"), swept / reachable, 1e-5);
+  EXPECT_NEAR(jsonNumber(out, "coverage_wall"), swept / 8.0, 1e-5);
+  EXPECT_NEAR(jsonNumber(out, "length_cover"), 2.0, 1e-12);
+  EXPECT_NEAR(jsonNumber(out, "length_transit"), std::sqrt(0.5), 1e-12);
+  EXPECT_EQ(jsonNumber(out, "turns"), 1.0);
+  EXPECT_EQ(jsonNumber(out, "overlap"), 0.0);
+  EXPECT_NE(out.find("\"valid\": true"), std::string::npos) << out;
+
+  // A plan through the middle of a window is scored and reported invalid (exit 3).
+  const std::string window = write("window.json", R"({ "name": "w", "width": 4.0, "height": 2.0,
+    "obstacles": [ { "type": "rect", "x": 1.8, "y": 0.8, "width": 0.4, "height": 0.4 } ] })");
+  EXPECT_EQ(run("metrics --wall " + window + " --plan " + plan + " --tool-width 0.2 --clearance 0", &out).exit_code, 3);
+  EXPECT_NE(out.find("\"valid\": false"), std::string::npos) << out;
+
+  // Missing tool_on: one line naming the file and the field.
+  const std::string bad = write("bad.json", R"({ "waypoints": [[1, 1], [3, 1]] })");
+  const CommandRun e = run("metrics --wall " + wall + " --plan " + bad, &out);
+  EXPECT_EQ(e.exit_code, 2);
+  EXPECT_EQ(lines(e.err), 1) << e.err;
+  EXPECT_NE(e.err.find("bad.json"), std::string::npos) << e.err;
+  EXPECT_NE(e.err.find("tool_on"), std::string::npos) << e.err;
 }
 
 TEST_F(Cli, BadWallGivesOneLineAndNoOutput) {
