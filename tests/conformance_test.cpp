@@ -65,6 +65,7 @@ TEST_P(Conformance, ValidOrClearFailureAndDeterministic) {
     ASSERT_EQ(first.path.waypoints[i].y, second.path.waypoints[i].y) << "waypoint " << i;
   }
   EXPECT_EQ(first.path.tool_on, second.path.tool_on);
+  EXPECT_EQ(first.stats["unreachable_parts"], 0.0) << "every part of the covered component is reached: " << first.reason;
 
   // The declared minimum coverage, with default parameters, where the free region is connected
   // (a planner covers one component; the others cannot be reached without leaving F).
@@ -129,6 +130,7 @@ TEST_P(GeneratedWalls, ValidOnManyRandomWalls) {
     const Wall wall = test::randomWall(seed);
     PlanResult r;
     ASSERT_TRUE(honours(info, wall, {0.1, 0.02}, params, &r)) << "seed " << seed;
+    EXPECT_EQ(r.stats["unreachable_parts"], 0.0) << "seed " << seed << ": " << r.reason;
     ok += r.status == PlanStatus::Ok;
   }
   EXPECT_GE(ok, 55) << "almost every random wall has room for the tool";

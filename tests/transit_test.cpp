@@ -46,6 +46,24 @@ TEST(Transit, GoesAroundAWindowWithTheShortestDetour) {
   for (const Point& q : *route) EXPECT_GE(q.y, 1.0);  // over, not under (the bottom is longer)
 }
 
+TEST(Transit, OutOfACuspOfTheFreeRegion) {
+  // A window 0.118 m above the floor (the gap below is too low for the tool) and a second one
+  // 0.181 m to its right leave a corridor. Right of the first window's lower corner, the floor's
+  // offset line meets the corner's clearance arc in a cusp of F; the way out follows the arc,
+  // where no corner node can be seen from the cusp (found in the generated `narrow` family).
+  const Wall w = rectWall(3.0, 2.157, {rect(1.87, 0.118, 0.328, 2.039), rect(2.379, 0.0, 0.329, 0.809)});
+  const ToolParams tool{0.1, 0.02};
+  Workspace ws(w, tool);
+  const Point cusp{2.2156, 0.0501}, corridor{2.29, 1.5};
+  ASSERT_TRUE(ws.router().isFree(cusp, cusp)) << "the cusp point is in F";
+  const auto route = ws.router().route(cusp, corridor);
+  ASSERT_TRUE(route);
+  Path p;
+  for (const Point& q : *route) p.moveTo(q, false);
+  EXPECT_TRUE(test::isValidPath(w, tool, p));
+  EXPECT_LT(length(*route), distance(cusp, corridor) + 0.2);
+}
+
 TEST(Transit, UnreachableAcrossAClosedGap) {
   // The window leaves 0.1 m at the top: less than s + 2c = 0.14, so the two sides are separate.
   const Wall w = rectWall(3, 1.2, {rect(1.4, 0, 0.2, 1.1)});

@@ -187,9 +187,7 @@ class SpiralPlanner final : public Planner {
     result.stats["routed_transits"] = static_cast<double>(builder.transits());
     result.stats["free_components"] = static_cast<double>(components.size());
     result.stats["unreachable_parts"] = static_cast<double>(unreachable);
-    if (components.size() > 1)
-      result.reason = "covered the largest of " + std::to_string(components.size()) +
-                      " disconnected free components; the others cannot be reached without leaving F";
+    result.reason = partialCoverageNote(components.size(), unreachable);
     return result;
   }
 };

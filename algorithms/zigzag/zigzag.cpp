@@ -204,9 +204,7 @@ class ZigzagPlanner final : public Planner {
     result.stats["free_components"] = static_cast<double>(components.size());
     result.stats["unreachable_parts"] = static_cast<double>(unreachable);
     result.stats["sweep_angle_deg"] = problem.params.number("sweep_angle");
-    if (components.size() > 1)
-      result.reason = "covered the largest of " + std::to_string(components.size()) +
-                      " disconnected free components; the others cannot be reached without leaving F";
+    result.reason = partialCoverageNote(components.size(), unreachable);
     return result;
   }
 };

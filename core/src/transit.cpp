@@ -110,41 +110,76 @@ void TransitRouter::build() {
 std::optional<std::vector<Point>> TransitRouter::route(Point a, Point b) {
   if (isFree(a, b)) return std::vector<Point>{a, b};
   build();
+  std::optional<std::vector<Point>> result = search(a, b, {});
+  if (result || !free_) return result;
+  // Fallback: F's own boundary vertices near a and b, in runs along the rings. Consecutive ones
+  // are joined by F's edges, which are free, so a walk along F leaves cusps and thin passages
+  // that no corner node can see into.
+  const double window = std::fmax(4.0 * (tool_.radius() + tool_.clearance), 0.25);
+  std::vector<std::vector<Point>> chains;
+  for (const PolygonWithHoles& poly : *free_) {
+    std::vector<const Ring*> rings{&poly.outer};
+    for (const Ring& h : poly.holes) rings.push_back(&h);
+    for (const Ring* ring : rings) {
+      std::vector<Point> run;
+      for (const Point& p : *ring) {
+        if (distance(p, a) <= window || distance(p, b) <= window) {
+          run.push_back(p);
+        } else if (!run.empty()) {
+          chains.push_back(std::move(run));
+          run.clear();
+        }
+      }
+      if (!run.empty()) chains.push_back(std::move(run));
+    }
+  }
+  if (chains.empty()) return result;
+  return search(a, b, chains);
+}
+
+std::optional<std::vector<Point>> TransitRouter::search(Point a, Point b, const std::vector<std::vector<Point>>& chains) {
   Graph& g = *graph_;
   const std::size_t n = g.nodes.size();
-  const auto va = boost::add_vertex(g.graph);
-  const auto vb = boost::add_vertex(g.graph);
-  bool a_linked = false, b_linked = false;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (isFree(a, g.nodes[i])) {
-      boost::add_edge(va, i, distance(a, g.nodes[i]), g.graph);
-      a_linked = true;
+  // Temporary vertices after the permanent nodes: a, b, then the chain points.
+  std::vector<Point> pos = g.nodes;
+  pos.push_back(a);
+  pos.push_back(b);
+  for (const auto& chain : chains) pos.insert(pos.end(), chain.begin(), chain.end());
+  const std::size_t va = n, vb = n + 1;
+  for (std::size_t v = n; v < pos.size(); ++v) boost::add_vertex(g.graph);
+  auto link = [&](std::size_t i, std::size_t j) {
+    if (isFree(pos[i], pos[j])) boost::add_edge(i, j, distance(pos[i], pos[j]), g.graph);
+  };
+  for (std::size_t i = 0; i < n; ++i) link(va, i), link(i, vb);
+  std::size_t at = n + 2;
+  for (const auto& chain : chains) {
+    for (std::size_t k = 0; k < chain.size(); ++k) {
+      const std::size_t v = at + k;
+      if (k > 0) link(v - 1, v);
+      link(va, v);
+      link(v, vb);
+      for (std::size_t i = 0; i < n; ++i) link(v, i);
     }
-    if (isFree(g.nodes[i], b)) {
-      boost::add_edge(i, vb, distance(g.nodes[i], b), g.graph);
-      b_linked = true;
-    }
+    at += chain.size();
   }
   std::optional<std::vector<Point>> result;
-  if (a_linked && b_linked) {
-    std::vector<std::size_t> pred(n + 2);
-    std::vector<double> dist(n + 2);
-    boost::dijkstra_shortest_paths(
-        g.graph, va,
-        boost::predecessor_map(boost::make_iterator_property_map(pred.begin(), boost::get(boost::vertex_index, g.graph)))
-            .distance_map(boost::make_iterator_property_map(dist.begin(), boost::get(boost::vertex_index, g.graph))));
-    if (pred[vb] != vb) {
-      std::vector<Point> points{b};
-      for (std::size_t v = pred[vb]; v != va; v = pred[v]) points.push_back(g.nodes[v]);
-      points.push_back(a);
-      std::reverse(points.begin(), points.end());
-      result = std::move(points);
-    }
+  std::vector<std::size_t> pred(pos.size());
+  std::vector<double> dist(pos.size());
+  boost::dijkstra_shortest_paths(
+      g.graph, va,
+      boost::predecessor_map(boost::make_iterator_property_map(pred.begin(), boost::get(boost::vertex_index, g.graph)))
+          .distance_map(boost::make_iterator_property_map(dist.begin(), boost::get(boost::vertex_index, g.graph))));
+  if (pred[vb] != vb) {
+    std::vector<Point> points{b};
+    for (std::size_t v = pred[vb]; v != va; v = pred[v]) points.push_back(pos[v]);
+    points.push_back(a);
+    std::reverse(points.begin(), points.end());
+    result = std::move(points);
   }
-  boost::clear_vertex(vb, g.graph);
-  boost::remove_vertex(vb, g.graph);
-  boost::clear_vertex(va, g.graph);
-  boost::remove_vertex(va, g.graph);
+  for (std::size_t v = pos.size(); v-- > n;) {  // last added first: indices below stay valid
+    boost::clear_vertex(v, g.graph);
+    boost::remove_vertex(v, g.graph);
+  }
   return result;
 }
 

@@ -35,7 +35,9 @@ Region freeRegion(const Wall& wall, const ToolParams& tool, double margin, doubl
 }
 
 Workspace::Workspace(const Wall& wall, const ToolParams& tool)
-    : wall_(wall), tool_(tool), field_(wall_), free_(freeRegion(wall_, tool_)), router_(field_, tool_) {}
+    : wall_(wall), tool_(tool), field_(wall_), free_(freeRegion(wall_, tool_)), router_(field_, tool_) {
+  router_.setFreeRegion(&free_);
+}
 
 void PathBuilder::follow(const std::vector<Point>& points, bool tool_on) {
   for (const Point& p : points) path_.moveTo(p, tool_on);
@@ -100,6 +102,17 @@ std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max
     builder.follow(loop, true);
   }
   return unreachable;
+}
+
+std::string partialCoverageNote(std::size_t free_components, std::size_t unreachable_parts) {
+  std::string note;
+  if (free_components > 1)
+    note = "covered the largest of " + std::to_string(free_components) +
+           " disconnected free components; the others cannot be reached without leaving F";
+  if (unreachable_parts > 0)
+    note += (note.empty() ? "" : "; ") + std::to_string(unreachable_parts) +
+            " part(s) of the covered component were left out: no collision-free transit reached them";
+  return note;
 }
 
 std::vector<PolygonWithHoles> componentsByArea(const Region& region) {

@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "coverbench/clearance.hpp"
@@ -47,15 +48,23 @@ class TransitRouter {
   /// A straight move from a to b keeps the tool valid (with kPlanningMargin to spare).
   bool isFree(Point a, Point b) const;
   /// The shortest polyline a, ..., b whose segments are all free; nullopt when b is unreachable.
+  /// Searches the visibility graph of nodes around obstacle corners; when that finds nothing
+  /// (an endpoint in a cusp of F, a passage barely wider than the tool), it searches again with
+  /// the vertices of F's boundary near a and b added, linked along F's edges.
   std::optional<std::vector<Point>> route(Point a, Point b);
+  /// The conservative free region the fallback walks along (set by Workspace; optional).
+  void setFreeRegion(const Region* free) { free_ = free; }
   std::size_t nodeCount();
 
  private:
   struct Graph;
   void build();
 
+  std::optional<std::vector<Point>> search(Point a, Point b, const std::vector<std::vector<Point>>& chains);
+
   const ClearanceField* field_;
   ToolParams tool_;
+  const Region* free_ = nullptr;
   std::unique_ptr<Graph> graph_;
 };
 
@@ -109,6 +118,10 @@ class PathBuilder {
 /// the tool on when it is straight and no longer than `max_painted_link`. Returns the number of
 /// rings that could not be reached.
 std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max_painted_link);
+
+/// The reason an ok plan gives for what it left out: the free components other than the largest,
+/// and parts (rings, rows) no collision-free transit reached. Empty when nothing was left out.
+std::string partialCoverageNote(std::size_t free_components, std::size_t unreachable_parts);
 
 /// The connected components of a region, largest area first (ties broken by position, so the
 /// order is deterministic).
