@@ -39,3 +39,33 @@ struct ShowcaseOptions {
 int showcaseCommand(const ShowcaseOptions& options);
 
 }  // namespace coverbench::cli
+
+namespace coverbench::cli {
+
+struct DatasetGenerateOptions {
+  std::string family, out;
+  std::size_t count = 0;
+  unsigned long long seed = 0;
+};
+/// Writes the walls and manifest.json; prints where and a summary.
+int datasetGenerateCommand(const DatasetGenerateOptions& options);
+/// Prints a summary of a dataset folder (checking the manifest's hashes).
+int datasetShowCommand(const std::string& dir);
+/// Prints the generator families and suites.
+int datasetFamiliesCommand();
+
+struct RunOptions {
+  std::string config;
+  unsigned threads = 0;  ///< 0: the config's, else every core
+};
+/// Runs an experiment config and writes its tables next to the results database.
+int runCommand(const RunOptions& options);
+
+struct ReportOptions {
+  std::string database, format = "md", out;
+  std::optional<long long> experiment;
+};
+/// Prints (or writes) the comparison tables of an experiment.
+int reportCommand(const ReportOptions& options);
+
+}  // namespace coverbench::cli

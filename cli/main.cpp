@@ -53,6 +53,36 @@ int main(int argc, char** argv) {
   show_cmd->add_option("--clearance", showcase.tool.clearance, "gap c in metres")->capture_default_str();
   show_cmd->callback([&] { plan_exit = coverbench::cli::showcaseCommand(showcase); });
 
+  CLI::App* dataset_cmd = app.add_subcommand("dataset", "Generate and inspect wall datasets");
+  dataset_cmd->require_subcommand(1);
+  coverbench::cli::DatasetGenerateOptions gen;
+  CLI::App* gen_cmd = dataset_cmd->add_subcommand("generate", "Write N walls of a family (or a suite) and a manifest");
+  gen_cmd->add_option("--family", gen.family, "family or suite (see `coverbench dataset families`)")->required();
+  gen_cmd->add_option("--count", gen.count, "number of walls (a suite: default all)");
+  gen_cmd->add_option("--seed", gen.seed, "seed: same family, count and seed give the same bytes")->capture_default_str();
+  gen_cmd->add_option("--out", gen.out, "output folder (new or empty)")->required();
+  gen_cmd->callback([&] { plan_exit = coverbench::cli::datasetGenerateCommand(gen); });
+  std::string show_dir;
+  CLI::App* dshow_cmd = dataset_cmd->add_subcommand("show", "Summarise a dataset folder (checks the manifest's hashes)");
+  dshow_cmd->add_option("dir", show_dir, "dataset folder")->required();
+  dshow_cmd->callback([&] { plan_exit = coverbench::cli::datasetShowCommand(show_dir); });
+  dataset_cmd->add_subcommand("families", "List the generator families and suites")
+      ->callback([&] { plan_exit = coverbench::cli::datasetFamiliesCommand(); });
+
+  coverbench::cli::RunOptions run;
+  CLI::App* run_cmd = app.add_subcommand("run", "Run an experiment config; results in SQLite, tables next to them");
+  run_cmd->add_option("config", run.config, "experiment config (YAML)")->required();
+  run_cmd->add_option("--threads", run.threads, "worker threads (default: the config's, else every core)");
+  run_cmd->callback([&] { plan_exit = coverbench::cli::runCommand(run); });
+
+  coverbench::cli::ReportOptions report;
+  CLI::App* report_cmd = app.add_subcommand("report", "Comparison tables of an experiment's results");
+  report_cmd->add_option("database", report.database, "results.sqlite of an experiment")->required();
+  report_cmd->add_option("--format", report.format, "md, csv or latex")->capture_default_str();
+  report_cmd->add_option("--out", report.out, "file to write (default: standard output)");
+  report_cmd->add_option("--experiment", report.experiment, "experiment id in the database (default: the latest)");
+  report_cmd->callback([&] { plan_exit = coverbench::cli::reportCommand(report); });
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

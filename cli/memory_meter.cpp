@@ -2,26 +2,34 @@
 
 #include <malloc.h>
 
-#include <atomic>
 #include <cstdlib>
 #include <new>
 
 namespace {
 
-std::atomic<long long> g_current{0};
-std::atomic<long long> g_peak{0};
-std::atomic<long long> g_baseline{0};
+// Per thread: experiments run one plan per worker thread, so each thread measures (and limits)
+// its own plan. Memory freed by another thread than the one that allocated it skews both
+// threads' counts; within one plan call that does not happen.
+thread_local long long t_current = 0;
+thread_local long long t_peak = 0;
+thread_local long long t_baseline = 0;
+thread_local long long t_limit = 0;  // bytes above the baseline; 0: no limit
+thread_local bool t_limit_hit = false;
 
 void note(void* p) {
   const auto n = static_cast<long long>(malloc_usable_size(p));
-  const long long now = g_current.fetch_add(n, std::memory_order_relaxed) + n;
-  long long peak = g_peak.load(std::memory_order_relaxed);
-  while (now > peak && !g_peak.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {
+  t_current += n;
+  if (t_limit > 0 && t_current - t_baseline > t_limit) {
+    t_current -= n;
+    std::free(p);
+    t_limit_hit = true;
+    throw std::bad_alloc();
   }
+  if (t_current > t_peak) t_peak = t_current;
 }
 
 void unnote(void* p) {
-  if (p) g_current.fetch_sub(static_cast<long long>(malloc_usable_size(p)), std::memory_order_relaxed);
+  if (p) t_current -= static_cast<long long>(malloc_usable_size(p));
 }
 
 void* allocate(std::size_t n) {
@@ -77,15 +85,21 @@ void operator delete[](void* p, const std::nothrow_t&) noexcept { release(p); }
 
 namespace coverbench::cli {
 
-void resetPeakMemory() {
-  const long long now = g_current.load(std::memory_order_relaxed);
-  g_baseline.store(now, std::memory_order_relaxed);
-  g_peak.store(now, std::memory_order_relaxed);
+void resetPeakMemory() { limitMemory(0); }
+
+void limitMemory(std::size_t limit_bytes) {
+  t_baseline = t_current;
+  t_peak = t_current;
+  t_limit = static_cast<long long>(limit_bytes);
+  t_limit_hit = false;
 }
 
 std::size_t peakMemorySinceReset() {
-  const long long grown = g_peak.load(std::memory_order_relaxed) - g_baseline.load(std::memory_order_relaxed);
+  t_limit = 0;
+  const long long grown = t_peak - t_baseline;
   return grown > 0 ? static_cast<std::size_t>(grown) : 0;
 }
+
+bool memoryLimitHit() { return t_limit_hit; }
 
 }  // namespace coverbench::cli

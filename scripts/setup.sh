@@ -6,6 +6,7 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(g++ cmake ninja-build pkg-config ccache
           libpolyclipping-dev nlohmann-json3-dev libcli11-dev libboost-graph-dev
+          libyaml-cpp-dev libsqlite3-dev libssl-dev zlib1g-dev
           libgtest-dev libbenchmark-dev)
 
 missing=()

@@ -195,27 +195,30 @@ Wall loadWallFile(const std::string& path) {
 }
 
 std::string wallToJson(const Wall& wall) {
-  auto points = [](const Ring& ring) {
-    json arr = json::array();
-    for (const Point& p : ring) arr.push_back({p.x, p.y});
-    return arr;
+  // One obstacle per line; numbers in their shortest round-trip form, so equal walls give equal
+  // bytes on every machine. Rects are written as their polygons: exact, no arithmetic on corners.
+  auto num = [](double v) { return json(v).dump(); };
+  auto points = [&](const Ring& ring) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      out += (i ? ", [" : "[") + num(ring[i].x) + ", " + num(ring[i].y) + "]";
+    return out + "]";
   };
-  json doc;
-  doc["name"] = wall.name;
-  doc["boundary"] = points(wall.boundary);
-  json obs = json::array();
-  for (const Obstacle& o : wall.obstacles) {
-    json j;
-    if (o.type == ObstacleType::Circle) {
-      j = {{"type", "circle"}, {"x", o.center.x}, {"y", o.center.y}, {"radius", o.radius}};
-    } else {
-      j = {{"type", "polygon"}, {"points", points(o.polygon)}};
-    }
-    if (!o.label.empty()) j["label"] = o.label;
-    obs.push_back(j);
+  std::string out = "{\n  \"name\": " + json(wall.name).dump() + ",\n  \"boundary\": " + points(wall.boundary) +
+                    ",\n  \"obstacles\": [";
+  for (std::size_t i = 0; i < wall.obstacles.size(); ++i) {
+    const Obstacle& o = wall.obstacles[i];
+    out += i ? ",\n    " : "\n    ";
+    if (o.type == ObstacleType::Circle)
+      out += "{\"type\": \"circle\", \"x\": " + num(o.center.x) + ", \"y\": " + num(o.center.y) +
+             ", \"radius\": " + num(o.radius);
+    else
+      out += "{\"type\": \"polygon\", \"points\": " + points(o.polygon);
+    if (!o.label.empty()) out += ", \"label\": " + json(o.label).dump();
+    out += "}";
   }
-  doc["obstacles"] = obs;
-  return doc.dump(2) + "\n";
+  out += wall.obstacles.empty() ? "]\n}\n" : "\n  ]\n}\n";
+  return out;
 }
 
 }  // namespace coverbench

@@ -6,6 +6,7 @@
 /// its `PlannerInfo`, registered in algorithms/registry.cpp. See docs/ADDING_A_PLANNER.md.
 
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -86,6 +87,9 @@ struct Problem {
   const Wall* wall = nullptr;
   ToolParams tool;
   Params params;
+  /// For planners that randomise: all randomness must come from this seed (experiments set it
+  /// from the config's seed), so a run is a pure function of its inputs.
+  std::uint64_t seed = 0;
 };
 
 /// Limits for one plan call. Planners poll `expired()` in their loops.

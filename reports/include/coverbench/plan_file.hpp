@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "coverbench/files.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/planner.hpp"
 
@@ -37,9 +38,5 @@ struct LoadedPlan {
 };
 /// Throws InputError (file, field, problem) for anything malformed.
 LoadedPlan loadPlanFile(const std::string& file);
-
-/// Writes `text` to `path` atomically (a temporary file renamed into place), so a failure never
-/// leaves a partial file. Throws InputError naming the path if it cannot be written.
-void writeFileAtomically(const std::string& path, const std::string& text);
 
 }  // namespace coverbench

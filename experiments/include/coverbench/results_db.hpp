@@ -1,0 +1,56 @@
+#pragma once
+/// Experiment results in SQLite (WAL): experiments, walls, planner configurations, runs with every
+/// metric, planner statistics and the compressed path of each run. One transaction per run, so a
+/// killed experiment loses at most the runs in flight. Schema: docs/file_formats.md.
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+
+#include "coverbench/experiment.hpp"
+#include "coverbench/tables.hpp"
+
+struct sqlite3;
+
+namespace coverbench {
+
+/// Facts about the machine and build that produced results.
+struct Provenance {
+  std::string git_revision;
+  std::string compiler;
+  std::string cpu;
+  std::string started_at;  ///< UTC, ISO 8601
+  unsigned threads = 0;
+};
+Provenance currentProvenance(unsigned threads);
+
+class ResultsDb {
+ public:
+  /// Opens (creating if needed) the database. Throws InputError naming the file on failure.
+  explicit ResultsDb(const std::string& path);
+  ~ResultsDb();
+  ResultsDb(const ResultsDb&) = delete;
+  ResultsDb& operator=(const ResultsDb&) = delete;
+
+  /// Records the experiment, its walls and planner configurations, and which runs belong to it.
+  /// Returns its id.
+  long long beginExperiment(const ExperimentConfig& config, const Provenance& provenance,
+                            const std::vector<WallEntry>& walls, const std::vector<RunSpec>& runs);
+  /// Keys of runs already stored (finished, with any status).
+  std::set<std::string> finishedRuns();
+  /// Stores one run in one transaction.
+  void storeRun(const RunSpec& spec, const RunRecord& record);
+  void finishExperiment(long long id, std::size_t executed, std::size_t skipped);
+
+  /// The runs of one experiment (default: the latest) as the tables see them.
+  ResultSet load(std::optional<long long> experiment = std::nullopt);
+  /// The stored path of a run.
+  std::optional<Path> path(const std::string& run_key);
+
+ private:
+  void exec(const std::string& sql);
+  sqlite3* db_ = nullptr;
+  std::string file_;
+};
+
+}  // namespace coverbench

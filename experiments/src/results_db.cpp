@@ -1,0 +1,340 @@
+#include "coverbench/results_db.hpp"
+
+#include <sqlite3.h>
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <map>
+
+namespace coverbench {
+namespace {
+
+const char* const kSchema = R"sql(
+PRAGMA journal_mode = WAL;
+PRAGMA synchronous = NORMAL;
+CREATE TABLE IF NOT EXISTS experiments (
+  id INTEGER PRIMARY KEY, name TEXT NOT NULL, config_path TEXT, config_text TEXT NOT NULL,
+  config_hash TEXT NOT NULL, baseline TEXT NOT NULL, git_revision TEXT, compiler TEXT, cpu TEXT,
+  threads INTEGER, started_at TEXT, finished_at TEXT, runs_total INTEGER, runs_executed INTEGER,
+  runs_skipped INTEGER);
+CREATE TABLE IF NOT EXISTS walls (
+  hash TEXT PRIMARY KEY, name TEXT NOT NULL, content TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS experiment_walls (
+  experiment_id INTEGER NOT NULL, wall_hash TEXT NOT NULL, dataset TEXT NOT NULL,
+  PRIMARY KEY (experiment_id, wall_hash)) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS planner_configs (
+  id TEXT PRIMARY KEY, planner TEXT NOT NULL, params TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS experiment_planners (
+  experiment_id INTEGER NOT NULL, position INTEGER NOT NULL, config_id TEXT NOT NULL, label TEXT NOT NULL,
+  PRIMARY KEY (experiment_id, position)) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS experiment_runs (
+  experiment_id INTEGER NOT NULL, run_key TEXT NOT NULL, PRIMARY KEY (experiment_id, run_key)) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS runs (
+  key TEXT PRIMARY KEY, wall_hash TEXT NOT NULL, config_id TEXT NOT NULL, tool_width REAL NOT NULL,
+  clearance REAL NOT NULL, repetition INTEGER NOT NULL, seed INTEGER NOT NULL, status TEXT NOT NULL,
+  reason TEXT NOT NULL, valid INTEGER NOT NULL, plan_time_ms REAL NOT NULL, peak_memory_bytes REAL,
+  finished_at TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS metrics (
+  run_key TEXT NOT NULL, position INTEGER NOT NULL, name TEXT NOT NULL, value REAL,
+  PRIMARY KEY (run_key, name)) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS planner_stats (
+  run_key TEXT NOT NULL, name TEXT NOT NULL, value REAL, PRIMARY KEY (run_key, name)) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS paths (
+  run_key TEXT PRIMARY KEY, encoding TEXT NOT NULL, waypoints INTEGER NOT NULL, data BLOB NOT NULL);
+)sql";
+
+/// A prepared statement, finalised on scope exit.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& sql, const std::string& file) : db_(db), file_(file) {
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK) fail("prepare");
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement& text(int i, const std::string& v) {
+    sqlite3_bind_text(stmt_, i, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+    return *this;
+  }
+  Statement& real(int i, double v) {
+    if (std::isfinite(v)) sqlite3_bind_double(stmt_, i, v);
+    else sqlite3_bind_null(stmt_, i);  // infinities (no obstacles: min_clearance) are stored as NULL
+    return *this;
+  }
+  Statement& integer(int i, long long v) {
+    sqlite3_bind_int64(stmt_, i, v);
+    return *this;
+  }
+  Statement& null(int i) {
+    sqlite3_bind_null(stmt_, i);
+    return *this;
+  }
+  Statement& blob(int i, const std::string& v) {
+    sqlite3_bind_blob(stmt_, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+    return *this;
+  }
+  /// Steps once; true while there is a row.
+  bool step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc != SQLITE_DONE) fail("step");
+    return false;
+  }
+  void run() {
+    step();
+    sqlite3_reset(stmt_);
+    sqlite3_clear_bindings(stmt_);
+  }
+  std::string columnText(int i) const {
+    const auto* p = sqlite3_column_text(stmt_, i);
+    return p ? reinterpret_cast<const char*>(p) : "";
+  }
+  double columnReal(int i) const { return sqlite3_column_type(stmt_, i) == SQLITE_NULL ? NAN : sqlite3_column_double(stmt_, i); }
+  bool columnNull(int i) const { return sqlite3_column_type(stmt_, i) == SQLITE_NULL; }
+  long long columnInt(int i) const { return sqlite3_column_int64(stmt_, i); }
+  std::string columnBlob(int i) const {
+    const void* p = sqlite3_column_blob(stmt_, i);
+    return p ? std::string(static_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(stmt_, i))) : "";
+  }
+
+ private:
+  [[noreturn]] void fail(const char* what) const {
+    throw InputError(file_, "(database)", std::string(what) + ": " + sqlite3_errmsg(db_));
+  }
+  sqlite3* db_;
+  sqlite3_stmt* stmt_ = nullptr;
+  std::string file_;
+};
+
+std::string utcNow() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string commandOutput(const std::string& cmd) {
+  std::string out;
+  if (FILE* p = popen(cmd.c_str(), "r")) {
+    char buf[256];
+    while (std::fgets(buf, sizeof buf, p)) out += buf;
+    pclose(p);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+std::string paramsText(const PlannerConfig& pc) {
+  std::string out;
+  for (const auto& [k, v] : pc.params.all()) out += (out.empty() ? "" : ", ") + k + "=" + toString(v);
+  return out;
+}
+
+}  // namespace
+
+Provenance currentProvenance(unsigned threads) {
+  Provenance p;
+  p.git_revision = commandOutput("git -C '" COVERBENCH_SOURCE_DIR "' describe --always --dirty --abbrev=12 2>/dev/null");
+  if (p.git_revision.empty()) p.git_revision = "unknown";
+  p.compiler = std::string("g++ ") + __VERSION__;
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);)
+    if (line.rfind("model name", 0) == 0) {
+      p.cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  p.started_at = utcNow();
+  p.threads = threads;
+  return p;
+}
+
+ResultsDb::ResultsDb(const std::string& path) : file_(path) {
+  if (sqlite3_open(path.c_str(), &db_) != SQLITE_OK) {
+    const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw InputError(path, "(database)", "cannot be opened: " + why);
+  }
+  sqlite3_busy_timeout(db_, 10000);
+  exec(kSchema);
+}
+
+ResultsDb::~ResultsDb() {
+  if (db_) sqlite3_close(db_);
+}
+
+void ResultsDb::exec(const std::string& sql) {
+  char* error = nullptr;
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
+    const std::string why = error ? error : "unknown error";
+    sqlite3_free(error);
+    throw InputError(file_, "(database)", why);
+  }
+}
+
+long long ResultsDb::beginExperiment(const ExperimentConfig& config, const Provenance& prov,
+                                     const std::vector<WallEntry>& walls, const std::vector<RunSpec>& runs) {
+  exec("BEGIN IMMEDIATE");
+  try {
+    Statement e(db_,
+                "INSERT INTO experiments (name, config_path, config_text, config_hash, baseline, git_revision, compiler, "
+                "cpu, threads, started_at, runs_total) VALUES (?,?,?,?,?,?,?,?,?,?,?)",
+                file_);
+    e.text(1, config.name).text(2, config.path).text(3, config.text).text(4, config.hash).text(5, config.baseline);
+    e.text(6, prov.git_revision).text(7, prov.compiler).text(8, prov.cpu).integer(9, prov.threads);
+    e.text(10, prov.started_at).integer(11, static_cast<long long>(runs.size())).run();
+    const long long id = sqlite3_last_insert_rowid(db_);
+    Statement w(db_, "INSERT OR IGNORE INTO walls (hash, name, content) VALUES (?,?,?)", file_);
+    Statement ew(db_, "INSERT OR IGNORE INTO experiment_walls (experiment_id, wall_hash, dataset) VALUES (?,?,?)", file_);
+    for (const WallEntry& wall : walls) {
+      w.text(1, wall.hash).text(2, wall.wall.name).text(3, wall.json).run();
+      ew.integer(1, id).text(2, wall.hash).text(3, wall.dataset).run();
+    }
+    Statement p(db_, "INSERT OR IGNORE INTO planner_configs (id, planner, params) VALUES (?,?,?)", file_);
+    Statement ep(db_, "INSERT INTO experiment_planners (experiment_id, position, config_id, label) VALUES (?,?,?,?)", file_);
+    for (std::size_t i = 0; i < config.planners.size(); ++i) {
+      const PlannerConfig& pc = config.planners[i];
+      p.text(1, pc.id).text(2, pc.planner).text(3, paramsText(pc)).run();
+      ep.integer(1, id).integer(2, static_cast<long long>(i)).text(3, pc.id).text(4, pc.label).run();
+    }
+    Statement er(db_, "INSERT OR IGNORE INTO experiment_runs (experiment_id, run_key) VALUES (?,?)", file_);
+    for (const RunSpec& r : runs) er.integer(1, id).text(2, r.key).run();
+    exec("COMMIT");
+    return id;
+  } catch (...) {
+    exec("ROLLBACK");
+    throw;
+  }
+}
+
+std::set<std::string> ResultsDb::finishedRuns() {
+  std::set<std::string> keys;
+  Statement s(db_, "SELECT key FROM runs", file_);
+  while (s.step()) keys.insert(s.columnText(0));
+  return keys;
+}
+
+void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
+  exec("BEGIN IMMEDIATE");
+  try {
+    Statement r(db_,
+                "INSERT OR REPLACE INTO runs (key, wall_hash, config_id, tool_width, clearance, repetition, seed, status, "
+                "reason, valid, plan_time_ms, peak_memory_bytes, finished_at) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?)",
+                file_);
+    r.text(1, rec.key).text(2, spec.wall->hash).text(3, spec.planner->id).real(4, spec.tool.tool_width);
+    r.real(5, spec.tool.clearance).integer(6, spec.repetition).integer(7, static_cast<long long>(spec.seed));
+    r.text(8, rec.status).text(9, rec.reason).integer(10, rec.valid ? 1 : 0).real(11, rec.plan_time_ms);
+    if (rec.peak_memory_bytes) r.real(12, *rec.peak_memory_bytes);
+    else r.null(12);
+    r.text(13, utcNow()).run();
+    Statement m(db_, "INSERT OR REPLACE INTO metrics (run_key, position, name, value) VALUES (?,?,?,?)", file_);
+    for (std::size_t i = 0; i < rec.metrics.size(); ++i)
+      m.text(1, rec.key).integer(2, static_cast<long long>(i)).text(3, rec.metrics[i].name).real(4, rec.metrics[i].value).run();
+    Statement st(db_, "INSERT OR REPLACE INTO planner_stats (run_key, name, value) VALUES (?,?,?)", file_);
+    for (const auto& [name, value] : rec.stats) st.text(1, rec.key).text(2, name).real(3, value).run();
+    if (!rec.path.waypoints.empty()) {
+      Statement p(db_, "INSERT OR REPLACE INTO paths (run_key, encoding, waypoints, data) VALUES (?,?,?,?)", file_);
+      p.text(1, rec.key).text(2, "zlib-f64le-1").integer(3, static_cast<long long>(rec.path.waypoints.size()));
+      p.blob(4, encodePath(rec.path)).run();
+    }
+    exec("COMMIT");
+  } catch (...) {
+    exec("ROLLBACK");
+    throw;
+  }
+}
+
+void ResultsDb::finishExperiment(long long id, std::size_t executed, std::size_t skipped) {
+  Statement s(db_, "UPDATE experiments SET finished_at = ?, runs_executed = ?, runs_skipped = ? WHERE id = ?", file_);
+  s.text(1, utcNow()).integer(2, static_cast<long long>(executed)).integer(3, static_cast<long long>(skipped)).integer(4, id).run();
+}
+
+ResultSet ResultsDb::load(std::optional<long long> experiment) {
+  ResultSet rs;
+  long long id = -1;
+  {
+    Statement s(db_,
+                experiment ? "SELECT id, name, config_hash, baseline FROM experiments WHERE id = ?"
+                           : "SELECT id, name, config_hash, baseline FROM experiments ORDER BY id DESC LIMIT 1",
+                file_);
+    if (experiment) s.integer(1, *experiment);
+    if (!s.step())
+      throw InputError(file_, "experiments", experiment ? "has no experiment " + std::to_string(*experiment) : "is empty");
+    id = s.columnInt(0);
+    rs.experiment = s.columnText(1);
+    rs.config_hash = s.columnText(2);
+    rs.baseline = s.columnText(3);
+  }
+  std::map<std::string, std::string> label_of;
+  {
+    Statement s(db_, "SELECT config_id, label FROM experiment_planners WHERE experiment_id = ? ORDER BY position", file_);
+    s.integer(1, id);
+    while (s.step()) {
+      label_of[s.columnText(0)] = s.columnText(1);
+      rs.planners.push_back(s.columnText(1));
+    }
+  }
+  {
+    // Metric order: as the engine lists them (position), then the run figures.
+    Statement s(db_,
+                "SELECT name FROM metrics m JOIN experiment_runs e ON e.run_key = m.run_key WHERE e.experiment_id = ? "
+                "GROUP BY name ORDER BY MIN(position), name",
+                file_);
+    s.integer(1, id);
+    while (s.step()) rs.metric_order.push_back(s.columnText(0));
+    rs.metric_order.push_back("plan_time_ms");
+    rs.metric_order.push_back("peak_memory_bytes");
+  }
+  std::map<std::string, std::size_t> index;
+  {
+    Statement s(db_,
+                "SELECT r.key, r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.repetition, r.status, "
+                "r.valid, r.plan_time_ms, r.peak_memory_bytes FROM runs r "
+                "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
+                "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 ORDER BY r.key",
+                file_);
+    s.integer(1, id);
+    while (s.step()) {
+      ResultRow row;
+      row.planner = label_of[s.columnText(1)];
+      row.dataset = s.columnText(2);
+      row.wall = s.columnText(3);
+      char pairing[160];
+      std::snprintf(pairing, sizeof pairing, "%s/%.17g/%.17g/%lld", row.wall.c_str(), s.columnReal(4), s.columnReal(5),
+                    s.columnInt(6));
+      row.pairing = pairing;
+      row.status = s.columnText(7);
+      row.valid = s.columnInt(8) != 0;
+      row.metrics["plan_time_ms"] = s.columnReal(9);
+      if (!s.columnNull(10)) row.metrics["peak_memory_bytes"] = s.columnReal(10);
+      index[s.columnText(0)] = rs.runs.size();
+      rs.runs.push_back(std::move(row));
+    }
+  }
+  {
+    Statement s(db_,
+                "SELECT m.run_key, m.name, m.value FROM metrics m JOIN experiment_runs e ON e.run_key = m.run_key "
+                "WHERE e.experiment_id = ?",
+                file_);
+    s.integer(1, id);
+    while (s.step()) {
+      const auto it = index.find(s.columnText(0));
+      if (it == index.end()) continue;
+      const std::string name = s.columnText(1);
+      // NULL is how infinities are stored (min_clearance with no obstacles): keep them out of statistics.
+      if (!s.columnNull(2)) rs.runs[it->second].metrics[name] = s.columnReal(2);
+    }
+  }
+  return rs;
+}
+
+std::optional<Path> ResultsDb::path(const std::string& run_key) {
+  Statement s(db_, "SELECT data FROM paths WHERE run_key = ?", file_);
+  s.text(1, run_key);
+  if (!s.step()) return std::nullopt;
+  return decodePath(s.columnBlob(0));
+}
+
+}  // namespace coverbench

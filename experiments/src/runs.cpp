@@ -1,0 +1,171 @@
+// Walls of a config, run expansion and keys, executing one run, path encoding.
+#include <zlib.h>
+
+#include <cstdio>
+#include <cstring>
+#include <set>
+#include <stdexcept>
+
+#include "coverbench/datasets.hpp"
+#include "coverbench/experiment.hpp"
+#include "coverbench/hash.hpp"
+#include "coverbench/registry.hpp"
+
+namespace coverbench {
+
+std::vector<WallEntry> loadWalls(const ExperimentConfig& config) {
+  std::vector<WallEntry> out;
+  std::set<std::string> seen;
+  for (const DatasetSpec& spec : config.datasets) {
+    std::vector<Wall> walls;
+    switch (spec.kind) {
+      case DatasetSpec::Kind::Family:
+        walls = generateWalls(spec.family, spec.seed, spec.count);
+        break;
+      case DatasetSpec::Kind::Suite:
+        walls = generateWalls(spec.family, 0, 0);
+        break;
+      case DatasetSpec::Kind::Folder:
+        walls = readDataset(spec.folder).walls;
+        break;
+    }
+    for (Wall& w : walls) {
+      WallEntry e;
+      e.json = wallToJson(w);
+      e.hash = sha256Hex(e.json);
+      if (!seen.insert(e.hash).second) continue;
+      e.wall = std::move(w);
+      e.dataset = spec.label;
+      out.push_back(std::move(e));
+    }
+  }
+  return out;
+}
+
+namespace {
+
+std::string exact(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::string runKey(const RunSpec& spec) {
+  std::string text = "coverbench-run/1\nwall=" + spec.wall->hash + "\nplanner=" + spec.planner->planner;
+  for (const auto& [k, v] : spec.planner->params.all()) text += "\nparam." + k + "=" + toString(v);
+  text += "\ntool_width=" + exact(spec.tool.tool_width) + "\nclearance=" + exact(spec.tool.clearance) +
+          "\nrepetition=" + std::to_string(spec.repetition) + "\nseed=" + std::to_string(spec.seed);
+  return sha256Hex(text);
+}
+
+std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls) {
+  std::vector<RunSpec> runs;
+  runs.reserve(walls.size() * config.planners.size() * config.tools.size() * static_cast<std::size_t>(config.repetitions));
+  for (const WallEntry& wall : walls)
+    for (const PlannerConfig& planner : config.planners)
+      for (const ToolParams& tool : config.tools)
+        for (int rep = 0; rep < config.repetitions; ++rep) {
+          RunSpec spec;
+          spec.wall = &wall;
+          spec.planner = &planner;
+          spec.tool = tool;
+          spec.repetition = rep;
+          spec.seed = config.seed;
+          spec.time_limit_s = config.time_limit_s;
+          spec.memory_limit_bytes = static_cast<std::size_t>(config.memory_limit_mb * 1024.0 * 1024.0);
+          spec.key = runKey(spec);
+          runs.push_back(spec);
+        }
+  return runs;
+}
+
+RunRecord executeRun(const RunSpec& spec, const MemoryProbe* probe) {
+  RunRecord rec;
+  rec.key = spec.key;
+  const PlannerInfo& info = findPlanner(spec.planner->planner);
+  Problem problem;
+  problem.wall = &spec.wall->wall;
+  problem.tool = spec.tool;
+  problem.params = spec.planner->params;
+  problem.seed = spec.seed;
+  if (probe) probe->begin(spec.memory_limit_bytes);
+  PlanResult result = runPlanner(info, problem, Budget(std::chrono::duration<double>(spec.time_limit_s)));
+  if (probe) {
+    rec.peak_memory_bytes = static_cast<double>(probe->end());
+    if (probe->limit_hit()) {
+      result = PlanResult::failure(PlanStatus::Error, "");
+      rec.status = "memory_limit";
+      rec.reason = "the planner needed more than the limit of " + std::to_string(spec.memory_limit_bytes >> 20) + " MiB";
+    }
+  }
+  rec.plan_time_ms = result.plan_time_ms;
+  rec.stats = result.stats;
+  if (rec.status.empty()) {
+    rec.status = toString(result.status);
+    rec.reason = result.reason;
+  }
+  if (result.status == PlanStatus::Ok) {
+    const PathMetrics m = computeMetrics(spec.wall->wall, spec.tool, result.path);
+    rec.valid = m.validity.valid;
+    rec.metrics = flatten(m);
+    rec.path = std::move(result.path);
+  }
+  return rec;
+}
+
+std::string encodePath(const Path& path) {
+  // u32 waypoint count, then x, y per waypoint (IEEE 754 little-endian), then one byte per segment.
+  std::string raw;
+  const auto n = static_cast<std::uint32_t>(path.waypoints.size());
+  for (int b = 0; b < 4; ++b) raw.push_back(static_cast<char>((n >> (8 * b)) & 0xff));
+  auto put = [&](double v) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &v, 8);
+    for (int b = 0; b < 8; ++b) raw.push_back(static_cast<char>((bits >> (8 * b)) & 0xff));
+  };
+  for (const Point& p : path.waypoints) put(p.x), put(p.y);
+  for (bool on : path.tool_on) raw.push_back(on ? 1 : 0);
+  uLongf size = compressBound(static_cast<uLong>(raw.size()));
+  std::string out(size, '\0');
+  if (compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
+                static_cast<uLong>(raw.size()), 6) != Z_OK)
+    throw std::runtime_error("zlib compress failed");
+  out.resize(size);
+  // Prefix the raw length so decoding knows the buffer size.
+  std::string framed;
+  const auto len = static_cast<std::uint32_t>(raw.size());
+  for (int b = 0; b < 4; ++b) framed.push_back(static_cast<char>((len >> (8 * b)) & 0xff));
+  return framed + out;
+}
+
+Path decodePath(const std::string& blob) {
+  auto u32 = [](const std::string& s, std::size_t at) {
+    std::uint32_t v = 0;
+    for (int b = 0; b < 4; ++b) v |= static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + b])) << (8 * b);
+    return v;
+  };
+  if (blob.size() < 4) throw std::runtime_error("path blob too short");
+  std::string raw(u32(blob, 0), '\0');
+  uLongf size = static_cast<uLongf>(raw.size());
+  if (uncompress(reinterpret_cast<Bytef*>(raw.data()), &size, reinterpret_cast<const Bytef*>(blob.data() + 4),
+                 static_cast<uLong>(blob.size() - 4)) != Z_OK ||
+      size != raw.size())
+    throw std::runtime_error("path blob is corrupt");
+  const std::uint32_t n = u32(raw, 0);
+  if (raw.size() != 4 + 16ULL * n + (n ? n - 1 : 0)) throw std::runtime_error("path blob has the wrong size");
+  Path path;
+  auto get = [&](std::size_t at) {
+    std::uint64_t bits = 0;
+    for (int b = 0; b < 8; ++b) bits |= static_cast<std::uint64_t>(static_cast<unsigned char>(raw[at + b])) << (8 * b);
+    double v;
+    std::memcpy(&v, &bits, 8);
+    return v;
+  };
+  for (std::uint32_t i = 0; i < n; ++i) path.waypoints.push_back({get(4 + 16ULL * i), get(12 + 16ULL * i)});
+  for (std::uint32_t i = 0; i + 1 < n; ++i) path.tool_on.push_back(raw[4 + 16ULL * n + i] != 0);
+  return path;
+}
+
+}  // namespace coverbench
