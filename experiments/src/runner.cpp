@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -84,6 +85,14 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
   for (const RunSpec& r : runs)
     if (!finished.count(r.key)) todo.push_back(&r);
   summary.skipped = runs.size() - todo.size();
+  // Largest walls first, so the slowest runs do not end up alone at the end (results do not depend
+  // on the order; the database is read back sorted).
+  auto cost = [](const RunSpec* r) {
+    const Box b = boundingBox(r->wall->wall.boundary);
+    return b.width() * b.height() * (1.0 + static_cast<double>(r->wall->wall.obstacles.size())) /
+           (r->tool.tool_width * r->tool.tool_width);
+  };
+  std::stable_sort(todo.begin(), todo.end(), [&](const RunSpec* a, const RunSpec* b) { return cost(a) > cost(b); });
 
   // Workers take runs in order; the calling thread is the single database writer.
   std::atomic<std::size_t> next{0};

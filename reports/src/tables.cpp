@@ -277,7 +277,10 @@ std::string renderTables(const ResultSet& rs, TableFormat format) {
       std::vector<std::string> row = {m};
       for (const std::string& p : rs.planners) {
         const Summary& s = sums.at(d).at(p).at(m);
-        row.push_back(s.n ? fmt(s.median) + " (" + fmt(s.q3 - s.q1) + ")" : "-");
+        // An IQR below 1e-9 of the values is rounding noise, shown as 0.
+        double iqr = s.q3 - s.q1;
+        if (std::fabs(iqr) <= 1e-9 * std::fmax(std::fabs(s.q1), std::fabs(s.q3))) iqr = 0.0;
+        row.push_back(s.n ? fmt(s.median) + " (" + fmt(iqr) + ")" : "-");
       }
       t.rows.push_back(row);
     }

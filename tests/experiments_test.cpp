@@ -1,0 +1,232 @@
+// Experiment configs (errors name the line), run keys, runs as pure functions, the runner's
+// resume and skip behaviour, and the tables computed from hand-made results.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "coverbench/files.hpp"
+#include "coverbench/registry.hpp"
+#include "coverbench/results_db.hpp"
+#include "coverbench/runner.hpp"
+#include "coverbench/tables.hpp"
+
+namespace coverbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Experiments : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("coverbench_exp_" + std::to_string(::getpid()) + "_" +
+                                        testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string config(const std::string& text, const std::string& name = "exp.yaml") {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  /// The message of the InputError that loading `text` throws ("" if none).
+  std::string error(const std::string& text) {
+    try {
+      loadExperimentConfig(config(text));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  fs::path dir_;
+};
+
+const char* const kGood = R"(name: t
+output: out
+datasets:
+  - suite: seed-cases
+  - family: residential
+    count: 4
+    seed: 2
+planners:
+  - zigzag
+  - name: spiral
+    params:
+      overlap: [0, 0.25]
+tool:
+  width: 0.1
+  clearance: 0.02
+threads: 2
+)";
+
+TEST_F(Experiments, ConfigExpandsSweepsAndResolvesPaths) {
+  const ExperimentConfig c = loadExperimentConfig(config(kGood));
+  ASSERT_EQ(c.planners.size(), 3u);
+  EXPECT_EQ(c.planners[0].label, "zigzag");
+  EXPECT_EQ(c.planners[1].label, "spiral(overlap=0)");
+  EXPECT_EQ(c.planners[2].label, "spiral(overlap=0.25)");
+  EXPECT_NE(c.planners[1].id, c.planners[2].id);
+  EXPECT_EQ(c.baseline, "zigzag");
+  EXPECT_EQ(c.output, (dir_ / "out").string());
+  ASSERT_EQ(c.datasets.size(), 2u);
+  EXPECT_EQ(c.datasets[1].label, "residential");
+  const std::vector<WallEntry> walls = loadWalls(c);
+  EXPECT_EQ(walls.size(), 9u + 4u);
+  EXPECT_EQ(expandRuns(c, walls).size(), 13u * 3u);
+}
+
+TEST_F(Experiments, ConfigErrorsNameTheLineAndTheKey) {
+  auto replace = [](std::string text, const std::string& from, const std::string& to) {
+    return text.replace(text.find(from), from.size(), to);
+  };
+  const std::string file = (dir_ / "exp.yaml").string();
+  EXPECT_EQ(error(replace(kGood, "  - name: spiral", "  - nmae: spiral")),
+            file + ":10: planners[1].nmae: unknown key (did you mean 'name'?)");
+  EXPECT_EQ(error(replace(kGood, "planners:", "planers:")).substr(0, file.size() + 12), file + ":8: planers:");
+  EXPECT_NE(error(replace(kGood, "overlap: [0, 0.25]", "overlap: [0, 2.5]")).find(file + ":12: planners[1].params.overlap:"),
+            std::string::npos);
+  EXPECT_NE(error(replace(kGood, "width: 0.1", "width: -0.1")).find(file + ":14: tool.width: must be in (0, 10]"),
+            std::string::npos);
+  EXPECT_NE(error(replace(kGood, "count: 4", "count: many")).find(":6: datasets[1].count: must be a number"),
+            std::string::npos);
+  EXPECT_NE(error(replace(kGood, "family: residential", "family: residental")).find(":5: datasets[1].family: unknown family"),
+            std::string::npos);
+  EXPECT_NE(error(replace(kGood, "  - zigzag", "  - zigzog")).find(":9: planners[0].name: unknown planner 'zigzog'"),
+            std::string::npos);
+  EXPECT_NE(error(replace(kGood, "      overlap:", "      sweep_angle:")).find(":12: planners[1].params.sweep_angle: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error(std::string(kGood) + "baseline: nobody\n").find(":17: baseline: 'nobody' is not one of"), std::string::npos);
+  EXPECT_NE(error(replace(kGood, "  - suite: seed-cases", "  - suite: seed-cases\n    count: 3")).find("no count or seed"),
+            std::string::npos);
+  EXPECT_NE(error("name: [unclosed\n").find("YAML syntax"), std::string::npos);
+  EXPECT_NE(error(replace(kGood, "output: out\n", "")).find(":1: output: missing"), std::string::npos);
+}
+
+TEST_F(Experiments, AllMeansEveryRegisteredPlanner) {
+  std::string text = kGood;
+  text.replace(text.find("planners:"), text.find("tool:") - text.find("planners:"), "planners: [all]\n");
+  const ExperimentConfig c = loadExperimentConfig(config(text));
+  ASSERT_EQ(c.planners.size(), registeredPlanners().size());
+  for (std::size_t i = 0; i < c.planners.size(); ++i) EXPECT_EQ(c.planners[i].label, registeredPlanners()[i].name);
+}
+
+TEST_F(Experiments, RunKeysChangeWithEveryInputAndNothingElse) {
+  const ExperimentConfig c = loadExperimentConfig(config(kGood));
+  const std::vector<WallEntry> walls = loadWalls(c);
+  const std::vector<RunSpec> runs = expandRuns(c, walls);
+  std::set<std::string> keys;
+  for (const RunSpec& r : runs) keys.insert(r.key);
+  EXPECT_EQ(keys.size(), runs.size());
+  RunSpec r = runs[0];
+  const std::string key = runKey(r);
+  r.time_limit_s = 1.0;  // limits are not part of what a run computes
+  EXPECT_EQ(runKey(r), key);
+  r.tool.clearance = 0.03;
+  EXPECT_NE(runKey(r), key);
+  r = runs[0];
+  r.repetition = 1;
+  EXPECT_NE(runKey(r), key);
+  r = runs[0];
+  r.seed = 7;
+  EXPECT_NE(runKey(r), key);
+}
+
+TEST_F(Experiments, ARunIsAPureFunctionOfItsInputs) {
+  const ExperimentConfig c = loadExperimentConfig(config(kGood));
+  const std::vector<WallEntry> walls = loadWalls(c);
+  const std::vector<RunSpec> runs = expandRuns(c, walls);
+  for (std::size_t i : {0ul, 5ul, runs.size() - 1}) {
+    const RunRecord a = executeRun(runs[i], nullptr), b = executeRun(runs[i], nullptr);
+    ASSERT_EQ(a.status, "ok") << a.reason;
+    EXPECT_EQ(encodePath(a.path), encodePath(b.path));
+    ASSERT_EQ(a.metrics.size(), b.metrics.size());
+    for (std::size_t k = 0; k < a.metrics.size(); ++k) EXPECT_EQ(a.metrics[k].value, b.metrics[k].value) << a.metrics[k].name;
+  }
+}
+
+TEST(PathEncoding, RoundTripsExactly) {
+  Path p;
+  p.moveTo({0.1, 1.0 / 3.0}, false);
+  p.moveTo({-2.5e-9, 1e300}, true);
+  p.moveTo({4.0, 4.0}, false);
+  p.moveTo({4.0, 4.0}, true);
+  const Path q = decodePath(encodePath(p));
+  ASSERT_EQ(q.waypoints.size(), p.waypoints.size());
+  for (std::size_t i = 0; i < p.waypoints.size(); ++i) EXPECT_TRUE(q.waypoints[i] == p.waypoints[i]);
+  EXPECT_EQ(q.tool_on, p.tool_on);
+  EXPECT_TRUE(decodePath(encodePath(Path{})).waypoints.empty());
+  EXPECT_THROW(decodePath(encodePath(p).substr(0, 10)), std::runtime_error);
+}
+
+TEST_F(Experiments, SecondRunDoesNoWorkAndGivesIdenticalTablesAndAGrownConfigOnlyRunsWhatIsNew) {
+  std::string small = kGood;
+  small.replace(small.find("count: 4"), 8, "count: 2");
+  RunnerOptions options;
+  const RunnerSummary first = runExperiment(loadExperimentConfig(config(small)), options);
+  EXPECT_EQ(first.total, (9u + 2u) * 3u);
+  EXPECT_EQ(first.executed, first.total);
+  const std::string db = first.database;
+  const std::string tables = renderTables(ResultsDb(db).load(), TableFormat::Markdown);
+  const std::string csv = renderTables(ResultsDb(db).load(), TableFormat::Csv);
+
+  const RunnerSummary second = runExperiment(loadExperimentConfig(config(small)), options);
+  EXPECT_EQ(second.executed, 0u);
+  EXPECT_EQ(second.skipped, second.total);
+  EXPECT_EQ(renderTables(ResultsDb(db).load(), TableFormat::Markdown), tables);
+  EXPECT_EQ(renderTables(ResultsDb(db).load(), TableFormat::Csv), csv);
+
+  // Two more walls of the same family: walls 0 and 1 are the same, so only the new ones run (a
+  // killed run resumes the same way: whatever is stored is skipped).
+  const RunnerSummary grown = runExperiment(loadExperimentConfig(config(kGood)), options);
+  EXPECT_EQ(grown.total, (9u + 4u) * 3u);
+  EXPECT_EQ(grown.executed, 2u * 3u);
+
+  // Every stored path can be redrawn, and the tables see every run of the latest experiment.
+  ResultsDb results(db);
+  const ResultSet rs = results.load();
+  EXPECT_EQ(rs.runs.size(), grown.total);
+  for (const ResultRow& r : rs.runs) EXPECT_EQ(r.status, "ok");
+}
+
+TEST(Tables, QuantilesAndPairedCountsByHand) {
+  EXPECT_DOUBLE_EQ(quantile({1, 2, 3, 4}, 0.25), 1.75);
+  EXPECT_DOUBLE_EQ(quantile({1, 2, 3, 4}, 0.5), 2.5);
+  EXPECT_DOUBLE_EQ(quantile({5}, 0.75), 5.0);
+  ResultSet rs;
+  rs.experiment = "hand";
+  rs.config_hash = "0123456789abcdef";
+  rs.baseline = "a";
+  rs.planners = {"a", "b"};
+  rs.metric_order = {"coverage_reachable", "length_total"};
+  auto row = [](std::string planner, std::string wall, double cov, double len, std::string status = "ok") {
+    ResultRow r;
+    r.planner = planner;
+    r.dataset = "d";
+    r.wall = r.pairing = wall;
+    r.status = status;
+    r.valid = true;
+    r.metrics = {{"coverage_reachable", cov}, {"length_total", len}};
+    return r;
+  };
+  // b against a: w1 better coverage, shorter (win, win); w2 equal coverage, longer (tie, loss);
+  // w3 worse coverage, equal length (loss, tie); w4 b timed out (no pair).
+  rs.runs = {row("a", "w1", 0.90, 10), row("b", "w1", 0.95, 9),   row("a", "w2", 0.99, 10),
+             row("b", "w2", 0.99, 11), row("a", "w3", 0.99, 12),  row("b", "w3", 0.98, 12),
+             row("a", "w4", 0.99, 12), row("b", "w4", 0, 0, "timeout")};
+  const std::string md = renderTables(rs, TableFormat::Markdown);
+  EXPECT_NE(md.find("| b | d | 3 | 1/1/1 | 1/1/1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| b | 4 | 3 | 0 | 1 |"), std::string::npos) << "outcomes: 4 runs, 3 valid, 0 invalid, 1 timeout\n" << md;
+  // Medians over valid runs: a's lengths 10, 10, 12, 12 -> 11 (IQR 2); b's 9, 11, 12 -> 11 (IQR 1.5).
+  EXPECT_NE(md.find("| length_total | 11 (2) | 11 (1.5) |"), std::string::npos) << md;
+  const std::string csv = renderTables(rs, TableFormat::Csv);
+  EXPECT_NE(csv.find("metrics,d,b,length_total,3,11,10,11.5,,,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("paired_vs_a,d,b,coverage_reachable,3,,,,1,1,1"), std::string::npos) << csv;
+  const std::string tex = renderTables(rs, TableFormat::Latex);
+  EXPECT_NE(tex.find("\\toprule"), std::string::npos);
+  EXPECT_NE(tex.find("length\\_total"), std::string::npos);
+  EXPECT_THROW(parseTableFormat("html"), InputError);
+}
+
+}  // namespace
+}  // namespace coverbench
