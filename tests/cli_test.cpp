@@ -107,6 +107,61 @@ TEST_F(Cli, MetricsScoresAHandWrittenPlan) {
   EXPECT_NE(e.err.find("tool_on"), std::string::npos) << e.err;
 }
 
+TEST_F(Cli, DatasetGenerateIsByteIdenticalAcrossInvocations) {
+  std::string out;
+  ASSERT_EQ(run("dataset generate --family stairwell --count 3 --seed 11 --out " + (dir_ / "a").string(), &out).exit_code, 0);
+  ASSERT_EQ(run("dataset generate --family stairwell --count 3 --seed 11 --out " + (dir_ / "b").string(), &out).exit_code, 0);
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(dir_ / "a")) {
+    EXPECT_EQ(slurp(entry.path().string()), slurp((dir_ / "b" / entry.path().filename()).string())) << entry.path();
+    ++files;
+  }
+  EXPECT_EQ(files, 4);  // three walls and the manifest
+  ASSERT_EQ(run("dataset show " + (dir_ / "a").string(), &out).exit_code, 0);
+  EXPECT_NE(out.find("walls: 3"), std::string::npos) << out;
+  const CommandRun bad = run("dataset generate --family stairwel --count 3 --out " + (dir_ / "c").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(lines(bad.err), 1) << bad.err;
+  EXPECT_NE(bad.err.find("unknown family 'stairwel'"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "c"));
+}
+
+TEST_F(Cli, RunRejectsABadConfigBeforeAnyRunAndReportsAGoodOne) {
+  const std::string bad = write("bad.yaml", "name: x\noutput: out\ndatasets:\n  - suite: seed-cases\nplanners:\n  - zigzag\ntool:\n  widht: 0.1\n");
+  const CommandRun r = run("run " + bad);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("bad.yaml:8: tool.widht: unknown key (did you mean 'width'?)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out")) << "nothing is written for a bad config";
+
+  const std::string good = write("good.yaml", "name: x\noutput: out\ndatasets:\n  - family: residential\n    count: 2\n    seed: 3\nplanners: [all]\n");
+  std::string out;
+  ASSERT_EQ(run("run " + good, &out).exit_code, 0) << out;
+  EXPECT_NE(out.find("(4 executed, 0 already stored)"), std::string::npos) << out;
+  const std::string md = slurp((dir_ / "out" / "report.md").string());
+  EXPECT_NE(md.find("## Run outcomes per planner"), std::string::npos);
+  ASSERT_EQ(run("report " + (dir_ / "out" / "results.sqlite").string() + " --format md", &out).exit_code, 0);
+  EXPECT_EQ(out, md);
+  ASSERT_EQ(run("run " + good, &out).exit_code, 0);
+  EXPECT_NE(out.find("(0 executed, 4 already stored)"), std::string::npos) << out;
+  EXPECT_EQ(slurp((dir_ / "out" / "report.md").string()), md);
+  EXPECT_EQ(run("report " + (dir_ / "out" / "results.sqlite").string() + " --format html").exit_code, 2);
+}
+
+TEST_F(Cli, RunLimitsBecomeStatusesInTheTables) {
+  // 20 KiB of heap is far below what any planner needs on these walls; a microsecond of time
+  // expires before the first budget check.
+  const std::string memory = write("m.yaml", "name: m\noutput: m\ndatasets:\n  - family: residential\n    count: 2\n    seed: 3\nplanners: [all]\nlimits:\n  memory_mb: 0.02\n");
+  ASSERT_EQ(run("run " + memory).exit_code, 0);
+  const std::string md = slurp((dir_ / "m" / "report.md").string());
+  EXPECT_NE(md.find("| zigzag | 2 | 0 | 0 | 2 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("memory_limit"), std::string::npos) << md;
+  const std::string time = write("t.yaml", "name: t\noutput: t\ndatasets:\n  - family: facade\n    count: 1\n    seed: 3\nplanners: [all]\nlimits:\n  time_s: 0.000001\n");
+  ASSERT_EQ(run("run " + time).exit_code, 0);
+  const std::string tmd = slurp((dir_ / "t" / "report.md").string());
+  EXPECT_NE(tmd.find("| timeout |"), std::string::npos) << tmd;
+}
+
 TEST_F(Cli, BadWallGivesOneLineAndNoOutput) {
   const std::string wall = write("bad.json", R"({"width": 5, "height": -1})");
   const std::string out = (dir_ / "plan.json").string();

@@ -97,7 +97,9 @@ RunRecord executeRun(const RunSpec& spec, const MemoryProbe* probe) {
     if (probe->limit_hit()) {
       result = PlanResult::failure(PlanStatus::Error, "");
       rec.status = "memory_limit";
-      rec.reason = "the planner needed more than the limit of " + std::to_string(spec.memory_limit_bytes >> 20) + " MiB";
+      char limit[64];
+      std::snprintf(limit, sizeof limit, "%.4g MiB", static_cast<double>(spec.memory_limit_bytes) / (1024.0 * 1024.0));
+      rec.reason = std::string("the planner needed more heap than the limit of ") + limit;
     }
   }
   rec.plan_time_ms = result.plan_time_ms;
