@@ -1,4 +1,5 @@
 #include "commands.hpp"
+#include "coverbench/results_db.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -230,6 +231,19 @@ int showcaseCommand(const ShowcaseOptions& options) {
   std::cout << "summary table: " << (out / "summary.md").string() << "\nreport: " << (out / "index.html").string()
             << "\n";
   return exit_code;
+}
+
+int redrawCommand(const RedrawOptions& options) {
+  if (!fs::is_regular_file(options.database)) throw InputError(options.database, "(file)", "does not exist");
+  ResultsDb db(options.database);
+  const ResultsDb::StoredRun run = db.storedRun(options.run);
+  char title[512];
+  std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s", run.wall.name.c_str(), run.planner.c_str(),
+                run.tool.tool_width, run.tool.clearance, run.status.c_str());
+  writeFileAtomically(options.svg, picture(run.wall, run.tool, run.path, title));
+  std::cout << "run " << run.key << ": " << run.status << (run.reason.empty() ? "" : " (" + run.reason + ")") << ", "
+            << run.path.waypoints.size() << " waypoints -> " << options.svg << "\n";
+  return 0;
 }
 
 }  // namespace coverbench::cli

@@ -62,9 +62,15 @@ struct RunOptions {
 int runCommand(const RunOptions& options);
 
 struct ReportOptions {
-  std::string database, format = "md", out;
+  std::string database, format = "md", out, baseline;
   std::optional<long long> experiment;
 };
+
+struct RedrawOptions {
+  std::string database, run, svg;
+};
+/// Redraws a stored run (its wall, path and coverage layer) as an SVG picture.
+int redrawCommand(const RedrawOptions& options);
 /// Prints (or writes) the comparison tables of an experiment.
 int reportCommand(const ReportOptions& options);
 

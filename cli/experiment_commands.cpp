@@ -1,4 +1,5 @@
 // Sub-commands for datasets, experiments and tables.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -76,7 +77,13 @@ int reportCommand(const ReportOptions& o) {
   const TableFormat format = parseTableFormat(o.format);
   if (!fs::is_regular_file(o.database)) throw InputError(o.database, "(file)", "does not exist");
   ResultsDb db(o.database);
-  const std::string text = renderTables(db.load(o.experiment), format);
+  ResultSet results = db.load(o.experiment);
+  if (!o.baseline.empty()) {
+    if (std::find(results.planners.begin(), results.planners.end(), o.baseline) == results.planners.end())
+      throw InputError("--baseline", "baseline", "'" + o.baseline + "' is not a planner configuration of this experiment");
+    results.baseline = o.baseline;
+  }
+  const std::string text = renderTables(results, format);
   if (o.out.empty()) std::cout << text;
   else writeFileAtomically(o.out, text);
   return 0;

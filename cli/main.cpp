@@ -81,7 +81,15 @@ int main(int argc, char** argv) {
   report_cmd->add_option("--format", report.format, "md, csv or latex")->capture_default_str();
   report_cmd->add_option("--out", report.out, "file to write (default: standard output)");
   report_cmd->add_option("--experiment", report.experiment, "experiment id in the database (default: the latest)");
+  report_cmd->add_option("--baseline", report.baseline, "planner label to compare against (default: the config's)");
   report_cmd->callback([&] { plan_exit = coverbench::cli::reportCommand(report); });
+
+  coverbench::cli::RedrawOptions redraw;
+  CLI::App* redraw_cmd = app.add_subcommand("redraw", "Draw a stored run of an experiment (wall, path, coverage)");
+  redraw_cmd->add_option("database", redraw.database, "results.sqlite of an experiment")->required();
+  redraw_cmd->add_option("--run", redraw.run, "run key, or its first 6 or more hex digits")->required();
+  redraw_cmd->add_option("--svg", redraw.svg, "picture to write")->required();
+  redraw_cmd->callback([&] { plan_exit = coverbench::cli::redrawCommand(redraw); });
 
   try {
     app.parse(argc, argv);

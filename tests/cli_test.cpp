@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "coverbench/experiment.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {
@@ -146,6 +147,19 @@ TEST_F(Cli, RunRejectsABadConfigBeforeAnyRunAndReportsAGoodOne) {
   EXPECT_NE(out.find("(0 executed, 4 already stored)"), std::string::npos) << out;
   EXPECT_EQ(slurp((dir_ / "out" / "report.md").string()), md);
   EXPECT_EQ(run("report " + (dir_ / "out" / "results.sqlite").string() + " --format html").exit_code, 2);
+  ASSERT_EQ(run("report " + (dir_ / "out" / "results.sqlite").string() + " --baseline spiral", &out).exit_code, 0);
+  EXPECT_NE(out.find("Paired comparison against spiral"), std::string::npos) << out;
+  EXPECT_EQ(run("report " + (dir_ / "out" / "results.sqlite").string() + " --baseline nobody").exit_code, 2);
+
+  // Any stored run can be redrawn from the database alone.
+  const ExperimentConfig config = loadExperimentConfig(good);
+  const std::vector<WallEntry> walls = loadWalls(config);
+  const std::string key = expandRuns(config, walls).front().key;
+  const std::string svg = (dir_ / "run.svg").string();
+  ASSERT_EQ(run("redraw " + (dir_ / "out" / "results.sqlite").string() + " --run " + key.substr(0, 10) + " --svg " + svg, &out)
+                .exit_code, 0) << out;
+  EXPECT_NE(slurp(svg).find("<svg"), std::string::npos);
+  EXPECT_EQ(run("redraw " + (dir_ / "out" / "results.sqlite").string() + " --run 000000000 --svg " + svg).exit_code, 2);
 }
 
 TEST_F(Cli, RunLimitsBecomeStatusesInTheTables) {

@@ -337,4 +337,26 @@ std::optional<Path> ResultsDb::path(const std::string& run_key) {
   return decodePath(s.columnBlob(0));
 }
 
+ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
+  if (key_prefix.size() < 6 || key_prefix.find_first_not_of("0123456789abcdef") != std::string::npos)
+    throw InputError("--run", "run", "must be at least 6 lowercase hex digits of a run key");
+  Statement s(db_,
+              "SELECT r.key, w.content, w.name, p.planner, p.params, r.tool_width, r.clearance, r.status, r.reason "
+              "FROM runs r JOIN walls w ON w.hash = r.wall_hash JOIN planner_configs p ON p.id = r.config_id "
+              "WHERE r.key >= ?1 AND r.key < ?1 || 'g' ORDER BY r.key LIMIT 2",
+              file_);
+  s.text(1, key_prefix);
+  if (!s.step()) throw InputError(file_, "runs", "no run key starts with " + key_prefix);
+  StoredRun run;
+  run.key = s.columnText(0);
+  run.wall = parseWallJson(s.columnText(1), file_ + " (wall " + s.columnText(2) + ")");
+  run.planner = s.columnText(3) + (s.columnText(4).empty() ? "" : " (" + s.columnText(4) + ")");
+  run.tool = ToolParams{s.columnReal(5), s.columnReal(6)};
+  run.status = s.columnText(7);
+  run.reason = s.columnText(8);
+  if (s.step()) throw InputError(file_, "runs", "several run keys start with " + key_prefix + ": give more digits");
+  if (std::optional<Path> p = path(run.key)) run.path = std::move(*p);
+  return run;
+}
+
 }  // namespace coverbench

@@ -47,6 +47,19 @@ class ResultsDb {
   /// The stored path of a run.
   std::optional<Path> path(const std::string& run_key);
 
+  /// Everything needed to redraw one run.
+  struct StoredRun {
+    std::string key;
+    Wall wall;
+    std::string planner;  ///< planner name and resolved parameters
+    ToolParams tool;
+    std::string status, reason;
+    Path path;  ///< empty when the run failed
+  };
+  /// The run whose key starts with `key_prefix` (at least 6 characters); throws InputError when
+  /// none or several match.
+  StoredRun storedRun(const std::string& key_prefix);
+
  private:
   void exec(const std::string& sql);
   sqlite3* db_ = nullptr;
