@@ -20,16 +20,8 @@ struct CommandRun {
   std::string err;
 };
 
-class Cli : public testing::Test {
+class Cli : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("coverbench_cli_" + std::to_string(::getpid()) + "_" +
-                                        testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   CommandRun run(const std::string& args, std::string* out = nullptr) {
     const std::string err_file = (dir_ / "stderr.txt").string(), out_file = (dir_ / "stdout.txt").string();
     const std::string cmd = std::string(COVERBENCH_BINARY) + " " + args + " > " + out_file + " 2> " + err_file;
@@ -48,7 +40,6 @@ class Cli : public testing::Test {
     std::ofstream(p) << text;
     return p.string();
   }
-  fs::path dir_;
 };
 
 int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }

@@ -8,6 +8,7 @@
 #include "coverbench/datasets.hpp"
 #include "coverbench/files.hpp"
 #include "coverbench/hash.hpp"
+#include "test_support.hpp"
 
 namespace coverbench {
 namespace {
@@ -88,16 +89,7 @@ TEST(Datasets, FamiliesHaveTheirDocumentedShape) {
   EXPECT_EQ(generateWalls("seed-cases", 0, 0).size(), 9u);
 }
 
-class DatasetFolder : public testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("coverbench_ds_" + std::to_string(::getpid()) + "_" +
-                                        testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+class DatasetFolder : public test::TempDirTest {};
 
 TEST_F(DatasetFolder, WriteReadAndHashes) {
   const std::vector<Wall> walls = generateWalls("gable", 3, 5);
@@ -126,7 +118,6 @@ TEST_F(DatasetFolder, WriteReadAndHashes) {
 }
 
 TEST_F(DatasetFolder, NonEmptyFolderWithoutManifestIsRefused) {
-  fs::create_directories(dir_);
   std::ofstream(dir_ / "notes.txt") << "mine";
   EXPECT_THROW(writeDataset(dir_.string(), "random", 1, generateWalls("random", 1, 2)), InputError);
   EXPECT_TRUE(fs::exists(dir_ / "notes.txt"));

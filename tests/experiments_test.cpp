@@ -10,21 +10,15 @@
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
 #include "coverbench/tables.hpp"
+#include "test_support.hpp"
 
 namespace coverbench {
 namespace {
 
 namespace fs = std::filesystem;
 
-class Experiments : public testing::Test {
+class Experiments : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("coverbench_exp_" + std::to_string(::getpid()) + "_" +
-                                        testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string config(const std::string& text, const std::string& name = "exp.yaml") {
     const fs::path p = dir_ / name;
     std::ofstream(p) << text;
@@ -39,7 +33,6 @@ class Experiments : public testing::Test {
     }
     return "";
   }
-  fs::path dir_;
 };
 
 const char* const kGood = R"(name: t

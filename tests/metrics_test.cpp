@@ -179,6 +179,18 @@ Path planFor(const Wall& wall, const ToolParams& tool, const std::string& planne
   return r.path;
 }
 
+/// Calls `check(wall, planner, path)` for zigzag and spiral paths on random walls 1..seeds.
+template <class Check>
+void forEachPlannedPath(const ToolParams& tool, unsigned seeds, Check check) {
+  for (unsigned seed = 1; seed <= seeds; ++seed) {
+    const Wall wall = test::randomWall(seed);
+    for (const std::string planner : {"zigzag", "spiral"}) {
+      const Path path = planFor(wall, tool, planner);
+      if (!path.waypoints.empty()) check(wall, planner + ", seed " + std::to_string(seed), path);
+    }
+  }
+}
+
 /// Share of the wall's paintable area swept, estimated on a grid of points with brute force.
 double rasterCoverageWall(const Wall& wall, const ToolParams& tool, const Path& path, int n) {
   const Box box = boundingBox(wall.boundary);
@@ -204,63 +216,47 @@ double rasterCoverageWall(const Wall& wall, const ToolParams& tool, const Path& 
 
 TEST(MetricsProperties, ExactCoverageAgreesWithAFineRaster) {
   const ToolParams tool{0.2, 0.02};
-  for (unsigned seed = 1; seed <= 8; ++seed) {
-    const Wall wall = test::randomWall(seed);
-    for (const char* planner : {"zigzag", "spiral"}) {
-      const Path path = planFor(wall, tool, planner);
-      if (path.waypoints.empty()) continue;
-      const double exact = coverage(wall, tool, path).coverage_wall;
-      const double raster = rasterCoverageWall(wall, tool, path, 160);
-      EXPECT_NEAR(exact, raster, 0.01) << planner << " on seed " << seed;
-    }
-  }
+  forEachPlannedPath(tool, 8, [&](const Wall& wall, const std::string& what, const Path& path) {
+    const double exact = coverage(wall, tool, path).coverage_wall;
+    EXPECT_NEAR(exact, rasterCoverageWall(wall, tool, path, 160), 0.01) << what;
+  });
 }
 
 TEST(MetricsProperties, OverlapAtDefaultResolutionWithinHalfAPercentOfSweptArea) {
   // The stated accuracy of the scanline method, on real paths: against a scan ten times finer,
   // every histogram bin moves by less than 0.5 % of |S|, and the scanline |S| matches the exact one.
   const ToolParams tool{0.1, 0.02};
-  for (unsigned seed = 1; seed <= 6; ++seed) {
-    const Wall wall = test::randomWall(seed);
-    for (const char* planner : {"zigzag", "spiral"}) {
-      const Path path = planFor(wall, tool, planner);
-      if (path.waypoints.empty()) continue;
-      const Passes coarse = passes(path, tool.radius());
-      const Passes fine = passes(path, tool.radius(), coarse.resolution / 10.0);
-      for (std::size_t k = 0; k < coarse.histogram.size(); ++k)
-        EXPECT_NEAR(coarse.histogram[k], fine.histogram[k], 0.005) << "bin " << k << ", " << planner << ", seed " << seed;
-      const double exact = coverage(wall, tool, path).swept_area;
-      EXPECT_NEAR(coarse.swept_area_estimate, exact, 0.005 * exact) << planner << ", seed " << seed;
-    }
-  }
+  forEachPlannedPath(tool, 6, [&](const Wall& wall, const std::string& what, const Path& path) {
+    const Passes coarse = passes(path, tool.radius());
+    const Passes fine = passes(path, tool.radius(), coarse.resolution / 10.0);
+    for (std::size_t k = 0; k < coarse.histogram.size(); ++k)
+      EXPECT_NEAR(coarse.histogram[k], fine.histogram[k], 0.005) << "bin " << k << ", " << what;
+    const double exact = coverage(wall, tool, path).swept_area;
+    EXPECT_NEAR(coarse.swept_area_estimate, exact, 0.005 * exact) << what;
+  });
 }
 
 TEST(MetricsProperties, OverlapPictureHasTheOverlapArea) {
   // The overlap layer of the pictures: disjoint staircase polygons whose area is the overlap
   // area measured on the same scanlines.
   const ToolParams tool{0.1, 0.02};
-  for (unsigned seed = 1; seed <= 6; ++seed) {
-    const Wall wall = test::randomWall(seed);
-    for (const char* planner : {"zigzag", "spiral"}) {
-      const Path path = planFor(wall, tool, planner);
-      if (path.waypoints.empty()) continue;
-      const double h = tool.radius() / 4.0;
-      const Passes p = passes(path, tool.radius(), h);
-      const Region picture = overlapRegion(path, tool.radius(), h);
-      double sum = 0.0, perimeter = 0.0;
-      for (const PolygonWithHoles& poly : picture) {
-        for (std::size_t k = 0; k < poly.outer.size(); ++k)
-          perimeter += distance(poly.outer[k], poly.outer[(k + 1) % poly.outer.size()]);
-        ASSERT_TRUE(ringIsSimple(poly.outer)) << planner << ", seed " << seed;
-        sum += std::fabs(signedArea(poly.outer));
-      }
-      const double expected = p.overlap * p.swept_area_estimate;
-      EXPECT_NEAR(sum, expected, 1e-9 + 1e-9 * expected) << planner << ", seed " << seed;
-      // Overlapping polygons would make the union smaller than the sum; the union goes through
-      // a 1 micrometre grid, which moves each edge by at most half of it.
-      EXPECT_NEAR(area(regionFromRings(allRings(picture))), sum, 1e-6 * perimeter) << "polygons overlap";
+  forEachPlannedPath(tool, 6, [&](const Wall&, const std::string& what, const Path& path) {
+    const double h = tool.radius() / 4.0;
+    const Passes p = passes(path, tool.radius(), h);
+    const Region picture = overlapRegion(path, tool.radius(), h);
+    double sum = 0.0, perimeter = 0.0;
+    for (const PolygonWithHoles& poly : picture) {
+      for (std::size_t k = 0; k < poly.outer.size(); ++k)
+        perimeter += distance(poly.outer[k], poly.outer[(k + 1) % poly.outer.size()]);
+      EXPECT_TRUE(ringIsSimple(poly.outer)) << what;
+      sum += std::fabs(signedArea(poly.outer));
     }
-  }
+    const double expected = p.overlap * p.swept_area_estimate;
+    EXPECT_NEAR(sum, expected, 1e-9 + 1e-9 * expected) << what;
+    // Overlapping polygons would make the union smaller than the sum; the union goes through
+    // a 1 micrometre grid, which moves each edge by at most half of it.
+    EXPECT_NEAR(area(regionFromRings(allRings(picture))), sum, 1e-6 * perimeter) << "polygons overlap, " << what;
+  });
 }
 
 TEST(MetricsProperties, InvariantUnderTranslation) {

@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -11,6 +13,16 @@
 namespace coverbench::test {
 
 std::string sourcePath(const std::string& relative) { return std::string(COVERBENCH_SOURCE_DIR) + "/" + relative; }
+
+void TempDirTest::SetUp() {
+  dir_ = std::filesystem::temp_directory_path() /
+         ("coverbench_" + std::to_string(::getpid()) + "_" + testing::UnitTest::GetInstance()->current_test_suite()->name() +
+          "_" + testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::remove_all(dir_);
+  std::filesystem::create_directories(dir_);
+}
+
+void TempDirTest::TearDown() { std::filesystem::remove_all(dir_); }
 
 std::vector<std::string> conformanceWallFiles() {
   std::vector<std::string> files;

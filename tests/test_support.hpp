@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -27,5 +28,13 @@ Wall randomWall(unsigned seed);
 
 /// A well-formed, exactly valid path, or a message naming the first offending segment.
 testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, const Path& path);
+
+/// A fixture with a fresh folder for each test (named after it), removed afterwards.
+class TempDirTest : public testing::Test {
+ protected:
+  void SetUp() override;
+  void TearDown() override;
+  std::filesystem::path dir_;
+};
 
 }  // namespace coverbench::test
