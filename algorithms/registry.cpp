@@ -1,6 +1,7 @@
 // The explicit list of planners. Adding a planner: one folder under algorithms/ and one line here.
 #include "coverbench/registry.hpp"
 
+#include "spanning_tree/spanning_tree.hpp"
 #include "spiral/spiral.hpp"
 #include "zigzag/zigzag.hpp"
 
@@ -10,6 +11,7 @@ const std::vector<PlannerInfo>& registeredPlanners() {
   static const std::vector<PlannerInfo> planners = {
       zigzag::info(),
       spiral::info(),
+      spanning_tree::info(),
   };
   return planners;
 }

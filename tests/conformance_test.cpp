@@ -2,6 +2,8 @@
 // path or a clear failure status, deterministically; and the same over many generated walls.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
 #include "test_support.hpp"
@@ -89,6 +91,15 @@ std::vector<Case> allCases() {
     cases.push_back({"zigzag", test::sourcePath("tests/data/conformance/garden_circles.json"), {}, {{"boundary_passes", passes}}});
   cases.push_back({"zigzag", test::sourcePath("tests/data/conformance/stairwell.json"), {}, {{"overlap", "0.3"}}});
   cases.push_back({"spiral", test::sourcePath("tests/data/conformance/stairwell.json"), {}, {{"overlap", "0.3"}}});
+  for (const char* wall : {"tests/data/conformance/garden_circles.json", "tests/data/conformance/stairwell.json",
+                           "tests/data/conformance/overlapping_cluster.json", "tests/data/conformance/rotated_polygons.json",
+                           "datasets/canonical/living_room_north.json", "datasets/canonical/gable_round_window.json"}) {
+    for (const char* variant : {"return", "stop", "spiral-stc"})
+      cases.push_back({"spanning-tree", test::sourcePath(wall), {}, {{"variant", variant}}});
+    cases.push_back({"spanning-tree", test::sourcePath(wall), {}, {{"tree", "mst"}}});
+    cases.push_back({"spanning-tree", test::sourcePath(wall), {}, {{"tree", "mst"}, {"variant", "spiral-stc"}}});
+    cases.push_back({"spanning-tree", test::sourcePath(wall), {}, {{"neighbour_order", "LDRU"}}});
+  }
   return cases;
 }
 
@@ -143,7 +154,11 @@ std::vector<std::string> plannerNames() {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllPlanners, GeneratedWalls, testing::ValuesIn(plannerNames()),
-                         [](const testing::TestParamInfo<std::string>& param_info) { return param_info.param; });
+                         [](const testing::TestParamInfo<std::string>& param_info) {
+                           std::string name = param_info.param;  // test names allow letters, digits, _
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 }  // namespace
 }  // namespace coverbench
