@@ -1,0 +1,97 @@
+// The spanning-tree planner's promises (issue: grid planners): seed 004's ordering of traversal
+// improvements, and Spiral-STC visiting every free sub-cell exactly once.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "coverbench/metrics.hpp"
+#include "coverbench/registry.hpp"
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+using test::rect;
+using test::rectWall;
+
+PlanResult planWith(const Wall& wall, const ToolParams& tool, std::vector<std::pair<std::string, std::string>> settings) {
+  const PlannerInfo& info = findPlanner("spanning-tree");
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = tool;
+  problem.params = resolveParams(info, settings);
+  return runPlanner(info, problem, Budget());
+}
+
+TEST(SpanningTree, ShortBranchesFirstNoLongerThanStopWhichIsShorterThanReturn) {
+  // Seed 004: 43 -> 33 -> 28 points on its example. The same ordering on every wall of a test
+  // set: random walls, the canonical walls, both tree kinds.
+  std::vector<Wall> walls;
+  for (unsigned seed = 1; seed <= 25; ++seed) walls.push_back(test::randomWall(seed));
+  for (const std::string& f : test::conformanceWallFiles()) walls.push_back(loadWallFile(f));
+  int compared = 0;
+  for (const Wall& wall : walls)
+    for (const char* tree : {"dfs", "mst"}) {
+      const ToolParams tool{0.1, 0.02};
+      const PlanResult ret = planWith(wall, tool, {{"variant", "return"}, {"tree", tree}});
+      const PlanResult stop = planWith(wall, tool, {{"variant", "stop"}, {"tree", tree}});
+      const PlanResult sbf = planWith(wall, tool, {{"variant", "short-branches-first"}, {"tree", tree}});
+      if (ret.status != PlanStatus::Ok) continue;
+      ASSERT_EQ(stop.status, PlanStatus::Ok);
+      ASSERT_EQ(sbf.status, PlanStatus::Ok);
+      const double l_ret = pathLengths(ret.path).total, l_stop = pathLengths(stop.path).total,
+                   l_sbf = pathLengths(sbf.path).total;
+      EXPECT_LE(l_sbf, l_stop + 1e-9) << wall.name << " " << tree;
+      if (ret.stats.at("tree_cells") > 1.0) EXPECT_LT(l_stop, l_ret) << wall.name << " " << tree;
+      EXPECT_LE(sbf.path.waypoints.size(), stop.path.waypoints.size()) << wall.name;
+      EXPECT_LT(stop.path.waypoints.size(), ret.path.waypoints.size()) << wall.name;
+      // All three visit the same cells (only the walk differs), so coverage is the same.
+      EXPECT_NEAR(coverage(wall, tool, ret.path).coverage_reachable, coverage(wall, tool, sbf.path).coverage_reachable, 1e-9);
+      ++compared;
+    }
+  EXPECT_GE(compared, 60);
+}
+
+TEST(SpanningTree, SpiralStcVisitsEveryFreeSubCellExactlyOnce) {
+  // Sub-cells s = 0.1 m with centres at 0.05 + 0.1 k; windows cover whole 2 x 2 mega-cells
+  // (their edges 0.1 m from the nearest free centres), so no mega-cell is partially blocked.
+  const ToolParams tool{0.1, 0.0};
+  const std::vector<Wall> walls = {
+      rectWall(2.0, 1.2),
+      rectWall(2.0, 1.2, {rect(0.85, 0.45, 0.3, 0.3)}),
+      rectWall(3.2, 2.0, {rect(0.45, 0.45, 0.3, 0.7), rect(1.65, 0.05, 0.7, 0.3), rect(2.45, 1.25, 0.3, 0.3)}),
+  };
+  for (const Wall& wall : walls)
+    for (const char* tree : {"dfs", "mst"}) {
+      const PlanResult r = planWith(wall, tool, {{"variant", "spiral-stc"}, {"tree", tree}});
+      ASSERT_EQ(r.status, PlanStatus::Ok) << r.reason;
+      ASSERT_TRUE(test::isValidPath(wall, tool, r.path));
+      EXPECT_EQ(r.stats.at("partially_blocked_sub_cells"), 0.0) << "the wall is built without them";
+      std::set<std::pair<long, long>> visited;
+      for (const Point& p : r.path.waypoints)
+        EXPECT_TRUE(visited.insert({std::lround(p.x * 1000), std::lround(p.y * 1000)}).second)
+            << "sub-cell (" << p.x << ", " << p.y << ") visited twice, tree " << tree;
+      EXPECT_EQ(static_cast<double>(visited.size()), r.stats.at("free_cells"));
+      EXPECT_EQ(static_cast<double>(visited.size()), 4.0 * r.stats.at("mega_cells"));
+      for (bool on : r.path.tool_on) EXPECT_TRUE(on) << "one closed walk around the tree, no transits";
+      for (std::size_t i = 1; i < r.path.waypoints.size(); ++i)  // every move is to a neighbouring sub-cell
+        EXPECT_NEAR(distance(r.path.waypoints[i - 1], r.path.waypoints[i]), 0.1, 1e-3);
+    }
+}
+
+TEST(SpanningTree, PartiallyBlockedMegaCellsAreStillCovered) {
+  // A window that cuts through mega-cells: their free sub-cells are covered by ordinary trees.
+  const ToolParams tool{0.1, 0.0};
+  const Wall wall = rectWall(2.0, 1.2, {rect(0.75, 0.35, 0.3, 0.3)});
+  const PlanResult stc = planWith(wall, tool, {{"variant", "spiral-stc"}});
+  const PlanResult plain = planWith(wall, tool, {{"variant", "stop"}});
+  ASSERT_EQ(stc.status, PlanStatus::Ok);
+  EXPECT_GT(stc.stats.at("partially_blocked_sub_cells"), 0.0);
+  std::set<std::pair<long, long>> cells;
+  for (const Point& p : stc.path.waypoints) cells.insert({std::lround(p.x * 1000), std::lround(p.y * 1000)});
+  EXPECT_EQ(static_cast<double>(cells.size()), stc.stats.at("free_cells")) << "every free sub-cell is visited";
+  EXPECT_GE(coverage(wall, tool, stc.path).coverage_reachable, coverage(wall, tool, plain.path).coverage_reachable - 1e-9);
+}
+
+}  // namespace
+}  // namespace coverbench
