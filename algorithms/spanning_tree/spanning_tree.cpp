@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <unordered_map>
-#include <unordered_set>
 
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
@@ -104,15 +102,24 @@ Grid buildGrid(const Region& free, const Box& box, double s, bool even) {
   return g;
 }
 
-/// A rooted spanning tree of one connected part of a grid: children in traversal order.
+/// Storage for every tree over one grid, indexed by cell (each cell belongs to one tree at most,
+/// so nothing is reset between trees): memory linear in the number of cells.
+struct Forest {
+  explicit Forest(int cells) : children(cells), height(cells, 0), local(cells, -1), placed(cells, 0) {}
+  std::vector<std::vector<int>> children;  // in traversal order
+  std::vector<int> height;                 // subtree height (a leaf has 0)
+  std::vector<int> local;                  // index within its tree's part (MST)
+  std::vector<char> placed;                // already hung into its tree (MST)
+};
+
+/// A rooted spanning tree of one connected part of a grid.
 struct Tree {
   int root = -1;
-  std::vector<int> nodes;                // in discovery order
-  std::unordered_map<int, std::vector<int>> children;  // by cell (a tree may be small in a big grid)
+  std::vector<int> nodes;  // parents before children
 };
 
 /// Depth-first tree, neighbours tried in `order` (directions 0 up, 1 right, 2 down, 3 left).
-Tree dfsTree(const Grid& g, int root, const std::array<int, 4>& order, std::vector<char>& seen) {
+Tree dfsTree(const Grid& g, int root, const std::array<int, 4>& order, std::vector<char>& seen, Forest& f) {
   Tree t;
   t.root = root;
   std::vector<std::pair<int, int>> stack{{root, 0}};
@@ -127,7 +134,7 @@ Tree dfsTree(const Grid& g, int root, const std::array<int, 4>& order, std::vect
     const int next = g.neighbour(node, order[k++]);
     if (next < 0 || seen[next]) continue;
     seen[next] = 1;
-    t.children[node].push_back(next);
+    f.children[node].push_back(next);
     t.nodes.push_back(next);
     stack.push_back({next, 0});
   }
@@ -137,17 +144,17 @@ Tree dfsTree(const Grid& g, int root, const std::array<int, 4>& order, std::vect
 /// Minimum spanning tree (Kruskal, Boost.Graph) of the part reachable from `root`, with edges
 /// across the preferred direction costing more, so the tree runs in long straight lines; then
 /// rooted, children in `order`.
-Tree mstTree(const Grid& g, int root, const std::array<int, 4>& order, std::vector<char>& seen) {
+Tree mstTree(const Grid& g, int root, const std::array<int, 4>& order, std::vector<char>& seen, Forest& f) {
   // The part: breadth-first from the root.
   std::vector<int> part{root};
-  std::unordered_map<int, int> local{{root, 0}};
+  f.local[root] = 0;
   seen[root] = 1;
   for (std::size_t k = 0; k < part.size(); ++k)
     for (int d = 0; d < 4; ++d) {
       const int n = g.neighbour(part[k], d);
       if (n >= 0 && !seen[n]) {
         seen[n] = 1;
-        local[n] = static_cast<int>(part.size());
+        f.local[n] = static_cast<int>(part.size());
         part.push_back(n);
       }
     }
@@ -158,65 +165,60 @@ Tree mstTree(const Grid& g, int root, const std::array<int, 4>& order, std::vect
   for (int i : part)
     for (int d : {0, 1}) {
       const int n = g.neighbour(i, d);
-      if (n < 0 || !local.count(n)) continue;  // not joined, or not one of the cells to cover
-      const bool horizontal = d == 1;
-      boost::add_edge(local.at(i), local.at(n), horizontal == rows_first ? 1.0 : 1.5, graph);
+      if (n < 0 || f.local[n] < 0 || part[f.local[n]] != n) continue;  // not joined, or not to cover
+      boost::add_edge(f.local[i], f.local[n], (d == 1) == rows_first ? 1.0 : 1.5, graph);
     }
   std::vector<boost::graph_traits<G>::edge_descriptor> edges;
+  edges.reserve(part.size());
   boost::kruskal_minimum_spanning_tree(graph, std::back_inserter(edges));
-  std::vector<std::vector<int>> adjacent(part.size());
+  // Tree edges by direction: bit d of joined[local] says the edge toward direction d is in the tree.
+  std::vector<unsigned char> joined(part.size(), 0);
   for (const auto& e : edges) {
-    const int a = static_cast<int>(boost::source(e, graph)), b = static_cast<int>(boost::target(e, graph));
-    adjacent[a].push_back(part[b]);
-    adjacent[b].push_back(part[a]);
+    const int a = part[boost::source(e, graph)], b = part[boost::target(e, graph)];
+    for (int d = 0; d < 4; ++d) {
+      if (g.neighbour(a, d) == b) joined[f.local[a]] |= static_cast<unsigned char>(1 << d);
+      if (g.neighbour(b, d) == a) joined[f.local[b]] |= static_cast<unsigned char>(1 << d);
+    }
   }
   Tree t;
   t.root = root;
-  std::unordered_set<int> placed{root};
+  f.placed[root] = 1;
   std::vector<int> stack{root};
   while (!stack.empty()) {
     const int node = stack.back();
     stack.pop_back();
     t.nodes.push_back(node);
     for (int d : order) {
+      if (!(joined[f.local[node]] & (1 << d))) continue;
       const int n = g.neighbour(node, d);
-      if (n < 0 || placed.count(n)) continue;
-      const auto& adj = adjacent[local.at(node)];
-      if (std::find(adj.begin(), adj.end(), n) == adj.end()) continue;
-      placed.insert(n);
-      t.children[node].push_back(n);
+      if (f.placed[n]) continue;
+      f.placed[n] = 1;
+      f.children[node].push_back(n);
     }
-    for (auto it = t.children[node].rbegin(); it != t.children[node].rend(); ++it) stack.push_back(*it);
+    for (auto it = f.children[node].rbegin(); it != f.children[node].rend(); ++it) stack.push_back(*it);
   }
   return t;
-}
-
-/// Subtree heights (a leaf has 0).
-std::unordered_map<int, int> heights(Tree& t) {
-  std::unordered_map<int, int> h;
-  for (auto it = t.nodes.rbegin(); it != t.nodes.rend(); ++it) {
-    int mine = 0;  // children come after their parent in `nodes`, so theirs are known
-    for (int child : t.children[*it]) mine = std::max(mine, h.at(child) + 1);
-    h[*it] = mine;
-  }
-  return h;
 }
 
 enum class Variant { Return, Stop, ShortBranchesFirst, SpiralStc };
 
 /// The walk around a tree: (cell, first visit) steps; `stop` variants end at the last new cell.
-std::vector<std::pair<int, bool>> walk(Tree& t, Variant variant) {
+std::vector<std::pair<int, bool>> walk(const Tree& t, Forest& f, Variant variant) {
   if (variant == Variant::ShortBranchesFirst) {
-    std::unordered_map<int, int> h = heights(t);
-    for (int node : t.nodes)
-      std::stable_sort(t.children[node].begin(), t.children[node].end(), [&](int a, int b) { return h.at(a) < h.at(b); });
+    for (auto it = t.nodes.rbegin(); it != t.nodes.rend(); ++it) {  // children before parents
+      int h = 0;
+      for (int child : f.children[*it]) h = std::max(h, f.height[child] + 1);
+      f.height[*it] = h;
+      std::stable_sort(f.children[*it].begin(), f.children[*it].end(),
+                       [&](int a, int b) { return f.height[a] < f.height[b]; });
+    }
   }
   std::vector<std::pair<int, bool>> steps{{t.root, true}};
   std::vector<std::pair<int, std::size_t>> stack{{t.root, 0}};
   while (!stack.empty()) {
     auto& [node, k] = stack.back();
-    if (k < t.children[node].size()) {
-      const int child = t.children[node][k++];
+    if (k < f.children[node].size()) {
+      const int child = f.children[node][k++];
       steps.push_back({child, true});
       stack.push_back({child, 0});
     } else {
@@ -276,17 +278,18 @@ class SpanningTreePlanner final : public Planner {
     auto coverParts = [&](const Grid& g, std::vector<char> open, Variant v) {
       std::vector<char> seen(g.size(), 0);
       for (int i = 0; i < g.size(); ++i) seen[i] = !open[i];
+      Forest forest(g.size());
       for (int root = 0; root < g.size(); ++root) {  // lowest row first, then leftmost
         if (seen[root]) continue;
         if (budget.expired()) return false;
-        Tree t = mst ? mstTree(g, root, order, seen) : dfsTree(g, root, order, seen);
+        Tree t = mst ? mstTree(g, root, order, seen, forest) : dfsTree(g, root, order, seen, forest);
         ++parts;
         tree_cells += t.nodes.size();
         if (!builder.moveTo(g.centre(root), false)) {
           ++unreachable;
           continue;
         }
-        for (const auto& [cell, first] : walk(t, v)) builder.follow({g.centre(cell)}, first);
+        for (const auto& [cell, first] : walk(t, forest, v)) builder.follow({g.centre(cell)}, first);
       }
       return true;
     };
@@ -331,17 +334,18 @@ class SpanningTreePlanner final : public Planner {
           for (int k = 0; k < 4; ++k) next[sub(m, k)] = sub(m, (k + 1) % 4);
       std::vector<char> seen(mega.size(), 0);
       for (int m = 0; m < mega.size(); ++m) seen[m] = !mega.cell[m];
+      Forest forest(mega.size());
       for (int root = 0; root < mega.size(); ++root) {
         if (seen[root]) continue;
         if (budget.expired()) {
           finished = false;
           break;
         }
-        Tree t = mst ? mstTree(mega, root, order, seen) : dfsTree(mega, root, order, seen);
+        Tree t = mst ? mstTree(mega, root, order, seen, forest) : dfsTree(mega, root, order, seen, forest);
         ++parts;
         tree_cells += 4 * t.nodes.size();
         for (int parent : t.nodes)
-          for (int child : t.children[parent]) {
+          for (int child : forest.children[parent]) {
             if (child == parent + 1 || child == parent - 1) {  // side by side
               const int left = std::min(parent, child), right = std::max(parent, child);
               next[sub(left, 1)] = sub(right, 0);
