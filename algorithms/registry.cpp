@@ -1,6 +1,7 @@
 // The explicit list of planners. Adding a planner: one folder under algorithms/ and one line here.
 #include "coverbench/registry.hpp"
 
+#include "adaptive_resolution/adaptive_resolution.hpp"
 #include "spanning_tree/spanning_tree.hpp"
 #include "spiral/spiral.hpp"
 #include "zigzag/zigzag.hpp"
@@ -12,6 +13,7 @@ const std::vector<PlannerInfo>& registeredPlanners() {
       zigzag::info(),
       spiral::info(),
       spanning_tree::info(),
+      adaptive_resolution::info(),
   };
   return planners;
 }

@@ -99,6 +99,7 @@ std::vector<Case> allCases() {
     cases.push_back({"spanning-tree", test::sourcePath(wall), {}, {{"tree", "mst"}}});
     cases.push_back({"spanning-tree", test::sourcePath(wall), {}, {{"tree", "mst"}, {"variant", "spiral-stc"}}});
     cases.push_back({"spanning-tree", test::sourcePath(wall), {}, {{"neighbour_order", "LDRU"}}});
+    cases.push_back({"adaptive-resolution", test::sourcePath(wall), {}, {{"dense_waypoints", "true"}}});
   }
   return cases;
 }

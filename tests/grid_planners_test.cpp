@@ -1,9 +1,12 @@
-// The spanning-tree planner's promises (issue: grid planners): seed 004's ordering of traversal
-// improvements, and Spiral-STC visiting every free sub-cell exactly once.
+// The grid planners' promises (issue: grid planners): seed 004's ordering of traversal
+// improvements, Spiral-STC visiting every free sub-cell exactly once, and adaptive-resolution
+// winning back the coverage a fixed grid loses near obstacles.
 #include <gtest/gtest.h>
 
 #include <set>
 
+#include "coverbench/clearance.hpp"
+#include "coverbench/datasets.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
 #include "test_support.hpp"
@@ -14,8 +17,9 @@ namespace {
 using test::rect;
 using test::rectWall;
 
-PlanResult planWith(const Wall& wall, const ToolParams& tool, std::vector<std::pair<std::string, std::string>> settings) {
-  const PlannerInfo& info = findPlanner("spanning-tree");
+PlanResult planWith(const Wall& wall, const ToolParams& tool, std::vector<std::pair<std::string, std::string>> settings,
+                    const std::string& planner = "spanning-tree") {
+  const PlannerInfo& info = findPlanner(planner);
   Problem problem;
   problem.wall = &wall;
   problem.tool = tool;
@@ -91,6 +95,66 @@ TEST(SpanningTree, PartiallyBlockedMegaCellsAreStillCovered) {
   for (const Point& p : stc.path.waypoints) cells.insert({std::lround(p.x * 1000), std::lround(p.y * 1000)});
   EXPECT_EQ(static_cast<double>(cells.size()), stc.stats.at("free_cells")) << "every free sub-cell is visited";
   EXPECT_GE(coverage(wall, tool, stc.path).coverage_reachable, coverage(wall, tool, plain.path).coverage_reachable - 1e-9);
+}
+
+TEST(AdaptiveResolution, BeatsTheFixedGridOnCoverageWallOnEveryWall) {
+  // Residential walls are where obstacles (doors, windows, sockets, switches) dominate.
+  const ToolParams tool{0.1, 0.02};
+  for (std::uint64_t i = 0; i < 30; ++i) {
+    const Wall wall = generateWall("residential", 1, i);
+    const PlanResult grid = planWith(wall, tool, {});
+    const PlanResult adaptive = planWith(wall, tool, {}, "adaptive-resolution");
+    ASSERT_EQ(adaptive.status, PlanStatus::Ok) << adaptive.reason;
+    if (grid.status != PlanStatus::Ok) continue;
+    EXPECT_GT(coverage(wall, tool, adaptive.path).coverage_wall, coverage(wall, tool, grid.path).coverage_wall) << wall.name;
+  }
+}
+
+TEST(AdaptiveResolution, LeavesAreLargeInTheOpenAndFineNearObstacles) {
+  const ToolParams tool{0.05, 0.02};
+  const Wall open = rectWall(6.4, 6.4);
+  const PlanResult r = planWith(open, tool, {}, "adaptive-resolution");
+  ASSERT_EQ(r.status, PlanStatus::Ok);
+  EXPECT_GE(r.stats.at("largest_leaf_cells"), 32.0) << "the open middle of an empty wall is a few big leaves";
+  EXPECT_LT(r.stats.at("open_leaves") + r.stats.at("fine_leaves"), 1000.0) << "far fewer leaves than its 16384 cells";
+  EXPECT_LE(r.stats.at("fine_leaves"), 4.0 * 128.0) << "single cells only along the edge (128 cells a side)";
+  const Wall busy = rectWall(6.4, 6.4, {rect(1, 1, 1, 1), test::circle(4, 4, 0.5)});
+  const PlanResult b = planWith(busy, tool, {}, "adaptive-resolution");
+  ASSERT_EQ(b.status, PlanStatus::Ok);
+  EXPECT_GT(b.stats.at("fine_leaves"), 100.0) << "obstacle edges split the tree down to single cells";
+}
+
+TEST(AdaptiveResolution, DenseWaypointsFollowTheDistanceToObstacles) {
+  const ToolParams tool{0.1, 0.02};
+  const Wall wall = rectWall(5, 3, {rect(2, 1, 1, 1)});
+  const PlanResult sparse = planWith(wall, tool, {}, "adaptive-resolution");
+  const PlanResult dense = planWith(wall, tool, {{"dense_waypoints", "true"}}, "adaptive-resolution");
+  ASSERT_EQ(dense.status, PlanStatus::Ok);
+  EXPECT_GT(dense.path.waypoints.size(), 20 * sparse.path.waypoints.size());
+  EXPECT_TRUE(test::isValidPath(wall, tool, dense.path));
+  EXPECT_NEAR(pathLengths(dense.path).total, pathLengths(sparse.path).total, 1e-6) << "same geometry";
+  EXPECT_NEAR(coverage(wall, tool, dense.path).coverage_reachable, coverage(wall, tool, sparse.path).coverage_reachable, 1e-6);
+  // Every step: at most 5 mm near the window or the wall edge (gap <= 0.1 m from the tool's
+  // edge), at most 1 cm within 0.5 m, at most 2 cm elsewhere.
+  const ClearanceField field(wall);
+  int near = 0, far = 0;
+  for (std::size_t i = 0; i + 1 < dense.path.waypoints.size(); ++i) {
+    const Point a = dense.path.waypoints[i], b = dense.path.waypoints[i + 1];
+    const SegmentClearance m = field.measure(a, b);
+    const double gap = std::fmin(m.boundary_distance, m.obstacle_distance) - tool.radius();
+    const double step = distance(a, b);
+    if (gap <= 0.1) {
+      EXPECT_LE(step, 0.005 + 1e-9);
+      ++near;
+    } else if (gap <= 0.5) {
+      EXPECT_LE(step, 0.01 + 1e-9);
+    } else {
+      EXPECT_LE(step, 0.02 + 1e-9);
+      ++far;
+    }
+  }
+  EXPECT_GT(near, 100);
+  EXPECT_GT(far, 10);
 }
 
 }  // namespace
