@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "coverbench/datasets.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
 #include "test_support.hpp"
@@ -129,6 +130,28 @@ TEST(ConformanceWalls, ExpectedOutcomes) {
     const Wall open = loadWallFile(test::sourcePath("tests/data/conformance/narrow_passage_open.json"));
     ASSERT_TRUE(honours(p, open, {0.1, 0.02}, params, &r));
     EXPECT_EQ(r.stats["free_components"], 1.0) << p.name;
+  }
+}
+
+TEST(FamilyWalls, EveryPlannerAndVariantValidOnEveryGeneratedFamily) {
+  // Two walls of every generator family (the 50 m `stress` walls run in the default experiment,
+  // which checks every path too), every planner with its defaults, and the grid planner's variants.
+  std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>> configs;
+  for (const PlannerInfo& p : registeredPlanners()) configs.push_back({p.name, {}});
+  for (const char* variant : {"return", "stop", "spiral-stc"}) configs.push_back({"spanning-tree", {{"variant", variant}}});
+  configs.push_back({"spanning-tree", {{"tree", "mst"}}});
+  configs.push_back({"adaptive-resolution", {{"dense_waypoints", "true"}}});
+  for (const FamilyInfo& family : wallFamilies()) {
+    if (family.fixed_suite || family.name == "stress") continue;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const Wall wall = generateWall(family.name, 42, i);
+      for (const auto& [planner, settings] : configs) {
+        const PlannerInfo& info = findPlanner(planner);
+        PlanResult r;
+        ASSERT_TRUE(honours(info, wall, {0.1, 0.02}, resolveParams(info, settings), &r)) << wall.name << " " << planner;
+        EXPECT_EQ(r.stats["unreachable_parts"], 0.0) << wall.name << " " << planner << ": " << r.reason;
+      }
+    }
   }
 }
 
