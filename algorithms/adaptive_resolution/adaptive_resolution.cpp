@@ -133,15 +133,20 @@ class AdaptivePlanner final : public Planner {
     // Extra passes that reach into corners: one loop along F's boundary (the wall edge and every
     // obstacle), where cells stop short.
     std::size_t unreachable = coverRings(builder, rings, 1.01 * s);
-    // Rows, bottom to top, alternating direction; pieces of a row merge when they touch and the
-    // join is free, so open leaves side by side become one pass.
-    std::size_t passes = 0;
+    // Pieces: per row, leaf rows that touch are merged when the join is free, so open leaves
+    // side by side become one pass.
+    struct Run {
+      Point a, b;
+      int row;
+    };
+    std::vector<Run> runs;
+    std::vector<std::vector<std::size_t>> runs_of_row(rows_total);
     for (int r = 0; r < rows_total; ++r) {
       if (rows[r].empty()) continue;
       if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out");
       const double y = Y0 + (r + 0.5) * s;
       std::vector<Piece>& row = rows[r];
-      std::sort(row.begin(), row.end(), [](const Piece& a, const Piece& b) { return a.x0 < b.x0; });
+      std::sort(row.begin(), row.end(), [](const Piece& p, const Piece& q) { return p.x0 < q.x0; });
       std::vector<Piece> merged;
       for (const Piece& p : row) {
         if (!merged.empty() && p.x0 - merged.back().x1 <= 1.0001 * s &&
@@ -150,21 +155,65 @@ class AdaptivePlanner final : public Planner {
         else
           merged.push_back(p);
       }
-      if (passes % 2 == 1) {
-        std::reverse(merged.begin(), merged.end());
-        for (Piece& p : merged) std::swap(p.x0, p.x1);
-      }
       for (const Piece& p : merged) {
-        const Point a{p.x0, y}, b{p.x1, y};
-        const bool near = !builder.empty() && distance(builder.current(), a) <= 1.5 * s;
-        if (!builder.moveTo(a, near)) {
-          ++unreachable;
-          continue;
-        }
-        if (!(a == b)) builder.follow({b}, true);
-        else if (!near) builder.follow({a}, true);  // a lone cell: paint where we stand
+        runs_of_row[r].push_back(runs.size());
+        runs.push_back({{p.x0, y}, {p.x1, y}, r});
       }
+    }
+    // Boustrophedon by regions: from the end of a run, the next is the nearest unvisited run in
+    // the row above or below whose end is within reach by a free, painted step; only when none
+    // is, the nearest unvisited run anywhere, reached by a routed transit.
+    std::vector<char> done(runs.size(), 0);
+    std::size_t left = runs.size(), passes = 0;
+    auto enter = [&](std::size_t k, bool from_a) {
+      const Point a = from_a ? runs[k].a : runs[k].b, b = from_a ? runs[k].b : runs[k].a;
+      done[k] = 1;
+      --left;
+      const bool near = !builder.empty() && distance(builder.current(), a) <= 1.5 * s;
+      if (!builder.moveTo(a, near)) {
+        ++unreachable;
+        return;
+      }
+      if (!(a == b)) builder.follow({b}, true);
+      else if (!near) builder.follow({a}, true);  // a lone cell: paint where we stand
       ++passes;
+    };
+    int row = -1;
+    while (left > 0) {
+      if ((passes & 255) == 0 && budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out");
+      std::size_t best = runs.size();
+      bool best_a = true;
+      double best_d = INFINITY;
+      if (!builder.empty() && row >= 0) {
+        const Point here = builder.current();
+        for (int r : {row + 1, row - 1}) {
+          if (r < 0 || r >= rows_total) continue;
+          for (std::size_t k : runs_of_row[r]) {
+            if (done[k]) continue;
+            for (bool at_a : {true, false}) {
+              const Point e = at_a ? runs[k].a : runs[k].b;
+              const double d = distance(here, e);
+              if (d < best_d && d <= 1.5 * s) best = k, best_a = at_a, best_d = d;
+            }
+          }
+        }
+        if (best < runs.size() && !ws.router().isFree(here, best_a ? runs[best].a : runs[best].b)) best = runs.size();
+      }
+      if (best == runs.size()) {
+        const Point here = builder.empty() ? Point{-INFINITY, -INFINITY} : builder.current();
+        best_d = INFINITY;
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+          if (done[k]) continue;
+          for (bool at_a : {true, false}) {
+            const Point e = at_a ? runs[k].a : runs[k].b;
+            // The first run: the lowest, then leftmost; afterwards the nearest.
+            const double d = builder.empty() ? e.y * 1e6 + e.x : distance(here, e);
+            if (d < best_d) best = k, best_a = at_a, best_d = d;
+          }
+        }
+      }
+      enter(best, best_a);
+      row = runs[best].row;
     }
     Path path = builder.take();
     if (path.waypoints.empty())
