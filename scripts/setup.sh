@@ -24,5 +24,5 @@ export CCACHE_BASEDIR="$(cd .. && pwd)"
 if [ ! -f build/build.ninja ]; then
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
-echo "== building (first build takes about a minute on 2 cores)"
+echo "== building (first build takes two to three minutes on 2 cores)"
 cmake --build build -j 2
