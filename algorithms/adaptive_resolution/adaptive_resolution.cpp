@@ -229,10 +229,7 @@ class AdaptivePlanner final : public Planner {
     result.stats["fine_leaves"] = static_cast<double>(fine_leaves);
     result.stats["largest_leaf_cells"] = static_cast<double>(largest);
     result.stats["rows"] = static_cast<double>(passes);
-    result.stats["routed_transits"] = static_cast<double>(builder.transits());
-    result.stats["free_components"] = static_cast<double>(components.size());
-    result.stats["unreachable_parts"] = static_cast<double>(unreachable);
-    result.reason = partialCoverageNote(components.size(), unreachable);
+    recordOutcome(result, builder, components.size(), unreachable);
     return result;
   }
 

@@ -386,10 +386,7 @@ class SpanningTreePlanner final : public Planner {
       result.stats["mega_cells"] = static_cast<double>(mega_cells);
       result.stats["partially_blocked_sub_cells"] = static_cast<double>(leftover_cells);
     }
-    result.stats["routed_transits"] = static_cast<double>(builder.transits());
-    result.stats["free_components"] = static_cast<double>(components.size());
-    result.stats["unreachable_parts"] = static_cast<double>(unreachable);
-    result.reason = partialCoverageNote(components.size(), unreachable);
+    recordOutcome(result, builder, components.size(), unreachable);
     return result;
   }
 };

@@ -184,10 +184,7 @@ class SpiralPlanner final : public Planner {
     result.stats["centre_loops"] = static_cast<double>(centres);
     result.stats["leftover_checks"] = static_cast<double>(leftover_checks);
     result.stats["corner_spurs"] = static_cast<double>(spurs);
-    result.stats["routed_transits"] = static_cast<double>(builder.transits());
-    result.stats["free_components"] = static_cast<double>(components.size());
-    result.stats["unreachable_parts"] = static_cast<double>(unreachable);
-    result.reason = partialCoverageNote(components.size(), unreachable);
+    recordOutcome(result, builder, components.size(), unreachable);
     return result;
   }
 };

@@ -200,11 +200,8 @@ class ZigzagPlanner final : public Planner {
     result.stats["row_spacing"] = row_gap;
     result.stats["intervals"] = static_cast<double>(interval_count);
     result.stats["pieces"] = static_cast<double>(pieces);
-    result.stats["routed_transits"] = static_cast<double>(builder.transits());
-    result.stats["free_components"] = static_cast<double>(components.size());
-    result.stats["unreachable_parts"] = static_cast<double>(unreachable);
     result.stats["sweep_angle_deg"] = problem.params.number("sweep_angle");
-    result.reason = partialCoverageNote(components.size(), unreachable);
+    recordOutcome(result, builder, components.size(), unreachable);
     return result;
   }
 };

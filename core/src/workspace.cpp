@@ -115,6 +115,14 @@ std::string partialCoverageNote(std::size_t free_components, std::size_t unreach
   return note;
 }
 
+void recordOutcome(PlanResult& result, const PathBuilder& builder, std::size_t free_components,
+                   std::size_t unreachable_parts) {
+  result.stats["routed_transits"] = static_cast<double>(builder.transits());
+  result.stats["free_components"] = static_cast<double>(free_components);
+  result.stats["unreachable_parts"] = static_cast<double>(unreachable_parts);
+  result.reason = partialCoverageNote(free_components, unreachable_parts);
+}
+
 std::vector<PolygonWithHoles> componentsByArea(const Region& region) {
   std::vector<PolygonWithHoles> parts(region.begin(), region.end());
   std::stable_sort(parts.begin(), parts.end(), [](const PolygonWithHoles& a, const PolygonWithHoles& b) {

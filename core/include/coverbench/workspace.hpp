@@ -123,6 +123,11 @@ std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max
 /// and parts (rings, rows) no collision-free transit reached. Empty when nothing was left out.
 std::string partialCoverageNote(std::size_t free_components, std::size_t unreachable_parts);
 
+/// Records what every planner built on PathBuilder reports the same way: the statistics
+/// `routed_transits`, `free_components` and `unreachable_parts`, and the reason above.
+void recordOutcome(PlanResult& result, const PathBuilder& builder, std::size_t free_components,
+                   std::size_t unreachable_parts);
+
 /// The connected components of a region, largest area first (ties broken by position, so the
 /// order is deterministic).
 std::vector<PolygonWithHoles> componentsByArea(const Region& region);
