@@ -88,6 +88,8 @@ std::vector<Case> allCases() {
   // Variants as parameters.
   for (const char* angle : {"30", "90", "137.5"})
     cases.push_back({"zigzag", test::sourcePath("datasets/canonical/living_room_north.json"), {}, {{"sweep_angle", angle}}});
+  for (const char* wall : {"datasets/canonical/living_room_north.json", "tests/data/conformance/rotated_polygons.json"})
+    cases.push_back({"zigzag", test::sourcePath(wall), {}, {{"direction_search", "true"}}});
   for (const char* passes : {"0", "3"})
     cases.push_back({"zigzag", test::sourcePath("tests/data/conformance/garden_circles.json"), {}, {{"boundary_passes", passes}}});
   cases.push_back({"zigzag", test::sourcePath("tests/data/conformance/stairwell.json"), {}, {{"overlap", "0.3"}}});

@@ -8,6 +8,7 @@
 #include "coverbench/clearance.hpp"
 #include "coverbench/datasets.hpp"
 #include "coverbench/metrics.hpp"
+#include "coverbench/sweep_search.hpp"
 #include "coverbench/registry.hpp"
 #include "test_support.hpp"
 
@@ -155,6 +156,29 @@ TEST(AdaptiveResolution, DenseWaypointsFollowTheDistanceToObstacles) {
   }
   EXPECT_GT(near, 100);
   EXPECT_GT(far, 10);
+}
+
+TEST(SweepDirectionSearch, FindsTheLongSideOfARotatedWallAndBeatsEveryFixedDirection) {
+  // A 6 m x 1.5 m wall turned by 30 degrees: rows along the long side turn least.
+  Wall wall;
+  wall.name = "rotated";
+  const double c = std::cos(M_PI / 6.0), sn = std::sin(M_PI / 6.0);
+  for (const Point p : {Point{0, 0}, Point{6, 0}, Point{6, 1.5}, Point{0, 1.5}})
+    wall.boundary.push_back({p.x * c - p.y * sn + 1.0, p.x * sn + p.y * c});
+  const ToolParams tool{0.1, 0.02};
+  const PlanResult searched = planWith(wall, tool, {{"direction_search", "true"}}, "zigzag");
+  ASSERT_EQ(searched.status, PlanStatus::Ok);
+  EXPECT_NEAR(searched.stats.at("sweep_angle_deg"), 30.0, 1.0);
+  EXPECT_TRUE(test::isValidPath(wall, tool, searched.path));
+  EXPECT_GE(searched.stats.at("direction_evaluations"), 36.0);
+  const double best = sweepCost(searched.path, 1.0);
+  EXPECT_NEAR(best, searched.stats.at("direction_cost"), 1e-9);
+  for (const char* angle : {"0", "45", "90", "135"}) {
+    const PlanResult fixed = planWith(wall, tool, {{"sweep_angle", angle}}, "zigzag");
+    EXPECT_LE(best, sweepCost(fixed.path, 1.0) + 1e-9) << angle;
+  }
+  const PlanResult again = planWith(wall, tool, {{"direction_search", "true"}}, "zigzag");
+  EXPECT_EQ(again.stats.at("sweep_angle_deg"), searched.stats.at("sweep_angle_deg")) << "deterministic";
 }
 
 }  // namespace

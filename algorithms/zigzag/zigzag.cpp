@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "coverbench/region_ops.hpp"
+#include "coverbench/sweep_search.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::zigzag {
@@ -94,7 +95,28 @@ double polylineLength(const std::vector<Point>& pts) {
 class ZigzagPlanner final : public Planner {
  public:
   PlanResult plan(const Problem& problem, const Budget& budget) override {
-    const double angle = problem.params.number("sweep_angle") * M_PI / 180.0;
+    if (!problem.params.flag("direction_search")) return planAt(problem, budget, problem.params.number("sweep_angle"));
+    // Sweep-direction search: plan at every candidate direction, keep the cheapest.
+    const double penalty = problem.params.number("turn_penalty");
+    const auto search = searchSweepDirection(
+        *problem.wall,
+        [&](double deg) -> std::optional<double> {
+          const PlanResult r = planAt(problem, budget, deg);
+          if (r.status != PlanStatus::Ok) return std::nullopt;
+          return sweepCost(r.path, penalty);
+        },
+        [&] { return !budget.expired(); });
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the direction search");
+    if (!search) return planAt(problem, budget, problem.params.number("sweep_angle"));  // reports why
+    PlanResult result = planAt(problem, budget, search->angle_deg);
+    result.stats["direction_evaluations"] = static_cast<double>(search->evaluations);
+    result.stats["direction_cost"] = search->cost;
+    return result;
+  }
+
+ private:
+  PlanResult planAt(const Problem& problem, const Budget& budget, double angle_deg) {
+    const double angle = angle_deg * M_PI / 180.0;
     const double spacing = problem.tool.tool_width * (1.0 - problem.params.number("overlap"));
     const auto passes = static_cast<std::size_t>(problem.params.integer("boundary_passes"));
 
@@ -200,7 +222,7 @@ class ZigzagPlanner final : public Planner {
     result.stats["row_spacing"] = row_gap;
     result.stats["intervals"] = static_cast<double>(interval_count);
     result.stats["pieces"] = static_cast<double>(pieces);
-    result.stats["sweep_angle_deg"] = problem.params.number("sweep_angle");
+    result.stats["sweep_angle_deg"] = angle_deg;
     recordOutcome(result, builder, components.size(), unreachable);
     return result;
   }
@@ -218,6 +240,9 @@ PlannerInfo info() {
       {"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent rows overlap"},
       {"boundary_passes", ParamType::Integer, 1LL, 0, 10, {}, "",
        "boundary-following loops around the wall and each obstacle before the rows"},
+      {"direction_search", ParamType::Bool, false, 0, 0, {}, "",
+       "search the sweep direction (5-degree steps and the longest edges, then 1-degree steps); overrides sweep_angle"},
+      {"turn_penalty", ParamType::Number, 1.0, 0.0, 1000.0, {}, "m", "cost of a turn over 30 degrees in the direction search"},
   };
   info.capabilities.polygon_boundary = true;
   info.capabilities.circle_obstacles = true;

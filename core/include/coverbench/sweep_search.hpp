@@ -1,0 +1,31 @@
+#pragma once
+/// Sweep-direction search for any sweep-based planner (seed 003): coarse steps over [0, 180)
+/// degrees plus the directions of the longest edges, then fine steps around the best, minimising
+/// path length plus a penalty per turn.
+#include <cstddef>
+#include <functional>
+#include <optional>
+
+#include "coverbench/planner.hpp"
+#include "coverbench/wall.hpp"
+
+namespace coverbench {
+
+struct SweepSearch {
+  double angle_deg = 0.0;  ///< the best direction found, in [0, 180)
+  double cost = 0.0;
+  std::size_t evaluations = 0;
+};
+
+/// `cost(angle_deg)` plans at that direction and returns its cost, or nothing when the plan
+/// failed. Ties go to the smaller angle, so the result is deterministic. Returns nothing when
+/// every direction failed or `keep_going` said stop before any succeeded.
+std::optional<SweepSearch> searchSweepDirection(const Wall& wall, const std::function<std::optional<double>(double)>& cost,
+                                                const std::function<bool()>& keep_going, double coarse_step_deg = 5.0,
+                                                double fine_step_deg = 1.0, std::size_t longest_edges = 4);
+
+/// Path length plus `turn_penalty_m` metres for every heading change over 30 degrees (a stop on
+/// the machine): the cost the search minimises.
+double sweepCost(const Path& path, double turn_penalty_m);
+
+}  // namespace coverbench

@@ -1,0 +1,71 @@
+#include "coverbench/sweep_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace coverbench {
+namespace {
+
+double normalise(double deg) {
+  double a = std::fmod(deg, 180.0);
+  if (a < 0.0) a += 180.0;
+  a = std::round(a * 100.0) / 100.0;  // hundredths of a degree: equal directions compare equal
+  return a >= 180.0 ? 0.0 : a;
+}
+
+}  // namespace
+
+std::optional<SweepSearch> searchSweepDirection(const Wall& wall, const std::function<std::optional<double>(double)>& cost,
+                                                const std::function<bool()>& keep_going, double coarse_step_deg,
+                                                double fine_step_deg, std::size_t longest_edges) {
+  std::set<double> tried;
+  std::optional<SweepSearch> best;
+  std::size_t evaluations = 0;
+  auto evaluate = [&](double deg) {
+    const double a = normalise(deg);
+    if (!tried.insert(a).second || !keep_going()) return;
+    ++evaluations;
+    const std::optional<double> c = cost(a);
+    if (!c) return;
+    if (!best || *c < best->cost || (*c == best->cost && a < best->angle_deg)) best = SweepSearch{a, *c, 0};
+  };
+  // Directions of the longest edges of the wall and its obstacles: sweeping along them leaves no
+  // sliver rows beside them.
+  std::vector<std::pair<double, double>> edges;  // (length, direction)
+  auto collect = [&](const Ring& ring) {
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point d = ring[(i + 1) % ring.size()] - ring[i];
+      edges.push_back({norm(d), std::atan2(d.y, d.x) * 180.0 / M_PI});
+    }
+  };
+  collect(wall.boundary);
+  for (const Obstacle& o : wall.obstacles)
+    if (o.type != ObstacleType::Circle) collect(o.polygon);
+  std::stable_sort(edges.begin(), edges.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t i = 0; i < std::min(longest_edges, edges.size()); ++i) evaluate(edges[i].second);
+  for (double deg = 0.0; deg < 180.0; deg += coarse_step_deg) evaluate(deg);
+  if (best) {
+    const double centre = best->angle_deg;
+    for (double d = -coarse_step_deg + fine_step_deg; d < coarse_step_deg; d += fine_step_deg) evaluate(centre + d);
+  }
+  if (best) best->evaluations = evaluations;
+  return best;
+}
+
+double sweepCost(const Path& path, double turn_penalty_m) {
+  double length = 0.0;
+  std::size_t turns = 0;
+  Point heading{0.0, 0.0};
+  for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
+    const Point d = path.waypoints[i + 1] - path.waypoints[i];
+    const double l = norm(d);
+    if (l == 0.0) continue;
+    length += l;
+    if (norm(heading) > 0.0 && dot(heading, d) < std::cos(M_PI / 6.0) * norm(heading) * l) ++turns;
+    heading = d;
+  }
+  return length + turn_penalty_m * static_cast<double>(turns);
+}
+
+}  // namespace coverbench
