@@ -22,12 +22,15 @@ using Clock = std::chrono::steady_clock;
 /// done/total, rate and ETA: a redrawn bar on a terminal, a line every 5 % otherwise.
 class Progress {
  public:
-  Progress(std::FILE* out, std::size_t total) : out_(out), total_(total), tty_(out && isatty(fileno(out))), start_(Clock::now()) {}
-  void update(std::size_t done) {
+  /// `total_cost`: the sum of the runs' estimated costs; the ETA scales elapsed time by the cost
+  /// still to go, since runs start largest first and early runs are the slow ones.
+  Progress(std::FILE* out, std::size_t total, double total_cost)
+      : out_(out), total_(total), total_cost_(total_cost), tty_(out && isatty(fileno(out))), start_(Clock::now()) {}
+  void update(std::size_t done, double done_cost) {
     if (!out_ || total_ == 0) return;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
     const double rate = elapsed > 0.0 ? static_cast<double>(done) / elapsed : 0.0;
-    const double eta = rate > 0.0 ? static_cast<double>(total_ - done) / rate : 0.0;
+    const double eta = done_cost > 0.0 ? elapsed * (total_cost_ - done_cost) / done_cost : 0.0;
     if (tty_) {
       const int width = 30;
       const int filled = static_cast<int>(width * static_cast<double>(done) / static_cast<double>(total_));
@@ -53,6 +56,7 @@ class Progress {
   }
   std::FILE* out_;
   std::size_t total_;
+  double total_cost_;
   bool tty_;
   Clock::time_point start_;
 };
@@ -123,7 +127,9 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
   const unsigned workers = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(todo.size(), 1)));
   for (unsigned t = 0; t < workers && !todo.empty(); ++t) pool.emplace_back(work);
 
-  Progress progress(options.progress, todo.size());
+  double total_cost = 0.0, done_cost = 0.0;
+  for (const RunSpec* r : todo) total_cost += cost(r);
+  Progress progress(options.progress, todo.size(), total_cost);
   if (options.progress && summary.skipped)
     std::fprintf(options.progress, "%zu of %zu runs already in %s: skipped\n", summary.skipped, runs.size(),
                  summary.database.c_str());
@@ -138,7 +144,8 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
       lock.unlock();
       db.storeRun(*spec, rec);
       ++stored;
-      progress.update(stored);
+      done_cost += cost(spec);
+      progress.update(stored, done_cost);
     }
   } catch (...) {
     next = todo.size();
