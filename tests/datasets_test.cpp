@@ -34,7 +34,7 @@ TEST(Datasets, SameFamilySeedAndIndexGiveTheSameBytes) {
 }
 
 TEST(Datasets, WallDoesNotDependOnHowManyAreGenerated) {
-  for (const std::string& family : {"residential", "random", "narrow"}) {
+  for (const char* family : {"residential", "random", "narrow"}) {
     const std::vector<Wall> few = generateWalls(family, 5, 3), many = generateWalls(family, 5, 20);
     for (std::size_t i = 0; i < few.size(); ++i) EXPECT_EQ(wallToJson(few[i]), wallToJson(many[i])) << family << " " << i;
   }
@@ -77,7 +77,9 @@ TEST(Datasets, FamiliesHaveTheirDocumentedShape) {
     EXPECT_GE(b.height(), 2.4);
     EXPECT_LE(b.height(), 3.0);
     for (const Obstacle& o : r.obstacles)
-      if (o.label == "door") EXPECT_EQ(boundingBox(o.polygon).min_y, 0.0) << "doors stand on the floor";
+      if (o.label == "door") {
+        EXPECT_EQ(boundingBox(o.polygon).min_y, 0.0) << "doors stand on the floor";
+      }
     const Wall s = generateWall("stress", seed % 5, 0);
     EXPECT_GE(s.obstacles.size(), 100u);
     EXPECT_GE(boundingBox(s.boundary).width(), 40.0);

@@ -47,7 +47,9 @@ TEST(SpanningTree, ShortBranchesFirstNoLongerThanStopWhichIsShorterThanReturn) {
       const double l_ret = pathLengths(ret.path).total, l_stop = pathLengths(stop.path).total,
                    l_sbf = pathLengths(sbf.path).total;
       EXPECT_LE(l_sbf, l_stop + 1e-9) << wall.name << " " << tree;
-      if (ret.stats.at("tree_cells") > 1.0) EXPECT_LT(l_stop, l_ret) << wall.name << " " << tree;
+      if (ret.stats.at("tree_cells") > 1.0) {
+        EXPECT_LT(l_stop, l_ret) << wall.name << " " << tree;
+      }
       EXPECT_LE(sbf.path.waypoints.size(), stop.path.waypoints.size()) << wall.name;
       EXPECT_LT(stop.path.waypoints.size(), ret.path.waypoints.size()) << wall.name;
       // All three visit the same cells (only the walk differs), so coverage is the same.

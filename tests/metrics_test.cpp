@@ -31,12 +31,8 @@ Path makePath(Point start, std::vector<Move> moves) {
 double overlapArea(const PathMetrics& m) { return m.passes.overlap * m.passes.swept_area_estimate; }
 
 bool contains(const Region& region, Point p) {
-  for (const PolygonWithHoles& poly : region) {
-    if (!pointInRing(p, poly.outer)) continue;
-    bool in_hole = false;
-    for (const Ring& h : poly.holes) in_hole = in_hole || pointInRing(p, h);
-    if (!in_hole) return true;
-  }
+  for (const PolygonWithHoles& poly : region)
+    if (pointInPolygon(poly, p)) return true;
   return false;
 }
 

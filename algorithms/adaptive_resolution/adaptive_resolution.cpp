@@ -2,71 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
+#include "coverbench/edge_index.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::adaptive_resolution {
 namespace {
-
-/// F's boundary edges bucketed in a uniform grid, for "does any edge cross this rectangle".
-class EdgeIndex {
- public:
-  EdgeIndex(const std::vector<Ring>& rings, double cell) : cell_(cell) {
-    for (const Ring& ring : rings)
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Point a = ring[i], b = ring[(i + 1) % ring.size()];
-        edges_.push_back({a, b});
-        for (long x = index(std::fmin(a.x, b.x)); x <= index(std::fmax(a.x, b.x)); ++x)
-          for (long y = index(std::fmin(a.y, b.y)); y <= index(std::fmax(a.y, b.y)); ++y)
-            buckets_[key(x, y)].push_back(static_cast<std::uint32_t>(edges_.size() - 1));
-      }
-  }
-  /// Whether any edge meets the closed rectangle.
-  bool crosses(const Box& r) const {
-    for (long x = index(r.min_x); x <= index(r.max_x); ++x)
-      for (long y = index(r.min_y); y <= index(r.max_y); ++y) {
-        const auto it = buckets_.find(key(x, y));
-        if (it == buckets_.end()) continue;
-        for (std::uint32_t e : it->second)
-          if (segmentMeetsBox(edges_[e].first, edges_[e].second, r)) return true;
-      }
-    return false;
-  }
-
- private:
-  /// Liang-Barsky: does [a, b] meet the box?
-  static bool segmentMeetsBox(Point a, Point b, const Box& r) {
-    double t0 = 0.0, t1 = 1.0;
-    const double d[2] = {b.x - a.x, b.y - a.y};
-    const double lo[2] = {r.min_x - a.x, r.min_y - a.y}, hi[2] = {r.max_x - a.x, r.max_y - a.y};
-    for (int k = 0; k < 2; ++k) {
-      if (d[k] == 0.0) {
-        if (lo[k] > 0.0 || hi[k] < 0.0) return false;
-        continue;
-      }
-      double ta = lo[k] / d[k], tb = hi[k] / d[k];
-      if (ta > tb) std::swap(ta, tb);
-      t0 = std::fmax(t0, ta);
-      t1 = std::fmin(t1, tb);
-      if (t0 > t1) return false;
-    }
-    return true;
-  }
-  long index(double v) const { return static_cast<long>(std::floor(v / cell_)); }
-  static long long key(long x, long y) { return (static_cast<long long>(x) << 32) ^ (y & 0xffffffffLL); }
-  double cell_;
-  std::vector<std::pair<Point, Point>> edges_;
-  std::unordered_map<long long, std::vector<std::uint32_t>> buckets_;
-};
-
-bool inRegion(const PolygonWithHoles& poly, Point p) {
-  if (!pointInRing(p, poly.outer)) return false;
-  for (const Ring& h : poly.holes)
-    if (pointInRing(p, h)) return false;
-  return true;
-}
 
 /// A straight piece of a row: from x0 to x1 at row `row` (x0 == x1 for a single cell).
 struct Piece {
@@ -110,8 +52,8 @@ class AdaptivePlanner final : public Planner {
       inner.add({X0 + (n.cx + 0.5) * s, Y0 + (n.cy + 0.5) * s});
       inner.add({X0 + (n.cx + n.size - 0.5) * s, Y0 + (n.cy + n.size - 0.5) * s});
       if (inner.min_x > box.max_x || inner.min_y > box.max_y) continue;  // beyond F entirely
-      if (!edges.crosses(inner)) {
-        if (!inRegion(main, {inner.min_x, inner.min_y})) continue;  // wholly outside F
+      if (!edges.meetsBox(inner)) {
+        if (!pointInPolygon(main, {inner.min_x, inner.min_y})) continue;  // wholly outside F
         for (int j = 0; j < n.size; ++j) rows[n.cy + j].push_back({inner.min_x, inner.max_x});
         ++(n.size == 1 ? fine_leaves : open_leaves);
         largest = std::max<std::size_t>(largest, static_cast<std::size_t>(n.size));
@@ -119,7 +61,7 @@ class AdaptivePlanner final : public Planner {
       }
       if (n.size == 1) {
         const Point c{inner.min_x, inner.min_y};
-        if (inRegion(main, c) && ws.router().isFree(c, c)) {
+        if (pointInPolygon(main, c) && ws.router().isFree(c, c)) {
           rows[n.cy].push_back({c.x, c.x});
           ++fine_leaves;
         }

@@ -2,44 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
+#include "coverbench/edge_index.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::spiral {
 namespace {
-
-/// Ring edges bucketed in a uniform grid, for "is any edge within this radius of p" queries.
-class EdgeGrid {
- public:
-  EdgeGrid(const std::vector<Ring>& rings, double cell) : cell_(cell) {
-    for (const Ring& ring : rings)
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Point a = ring[i], b = ring[(i + 1) % ring.size()];
-        for (long x = index(std::fmin(a.x, b.x)); x <= index(std::fmax(a.x, b.x)); ++x)
-          for (long y = index(std::fmin(a.y, b.y)); y <= index(std::fmax(a.y, b.y)); ++y)
-            cells_[key(x, y)].push_back({a, b});
-      }
-  }
-  bool anyWithin(Point p, double radius) const {
-    const double r2 = radius * radius;
-    for (long x = index(p.x - radius); x <= index(p.x + radius); ++x)
-      for (long y = index(p.y - radius); y <= index(p.y + radius); ++y) {
-        const auto it = cells_.find(key(x, y));
-        if (it == cells_.end()) continue;
-        for (const auto& [a, b] : it->second)
-          if (squaredDistancePointSegment(p, a, b) <= r2) return true;
-      }
-    return false;
-  }
-
- private:
-  long index(double v) const { return static_cast<long>(std::floor(v / cell_)); }
-  static long long key(long x, long y) { return (static_cast<long long>(x) << 32) ^ (y & 0xffffffffLL); }
-  double cell_;
-  std::unordered_map<long long, std::vector<std::pair<Point, Point>>> cells_;
-};
 
 /// Interior angle of a ring at vertex i when the region lies to the left of its edges (outer
 /// rings counter-clockwise, holes clockwise); pi or more where the region is not convex.
@@ -57,7 +26,7 @@ double interiorAngle(const Ring& ring, std::size_t i) {
 /// strip, a whole component), where a leftover centre may remain. `slack` absorbs chord error.
 bool somethingVanished(const std::vector<Ring>& outer, const std::vector<Ring>& inner, double step, double slack) {
   if (inner.empty()) return true;
-  const EdgeGrid grid(inner, 2.0 * step);
+  const EdgeIndex grid(inner, 2.0 * step);
   // Distance to the inner level expected at distance t along an edge from a corner of angle a.
   auto expected = [&](double a, double t) {
     if (a >= M_PI) return step;

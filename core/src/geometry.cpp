@@ -120,6 +120,13 @@ double distanceSegmentFilledRing(Point a, Point b, const Ring& ring) {
   return distanceSegmentRingEdges(a, b, ring);
 }
 
+bool pointInPolygon(const PolygonWithHoles& polygon, Point p) {
+  if (!pointInRing(p, polygon.outer)) return false;
+  for (const Ring& hole : polygon.holes)
+    if (pointInRing(p, hole)) return false;
+  return true;
+}
+
 bool ringIsSimple(const Ring& ring) {
   const std::size_t n = ring.size();
   if (n < 3) return false;

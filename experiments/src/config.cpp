@@ -104,6 +104,20 @@ std::string join(const std::vector<std::pair<std::string, std::string>>& setting
   return out;
 }
 
+/// One planner configuration: resolved parameters, its label, and its content hash.
+PlannerConfig makeConfig(const PlannerInfo& info, std::vector<std::pair<std::string, std::string>> settings,
+                         const std::string& where) {
+  PlannerConfig pc;
+  pc.planner = info.name;
+  pc.params = resolveParams(info, settings, where);
+  pc.label = settings.empty() ? info.name : info.name + "(" + join(settings) + ")";
+  pc.settings = std::move(settings);
+  std::string canonical = "planner=" + info.name;
+  for (const auto& [k, v] : pc.params.all()) canonical += "\n" + k + "=" + toString(v);
+  pc.id = sha256Hex(canonical);
+  return pc;
+}
+
 }  // namespace
 
 ExperimentConfig loadExperimentConfig(const std::string& path) {
@@ -182,12 +196,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     YAML::Node p = planners[i];
     if (p.IsScalar() && p.Scalar() == "all") {  // every registered planner, default parameters
       for (const PlannerInfo& info : registeredPlanners()) {
-        PlannerConfig pc;
-        pc.planner = pc.label = info.name;
-        pc.params = resolveParams(info, {}, where);
-        std::string canonical = "planner=" + info.name;
-        for (const auto& [k, v] : pc.params.all()) canonical += "\n" + k + "=" + toString(v);
-        pc.id = sha256Hex(canonical);
+        PlannerConfig pc = makeConfig(info, {}, where);
         if (!labels.insert(pc.label).second) r.fail(p, where, "configuration '" + pc.label + "' is listed twice");
         c.planners.push_back(std::move(pc));
       }
@@ -238,14 +247,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
       }
     }
     for (auto& settings : combos) {
-      PlannerConfig pc;
-      pc.planner = name;
-      pc.settings = settings;
-      pc.params = resolveParams(*info, settings, where);
-      pc.label = settings.empty() ? name : name + "(" + join(settings) + ")";
-      std::string canonical = "planner=" + name;
-      for (const auto& [k, v] : pc.params.all()) canonical += "\n" + k + "=" + toString(v);
-      pc.id = sha256Hex(canonical);
+      PlannerConfig pc = makeConfig(*info, std::move(settings), where);
       if (!labels.insert(pc.label).second) r.fail(planners[i], where, "configuration '" + pc.label + "' is listed twice");
       c.planners.push_back(std::move(pc));
     }

@@ -92,13 +92,15 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
   summary.skipped = runs.size() - todo.size();
   // Largest walls first, so the slowest runs do not end up alone at the end (results do not depend
   // on the order; the database is read back sorted).
-  auto cost = [](const RunSpec* r) {
-    const Box b = boundingBox(r->wall->wall.boundary);
-    // Cells to cover times a power of the obstacle count: fitted loosely to the default
-    // experiment (a 50 m wall with 300 openings takes about 2000 times a small room).
-    return b.width() * b.height() * std::pow(1.0 + static_cast<double>(r->wall->wall.obstacles.size()), 0.75) /
-           (r->tool.tool_width * r->tool.tool_width);
-  };
+  // Estimated cost: cells to cover times a power of the obstacle count, fitted loosely to the
+  // default experiment (a 50 m wall with 300 openings takes about 2000 times a small room).
+  std::vector<double> costs(runs.size());
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const Box b = boundingBox(runs[i].wall->wall.boundary);
+    costs[i] = b.width() * b.height() * std::pow(1.0 + static_cast<double>(runs[i].wall->wall.obstacles.size()), 0.75) /
+               (runs[i].tool.tool_width * runs[i].tool.tool_width);
+  }
+  auto cost = [&](const RunSpec* r) { return costs[static_cast<std::size_t>(r - runs.data())]; };
   std::stable_sort(todo.begin(), todo.end(), [&](const RunSpec* a, const RunSpec* b) { return cost(a) > cost(b); });
 
   // Workers take runs in order; the calling thread is the single database writer.

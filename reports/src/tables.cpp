@@ -92,17 +92,24 @@ std::vector<std::string> shownMetrics(const ResultSet& rs) {
 
 /// summaries[dataset][planner][metric]
 std::map<std::string, std::map<std::string, std::map<std::string, Summary>>> summaries(const ResultSet& rs) {
+  // Values of every metric per (dataset, planner), over valid runs, gathered in one pass.
+  std::map<std::pair<std::string, std::string>, std::map<std::string, std::vector<double>>> values;
+  for (const ResultRow& r : rs.runs) {
+    if (!usable(r)) continue;
+    for (const auto& [name, v] : r.metrics) {
+      if (!std::isfinite(v)) continue;
+      values[{r.dataset, r.planner}][name].push_back(v);
+      values[{"all", r.planner}][name].push_back(v);
+    }
+  }
   std::map<std::string, std::map<std::string, std::map<std::string, Summary>>> out;
   for (const std::string& d : datasetsOf(rs))
     for (const std::string& p : rs.planners)
       for (const std::string& m : shownMetrics(rs)) {
-        std::vector<double> values;
-        for (const ResultRow& r : rs.runs) {
-          if (r.planner != p || (d != "all" && r.dataset != d) || !usable(r)) continue;
-          const auto it = r.metrics.find(m);
-          if (it != r.metrics.end() && std::isfinite(it->second)) values.push_back(it->second);
-        }
-        out[d][p][m] = summarise(std::move(values));
+        const auto group = values.find({d, p});
+        std::vector<double> v;
+        if (group != values.end() && group->second.count(m)) v = group->second.at(m);
+        out[d][p][m] = summarise(std::move(v));
       }
   return out;
 }

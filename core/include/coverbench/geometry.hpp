@@ -77,6 +77,8 @@ double squaredDistancePointSegment(Point p, Point a, Point b);
 
 /// Point in ring by the crossing rule; points exactly on the ring may go either way.
 bool pointInRing(Point p, const Ring& ring);
+/// Point in a polygon with holes: inside the outer ring and in none of the holes (same rule).
+bool pointInPolygon(const PolygonWithHoles& polygon, Point p);
 /// Distance from the segment [a, b] to the edges of the ring (not its interior).
 double distanceSegmentRingEdges(Point a, Point b, const Ring& ring);
 /// Distance from the segment [a, b] to the filled ring: 0 if the segment touches or enters it.
