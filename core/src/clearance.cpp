@@ -16,6 +16,46 @@ ClearanceField::ClearanceField(const Wall& wall) : wall_(&wall) {
       obstacle_boxes_.push_back(boundingBox(o.polygon));
     }
   }
+  // A grid pays off only past a few dozen obstacles; aim at about one obstacle per bucket.
+  if (obstacle_boxes_.size() < 32) return;
+  for (const Box& b : obstacle_boxes_) grid_box_.add({b.min_x, b.min_y}), grid_box_.add({b.max_x, b.max_y});
+  const double area = std::max(grid_box_.width() * grid_box_.height(), 1e-12);
+  grid_cell_ = std::max({std::sqrt(area / static_cast<double>(obstacle_boxes_.size())), grid_box_.width() / 512.0,
+                         grid_box_.height() / 512.0, 1e-6});
+  grid_nx_ = static_cast<long>(grid_box_.width() / grid_cell_) + 1;
+  grid_ny_ = static_cast<long>(grid_box_.height() / grid_cell_) + 1;
+  grid_.resize(static_cast<std::size_t>(grid_nx_ * grid_ny_));
+  for (std::size_t i = 0; i < obstacle_boxes_.size(); ++i) {
+    const Box& b = obstacle_boxes_[i];
+    const long x0 = static_cast<long>((b.min_x - grid_box_.min_x) / grid_cell_);
+    const long x1 = std::min(grid_nx_ - 1, static_cast<long>((b.max_x - grid_box_.min_x) / grid_cell_));
+    const long y0 = static_cast<long>((b.min_y - grid_box_.min_y) / grid_cell_);
+    const long y1 = std::min(grid_ny_ - 1, static_cast<long>((b.max_y - grid_box_.min_y) / grid_cell_));
+    for (long y = y0; y <= y1; ++y)
+      for (long x = x0; x <= x1; ++x) grid_[static_cast<std::size_t>(y * grid_nx_ + x)].push_back(static_cast<std::uint32_t>(i));
+  }
+}
+
+template <class F>
+bool ClearanceField::forObstaclesNear(const Box& box, double reach, F&& f) const {
+  if (grid_.empty()) {
+    for (std::size_t i = 0; i < obstacle_boxes_.size(); ++i)
+      if (!f(i)) return false;
+    return true;
+  }
+  auto clampIndex = [](double v, long n) { return std::clamp(static_cast<long>(std::floor(v)), 0L, n - 1); };
+  if (box.max_x + reach < grid_box_.min_x || box.min_x - reach > grid_box_.max_x || box.max_y + reach < grid_box_.min_y ||
+      box.min_y - reach > grid_box_.max_y)
+    return true;
+  const long x0 = clampIndex((box.min_x - reach - grid_box_.min_x) / grid_cell_, grid_nx_);
+  const long x1 = clampIndex((box.max_x + reach - grid_box_.min_x) / grid_cell_, grid_nx_);
+  const long y0 = clampIndex((box.min_y - reach - grid_box_.min_y) / grid_cell_, grid_ny_);
+  const long y1 = clampIndex((box.max_y + reach - grid_box_.min_y) / grid_cell_, grid_ny_);
+  for (long y = y0; y <= y1; ++y)
+    for (long x = x0; x <= x1; ++x)
+      for (std::uint32_t i : grid_[static_cast<std::size_t>(y * grid_nx_ + x)])
+        if (!f(i)) return false;
+  return true;
 }
 
 double ClearanceField::obstacleDistance(std::size_t i, Point a, Point b) const {
@@ -34,9 +74,15 @@ SegmentClearance ClearanceField::measure(Point a, Point b, double obstacle_cutof
   seg.add(a);
   seg.add(b);
   double best = obstacle_cutoff;
-  for (std::size_t i = 0; i < obstacle_boxes_.size(); ++i) {
-    if (boxDistance(seg, obstacle_boxes_[i]) >= best) continue;
-    best = std::fmin(best, obstacleDistance(i, a, b));
+  if (!grid_.empty() && std::isinf(best)) {
+    // Unbounded: a scan of every obstacle finds the nearest at the same cost as the grid would.
+    for (std::size_t i = 0; i < obstacle_boxes_.size(); ++i)
+      if (boxDistance(seg, obstacle_boxes_[i]) < best) best = std::fmin(best, obstacleDistance(i, a, b));
+  } else {
+    forObstaclesNear(seg, best, [&](std::size_t i) {
+      if (boxDistance(seg, obstacle_boxes_[i]) < best) best = std::fmin(best, obstacleDistance(i, a, b));
+      return true;
+    });
   }
   c.obstacle_distance = best;
   return c;
@@ -49,19 +95,20 @@ bool ClearanceField::segmentFree(Point a, Point b, double radius, double clearan
   Box seg;
   seg.add(a);
   seg.add(b);
-  for (std::size_t i = 0; i < obstacle_boxes_.size(); ++i) {
-    if (squaredBoxDistance(seg, obstacle_boxes_[i]) >= need_obstacle2) continue;
+  const bool clear = forObstaclesNear(seg, need_obstacle, [&](std::size_t i) {
+    if (squaredBoxDistance(seg, obstacle_boxes_[i]) >= need_obstacle2) return true;
     const Obstacle& o = wall_->obstacles[i];
     if (o.type == ObstacleType::Circle) {
       const double reach = o.radius + need_obstacle;
-      if (squaredDistancePointSegment(o.center, a, b) < reach * reach) return false;
-      continue;
+      return squaredDistancePointSegment(o.center, a, b) >= reach * reach;
     }
     if (pointInRing(a, o.polygon)) return false;
     const Ring& ring = o.polygon;
     for (std::size_t k = 0, n = ring.size(); k < n; ++k)
       if (squaredDistanceSegmentSegment(a, b, ring[k], ring[(k + 1) % n]) < need_obstacle2) return false;
-  }
+    return true;
+  });
+  if (!clear) return false;
   const Ring& ring = wall_->boundary;
   const std::size_t n = ring.size();
   const double need_boundary = radius + margin;

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <queue>
 
 #include "coverbench/workspace.hpp"
 
@@ -15,6 +17,13 @@ namespace {
 constexpr double kNodeMargin = 5e-6;
 /// Largest angle a node chain turns through per step around a corner.
 constexpr double kMaxStep = M_PI / 2.0;
+
+/// Straight-line distance with a plain square root (std::hypot is several times slower and its
+/// overflow care is not needed at wall scale): the A* inner loop's cost.
+inline double length(Point a, Point b) {
+  const double dx = a.x - b.x, dy = a.y - b.y;
+  return std::sqrt(dx * dx + dy * dy);
+}
 
 Point unit(double angle) { return {std::cos(angle), std::sin(angle)}; }
 double angleOf(Point v) { return std::atan2(v.y, v.x); }
@@ -45,6 +54,7 @@ struct TransitRouter::Graph {
                                   boost::property<boost::edge_weight_t, double>>;
   std::vector<Point> nodes;
   G graph;
+  bool linked = false;  ///< whether `graph` holds the edges between all nodes yet
 };
 
 TransitRouter::TransitRouter(const ClearanceField& field, const ToolParams& tool) : field_(&field), tool_(tool) {}
@@ -57,6 +67,88 @@ bool TransitRouter::isFree(Point a, Point b) const {
 std::size_t TransitRouter::nodeCount() {
   build();
   return graph_->nodes.size();
+}
+
+void TransitRouter::link() {
+  build();
+  if (graph_->linked) return;
+  graph_->linked = true;
+  const std::size_t n = graph_->nodes.size();
+  graph_->graph = Graph::G(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (isFree(graph_->nodes[i], graph_->nodes[j]))
+        boost::add_edge(i, j, distance(graph_->nodes[i], graph_->nodes[j]), graph_->graph);
+}
+
+std::optional<std::vector<Point>> TransitRouter::localRoute(Point a, Point b) {
+  // Search the nodes in a box around a and b; grow the box until the route found is provably the
+  // shortest through all nodes: a route that leaves the box is at least as long as the box's
+  // shorter side (the ellipse of shorter routes fits in the box's inscribed disk). A box holding
+  // every node is the whole graph.
+  Box around;
+  around.add(a);
+  around.add(b);
+  const std::vector<Point>& nodes = graph_->nodes;
+  for (double grow = std::fmax(1.0, 0.5 * distance(a, b));; grow *= 2.0) {
+    Box box = around;
+    box.min_x -= grow, box.min_y -= grow, box.max_x += grow, box.max_y += grow;
+    std::vector<Point> pos{a, b};
+    for (const Point& p : nodes)
+      if (p.x >= box.min_x && p.x <= box.max_x && p.y >= box.min_y && p.y <= box.max_y) pos.push_back(p);
+    // Once the box holds every node, the search is over the whole graph and needs no bound.
+    const bool everything = pos.size() == nodes.size() + 2;
+    // An end that sees no node (a cusp of F, a passage barely wider than the tool) gets F's own
+    // boundary vertices near the ends as extra nodes, as in the whole-graph fallback.
+    auto seesNode = [&](Point p) {
+      for (std::size_t i = 2; i < pos.size(); ++i)
+        if (isFree(p, pos[i])) return true;
+      return false;
+    };
+    if (!seesNode(a) || !seesNode(b))
+      for (const std::vector<Point>& chain : boundaryChains(a, b))
+        for (const Point& p : chain)
+          if (p.x >= box.min_x && p.x <= box.max_x && p.y >= box.min_y && p.y <= box.max_y) pos.push_back(p);
+    const double bound = everything ? INFINITY : std::fmin(box.width(), box.height());
+    // A* with lazy edges: a move is checked only when it is the cheapest way left to reach its
+    // end. The Euclidean heuristic is consistent, so the first valid arrival at b is shortest.
+    struct Entry {
+      double f, g;
+      std::size_t v, from;
+      bool operator>(const Entry& o) const { return f > o.f || (f == o.f && v > o.v); }
+    };
+    const std::size_t none = pos.size();
+    std::vector<bool> closed(pos.size(), false);
+    std::vector<std::size_t> pred(pos.size(), none);
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+    open.push({distance(a, b), 0.0, 0, none});
+    bool found = false;
+    while (!open.empty()) {
+      const Entry e = open.top();
+      open.pop();
+      if (e.f > bound) break;  // anything from here on is too long to be proven shortest here
+      if (closed[e.v]) continue;
+      if (e.from != none && !isFree(pos[e.from], pos[e.v])) continue;
+      closed[e.v] = true;
+      pred[e.v] = e.from;
+      if (e.v == 1) {
+        found = true;
+        break;
+      }
+      for (std::size_t w = 1; w < pos.size(); ++w) {
+        if (closed[w]) continue;
+        const double g = e.g + length(pos[e.v], pos[w]);
+        const double f = g + length(pos[w], b);
+        if (f <= bound) open.push({f, g, w, e.v});
+      }
+    }
+    if (!found && everything) return std::nullopt;
+    if (!found) continue;
+    std::vector<Point> points;
+    for (std::size_t v = 1; v != none; v = pred[v]) points.push_back(pos[v]);
+    std::reverse(points.begin(), points.end());
+    return points;
+  }
 }
 
 void TransitRouter::build() {
@@ -98,25 +190,12 @@ void TransitRouter::build() {
   }
   for (const Point& c : candidates)
     if (isFree(c, c)) graph_->nodes.push_back(c);
-
-  const std::size_t n = graph_->nodes.size();
-  graph_->graph = Graph::G(n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j)
-      if (isFree(graph_->nodes[i], graph_->nodes[j]))
-        boost::add_edge(i, j, distance(graph_->nodes[i], graph_->nodes[j]), graph_->graph);
 }
 
-std::optional<std::vector<Point>> TransitRouter::route(Point a, Point b) {
-  if (isFree(a, b)) return std::vector<Point>{a, b};
-  build();
-  std::optional<std::vector<Point>> result = search(a, b, {});
-  if (result || !free_) return result;
-  // Fallback: F's own boundary vertices near a and b, in runs along the rings. Consecutive ones
-  // are joined by F's edges, which are free, so a walk along F leaves cusps and thin passages
-  // that no corner node can see into.
-  const double window = std::fmax(4.0 * (tool_.radius() + tool_.clearance), 0.25);
+std::vector<std::vector<Point>> TransitRouter::boundaryChains(Point a, Point b) const {
   std::vector<std::vector<Point>> chains;
+  if (!free_) return chains;
+  const double window = std::fmax(4.0 * (tool_.radius() + tool_.clearance), 0.25);
   for (const PolygonWithHoles& poly : *free_) {
     std::vector<const Ring*> rings{&poly.outer};
     for (const Ring& h : poly.holes) rings.push_back(&h);
@@ -133,6 +212,20 @@ std::optional<std::vector<Point>> TransitRouter::route(Point a, Point b) {
       if (!run.empty()) chains.push_back(std::move(run));
     }
   }
+  return chains;
+}
+
+std::optional<std::vector<Point>> TransitRouter::route(Point a, Point b) {
+  if (isFree(a, b)) return std::vector<Point>{a, b};
+  build();
+  if (auto local = localRoute(a, b)) return local;
+  link();
+  std::optional<std::vector<Point>> result = search(a, b, {});
+  if (result || !free_) return result;
+  // Fallback: F's own boundary vertices near a and b, in runs along the rings. Consecutive ones
+  // are joined by F's edges, which are free, so a walk along F leaves cusps and thin passages
+  // that no corner node can see into.
+  const std::vector<std::vector<Point>> chains = boundaryChains(a, b);
   if (chains.empty()) return result;
   return search(a, b, chains);
 }

@@ -7,6 +7,7 @@
 /// never sampled.
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "coverbench/geometry.hpp"
@@ -42,9 +43,18 @@ class ClearanceField {
 
  private:
   double obstacleDistance(std::size_t i, Point a, Point b) const;
+  /// Calls f(i) for every obstacle whose box may lie within `reach` of `box` (some more than
+  /// once); false from f stops the scan and is returned.
+  template <class F>
+  bool forObstaclesNear(const Box& box, double reach, F&& f) const;
 
   const Wall* wall_;
   std::vector<Box> obstacle_boxes_;
+  // Obstacles bucketed by box in a uniform grid (walls with many obstacles only).
+  Box grid_box_;
+  double grid_cell_ = 0.0;
+  long grid_nx_ = 0, grid_ny_ = 0;
+  std::vector<std::vector<std::uint32_t>> grid_;
 };
 
 }  // namespace coverbench

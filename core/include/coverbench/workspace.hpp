@@ -37,7 +37,11 @@ Region freeRegion(const Wall& wall, const ToolParams& tool, double margin = kFre
 
 /// Shortest collision-free polylines between free points, on a visibility graph whose nodes sit
 /// just outside the rounded corners of F (around convex obstacle corners, circles and reflex wall
-/// corners). Edges are checked exactly; the graph is built on the first query that needs it.
+/// corners). Edges are checked exactly, lazily: an A* search checks a move only when it is the
+/// cheapest way left to reach its end. A query searches the nodes in a box around its ends,
+/// growing the box until the route found is shorter than any route leaving the box could be, so
+/// it is the shortest through all nodes. Only when that finds nothing (an end in a cusp of F) is
+/// the whole graph linked, once, for the fallback below.
 class TransitRouter {
  public:
   TransitRouter(const ClearanceField& field, const ToolParams& tool);
@@ -58,7 +62,13 @@ class TransitRouter {
 
  private:
   struct Graph;
-  void build();
+  void build();  // the nodes
+  void link();   // the edges between all nodes
+  /// The shortest route through the nodes in a box around a and b, grown until no route leaving
+  /// the box could be shorter (at most to every node); nullopt when there is none.
+  std::optional<std::vector<Point>> localRoute(Point a, Point b);
+  /// Runs of F's boundary vertices near a or b (needs the free region).
+  std::vector<std::vector<Point>> boundaryChains(Point a, Point b) const;
 
   std::optional<std::vector<Point>> search(Point a, Point b, const std::vector<std::vector<Point>>& chains);
 
