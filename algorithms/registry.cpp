@@ -2,8 +2,10 @@
 #include "coverbench/registry.hpp"
 
 #include "adaptive_resolution/adaptive_resolution.hpp"
+#include "boustrophedon/boustrophedon.hpp"
 #include "spanning_tree/spanning_tree.hpp"
 #include "spiral/spiral.hpp"
+#include "trapezoidal/trapezoidal.hpp"
 #include "zigzag/zigzag.hpp"
 
 namespace coverbench {
@@ -14,6 +16,8 @@ const std::vector<PlannerInfo>& registeredPlanners() {
       spiral::info(),
       spanning_tree::info(),
       adaptive_resolution::info(),
+      trapezoidal::info(),
+      boustrophedon::info(),
   };
   return planners;
 }

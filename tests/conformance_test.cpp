@@ -104,6 +104,15 @@ std::vector<Case> allCases() {
     cases.push_back({"spanning-tree", test::sourcePath(wall), {}, {{"neighbour_order", "LDRU"}}});
     cases.push_back({"adaptive-resolution", test::sourcePath(wall), {}, {{"dense_waypoints", "true"}}});
   }
+  for (const char* planner : {"trapezoidal", "boustrophedon"})
+    for (const char* wall : {"tests/data/conformance/garden_circles.json", "tests/data/conformance/stairwell.json",
+                             "tests/data/conformance/rotated_polygons.json", "datasets/canonical/living_room_north.json"}) {
+      for (const char* order : {"dfs", "greedy"}) cases.push_back({planner, test::sourcePath(wall), {}, {{"order", order}}});
+      cases.push_back({planner, test::sourcePath(wall), {}, {{"boundary_loop", "false"}}});
+      cases.push_back({planner, test::sourcePath(wall), {}, {{"sweep_angle", "37"}}});
+      cases.push_back({planner, test::sourcePath(wall), {}, {{"overlap", "0.3"}}});
+      cases.push_back({planner, test::sourcePath(wall), {}, {{"direction_search", "true"}}});
+    }
   return cases;
 }
 

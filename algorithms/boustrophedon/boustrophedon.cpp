@@ -1,0 +1,16 @@
+#include "boustrophedon.hpp"
+
+#include "decomposition/decomposition_planner.hpp"
+
+namespace coverbench::boustrophedon {
+
+PlannerInfo info() {
+  PlannerInfo info = decomposition::plannerInfo(decomposition::Kind::Boustrophedon);
+  info.name = "boustrophedon";
+  info.summary = "Boustrophedon cellular decomposition of the free region (cells split only at critical points), "
+                 "cells ordered by a TSP tour and covered by back-and-forth passes";
+  info.reference = "Choset, Coverage of known spaces: the boustrophedon cellular decomposition, Autonomous Robots 9, 2000";
+  return info;
+}
+
+}  // namespace coverbench::boustrophedon

@@ -1,0 +1,338 @@
+#include "cell_ordering.hpp"
+
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/connected_components.hpp>
+#include <boost/graph/depth_first_search.hpp>
+#include <boost/graph/metric_tsp_approx.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iterator>
+#include <map>
+#include <stdexcept>
+
+namespace coverbench::decomposition {
+namespace {
+
+using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
+                                    boost::property<boost::edge_weight_t, double>>;
+
+/// How many nearest cells 2-opt tries to join each cell to.
+constexpr std::size_t kCandidates = 10;
+/// Upper bounds on 2-opt sweeps over the sequence (each O(n * kCandidates)) and on rounds of
+/// 2-opt followed by Or-opt: deterministic limits, so the order never depends on timing.
+constexpr int kMaxSweeps = 20;
+constexpr int kMaxRounds = 10;
+
+/// Straight-line distance (plain square root: std::hypot's overflow care is not needed here).
+inline double length(Point a, Point b) {
+  const double dx = a.x - b.x, dy = a.y - b.y;
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+/// The straight move from one visit's exit to the next visit's entry.
+double step(const std::vector<CellEnds>& cells, const Visit& a, const Visit& b) {
+  return length(cells[a.cell].exit[a.orientation], cells[b.cell].entry[b.orientation]);
+}
+
+Visit reversed(const std::vector<CellEnds>& cells, const Visit& v) {
+  return {v.cell, cells[v.cell].reverse[v.orientation]};
+}
+
+Graph cellGraph(const std::vector<CellEnds>& cells, const std::vector<CellLink>& links) {
+  const std::size_t n = cells.size();
+  auto nearestEnds = [&](std::size_t a, std::size_t b) {
+    double best = INFINITY;
+    for (const Point& p : cells[a].entry)
+      for (const Point& q : cells[b].entry) best = std::min(best, distance(p, q));
+    return best;
+  };
+  std::map<std::pair<std::size_t, std::size_t>, double> weights;  // ordered: edges go in deterministically
+  for (const CellLink& l : links)
+    if (l.a != l.b) weights.emplace(std::minmax(l.a, l.b), 0.0);
+  Graph g(n);
+  for (const auto& [key, w] : weights) boost::add_edge(key.first, key.second, nearestEnds(key.first, key.second), g);
+  // Join separate parts: each part (numbered in vertex order) to the nearest cell of an earlier one.
+  std::vector<int> part(n);
+  const int parts = n == 0 ? 0 : boost::connected_components(g, part.data());
+  for (int p = 1; p < parts; ++p) {
+    std::size_t best_u = 0, best_v = 0;
+    double best = INFINITY;
+    for (std::size_t u = 0; u < n; ++u) {
+      if (part[u] != p) continue;
+      for (std::size_t v = 0; v < n; ++v)
+        if (part[v] < p && distance(cells[u].centre, cells[v].centre) < best)
+          best = distance(cells[u].centre, cells[v].centre), best_u = u, best_v = v;
+    }
+    boost::add_edge(best_u, best_v, nearestEnds(best_u, best_v), g);
+  }
+  return g;
+}
+
+/// Picks every cell's orientation for a fixed sequence (dynamic programming over 4 states).
+Ordering orient(const std::vector<std::size_t>& sequence, const std::vector<CellEnds>& cells) {
+  Ordering out;
+  const std::size_t n = sequence.size();
+  if (n == 0) return out;
+  std::vector<std::array<int, 4>> from(n);
+  std::array<double, 4> cost{0.0, 0.0, 0.0, 0.0};
+  for (std::size_t k = 1; k < n; ++k) {
+    const CellEnds& p = cells[sequence[k - 1]];
+    const CellEnds& c = cells[sequence[k]];
+    std::array<double, 4> next{};
+    for (int o = 0; o < 4; ++o) {
+      next[o] = INFINITY;
+      for (int q = 0; q < 4; ++q) {
+        const double v = cost[q] + length(p.exit[q], c.entry[o]);
+        if (v < next[o]) next[o] = v, from[k][o] = q;
+      }
+    }
+    cost = next;
+  }
+  int o = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+  out.estimated_cost = cost[o];
+  out.visits.resize(n);
+  for (std::size_t k = n; k-- > 0;) {
+    out.visits[k] = {sequence[k], o};
+    if (k > 0) o = from[k][o];
+  }
+  return out;
+}
+
+std::vector<std::size_t> depthFirstOrder(const Graph& g) {
+  struct Recorder : boost::default_dfs_visitor {
+    std::vector<std::size_t>* order;
+    void discover_vertex(Graph::vertex_descriptor v, const Graph&) const { order->push_back(v); }
+  };
+  std::vector<std::size_t> order;
+  if (boost::num_vertices(g) == 0) return order;
+  Recorder recorder;
+  recorder.order = &order;
+  boost::depth_first_search(g, boost::visitor(recorder).root_vertex(0));
+  return order;
+}
+
+/// Boost's MST-preorder tour from cell 0, opened at its longest step.
+std::vector<std::size_t> approximateTour(const Graph& g, const std::vector<CellEnds>& cells) {
+  std::vector<Graph::vertex_descriptor> cycle;
+  boost::metric_tsp_approx_tour_from_vertex(g, 0, std::back_inserter(cycle));
+  cycle.pop_back();  // the tour returns to its start
+  const std::size_t n = cycle.size();
+  auto step = [&](std::size_t i) { return distance(cells[cycle[i]].centre, cells[cycle[(i + 1) % n]].centre); };
+  std::size_t cut = n - 1;
+  for (std::size_t i = 0; i < n; ++i)
+    if (step(i) > step(cut)) cut = i;
+  std::vector<std::size_t> path;
+  for (std::size_t k = 1; k <= n; ++k) path.push_back(cycle[(cut + k) % n]);
+  return path;
+}
+
+/// The kCandidates cells with the nearest centres, for every cell (scan outward in x order).
+std::vector<std::vector<std::size_t>> nearestCells(const std::vector<CellEnds>& cells) {
+  const std::size_t n = cells.size();
+  std::vector<std::size_t> by_x(n);
+  for (std::size_t i = 0; i < n; ++i) by_x[i] = i;
+  std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) {
+    return cells[a].centre.x < cells[b].centre.x || (cells[a].centre.x == cells[b].centre.x && a < b);
+  });
+  std::vector<std::size_t> rank(n);
+  for (std::size_t r = 0; r < n; ++r) rank[by_x[r]] = r;
+  std::vector<std::vector<std::size_t>> out(n);
+  std::vector<std::pair<double, std::size_t>> found;
+  for (std::size_t i = 0; i < n; ++i) {
+    found.clear();
+    const Point c = cells[i].centre;
+    auto kth = [&] { return found.size() < kCandidates ? INFINITY : found.back().first; };
+    auto offer = [&](std::size_t j) {
+      const double d = distance(c, cells[j].centre);
+      if (d >= kth()) return;
+      found.insert(std::upper_bound(found.begin(), found.end(), std::make_pair(d, j)), {d, j});
+      if (found.size() > kCandidates) found.pop_back();
+    };
+    for (std::size_t r = rank[i] + 1; r < n && cells[by_x[r]].centre.x - c.x < kth(); ++r) offer(by_x[r]);
+    for (std::size_t r = rank[i]; r-- > 0 && c.x - cells[by_x[r]].centre.x < kth();) offer(by_x[r]);
+    for (const auto& f : found) out[i].push_back(f.second);
+  }
+  return out;
+}
+
+/// 2-opt over a sequence of visits: reversing a stretch covers each of its cells backwards, so
+/// the moves inside the stretch keep their lengths and only the two joins change. Moves join a
+/// cell to one of its nearest cells; a stretch of one cell may take any orientation.
+bool twoOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
+            const std::vector<std::vector<std::size_t>>& nearest, const std::function<bool()>& keep_going) {
+  const std::size_t n = t.size();
+  if (n < 2) return false;
+  std::vector<std::size_t> pos(cells.size());
+  for (std::size_t k = 0; k < n; ++k) pos[t[k].cell] = k;
+  auto reverse = [&](std::size_t i, std::size_t j) {  // t[i..j]
+    std::reverse(t.begin() + static_cast<long>(i), t.begin() + static_cast<long>(j) + 1);
+    for (std::size_t k = i; k <= j; ++k) {
+      t[k] = reversed(cells, t[k]);
+      pos[t[k].cell] = k;
+    }
+  };
+  // Reversing t[i..j] replaces the joins (t[i-1], t[i]) and (t[j], t[j+1]) (where they exist).
+  auto gain = [&](std::size_t i, std::size_t j) {
+    const Visit first = reversed(cells, t[j]), last = reversed(cells, t[i]);
+    double before = 0.0, after = 0.0;
+    if (i > 0) before += step(cells, t[i - 1], t[i]), after += step(cells, t[i - 1], first);
+    if (j + 1 < n) before += step(cells, t[j], t[j + 1]), after += step(cells, last, t[j + 1]);
+    return before - after;
+  };
+  auto around = [&](std::size_t k, const Visit& v) {
+    double c = 0.0;
+    if (k > 0) c += step(cells, t[k - 1], v);
+    if (k + 1 < n) c += step(cells, v, t[k + 1]);
+    return c;
+  };
+  bool any = false;
+  for (int sweep = 0; sweep < kMaxSweeps && keep_going(); ++sweep) {
+    bool improved = false;
+    for (std::size_t k = 0; k < n; ++k) {
+      // The best orientation of t[k] between its neighbours.
+      for (int o = 0; o < 4; ++o) {
+        const Visit v{t[k].cell, o};
+        if (around(k, v) < around(k, t[k]) - 1e-9) t[k] = v, improved = true;
+      }
+      // Join t[k] to a near cell c: after t[k] (reverse t[k+1..pos c]) or before it (reverse
+      // t[pos c..k-1]).
+      for (std::size_t c : nearest[t[k].cell]) {
+        const std::size_t j = pos[c];
+        if (j > k + 1 && gain(k + 1, j) > 1e-9) reverse(k + 1, j), improved = true;
+        else if (j + 1 < k && gain(j, k - 1) > 1e-9) reverse(j, k - 1), improved = true;
+      }
+    }
+    any = any || improved;
+    if (!improved) break;
+  }
+  return any;
+}
+
+/// Or-opt for single cells: take a cell out and put it back (in any orientation) between two
+/// consecutive cells one of which is among its nearest, where that shortens the sequence.
+bool orOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
+           const std::vector<std::vector<std::size_t>>& nearest) {
+  const std::size_t n = t.size();
+  if (n < 3) return false;
+  bool improved = false;
+  std::vector<std::size_t> pos(cells.size());
+  for (std::size_t k = 0; k < n; ++k) pos[t[k].cell] = k;
+  for (std::size_t cell = 0; cell < cells.size(); ++cell) {
+    const std::size_t k = pos[cell];
+    // u is t without t[k]; gap g puts the cell before u[g] (g == n - 1: at the end).
+    auto u = [&](std::size_t i) -> const Visit& { return t[i < k ? i : i + 1]; };
+    double saved = 0.0;
+    if (k > 0) saved += step(cells, t[k - 1], t[k]);
+    if (k + 1 < n) saved += step(cells, t[k], t[k + 1]);
+    if (k > 0 && k + 1 < n) saved -= step(cells, t[k - 1], t[k + 1]);
+    double best = saved - 1e-9;
+    std::size_t best_gap = n;
+    int best_orientation = 0;
+    for (std::size_t near : nearest[cell]) {
+      const std::size_t j = pos[near] < k ? pos[near] : pos[near] - 1;
+      for (std::size_t g : {j, j + 1}) {
+        if (g == k) continue;  // where it already is
+        for (int o = 0; o < 4; ++o) {
+          const Visit v{cell, o};
+          double added = 0.0;
+          if (g > 0) added += step(cells, u(g - 1), v);
+          if (g < n - 1) added += step(cells, v, u(g));
+          if (g > 0 && g < n - 1) added -= step(cells, u(g - 1), u(g));
+          if (added < best) best = added, best_gap = g, best_orientation = o;
+        }
+      }
+    }
+    if (best_gap == n) continue;
+    t.erase(t.begin() + static_cast<long>(k));
+    t.insert(t.begin() + static_cast<long>(best_gap), Visit{cell, best_orientation});
+    for (std::size_t q = std::min(k, best_gap); q <= std::max(k, best_gap); ++q) pos[t[q].cell] = q;
+    improved = true;
+  }
+  return improved;
+}
+
+void improve(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
+             const std::vector<std::vector<std::size_t>>& nearest, const std::function<bool()>& keep_going) {
+  for (int round = 0; round < kMaxRounds && keep_going(); ++round) {
+    twoOpt(t, cells, nearest, keep_going);
+    if (!orOpt(t, cells, nearest)) break;
+  }
+}
+
+/// Orientations for a sequence: each cell entered at the corner nearest the previous one's exit.
+std::vector<Visit> oriented(const std::vector<std::size_t>& sequence, const std::vector<CellEnds>& cells) {
+  std::vector<Visit> visits;
+  for (std::size_t cell : sequence) {
+    Visit v{cell, 0};
+    if (!visits.empty())
+      for (int o = 1; o < 4; ++o)
+        if (step(cells, visits.back(), {cell, o}) < step(cells, visits.back(), v)) v.orientation = o;
+    visits.push_back(v);
+  }
+  return visits;
+}
+
+std::vector<std::size_t> cellsOf(const std::vector<Visit>& visits) {
+  std::vector<std::size_t> out;
+  for (const Visit& v : visits) out.push_back(v.cell);
+  return out;
+}
+
+Ordering greedyOrder(const std::vector<CellEnds>& cells) {
+  Ordering out;
+  const std::size_t n = cells.size();
+  std::vector<bool> done(n, false);
+  Visit cur{0, 0};
+  done[0] = true;
+  out.visits.push_back(cur);
+  for (std::size_t k = 1; k < n; ++k) {
+    const Point here = cells[cur.cell].exit[cur.orientation];
+    double best = INFINITY;
+    Visit next{};
+    for (std::size_t c = 0; c < n; ++c) {
+      if (done[c]) continue;
+      for (int o = 0; o < 4; ++o) {
+        const double v = length(here, cells[c].entry[o]);
+        if (v < best) best = v, next = {c, o};
+      }
+    }
+    out.estimated_cost += best;
+    done[next.cell] = true;
+    out.visits.push_back(next);
+    cur = next;
+  }
+  return out;
+}
+
+}  // namespace
+
+Order parseOrder(const std::string& name) {
+  if (name == "dfs") return Order::Dfs;
+  if (name == "greedy") return Order::Greedy;
+  if (name == "tsp") return Order::Tsp;
+  throw std::invalid_argument("unknown cell order '" + name + "' (expected dfs, greedy or tsp)");
+}
+
+Ordering orderCells(const std::vector<CellEnds>& cells, const std::vector<CellLink>& links, Order order,
+                    const std::function<bool()>& keep_going) {
+  if (cells.empty()) return {};
+  if (order == Order::Greedy) return greedyOrder(cells);
+  const Graph g = cellGraph(cells, links);
+  std::vector<std::size_t> dfs = depthFirstOrder(g);
+  if (order == Order::Dfs) return orient(dfs, cells);
+  // Local search from two starts: the MST-preorder tour and the greedy order.
+  const auto nearest = nearestCells(cells);
+  std::vector<std::vector<Visit>> starts{oriented(approximateTour(g, cells), cells), greedyOrder(cells).visits};
+  Ordering best;
+  best.estimated_cost = INFINITY;
+  for (std::vector<Visit>& visits : starts) {
+    improve(visits, cells, nearest, keep_going);
+    Ordering o = orient(cellsOf(visits), cells);
+    if (o.estimated_cost < best.estimated_cost) best = std::move(o);
+  }
+  return best;
+}
+
+}  // namespace coverbench::decomposition

@@ -1,0 +1,268 @@
+#include "decomposition_planner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "cell_ordering.hpp"
+#include "coverbench/region_ops.hpp"
+#include "coverbench/sweep_search.hpp"
+#include "coverbench/workspace.hpp"
+
+namespace coverbench::decomposition {
+namespace {
+
+/// How far the chords of F's rounded corners may cut inside the arcs in the region the cells are
+/// cut from (metres). The region is drawn this much farther inside F, so it stays inside F; the
+/// band it leaves along F's boundary is what the boundary loop covers.
+constexpr double kCellArcTolerance = 2e-3;
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Where passes may run: `count + 1` evenly spaced x positions from `min` to `max`, no gap wider
+/// than the pass spacing, shared by all cells so that thin cells next to each other do not each
+/// round their own pass count up.
+struct PassGrid {
+  double min = 0.0, step = 1.0;
+  std::size_t count = 0;
+  double at(std::size_t k) const { return min + step * static_cast<double>(k); }
+};
+
+/// The x positions of a cell's passes, increasing: the grid positions in [minX, maxX), plus, when
+/// no boundary loop covers F's edges, each end of the cell that is not entirely shared with
+/// neighbours (an edge of F, which a grid line may miss by up to a spacing). A cell with no
+/// position gets one pass at its right end.
+std::vector<double> passPositions(const Cell& cell, double shared_left, double shared_right, const PassGrid& grid,
+                                  bool boundary_loop) {
+  const double x0 = cell.minX(), x1 = cell.maxX();
+  const Span left = cell.spanAt(x0), right = cell.spanAt(x1);
+  std::vector<double> xs;
+  if (!boundary_loop && (left.top - left.bottom) - shared_left > 1e-6) xs.push_back(x0);
+  auto k = static_cast<std::size_t>(std::max(0.0, std::floor((x0 - grid.min) / grid.step)));
+  for (; k <= grid.count && grid.at(k) < x1; ++k)
+    if (grid.at(k) >= x0 && (xs.empty() || grid.at(k) - xs.back() > 1e-9)) xs.push_back(grid.at(k));
+  if ((!boundary_loop && (right.top - right.bottom) - shared_right > 1e-6) || xs.empty()) xs.push_back(x1);
+  return xs;
+}
+
+/// Entry and exit of a cell for its four orientations (see CellEnds).
+CellEnds cellEnds(const Cell& cell, const std::vector<double>& xs) {
+  CellEnds ends;
+  const std::size_t last = xs.size() - 1;
+  for (int o = 0; o < 4; ++o) {
+    const bool leftward = (o & 1) != 0, first_down = (o & 2) != 0;
+    const double first_x = leftward ? xs.back() : xs.front(), last_x = leftward ? xs.front() : xs.back();
+    const bool last_up = (last % 2 == 0) == !first_down;
+    const Span a = cell.spanAt(first_x), b = cell.spanAt(last_x);
+    ends.entry[o] = {first_x, first_down ? a.top : a.bottom};
+    ends.exit[o] = {last_x, last_up ? b.top : b.bottom};
+    // Backwards: from the other end, first pass the last one reversed.
+    ends.reverse[o] = (leftward ? 0 : 1) | (last_up ? 2 : 0);
+  }
+  const double mid = (cell.minX() + cell.maxX()) / 2.0;
+  const Span s = cell.spanAt(mid);
+  ends.centre = {mid, (s.bottom + s.top) / 2.0};
+  return ends;
+}
+
+/// A move from p (on the floor or ceiling of cell `from`) to q (on the floor or ceiling of cell
+/// `to`) through the segment the two cells share: along `from`'s side to the shared line, along
+/// the line, along `to`'s side to q. Every point lies in one of the two cells, so the move is free.
+std::vector<Point> throughContact(const Cell& from, Point p, const Cell& to, Point q, const Contact& c) {
+  const auto onTop = [](const Cell& cell, Point at) {
+    const Span s = cell.spanAt(at.x);
+    return std::fabs(at.y - s.top) < std::fabs(at.y - s.bottom);
+  };
+  std::vector<Point> walk = from.boundaryWalk(p.x, c.x, onTop(from, p));
+  const double y = std::clamp(walk.back().y, c.y0, c.y1);
+  walk.push_back({c.x, y});
+  const std::vector<Point> rest = to.boundaryWalk(c.x, q.x, onTop(to, q));
+  walk.insert(walk.end(), rest.begin(), rest.end());
+  return walk;
+}
+
+double polylineLength(const std::vector<Point>& points) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) length += distance(points[i - 1], points[i]);
+  return length;
+}
+
+class DecompositionPlanner final : public Planner {
+ public:
+  explicit DecompositionPlanner(Kind kind) : kind_(kind) {}
+
+  PlanResult plan(const Problem& problem, const Budget& budget) override {
+    if (!problem.params.flag("direction_search")) return planAt(problem, budget, problem.params.number("sweep_angle"));
+    const double penalty = problem.params.number("turn_penalty");
+    const auto search = searchSweepDirection(
+        *problem.wall,
+        [&](double deg) -> std::optional<double> {
+          const PlanResult r = planAt(problem, budget, deg);
+          if (r.status != PlanStatus::Ok) return std::nullopt;
+          return sweepCost(r.path, penalty);
+        },
+        [&] { return !budget.expired(); });
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the direction search");
+    if (!search) return planAt(problem, budget, problem.params.number("sweep_angle"));  // reports why
+    PlanResult result = planAt(problem, budget, search->angle_deg);
+    result.stats["direction_evaluations"] = static_cast<double>(search->evaluations);
+    result.stats["direction_cost"] = search->cost;
+    return result;
+  }
+
+ private:
+  PlanResult planAt(const Problem& problem, const Budget& budget, double angle_deg) {
+    using Clock = std::chrono::steady_clock;
+    const auto t_start = Clock::now();
+    const double spacing = problem.tool.tool_width * (1.0 - problem.params.number("overlap"));
+    const Order order = parseOrder(problem.params.choice("order"));
+    const bool boundary_loop = problem.params.flag("boundary_loop");
+    // Passes run along `angle_deg`; in the working frame they are vertical (along +y), so the
+    // working frame is the world turned by 90 - angle degrees.
+    const double turn = (angle_deg - 90.0) * M_PI / 180.0;
+    const Wall wall = rotateWall(*problem.wall, -turn);
+
+    Workspace ws(wall, problem.tool);
+    const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
+    if (components.empty())
+      return PlanResult::failure(PlanStatus::NoReachableArea,
+                                 "the tool fits nowhere: the free region F is empty for this tool and clearance");
+    const Region main{components.front()};
+    // Cells are cut from F drawn with coarser arcs (fewer vertices), in the part of F covered. That
+    // region lies inside F, so each of its parts lies in one part of F; a vertex tells which.
+    Decomposition cells;
+    for (const PolygonWithHoles& poly :
+         freeRegion(wall, problem.tool, kCellArcTolerance + kFreeSpaceMargin, kCellArcTolerance)) {
+      if (!pointInPolygon(components.front(), poly.outer.front())) continue;
+      Decomposition d = decompose(poly, kind_);
+      const std::size_t base = cells.cells.size();
+      for (Contact& c : d.contacts) c.left += base, c.right += base;
+      cells.cells.insert(cells.cells.end(), d.cells.begin(), d.cells.end());
+      cells.contacts.insert(cells.contacts.end(), d.contacts.begin(), d.contacts.end());
+      cells.slabs += d.slabs;
+    }
+    const double decomposition_ms = msSince(t_start);
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the decomposition");
+
+    // Passes per cell, on one grid of positions for all cells.
+    const auto t_order = Clock::now();
+    std::vector<double> shared_left(cells.cells.size(), 0.0), shared_right(cells.cells.size(), 0.0);
+    for (const Contact& c : cells.contacts) {
+      shared_left[c.right] += c.y1 - c.y0;
+      shared_right[c.left] += c.y1 - c.y0;
+    }
+    PassGrid grid;
+    if (!cells.cells.empty()) {
+      double lo = INFINITY, hi = -INFINITY;
+      for (const Cell& c : cells.cells) lo = std::min(lo, c.minX()), hi = std::max(hi, c.maxX());
+      grid.min = lo;
+      grid.count = static_cast<std::size_t>(std::max(1.0, std::ceil((hi - lo) / spacing - 1e-9)));
+      grid.step = (hi - lo) / static_cast<double>(grid.count);
+    }
+    std::vector<std::vector<double>> passes(cells.cells.size());
+    std::vector<CellEnds> ends(cells.cells.size());
+    std::size_t pass_count = 0;
+    for (std::size_t i = 0; i < cells.cells.size(); ++i) {
+      passes[i] = passPositions(cells.cells[i], shared_left[i], shared_right[i], grid, boundary_loop);
+      ends[i] = cellEnds(cells.cells[i], passes[i]);
+      pass_count += passes[i].size();
+    }
+    std::vector<CellLink> links;
+    for (const Contact& c : cells.contacts) links.push_back({c.left, c.right});
+    const Ordering ordering = orderCells(ends, links, order, [&] { return !budget.expired(); });
+    std::map<std::pair<std::size_t, std::size_t>, std::vector<const Contact*>> contacts_between;
+    for (const Contact& c : cells.contacts) contacts_between[std::minmax(c.left, c.right)].push_back(&c);
+    const double ordering_ms = msSince(t_order);
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the cell ordering");
+
+    const auto t_synthesis = Clock::now();
+    PathBuilder builder(ws);
+    std::size_t unreachable = 0, contact_moves = 0;
+    if (boundary_loop) unreachable += coverRings(builder, allRings(main), 1.01 * spacing);
+    std::size_t previous = cells.cells.size();
+    for (const Visit& visit : ordering.visits) {
+      if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the passes");
+      const Cell& cell = cells.cells[visit.cell];
+      std::vector<double> xs = passes[visit.cell];
+      const bool leftward = (visit.orientation & 1) != 0;
+      bool up = (visit.orientation & 2) == 0;
+      if (leftward) std::reverse(xs.begin(), xs.end());
+      const Point entry = ends[visit.cell].entry[visit.orientation];
+      // Into a touching cell through the shared segment when a straight move is not free.
+      const auto touching = previous < cells.cells.size()
+                                ? contacts_between.find(std::minmax(previous, visit.cell))
+                                : contacts_between.end();
+      if (touching != contacts_between.end() && !ws.router().isFree(builder.current(), entry)) {
+        std::vector<Point> best;
+        for (const Contact* c : touching->second) {
+          std::vector<Point> walk = throughContact(cells.cells[previous], builder.current(), cell, entry, *c);
+          if (best.empty() || polylineLength(walk) < polylineLength(best)) best = std::move(walk);
+        }
+        builder.follow(best, false);
+        ++contact_moves;
+      } else if (!builder.moveTo(entry, !builder.empty() && distance(builder.current(), entry) <= 1.01 * spacing)) {
+        ++unreachable;
+        continue;
+      }
+      previous = visit.cell;
+      for (std::size_t k = 0; k < xs.size(); ++k) {
+        // Step over along the side the last pass ended on, then run the pass.
+        if (k > 0) builder.follow(cell.boundaryWalk(xs[k - 1], xs[k], !up), true);
+        const Span span = cell.spanAt(xs[k]);
+        builder.follow({{xs[k], up ? span.bottom : span.top}, {xs[k], up ? span.top : span.bottom}}, true);
+        up = !up;
+      }
+    }
+    const double synthesis_ms = msSince(t_synthesis);
+
+    PlanResult result;
+    result.status = PlanStatus::Ok;
+    if (builder.empty())
+      return PlanResult::failure(PlanStatus::NoReachableArea,
+                                 "no cell: F drawn 1 mm inside itself is empty (F is thinner than 2 mm); enable "
+                                 "boundary_loop to cover F's boundary instead");
+    result.path = builder.take();
+    for (Point& p : result.path.waypoints) p = rotate(p, turn);
+    result.stats["cells"] = static_cast<double>(cells.cells.size());
+    result.stats["cell_contacts"] = static_cast<double>(cells.contacts.size());
+    result.stats["contact_transits"] = static_cast<double>(contact_moves);
+    result.stats["slabs"] = static_cast<double>(cells.slabs);
+    result.stats["passes"] = static_cast<double>(pass_count);
+    result.stats["sweep_angle_deg"] = angle_deg;
+    result.stats["order_estimate_m"] = ordering.estimated_cost;
+    result.stats["decomposition_ms"] = decomposition_ms;
+    result.stats["ordering_ms"] = ordering_ms;
+    result.stats["synthesis_ms"] = synthesis_ms;
+    recordOutcome(result, builder, components.size(), unreachable);
+    return result;
+  }
+
+  Kind kind_;
+};
+
+}  // namespace
+
+PlannerInfo plannerInfo(Kind kind) {
+  PlannerInfo info;
+  info.params = {
+      {"sweep_angle", ParamType::Number, 0.0, 0.0, 180.0, {}, "deg", "direction of the passes, counter-clockwise from +x"},
+      {"order", ParamType::Choice, std::string("tsp"), 0, 0, {"tsp", "dfs", "greedy"}, "",
+       "cell order: 2-opt-improved TSP tour, depth-first over the cell graph, or greedy nearest entry"},
+      {"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent passes overlap"},
+      {"boundary_loop", ParamType::Bool, true, 0, 0, {}, "",
+       "one loop around the wall and each obstacle before the cells (covers corners the passes miss)"},
+      {"direction_search", ParamType::Bool, false, 0, 0, {}, "",
+       "search the sweep direction (5-degree steps and the longest edges, then 1-degree steps); overrides sweep_angle"},
+      {"turn_penalty", ParamType::Number, 1.0, 0.0, 1000.0, {}, "m", "cost of a turn over 30 degrees in the direction search"},
+  };
+  info.capabilities.polygon_boundary = true;
+  info.capabilities.circle_obstacles = true;
+  info.min_coverage_reachable = 0.99;
+  info.make = [kind] { return std::make_unique<DecompositionPlanner>(kind); };
+  return info;
+}
+
+}  // namespace coverbench::decomposition
