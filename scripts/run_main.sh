@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: build, run the default experiment (every registered planner on a few hundred
-# generated walls and the seeds' cases; about three minutes on 2 cores) and write its tables, then
+# generated walls and the seeds' cases; about two and a half minutes on 2 cores) and write its tables, then
 # picture every canonical wall with every planner.
 #   results/default/report.md   comparison tables (also report.csv, report.tex)
 #   results/default/results.sqlite   every run: status, metrics, path

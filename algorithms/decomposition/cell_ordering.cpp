@@ -22,8 +22,8 @@ using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS
 constexpr std::size_t kCandidates = 10;
 /// Upper bounds on 2-opt sweeps over the sequence (each O(n * kCandidates)) and on rounds of
 /// 2-opt followed by Or-opt: deterministic limits, so the order never depends on timing.
-constexpr int kMaxSweeps = 20;
-constexpr int kMaxRounds = 10;
+constexpr int kMaxSweeps = 50;
+constexpr int kMaxRounds = 3;
 
 /// Straight-line distance (plain square root: std::hypot's overflow care is not needed here).
 inline double length(Point a, Point b) {
@@ -131,11 +131,14 @@ std::vector<std::size_t> approximateTour(const Graph& g, const std::vector<CellE
 /// The kCandidates cells with the nearest centres, for every cell (scan outward in x order).
 std::vector<std::vector<std::size_t>> nearestCells(const std::vector<CellEnds>& cells) {
   const std::size_t n = cells.size();
+  // Scan along the longer extent of the centres (fewer cells share a coordinate range there).
+  Box extent;
+  for (const CellEnds& c : cells) extent.add(c.centre);
+  const bool along_x = extent.width() >= extent.height();
+  auto key = [&](std::size_t i) { return along_x ? cells[i].centre.x : cells[i].centre.y; };
   std::vector<std::size_t> by_x(n);
   for (std::size_t i = 0; i < n; ++i) by_x[i] = i;
-  std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) {
-    return cells[a].centre.x < cells[b].centre.x || (cells[a].centre.x == cells[b].centre.x && a < b);
-  });
+  std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b) || (key(a) == key(b) && a < b); });
   std::vector<std::size_t> rank(n);
   for (std::size_t r = 0; r < n; ++r) rank[by_x[r]] = r;
   std::vector<std::vector<std::size_t>> out(n);
@@ -145,13 +148,13 @@ std::vector<std::vector<std::size_t>> nearestCells(const std::vector<CellEnds>& 
     const Point c = cells[i].centre;
     auto kth = [&] { return found.size() < kCandidates ? INFINITY : found.back().first; };
     auto offer = [&](std::size_t j) {
-      const double d = distance(c, cells[j].centre);
+      const double d = length(c, cells[j].centre);
       if (d >= kth()) return;
       found.insert(std::upper_bound(found.begin(), found.end(), std::make_pair(d, j)), {d, j});
       if (found.size() > kCandidates) found.pop_back();
     };
-    for (std::size_t r = rank[i] + 1; r < n && cells[by_x[r]].centre.x - c.x < kth(); ++r) offer(by_x[r]);
-    for (std::size_t r = rank[i]; r-- > 0 && c.x - cells[by_x[r]].centre.x < kth();) offer(by_x[r]);
+    for (std::size_t r = rank[i] + 1; r < n && key(by_x[r]) - key(i) < kth(); ++r) offer(by_x[r]);
+    for (std::size_t r = rank[i]; r-- > 0 && key(i) - key(by_x[r]) < kth();) offer(by_x[r]);
     for (const auto& f : found) out[i].push_back(f.second);
   }
   return out;
@@ -187,21 +190,34 @@ bool twoOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
     if (k + 1 < n) c += step(cells, v, t[k + 1]);
     return c;
   };
+  // Don't-look bits: a cell is tried again only after a move changed one of its joins.
+  std::vector<char> look(cells.size(), 1);
+  auto touch = [&](long i) {
+    if (i >= 0 && i < static_cast<long>(n)) look[t[static_cast<std::size_t>(i)].cell] = 1;
+  };
+  auto touchAround = [&](std::size_t i, std::size_t j) {  // the joins of t[i..j] with the rest changed
+    touch(static_cast<long>(i) - 1), touch(static_cast<long>(i)), touch(static_cast<long>(j)), touch(static_cast<long>(j) + 1);
+  };
   bool any = false;
   for (int sweep = 0; sweep < kMaxSweeps && keep_going(); ++sweep) {
     bool improved = false;
     for (std::size_t k = 0; k < n; ++k) {
+      if (!look[t[k].cell]) continue;
+      look[t[k].cell] = 0;
       // The best orientation of t[k] between its neighbours.
       for (int o = 0; o < 4; ++o) {
         const Visit v{t[k].cell, o};
-        if (around(k, v) < around(k, t[k]) - 1e-9) t[k] = v, improved = true;
+        if (around(k, v) < around(k, t[k]) - 1e-9) t[k] = v, improved = true, touchAround(k, k);
       }
       // Join t[k] to a near cell c: after t[k] (reverse t[k+1..pos c]) or before it (reverse
       // t[pos c..k-1]).
       for (std::size_t c : nearest[t[k].cell]) {
         const std::size_t j = pos[c];
-        if (j > k + 1 && gain(k + 1, j) > 1e-9) reverse(k + 1, j), improved = true;
-        else if (j + 1 < k && gain(j, k - 1) > 1e-9) reverse(j, k - 1), improved = true;
+        if (j > k + 1 && gain(k + 1, j) > 1e-9) {
+          reverse(k + 1, j), improved = true, touchAround(k + 1, j);
+        } else if (j + 1 < k && gain(j, k - 1) > 1e-9) {
+          reverse(j, k - 1), improved = true, touchAround(j, k - 1);
+        }
       }
     }
     any = any || improved;
@@ -289,16 +305,17 @@ Ordering greedyOrder(const std::vector<CellEnds>& cells) {
   out.visits.push_back(cur);
   for (std::size_t k = 1; k < n; ++k) {
     const Point here = cells[cur.cell].exit[cur.orientation];
-    double best = INFINITY;
+    double best = INFINITY;  // squared
     Visit next{};
     for (std::size_t c = 0; c < n; ++c) {
       if (done[c]) continue;
       for (int o = 0; o < 4; ++o) {
-        const double v = length(here, cells[c].entry[o]);
+        const double dx = here.x - cells[c].entry[o].x, dy = here.y - cells[c].entry[o].y;
+        const double v = dx * dx + dy * dy;
         if (v < best) best = v, next = {c, o};
       }
     }
-    out.estimated_cost += best;
+    out.estimated_cost += std::sqrt(best);
     done[next.cell] = true;
     out.visits.push_back(next);
     cur = next;

@@ -95,22 +95,7 @@ class DecompositionPlanner final : public Planner {
   explicit DecompositionPlanner(Kind kind) : kind_(kind) {}
 
   PlanResult plan(const Problem& problem, const Budget& budget) override {
-    if (!problem.params.flag("direction_search")) return planAt(problem, budget, problem.params.number("sweep_angle"));
-    const double penalty = problem.params.number("turn_penalty");
-    const auto search = searchSweepDirection(
-        *problem.wall,
-        [&](double deg) -> std::optional<double> {
-          const PlanResult r = planAt(problem, budget, deg);
-          if (r.status != PlanStatus::Ok) return std::nullopt;
-          return sweepCost(r.path, penalty);
-        },
-        [&] { return !budget.expired(); });
-    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the direction search");
-    if (!search) return planAt(problem, budget, problem.params.number("sweep_angle"));  // reports why
-    PlanResult result = planAt(problem, budget, search->angle_deg);
-    result.stats["direction_evaluations"] = static_cast<double>(search->evaluations);
-    result.stats["direction_cost"] = search->cost;
-    return result;
+    return planSweep(problem, budget, [&](double angle_deg) { return planAt(problem, budget, angle_deg); });
   }
 
  private:

@@ -68,4 +68,23 @@ double sweepCost(const Path& path, double turn_penalty_m) {
   return length + turn_penalty_m * static_cast<double>(turns);
 }
 
+PlanResult planSweep(const Problem& problem, const Budget& budget, const std::function<PlanResult(double)>& plan_at) {
+  if (!problem.params.flag("direction_search")) return plan_at(problem.params.number("sweep_angle"));
+  const double penalty = problem.params.number("turn_penalty");
+  const auto search = searchSweepDirection(
+      *problem.wall,
+      [&](double deg) -> std::optional<double> {
+        const PlanResult r = plan_at(deg);
+        if (r.status != PlanStatus::Ok) return std::nullopt;
+        return sweepCost(r.path, penalty);
+      },
+      [&] { return !budget.expired(); });
+  if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the direction search");
+  if (!search) return plan_at(problem.params.number("sweep_angle"));  // reports why
+  PlanResult result = plan_at(search->angle_deg);
+  result.stats["direction_evaluations"] = static_cast<double>(search->evaluations);
+  result.stats["direction_cost"] = search->cost;
+  return result;
+}
+
 }  // namespace coverbench

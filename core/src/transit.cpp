@@ -118,6 +118,8 @@ std::optional<std::vector<Point>> TransitRouter::localRoute(Point a, Point b) {
       bool operator>(const Entry& o) const { return f > o.f || (f == o.f && v > o.v); }
     };
     const std::size_t none = pos.size();
+    std::vector<double> to_b(pos.size());
+    for (std::size_t i = 0; i < pos.size(); ++i) to_b[i] = length(pos[i], b);
     std::vector<bool> closed(pos.size(), false);
     std::vector<std::size_t> pred(pos.size(), none);
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
@@ -138,7 +140,7 @@ std::optional<std::vector<Point>> TransitRouter::localRoute(Point a, Point b) {
       for (std::size_t w = 1; w < pos.size(); ++w) {
         if (closed[w]) continue;
         const double g = e.g + length(pos[e.v], pos[w]);
-        const double f = g + length(pos[w], b);
+        const double f = g + to_b[w];
         if (f <= bound) open.push({f, g, w, e.v});
       }
     }

@@ -24,6 +24,12 @@ std::optional<SweepSearch> searchSweepDirection(const Wall& wall, const std::fun
                                                 const std::function<bool()>& keep_going, double coarse_step_deg = 5.0,
                                                 double fine_step_deg = 1.0, std::size_t longest_edges = 4);
 
+/// The sweep-direction protocol of a sweep-based planner whose parameters include the Number
+/// `sweep_angle` (degrees), the Bool `direction_search` and the Number `turn_penalty` (metres):
+/// plans at `sweep_angle`, or, with the search on, at the cheapest direction found (its statistics
+/// gain `direction_evaluations` and `direction_cost`). `plan_at(angle_deg)` plans at one direction.
+PlanResult planSweep(const Problem& problem, const Budget& budget, const std::function<PlanResult(double)>& plan_at);
+
 /// Path length plus `turn_penalty_m` metres for every heading change over 30 degrees (a stop on
 /// the machine): the cost the search minimises.
 double sweepCost(const Path& path, double turn_penalty_m);
