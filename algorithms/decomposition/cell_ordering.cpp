@@ -18,8 +18,9 @@ namespace {
 using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
                                     boost::property<boost::edge_weight_t, double>>;
 
-/// How many nearest cells 2-opt tries to join each cell to.
+/// How many nearest cells 2-opt tries to join each cell to, and Or-opt to put it beside.
 constexpr std::size_t kCandidates = 10;
+constexpr std::size_t kOrOptCandidates = 5;
 /// Upper bounds on 2-opt sweeps over the sequence (each O(n * kCandidates)) and on rounds of
 /// 2-opt followed by Or-opt: deterministic limits, so the order never depends on timing.
 constexpr int kMaxSweeps = 50;
@@ -246,7 +247,8 @@ bool orOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
     double best = saved - 1e-9;
     std::size_t best_gap = n;
     int best_orientation = 0;
-    for (std::size_t near : nearest[cell]) {
+    for (std::size_t m = 0; m < std::min(kOrOptCandidates, nearest[cell].size()); ++m) {
+      const std::size_t near = nearest[cell][m];
       const std::size_t j = pos[near] < k ? pos[near] : pos[near] - 1;
       for (std::size_t g : {j, j + 1}) {
         if (g == k) continue;  // where it already is

@@ -90,67 +90,82 @@ std::optional<std::vector<Point>> TransitRouter::localRoute(Point a, Point b) {
   around.add(a);
   around.add(b);
   const std::vector<Point>& nodes = graph_->nodes;
+  bool with_chains = false;  // F's boundary vertices near the ends added as nodes
   for (double grow = std::fmax(1.0, 0.5 * distance(a, b));; grow *= 2.0) {
     Box box = around;
     box.min_x -= grow, box.min_y -= grow, box.max_x += grow, box.max_y += grow;
+    auto inBox = [&](Point p) { return p.x >= box.min_x && p.x <= box.max_x && p.y >= box.min_y && p.y <= box.max_y; };
     std::vector<Point> pos{a, b};
     for (const Point& p : nodes)
-      if (p.x >= box.min_x && p.x <= box.max_x && p.y >= box.min_y && p.y <= box.max_y) pos.push_back(p);
+      if (inBox(p)) pos.push_back(p);
     // Once the box holds every node, the search is over the whole graph and needs no bound.
     const bool everything = pos.size() == nodes.size() + 2;
-    // An end that sees no node (a cusp of F, a passage barely wider than the tool) gets F's own
-    // boundary vertices near the ends as extra nodes, as in the whole-graph fallback.
-    auto seesNode = [&](Point p) {
-      for (std::size_t i = 2; i < pos.size(); ++i)
-        if (isFree(p, pos[i])) return true;
-      return false;
-    };
-    if (!seesNode(a) || !seesNode(b))
+    const double bound = everything ? INFINITY : std::fmin(box.width(), box.height());
+    const std::size_t corner_nodes = pos.size();
+    auto addChains = [&] {
       for (const std::vector<Point>& chain : boundaryChains(a, b))
         for (const Point& p : chain)
-          if (p.x >= box.min_x && p.x <= box.max_x && p.y >= box.min_y && p.y <= box.max_y) pos.push_back(p);
-    const double bound = everything ? INFINITY : std::fmin(box.width(), box.height());
-    // A* with lazy edges: a move is checked only when it is the cheapest way left to reach its
-    // end. The Euclidean heuristic is consistent, so the first valid arrival at b is shortest.
-    struct Entry {
-      double f, g;
-      std::size_t v, from;
-      bool operator>(const Entry& o) const { return f > o.f || (f == o.f && v > o.v); }
+          if (inBox(p)) pos.push_back(p);
     };
-    const std::size_t none = pos.size();
-    std::vector<double> to_b(pos.size());
-    for (std::size_t i = 0; i < pos.size(); ++i) to_b[i] = length(pos[i], b);
-    std::vector<bool> closed(pos.size(), false);
-    std::vector<std::size_t> pred(pos.size(), none);
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
-    open.push({distance(a, b), 0.0, 0, none});
-    bool found = false;
-    while (!open.empty()) {
-      const Entry e = open.top();
-      open.pop();
-      if (e.f > bound) break;  // anything from here on is too long to be proven shortest here
-      if (closed[e.v]) continue;
-      if (e.from != none && !isFree(pos[e.from], pos[e.v])) continue;
-      closed[e.v] = true;
-      pred[e.v] = e.from;
-      if (e.v == 1) {
-        found = true;
-        break;
-      }
-      for (std::size_t w = 1; w < pos.size(); ++w) {
-        if (closed[w]) continue;
-        const double g = e.g + length(pos[e.v], pos[w]);
-        const double f = g + to_b[w];
-        if (f <= bound) open.push({f, g, w, e.v});
+    if (with_chains) addChains();
+    std::optional<std::vector<Point>> found = lazySearch(pos, bound);
+    if (!found && !with_chains) {
+      // An end that sees no node (a cusp of F, a passage barely wider than the tool) gets F's own
+      // boundary vertices near the ends as extra nodes, as in the whole-graph fallback.
+      auto seesNode = [&](Point p) {
+        for (std::size_t i = 2; i < corner_nodes; ++i)
+          if (isFree(p, pos[i])) return true;
+        return false;
+      };
+      if (!seesNode(a) || !seesNode(b)) {
+        with_chains = true;
+        addChains();
+        found = lazySearch(pos, bound);
       }
     }
-    if (!found && everything) return std::nullopt;
-    if (!found) continue;
-    std::vector<Point> points;
-    for (std::size_t v = 1; v != none; v = pred[v]) points.push_back(pos[v]);
-    std::reverse(points.begin(), points.end());
-    return points;
+    if (found || everything) return found;
   }
+}
+
+std::optional<std::vector<Point>> TransitRouter::lazySearch(const std::vector<Point>& pos, double bound) const {
+  // A* from pos[0] to pos[1] with lazy edges: a move is checked only when it is the cheapest way
+  // left to reach its end. The Euclidean heuristic is consistent, so the first valid arrival at
+  // pos[1] is the shortest. Routes longer than `bound` are not searched.
+  struct Entry {
+    double f, g;
+    std::size_t v, from;
+    bool operator>(const Entry& o) const { return f > o.f || (f == o.f && v > o.v); }
+  };
+  const Point b = pos[1];
+  const std::size_t none = pos.size();
+  std::vector<double> to_b(pos.size());
+  for (std::size_t i = 0; i < pos.size(); ++i) to_b[i] = length(pos[i], b);
+  std::vector<bool> closed(pos.size(), false);
+  std::vector<std::size_t> pred(pos.size(), none);
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+  open.push({to_b[0], 0.0, 0, none});
+  while (!open.empty()) {
+    const Entry e = open.top();
+    open.pop();
+    if (e.f > bound) break;
+    if (closed[e.v]) continue;
+    if (e.from != none && !isFree(pos[e.from], pos[e.v])) continue;
+    closed[e.v] = true;
+    pred[e.v] = e.from;
+    if (e.v == 1) {
+      std::vector<Point> points;
+      for (std::size_t v = 1; v != none; v = pred[v]) points.push_back(pos[v]);
+      std::reverse(points.begin(), points.end());
+      return points;
+    }
+    for (std::size_t w = 1; w < pos.size(); ++w) {
+      if (closed[w]) continue;
+      const double g = e.g + length(pos[e.v], pos[w]);
+      const double f = g + to_b[w];
+      if (f <= bound) open.push({f, g, w, e.v});
+    }
+  }
+  return std::nullopt;
 }
 
 void TransitRouter::build() {

@@ -31,6 +31,29 @@ Region freeRegion(const Wall& wall, const ToolParams& tool, double margin, doubl
   for (const Obstacle& o : wall.obstacles)
     for (const Ring& ring : allRings(obstacleRegion(o, arc_tolerance))) rings.push_back(ring);
   const Region blocked = offsetRegion(regionFromRings(rings), r + tool.clearance + margin, arc_tolerance);
+  // Common case, without a second sweep: one axis-aligned rectangle with every blocked part
+  // strictly inside it and none enclosing a pocket. The difference is then the rectangle with
+  // the blocked outlines as its holes (they are disjoint: they come out of one union).
+  if (inner.size() == 1 && inner.front().holes.empty() && inner.front().outer.size() == 4) {
+    const Ring& o = inner.front().outer;
+    const Box box = boundingBox(o);
+    bool rectangle = true;
+    for (const Point& p : o) rectangle = rectangle && (p.x == box.min_x || p.x == box.max_x) && (p.y == box.min_y || p.y == box.max_y);
+    bool inside = rectangle;
+    for (const PolygonWithHoles& b : blocked) {
+      if (!inside) break;
+      const Box bb = boundingBox(b.outer);
+      inside = b.holes.empty() && bb.min_x > box.min_x && bb.max_x < box.max_x && bb.min_y > box.min_y && bb.max_y < box.max_y;
+    }
+    if (inside) {
+      PolygonWithHoles f{o, {}};
+      for (const PolygonWithHoles& b : blocked) {
+        f.holes.push_back(b.outer);
+        std::reverse(f.holes.back().begin(), f.holes.back().end());  // holes run clockwise
+      }
+      return {f};
+    }
+  }
   return subtract(inner, blocked);
 }
 

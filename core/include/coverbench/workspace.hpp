@@ -67,6 +67,8 @@ class TransitRouter {
   /// The shortest route through the nodes in a box around a and b, grown until no route leaving
   /// the box could be shorter (at most to every node); nullopt when there is none.
   std::optional<std::vector<Point>> localRoute(Point a, Point b);
+  /// The shortest route from pos[0] to pos[1] through pos, no longer than `bound` (lazy A*).
+  std::optional<std::vector<Point>> lazySearch(const std::vector<Point>& pos, double bound) const;
   /// Runs of F's boundary vertices near a or b (needs the free region).
   std::vector<std::vector<Point>> boundaryChains(Point a, Point b) const;
 
