@@ -101,6 +101,8 @@ Decomposition decompose(const PolygonWithHoles& polygon, Kind kind, double min_c
   std::vector<std::size_t> active;
   std::vector<std::pair<double, std::size_t>> order;
   std::vector<Interval> previous, current;
+  std::vector<Link> links;
+  std::vector<bool> continued;
   std::size_t next_edge = 0;
   for (std::size_t k = 0; k + 1 < xs.size(); ++k) {
     const double x0 = xs[k], x1 = xs[k + 1], mid = (x0 + x1) / 2.0;
@@ -116,7 +118,7 @@ Decomposition decompose(const PolygonWithHoles& polygon, Kind kind, double min_c
       if (order[i + 1].first > order[i].first) current.push_back({order[i].second, order[i + 1].second, 0, 0, 0});
 
     // Links with the previous slab's intervals across x0 (both lists are sorted bottom to top).
-    std::vector<Link> links;
+    links.clear();
     if (k > 0) {
       std::size_t i = 0, j = 0;
       while (i < previous.size() && j < current.size()) {
@@ -131,7 +133,7 @@ Decomposition decompose(const PolygonWithHoles& polygon, Kind kind, double min_c
         (a1 < b1) ? ++i : ++j;
       }
     }
-    std::vector<bool> continued(current.size(), false);
+    continued.assign(current.size(), false);
     for (const Link& link : links) {
       const Interval& p = previous[link.left];
       Interval& c = current[link.right];
