@@ -147,15 +147,7 @@ TEST(CellDecomposition, BoundaryWalkFollowsFloorAndCeilingIncludingSteps) {
   EXPECT_EQ(cell.spanAt(2.0).bottom, 0.0);
 }
 
-PlanResult planWith(const std::string& planner, const Wall& wall, const ToolParams& tool,
-                    std::vector<std::pair<std::string, std::string>> settings = {}) {
-  const PlannerInfo& info = findPlanner(planner);
-  Problem problem;
-  problem.wall = &wall;
-  problem.tool = tool;
-  problem.params = resolveParams(info, settings);
-  return runPlanner(info, problem, Budget());
-}
+using test::planWith;
 
 double pathLength(const Path& path) {
   double l = 0.0;
@@ -234,11 +226,7 @@ TEST(DecompositionPlanners, EveryOrderCoversTheSameCells) {
 }
 
 TEST(DecompositionPlanners, DirectionSearchFindsTheLongSideOfARotatedWall) {
-  Wall wall;
-  wall.name = "rotated";
-  const double c = std::cos(M_PI / 6.0), sn = std::sin(M_PI / 6.0);
-  for (const Point p : {Point{0, 0}, Point{6, 0}, Point{6, 1.5}, Point{0, 1.5}})
-    wall.boundary.push_back({p.x * c - p.y * sn + 1.0, p.x * sn + p.y * c});
+  const Wall wall = test::turnedRectWall(6.0, 1.5, 30.0);
   const ToolParams tool{0.1, 0.02};
   for (const char* planner : {"trapezoidal", "boustrophedon"}) {
     const PlanResult r = planWith(planner, wall, tool, {{"direction_search", "true"}});

@@ -20,12 +20,7 @@ using test::rectWall;
 
 PlanResult planWith(const Wall& wall, const ToolParams& tool, std::vector<std::pair<std::string, std::string>> settings,
                     const std::string& planner = "spanning-tree") {
-  const PlannerInfo& info = findPlanner(planner);
-  Problem problem;
-  problem.wall = &wall;
-  problem.tool = tool;
-  problem.params = resolveParams(info, settings);
-  return runPlanner(info, problem, Budget());
+  return test::planWith(planner, wall, tool, settings);
 }
 
 TEST(SpanningTree, ShortBranchesFirstNoLongerThanStopWhichIsShorterThanReturn) {
@@ -162,11 +157,7 @@ TEST(AdaptiveResolution, DenseWaypointsFollowTheDistanceToObstacles) {
 
 TEST(SweepDirectionSearch, FindsTheLongSideOfARotatedWallAndBeatsEveryFixedDirection) {
   // A 6 m x 1.5 m wall turned by 30 degrees: rows along the long side turn least.
-  Wall wall;
-  wall.name = "rotated";
-  const double c = std::cos(M_PI / 6.0), sn = std::sin(M_PI / 6.0);
-  for (const Point p : {Point{0, 0}, Point{6, 0}, Point{6, 1.5}, Point{0, 1.5}})
-    wall.boundary.push_back({p.x * c - p.y * sn + 1.0, p.x * sn + p.y * c});
+  const Wall wall = test::turnedRectWall(6.0, 1.5, 30.0);
   const ToolParams tool{0.1, 0.02};
   const PlanResult searched = planWith(wall, tool, {{"direction_search", "true"}}, "zigzag");
   ASSERT_EQ(searched.status, PlanStatus::Ok);

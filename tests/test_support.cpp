@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "coverbench/clearance.hpp"
+#include "coverbench/registry.hpp"
 
 namespace coverbench::test {
 
@@ -46,6 +47,25 @@ Obstacle rect(double x, double y, double w, double h) {
   o.type = ObstacleType::Rect;
   o.polygon = {{x, y}, {x + w, y}, {x + w, y + h}, {x, y + h}};
   return o;
+}
+
+PlanResult planWith(const std::string& planner, const Wall& wall, const ToolParams& tool,
+                    const std::vector<std::pair<std::string, std::string>>& settings) {
+  const PlannerInfo& info = findPlanner(planner);
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = tool;
+  problem.params = resolveParams(info, settings);
+  return runPlanner(info, problem, Budget());
+}
+
+Wall turnedRectWall(double width, double height, double degrees) {
+  Wall wall;
+  wall.name = "turned";
+  const double c = std::cos(degrees * M_PI / 180.0), sn = std::sin(degrees * M_PI / 180.0);
+  for (const Point p : {Point{0, 0}, Point{width, 0}, Point{width, height}, Point{0, height}})
+    wall.boundary.push_back({p.x * c - p.y * sn + 1.0, p.x * sn + p.y * c});
+  return wall;
 }
 
 Obstacle circle(double x, double y, double radius) {

@@ -84,12 +84,6 @@ std::vector<Point> throughContact(const Cell& from, Point p, const Cell& to, Poi
   return walk;
 }
 
-double polylineLength(const std::vector<Point>& points) {
-  double length = 0.0;
-  for (std::size_t i = 1; i < points.size(); ++i) length += distance(points[i - 1], points[i]);
-  return length;
-}
-
 class DecompositionPlanner final : public Planner {
  public:
   explicit DecompositionPlanner(Kind kind) : kind_(kind) {}

@@ -78,18 +78,7 @@ std::vector<Point> ringWalk(const Ring& ring, Point from, std::size_t e1, Point 
   forward.push_back(to);
   for (std::size_t e = e1; e != e2; e = (e + n - 1) % n) backward.push_back(ring[e]);
   backward.push_back(to);
-  auto length = [](const std::vector<Point>& pts) {
-    double l = 0.0;
-    for (std::size_t i = 1; i < pts.size(); ++i) l += distance(pts[i - 1], pts[i]);
-    return l;
-  };
-  return length(forward) <= length(backward) ? forward : backward;
-}
-
-double polylineLength(const std::vector<Point>& pts) {
-  double l = 0.0;
-  for (std::size_t i = 1; i < pts.size(); ++i) l += distance(pts[i - 1], pts[i]);
-  return l;
+  return polylineLength(forward) <= polylineLength(backward) ? forward : backward;
 }
 
 class ZigzagPlanner final : public Planner {

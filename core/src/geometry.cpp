@@ -49,6 +49,12 @@ double area(const Region& region) {
   return a;
 }
 
+double polylineLength(const std::vector<Point>& points) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) length += distance(points[i - 1], points[i]);
+  return length;
+}
+
 double squaredDistancePointSegment(Point p, Point a, Point b) {
   const Point ab = b - a;
   const double len2 = dot(ab, ab);

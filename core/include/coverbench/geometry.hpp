@@ -62,6 +62,8 @@ double squaredBoxDistance(const Box& a, const Box& b);
 double signedArea(const Ring& ring);
 double area(const PolygonWithHoles& polygon);
 double area(const Region& region);
+/// Length of an open polyline (0 for fewer than two points).
+double polylineLength(const std::vector<Point>& points);
 
 /// Distance from p to the closed segment [a, b].
 double distancePointSegment(Point p, Point a, Point b);
