@@ -160,7 +160,6 @@ class DecompositionPlanner final : public Planner {
     const auto t_synthesis = Clock::now();
     PathBuilder builder(ws);
     std::size_t unreachable = 0, contact_moves = 0, routed_between_cells = 0;
-    if (boundary_loop) unreachable += coverRings(builder, allRings(main), 1.01 * spacing);
     std::size_t previous = cells.cells.size();
     for (const Visit& visit : ordering.visits) {
       if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the passes");
@@ -202,6 +201,8 @@ class DecompositionPlanner final : public Planner {
         up = !up;
       }
     }
+    // The boundary loop last: coverRings starts at the ring nearest to where the cells ended.
+    if (boundary_loop) unreachable += coverRings(builder, allRings(main), 1.01 * spacing);
     const double synthesis_ms = msSince(t_synthesis);
 
     PlanResult result;
@@ -240,7 +241,7 @@ PlannerInfo plannerInfo(Kind kind) {
        "cell order: 2-opt-improved TSP tour, depth-first over the cell graph, or greedy nearest entry"},
       {"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent passes overlap"},
       {"boundary_loop", ParamType::Bool, true, 0, 0, {}, "",
-       "one loop around the wall and each obstacle before the cells (covers corners the passes miss)"},
+       "one loop around the wall and each obstacle after the cells (covers corners the passes miss)"},
       {"direction_search", ParamType::Bool, false, 0, 0, {}, "",
        "search the sweep direction (5-degree steps and the longest edges, then 1-degree steps); overrides sweep_angle"},
       {"turn_penalty", ParamType::Number, 1.0, 0.0, 1000.0, {}, "m", "cost of a turn over 30 degrees in the direction search"},
