@@ -299,8 +299,24 @@ std::vector<std::size_t> cellsOf(const std::vector<Visit>& visits) {
 }
 
 Ordering greedyOrder(const std::vector<CellEnds>& cells) {
+  // From each exit, the nearest entry of an unvisited cell. The cells' entries are bucketed in a
+  // grid; rings of buckets are searched outward until no nearer entry can remain.
   Ordering out;
   const std::size_t n = cells.size();
+  Box extent;
+  for (const CellEnds& c : cells)
+    for (const Point& p : c.entry) extent.add(p);
+  const double size = std::max({extent.width(), extent.height(), 1e-9});
+  const double step = std::max(size / 256.0, std::sqrt(std::max(extent.width() * extent.height(), 1e-18) / static_cast<double>(n)));
+  const long nx = static_cast<long>(extent.width() / step) + 1, ny = static_cast<long>(extent.height() / step) + 1;
+  std::vector<std::vector<std::size_t>> buckets(static_cast<std::size_t>(nx * ny));
+  auto column = [&](double x) { return std::clamp(static_cast<long>((x - extent.min_x) / step), 0L, nx - 1); };
+  auto row = [&](double y) { return std::clamp(static_cast<long>((y - extent.min_y) / step), 0L, ny - 1); };
+  for (std::size_t c = 0; c < n; ++c)
+    for (const Point& p : cells[c].entry) {
+      auto& bucket = buckets[static_cast<std::size_t>(row(p.y) * nx + column(p.x))];
+      if (bucket.empty() || bucket.back() != c) bucket.push_back(c);
+    }
   std::vector<bool> done(n, false);
   Visit cur{0, 0};
   done[0] = true;
@@ -308,13 +324,28 @@ Ordering greedyOrder(const std::vector<CellEnds>& cells) {
   for (std::size_t k = 1; k < n; ++k) {
     const Point here = cells[cur.cell].exit[cur.orientation];
     double best = INFINITY;  // squared
-    Visit next{};
-    for (std::size_t c = 0; c < n; ++c) {
-      if (done[c]) continue;
-      for (int o = 0; o < 4; ++o) {
-        const double dx = here.x - cells[c].entry[o].x, dy = here.y - cells[c].entry[o].y;
-        const double v = dx * dx + dy * dy;
-        if (v < best) best = v, next = {c, o};
+    Visit next{n, 0};
+    const long cx = column(here.x), cy = row(here.y);
+    for (long ring = 0;; ++ring) {
+      // Entries in ring r are at least (r - 1) * step away (here may lie outside the grid box).
+      const double reach = std::max(0.0, static_cast<double>(ring - 1)) * step;
+      if (next.cell < n && reach * reach > best) break;
+      if (cx - ring < 0 && cy - ring < 0 && cx + ring >= nx && cy + ring >= ny) break;
+      for (long y = cy - ring; y <= cy + ring; ++y) {
+        if (y < 0 || y >= ny) continue;
+        const bool edge_row = y == cy - ring || y == cy + ring;
+        for (long x = cx - ring; x <= cx + ring; x += edge_row ? 1 : 2 * ring) {
+          if (x >= 0 && x < nx)
+            for (std::size_t c : buckets[static_cast<std::size_t>(y * nx + x)]) {
+              if (done[c]) continue;
+              for (int o = 0; o < 4; ++o) {
+                const double dx = here.x - cells[c].entry[o].x, dy = here.y - cells[c].entry[o].y;
+                const double v = dx * dx + dy * dy;
+                if (v < best || (v == best && (c < next.cell || (c == next.cell && o < next.orientation)))) best = v, next = {c, o};
+              }
+            }
+          if (ring == 0) break;
+        }
       }
     }
     out.estimated_cost += std::sqrt(best);
