@@ -212,7 +212,7 @@ class DecompositionPlanner final : public Planner {
                                  "no cell: F drawn 1 mm inside itself is empty (F is thinner than 2 mm); enable "
                                  "boundary_loop to cover F's boundary instead");
     result.path = builder.take();
-    for (Point& p : result.path.waypoints) p = rotate(p, turn);
+    rotatePoints(result.path.waypoints, turn);
     result.stats["cells"] = static_cast<double>(cells.cells.size());
     result.stats["cell_contacts"] = static_cast<double>(cells.contacts.size());
     result.stats["contact_transits"] = static_cast<double>(contact_moves);

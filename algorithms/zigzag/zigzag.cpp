@@ -190,7 +190,7 @@ class ZigzagPlanner final : public Planner {
     PlanResult result;
     result.status = PlanStatus::Ok;
     result.path = builder.take();
-    for (Point& p : result.path.waypoints) p = rotate(p, angle);
+    rotatePoints(result.path.waypoints, angle);
     result.stats["rows"] = static_cast<double>(rows.size());
     result.stats["row_spacing"] = row_gap;
     result.stats["intervals"] = static_cast<double>(interval_count);

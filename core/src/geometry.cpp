@@ -9,6 +9,11 @@ Point rotate(Point p, double radians) {
   return {c * p.x - s * p.y, s * p.x + c * p.y};
 }
 
+void rotatePoints(std::vector<Point>& points, double radians) {
+  const double c = std::cos(radians), s = std::sin(radians);
+  for (Point& p : points) p = {c * p.x - s * p.y, s * p.x + c * p.y};
+}
+
 Box boundingBox(const Ring& ring) {
   Box box;
   for (const Point& p : ring) box.add(p);

@@ -26,6 +26,8 @@ inline double distance(Point a, Point b) { return norm(a - b); }
 
 /// Rotates p by `radians` counter-clockwise about the origin.
 Point rotate(Point p, double radians);
+/// rotate() applied to every point, with the sine and cosine computed once (same results).
+void rotatePoints(std::vector<Point>& points, double radians);
 
 /// A closed polygon ring; the last vertex connects back to the first (not repeated).
 using Ring = std::vector<Point>;
