@@ -27,10 +27,15 @@ Region freeRegion(const Wall& wall, const ToolParams& tool, double margin, doubl
   const Region boundary = regionFromRings({wall.boundary});
   const Region inner = offsetRegion(boundary, -(r + margin), arc_tolerance);
   if (inner.empty() || wall.obstacles.empty()) return inner;
-  std::vector<Ring> rings;
-  for (const Obstacle& o : wall.obstacles)
-    for (const Ring& ring : allRings(obstacleRegion(o, arc_tolerance))) rings.push_back(ring);
-  const Region blocked = offsetRegion(regionFromRings(rings), r + tool.clearance + margin, arc_tolerance);
+  // Each obstacle as its own counter-clockwise polygon: the offset unites the grown polygons
+  // itself (positive fill), so overlapping and touching obstacles need no union first.
+  Region obstacles;
+  for (const Obstacle& o : wall.obstacles) {
+    Ring ring = o.type == ObstacleType::Circle ? circumscribedCircle(o.center, o.radius, arc_tolerance) : o.polygon;
+    if (signedArea(ring) < 0.0) std::reverse(ring.begin(), ring.end());
+    obstacles.push_back({std::move(ring), {}});
+  }
+  const Region blocked = offsetRegion(obstacles, r + tool.clearance + margin, arc_tolerance);
   // Common case, without a second sweep: one axis-aligned rectangle with every blocked part
   // strictly inside it and none enclosing a pocket. The difference is then the rectangle with
   // the blocked outlines as its holes (they are disjoint: they come out of one union).
