@@ -149,12 +149,6 @@ TEST(CellDecomposition, BoundaryWalkFollowsFloorAndCeilingIncludingSteps) {
 
 using test::planWith;
 
-double pathLength(const Path& path) {
-  double l = 0.0;
-  for (std::size_t i = 1; i < path.waypoints.size(); ++i) l += distance(path.waypoints[i - 1], path.waypoints[i]);
-  return l;
-}
-
 /// Walls with 10 or more obstacles from every generated family: the first ones of each family
 /// that have that many (two of the slow 50 m stress walls).
 std::vector<Wall> busyWalls() {
@@ -192,7 +186,7 @@ TEST(DecompositionPlanners, BoustrophedonHasFewerCellsAndTspIsNoLongerThanDfs) {
     const PlanResult dfs = planWith("boustrophedon", wall, tool, {{"order", "dfs"}});
     ASSERT_EQ(dfs.status, PlanStatus::Ok) << wall.name;
     EXPECT_EQ(dfs.stats.at("cells"), tsp.stats.at("cells"));
-    if (pathLength(tsp.path) <= pathLength(dfs.path) + 1e-9) ++tsp_wins;
+    if (polylineLength(tsp.path.waypoints) <= polylineLength(dfs.path.waypoints) + 1e-9) ++tsp_wins;
   }
   EXPECT_GE(static_cast<double>(tsp_wins), 0.95 * static_cast<double>(walls.size()))
       << tsp_wins << " of " << walls.size();

@@ -11,12 +11,6 @@ namespace {
 using test::rect;
 using test::rectWall;
 
-double length(const std::vector<Point>& pts) {
-  double l = 0;
-  for (std::size_t i = 1; i < pts.size(); ++i) l += distance(pts[i - 1], pts[i]);
-  return l;
-}
-
 TEST(Transit, StraightWhenFree) {
   const Wall w = rectWall(4, 2);
   Workspace ws(w, {0.1, 0.02});
@@ -41,8 +35,8 @@ TEST(Transit, GoesAroundAWindowWithTheShortestDetour) {
   // R = r + c = 0.07, plus slack for the polygonal nodes around each corner.
   const double R = 0.07;
   const double over_top = distance(a, {1.5 - R, 1.3 + R}) + (1.0 + 2 * R) + distance({2.5 + R, 1.3 + R}, b);
-  EXPECT_LE(length(*route), over_top + 0.05);
-  EXPECT_GT(length(*route), distance(a, b));
+  EXPECT_LE(polylineLength(*route), over_top + 0.05);
+  EXPECT_GT(polylineLength(*route), distance(a, b));
   for (const Point& q : *route) EXPECT_GE(q.y, 1.0);  // over, not under (the bottom is longer)
 }
 
@@ -61,7 +55,7 @@ TEST(Transit, OutOfACuspOfTheFreeRegion) {
   Path p;
   for (const Point& q : *route) p.moveTo(q, false);
   EXPECT_TRUE(test::isValidPath(w, tool, p));
-  EXPECT_LT(length(*route), distance(cusp, corridor) + 0.2);
+  EXPECT_LT(polylineLength(*route), distance(cusp, corridor) + 0.2);
 }
 
 TEST(Transit, UnreachableAcrossAClosedGap) {

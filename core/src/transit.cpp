@@ -235,15 +235,14 @@ std::vector<std::vector<Point>> TransitRouter::boundaryChains(Point a, Point b) 
 std::optional<std::vector<Point>> TransitRouter::route(Point a, Point b) {
   if (isFree(a, b)) return std::vector<Point>{a, b};
   build();
+  // The local search ends with every node in its box, so the corner nodes alone have no route.
   if (auto local = localRoute(a, b)) return local;
-  link();
-  std::optional<std::vector<Point>> result = search(a, b, {});
-  if (result || !free_) return result;
   // Fallback: F's own boundary vertices near a and b, in runs along the rings. Consecutive ones
   // are joined by F's edges, which are free, so a walk along F leaves cusps and thin passages
   // that no corner node can see into.
   const std::vector<std::vector<Point>> chains = boundaryChains(a, b);
-  if (chains.empty()) return result;
+  if (chains.empty()) return std::nullopt;
+  link();
   return search(a, b, chains);
 }
 
