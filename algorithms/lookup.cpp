@@ -113,13 +113,6 @@ Params resolveParams(const PlannerInfo& planner, const std::vector<std::pair<std
   return params;
 }
 
-void validateTool(const ToolParams& tool, const std::string& source) {
-  if (!std::isfinite(tool.tool_width) || tool.tool_width <= 0.0 || tool.tool_width > 10.0)
-    throw InputError(source, "tool_width", "must be in (0, 10] m, got " + toString(tool.tool_width));
-  if (!std::isfinite(tool.clearance) || tool.clearance < 0.0 || tool.clearance > 10.0)
-    throw InputError(source, "clearance", "must be in [0, 10] m, got " + toString(tool.clearance));
-}
-
 PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const Budget& budget) {
   const auto start = std::chrono::steady_clock::now();
   PlanResult result;

@@ -3,10 +3,16 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstring>
 #include <cstdio>
+#include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <unistd.h>
 
+#include "coverbench/escape.hpp"
+#include "coverbench/limits.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/plan_file.hpp"
 #include "coverbench/registry.hpp"
@@ -92,10 +98,10 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
 
 bool succeeded(const PlanFile& plan) { return plan.result.status == PlanStatus::Ok && plan.metrics.validity.valid; }
 
-std::string replaceAll(std::string text, const std::string& from, const std::string& to) {
-  for (std::size_t pos = 0; (pos = text.find(from, pos)) != std::string::npos; pos += to.size())
-    text.replace(pos, from.size(), to);
-  return text;
+std::string formatted(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
 }
 
 std::string percent(double v) {
@@ -122,13 +128,16 @@ void listPlanners(std::ostream& out) {
 
 int planCommand(const PlanOptions& options) {
   validateTool(options.tool, "command line");
-  if (!(options.time_limit_s > 0.0)) throw InputError("--time-limit", "time_limit", "must be positive");
+  validateTimeLimit(options.time_limit_s, "--time-limit", "time_limit");
   const Wall wall = loadWallFile(options.wall);
+  validateToolForWall(options.tool, wall, "command line");
   const PlannerInfo& planner = findPlanner(options.planner);
   Params params = resolveParams(planner, splitSettings(options.params));
   const Outcome o = planOnce(wall, planner, options.tool, std::move(params), options.time_limit_s, !options.svg.empty());
-  writeFileAtomically(options.out, o.plan_json);
-  if (!options.svg.empty()) writeFileAtomically(options.svg, o.svg);
+  OutputFiles files;  // both files or neither
+  files.add(options.out, o.plan_json);
+  if (!options.svg.empty()) files.add(options.svg, o.svg);
+  files.commit();
   const PlanResult& r = o.plan.result;
   const PathMetrics& m = o.plan.metrics;
   std::cout << planner.name << " on " << wall.name << ": " << toString(r.status)
@@ -139,21 +148,50 @@ int planCommand(const PlanOptions& options) {
   return succeeded(o.plan) ? 0 : 3;
 }
 
+namespace {
+
+// The scoring time limit of `coverbench metrics`: exact scoring runs inside Clipper, which cannot
+// be interrupted, so the process itself ends at the deadline, with the documented one-line error
+// and exit code 2; nothing has been written or printed by then.
+char g_scoring_limit_message[512];
+
+extern "C" void scoringTimeLimitReached(int) {
+  const ssize_t ignored = ::write(STDERR_FILENO, g_scoring_limit_message, std::strlen(g_scoring_limit_message));
+  (void)ignored;
+  ::_exit(2);
+}
+
+void limitScoringTime(const std::string& plan_file, double seconds) {
+  std::snprintf(g_scoring_limit_message, sizeof g_scoring_limit_message,
+                "coverbench: %s: (scoring): not scored within the time limit of %g s (--time-limit)\n",
+                plan_file.c_str(), seconds);
+  std::signal(SIGALRM, scoringTimeLimitReached);
+  ::alarm(static_cast<unsigned>(std::ceil(seconds)));
+}
+
+}  // namespace
+
 int metricsCommand(const MetricsOptions& options) {
+  validateTimeLimit(options.time_limit_s, "--time-limit", "time_limit");
   const Wall wall = loadWallFile(options.wall);
   const LoadedPlan plan = loadPlanFile(options.plan);
   ToolParams tool;
   tool.tool_width = options.tool_width ? *options.tool_width : plan.tool_width.value_or(tool.tool_width);
   tool.clearance = options.clearance ? *options.clearance : plan.clearance.value_or(tool.clearance);
-  validateTool(tool, options.tool_width || options.clearance ? "command line" : options.plan);
+  validateToolForWall(tool, wall, options.tool_width || options.clearance ? "command line" : options.plan);
   MotionLimits limits;
   limits.speed = options.speed;
   limits.acceleration = options.acceleration;
-  if (!(limits.speed > 0.0)) throw InputError("--speed", "speed", "must be positive");
-  if (!(limits.acceleration > 0.0)) throw InputError("--acceleration", "acceleration", "must be positive");
+  if (!(limits.speed > 0.0) || !std::isfinite(limits.speed)) throw InputError("--speed", "speed", "must be positive and finite");
+  if (!(limits.acceleration > 0.0) || !std::isfinite(limits.acceleration))
+    throw InputError("--acceleration", "acceleration", "must be positive and finite");
+  limitScoringTime(options.plan, options.time_limit_s);
   const PathMetrics m = computeMetrics(wall, tool, plan.path, limits);
-  std::cout << metricsJson(m, std::nullopt, std::nullopt);
-  if (!options.svg.empty()) writeFileAtomically(options.svg, picture(wall, tool, plan.path, wall.name + " / " + options.plan));
+  OutputFiles files;  // the picture is written before anything is printed, so a failure prints nothing
+  if (!options.svg.empty()) files.add(options.svg, picture(wall, tool, plan.path, wall.name + " / " + options.plan));
+  ::alarm(0);
+  files.commit();
+  std::cout << metricsJson(m);
   return m.validity.valid ? 0 : 3;
 }
 
@@ -166,58 +204,71 @@ int showcaseCommand(const ShowcaseOptions& options) {
   std::sort(files.begin(), files.end());
   if (files.empty()) throw InputError(options.walls, "--walls", "contains no .json wall files");
   std::vector<Wall> walls;
-  for (const fs::path& f : files) walls.push_back(loadWallFile(f.string()));  // all input checked first
+  for (const fs::path& f : files) {  // all input checked first
+    walls.push_back(loadWallFile(f.string()));
+    validateToolForWall(options.tool, walls.back(), "command line");
+  }
+  // File names come from wall and planner names through one path-safe, collision-free mapping.
+  std::vector<std::string> names;
+  for (const Wall& wall : walls)
+    for (const PlannerInfo& planner : registeredPlanners()) names.push_back(wall.name + "__" + planner.name);
+  const std::vector<std::string> stems = uniqueFileNames(names);
 
   const fs::path out = options.out;
-  fs::create_directories(out / "plans");
-  const std::string header =
-      "wall | planner | status | valid | violations | min clearance (m) | coverage reachable | coverage wall | "
-      "overlap | length (m) | transit (m) | length ratio | turns | duration (s) | waypoints | plan time (ms)";
-  std::string table = "| " + header + " |\n|";
-  for (std::size_t k = 0; k < 16; ++k) table += "---|";
+  OutputFiles outputs;  // everything or nothing: staged, published at the end
+  outputs.folder((out / "plans").string());
+  const std::vector<std::string> header = {
+      "wall", "planner", "status", "valid", "violations", "min clearance (m)", "coverage reachable", "coverage wall",
+      "overlap", "length (m)", "transit (m)", "length ratio", "turns", "duration (s)", "waypoints", "plan time (ms)"};
+  const std::vector<std::string> csv_header = {
+      "wall", "planner", "status", "valid", "violations", "min_clearance_m", "coverage_reachable", "coverage_wall",
+      "overlap", "length_m", "transit_m", "length_ratio", "turns", "duration_s", "waypoints", "plan_time_ms"};
+  auto joined = [](const std::vector<std::string>& cells, std::string (*escape)(const std::string&),
+                   const std::string& open, const std::string& sep, const std::string& close) {
+    std::string line = open;
+    for (std::size_t k = 0; k < cells.size(); ++k) line += (k ? sep : "") + escape(cells[k]);
+    return line + close;
+  };
+  std::string table = joined(header, escapeMarkdown, "| ", " | ", " |\n") + "|";
+  for (std::size_t k = 0; k < header.size(); ++k) table += "---|";
   table += "\n";
-  std::string csv =
-      "wall,planner,status,valid,violations,min_clearance_m,coverage_reachable,coverage_wall,overlap,length_m,"
-      "transit_m,length_ratio,turns,duration_s,waypoints,plan_time_ms\n";
+  std::string csv = joined(csv_header, escapeCsv, "", ",", "\n");
   std::string html_rows, gallery;
   int exit_code = 0;
+  std::size_t next_stem = 0;
   for (const Wall& wall : walls) {
     for (const PlannerInfo& planner : registeredPlanners()) {
       const Outcome o = planOnce(wall, planner, options.tool, resolveParams(planner, {}), 60.0, true);
-      const std::string stem = wall.name + "__" + planner.name;
-      writeFileAtomically((out / "plans" / (stem + ".json")).string(), o.plan_json);
-      writeFileAtomically((out / "plans" / (stem + ".svg")).string(), o.svg);
+      const std::string& stem = stems[next_stem++];
+      outputs.add((out / "plans" / (stem + ".json")).string(), o.plan_json);
+      outputs.add((out / "plans" / (stem + ".svg")).string(), o.svg);
       const PathMetrics& m = o.plan.metrics;
-      char row[768];
       const double mc = m.validity.min_clearance;
-      std::snprintf(row, sizeof row,
-                    "%s | %s | %s | %s | %zu | %s | %.4f | %.4f | %.4f | %.2f | %.2f | %.3f | %zu | %.1f | %zu | %.2f",
-                    wall.name.c_str(), planner.name.c_str(), toString(o.plan.result.status).c_str(),
-                    m.validity.valid ? "yes" : "NO", m.validity.violations,
-                    std::isfinite(mc) ? toString(mc).c_str() : "-", m.coverage.coverage_reachable,
-                    m.coverage.coverage_wall, m.passes.overlap, m.lengths.total, m.lengths.transit, m.length_ratio,
-                    m.motion.turns, m.motion.duration_s, m.waypoints, o.plan.result.plan_time_ms);
-      std::string line = row;
-      table += "| " + line + " |\n";
-      html_rows += "<tr><td>" + replaceAll(line, " | ", "</td><td>") + "</td></tr>\n";
-      gallery += "<figure><img src=\"plans/" + stem + ".svg\" alt=\"" + stem + "\"><figcaption><a href=\"plans/" + stem +
-                 ".json\">" + stem + ".json</a></figcaption></figure>\n";
-      for (char& ch : line)
-        if (ch == '|') ch = ',';
-      line.erase(std::remove(line.begin(), line.end(), ' '), line.end());
-      csv += line + "\n";
+      const std::vector<std::string> cells = {
+          wall.name, planner.name, toString(o.plan.result.status), m.validity.valid ? "yes" : "NO",
+          std::to_string(m.validity.violations), std::isfinite(mc) ? toString(mc) : "-",
+          formatted("%.4f", m.coverage.coverage_reachable), formatted("%.4f", m.coverage.coverage_wall),
+          formatted("%.4f", m.passes.overlap), formatted("%.2f", m.lengths.total), formatted("%.2f", m.lengths.transit),
+          formatted("%.3f", m.length_ratio), std::to_string(m.motion.turns), formatted("%.1f", m.motion.duration_s),
+          std::to_string(m.waypoints), formatted("%.2f", o.plan.result.plan_time_ms)};
+      table += joined(cells, escapeMarkdown, "| ", " | ", " |\n");
+      csv += joined(cells, escapeCsv, "", ",", "\n");
+      html_rows += joined(cells, escapeHtml, "<tr><td>", "</td><td>", "</td></tr>\n");
+      gallery += "<figure><img src=\"plans/" + escapeHtml(stem) + ".svg\" alt=\"" + escapeHtml(wall.name + " / " + planner.name) +
+                 "\"><figcaption><a href=\"plans/" + escapeHtml(stem) + ".json\">" + escapeHtml(stem) +
+                 ".json</a></figcaption></figure>\n";
       if (!succeeded(o.plan)) exit_code = 3;
-      std::cout << "  " << stem << ": " << toString(o.plan.result.status)
+      std::cout << "  " << wall.name << " / " << planner.name << ": " << toString(o.plan.result.status)
                 << (m.validity.valid ? ", valid" : ", INVALID") << ", coverage "
                 << percent(m.coverage.coverage_reachable) << " of reachable\n";
     }
   }
-  writeFileAtomically((out / "summary.md").string(),
-                      "# CoverBench showcase\n\nTool width " + toString(options.tool.tool_width) + " m, clearance " +
-                          toString(options.tool.clearance) +
-                          " m, default planner parameters. Pictures and plan files are in `plans/`.\n\n" + table);
-  writeFileAtomically((out / "summary.csv").string(), csv);
-  writeFileAtomically(
+  outputs.add((out / "summary.md").string(),
+              "# CoverBench showcase\n\nTool width " + toString(options.tool.tool_width) + " m, clearance " +
+                  toString(options.tool.clearance) +
+                  " m, default planner parameters. Pictures and plan files are in `plans/`.\n\n" + table);
+  outputs.add((out / "summary.csv").string(), csv);
+  outputs.add(
       (out / "index.html").string(),
       "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>CoverBench showcase</title><style>"
       "body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #ccc;"
@@ -226,16 +277,16 @@ int showcaseCommand(const ShowcaseOptions& options) {
       "<h1>CoverBench showcase</h1>\n<p>Tool width " + toString(options.tool.tool_width) + " m, clearance " +
           toString(options.tool.clearance) +
           " m, default planner parameters. Every path is validated exactly. Metric definitions: "
-          "docs/metrics.md.</p>\n<table>\n<tr><th>" + replaceAll(header, " | ", "</th><th>") + "</th></tr>\n" +
+          "docs/metrics.md.</p>\n<table>\n" + joined(header, escapeHtml, "<tr><th>", "</th><th>", "</th></tr>\n") +
           html_rows + "</table>\n" + gallery + "</body></html>\n");
+  outputs.commit();
   std::cout << "summary table: " << (out / "summary.md").string() << "\nreport: " << (out / "index.html").string()
             << "\n";
   return exit_code;
 }
 
 int redrawCommand(const RedrawOptions& options) {
-  if (!fs::is_regular_file(options.database)) throw InputError(options.database, "(file)", "does not exist");
-  ResultsDb db(options.database);
+  ResultsDb db(options.database, ResultsDb::Mode::ReadOnly);
   const ResultsDb::StoredRun run = db.storedRun(options.run);
   char title[512];
   std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s", run.wall.name.c_str(), run.planner.c_str(),

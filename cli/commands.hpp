@@ -26,6 +26,7 @@ struct MetricsOptions {
   std::string wall, plan, svg;
   std::optional<double> tool_width, clearance;  ///< default: the plan file's, else 0.1 / 0.02
   double speed = 0.3, acceleration = 0.5;
+  double time_limit_s = 600.0;  ///< scoring (and picture) past it: a one-line error, exit 2
 };
 /// Prints every metric of a plan file (from any source) as JSON. Returns 0 when the path is
 /// valid, 3 when it is not.
@@ -44,8 +45,8 @@ namespace coverbench::cli {
 
 struct DatasetGenerateOptions {
   std::string family, out;
-  std::size_t count = 0;
-  unsigned long long seed = 0;
+  long long count = 0;  ///< signed, so a negative count is refused rather than wrapped around
+  long long seed = 0;
 };
 /// Writes the walls and manifest.json; prints where and a summary.
 int datasetGenerateCommand(const DatasetGenerateOptions& options);
@@ -57,6 +58,7 @@ int datasetFamiliesCommand();
 struct RunOptions {
   std::string config;
   unsigned threads = 0;  ///< 0: the config's, else every core
+  bool yes = false;      ///< confirms an experiment of more than kLargeExperimentRuns runs
 };
 /// Runs an experiment config and writes its tables next to the results database.
 int runCommand(const RunOptions& options);

@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "coverbench/datasets.hpp"
 #include "coverbench/files.hpp"
+#include "coverbench/limits.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
 #include "coverbench/tables.hpp"
@@ -25,12 +26,14 @@ const MemoryProbe& memoryProbe() {
 
 /// Writes the tables of the latest experiment in `db` as report.md, report.csv and report.tex.
 std::string writeTables(const std::string& database, const std::string& folder) {
-  ResultsDb db(database);
+  ResultsDb db(database, ResultsDb::Mode::ReadOnly);
   const ResultSet rs = db.load();
   const fs::path out(folder);
-  writeFileAtomically((out / "report.md").string(), renderTables(rs, TableFormat::Markdown));
-  writeFileAtomically((out / "report.csv").string(), renderTables(rs, TableFormat::Csv));
-  writeFileAtomically((out / "report.tex").string(), renderTables(rs, TableFormat::Latex));
+  OutputFiles files;
+  files.add((out / "report.md").string(), renderTables(rs, TableFormat::Markdown));
+  files.add((out / "report.csv").string(), renderTables(rs, TableFormat::Csv));
+  files.add((out / "report.tex").string(), renderTables(rs, TableFormat::Latex));
+  files.commit();
   return (out / "report.md").string();
 }
 
@@ -38,10 +41,15 @@ std::string writeTables(const std::string& database, const std::string& folder) 
 
 int datasetGenerateCommand(const DatasetGenerateOptions& o) {
   const FamilyInfo& info = findFamily(o.family, "--family", "family");
-  if (!info.fixed_suite && o.count == 0) throw InputError("--count", "count", "must be at least 1");
-  if (o.count > 1000000) throw InputError("--count", "count", "must be at most 1000000");
-  const std::vector<Wall> walls = generateWalls(o.family, o.seed, o.count);
-  const Dataset d = writeDataset(o.out, o.family, info.fixed_suite ? 0 : o.seed, walls);
+  if (info.fixed_suite ? o.count < 0 : o.count < 1) throw InputError("--count", "count", info.fixed_suite ? "must not be negative, got " + std::to_string(o.count) : "must be at least 1, got " + std::to_string(o.count));
+  if (o.count > 1000000) throw InputError("--count", "count", "must be at most 1000000, got " + std::to_string(o.count));
+  if (o.seed < 0 || o.seed > (1LL << 53))
+    throw InputError("--seed", "seed", "must be in [0, 2^53], got " + std::to_string(o.seed));
+  const auto count = static_cast<std::size_t>(o.count);
+  const auto seed = static_cast<std::uint64_t>(o.seed);
+  if (count >= 10000) std::cerr << "generating " << count << " walls of " << o.family << " ...\n";
+  const std::vector<Wall> walls = generateWalls(o.family, seed, count);
+  const Dataset d = writeDataset(o.out, o.family, info.fixed_suite ? 0 : seed, walls);
   std::cout << "wrote " << d.entries.size() << " walls and manifest.json to " << o.out << "\n" << describeDataset(d);
   return 0;
 }
@@ -60,6 +68,12 @@ int datasetFamiliesCommand() {
 
 int runCommand(const RunOptions& o) {
   const ExperimentConfig config = loadExperimentConfig(o.config);  // every check before any run
+  const std::size_t planned = plannedRuns(config);
+  if (planned > kLargeExperimentRuns && !config.allow_large && !o.yes)
+    throw InputError(o.config, "allow_large",
+                     "the experiment asks for " + std::to_string(planned) + " runs (more than " +
+                         std::to_string(kLargeExperimentRuns) +
+                         "; hours to days of work): confirm with --yes or `allow_large: true`");
   RunnerOptions options;
   options.threads = o.threads;
   options.progress = stderr;
@@ -75,8 +89,7 @@ int runCommand(const RunOptions& o) {
 
 int reportCommand(const ReportOptions& o) {
   const TableFormat format = parseTableFormat(o.format);
-  if (!fs::is_regular_file(o.database)) throw InputError(o.database, "(file)", "does not exist");
-  ResultsDb db(o.database);
+  ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
   ResultSet results = db.load(o.experiment);
   if (!o.baseline.empty()) {
     if (std::find(results.planners.begin(), results.planners.end(), o.baseline) == results.planners.end())

@@ -42,6 +42,8 @@ int main(int argc, char** argv) {
   metrics_cmd->add_option("--acceleration", metrics.acceleration, "acceleration a for duration_s, m/s^2")
       ->capture_default_str();
   metrics_cmd->add_option("--svg", metrics.svg, "picture with the coverage layer (SVG)");
+  metrics_cmd->add_option("--time-limit", metrics.time_limit_s, "seconds scoring may take before it is abandoned")
+      ->capture_default_str();
   metrics_cmd->callback([&] { plan_exit = coverbench::cli::metricsCommand(metrics); });
 
   coverbench::cli::ShowcaseOptions showcase;
@@ -73,6 +75,7 @@ int main(int argc, char** argv) {
   CLI::App* run_cmd = app.add_subcommand("run", "Run an experiment config; results in SQLite, tables next to them");
   run_cmd->add_option("config", run.config, "experiment config (YAML)")->required();
   run_cmd->add_option("--threads", run.threads, "worker threads (default: the config's, else every core)");
+  run_cmd->add_flag("--yes", run.yes, "confirm an experiment of more than 100000 runs");
   run_cmd->callback([&] { plan_exit = coverbench::cli::runCommand(run); });
 
   coverbench::cli::ReportOptions report;

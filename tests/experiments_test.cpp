@@ -79,7 +79,7 @@ TEST_F(Experiments, ConfigErrorsNameTheLineAndTheKey) {
   EXPECT_EQ(error(replace(kGood, "planners:", "planers:")).substr(0, file.size() + 12), file + ":8: planers:");
   EXPECT_NE(error(replace(kGood, "overlap: [0, 0.25]", "overlap: [0, 2.5]")).find(file + ":12: planners[1].params.overlap:"),
             std::string::npos);
-  EXPECT_NE(error(replace(kGood, "width: 0.1", "width: -0.1")).find(file + ":14: tool.width: must be in (0, 10]"),
+  EXPECT_NE(error(replace(kGood, "width: 0.1", "width: -0.1")).find(file + ":14: tool.width: must be in [0.001, 10]"),
             std::string::npos);
   EXPECT_NE(error(replace(kGood, "count: 4", "count: many")).find(":6: datasets[1].count: must be a number"),
             std::string::npos);

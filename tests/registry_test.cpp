@@ -1,6 +1,7 @@
 // The registry and parameter resolution.
 #include <gtest/gtest.h>
 
+#include "coverbench/limits.hpp"
 #include "coverbench/registry.hpp"
 
 namespace coverbench {

@@ -2,7 +2,11 @@
 
 #include <unistd.h>
 
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <cstdlib>
+#include <fstream>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -24,6 +28,27 @@ void TempDirTest::SetUp() {
 }
 
 void TempDirTest::TearDown() { std::filesystem::remove_all(dir_); }
+
+CommandRun CommandTest::run(const std::string& args, std::string* out) {
+  const std::string err_file = (dir_ / "stderr.txt").string(), out_file = (dir_ / "stdout.txt").string();
+  const std::string cmd = std::string(COVERBENCH_BINARY) + " " + args + " > " + out_file + " 2> " + err_file;
+  const int status = std::system(cmd.c_str());
+  if (out) *out = slurp(out_file);
+  return {WEXITSTATUS(status), slurp(err_file)};
+}
+
+std::string CommandTest::slurp(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string CommandTest::write(const std::string& name, const std::string& text) {
+  const std::filesystem::path p = dir_ / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p.string();
+}
 
 std::vector<std::string> conformanceWallFiles() {
   std::vector<std::string> files;

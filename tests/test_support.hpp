@@ -43,4 +43,19 @@ class TempDirTest : public testing::Test {
   std::filesystem::path dir_;
 };
 
+struct CommandRun {
+  int exit_code;
+  std::string err;
+};
+
+/// A TempDirTest that runs the coverbench binary as a user would, in a shell.
+class CommandTest : public TempDirTest {
+ protected:
+  /// Runs `coverbench ARGS` (ARGS as shell words); stdout goes to `*out` if given.
+  CommandRun run(const std::string& args, std::string* out = nullptr);
+  static std::string slurp(const std::string& file);
+  /// Writes `text` to a file of that name in the test's folder and returns its path.
+  std::string write(const std::string& name, const std::string& text);
+};
+
 }  // namespace coverbench::test

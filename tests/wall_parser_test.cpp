@@ -117,7 +117,7 @@ TEST(WallParser, MissingFileIsAnInputError) {
     loadWallFile("/nonexistent/wall.json");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "/nonexistent/wall.json: (file): cannot be read");
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/wall.json: (file): cannot be read: no such file");
   }
 }
 

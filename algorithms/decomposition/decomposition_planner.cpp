@@ -220,9 +220,9 @@ class DecompositionPlanner final : public Planner {
     result.stats["passes"] = static_cast<double>(pass_count);
     result.stats["sweep_angle_deg"] = angle_deg;
     result.stats["order_estimate_m"] = ordering.estimated_cost;
-    result.stats["decomposition_ms"] = decomposition_ms;
-    result.stats["ordering_ms"] = ordering_ms;
-    result.stats["synthesis_ms"] = synthesis_ms;
+    result.timings_ms["decomposition"] = decomposition_ms;
+    result.timings_ms["ordering"] = ordering_ms;
+    result.timings_ms["synthesis"] = synthesis_ms;
     recordOutcome(result, builder, components.size(), unreachable);
     result.stats["routed_transits"] += static_cast<double>(routed_between_cells);  // followed, not built by moveTo
     return result;

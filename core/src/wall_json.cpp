@@ -3,10 +3,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <set>
-#include <sstream>
 
+#include "coverbench/files.hpp"
+#include "coverbench/json_input.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/wall.hpp"
 
@@ -18,15 +18,16 @@ InputError::InputError(std::string source, std::string field, std::string proble
       field_(std::move(field)),
       problem_(std::move(problem)) {}
 
-namespace {
-
-using nlohmann::json;
-
-std::string show(double v) {
+std::string shortNumber(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.10g", v);
   return buf;
 }
+
+namespace {
+
+using nlohmann::json;
+
 
 /// Reads JSON values with the file name and field path at hand for errors.
 class Reader {
@@ -52,13 +53,13 @@ class Reader {
     if (!v.is_number()) fail(field, "must be a number, got " + std::string(v.type_name()));
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail(field, "must be finite");
-    if (std::fabs(d) > kMaxExtent) fail(field, "absurd value " + show(d) + " (beyond 10 km)");
+    if (std::fabs(d) > kMaxExtent) fail(field, "absurd value " + shortNumber(d) + " (beyond 10 km)");
     return d;
   }
 
   double positiveSize(const json& obj, const std::string& key, const std::string& field) const {
     const double d = number(obj, key, field);
-    if (d <= 0.0) fail(field, "must be positive, got " + show(d));
+    if (d <= 0.0) fail(field, "must be positive, got " + shortNumber(d));
     return d;
   }
 
@@ -126,14 +127,41 @@ Obstacle parseObstacle(const Reader& r, const json& v, const std::string& field)
 
 }  // namespace
 
+namespace {
+
+/// Whether `p` lies inside `ring` and not on its edges.
+bool strictlyInside(Point p, const Ring& ring) {
+  if (!pointInRing(p, ring)) return false;
+  for (std::size_t i = 0; i < ring.size(); ++i)
+    if (distancePointSegment(p, ring[i], ring[(i + 1) % ring.size()]) == 0.0) return false;
+  return true;
+}
+
+/// Whether an obstacle covers some of the wall's interior. Circles are decided exactly from the
+/// centre; polygons by the area of their intersection, or, for polygons too small for the
+/// region grid (1 um), by a vertex strictly inside the wall.
+bool reachesIntoWall(const Obstacle& o, const Wall& wall, const Region& boundary) {
+  if (o.type == ObstacleType::Circle) {
+    double gap = INFINITY;
+    for (std::size_t i = 0; i < wall.boundary.size(); ++i)
+      gap = std::min(gap, distancePointSegment(o.center, wall.boundary[i], wall.boundary[(i + 1) % wall.boundary.size()]));
+    return gap < o.radius || (gap > 0.0 && pointInRing(o.center, wall.boundary));
+  }
+  if (area(intersect(obstacleRegion(o, 1e-6), boundary)) > 0.0) return true;
+  for (const Point& p : o.polygon)
+    if (strictlyInside(p, wall.boundary)) return true;
+  return false;
+}
+
+}  // namespace
+
 void validateWall(const Wall& wall, const std::string& source) {
   const Region boundary = regionFromRings({wall.boundary});
   std::vector<Ring> obstacle_rings;
   for (std::size_t i = 0; i < wall.obstacles.size(); ++i) {
-    const Region o = obstacleRegion(wall.obstacles[i], 1e-6);
-    if (area(intersect(o, boundary)) <= 0.0)
+    if (!reachesIntoWall(wall.obstacles[i], wall, boundary))
       throw InputError(source, "obstacles[" + std::to_string(i) + "]", "lies entirely outside the wall");
-    for (const Ring& ring : allRings(o)) obstacle_rings.push_back(ring);
+    for (const Ring& ring : allRings(obstacleRegion(wall.obstacles[i], 1e-6))) obstacle_rings.push_back(ring);
   }
   if (!obstacle_rings.empty()) {
     const Region free = subtract(boundary, regionFromRings(obstacle_rings));
@@ -143,15 +171,7 @@ void validateWall(const Wall& wall, const std::string& source) {
 
 Wall parseWallJson(const std::string& text, const std::string& source) {
   Reader r(source);
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::exception& e) {  // syntax errors, number overflow
-    std::string what = e.what();
-    const auto pos = what.find("] ");
-    if (pos != std::string::npos) what = what.substr(pos + 2);
-    r.fail("(document)", "malformed JSON: " + what);
-  }
+  const json doc = parseJsonStrict(text, source);
   if (!doc.is_object()) r.fail("(document)", "must be a JSON object");
   r.onlyKeys(doc, "", {"name", "width", "height", "boundary", "obstacles", "description", "metadata"});
 
@@ -182,14 +202,12 @@ Wall parseWallJson(const std::string& text, const std::string& source) {
 }
 
 Wall loadWallFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "(file)", "cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  Wall wall = parseWallJson(text.str(), path);
+  Wall wall = parseWallJson(readFile(path), path);
   if (wall.name.empty()) {
     std::string stem = path.substr(path.find_last_of('/') + 1);
     wall.name = stem.substr(0, stem.rfind('.'));
+    if (!isValidUtf8(wall.name))
+      throw InputError(path, "name", "missing, and the file name is not valid UTF-8: give the wall a \"name\"");
   }
   return wall;
 }

@@ -4,12 +4,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <set>
 
 #include "coverbench/datasets.hpp"
 #include "coverbench/files.hpp"
 #include "coverbench/hash.hpp"
+#include "coverbench/json_input.hpp"
 
 namespace coverbench {
 namespace {
@@ -40,10 +40,12 @@ Dataset writeDataset(const std::string& dir, const std::string& family, std::uin
   Dataset d;
   d.family = family;
   d.seed = seed;
-  std::vector<std::string> texts;
-  for (const Wall& w : walls) {
-    texts.push_back(wallToJson(w));
-    d.entries.push_back({w.name + ".json", w.name, family, sha256Hex(texts.back())});
+  std::vector<std::string> texts, names;
+  for (const Wall& w : walls) names.push_back(w.name);
+  const std::vector<std::string> files = uniqueFileNames(names);  // path-safe, one file per wall
+  for (std::size_t i = 0; i < walls.size(); ++i) {
+    texts.push_back(wallToJson(walls[i]));
+    d.entries.push_back({files[i] + ".json", walls[i].name, family, sha256Hex(texts.back())});
   }
   d.walls = walls;
   const std::string manifest = manifestText(d);
@@ -57,11 +59,11 @@ Dataset writeDataset(const std::string& dir, const std::string& family, std::uin
     }
     if (!fs::is_empty(folder)) throw InputError(dir, "--out", "is not empty and has no manifest.json; choose an empty folder");
   }
-  std::error_code ec;
-  fs::create_directories(folder, ec);
-  if (ec) throw InputError(dir, "--out", "cannot be created: " + ec.message());
-  for (std::size_t i = 0; i < walls.size(); ++i) writeFileAtomically((folder / d.entries[i].file).string(), texts[i]);
-  writeFileAtomically(manifest_path.string(), manifest);  // last: its presence marks a complete dataset
+  OutputFiles out;  // all walls and the manifest, or nothing
+  out.folder(dir);
+  for (std::size_t i = 0; i < walls.size(); ++i) out.add((folder / d.entries[i].file).string(), texts[i]);
+  out.add(manifest_path.string(), manifest);  // its presence marks a complete dataset
+  out.commit();
   return d;
 }
 
@@ -72,15 +74,13 @@ Dataset readDataset(const std::string& dir) {
   const fs::path manifest_path = folder / kManifest;
   if (fs::exists(manifest_path)) {
     const std::string source = manifest_path.string();
-    json doc;
-    try {
-      doc = json::parse(readFile(source));
-    } catch (const json::exception& e) {
-      throw InputError(source, "(document)", std::string("malformed JSON: ") + e.what());
-    }
+    const json doc = parseJsonStrict(readFile(source), source);
     if (!doc.is_object() || doc.value("format", "") != kFormat)
       throw InputError(source, "format", std::string("must be \"") + kFormat + "\"");
     if (!doc.contains("walls") || !doc["walls"].is_array()) throw InputError(source, "walls", "must be an array");
+    if (doc.contains("family") && !doc["family"].is_string()) throw InputError(source, "family", "must be a string");
+    if (doc.contains("seed") && !doc["seed"].is_number_unsigned())
+      throw InputError(source, "seed", "must be a whole number, 0 or more");
     d.family = doc.value("family", "");
     d.seed = doc.value("seed", std::uint64_t{0});
     for (std::size_t i = 0; i < doc["walls"].size(); ++i) {
@@ -89,6 +89,8 @@ Dataset readDataset(const std::string& dir) {
       if (!w.is_object() || !w.contains("file") || !w["file"].is_string() || !w.contains("sha256") || !w["sha256"].is_string())
         throw InputError(source, field, "must have \"file\" and \"sha256\" strings");
       DatasetEntry e{w["file"].get<std::string>(), w.value("name", ""), d.family, w["sha256"].get<std::string>()};
+      if (e.file.empty() || e.file.find('/') != std::string::npos || e.file == "." || e.file == "..")
+        throw InputError(source, field + ".file", "must be a file name in the dataset's folder, got '" + e.file + "'");
       const std::string path = (folder / e.file).string();
       const std::string text = readFile(path);
       if (sha256Hex(text) != e.sha256)

@@ -4,12 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <set>
+#include <map>
 
 #include "coverbench/datasets.hpp"
 #include "coverbench/experiment.hpp"
 #include "coverbench/files.hpp"
 #include "coverbench/hash.hpp"
+#include "coverbench/limits.hpp"
 #include "coverbench/registry.hpp"
 
 namespace coverbench {
@@ -32,37 +33,93 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
+/// A YAML value copied out of yaml-cpp once, at load. yaml-cpp's nodes are handles whose
+/// assignment writes through to the shared node (so sorting or reassigning them rewrites the
+/// document); every later step reads this plain value tree instead, which cannot alias.
+struct Yaml;
+struct YamlEntry;
+struct Yaml {
+  enum class Kind { Null, Scalar, List, Map } kind = Kind::Null;
+  std::string scalar;
+  std::vector<Yaml> items;          ///< a list's items
+  std::vector<YamlEntry> entries;   ///< a map's entries, in file order, keys unique
+  int line = 1;                     ///< 1-based
+  bool isScalar() const { return kind == Kind::Scalar; }
+  bool isMap() const { return kind == Kind::Map; }
+  bool isList() const { return kind == Kind::List; }
+  const Yaml* find(const std::string& key) const;
+};
+struct YamlEntry {
+  std::string key;
+  int key_line = 1;
+  Yaml value;
+};
+const Yaml* Yaml::find(const std::string& key) const {
+  for (const YamlEntry& e : entries)
+    if (e.key == key) return &e.value;
+  return nullptr;
+}
+
 /// Reads one config file; every error names FILE:LINE and the key path.
 class Reader {
  public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
-  [[noreturn]] void fail(const YAML::Node& at, const std::string& field, const std::string& problem) const {
-    const int line = at.IsDefined() && at.Mark().line >= 0 ? at.Mark().line + 1 : 1;
+  [[noreturn]] void fail(int line, const std::string& field, const std::string& problem) const {
     throw InputError(file_ + ":" + std::to_string(line), field, problem);
   }
+  [[noreturn]] void fail(const Yaml& at, const std::string& field, const std::string& problem) const {
+    fail(at.line, field, problem);
+  }
 
-  void onlyKeys(const YAML::Node& map, const std::string& where, const std::vector<std::string>& allowed) const {
-    if (!map.IsMap()) fail(map, where.empty() ? "(document)" : where, "must be a mapping of keys to values");
-    for (const auto& item : map) {
-      const std::string key = item.first.as<std::string>();
-      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+  /// The document as a value tree: keys must be plain scalars and appear once per mapping.
+  Yaml copy(const YAML::Node& n, const std::string& where, int depth) {
+    if (depth > 32) fail(line(n), where.empty() ? "(document)" : where, "nested more than 32 levels deep");
+    if (++nodes_ > 1000000) fail(line(n), where.empty() ? "(document)" : where, "more than 10^6 values (aliases expanding?)");
+    Yaml y;
+    y.line = line(n);
+    if (n.IsScalar()) {
+      y.kind = Yaml::Kind::Scalar;
+      y.scalar = n.Scalar();
+    } else if (n.IsSequence()) {
+      y.kind = Yaml::Kind::List;
+      std::size_t i = 0;
+      for (const YAML::Node& item : n) y.items.push_back(copy(item, where + "[" + std::to_string(i++) + "]", depth + 1));
+    } else if (n.IsMap()) {
+      y.kind = Yaml::Kind::Map;
+      for (auto it = n.begin(); it != n.end(); ++it) {
+        if (!it->first.IsScalar())
+          fail(line(it->first), where.empty() ? "(document)" : where, "a key must be a plain name, not a list or mapping");
+        const std::string key = it->first.Scalar();
+        const std::string field = where.empty() ? key : where + "." + key;
+        for (const YamlEntry& e : y.entries)
+          if (e.key == key) fail(line(it->first), field, "duplicate key (first on line " + std::to_string(e.key_line) + ")");
+        y.entries.push_back(YamlEntry{key, line(it->first), copy(it->second, field, depth + 1)});
+      }
+    }
+    return y;
+  }
+
+  void onlyKeys(const Yaml& map, const std::string& where, const std::vector<std::string>& allowed) const {
+    if (!map.isMap()) fail(map, where.empty() ? "(document)" : where, "must be a mapping of keys to values");
+    for (const YamlEntry& e : map.entries) {
+      if (std::find(allowed.begin(), allowed.end(), e.key) != allowed.end()) continue;
       std::string hint;
       std::size_t best = 3;
       for (const std::string& a : allowed)
-        if (editDistance(key, a) < best) best = editDistance(key, a), hint = a;
+        if (editDistance(e.key, a) < best) best = editDistance(e.key, a), hint = a;
       std::string known;
       for (const std::string& a : allowed) known += (known.empty() ? "" : ", ") + a;
-      fail(item.first, where.empty() ? key : where + "." + key,
+      fail(e.key_line, where.empty() ? e.key : where + "." + e.key,
            "unknown key" + (hint.empty() ? " (allowed: " + known + ")" : " (did you mean '" + hint + "'?)"));
     }
   }
 
-  std::string text(const YAML::Node& n, const std::string& field) const {
-    if (!n.IsScalar()) fail(n, field, "must be a single value");
-    return n.Scalar();
+  std::string text(const Yaml& n, const std::string& field) const {
+    if (!n.isScalar()) fail(n, field, "must be a single value");
+    return n.scalar;
   }
-  double number(const YAML::Node& n, const std::string& field, double lo, double hi, bool open_lo = false) const {
+  double number(const Yaml& n, const std::string& field, double lo, double hi, bool open_lo = false) const {
     const std::string t = text(n, field);
     double v = 0.0;
     std::size_t used = 0;
@@ -76,26 +133,34 @@ class Reader {
       fail(n, field, "must be in " + std::string(open_lo ? "(" : "[") + toString(lo) + ", " + toString(hi) + "], got " + t);
     return v;
   }
-  long long integer(const YAML::Node& n, const std::string& field, long long lo, long long hi) const {
+  long long integer(const Yaml& n, const std::string& field, long long lo, long long hi) const {
     const double v = number(n, field, static_cast<double>(lo), static_cast<double>(hi));
     if (v != std::floor(v)) fail(n, field, "must be a whole number, got " + text(n, field));
     return static_cast<long long>(v);
   }
+  bool boolean(const Yaml& n, const std::string& field) const {
+    const std::string t = text(n, field);
+    if (t == "true") return true;
+    if (t == "false") return false;
+    fail(n, field, "must be true or false, got '" + t + "'");
+  }
   /// A scalar or a list of scalars, as a list.
-  std::vector<YAML::Node> values(const YAML::Node& n, const std::string& field) const {
-    std::vector<YAML::Node> out;
-    if (n.IsSequence()) {
-      if (n.size() == 0) fail(n, field, "must not be an empty list");
-      for (const auto& item : n) out.push_back(item);
+  std::vector<const Yaml*> values(const Yaml& n, const std::string& field) const {
+    std::vector<const Yaml*> out;
+    if (n.isList()) {
+      if (n.items.empty()) fail(n, field, "must not be an empty list");
+      for (const Yaml& item : n.items) out.push_back(&item);
     } else {
-      out.push_back(n);
+      out.push_back(&n);
     }
     return out;
   }
   const std::string& file() const { return file_; }
 
  private:
+  static int line(const YAML::Node& n) { return n.Mark().line >= 0 ? n.Mark().line + 1 : 1; }
   std::string file_;
+  std::size_t nodes_ = 0;
 };
 
 std::string join(const std::vector<std::pair<std::string, std::string>>& settings) {
@@ -125,171 +190,204 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   c.path = path;
   c.text = readFile(path);
   c.hash = sha256Hex(c.text);
-  const Reader r(path);
-  YAML::Node doc;
+  Reader r(path);
+  requireText(c.text, path + ":1");
+  Yaml doc;
   try {
-    doc = YAML::Load(c.text);
+    doc = r.copy(YAML::Load(c.text), "", 0);
   } catch (const YAML::Exception& e) {
     throw InputError(path + ":" + std::to_string(e.mark.line + 1), "(document)", "YAML syntax: " + e.msg);
   }
-  if (!doc.IsMap()) throw InputError(path + ":1", "(document)", "must be a mapping (name, datasets, planners, ...)");
-  r.onlyKeys(doc, "", {"name", "output", "datasets", "planners", "tool", "repetitions", "limits", "baseline", "threads", "seed"});
+  if (!doc.isMap()) r.fail(doc, "(document)", "must be a mapping (name, datasets, planners, ...)");
+  r.onlyKeys(doc, "", {"name", "output", "datasets", "planners", "tool", "repetitions", "limits", "baseline", "threads",
+                       "seed", "allow_large"});
   const fs::path base = fs::path(path).parent_path();
   auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).lexically_normal().string(); };
 
   for (const char* required : {"name", "output", "datasets", "planners"})
-    if (!doc[required]) throw InputError(path + ":1", required, "missing");
-  c.name = r.text(doc["name"], "name");
-  c.output = resolve(r.text(doc["output"], "output"));
+    if (!doc.find(required)) r.fail(1, required, "missing");
+  c.name = r.text(*doc.find("name"), "name");
+  if (c.name.empty()) r.fail(*doc.find("name"), "name", "must not be empty");
+  c.output = r.text(*doc.find("output"), "output");
+  if (c.output.empty()) r.fail(*doc.find("output"), "output", "must not be empty");
+  c.output = resolve(c.output);
 
   // Datasets.
-  const YAML::Node datasets = doc["datasets"];
-  if (!datasets.IsSequence() || datasets.size() == 0) r.fail(datasets, "datasets", "must be a non-empty list");
-  for (std::size_t i = 0; i < datasets.size(); ++i) {
-    const YAML::Node d = datasets[i];
+  const Yaml& datasets = *doc.find("datasets");
+  if (!datasets.isList() || datasets.items.empty()) r.fail(datasets, "datasets", "must be a non-empty list");
+  for (std::size_t i = 0; i < datasets.items.size(); ++i) {
+    const Yaml& d = datasets.items[i];
     const std::string where = "datasets[" + std::to_string(i) + "]";
     r.onlyKeys(d, where, {"family", "count", "seed", "suite", "folder", "label"});
     DatasetSpec spec;
-    spec.line = d.Mark().line + 1;
-    const int kinds = (d["family"] ? 1 : 0) + (d["suite"] ? 1 : 0) + (d["folder"] ? 1 : 0);
+    spec.line = d.line;
+    const Yaml* family = d.find("family");
+    const Yaml* suite = d.find("suite");
+    const Yaml* folder = d.find("folder");
+    const Yaml* count = d.find("count");
+    const Yaml* seed = d.find("seed");
+    const int kinds = (family ? 1 : 0) + (suite ? 1 : 0) + (folder ? 1 : 0);
     if (kinds != 1) r.fail(d, where, "needs exactly one of family (with count and seed), suite, or folder");
-    if (d["family"]) {
+    if (family) {
       spec.kind = DatasetSpec::Kind::Family;
-      spec.family = r.text(d["family"], where + ".family");
+      spec.family = r.text(*family, where + ".family");
       try {
-        if (findFamily(spec.family, "", "").fixed_suite) r.fail(d["family"], where + ".family", "'" + spec.family + "' is a suite: write suite: " + spec.family);
+        if (findFamily(spec.family, "", "").fixed_suite) r.fail(*family, where + ".family", "'" + spec.family + "' is a suite: write suite: " + spec.family);
       } catch (const InputError& e) {
-        if (e.source().empty()) r.fail(d["family"], where + ".family", e.problem());
+        if (e.source().empty()) r.fail(*family, where + ".family", e.problem());
         throw;
       }
-      if (!d["count"]) r.fail(d, where + ".count", "missing (how many walls to generate)");
-      spec.count = static_cast<std::size_t>(r.integer(d["count"], where + ".count", 1, 1000000));
-      spec.seed = d["seed"] ? static_cast<std::uint64_t>(r.integer(d["seed"], where + ".seed", 0, 1LL << 53)) : 0;
-    } else if (d["suite"]) {
+      if (!count) r.fail(d, where + ".count", "missing (how many walls to generate)");
+      spec.count = static_cast<std::size_t>(r.integer(*count, where + ".count", 1, 1000000));
+      spec.seed = seed ? static_cast<std::uint64_t>(r.integer(*seed, where + ".seed", 0, 1LL << 53)) : 0;
+    } else if (suite) {
       spec.kind = DatasetSpec::Kind::Suite;
-      spec.family = r.text(d["suite"], where + ".suite");
+      spec.family = r.text(*suite, where + ".suite");
       try {
-        if (!findFamily(spec.family, "", "").fixed_suite) r.fail(d["suite"], where + ".suite", "'" + spec.family + "' is a generator family: write family, count and seed");
+        if (!findFamily(spec.family, "", "").fixed_suite) r.fail(*suite, where + ".suite", "'" + spec.family + "' is a generator family: write family, count and seed");
       } catch (const InputError& e) {
-        if (e.source().empty()) r.fail(d["suite"], where + ".suite", e.problem());
+        if (e.source().empty()) r.fail(*suite, where + ".suite", e.problem());
         throw;
       }
-      if (d["count"] || d["seed"]) r.fail(d, where, "a suite has a fixed set of walls: no count or seed");
+      if (count || seed) r.fail(d, where, "a suite has a fixed set of walls: no count or seed");
+      spec.count = suiteSize(spec.family);
     } else {
       spec.kind = DatasetSpec::Kind::Folder;
-      spec.folder = resolve(r.text(d["folder"], where + ".folder"));
-      if (d["count"] || d["seed"]) r.fail(d, where, "a folder has a fixed set of walls: no count or seed");
-      if (!fs::is_directory(spec.folder)) r.fail(d["folder"], where + ".folder", "'" + spec.folder + "' is not a folder");
+      spec.folder = resolve(r.text(*folder, where + ".folder"));
+      if (count || seed) r.fail(d, where, "a folder has a fixed set of walls: no count or seed");
+      if (!fs::is_directory(spec.folder)) r.fail(*folder, where + ".folder", "'" + spec.folder + "' is not a folder");
+      for (const auto& entry : fs::directory_iterator(spec.folder))
+        spec.count += entry.path().extension() == ".json" && entry.path().filename() != "manifest.json";
     }
-    spec.label = d["label"] ? r.text(d["label"], where + ".label")
+    const Yaml* label = d.find("label");
+    spec.label = label ? r.text(*label, where + ".label")
                  : spec.kind == DatasetSpec::Kind::Folder ? fs::path(spec.folder).filename().string()
                                                           : spec.family;
+    if (spec.label.empty()) r.fail(label ? *label : d, where + ".label", "must not be empty");
     c.datasets.push_back(spec);
   }
 
   // Planners, with sweeps expanded (lists give the product of their values, in key order).
-  const YAML::Node planners = doc["planners"];
-  if (!planners.IsSequence() || planners.size() == 0) r.fail(planners, "planners", "must be a non-empty list");
-  std::set<std::string> labels;
-  for (std::size_t i = 0; i < planners.size(); ++i) {
+  const Yaml& planners = *doc.find("planners");
+  if (!planners.isList() || planners.items.empty()) r.fail(planners, "planners", "must be a non-empty list");
+  std::map<std::string, std::string> where_label;  // label -> where it was listed
+  std::map<std::string, std::string> label_of_id;  // configuration id -> its first label
+  auto add = [&](PlannerConfig pc, const Yaml& at, const std::string& where) {
+    if (where_label.count(pc.label))
+      r.fail(at, where, "configuration '" + pc.label + "' is listed twice (also at " + where_label[pc.label] + ")");
+    if (label_of_id.count(pc.id))
+      r.fail(at, where,
+             "configuration '" + pc.label + "' has the same resolved parameters as '" + label_of_id[pc.id] +
+                 "' (defaults included): list it once");
+    where_label[pc.label] = where;
+    label_of_id[pc.id] = pc.label;
+    c.planners.push_back(std::move(pc));
+  };
+  for (std::size_t i = 0; i < planners.items.size(); ++i) {
     const std::string where = "planners[" + std::to_string(i) + "]";
-    YAML::Node p = planners[i];
-    if (p.IsScalar() && p.Scalar() == "all") {  // every registered planner, default parameters
-      for (const PlannerInfo& info : registeredPlanners()) {
-        PlannerConfig pc = makeConfig(info, {}, where);
-        if (!labels.insert(pc.label).second) r.fail(p, where, "configuration '" + pc.label + "' is listed twice");
-        c.planners.push_back(std::move(pc));
-      }
+    const Yaml& p = planners.items[i];
+    if (p.isScalar() && p.scalar == "all") {  // every registered planner, default parameters
+      for (const PlannerInfo& info : registeredPlanners()) add(makeConfig(info, {}, where), p, where);
       continue;
     }
-    if (p.IsScalar()) {  // "- zigzag" is short for "- name: zigzag"
-      YAML::Node m;
-      m["name"] = p;
-      p = m;
-      p.SetStyle(YAML::EmitterStyle::Block);
+    // "- zigzag" is short for "- name: zigzag".
+    const Yaml* name_node = &p;
+    const Yaml* params = nullptr;
+    if (!p.isScalar()) {
+      r.onlyKeys(p, where, {"name", "params"});
+      name_node = p.find("name");
+      if (!name_node) r.fail(p, where + ".name", "missing");
+      params = p.find("params");
     }
-    r.onlyKeys(p, where, {"name", "params"});
-    if (!p["name"]) r.fail(p, where + ".name", "missing");
-    const std::string name = r.text(p["name"], where + ".name");
+    const std::string name = r.text(*name_node, where + ".name");
     const PlannerInfo* info = nullptr;
     for (const PlannerInfo& candidate : registeredPlanners())
       if (candidate.name == name) info = &candidate;
     if (!info) {
       std::string known;
       for (const PlannerInfo& candidate : registeredPlanners()) known += (known.empty() ? "" : ", ") + candidate.name;
-      r.fail(planners[i].IsScalar() ? planners[i] : p["name"], where + ".name", "unknown planner '" + name + "' (registered: " + known + ")");
+      r.fail(*name_node, where + ".name", "unknown planner '" + name + "' (registered: " + known + ")");
     }
     std::vector<std::vector<std::pair<std::string, std::string>>> combos{{}};
-    if (p["params"]) {
-      const YAML::Node params = p["params"];
+    if (params) {
       std::vector<std::string> declared;
       for (const ParamSpec& s : info->params) declared.push_back(s.name);
-      r.onlyKeys(params, where + ".params", declared);
-      std::vector<std::pair<std::string, YAML::Node>> sorted;
-      for (const auto& item : params) sorted.push_back({item.first.as<std::string>(), item.second});
-      std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-      for (const auto& [key, node] : sorted) {
-        const std::string field = where + ".params." + key;
+      r.onlyKeys(*params, where + ".params", declared);
+      // Key order, so a configuration's label does not depend on how the file orders its keys.
+      std::vector<const YamlEntry*> sorted;
+      for (const YamlEntry& e : params->entries) sorted.push_back(&e);
+      std::sort(sorted.begin(), sorted.end(), [](const YamlEntry* a, const YamlEntry* b) { return a->key < b->key; });
+      for (const YamlEntry* entry : sorted) {
+        const std::string field = where + ".params." + entry->key;
         std::vector<std::vector<std::pair<std::string, std::string>>> next;
-        for (const YAML::Node& v : r.values(node, field)) {
-          const std::string value = r.text(v, field);
+        for (const Yaml* v : r.values(entry->value, field)) {
+          const std::string value = r.text(*v, field);
           try {
-            resolveParams(*info, {{key, value}}, "");
+            resolveParams(*info, {{entry->key, value}}, "");
           } catch (const InputError& e) {
-            r.fail(v, field, e.problem());
+            r.fail(*v, field, e.problem());
           }
           for (auto combo : combos) {
-            combo.push_back({key, value});
+            combo.push_back({entry->key, value});
             next.push_back(std::move(combo));
           }
         }
         combos = std::move(next);
       }
     }
-    for (auto& settings : combos) {
-      PlannerConfig pc = makeConfig(*info, std::move(settings), where);
-      if (!labels.insert(pc.label).second) r.fail(planners[i], where, "configuration '" + pc.label + "' is listed twice");
-      c.planners.push_back(std::move(pc));
-    }
+    for (auto& settings : combos) add(makeConfig(*info, std::move(settings), where), p, where);
   }
 
   // Tool: width and clearance, each a value or a list.
   std::vector<double> widths{0.1}, clearances{0.02};
-  if (doc["tool"]) {
-    const YAML::Node t = doc["tool"];
-    r.onlyKeys(t, "tool", {"width", "clearance"});
-    if (t["width"]) {
+  if (const Yaml* t = doc.find("tool")) {
+    r.onlyKeys(*t, "tool", {"width", "clearance"});
+    if (const Yaml* w = t->find("width")) {
       widths.clear();
-      for (const YAML::Node& v : r.values(t["width"], "tool.width")) widths.push_back(r.number(v, "tool.width", 0.0, 10.0, true));
+      for (const Yaml* v : r.values(*w, "tool.width")) {
+        widths.push_back(r.number(*v, "tool.width", kMinToolWidth, kMaxToolWidth));
+        for (std::size_t k = 0; k + 1 < widths.size(); ++k)
+          if (widths[k] == widths.back()) r.fail(*v, "tool.width", "lists " + toString(widths.back()) + " twice");
+      }
     }
-    if (t["clearance"]) {
+    if (const Yaml* cl = t->find("clearance")) {
       clearances.clear();
-      for (const YAML::Node& v : r.values(t["clearance"], "tool.clearance"))
-        clearances.push_back(r.number(v, "tool.clearance", 0.0, 10.0));
+      for (const Yaml* v : r.values(*cl, "tool.clearance")) {
+        clearances.push_back(r.number(*v, "tool.clearance", 0.0, kMaxClearance));
+        for (std::size_t k = 0; k + 1 < clearances.size(); ++k)
+          if (clearances[k] == clearances.back())
+            r.fail(*v, "tool.clearance", "lists " + toString(clearances.back()) + " twice");
+      }
     }
   }
   for (double w : widths)
     for (double cl : clearances) c.tools.push_back(ToolParams{w, cl});
 
-  if (doc["repetitions"]) c.repetitions = static_cast<int>(r.integer(doc["repetitions"], "repetitions", 1, 1000));
-  if (doc["limits"]) {
-    const YAML::Node l = doc["limits"];
-    r.onlyKeys(l, "limits", {"time_s", "memory_mb"});
-    if (l["time_s"]) c.time_limit_s = r.number(l["time_s"], "limits.time_s", 0.0, 86400.0, true);
-    if (l["memory_mb"]) c.memory_limit_mb = r.number(l["memory_mb"], "limits.memory_mb", 0.0, 1048576.0, true);
+  if (const Yaml* n = doc.find("repetitions")) c.repetitions = static_cast<int>(r.integer(*n, "repetitions", 1, 1000));
+  if (const Yaml* l = doc.find("limits")) {
+    r.onlyKeys(*l, "limits", {"time_s", "memory_mb"});
+    if (const Yaml* v = l->find("time_s")) c.time_limit_s = r.number(*v, "limits.time_s", 0.0, kMaxTimeLimitSeconds, true);
+    if (const Yaml* v = l->find("memory_mb")) c.memory_limit_mb = r.number(*v, "limits.memory_mb", 0.0, 1048576.0, true);
   }
-  if (doc["threads"]) c.threads = static_cast<unsigned>(r.integer(doc["threads"], "threads", 0, 1024));
-  if (doc["seed"]) c.seed = static_cast<std::uint64_t>(r.integer(doc["seed"], "seed", 0, 1LL << 53));
+  if (const Yaml* n = doc.find("threads")) c.threads = static_cast<unsigned>(r.integer(*n, "threads", 0, 1024));
+  if (const Yaml* n = doc.find("seed")) c.seed = static_cast<std::uint64_t>(r.integer(*n, "seed", 0, 1LL << 53));
+  if (const Yaml* n = doc.find("allow_large")) c.allow_large = r.boolean(*n, "allow_large");
   c.baseline = c.planners.front().label;
-  if (doc["baseline"]) {
-    c.baseline = r.text(doc["baseline"], "baseline");
-    if (!labels.count(c.baseline)) {
+  if (const Yaml* b = doc.find("baseline")) {
+    c.baseline = r.text(*b, "baseline");
+    if (!where_label.count(c.baseline)) {
       std::string known;
       for (const PlannerConfig& pc : c.planners) known += (known.empty() ? "" : ", ") + pc.label;
-      r.fail(doc["baseline"], "baseline", "'" + c.baseline + "' is not one of the planner configurations (" + known + ")");
+      r.fail(*b, "baseline", "'" + c.baseline + "' is not one of the planner configurations (" + known + ")");
     }
   }
   return c;
+}
+
+std::size_t plannedRuns(const ExperimentConfig& config) {
+  std::size_t walls = 0;
+  for (const DatasetSpec& d : config.datasets) walls += d.count;
+  return walls * config.planners.size() * config.tools.size() * static_cast<std::size_t>(config.repetitions);
 }
 
 }  // namespace coverbench

@@ -5,11 +5,16 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <map>
 
 namespace coverbench {
 namespace {
+
+/// Marks a database as CoverBench's (PRAGMA application_id; "CvBn"), and its schema version.
+constexpr long long kApplicationId = 0x4376424e;
+constexpr long long kSchemaVersion = 1;
 
 const char* const kSchema = R"sql(
 PRAGMA journal_mode = WAL;
@@ -43,7 +48,13 @@ CREATE TABLE IF NOT EXISTS planner_stats (
   run_key TEXT NOT NULL, name TEXT NOT NULL, value REAL, PRIMARY KEY (run_key, name)) WITHOUT ROWID;
 CREATE TABLE IF NOT EXISTS paths (
   run_key TEXT PRIMARY KEY, encoding TEXT NOT NULL, waypoints INTEGER NOT NULL, data BLOB NOT NULL);
+CREATE TABLE IF NOT EXISTS planner_timings (
+  run_key TEXT NOT NULL, name TEXT NOT NULL, ms REAL, PRIMARY KEY (run_key, name)) WITHOUT ROWID;
 )sql";
+
+/// The tables every CoverBench database has had since the first schema (before application_id
+/// was set): how a database written by an earlier build is recognised.
+const char* const kCoreTables[] = {"experiments", "walls", "runs", "metrics", "paths"};
 
 /// A prepared statement, finalised on scope exit.
 class Statement {
@@ -150,15 +161,61 @@ Provenance currentProvenance(unsigned threads) {
   return p;
 }
 
-ResultsDb::ResultsDb(const std::string& path) : file_(path) {
-  if (sqlite3_open(path.c_str(), &db_) != SQLITE_OK) {
+ResultsDb::ResultsDb(const std::string& path, Mode mode) : file_(path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const bool exists = fs::exists(path, ec);
+  if (exists && fs::is_directory(path, ec)) throw InputError(path, "(database)", "is a folder, not a database file");
+  if (mode == Mode::ReadOnly && !exists) throw InputError(path, "(file)", "does not exist");
+  const int flags = mode == Mode::ReadOnly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+  if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
     throw InputError(path, "(database)", "cannot be opened: " + why);
   }
   sqlite3_busy_timeout(db_, 10000);
-  exec(kSchema);
+  // Nothing is written to a file before it is known to be CoverBench's (or new and empty).
+  const bool empty = !exists || fs::file_size(path, ec) == 0;
+  if (!empty) checkOwnership();
+  if (mode == Mode::ReadWrite) {
+    exec(kSchema);
+    exec("PRAGMA application_id = " + std::to_string(kApplicationId) + "; PRAGMA user_version = " +
+         std::to_string(kSchemaVersion) + ";");
+  }
+}
+
+void ResultsDb::checkOwnership() {
+  long long application_id = 0, version = 0;
+  std::set<std::string> tables;
+  try {
+    Statement a(db_, "PRAGMA application_id", file_);
+    if (a.step()) application_id = a.columnInt(0);
+    Statement v(db_, "PRAGMA user_version", file_);
+    if (v.step()) version = v.columnInt(0);
+    Statement t(db_, "SELECT name FROM sqlite_master WHERE type = 'table'", file_);
+    while (t.step()) tables.insert(t.columnText(0));
+  } catch (const InputError& e) {
+    throw InputError(file_, "(database)", "is not a CoverBench results database (" + e.problem() + ")");
+  }
+  bool legacy = application_id == 0;
+  for (const char* table : kCoreTables) legacy = legacy && tables.count(table);
+  if (application_id != kApplicationId && !legacy)
+    throw InputError(file_, "(database)", "is not a CoverBench results database; nothing was changed");
+  if (version > kSchemaVersion)
+    throw InputError(file_, "(database)",
+                     "has schema version " + std::to_string(version) + ", newer than this build's " +
+                         std::to_string(kSchemaVersion) + ": use a newer coverbench");
+}
+
+void ResultsDb::rollback() noexcept {
+  // After a failed COMMIT (a full disk, say) SQLite may have rolled back already: then there is
+  // nothing to undo, and ROLLBACK's own error must not hide the real one.
+  if (!sqlite3_get_autocommit(db_)) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+}
+
+void ResultsDb::limitPagesForTesting(long long pages) {
+  exec("PRAGMA max_page_count = " + std::to_string(pages));
 }
 
 ResultsDb::~ResultsDb() {
@@ -204,7 +261,7 @@ long long ResultsDb::beginExperiment(const ExperimentConfig& config, const Prove
     exec("COMMIT");
     return id;
   } catch (...) {
-    exec("ROLLBACK");
+    rollback();
     throw;
   }
 }
@@ -234,6 +291,8 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
       m.text(1, rec.key).integer(2, static_cast<long long>(i)).text(3, rec.metrics[i].name).real(4, rec.metrics[i].value).run();
     Statement st(db_, "INSERT OR REPLACE INTO planner_stats (run_key, name, value) VALUES (?,?,?)", file_);
     for (const auto& [name, value] : rec.stats) st.text(1, rec.key).text(2, name).real(3, value).run();
+    Statement tm(db_, "INSERT OR REPLACE INTO planner_timings (run_key, name, ms) VALUES (?,?,?)", file_);
+    for (const auto& [name, value] : rec.timings_ms) tm.text(1, rec.key).text(2, name).real(3, value).run();
     if (!rec.path.waypoints.empty()) {
       Statement p(db_, "INSERT OR REPLACE INTO paths (run_key, encoding, waypoints, data) VALUES (?,?,?,?)", file_);
       p.text(1, rec.key).text(2, "zlib-f64le-1").integer(3, static_cast<long long>(rec.path.waypoints.size()));
@@ -241,7 +300,7 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
     }
     exec("COMMIT");
   } catch (...) {
-    exec("ROLLBACK");
+    rollback();
     throw;
   }
 }
@@ -334,7 +393,11 @@ std::optional<Path> ResultsDb::path(const std::string& run_key) {
   Statement s(db_, "SELECT data FROM paths WHERE run_key = ?", file_);
   s.text(1, run_key);
   if (!s.step()) return std::nullopt;
-  return decodePath(s.columnBlob(0));
+  try {
+    return decodePath(s.columnBlob(0));
+  } catch (const InputError& e) {
+    throw InputError(file_, "paths[" + run_key + "]", e.problem());
+  }
 }
 
 ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <thread>
 
+#include "coverbench/limits.hpp"
 #include "coverbench/results_db.hpp"
 
 namespace coverbench {
@@ -69,7 +70,12 @@ std::string resultsDatabasePath(const ExperimentConfig& config) { return (fs::pa
 RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& options) {
   const auto start = Clock::now();
   RunnerSummary summary;
+  if (options.progress && plannedRuns(config) >= 10000)
+    std::fprintf(options.progress, "loading the walls of %zu datasets and expanding %zu runs ...\n",
+                 config.datasets.size(), plannedRuns(config));
   const std::vector<WallEntry> walls = loadWalls(config);
+  for (const WallEntry& w : walls)  // every (wall, tool) pair checked before any run
+    for (const ToolParams& tool : config.tools) validateToolForWall(tool, w.wall, config.path);
   const std::vector<RunSpec> runs = expandRuns(config, walls);
   summary.walls = walls.size();
   summary.total = runs.size();

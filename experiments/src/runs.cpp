@@ -1,6 +1,7 @@
 // Walls of a config, run expansion and keys, executing one run, path encoding.
 #include <zlib.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <set>
@@ -104,14 +105,20 @@ RunRecord executeRun(const RunSpec& spec, const MemoryProbe* probe) {
   }
   rec.plan_time_ms = result.plan_time_ms;
   rec.stats = result.stats;
+  rec.timings_ms = result.timings_ms;
   if (rec.status.empty()) {
     rec.status = toString(result.status);
     rec.reason = result.reason;
   }
   if (result.status == PlanStatus::Ok) {
-    const PathMetrics m = computeMetrics(spec.wall->wall, spec.tool, result.path);
-    rec.valid = m.validity.valid;
-    rec.metrics = flatten(m);
+    try {
+      const PathMetrics m = computeMetrics(spec.wall->wall, spec.tool, result.path);
+      rec.valid = m.validity.valid;
+      rec.metrics = flatten(m);
+    } catch (const std::exception& e) {  // a path beyond the scoring limits, or a bug in the judge
+      rec.status = "metrics_error";
+      rec.reason = std::string("the path could not be scored: ") + e.what();
+    }
     rec.path = std::move(result.path);
   }
   return rec;
@@ -143,20 +150,25 @@ std::string encodePath(const Path& path) {
 }
 
 Path decodePath(const std::string& blob) {
+  auto corrupt = [](const std::string& why) { return InputError("path blob", "data", "is corrupt: " + why); };
   auto u32 = [](const std::string& s, std::size_t at) {
     std::uint32_t v = 0;
     for (int b = 0; b < 4; ++b) v |= static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + b])) << (8 * b);
     return v;
   };
-  if (blob.size() < 4) throw std::runtime_error("path blob too short");
-  std::string raw(u32(blob, 0), '\0');
+  if (blob.size() < 4) throw corrupt("shorter than its 4-byte length prefix");
+  // zlib expands by at most 1032:1, so a larger claimed size is corrupt: refused before allocating.
+  const std::uint64_t claimed = u32(blob, 0);
+  if (claimed < 4 || claimed > 1032ULL * (blob.size() - 4) + 64)
+    throw corrupt("claims " + std::to_string(claimed) + " bytes from " + std::to_string(blob.size() - 4) + " compressed");
+  std::string raw(claimed, '\0');
   uLongf size = static_cast<uLongf>(raw.size());
   if (uncompress(reinterpret_cast<Bytef*>(raw.data()), &size, reinterpret_cast<const Bytef*>(blob.data() + 4),
                  static_cast<uLong>(blob.size() - 4)) != Z_OK ||
       size != raw.size())
-    throw std::runtime_error("path blob is corrupt");
-  const std::uint32_t n = u32(raw, 0);
-  if (raw.size() != 4 + 16ULL * n + (n ? n - 1 : 0)) throw std::runtime_error("path blob has the wrong size");
+    throw corrupt("zlib data does not decompress to the stated size");
+  const std::uint64_t n = u32(raw, 0);
+  if (raw.size() != 4 + 16ULL * n + (n ? n - 1 : 0)) throw corrupt("wrong size for its waypoint count");
   Path path;
   auto get = [&](std::size_t at) {
     std::uint64_t bits = 0;
@@ -165,8 +177,12 @@ Path decodePath(const std::string& blob) {
     std::memcpy(&v, &bits, 8);
     return v;
   };
-  for (std::uint32_t i = 0; i < n; ++i) path.waypoints.push_back({get(4 + 16ULL * i), get(12 + 16ULL * i)});
-  for (std::uint32_t i = 0; i + 1 < n; ++i) path.tool_on.push_back(raw[4 + 16ULL * n + i] != 0);
+  for (std::uint64_t i = 0; i < n; ++i) {
+    const Point p{get(4 + 16 * i), get(12 + 16 * i)};
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw corrupt("waypoint " + std::to_string(i) + " is not finite");
+    path.waypoints.push_back(p);
+  }
+  for (std::uint64_t i = 0; i + 1 < n; ++i) path.tool_on.push_back(raw[4 + 16 * n + i] != 0);
   return path;
 }
 

@@ -1,9 +1,26 @@
 // All metrics of one path, and their flat, ordered form.
 #include "coverbench/metrics.hpp"
 
+#include <cmath>
+
 namespace coverbench {
 
+void checkScorable(const Path& path, const std::string& source) {
+  if (path.waypoints.size() > kMaxScoredWaypoints)
+    throw InputError(source, "waypoints",
+                     "has " + std::to_string(path.waypoints.size()) + " waypoints; scoring is limited to " +
+                         std::to_string(kMaxScoredWaypoints));
+  for (std::size_t i = 0; i < path.waypoints.size(); ++i) {
+    const Point p = path.waypoints[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || std::fabs(p.x) > kMaxPathCoordinate ||
+        std::fabs(p.y) > kMaxPathCoordinate)
+      throw InputError(source, "waypoints[" + std::to_string(i) + "]",
+                       "coordinate beyond 100 km (or not finite): no wall reaches there");
+  }
+}
+
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const MotionLimits& limits) {
+  checkScorable(path, "path");
   PathMetrics m;
   m.validity = checkValidity(wall, tool, path);
   m.lengths = pathLengths(path);

@@ -1,11 +1,9 @@
 #include "coverbench/plan_file.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
+
+#include "coverbench/json_input.hpp"
 
 namespace coverbench {
 namespace {
@@ -27,26 +25,19 @@ ordered_json metricValue(const std::string& name, double v) {
   return number(v);
 }
 
-std::string metricsObject(const PathMetrics& metrics, std::optional<double> plan_time_ms,
-                          std::optional<double> peak_memory_bytes, const std::string& indent) {
+std::string metricsObject(const PathMetrics& metrics, const std::string& indent) {
   std::string text = "{";
   bool first = true;
-  auto add = [&](const std::string& name, const ordered_json& value) {
-    text += (first ? "\n" : ",\n") + indent + "  " + ordered_json(name).dump() + ": " + value.dump();
+  for (const NamedMetric& m : flatten(metrics)) {
+    text += (first ? "\n" : ",\n") + indent + "  " + ordered_json(m.name).dump() + ": " + metricValue(m.name, m.value).dump();
     first = false;
-  };
-  for (const NamedMetric& m : flatten(metrics)) add(m.name, metricValue(m.name, m.value));
-  add("plan_time_ms", plan_time_ms ? number(*plan_time_ms) : ordered_json(nullptr));
-  add("peak_memory_bytes", peak_memory_bytes ? number(*peak_memory_bytes) : ordered_json(nullptr));
+  }
   return text + "\n" + indent + "}";
 }
 
 }  // namespace
 
-std::string metricsJson(const PathMetrics& metrics, std::optional<double> plan_time_ms,
-                        std::optional<double> peak_memory_bytes) {
-  return metricsObject(metrics, plan_time_ms, peak_memory_bytes, "") + "\n";
-}
+std::string metricsJson(const PathMetrics& metrics) { return metricsObject(metrics, "") + "\n"; }
 
 std::string planFileJson(const PlanFile& plan) {
   ordered_json doc;
@@ -73,23 +64,19 @@ std::string planFileJson(const PlanFile& plan) {
   std::string text = "{\n";
   for (auto it = doc.begin(); it != doc.end(); ++it)
     text += " " + ordered_json(it.key()).dump() + ": " + it.value().dump() + ",\n";
-  text += " \"metrics\": " + metricsObject(plan.metrics, plan.result.plan_time_ms, plan.peak_memory_bytes, " ");
-  return text + "\n}\n";
+  text += " \"metrics\": " + metricsObject(plan.metrics, " ") + ",\n";
+  // Last, apart from everything a rerun reproduces byte for byte: what this run measured.
+  ordered_json planner_ms = ordered_json::object();
+  for (const auto& [name, value] : plan.result.timings_ms) planner_ms[name] = number(value);
+  text += " \"measured\": {\n  \"plan_time_ms\": " + number(plan.result.plan_time_ms).dump() +
+          ",\n  \"peak_memory_bytes\": " +
+          (plan.peak_memory_bytes ? number(*plan.peak_memory_bytes) : ordered_json(nullptr)).dump() +
+          ",\n  \"planner_ms\": " + planner_ms.dump() + "\n }\n}\n";
+  return text;
 }
 
 LoadedPlan loadPlanFile(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file, "(file)", "cannot be read");
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::exception& e) {
-    std::string what = e.what();
-    const auto pos = what.find("] ");
-    throw InputError(file, "(document)", "malformed JSON: " + (pos == std::string::npos ? what : what.substr(pos + 2)));
-  }
+  const nlohmann::json doc = parseJsonStrict(readFile(file), file);
   if (!doc.is_object()) throw InputError(file, "(document)", "must be a JSON object");
   LoadedPlan plan;
   if (!doc.contains("waypoints")) throw InputError(file, "waypoints", "missing");
@@ -98,13 +85,15 @@ LoadedPlan loadPlanFile(const std::string& file) {
   const auto& on = doc["tool_on"];
   if (!wp.is_array()) throw InputError(file, "waypoints", "must be an array of [x, y] points");
   if (!on.is_array()) throw InputError(file, "tool_on", "must be an array of booleans");
+  if (wp.size() > kMaxScoredWaypoints)
+    throw InputError(file, "waypoints",
+                     "has " + std::to_string(wp.size()) + " waypoints; scoring is limited to " +
+                         std::to_string(kMaxScoredWaypoints));
   for (std::size_t i = 0; i < wp.size(); ++i) {
     const std::string field = "waypoints[" + std::to_string(i) + "]";
     if (!wp[i].is_array() || wp[i].size() != 2 || !wp[i][0].is_number() || !wp[i][1].is_number())
       throw InputError(file, field, "must be an [x, y] pair of numbers");
-    const Point p{wp[i][0].get<double>(), wp[i][1].get<double>()};
-    if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw InputError(file, field, "must be finite");
-    plan.path.waypoints.push_back(p);
+    plan.path.waypoints.push_back({wp[i][0].get<double>(), wp[i][1].get<double>()});
   }
   for (std::size_t i = 0; i < on.size(); ++i) {
     if (!on[i].is_boolean()) throw InputError(file, "tool_on[" + std::to_string(i) + "]", "must be true or false");
@@ -115,6 +104,7 @@ LoadedPlan loadPlanFile(const std::string& file) {
     throw InputError(file, "tool_on", "has " + std::to_string(plan.path.tool_on.size()) + " entries; " +
                                           std::to_string(plan.path.waypoints.size()) + " waypoints need " +
                                           std::to_string(expected));
+  checkScorable(plan.path, file);
   for (const char* key : {"tool_width", "clearance"}) {
     if (!doc.contains(key)) continue;
     if (!doc[key].is_number()) throw InputError(file, key, "must be a number");

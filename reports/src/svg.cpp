@@ -1,5 +1,7 @@
 #include "coverbench/svg.hpp"
 
+#include "coverbench/escape.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,20 +19,6 @@ std::string fmt(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.2f", v);
   return buf;
-}
-
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 /// Maps wall metres to picture pixels (y up in the wall, down in SVG).
@@ -74,7 +62,7 @@ std::string renderSvg(const SvgContent& c) {
     << "\" viewBox=\"0 0 " << fmt(w_px) << " " << fmt(h_px) << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   s << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
   s << "<text x=\"" << fmt(kPadPx) << "\" y=\"" << fmt(kPadPx + 6) << "\" font-size=\"14\" font-weight=\"bold\">"
-    << escape(c.title) << "</text>\n";
+    << escapeHtml(c.title) << "</text>\n";
   s << "<path d=\"" << v.ringPath(wall.boundary)
     << "\" fill=\"#f3efe6\" stroke=\"#333333\" stroke-width=\"1.5\"/>\n";
   if (c.free) {
@@ -113,7 +101,7 @@ std::string renderSvg(const SvgContent& c) {
         return Point{(b.min_x + b.max_x) / 2, (b.min_y + b.max_y) / 2};
       }();
       s << "<text x=\"" << fmt(v.px(at.x)) << "\" y=\"" << fmt(v.py(at.y) + 4)
-        << "\" text-anchor=\"middle\" fill=\"#ffffff\" font-size=\"11\">" << escape(o.label) << "</text>\n";
+        << "\" text-anchor=\"middle\" fill=\"#ffffff\" font-size=\"11\">" << escapeHtml(o.label) << "</text>\n";
     }
   }
   s << "</g>\n";

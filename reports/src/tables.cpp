@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <set>
 
+#include "coverbench/escape.hpp"
 #include "coverbench/wall.hpp"
 
 namespace coverbench {
@@ -83,10 +84,17 @@ Summary summarise(std::vector<double> v) {
   return s;
 }
 
+/// Figures a rerun measures anew (time, memory): shown apart from the deterministic metrics,
+/// and never counted as wins or losses (one noisy sample per run says nothing about a winner).
+bool measured(const std::string& m) { return m == "plan_time_ms" || m == "peak_memory_bytes"; }
+
+/// Every metric shown, deterministic ones first, then the measured ones.
 std::vector<std::string> shownMetrics(const ResultSet& rs) {
   std::vector<std::string> out;
   for (const std::string& m : rs.metric_order)
-    if (m != "valid") out.push_back(m);
+    if (m != "valid" && !measured(m)) out.push_back(m);
+  for (const std::string& m : rs.metric_order)
+    if (measured(m)) out.push_back(m);
   return out;
 }
 
@@ -122,7 +130,7 @@ struct Paired {
 std::vector<std::string> comparedMetrics(const ResultSet& rs) {
   std::vector<std::string> out;
   for (const std::string& m : rs.metric_order)
-    if (metricDirection(m) != 0) out.push_back(m);
+    if (metricDirection(m) != 0 && !measured(m)) out.push_back(m);
   return out;
 }
 
@@ -149,53 +157,41 @@ Paired paired(const ResultSet& rs, const std::string& planner, const std::string
   return out;
 }
 
+/// One table row: the metric's name, then median (IQR) per planner.
+std::vector<std::string> summaryRow(const std::string& metric,
+                                    const std::map<std::string, std::map<std::string, Summary>>& per_planner,
+                                    const std::vector<std::string>& planners) {
+  std::vector<std::string> row = {metric};
+  for (const std::string& p : planners) {
+    const Summary& s = per_planner.at(p).at(metric);
+    // An IQR below 1e-9 of the values is rounding noise, shown as 0.
+    double iqr = s.q3 - s.q1;
+    if (std::fabs(iqr) <= 1e-9 * std::fmax(std::fabs(s.q1), std::fabs(s.q3))) iqr = 0.0;
+    row.push_back(s.n ? fmt(s.median) + " (" + fmt(iqr) + ")" : "-");
+  }
+  return row;
+}
+
 // --- rendering ---------------------------------------------------------------------------------
 
-std::string escapeMd(const std::string& s) {
-  std::string out;
-  for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
-  return out;
-}
-
-std::string escapeLatex(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '_': case '%': case '&': case '#': case '$': case '{': case '}': out += std::string("\\") + c; break;
-      case '\\': out += "\\textbackslash{}"; break;
-      case '~': out += "\\textasciitilde{}"; break;
-      case '^': out += "\\textasciicircum{}"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
-std::string csvField(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
 std::string markdown(const Table& t) {
-  std::string out = "## " + t.title + "\n\n";
+  std::string out = "## " + escapeMarkdown(t.title) + "\n\n";
   if (!t.note.empty()) out += t.note + "\n\n";
   out += "|";
-  for (const std::string& h : t.header) out += " " + escapeMd(h) + " |";
+  for (const std::string& h : t.header) out += " " + escapeMarkdown(h) + " |";
   out += "\n|";
   for (std::size_t i = 0; i < t.header.size(); ++i) out += i == 0 ? "---|" : "---:|";
   out += "\n";
   for (const auto& row : t.rows) {
     out += "|";
-    for (const std::string& c : row) out += " " + escapeMd(c) + " |";
+    for (const std::string& c : row) out += " " + escapeMarkdown(c) + " |";
     out += "\n";
   }
   return out + "\n";
 }
 
 std::string latex(const Table& t) {
-  std::string out = "% " + t.title + "\n\\begin{table}[htbp]\n\\centering\n\\small\n\\begin{tabular}{l";
+  std::string out = "% " + escapeLatex(t.title) + "\n\\begin{table}[htbp]\n\\centering\n\\small\n\\begin{tabular}{l";
   for (std::size_t i = 1; i < t.header.size(); ++i) out += "r";
   out += "}\n\\toprule\n";
   for (std::size_t i = 0; i < t.header.size(); ++i) out += (i ? " & " : "") + escapeLatex(t.header[i]);
@@ -244,21 +240,21 @@ std::string renderTables(const ResultSet& rs, TableFormat format) {
     const Table f = failureTable(rs);
     for (const auto& row : f.rows)
       for (std::size_t i = 1; i < f.header.size(); ++i)
-        out += "outcomes,all," + csvField(row[0]) + "," + csvField(f.header[i]) + "," + row[i] + ",,,,,,\n";
+        out += "outcomes,all," + escapeCsv(row[0]) + "," + escapeCsv(f.header[i]) + "," + row[i] + ",,,,,,\n";
     for (const std::string& d : datasets)
       for (const std::string& p : rs.planners)
         for (const std::string& m : shownMetrics(rs)) {
           const Summary& s = sums.at(d).at(p).at(m);
           char buf[160];
           std::snprintf(buf, sizeof buf, "%zu,%.10g,%.10g,%.10g,,,", s.n, s.median, s.q1, s.q3);
-          out += "metrics," + csvField(d) + "," + csvField(p) + "," + m + "," + buf + "\n";
+          out += std::string(measured(m) ? "measured," : "metrics,") + escapeCsv(d) + "," + escapeCsv(p) + "," + m + "," + buf + "\n";
         }
     for (const std::string& p : rs.planners) {
       if (p == rs.baseline) continue;
       for (const std::string& d : datasets) {
         const Paired pr = paired(rs, p, d);
         for (const auto& [m, w] : pr.wtl)
-          out += "paired_vs_" + csvField(rs.baseline) + "," + csvField(d) + "," + csvField(p) + "," + m + "," +
+          out += escapeCsv("paired_vs_" + rs.baseline) + "," + escapeCsv(d) + "," + escapeCsv(p) + "," + m + "," +
                  std::to_string(pr.pairs) + ",,,," + std::to_string(w[0]) + "," + std::to_string(w[1]) + "," +
                  std::to_string(w[2]) + "\n";
       }
@@ -280,24 +276,16 @@ std::string renderTables(const ResultSet& rs, TableFormat format) {
       n_row.push_back(per_metric.empty() ? "0" : std::to_string(per_metric.begin()->second.n));
     }
     t.rows.push_back(n_row);
-    for (const std::string& m : shownMetrics(rs)) {
-      std::vector<std::string> row = {m};
-      for (const std::string& p : rs.planners) {
-        const Summary& s = sums.at(d).at(p).at(m);
-        // An IQR below 1e-9 of the values is rounding noise, shown as 0.
-        double iqr = s.q3 - s.q1;
-        if (std::fabs(iqr) <= 1e-9 * std::fmax(std::fabs(s.q1), std::fabs(s.q3))) iqr = 0.0;
-        row.push_back(s.n ? fmt(s.median) + " (" + fmt(iqr) + ")" : "-");
-      }
-      t.rows.push_back(row);
-    }
+    for (const std::string& m : shownMetrics(rs))
+      if (!measured(m)) t.rows.push_back(summaryRow(m, sums.at(d), rs.planners));
     tables.push_back(t);
   }
   if (rs.planners.size() > 1) {
     Table t;
     t.title = "Paired comparison against " + rs.baseline + ": wins/ties/losses";
     t.note = "Over the walls (same tool and repetition) where both runs are valid. A win is better than the baseline "
-             "(higher coverage; lower everything else); a tie is within 1e-6 relative.";
+             "(higher coverage; lower everything else); a tie is within 1e-6 relative. Measured figures (time, memory) are "
+             "not compared.";
     t.header = {"planner", "dataset", "pairs"};
     const std::vector<std::string> compared = comparedMetrics(rs);
     for (const std::string& m : compared) t.header.push_back(m);
@@ -316,14 +304,31 @@ std::string renderTables(const ResultSet& rs, TableFormat format) {
     tables.push_back(t);
   }
 
+  {
+    Table t;
+    t.title = "Measured on this machine: median (IQR) over valid runs";
+    t.note = "Plan time and peak heap of the plan call, one sample per run: a rerun measures them anew, so they differ "
+             "from run to run and from machine to machine. Everything above is reproduced byte for byte.";
+    t.header = {"dataset", "measure"};
+    for (const std::string& p : rs.planners) t.header.push_back(p);
+    for (const std::string& d : datasets)
+      for (const std::string& m : shownMetrics(rs))
+        if (measured(m)) {
+          std::vector<std::string> row = summaryRow(m, sums.at(d), rs.planners);
+          row.insert(row.begin(), d);
+          t.rows.push_back(row);
+        }
+    tables.push_back(t);
+  }
+
   std::size_t runs = rs.runs.size();
   std::string out;
   if (format == TableFormat::Markdown) {
-    out = "# Experiment " + rs.experiment + "\n\nConfig " + shortHash(rs.config_hash) + ", " + std::to_string(runs) +
-          " runs, " + std::to_string(rs.planners.size()) + " planner configurations, baseline " + rs.baseline + ".\n\n";
+    out = "# Experiment " + escapeMarkdown(rs.experiment) + "\n\nConfig " + shortHash(rs.config_hash) + ", " + std::to_string(runs) +
+          " runs, " + std::to_string(rs.planners.size()) + " planner configurations, baseline " + escapeMarkdown(rs.baseline) + ".\n\n";
     for (const Table& t : tables) out += markdown(t);
   } else {
-    out = "% Experiment " + rs.experiment + ", config " + shortHash(rs.config_hash) + ", " + std::to_string(runs) +
+    out = "% Experiment " + escapeLatex(rs.experiment) + ", config " + shortHash(rs.config_hash) + ", " + std::to_string(runs) +
           " runs. Needs \\usepackage{booktabs}.\n\n";
     for (const Table& t : tables) out += latex(t);
   }

@@ -5,6 +5,7 @@
 /// needs to know about it (name, parameters with units and ranges, capabilities) is declared in
 /// its `PlannerInfo`, registered in algorithms/registry.cpp. See docs/ADDING_A_PLANNER.md.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -97,7 +98,13 @@ class Budget {
  public:
   using Clock = std::chrono::steady_clock;
   Budget() = default;
-  explicit Budget(std::chrono::duration<double> limit) : deadline_(Clock::now() + std::chrono::duration_cast<Clock::duration>(limit)), limited_(true) {}
+  /// A deadline `limit` from now. A limit of about 30 years or more (or infinite) means no
+  /// deadline: the clock's range ends near 292 years, and converting more would overflow.
+  explicit Budget(std::chrono::duration<double> limit) {
+    if (!(limit.count() < 1e9)) return;
+    deadline_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::max(limit, std::chrono::duration<double>::zero()));
+    limited_ = true;
+  }
   bool expired() const { return limited_ && Clock::now() > deadline_; }
 
  private:
@@ -114,7 +121,10 @@ struct PlanResult {
   PlanStatus status = PlanStatus::Error;
   std::string reason;
   Path path;
-  std::map<std::string, double> stats;  ///< planner statistics (counts, sub-timings in ms)
+  std::map<std::string, double> stats;  ///< planner statistics: deterministic (counts, lengths, angles)
+  /// The planner's own sub-timings in ms (e.g. "decomposition"): measured, so a rerun differs;
+  /// kept apart from `stats`, which a rerun reproduces exactly.
+  std::map<std::string, double> timings_ms;
   double plan_time_ms = 0.0;  ///< wall-clock time of the plan call, measured by runPlanner
 
   static PlanResult failure(PlanStatus status, std::string reason) {

@@ -21,9 +21,6 @@ const PlannerInfo& findPlanner(const std::string& name, const std::string& sourc
 Params resolveParams(const PlannerInfo& planner, const std::vector<std::pair<std::string, std::string>>& settings,
                      const std::string& source = "--param");
 
-/// Validates tool parameters: tool_width in (0, 10] m, clearance in [0, 10] m.
-void validateTool(const ToolParams& tool, const std::string& source);
-
 /// Runs one planner on one problem, catching every exception at this boundary and turning it
 /// into an Error status; fills `plan_time_ms` with the wall-clock time of the call.
 PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const Budget& budget);

@@ -23,6 +23,9 @@ class InputError : public std::runtime_error {
   std::string source_, field_, problem_;
 };
 
+/// A number as messages show it: up to 10 significant digits ("0.1", "1e-09").
+std::string shortNumber(double v);
+
 enum class ObstacleType { Rect, Polygon, Circle };
 
 /// One obstacle. Rects and polygons are stored as a counter-clockwise `polygon`; circles keep

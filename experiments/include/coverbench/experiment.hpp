@@ -19,7 +19,7 @@ namespace coverbench {
 struct DatasetSpec {
   enum class Kind { Family, Suite, Folder } kind = Kind::Family;
   std::string family;  ///< family or suite name
-  std::size_t count = 0;
+  std::size_t count = 0;  ///< walls: as given for a family; the suite's size; a folder's .json files
   std::uint64_t seed = 0;
   std::string folder;  ///< resolved against the config file's folder
   std::string label;   ///< the name tables group by (family, suite, or folder name)
@@ -50,7 +50,12 @@ struct ExperimentConfig {
   std::string baseline;     ///< a planner label; default: the first
   unsigned threads = 0;     ///< 0: every core
   std::uint64_t seed = 0;   ///< passed to planners (Problem::seed)
+  bool allow_large = false; ///< confirms an experiment of more than kLargeExperimentRuns runs
 };
+
+/// The number of runs a config asks for (walls counted before loading, duplicates included):
+/// known before any wall is generated, so a huge experiment is caught at once.
+std::size_t plannedRuns(const ExperimentConfig& config);
 
 /// Reads and checks a config completely (planner names, parameter values against their
 /// declarations, families, folders) before anything runs. Errors throw InputError whose source
@@ -88,13 +93,14 @@ std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vecto
 /// What a run produced.
 struct RunRecord {
   std::string key;
-  std::string status;  ///< toString(PlanStatus), or "memory_limit"
+  std::string status;  ///< toString(PlanStatus), "memory_limit", or "metrics_error" (could not be scored)
   std::string reason;
   bool valid = false;
   double plan_time_ms = 0.0;
   std::optional<double> peak_memory_bytes;
   std::vector<NamedMetric> metrics;  ///< empty unless status is ok
-  std::map<std::string, double> stats;
+  std::map<std::string, double> stats;       ///< the planner's deterministic statistics
+  std::map<std::string, double> timings_ms;  ///< the planner's own sub-timings (measured)
   Path path;
 };
 
@@ -111,6 +117,8 @@ RunRecord executeRun(const RunSpec& spec, const MemoryProbe* probe);
 
 /// Path storage: little-endian doubles and tool flags, zlib-compressed ("zlib-f64le-1").
 std::string encodePath(const Path& path);
+/// Throws InputError ("path blob", "data", why) for a corrupt blob, before allocating more than
+/// its contents can expand to.
 Path decodePath(const std::string& blob);
 
 }  // namespace coverbench

@@ -26,8 +26,13 @@ Provenance currentProvenance(unsigned threads);
 
 class ResultsDb {
  public:
-  /// Opens (creating if needed) the database. Throws InputError naming the file on failure.
-  explicit ResultsDb(const std::string& path);
+  /// ReadWrite opens or creates a database to store runs in; ReadOnly (for reading commands)
+  /// never writes, and the file must exist.
+  enum class Mode { ReadWrite, ReadOnly };
+  /// Opens the database. An existing file must be CoverBench's (its application_id, or the
+  /// tables of the first schema) and of a schema this build knows; it is checked before anything
+  /// is written. Throws InputError naming the file on failure.
+  explicit ResultsDb(const std::string& path, Mode mode = Mode::ReadWrite);
   ~ResultsDb();
   ResultsDb(const ResultsDb&) = delete;
   ResultsDb& operator=(const ResultsDb&) = delete;
@@ -60,8 +65,14 @@ class ResultsDb {
   /// none or several match.
   StoredRun storedRun(const std::string& key_prefix);
 
+  /// Caps the database's size (SQLite's max_page_count), so tests can make a write fail as a full
+  /// disk would.
+  void limitPagesForTesting(long long pages);
+
  private:
   void exec(const std::string& sql);
+  void checkOwnership();
+  void rollback() noexcept;
   sqlite3* db_ = nullptr;
   std::string file_;
 };

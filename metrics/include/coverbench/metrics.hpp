@@ -100,8 +100,21 @@ struct PathMetrics {
   std::size_t waypoints = 0;
   double length_ratio = 0.0;  ///< length_total / (|R| / s)
 };
+/// Scores a path. Throws InputError (field `waypoints`) for a path beyond the scoring limits
+/// below, before any work.
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path,
                            const MotionLimits& limits = {});
+
+/// Scoring limits. Exact scoring grows with the path's waypoints and, faster, with how often it
+/// crosses itself (a dense 10^5-waypoint path takes about 70 s and 0.5 GB here; random paths far
+/// more), so longer paths are refused rather than scored for hours; `coverbench metrics` also has
+/// a time limit. A coordinate beyond kMaxPathCoordinate cannot be on any wall (walls lie within
+/// 10 km of the origin) and would overflow the exact area grid.
+inline constexpr std::size_t kMaxScoredWaypoints = 200000;
+inline constexpr double kMaxPathCoordinate = 100000.0;  ///< m
+/// Throws InputError(source, field, problem) if `path` is beyond the scoring limits, or its
+/// coordinates are not finite.
+void checkScorable(const Path& path, const std::string& source);
 
 /// One named metric value, in the order metrics are written (plan files, tables).
 struct NamedMetric {

@@ -21,13 +21,13 @@ struct PlanFile {
   std::optional<double> peak_memory_bytes;  ///< heap high-water mark of the plan call, if measured
 };
 
-/// The plan file as JSON text: one top-level key per line and one metric per line. Only the
-/// `plan_time_ms` and `peak_memory_bytes` lines depend on anything but the inputs.
+/// The plan file as JSON text: one top-level key per line and one metric per line. Everything
+/// but the last key, `measured` (plan time, peak memory, the planner's own timings), is a
+/// deterministic function of the inputs.
 std::string planFileJson(const PlanFile& plan);
 
-/// The metrics object alone (what `coverbench metrics` prints).
-std::string metricsJson(const PathMetrics& metrics, std::optional<double> plan_time_ms,
-                        std::optional<double> peak_memory_bytes);
+/// The metrics object alone (what `coverbench metrics` prints): deterministic.
+std::string metricsJson(const PathMetrics& metrics);
 
 /// A path read from a plan file of any source: only `waypoints` and `tool_on` are required;
 /// `tool_width` and `clearance` are read when present.
@@ -36,7 +36,8 @@ struct LoadedPlan {
   std::optional<double> tool_width;
   std::optional<double> clearance;
 };
-/// Throws InputError (file, field, problem) for anything malformed.
+/// Throws InputError (file, field, problem) for anything malformed, and for paths beyond the
+/// scoring limits (kMaxScoredWaypoints, kMaxPathCoordinate).
 LoadedPlan loadPlanFile(const std::string& file);
 
 }  // namespace coverbench

@@ -1,0 +1,39 @@
+#pragma once
+/// The bounds CoverBench puts on its inputs, in one place, with why. Inputs beyond them are
+/// refused with a one-line InputError before any work, instead of running out of memory, time
+/// or numeric range (docs/file_formats.md lists them for users).
+#include <cstddef>
+#include <string>
+
+#include "coverbench/planner.hpp"
+#include "coverbench/wall.hpp"
+
+namespace coverbench {
+
+/// Tool width s: a tool under 1 mm is no painting, plastering or mowing tool, and the exact
+/// area grid (1 um) could not resolve its swath; 10 m bounds a wall-sized tool.
+inline constexpr double kMinToolWidth = 0.001;
+inline constexpr double kMaxToolWidth = 10.0;
+/// Clearance c, metres.
+inline constexpr double kMaxClearance = 10.0;
+/// Tool-sized cells in a wall's bounding box (area / s^2): grid planners allocate per cell, so
+/// beyond 10^8 cells they need tens of gigabytes.
+inline constexpr double kMaxGridCells = 1e8;
+/// A planner's time budget, seconds (one day).
+inline constexpr double kMaxTimeLimitSeconds = 86400.0;
+/// Experiments with more runs than this need an explicit confirmation (`--yes` or
+/// `allow_large: true`): they take hours to days.
+inline constexpr std::size_t kLargeExperimentRuns = 100000;
+
+/// Tool width in [kMinToolWidth, kMaxToolWidth] m and clearance in [0, kMaxClearance] m, finite.
+/// Throws InputError naming `source` and the field.
+void validateTool(const ToolParams& tool, const std::string& source);
+
+/// validateTool, and the wall's bounding box holds at most kMaxGridCells tool-sized cells.
+/// `source` names where the tool came from, `wall_source` the wall.
+void validateToolForWall(const ToolParams& tool, const Wall& wall, const std::string& source);
+
+/// A time limit in (0, kMaxTimeLimitSeconds] s. Throws InputError(source, field, ...).
+void validateTimeLimit(double seconds, const std::string& source, const std::string& field);
+
+}  // namespace coverbench

@@ -1,0 +1,37 @@
+#include "coverbench/limits.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace coverbench {
+void validateTool(const ToolParams& tool, const std::string& source) {
+  if (!std::isfinite(tool.tool_width) || tool.tool_width < kMinToolWidth || tool.tool_width > kMaxToolWidth)
+    throw InputError(source, "tool_width",
+                     "must be in [" + shortNumber(kMinToolWidth) + ", " + shortNumber(kMaxToolWidth) + "] m, got " +
+                         shortNumber(tool.tool_width) + (tool.tool_width > 0.0 && tool.tool_width < kMinToolWidth
+                                                      ? " (a tool under 1 mm is finer than the exact area grid)"
+                                                      : ""));
+  if (!std::isfinite(tool.clearance) || tool.clearance < 0.0 || tool.clearance > kMaxClearance)
+    throw InputError(source, "clearance", "must be in [0, " + shortNumber(kMaxClearance) + "] m, got " + shortNumber(tool.clearance));
+}
+
+void validateToolForWall(const ToolParams& tool, const Wall& wall, const std::string& source) {
+  validateTool(tool, source);
+  const Box b = boundingBox(wall.boundary);
+  const double cells = b.width() * b.height() / (tool.tool_width * tool.tool_width);
+  if (cells > kMaxGridCells) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "%g m is too fine for wall '%s' (%.3g m x %.3g m): %.3g tool-sized cells, at most %.0e (grid planners "
+                  "would need tens of GB)",
+                  tool.tool_width, wall.name.c_str(), b.width(), b.height(), cells, kMaxGridCells);
+    throw InputError(source, "tool_width", buf);
+  }
+}
+
+void validateTimeLimit(double seconds, const std::string& source, const std::string& field) {
+  if (!std::isfinite(seconds) || seconds <= 0.0 || seconds > kMaxTimeLimitSeconds)
+    throw InputError(source, field, "must be in (0, " + shortNumber(kMaxTimeLimitSeconds) + "] s, got " + shortNumber(seconds));
+}
+
+}  // namespace coverbench

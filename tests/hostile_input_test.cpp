@@ -1,0 +1,597 @@
+// Regression tests for the defects a hostile test found (issue 18), one group per defect class:
+// each reproducer gives the documented behaviour (one line `FILE: FIELD: PROBLEM`, exit code 2,
+// no output), and the classes are closed where they arise (typed config values, one path-safe
+// name function, one escaping function per format, strict readers, staged outputs, read-only
+// databases, measured figures kept apart).
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "coverbench/escape.hpp"
+#include "coverbench/experiment.hpp"
+#include "coverbench/files.hpp"
+#include "coverbench/json_input.hpp"
+#include "coverbench/limits.hpp"
+#include "coverbench/registry.hpp"
+#include "coverbench/results_db.hpp"
+#include "coverbench/runner.hpp"
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CommandRun;
+
+class Hostile : public test::CommandTest {
+ protected:
+  /// The InputError message of loading a config ("" if it loads).
+  std::string configError(const std::string& text) {
+    try {
+      loadExperimentConfig(write("c.yaml", text));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  /// Every file under the test folder, relative to it.
+  std::vector<std::string> filesUnder(const fs::path& root) {
+    std::vector<std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(root))
+      if (e.is_regular_file()) out.push_back(fs::relative(e.path(), root).string());
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+  /// The `params` column of every planner configuration stored in a results database.
+  static std::vector<std::string> storedParams(const std::string& database) {
+    sqlite3* db = nullptr;
+    EXPECT_EQ(sqlite3_open_v2(database.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+    sqlite3_stmt* s = nullptr;
+    sqlite3_prepare_v2(db, "SELECT params FROM planner_configs ORDER BY params", -1, &s, nullptr);
+    std::vector<std::string> out;
+    while (sqlite3_step(s) == SQLITE_ROW) out.emplace_back(reinterpret_cast<const char*>(sqlite3_column_text(s, 0)));
+    sqlite3_finalize(s);
+    sqlite3_close(db);
+    return out;
+  }
+  const std::string wall_ = test::sourcePath("datasets/canonical/living_room_north.json");
+};
+
+/// "FIELD: PROBLEM" of the InputError that `f` throws, or "accepted".
+template <typename F>
+std::string inputProblem(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.field() + ": " + e.problem();
+  }
+  return "accepted";
+}
+
+int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+
+const char* const kHead = "name: t\noutput: out\ndatasets:\n  - suite: seed-cases\n";
+
+// --- 1. Planner parameters are stored as written ------------------------------------------------
+
+TEST_F(Hostile, ParametersInAnyOrderKeepTheirValues) {
+  const ExperimentConfig c = loadExperimentConfig(
+      write("c.yaml", std::string(kHead) + "planners:\n  - name: zigzag\n    params: {sweep_angle: 0.5, overlap: 0.2}\n"));
+  ASSERT_EQ(c.planners.size(), 1u);
+  EXPECT_EQ(c.planners[0].params.number("sweep_angle"), 0.5);
+  EXPECT_EQ(c.planners[0].params.number("overlap"), 0.2);
+  EXPECT_EQ(c.planners[0].label, "zigzag(overlap=0.2, sweep_angle=0.5)");
+}
+
+TEST_F(Hostile, TheReadmesSweepExampleLoads) {
+  const ExperimentConfig c = loadExperimentConfig(write(
+      "c.yaml", std::string(kHead) +
+                    "planners:\n  - name: zigzag\n    params:\n      sweep_angle: [0, 45, 90]\n      boundary_passes: 1\n"));
+  ASSERT_EQ(c.planners.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(c.planners[i].params.integer("boundary_passes"), 1);
+    EXPECT_EQ(c.planners[i].params.number("sweep_angle"), 45.0 * static_cast<double>(i));
+  }
+}
+
+TEST_F(Hostile, DuplicateConfigurationsAreReportedAtTheirOwnLine) {
+  EXPECT_EQ(configError(std::string(kHead) + "planners: [zigzag, zigzag]\n"),
+            fs::path(dir_ / "c.yaml").string() + ":5: planners[1]: configuration 'zigzag' is listed twice (also at planners[0])");
+  // 2. Two labels, one configuration: refused, naming both.
+  const std::string e = configError(std::string(kHead) + "planners: [zigzag, {name: zigzag, params: {sweep_angle: 0}}]\n");
+  EXPECT_NE(e.find(":5: planners[1]: configuration 'zigzag(sweep_angle=0)' has the same resolved parameters as 'zigzag'"),
+            std::string::npos)
+      << e;
+}
+
+/// A value of a declared parameter that differs from its default, drawn from `rng`.
+std::string otherValue(const ParamSpec& spec, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  switch (spec.type) {
+    case ParamType::Number: {
+      for (;;) {  // three decimals, so the YAML text is exact
+        const double v = std::round((spec.min + (spec.max - spec.min) * u(rng)) * 1000.0) / 1000.0;
+        if (v >= spec.min && v <= spec.max && v != std::get<double>(spec.default_value)) return toString(v);
+      }
+    }
+    case ParamType::Integer: {
+      const auto lo = static_cast<long long>(spec.min), hi = static_cast<long long>(std::min(spec.max, spec.min + 50.0));
+      for (int tries = 0; tries < 100; ++tries) {
+        const long long v = lo + static_cast<long long>(u(rng) * static_cast<double>(hi - lo + 1)) % (hi - lo + 1);
+        if (v != std::get<long long>(spec.default_value)) return std::to_string(v);
+      }
+      return std::to_string(std::get<long long>(spec.default_value));
+    }
+    case ParamType::Bool:
+      return std::get<bool>(spec.default_value) ? "false" : "true";
+    case ParamType::Choice:
+      for (const std::string& c : spec.choices)
+        if (c != std::get<std::string>(spec.default_value)) return c;
+      return spec.choices.front();
+  }
+  return "";
+}
+
+TEST_F(Hostile, PropertyEveryPlannerStoresExactlyTheParameterValuesWrittenInAnyOrder) {
+  // Every registered planner, every declared parameter set to a non-default value, keys written
+  // in a shuffled order, several times: the resolved configuration and the stored row hold
+  // exactly the values written.
+  std::mt19937 rng(18);
+  fs::create_directories(dir_ / "walls");
+  std::ofstream(dir_ / "walls" / "w.json") << R"({"name": "w", "width": 1.2, "height": 1.0})";
+  for (int round = 0; round < 4; ++round) {
+    std::string yaml = "name: p\noutput: out" + std::to_string(round) + "\ndatasets:\n  - folder: walls\nplanners:\n";
+    std::vector<std::map<std::string, std::string>> expected;
+    for (const PlannerInfo& info : registeredPlanners()) {
+      std::vector<const ParamSpec*> specs;
+      for (const ParamSpec& s : info.params) specs.push_back(&s);
+      std::shuffle(specs.begin(), specs.end(), rng);
+      std::map<std::string, std::string> values;
+      yaml += "  - name: " + info.name + "\n    params:\n";
+      for (const ParamSpec* s : specs) {
+        values[s->name] = otherValue(*s, rng);
+        yaml += "      " + s->name + ": " + values[s->name] + "\n";
+      }
+      if (specs.empty()) yaml.resize(yaml.size() - std::string("    params:\n").size());
+      expected.push_back(values);
+    }
+    const std::string file = write("p" + std::to_string(round) + ".yaml", yaml);
+    const ExperimentConfig c = loadExperimentConfig(file);
+    ASSERT_EQ(c.planners.size(), expected.size());
+    std::vector<std::string> expected_rows;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      std::string row;
+      for (const auto& [name, value] : c.planners[i].params.all()) {
+        EXPECT_EQ(toString(value), expected[i].at(name)) << c.planners[i].planner << "." << name << " in\n" << yaml;
+        row += (row.empty() ? "" : ", ") + name + "=" + toString(value);
+      }
+      expected_rows.push_back(row);
+    }
+    if (round == 0) {  // and what a run stores is what was written
+      RunnerOptions options;
+      options.threads = 2;
+      const RunnerSummary s = runExperiment(c, options);
+      std::sort(expected_rows.begin(), expected_rows.end());
+      EXPECT_EQ(storedParams(s.database), expected_rows);
+    }
+  }
+}
+
+// --- 3. showcase writes only inside --out, under safe, unique names ------------------------------
+
+TEST(SafeNames, NeverLeaveTheFolderAndNeverCollide) {
+  for (const std::string name : {"../../escaped", "x/y", "..", ".", "", "/etc/passwd", "a\\b", "<img>", "\xff\xfe"}) {
+    const std::string f = safeFileName(name);
+    EXPECT_FALSE(f.empty());
+    EXPECT_NE(f[0], '.') << name;
+    EXPECT_EQ(f.find('/'), std::string::npos) << name;
+    EXPECT_EQ(f.find('\\'), std::string::npos) << name;
+    EXPECT_EQ(fs::path(f).filename().string(), f) << name;
+  }
+  EXPECT_EQ(safeFileName("living-room_north.2"), "living-room_north.2");
+  EXPECT_EQ(uniqueFileNames({"same", "same", "Same", "x/y", "x_y"}),
+            (std::vector<std::string>{"same", "same-2", "Same-3", "x_y", "x_y-2"}));
+}
+
+TEST_F(Hostile, ShowcaseWritesOnlyInsideOutWithEscapedMarkup) {
+  fs::create_directories(dir_ / "a" / "b" / "walls");
+  const fs::path walls = dir_ / "a" / "b" / "walls";
+  std::ofstream(walls / "1.json") << R"({"name": "../../escaped", "width": 1, "height": 1})";
+  std::ofstream(walls / "2.json") << R"({"name": "x/y", "width": 1, "height": 1})";
+  std::ofstream(walls / "3.json") << R"({"name": "<img src=x onerror=alert(1)>", "width": 1, "height": 1})";
+  std::ofstream(walls / "4.json") << R"({"name": "same", "width": 1, "height": 1})";
+  std::ofstream(walls / "5.json") << R"({"name": "same", "width": 1.2, "height": 1})";
+  const fs::path out = dir_ / "a" / "b" / "out";
+  const CommandRun r = run("showcase --walls " + walls.string() + " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Nothing outside out/ besides the walls; every plan file present once (5 walls, 2 files each).
+  for (const std::string& f : filesUnder(dir_))
+    EXPECT_TRUE(f.rfind("a/b/out/", 0) == 0 || f.rfind("a/b/walls/", 0) == 0 || f == "stdout.txt" || f == "stderr.txt") << f;
+  EXPECT_EQ(filesUnder(out / "plans").size(), 5 * registeredPlanners().size() * 2);
+  const std::string html = slurp((out / "index.html").string());
+  EXPECT_EQ(html.find("<img src=x"), std::string::npos);
+  EXPECT_NE(html.find("&lt;img src=x onerror=alert(1)&gt;"), std::string::npos);
+  // The two walls named "same" keep separate files.
+  EXPECT_NE(slurp((out / "plans" / "same__zigzag.json").string()), slurp((out / "plans" / "same__zigzag-2.json").string()));
+}
+
+TEST_F(Hostile, ShowcaseThatFailsLeavesNothingBehind) {
+  std::ofstream(dir_ / "blocker") << "a file where a folder is needed";
+  const CommandRun r = run("showcase --walls " + test::sourcePath("datasets/canonical") + " --out " + (dir_ / "blocker" / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  const std::string bad = write("bad.json", R"({"name": "w", "width": 1, "height": 1, "oops": 1})");
+  fs::create_directories(dir_ / "w");
+  fs::copy(bad, dir_ / "w" / "bad.json");
+  std::ofstream(dir_ / "w" / "good.json") << R"({"name": "g", "width": 1, "height": 1})";
+  EXPECT_EQ(run("showcase --walls " + (dir_ / "w").string() + " --out " + (dir_ / "new" / "out").string()).exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "new"));
+}
+
+// --- 4. Markup escaped in every format ----------------------------------------------------------
+
+TEST(Escaping, EachFormatNeutralisesItsMarkup) {
+  EXPECT_EQ(escapeHtml("<img src=x onerror='a'>&\"\n"), "&lt;img src=x onerror=&#39;a&#39;&gt;&amp;&quot; ");
+  EXPECT_EQ(escapeMarkdown("a|b\nc <i>*x*</i> [l](u) `c` sweep_angle _e_"),
+            "a\\|b c \\<i\\>\\*x\\*\\</i\\> \\[l\\](u) \\`c\\` sweep_angle \\_e\\_");
+  EXPECT_EQ(escapeLatex("50% & $x_1$ {a} #\\~^<>|\n% live"),
+            "50\\% \\& \\$x\\_1\\$ \\{a\\} \\#\\textbackslash{}\\textasciitilde{}\\textasciicircum{}\\textless{}"
+            "\\textgreater{}\\textbar{} \\% live");
+  EXPECT_EQ(escapeCsv("plain"), "plain");
+  EXPECT_EQ(escapeCsv("a,\"b\"\nc"), "\"a,\"\"b\"\"\nc\"");
+}
+
+TEST_F(Hostile, ReportsEscapeExperimentNamesAndLabels) {
+  fs::create_directories(dir_ / "walls");
+  std::ofstream(dir_ / "walls" / "w.json") << R"({"name": "w", "width": 1.2, "height": 1.0})";
+  const std::string config = write("c.yaml",
+                                   "name: \"<b>bold</b> | pipe\\nnewline & 50%\"\noutput: out\ndatasets:\n  - folder: walls\n"
+                                   "    label: \"<img src=x> | 50% & x\\n end\"\nplanners: [zigzag, spiral]\n");
+  ASSERT_EQ(run("run " + config).exit_code, 0);
+  const std::string md = slurp((dir_ / "out" / "report.md").string());
+  auto unescaped = [&](const std::string& markup) {  // markup not preceded by a backslash
+    for (std::size_t at = md.find(markup); at != std::string::npos; at = md.find(markup, at + 1))
+      if (at == 0 || md[at - 1] != '\\') return true;
+    return false;
+  };
+  EXPECT_FALSE(unescaped("<b>")) << md;
+  EXPECT_FALSE(unescaped("<img")) << md;
+  EXPECT_NE(md.find("\\<img src=x\\> \\| 50% \\& x  end"), std::string::npos) << md;
+  // Every table row keeps its column count: no label broke a row.
+  std::istringstream in(md);
+  std::size_t columns = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] != '|') {
+      columns = 0;
+      continue;
+    }
+    std::size_t bars = 0;
+    for (std::size_t i = 0; i < line.size(); ++i) bars += line[i] == '|' && (i == 0 || line[i - 1] != '\\');
+    if (columns == 0) columns = bars;
+    EXPECT_EQ(bars, columns) << line;
+  }
+  const std::string tex = slurp((dir_ / "out" / "report.tex").string());
+  EXPECT_EQ(tex.find("& 50%"), std::string::npos) << tex;
+  EXPECT_NE(tex.find("50\\% \\& x"), std::string::npos) << tex;
+  std::istringstream tin(tex);
+  for (std::string line; std::getline(tin, line);)  // every line mentioning the name is a comment or escaped
+    if (line.find("newline") != std::string::npos) {
+      EXPECT_EQ(line[0], '%') << line;
+    }
+  const std::string csv = slurp((dir_ / "out" / "report.csv").string());
+  EXPECT_NE(csv.find("\"<img src=x> | 50% & x\n end\""), std::string::npos) << csv;
+}
+
+// --- 5, 6. Strict readers: clean errors, nothing accepted that must not be ----------------------
+
+TEST_F(Hostile, StrictJsonRejectsNulDuplicatesTrailingDataAndBadUtf8) {
+  auto problem = [](const std::string& text) { return inputProblem([&] { parseJsonStrict(text, "f.json"); }); };
+  EXPECT_EQ(problem(std::string("{\"a\": 1}") + '\0' + "rest"), "(document): contains a NUL byte at offset 8 (not a text file)");
+  EXPECT_EQ(problem("{\"a\": 1, \"a\": 2}"), "a: duplicate key (each key may appear once)");
+  EXPECT_EQ(problem("{\"o\": [{\"x\": 1}, {\"x\": 1, \"x\": 2}]}"), "o[1].x: duplicate key (each key may appear once)");
+  EXPECT_NE(problem("{\"a\": 1} {\"b\": 2}").find("(document): malformed JSON"), std::string::npos);
+  EXPECT_EQ(problem("{\"a\": \"\xff\"}"), "(document): is not valid UTF-8 text");
+  EXPECT_NE(problem("{\"a\": 1e400}").find("malformed JSON"), std::string::npos);
+  EXPECT_EQ(problem("{\"a\": {\"b\": 1}, \"b\": 1}"), "accepted");  // the same key in different objects
+}
+
+TEST_F(Hostile, WallAndPlanFilesWithNulOrDuplicateKeysAreRefused) {
+  const std::string nul_wall = write("nul.json", std::string(R"({"name": "n", "width": 2, "height": 2})") + '\0' + "junk");
+  CommandRun r = run("plan --wall " + nul_wall + " --planner zigzag --out " + (dir_ / "p.json").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("nul.json: (document): contains a NUL byte"), std::string::npos) << r.err;
+  const std::string dup_wall = write("dup.json", R"({"name": "d", "width": 2, "width": 3, "height": 2})");
+  r = run("plan --wall " + dup_wall + " --planner zigzag --out " + (dir_ / "p.json").string());
+  EXPECT_NE(r.err.find("dup.json: width: duplicate key"), std::string::npos) << r.err;
+  const std::string nul_plan = write("np.json", std::string(R"({"waypoints": [[1, 1], [2, 1]], "tool_on": [true]})") + '\0' + "x");
+  r = run("metrics --wall " + wall_ + " --plan " + nul_plan);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("np.json: (document): contains a NUL byte"), std::string::npos) << r.err;
+  const std::string dup_plan = write("dp.json", R"({"waypoints": [[1, 1], [2, 1]], "tool_on": [true], "tool_on": [false]})");
+  r = run("metrics --wall " + wall_ + " --plan " + dup_plan);
+  EXPECT_NE(r.err.find("dp.json: tool_on: duplicate key"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "p.json"));
+}
+
+TEST_F(Hostile, ConfigsWithDuplicateOrComplexKeysOrNulAreRefused) {
+  const std::string file = (dir_ / "c.yaml").string();
+  EXPECT_EQ(configError("name: t\nname: u\noutput: o\ndatasets:\n  - suite: seed-cases\nplanners: [zigzag]\n"),
+            file + ":2: name: duplicate key (first on line 1)");
+  EXPECT_EQ(configError(std::string(kHead) + "planners:\n  - name: zigzag\n    params:\n      overlap: 0.1\n      overlap: 0.2\n"),
+            file + ":9: planners[0].params.overlap: duplicate key (first on line 8)");
+  EXPECT_EQ(configError("name: t\noutput: o\n? [a, b]\n: 1\ndatasets:\n  - suite: seed-cases\nplanners: [zigzag]\n"),
+            file + ":3: (document): a key must be a plain name, not a list or mapping");
+  EXPECT_NE(configError(std::string(kHead) + "planners: [zigzag]\n" + '\0' + "seed: 3\n").find("contains a NUL byte"),
+            std::string::npos);
+}
+
+TEST_F(Hostile, AbsurdPlanCoordinatesAndUnreadableNamesGiveCleanErrors) {
+  const std::string plan = write("big.json", R"({"waypoints": [[1e13, 1], [1, 1]], "tool_on": [true]})");
+  CommandRun r = run("metrics --wall " + wall_ + " --plan " + plan);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("big.json: waypoints[0]: coordinate beyond 100 km"), std::string::npos) << r.err;
+  // A wall file whose name is not UTF-8 and that has no "name".
+  const std::string latin1 = write("caf\xe9.json", R"({"width": 1, "height": 1})");
+  r = run("plan --wall '" + latin1 + "' --planner zigzag --out " + (dir_ / "p.json").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(": name: missing, and the file name is not valid UTF-8"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "p.json"));
+}
+
+TEST(PathBlobs, CorruptBlobsAreInputErrorsWithoutHugeAllocations) {
+  try {
+    decodePath(std::string("\xFF\xFF\xFF\xFF\x00\x00", 6));
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("claims 4294967295 bytes from 2 compressed"), std::string::npos) << e.what();
+  }
+  // Every mutation of a valid blob decodes to some path or is refused as corrupt; nothing else.
+  Path path;
+  for (int i = 0; i < 50; ++i) path.moveTo({i * 0.1, (i % 7) * 0.2}, i % 3 != 0);
+  const std::string blob = encodePath(path);
+  EXPECT_EQ(decodePath(blob).waypoints, path.waypoints);
+  std::mt19937 rng(5);
+  for (int k = 0; k < 2000; ++k) {
+    std::string bad = blob;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits; ++e) bad[rng() % bad.size()] = static_cast<char>(rng() & 0xff);
+    if (rng() % 5 == 0) bad.resize(rng() % bad.size());
+    try {
+      decodePath(bad);
+    } catch (const InputError&) {
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "mutation " << k << ": " << e.what();
+    }
+  }
+}
+
+// --- 7. Output written only when everything succeeded -------------------------------------------
+
+TEST_F(Hostile, PlanAndMetricsWriteNothingWhenAnOutputFails) {
+  const std::string out = (dir_ / "p.json").string();
+  CommandRun r = run("plan --wall " + wall_ + " --planner zigzag --out " + out + " --svg /nonexistent/p.svg");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("/nonexistent/p.svg: (file): cannot be written"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  ASSERT_EQ(run("plan --wall " + wall_ + " --planner zigzag --out " + out).exit_code, 0);
+  std::string printed;
+  r = run("metrics --wall " + wall_ + " --plan " + out + " --svg /nonexistent/x.svg", &printed);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(printed, "") << "metrics printed before the picture failed";
+  EXPECT_EQ(filesUnder(dir_), (std::vector<std::string>{"p.json", "stderr.txt", "stdout.txt"}));
+}
+
+TEST(OutputFilesTest, AnUncommittedSetRemovesItsTemporaryFilesAndFolders) {
+  const fs::path root = fs::temp_directory_path() / ("coverbench_outputs_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  {
+    OutputFiles files;
+    files.folder((root / "a" / "b").string());
+    files.add((root / "a" / "b" / "x.txt").string(), "x");
+    EXPECT_THROW(files.add((root / "missing" / "y.txt").string(), "y"), InputError);
+  }
+  EXPECT_FALSE(fs::exists(root));
+  {
+    OutputFiles files;
+    files.folder(root.string());
+    files.add((root / "x.txt").string(), "x");
+    EXPECT_THROW(files.add((root / "x.txt").string(), "again"), InputError);
+    files.commit();
+  }
+  EXPECT_EQ(readFile((root / "x.txt").string()), "x");
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(root)) ++entries;
+  EXPECT_EQ(entries, 1u) << "no temporary file left";
+  fs::remove_all(root);
+}
+
+// --- 8. Limits ----------------------------------------------------------------------------------
+
+TEST(Limits, HugeTimeLimitsDoNotOverflowTheBudget) {
+  EXPECT_FALSE(Budget(std::chrono::duration<double>(INFINITY)).expired());
+  EXPECT_FALSE(Budget(std::chrono::duration<double>(1e300)).expired());
+  EXPECT_FALSE(Budget(std::chrono::duration<double>(86400.0)).expired());
+}
+
+TEST_F(Hostile, OutOfRangeLimitsAreRefusedWithOneLine) {
+  const std::string out = (dir_ / "p.json").string();
+  for (const char* limit : {"inf", "1e300", "0", "-5", "nan"}) {
+    const CommandRun r = run("plan --wall " + wall_ + " --planner zigzag --out " + out + " --time-limit " + limit);
+    EXPECT_EQ(r.exit_code, 2) << limit;
+    EXPECT_NE(r.err.find("--time-limit: time_limit: must be in (0, 86400] s"), std::string::npos) << r.err;
+  }
+  CommandRun r = run("dataset generate --family facade --count -1 --out " + (dir_ / "d").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--count: count: must be at least 1, got -1"), std::string::npos) << r.err;
+  r = run("dataset generate --family facade --count 2 --seed -1 --out " + (dir_ / "d").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--seed: seed: must be in [0, 2^53], got -1"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "d"));
+  for (const char* width : {"1e-9", "1e-7", "0.0009"}) {
+    r = run("plan --wall " + wall_ + " --planner spanning-tree --out " + out + " --tool-width " + width);
+    EXPECT_EQ(r.exit_code, 2) << width;
+    EXPECT_NE(r.err.find("tool_width: must be in [0.001, 10] m"), std::string::npos) << r.err;
+  }
+  // 1 mm is a tool, but not on a 200 m x 100 m wall: 2e10 cells.
+  const std::string huge = write("huge.json", R"({"name": "huge", "width": 200, "height": 100})");
+  r = run("plan --wall " + huge + " --planner spanning-tree --out " + out + " --tool-width 0.001");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("tool_width: 0.001 m is too fine for wall 'huge'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Hostile, ExperimentsOfOverAHundredThousandRunsNeedConfirmation) {
+  const std::string config = write("big.yaml", "name: big\noutput: out\ndatasets:\n  - family: residential\n    count: 1000000\n"
+                                               "    seed: 1\nplanners: [all]\n");
+  const CommandRun r = run("run " + config);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("allow_large: the experiment asks for " + std::to_string(1000000 * registeredPlanners().size()) + " runs"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  const ExperimentConfig confirmed = loadExperimentConfig(write("ok.yaml", slurp(config) + "allow_large: true\n"));
+  EXPECT_TRUE(confirmed.allow_large);
+  EXPECT_EQ(plannedRuns(confirmed), 1000000 * registeredPlanners().size());
+  // A tool too fine for one of the walls stops the experiment before any run.
+  const std::string fine = write("fine.yaml", "name: f\noutput: fine\ndatasets:\n  - family: stress\n    count: 1\n    seed: 1\n"
+                                              "planners: [zigzag]\ntool:\n  width: 0.001\n");
+  const CommandRun f = run("run " + fine);
+  EXPECT_EQ(f.exit_code, 2);
+  EXPECT_NE(f.err.find("tool_width: 0.001 m is too fine"), std::string::npos) << f.err;
+  EXPECT_FALSE(fs::exists(dir_ / "fine" / "results.sqlite"));
+}
+
+TEST_F(Hostile, ScoringIsBoundedInWaypointsAndTime) {
+  std::string text = "{\"waypoints\": [";
+  for (std::size_t i = 0; i <= kMaxScoredWaypoints; ++i) text += (i ? ",[" : "[") + std::to_string(1.0 + static_cast<double>(i % 100) * 0.01) + ",1]";
+  text += "], \"tool_on\": [";
+  for (std::size_t i = 0; i < kMaxScoredWaypoints; ++i) text += i ? ",true" : "true";
+  const std::string many = write("many.json", text + "]}");
+  CommandRun r = run("metrics --wall " + wall_ + " --plan " + many);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("many.json: waypoints: has 200001 waypoints; scoring is limited to 200000"), std::string::npos) << r.err;
+  // A path that crosses itself everywhere: scoring it would take minutes; the limit ends it.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> x(0.2, 4.8), y(0.2, 2.4);
+  text = "{\"waypoints\": [";
+  for (int i = 0; i < 4000; ++i) text += (i ? ",[" : "[") + std::to_string(x(rng)) + "," + std::to_string(y(rng)) + "]";
+  text += "], \"tool_on\": [";
+  for (int i = 0; i < 3999; ++i) text += i ? ",true" : "true";
+  const std::string tangled = write("tangled.json", text + "]}");
+  std::string printed;
+  r = run("metrics --wall " + wall_ + " --plan " + tangled + " --time-limit 1", &printed);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "coverbench: " + tangled + ": (scoring): not scored within the time limit of 1 s (--time-limit)\n");
+  EXPECT_EQ(printed, "");
+}
+
+// --- 9. Foreign databases are never touched -----------------------------------------------------
+
+TEST_F(Hostile, ReadingCommandsLeaveForeignDatabasesUntouched) {
+  const std::string other = (dir_ / "other.sqlite").string();
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(other.c_str(), &db), SQLITE_OK);
+  sqlite3_exec(db, "CREATE TABLE notes (x TEXT); INSERT INTO notes VALUES ('mine');", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  const std::string before = slurp(other);
+  for (const std::string& command : {"report " + other, "redraw " + other + " --run abcdef --svg " + (dir_ / "r.svg").string()}) {
+    const CommandRun r = run(command);
+    EXPECT_EQ(r.exit_code, 2) << command;
+    EXPECT_NE(r.err.find("other.sqlite: (database): is not a CoverBench results database"), std::string::npos) << r.err;
+  }
+  // run refuses to write into it too.
+  fs::create_directories(dir_ / "out");
+  fs::copy(other, dir_ / "out" / "results.sqlite");
+  const std::string config = write("c.yaml", std::string(kHead) + "planners: [zigzag]\n");
+  EXPECT_EQ(run("run " + config).exit_code, 2);
+  EXPECT_EQ(slurp(other), before);
+  EXPECT_EQ(slurp((dir_ / "out" / "results.sqlite").string()), before);
+  EXPECT_EQ(filesUnder(dir_ / "out"), (std::vector<std::string>{"results.sqlite"}));
+  EXPECT_FALSE(fs::exists(other + "-wal"));
+  EXPECT_EQ(run("report " + (dir_ / "missing.sqlite").string()).exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "missing.sqlite"));
+}
+
+TEST_F(Hostile, AFullDiskIsReportedAsSuch) {
+  const ExperimentConfig config = loadExperimentConfig(write("c.yaml", std::string(kHead) + "planners: [zigzag]\n"));
+  const std::vector<WallEntry> walls = loadWalls(config);
+  const std::vector<RunSpec> runs = expandRuns(config, walls);
+  ResultsDb db((dir_ / "r.sqlite").string());
+  db.beginExperiment(config, currentProvenance(1), walls, runs);
+  db.limitPagesForTesting(1);  // the database may not grow: a write that needs a page fails as on a full disk
+  std::string error;
+  for (const RunSpec& spec : runs) {
+    try {
+      db.storeRun(spec, executeRun(spec, nullptr));
+    } catch (const InputError& e) {
+      error = e.what();
+      break;
+    }
+  }
+  EXPECT_NE(error.find("database or disk is full"), std::string::npos) << error;
+  EXPECT_EQ(error.find("cannot rollback"), std::string::npos) << error;
+}
+
+// --- 10. Messages that say what is true ---------------------------------------------------------
+
+TEST_F(Hostile, TinyObstaclesInsideAreObstaclesAndFoldersAreNotFiles) {
+  const Wall tiny = parseWallJson(R"({"name": "t", "width": 2, "height": 2, "obstacles": [
+      {"type": "circle", "x": 1, "y": 1, "radius": 1e-9},
+      {"type": "polygon", "points": [[0.5, 0.5], [0.5000004, 0.5], [0.5, 0.5000004]]}]})",
+                                  "tiny.json");
+  EXPECT_EQ(tiny.obstacles.size(), 2u);
+  auto problem = [](const std::string& text) { return inputProblem([&] { parseWallJson(text, "w.json"); }); };
+  EXPECT_EQ(problem(R"({"width": 2, "height": 2, "obstacles": [{"type": "circle", "x": 3, "y": 1, "radius": 1e-9}]})"),
+            "obstacles[0]: lies entirely outside the wall");
+  EXPECT_EQ(problem(R"({"width": 2, "height": 2, "obstacles": [{"type": "circle", "x": 3, "y": 1, "radius": 1}]})"),
+            "obstacles[0]: lies entirely outside the wall");  // touches from outside
+  EXPECT_EQ(problem(R"({"width": 2, "height": 2, "obstacles": [{"type": "circle", "x": 2.5, "y": 1, "radius": 0.6}]})"),
+            "accepted");
+  const CommandRun r = run("plan --wall " + dir_.string() + " --planner zigzag --out " + (dir_ / "p.json").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(dir_.string() + ": (file): cannot be read: it is a folder, not a file"), std::string::npos) << r.err;
+}
+
+// --- 11. What a rerun reproduces is apart from what it measures ---------------------------------
+
+TEST_F(Hostile, TablesKeepMeasuredFiguresApartAndNeverCountThemAsWins) {
+  const std::string config = write("c.yaml", std::string(kHead) + "planners: [zigzag, boustrophedon]\n");
+  ASSERT_EQ(run("run " + config).exit_code, 0);
+  const std::string md = slurp((dir_ / "out" / "report.md").string());
+  const std::size_t measured = md.find("## Measured on this machine");
+  ASSERT_NE(measured, std::string::npos) << md;
+  EXPECT_EQ(md.substr(0, measured).find("plan_time_ms"), std::string::npos) << "a timing among the reproducible tables";
+  EXPECT_EQ(md.substr(0, measured).find("peak_memory_bytes"), std::string::npos);
+  EXPECT_NE(md.substr(measured).find("plan_time_ms"), std::string::npos);
+  // A rerun from scratch reproduces everything above the measured table byte for byte.
+  const std::string again = write("again.yaml", std::string(kHead) + "planners: [zigzag, boustrophedon]
+");
+  std::string text = slurp(again);
+  text.replace(text.find("output: out"), 11, "output: out2");
+  write("again.yaml", text);
+  ASSERT_EQ(run("run " + again).exit_code, 0);
+  const std::string md2 = slurp((dir_ / "out2" / "report.md").string());
+  EXPECT_EQ(md2.substr(0, md2.find("## Measured on this machine")), md.substr(0, measured));
+  // The planner's own sub-timings are stored apart from its statistics.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open_v2((dir_ / "out" / "results.sqlite").string().c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  auto count = [&](const char* sql) {
+    sqlite3_stmt* s = nullptr;
+    sqlite3_prepare_v2(db, sql, -1, &s, nullptr);
+    long long n = sqlite3_step(s) == SQLITE_ROW ? sqlite3_column_int64(s, 0) : -1;
+    sqlite3_finalize(s);
+    return n;
+  };
+  EXPECT_EQ(count("SELECT COUNT(*) FROM planner_stats WHERE name LIKE '%\\_ms' ESCAPE '\\'"), 0);
+  EXPECT_GT(count("SELECT COUNT(*) FROM planner_timings WHERE name = 'decomposition'"), 0);
+  sqlite3_close(db);
+}
+
+}  // namespace
+}  // namespace coverbench
