@@ -52,26 +52,29 @@ struct Outcome {
   std::string svg;
 };
 
-/// The picture of a path with its coverage layer.
-std::string picture(const Wall& wall, const ToolParams& tool, const Path& path, const std::string& title) {
+/// The picture of a path; with its coverage layer when it can be scored.
+std::string picture(const Wall& wall, const ToolParams& tool, const Path& path, const std::string& title,
+                    bool coverage_layer = true) {
   const Region free = freeRegion(wall, tool);
-  const CoverageRegions regions = coverageRegions(wall, tool, path);
-  const Region uncovered = subtract(regions.reachable, regions.swept);
-  // Draw the overlap with strips about a pixel high (at most 1500 of them over the wall).
-  const Box box = boundingBox(wall.boundary);
-  const Region overlap = overlapRegion(path, tool.radius(), std::max(tool.radius() / 10.0, box.height() / 1500.0));
   SvgContent content;
   content.wall = &wall;
   content.tool = tool;
   content.free = &free;
   content.path = &path;
+  content.title = title;
+  if (!coverage_layer) return renderSvg(content);
+  const CoverageRegions regions = coverageRegions(wall, tool, path);
+  const Region uncovered = subtract(regions.reachable, regions.swept);
+  // Draw the overlap with strips about a pixel high (at most 1500 of them over the wall).
+  const Box box = boundingBox(wall.boundary);
+  const Region overlap = overlapRegion(path, tool.radius(), std::max(tool.radius() / 10.0, box.height() / 1500.0));
   content.uncovered = &uncovered;
   content.overlap = &overlap;
-  content.title = title;
   return renderSvg(content);
 }
 
-/// Plans one wall with one planner and renders its outputs (nothing is written here).
+/// Plans one wall with one planner and renders its outputs (nothing is written here). A path
+/// beyond the scoring limits is kept, unscored, with the reason.
 Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams& tool, Params params,
                  double time_limit_s, bool with_picture) {
   Problem problem;
@@ -86,17 +89,27 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   resetPeakMemory();
   o.plan.result = runPlanner(planner, problem, Budget(std::chrono::duration<double>(time_limit_s)));
   o.plan.peak_memory_bytes = static_cast<double>(peakMemorySinceReset());
-  o.plan.metrics = computeMetrics(wall, tool, o.plan.result.path);
+  try {
+    o.plan.metrics = computeMetrics(wall, tool, o.plan.result.path);
+  } catch (const InputError& e) {  // beyond the scoring limits (docs/metrics.md)
+    o.plan.not_scored = "the path " + e.problem();
+  }
   o.plan_json = planFileJson(o.plan);
+  const bool scored = o.plan.not_scored.empty();
   char title[256];
   std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s%s", wall.name.c_str(), planner.name.c_str(),
                 tool.tool_width, tool.clearance, toString(o.plan.result.status).c_str(),
-                o.plan.result.status == PlanStatus::Ok ? (o.plan.metrics.validity.valid ? ", valid" : ", INVALID") : "");
-  if (with_picture) o.svg = picture(wall, tool, o.plan.result.path, title);
+                o.plan.result.status != PlanStatus::Ok ? ""
+                : !scored                              ? ", NOT SCORED"
+                : o.plan.metrics.validity.valid        ? ", valid"
+                                                       : ", INVALID");
+  if (with_picture) o.svg = picture(wall, tool, o.plan.result.path, title, scored);
   return o;
 }
 
-bool succeeded(const PlanFile& plan) { return plan.result.status == PlanStatus::Ok && plan.metrics.validity.valid; }
+bool succeeded(const PlanFile& plan) {
+  return plan.result.status == PlanStatus::Ok && plan.not_scored.empty() && plan.metrics.validity.valid;
+}
 
 std::string formatted(const char* format, double v) {
   char buf[64];
@@ -141,10 +154,13 @@ int planCommand(const PlanOptions& options) {
   const PlanResult& r = o.plan.result;
   const PathMetrics& m = o.plan.metrics;
   std::cout << planner.name << " on " << wall.name << ": " << toString(r.status)
-            << (r.reason.empty() ? "" : " (" + r.reason + ")") << ", " << r.path.waypoints.size() << " waypoints, "
-            << (m.validity.valid ? "valid" : "INVALID: " + std::to_string(m.validity.violations) + " violating segments")
-            << ", coverage " << percent(m.coverage.coverage_reachable) << " of reachable, " << r.plan_time_ms
-            << " ms\n";
+            << (r.reason.empty() ? "" : " (" + r.reason + ")") << ", " << r.path.waypoints.size() << " waypoints, ";
+  if (!o.plan.not_scored.empty())
+    std::cout << "NOT SCORED: " << o.plan.not_scored;
+  else
+    std::cout << (m.validity.valid ? "valid" : "INVALID: " + std::to_string(m.validity.violations) + " violating segments")
+              << ", coverage " << percent(m.coverage.coverage_reachable) << " of reachable";
+  std::cout << ", " << r.plan_time_ms << " ms\n";
   return succeeded(o.plan) ? 0 : 3;
 }
 
@@ -245,7 +261,7 @@ int showcaseCommand(const ShowcaseOptions& options) {
       const PathMetrics& m = o.plan.metrics;
       const double mc = m.validity.min_clearance;
       const std::vector<std::string> cells = {
-          wall.name, planner.name, toString(o.plan.result.status), m.validity.valid ? "yes" : "NO",
+          wall.name, planner.name, toString(o.plan.result.status), !o.plan.not_scored.empty() ? "not scored" : m.validity.valid ? "yes" : "NO",
           std::to_string(m.validity.violations), std::isfinite(mc) ? toString(mc) : "-",
           formatted("%.4f", m.coverage.coverage_reachable), formatted("%.4f", m.coverage.coverage_wall),
           formatted("%.4f", m.passes.overlap), formatted("%.2f", m.lengths.total), formatted("%.2f", m.lengths.transit),
@@ -259,8 +275,8 @@ int showcaseCommand(const ShowcaseOptions& options) {
                  ".json</a></figcaption></figure>\n";
       if (!succeeded(o.plan)) exit_code = 3;
       std::cout << "  " << wall.name << " / " << planner.name << ": " << toString(o.plan.result.status)
-                << (m.validity.valid ? ", valid" : ", INVALID") << ", coverage "
-                << percent(m.coverage.coverage_reachable) << " of reachable\n";
+                << (!o.plan.not_scored.empty() ? ", NOT SCORED" : m.validity.valid ? ", valid" : ", INVALID")
+                << ", coverage " << percent(m.coverage.coverage_reachable) << " of reachable\n";
     }
   }
   outputs.add((out / "summary.md").string(),

@@ -475,7 +475,19 @@ TEST_F(Hostile, ScoringIsBoundedInWaypointsAndTime) {
   const std::string many = write("many.json", text + "]}");
   CommandRun r = run("metrics --wall " + wall_ + " --plan " + many);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("many.json: waypoints: has 200001 waypoints; scoring is limited to 200000"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("many.json: waypoints: has " + std::to_string(kMaxScoredWaypoints + 1) +
+                       " waypoints; scoring is limited to " + std::to_string(kMaxScoredWaypoints)),
+            std::string::npos)
+      << r.err;
+  // A planner's path beyond the limit is written unscored, with the reason, and exit code 3.
+  const std::string empty = write("empty.json", R"({"name": "e", "width": 10, "height": 10})");
+  const std::string plan = (dir_ / "st.json").string();
+  std::string printed;
+  r = run("plan --wall " + empty + " --planner spanning-tree --tool-width 0.0065 --out " + plan, &printed);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(printed.find("NOT SCORED: the path has "), std::string::npos) << printed;
+  const std::string written = slurp(plan);
+  EXPECT_NE(written.find("\n \"metrics\": null,\n \"not_scored\": \"the path has "), std::string::npos);
   // A path that crosses itself everywhere: scoring it would take minutes; the limit ends it.
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> x(0.2, 4.8), y(0.2, 2.4);
@@ -484,7 +496,7 @@ TEST_F(Hostile, ScoringIsBoundedInWaypointsAndTime) {
   text += "], \"tool_on\": [";
   for (int i = 0; i < 3999; ++i) text += i ? ",true" : "true";
   const std::string tangled = write("tangled.json", text + "]}");
-  std::string printed;
+  printed.clear();
   r = run("metrics --wall " + wall_ + " --plan " + tangled + " --time-limit 1", &printed);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "coverbench: " + tangled + ": (scoring): not scored within the time limit of 1 s (--time-limit)\n");
@@ -570,13 +582,11 @@ TEST_F(Hostile, TablesKeepMeasuredFiguresApartAndNeverCountThemAsWins) {
   EXPECT_EQ(md.substr(0, measured).find("peak_memory_bytes"), std::string::npos);
   EXPECT_NE(md.substr(measured).find("plan_time_ms"), std::string::npos);
   // A rerun from scratch reproduces everything above the measured table byte for byte.
-  const std::string again = write("again.yaml", std::string(kHead) + "planners: [zigzag, boustrophedon]
-");
-  std::string text = slurp(again);
-  text.replace(text.find("output: out"), 11, "output: out2");
-  write("again.yaml", text);
-  ASSERT_EQ(run("run " + again).exit_code, 0);
-  const std::string md2 = slurp((dir_ / "out2" / "report.md").string());
+  // (The same config bytes in another folder: outputs resolve beside it.)
+  fs::create_directories(dir_ / "again");
+  fs::copy(config, dir_ / "again" / "c.yaml");
+  ASSERT_EQ(run("run " + (dir_ / "again" / "c.yaml").string()).exit_code, 0);
+  const std::string md2 = slurp((dir_ / "again" / "out" / "report.md").string());
   EXPECT_EQ(md2.substr(0, md2.find("## Measured on this machine")), md.substr(0, measured));
   // The planner's own sub-timings are stored apart from its statistics.
   sqlite3* db = nullptr;

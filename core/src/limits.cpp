@@ -23,7 +23,7 @@ void validateToolForWall(const ToolParams& tool, const Wall& wall, const std::st
     char buf[256];
     std::snprintf(buf, sizeof buf,
                   "%g m is too fine for wall '%s' (%.3g m x %.3g m): %.3g tool-sized cells, at most %.0e (grid planners "
-                  "would need tens of GB)",
+                  "would need gigabytes)",
                   tool.tool_width, wall.name.c_str(), b.width(), b.height(), cells, kMaxGridCells);
     throw InputError(source, "tool_width", buf);
   }

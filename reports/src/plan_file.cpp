@@ -64,7 +64,8 @@ std::string planFileJson(const PlanFile& plan) {
   std::string text = "{\n";
   for (auto it = doc.begin(); it != doc.end(); ++it)
     text += " " + ordered_json(it.key()).dump() + ": " + it.value().dump() + ",\n";
-  text += " \"metrics\": " + metricsObject(plan.metrics, " ") + ",\n";
+  if (plan.not_scored.empty()) text += " \"metrics\": " + metricsObject(plan.metrics, " ") + ",\n";
+  else text += " \"metrics\": null,\n \"not_scored\": " + ordered_json(plan.not_scored).dump() + ",\n";
   // Last, apart from everything a rerun reproduces byte for byte: what this run measured.
   ordered_json planner_ms = ordered_json::object();
   for (const auto& [name, value] : plan.result.timings_ms) planner_ms[name] = number(value);

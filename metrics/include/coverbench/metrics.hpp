@@ -105,12 +105,12 @@ struct PathMetrics {
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path,
                            const MotionLimits& limits = {});
 
-/// Scoring limits. Exact scoring grows with the path's waypoints and, faster, with how often it
-/// crosses itself (a dense 10^5-waypoint path takes about 70 s and 0.5 GB here; random paths far
-/// more), so longer paths are refused rather than scored for hours; `coverbench metrics` also has
-/// a time limit. A coordinate beyond kMaxPathCoordinate cannot be on any wall (walls lie within
-/// 10 km of the origin) and would overflow the exact area grid.
-inline constexpr std::size_t kMaxScoredWaypoints = 200000;
+/// Scoring limits. Exact scoring grows with the path's waypoints (memory: a spanning-tree path of
+/// 10^6 waypoints took 18 s and 0.46 GB here) and, much faster, with how often the path crosses
+/// itself (3000 random waypoints: 12 s), so `coverbench metrics` also has a time limit; longer
+/// paths are refused. A coordinate beyond kMaxPathCoordinate cannot be on any wall (walls lie
+/// within 10 km of the origin) and would overflow the exact area grid.
+inline constexpr std::size_t kMaxScoredWaypoints = 2000000;
 inline constexpr double kMaxPathCoordinate = 100000.0;  ///< m
 /// Throws InputError(source, field, problem) if `path` is beyond the scoring limits, or its
 /// coordinates are not finite.

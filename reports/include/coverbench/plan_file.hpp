@@ -18,6 +18,7 @@ struct PlanFile {
   Params params;
   PlanResult result;
   PathMetrics metrics;
+  std::string not_scored;  ///< why the path was not scored (beyond the scoring limits); "" if it was
   std::optional<double> peak_memory_bytes;  ///< heap high-water mark of the plan call, if measured
 };
 
