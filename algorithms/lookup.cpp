@@ -35,6 +35,7 @@ std::string toString(const ParamValue& value) {
 std::string toString(PlanStatus status) {
   switch (status) {
     case PlanStatus::Ok: return "ok";
+    case PlanStatus::Partial: return "partial";
     case PlanStatus::NoReachableArea: return "no_reachable_area";
     case PlanStatus::InvalidInput: return "invalid_input";
     case PlanStatus::Timeout: return "timeout";
@@ -125,7 +126,7 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
   }
   result.plan_time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (result.status != PlanStatus::Ok) result.path = Path{};
+  if (!result.hasPath()) result.path = Path{};
   return result;
 }
 

@@ -99,7 +99,7 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   char title[256];
   std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s%s", wall.name.c_str(), planner.name.c_str(),
                 tool.tool_width, tool.clearance, toString(o.plan.result.status).c_str(),
-                o.plan.result.status != PlanStatus::Ok ? ""
+                !o.plan.result.hasPath()               ? ""
                 : !scored                              ? ", NOT SCORED"
                 : o.plan.metrics.validity.valid        ? ", valid"
                                                        : ", INVALID");

@@ -146,9 +146,11 @@ std::string partialCoverageNote(std::size_t free_components, std::size_t unreach
 void recordOutcome(PlanResult& result, const PathBuilder& builder, std::size_t free_components,
                    std::size_t unreachable_parts) {
   result.stats["routed_transits"] = static_cast<double>(builder.transits());
-  result.stats["free_components"] = static_cast<double>(free_components);
-  result.stats["unreachable_parts"] = static_cast<double>(unreachable_parts);
+  result.free_components = free_components;
+  result.covered_components = std::min<std::size_t>(free_components, 1);
+  result.unreachable_parts = unreachable_parts;
   result.reason = partialCoverageNote(free_components, unreachable_parts);
+  if (result.status == PlanStatus::Ok && result.leftPartsOut()) result.status = PlanStatus::Partial;
 }
 
 std::vector<PolygonWithHoles> componentsByArea(const Region& region) {

@@ -40,7 +40,7 @@ CREATE TABLE IF NOT EXISTS runs (
   key TEXT PRIMARY KEY, wall_hash TEXT NOT NULL, config_id TEXT NOT NULL, tool_width REAL NOT NULL,
   clearance REAL NOT NULL, repetition INTEGER NOT NULL, seed INTEGER NOT NULL, status TEXT NOT NULL,
   reason TEXT NOT NULL, valid INTEGER NOT NULL, plan_time_ms REAL NOT NULL, peak_memory_bytes REAL,
-  finished_at TEXT NOT NULL);
+  finished_at TEXT NOT NULL, uncovered_reachable_m2 REAL);
 CREATE TABLE IF NOT EXISTS metrics (
   run_key TEXT NOT NULL, position INTEGER NOT NULL, name TEXT NOT NULL, value REAL,
   PRIMARY KEY (run_key, name)) WITHOUT ROWID;
@@ -69,7 +69,7 @@ class Statement {
   }
   Statement& real(int i, double v) {
     if (std::isfinite(v)) sqlite3_bind_double(stmt_, i, v);
-    else sqlite3_bind_null(stmt_, i);  // infinities (no obstacles: min_clearance) are stored as NULL
+    else sqlite3_bind_null(stmt_, i);  // infinities (no obstacles: min_clearance) and NaN are stored as NULL
     return *this;
   }
   Statement& integer(int i, long long v) {
@@ -278,14 +278,15 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
   try {
     Statement r(db_,
                 "INSERT OR REPLACE INTO runs (key, wall_hash, config_id, tool_width, clearance, repetition, seed, status, "
-                "reason, valid, plan_time_ms, peak_memory_bytes, finished_at) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?)",
+                "reason, valid, plan_time_ms, peak_memory_bytes, finished_at, uncovered_reachable_m2) "
+                "VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
                 file_);
     r.text(1, rec.key).text(2, spec.wall->hash).text(3, spec.planner->id).real(4, spec.tool.tool_width);
     r.real(5, spec.tool.clearance).integer(6, spec.repetition).integer(7, static_cast<long long>(spec.seed));
     r.text(8, rec.status).text(9, rec.reason).integer(10, rec.valid ? 1 : 0).real(11, rec.plan_time_ms);
     if (rec.peak_memory_bytes) r.real(12, *rec.peak_memory_bytes);
     else r.null(12);
-    r.text(13, utcNow()).run();
+    r.text(13, utcNow()).real(14, rec.uncovered_reachable_m2).run();
     Statement m(db_, "INSERT OR REPLACE INTO metrics (run_key, position, name, value) VALUES (?,?,?,?)", file_);
     for (std::size_t i = 0; i < rec.metrics.size(); ++i)
       m.text(1, rec.key).integer(2, static_cast<long long>(i)).text(3, rec.metrics[i].name).real(4, rec.metrics[i].value).run();
@@ -350,7 +351,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   {
     Statement s(db_,
                 "SELECT r.key, r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.repetition, r.status, "
-                "r.valid, r.plan_time_ms, r.peak_memory_bytes FROM runs r "
+                "r.valid, r.plan_time_ms, r.peak_memory_bytes, r.uncovered_reachable_m2 FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
                 "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 ORDER BY r.key",
                 file_);
@@ -368,6 +369,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
       row.valid = s.columnInt(8) != 0;
       row.metrics["plan_time_ms"] = s.columnReal(9);
       if (!s.columnNull(10)) row.metrics["peak_memory_bytes"] = s.columnReal(10);
+      row.uncovered_reachable_m2 = s.columnReal(11);
       index[s.columnText(0)] = rs.runs.size();
       rs.runs.push_back(std::move(row));
     }

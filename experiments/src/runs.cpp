@@ -110,11 +110,17 @@ RunRecord executeRun(const RunSpec& spec, const MemoryProbe* probe) {
     rec.status = toString(result.status);
     rec.reason = result.reason;
   }
-  if (result.status == PlanStatus::Ok) {
+  if (result.hasPath()) {
     try {
       const PathMetrics m = computeMetrics(spec.wall->wall, spec.tool, result.path);
       rec.valid = m.validity.valid;
       rec.metrics = flatten(m);
+      rec.uncovered_reachable_m2 = m.coverage.reachable_area * (1.0 - m.coverage.coverage_reachable);
+      if (!rec.valid) {  // the planner's claim does not survive the exact check
+        rec.status = "invalid_output";
+        rec.reason = std::to_string(m.validity.violations) + " segments violate the wall or the clearance" +
+                     (result.reason.empty() ? "" : "; the planner said: " + result.reason);
+      }
     } catch (const std::exception& e) {  // a path beyond the scoring limits, or a bug in the judge
       rec.status = "metrics_error";
       rec.reason = std::string("the path could not be scored: ") + e.what();

@@ -29,7 +29,9 @@ std::string fmt(double v) {
 
 std::string shortHash(const std::string& h) { return h.substr(0, 12); }
 
-bool usable(const ResultRow& r) { return r.status == "ok" && r.valid; }
+/// Runs whose metrics are summarised: a valid path, everything reachable covered or (partial)
+/// some reachable parts knowingly left out; the outcome table counts both apart.
+bool usable(const ResultRow& r) { return (r.status == "ok" || r.status == "partial") && r.valid; }
 
 bool tie(double a, double b) { return std::fabs(a - b) <= 1e-9 + 1e-6 * std::fmax(std::fabs(a), std::fabs(b)); }
 
@@ -42,27 +44,39 @@ std::vector<std::string> datasetsOf(const ResultSet& rs) {
 }
 
 Table failureTable(const ResultSet& rs) {
-  std::set<std::string> statuses;
-  for (const ResultRow& r : rs.runs) statuses.insert(r.status);
+  // Statuses in a fixed order (the ones with a path first), then any others alphabetically.
+  const std::vector<std::string> known = {"ok", "partial", "invalid_output", "metrics_error", "no_reachable_area",
+                                          "invalid_input", "timeout", "memory_limit", "crash", "error"};
+  std::set<std::string> present;
+  for (const ResultRow& r : rs.runs) present.insert(r.status);
+  std::vector<std::string> statuses;
+  for (const std::string& s : known)
+    if (s == "ok" || present.count(s)) statuses.push_back(s);
+  for (const std::string& s : present)
+    if (std::find(known.begin(), known.end(), s) == known.end()) statuses.push_back(s);
   Table t;
   t.title = "Run outcomes per planner";
-  t.note = "valid: status ok and the path passed the exact validity check; invalid: status ok but the path violates "
-           "the wall or clearance; other columns count each failure status.";
-  t.header = {"planner", "runs", "valid", "invalid"};
-  for (const std::string& s : statuses)
-    if (s != "ok") t.header.push_back(s);
+  t.note = "ok: everything reachable covered, valid path; partial: a valid path that knowingly leaves reachable parts "
+           "out (other free components; the median uncovered reachable area is given); invalid_output: the planner "
+           "returned a path that fails the exact validity check; metrics_error: the path could not be scored; the "
+           "other columns count runs without a path, by status. Metric tables summarise ok and partial runs.";
+  t.header = {"planner", "runs"};
+  for (const std::string& s : statuses) t.header.push_back(s);
+  t.header.push_back("partial: uncovered reachable (m2)");
   for (const std::string& p : rs.planners) {
-    std::size_t runs = 0, valid = 0, invalid = 0;
+    std::size_t runs = 0;
     std::map<std::string, std::size_t> by_status;
+    std::vector<double> uncovered;
     for (const ResultRow& r : rs.runs) {
       if (r.planner != p) continue;
       ++runs;
       ++by_status[r.status];
-      if (r.status == "ok") ++(r.valid ? valid : invalid);
+      if (r.status == "partial" && std::isfinite(r.uncovered_reachable_m2)) uncovered.push_back(r.uncovered_reachable_m2);
     }
-    std::vector<std::string> row = {p, std::to_string(runs), std::to_string(valid), std::to_string(invalid)};
-    for (const std::string& s : statuses)
-      if (s != "ok") row.push_back(std::to_string(by_status[s]));
+    std::vector<std::string> row = {p, std::to_string(runs)};
+    for (const std::string& s : statuses) row.push_back(std::to_string(by_status[s]));
+    std::sort(uncovered.begin(), uncovered.end());
+    row.push_back(uncovered.empty() ? "-" : fmt(quantile(uncovered, 0.5)));
     t.rows.push_back(row);
   }
   return t;

@@ -112,7 +112,10 @@ class Budget {
   bool limited_ = false;
 };
 
-enum class PlanStatus { Ok, NoReachableArea, InvalidInput, Timeout, Error };
+/// Ok: everything reachable covered. Partial: a path was returned but the planner knowingly left
+/// reachable parts out (other free components, parts no transit reached): see the typed fields
+/// of PlanResult. The rest return no path.
+enum class PlanStatus { Ok, Partial, NoReachableArea, InvalidInput, Timeout, Error };
 std::string toString(PlanStatus status);
 
 /// What a planner returns. A planner that cannot handle an input says so here, with a reason;
@@ -126,6 +129,14 @@ struct PlanResult {
   /// kept apart from `stats`, which a rerun reproduces exactly.
   std::map<std::string, double> timings_ms;
   double plan_time_ms = 0.0;  ///< wall-clock time of the plan call, measured by runPlanner
+  /// What the planner covered, by its own account (recordOutcome fills these; the metrics engine
+  /// measures the truth independently). 0 components: not reported.
+  std::size_t free_components = 0;     ///< connected components of the free region F
+  std::size_t covered_components = 0;  ///< of which the path covers
+  std::size_t unreachable_parts = 0;   ///< parts (rings, rows, cells) of covered components no transit reached
+  /// A path that knowingly leaves reachable parts out.
+  bool leftPartsOut() const { return covered_components < free_components || unreachable_parts > 0; }
+  bool hasPath() const { return status == PlanStatus::Ok || status == PlanStatus::Partial; }
 
   static PlanResult failure(PlanStatus status, std::string reason) {
     PlanResult r;

@@ -135,8 +135,9 @@ std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max
 /// and parts (rings, rows) no collision-free transit reached. Empty when nothing was left out.
 std::string partialCoverageNote(std::size_t free_components, std::size_t unreachable_parts);
 
-/// Records what every planner built on PathBuilder reports the same way: the statistics
-/// `routed_transits`, `free_components` and `unreachable_parts`, and the reason above.
+/// Records what every planner built on PathBuilder reports the same way: the statistic
+/// `routed_transits`, the typed fields free_components, covered_components (the largest only) and
+/// unreachable_parts, the reason above, and status Partial for an Ok plan that left parts out.
 void recordOutcome(PlanResult& result, const PathBuilder& builder, std::size_t free_components,
                    std::size_t unreachable_parts);
 

@@ -2,6 +2,7 @@
 /// Experiments: a YAML config expanded into runs; a run is a pure function of (wall, planner
 /// configuration, tool parameters, seed), so it can later move into a child process or onto a
 /// cluster node without changing what it computes.
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -93,9 +94,15 @@ std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vecto
 /// What a run produced.
 struct RunRecord {
   std::string key;
-  std::string status;  ///< toString(PlanStatus), "memory_limit", or "metrics_error" (could not be scored)
+  /// ok, partial (knowingly left reachable parts out), no_reachable_area, invalid_input, timeout,
+  /// memory_limit, crash, error, invalid_output (the path fails the exact check), metrics_error
+  /// (the path could not be scored). docs/run_lifecycle.md.
+  std::string status;
   std::string reason;
   bool valid = false;
+  /// The reachable area the path did not sweep (m²), measured by the metrics engine: what a
+  /// partial run left out, in numbers. NaN when not scored.
+  double uncovered_reachable_m2 = NAN;
   double plan_time_ms = 0.0;
   std::optional<double> peak_memory_bytes;
   std::vector<NamedMetric> metrics;  ///< empty unless status is ok

@@ -16,6 +16,7 @@ struct ResultRow {
   std::string pairing;  ///< what makes two runs comparable: wall, tool and repetition
   std::string status;
   bool valid = false;
+  double uncovered_reachable_m2 = 0.0;  ///< NaN when not scored
   std::map<std::string, double> metrics;  ///< includes plan_time_ms and peak_memory_bytes if measured
 };
 
