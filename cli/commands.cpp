@@ -9,7 +9,10 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <sys/resource.h>
 #include <unistd.h>
+
+#include <fstream>
 
 #include "coverbench/escape.hpp"
 #include "coverbench/limits.hpp"
@@ -19,7 +22,6 @@
 #include "coverbench/svg.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
-#include "memory_meter.hpp"
 
 namespace coverbench::cli {
 namespace {
@@ -51,6 +53,19 @@ struct Outcome {
   std::string plan_json;
   std::string svg;
 };
+
+/// This process's resident set now, and its peak so far (bytes).
+double residentBytes() {
+  std::ifstream in("/proc/self/statm");
+  double size = 0, resident = 0;
+  in >> size >> resident;
+  return resident * static_cast<double>(::sysconf(_SC_PAGESIZE));
+}
+double peakResidentBytes() {
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) * 1024.0;
+}
 
 /// The picture of a path; with its coverage layer when it can be scored.
 std::string picture(const Wall& wall, const ToolParams& tool, const Path& path, const std::string& title,
@@ -86,9 +101,10 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   o.plan.wall = wall.name;
   o.plan.tool = tool;
   o.plan.params = std::move(params);
-  resetPeakMemory();
+  const double rss_before = residentBytes();
   o.plan.result = runPlanner(planner, problem, Budget(std::chrono::duration<double>(time_limit_s)));
-  o.plan.peak_memory_bytes = static_cast<double>(peakMemorySinceReset());
+  // The process's peak resident set grew by this much during the plan (0 if an earlier peak was higher).
+  o.plan.peak_memory_bytes = std::max(0.0, peakResidentBytes() - rss_before);
   try {
     o.plan.metrics = computeMetrics(wall, tool, o.plan.result.path);
   } catch (const InputError& e) {  // beyond the scoring limits (docs/metrics.md)

@@ -59,6 +59,8 @@ struct RunOptions {
   std::string config;
   unsigned threads = 0;  ///< 0: the config's, else every core
   bool yes = false;      ///< confirms an experiment of more than kLargeExperimentRuns runs
+  bool timing = false, retry_failed = false, reuse_across_builds = false;  ///< RunnerOptions
+  std::string command_line;
 };
 /// Runs an experiment config and writes its tables next to the results database.
 int runCommand(const RunOptions& options);

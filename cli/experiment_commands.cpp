@@ -11,18 +11,11 @@
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
 #include "coverbench/tables.hpp"
-#include "memory_meter.hpp"
 
 namespace coverbench::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-const MemoryProbe& memoryProbe() {
-  static const MemoryProbe probe{[](std::size_t limit) { limitMemory(limit); }, [] { return peakMemorySinceReset(); },
-                                 [] { return memoryLimitHit(); }};
-  return probe;
-}
 
 /// Writes the tables of the latest experiment in `db` as report.md, report.csv and report.tex.
 std::string writeTables(const std::string& database, const std::string& folder) {
@@ -77,12 +70,22 @@ int runCommand(const RunOptions& o) {
   RunnerOptions options;
   options.threads = o.threads;
   options.progress = stderr;
-  options.probe = &memoryProbe();
+  options.timing = o.timing;
+  options.retry_failed = o.retry_failed;
+  options.reuse_across_builds = o.reuse_across_builds;
+  options.command_line = o.command_line;
   const RunnerSummary s = runExperiment(config, options);
   const std::string report = writeTables(s.database, config.output);
-  std::printf("experiment %s: %zu walls, %zu runs (%zu executed, %zu already stored) on %u threads in %.1f s",
-              config.name.c_str(), s.walls, s.total, s.executed, s.skipped, s.threads, s.seconds);
+  std::printf("experiment %s: %zu walls, %zu runs (%zu executed, %zu already stored", config.name.c_str(), s.walls,
+              s.total, s.executed, s.skipped);
+  if (s.reused) std::printf(", %zu reused from other builds", s.reused);
+  std::printf(") on %u worker processes in %.1f s", s.threads, s.seconds);
   if (s.executed) std::printf(", %.1f runs/s", static_cast<double>(s.executed) / s.seconds);
+  if (!s.rerun_reasons.empty()) std::printf("\nrun again: %s", s.rerun_reasons.c_str());
+  if (!s.by_status.empty()) {
+    std::printf("\noutcomes of the executed runs:");
+    for (const auto& [status, n] : s.by_status) std::printf(" %s %zu;", status.c_str(), n);
+  }
   std::printf("\nresults: %s\ntables:  %s (also report.csv, report.tex)\n", s.database.c_str(), report.c_str());
   return 0;
 }

@@ -76,6 +76,11 @@ int main(int argc, char** argv) {
   run_cmd->add_option("config", run.config, "experiment config (YAML)")->required();
   run_cmd->add_option("--threads", run.threads, "worker threads (default: the config's, else every core)");
   run_cmd->add_flag("--yes", run.yes, "confirm an experiment of more than 100000 runs");
+  run_cmd->add_flag("--timing", run.timing, "one run at a time, so plan times do not share the machine");
+  run_cmd->add_flag("--retry-failed", run.retry_failed, "run stored timeouts, memory limits, crashes and errors again");
+  run_cmd->add_flag("--reuse-across-builds", run.reuse_across_builds,
+                    "count stored runs of another planner version or code as done (know what you do)");
+  for (int i = 0; i < argc; ++i) run.command_line += (i ? " " : "") + std::string(argv[i]);
   run_cmd->callback([&] { plan_exit = coverbench::cli::runCommand(run); });
 
   coverbench::cli::ReportOptions report;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "coverbench/build_identity.hpp"
 #include "coverbench/files.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/results_db.hpp"
@@ -118,11 +119,20 @@ TEST_F(Experiments, RunKeysChangeWithEveryInputAndNothingElse) {
   r.tool.clearance = 0.03;
   EXPECT_NE(runKey(r), key);
   r = runs[0];
-  r.repetition = 1;
-  EXPECT_NE(runKey(r), key);
+  r.repetitions = 5;  // repetitions re-time the same work
+  EXPECT_EQ(runKey(r), key);
   r = runs[0];
   r.seed = 7;
   EXPECT_NE(runKey(r), key);
+  // The planner's version and code identity change the key, not the base key.
+  r = runs[0];
+  r.planner_version = "2";
+  EXPECT_NE(runKey(r), key);
+  EXPECT_EQ(runBaseKey(r), runs[0].base_key);
+  r = runs[0];
+  r.code_sha256 = std::string(64, '0');
+  EXPECT_NE(runKey(r), key);
+  EXPECT_EQ(runs[0].code_sha256, buildIdentity().plannerCode(findPlanner(runs[0].planner->planner).code_folders));
 }
 
 TEST_F(Experiments, ARunIsAPureFunctionOfItsInputs) {
@@ -130,7 +140,7 @@ TEST_F(Experiments, ARunIsAPureFunctionOfItsInputs) {
   const std::vector<WallEntry> walls = loadWalls(c);
   const std::vector<RunSpec> runs = expandRuns(c, walls);
   for (std::size_t i : {0ul, 5ul, runs.size() - 1}) {
-    const RunRecord a = executeRun(runs[i], nullptr), b = executeRun(runs[i], nullptr);
+    const RunRecord a = executeRun(runs[i]), b = executeRun(runs[i]);
     ASSERT_EQ(a.status, "ok") << a.reason;
     EXPECT_EQ(encodePath(a.path), encodePath(b.path));
     ASSERT_EQ(a.metrics.size(), b.metrics.size());

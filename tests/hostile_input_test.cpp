@@ -535,12 +535,14 @@ TEST_F(Hostile, AFullDiskIsReportedAsSuch) {
   const std::vector<WallEntry> walls = loadWalls(config);
   const std::vector<RunSpec> runs = expandRuns(config, walls);
   ResultsDb db((dir_ / "r.sqlite").string());
-  db.beginExperiment(config, currentProvenance(1), walls, runs);
+  std::vector<std::string> keys;
+  for (const RunSpec& r : runs) keys.push_back(r.key);
+  db.beginExperiment(config, currentProvenance(1, "test"), walls, keys);
   db.limitPagesForTesting(1);  // the database may not grow: a write that needs a page fails as on a full disk
   std::string error;
   for (const RunSpec& spec : runs) {
     try {
-      db.storeRun(spec, executeRun(spec, nullptr));
+      db.storeRun(spec, executeRun(spec));
     } catch (const InputError& e) {
       error = e.what();
       break;

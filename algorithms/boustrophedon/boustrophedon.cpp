@@ -7,6 +7,8 @@ namespace coverbench::boustrophedon {
 PlannerInfo info() {
   PlannerInfo info = decomposition::plannerInfo(decomposition::Kind::Boustrophedon);
   info.name = "boustrophedon";
+  info.version = "1";
+  info.code_folders = {"boustrophedon", "decomposition"};
   info.summary = "Boustrophedon cellular decomposition of the free region (cells split only at critical points), "
                  "cells ordered by a TSP tour and covered by back-and-forth passes";
   info.reference = "Choset, Coverage of known spaces: the boustrophedon cellular decomposition, Autonomous Robots 9, 2000";

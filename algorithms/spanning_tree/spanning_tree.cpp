@@ -396,6 +396,8 @@ class SpanningTreePlanner final : public Planner {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "spanning-tree";
+  info.version = "1";
+  info.code_folders = {"spanning_tree"};
   info.summary = "Spanning-tree coverage of a grid of tool-sized cells in F; return, stop, short-branches-first or Spiral-STC";
   info.reference = "Gabriely & Rimon, Spanning-tree based coverage of continuous areas by a mobile robot, AMAI 31, 2001";
   info.params = {

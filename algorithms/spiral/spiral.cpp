@@ -163,6 +163,8 @@ class SpiralPlanner final : public Planner {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "spiral";
+  info.version = "1";
+  info.code_folders = {"spiral"};
   info.summary = "Concentric passes offset inward from the free region's boundary, around obstacles, centre covered";
   info.reference = "Held, On the Computational Geometry of Pocket Machining, LNCS 500, 1991";
   info.params = {

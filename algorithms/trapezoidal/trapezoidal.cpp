@@ -7,6 +7,8 @@ namespace coverbench::trapezoidal {
 PlannerInfo info() {
   PlannerInfo info = decomposition::plannerInfo(decomposition::Kind::Trapezoidal);
   info.name = "trapezoidal";
+  info.version = "1";
+  info.code_folders = {"trapezoidal", "decomposition"};
   info.summary = "Trapezoidal decomposition of the free region (a cell boundary through every vertex), cells ordered "
                  "by a TSP tour and covered by back-and-forth passes";
   info.reference = "Choset et al., Principles of Robot Motion, MIT Press 2005, sec. 6.1";

@@ -206,6 +206,8 @@ class ZigzagPlanner final : public Planner {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "zigzag";
+  info.version = "1";
+  info.code_folders = {"zigzag"};
   info.summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes";
   info.reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013";
   info.params = {

@@ -28,6 +28,8 @@ class PerimeterPlanner final : public Planner {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "perimeter";
+  info.version = "1";  // change it when the results change on purpose
+  info.code_folders = {"perimeter"};  // algorithms/perimeter/: its code's hash is in every run key
   info.summary = "One loop around the wall edge and around each obstacle";
   info.reference = "docs/ADDING_A_PLANNER.md";
   info.params = {{"inset", ParamType::Number, 0.0, 0.0, 1.0, {}, "m", "how far inside F the loops run"}};

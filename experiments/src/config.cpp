@@ -300,9 +300,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
       params = p.find("params");
     }
     const std::string name = r.text(*name_node, where + ".name");
-    const PlannerInfo* info = nullptr;
-    for (const PlannerInfo& candidate : registeredPlanners())
-      if (candidate.name == name) info = &candidate;
+    const PlannerInfo* info = lookupPlanner(name);
     if (!info) {
       std::string known;
       for (const PlannerInfo& candidate : registeredPlanners()) known += (known.empty() ? "" : ", ") + candidate.name;

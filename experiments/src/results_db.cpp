@@ -1,6 +1,8 @@
 #include "coverbench/results_db.hpp"
 
 #include <sqlite3.h>
+#include <sys/utsname.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -8,22 +10,33 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <thread>
+
+#include "coverbench/build_identity.hpp"
+#include "coverbench/hash.hpp"
 
 namespace coverbench {
 namespace {
 
 /// Marks a database as CoverBench's (PRAGMA application_id; "CvBn"), and its schema version.
+/// Schema 2: run keys with the planner's version and code identity; runs measured in child
+/// processes (rusage), every repetition's time, provenance per experiment.
 constexpr long long kApplicationId = 0x4376424e;
-constexpr long long kSchemaVersion = 1;
+constexpr long long kSchemaVersion = 2;
 
 const char* const kSchema = R"sql(
 PRAGMA journal_mode = WAL;
 PRAGMA synchronous = NORMAL;
 CREATE TABLE IF NOT EXISTS experiments (
   id INTEGER PRIMARY KEY, name TEXT NOT NULL, config_path TEXT, config_text TEXT NOT NULL,
-  config_hash TEXT NOT NULL, baseline TEXT NOT NULL, git_revision TEXT, compiler TEXT, cpu TEXT,
-  threads INTEGER, started_at TEXT, finished_at TEXT, runs_total INTEGER, runs_executed INTEGER,
-  runs_skipped INTEGER);
+  config_hash TEXT NOT NULL, baseline TEXT NOT NULL, command_line TEXT NOT NULL,
+  git_revision TEXT NOT NULL, git_diff_sha256 TEXT NOT NULL, compiler TEXT NOT NULL, build_type TEXT NOT NULL,
+  build_flags TEXT NOT NULL, host TEXT NOT NULL, cpu TEXT NOT NULL, cores INTEGER NOT NULL, os TEXT NOT NULL,
+  memory_bytes REAL, workers INTEGER NOT NULL, started_at TEXT NOT NULL, finished_at TEXT,
+  runs_total INTEGER, runs_executed INTEGER, runs_skipped INTEGER, runs_reused INTEGER, rerun_reasons TEXT);
+CREATE TABLE IF NOT EXISTS experiment_datasets (
+  experiment_id INTEGER NOT NULL, position INTEGER NOT NULL, label TEXT NOT NULL, source TEXT NOT NULL,
+  walls INTEGER NOT NULL, sha256 TEXT NOT NULL, PRIMARY KEY (experiment_id, position)) WITHOUT ROWID;
 CREATE TABLE IF NOT EXISTS walls (
   hash TEXT PRIMARY KEY, name TEXT NOT NULL, content TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS experiment_walls (
@@ -37,10 +50,16 @@ CREATE TABLE IF NOT EXISTS experiment_planners (
 CREATE TABLE IF NOT EXISTS experiment_runs (
   experiment_id INTEGER NOT NULL, run_key TEXT NOT NULL, PRIMARY KEY (experiment_id, run_key)) WITHOUT ROWID;
 CREATE TABLE IF NOT EXISTS runs (
-  key TEXT PRIMARY KEY, wall_hash TEXT NOT NULL, config_id TEXT NOT NULL, tool_width REAL NOT NULL,
-  clearance REAL NOT NULL, repetition INTEGER NOT NULL, seed INTEGER NOT NULL, status TEXT NOT NULL,
-  reason TEXT NOT NULL, valid INTEGER NOT NULL, plan_time_ms REAL NOT NULL, peak_memory_bytes REAL,
-  finished_at TEXT NOT NULL, uncovered_reachable_m2 REAL);
+  key TEXT PRIMARY KEY, base_key TEXT NOT NULL, wall_hash TEXT NOT NULL, config_id TEXT NOT NULL,
+  planner_version TEXT NOT NULL, code_sha256 TEXT NOT NULL, build TEXT NOT NULL,
+  tool_width REAL NOT NULL, clearance REAL NOT NULL, seed INTEGER NOT NULL, repetitions INTEGER NOT NULL,
+  status TEXT NOT NULL, reason TEXT NOT NULL, valid INTEGER NOT NULL, signal INTEGER,
+  uncovered_reachable_m2 REAL, plan_time_ms REAL NOT NULL, cpu_time_s REAL, peak_rss_bytes REAL,
+  peak_memory_bytes REAL, finished_at TEXT NOT NULL);
+CREATE INDEX IF NOT EXISTS runs_by_base_key ON runs (base_key);
+CREATE TABLE IF NOT EXISTS run_repetitions (
+  run_key TEXT NOT NULL, repetition INTEGER NOT NULL, plan_time_ms REAL NOT NULL,
+  PRIMARY KEY (run_key, repetition)) WITHOUT ROWID;
 CREATE TABLE IF NOT EXISTS metrics (
   run_key TEXT NOT NULL, position INTEGER NOT NULL, name TEXT NOT NULL, value REAL,
   PRIMARY KEY (run_key, name)) WITHOUT ROWID;
@@ -126,17 +145,6 @@ std::string utcNow() {
   return buf;
 }
 
-std::string commandOutput(const std::string& cmd) {
-  std::string out;
-  if (FILE* p = popen(cmd.c_str(), "r")) {
-    char buf[256];
-    while (std::fgets(buf, sizeof buf, p)) out += buf;
-    pclose(p);
-  }
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  return out;
-}
-
 std::string paramsText(const PlannerConfig& pc) {
   std::string out;
   for (const auto& [k, v] : pc.params.all()) out += (out.empty() ? "" : ", ") + k + "=" + toString(v);
@@ -145,19 +153,38 @@ std::string paramsText(const PlannerConfig& pc) {
 
 }  // namespace
 
-Provenance currentProvenance(unsigned threads) {
+Provenance currentProvenance(unsigned workers, const std::string& command_line) {
   Provenance p;
-  p.git_revision = commandOutput("git -C '" COVERBENCH_SOURCE_DIR "' describe --always --dirty --abbrev=12 2>/dev/null");
-  if (p.git_revision.empty()) p.git_revision = "unknown";
-  p.compiler = std::string("g++ ") + __VERSION__;
+  const BuildIdentity& b = buildIdentity();
+  p.git_revision = b.git_revision;
+  p.git_diff_sha256 = b.dirty_diff_sha256;
+  p.compiler = b.compiler;
+  p.build_type = b.build_type;
+  p.build_flags = b.flags;
   std::ifstream cpuinfo("/proc/cpuinfo");
   for (std::string line; std::getline(cpuinfo, line);)
     if (line.rfind("model name", 0) == 0) {
       p.cpu = line.substr(line.find(':') + 2);
       break;
     }
+  utsname u{};
+  if (::uname(&u) == 0) {
+    p.host = u.nodename;
+    p.os = std::string(u.sysname) + " " + u.release + " " + u.machine;
+  }
+  std::ifstream release("/etc/os-release");
+  for (std::string line; std::getline(release, line);)
+    if (line.rfind("PRETTY_NAME=", 0) == 0) {
+      std::string name = line.substr(12);
+      if (name.size() >= 2 && name.front() == '"') name = name.substr(1, name.size() - 2);
+      p.os = name + ", " + p.os;
+    }
+  p.cores = std::thread::hardware_concurrency();
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  if (pages > 0 && page > 0) p.memory_bytes = static_cast<double>(pages) * static_cast<double>(page);
+  p.command_line = command_line;
   p.started_at = utcNow();
-  p.threads = threads;
+  p.workers = workers;
   return p;
 }
 
@@ -206,6 +233,12 @@ void ResultsDb::checkOwnership() {
     throw InputError(file_, "(database)",
                      "has schema version " + std::to_string(version) + ", newer than this build's " +
                          std::to_string(kSchemaVersion) + ": use a newer coverbench");
+  if (version < kSchemaVersion)  // never misread: its runs have keys of another scheme
+    throw InputError(file_, "(database)",
+                     "was written by an older CoverBench (schema " + std::to_string(version) + "; this build reads " +
+                         std::to_string(kSchemaVersion) +
+                         "), whose run keys did not include the planners' code: run the experiment into a new output "
+                         "folder (or move this one away)");
 }
 
 void ResultsDb::rollback() noexcept {
@@ -232,22 +265,44 @@ void ResultsDb::exec(const std::string& sql) {
 }
 
 long long ResultsDb::beginExperiment(const ExperimentConfig& config, const Provenance& prov,
-                                     const std::vector<WallEntry>& walls, const std::vector<RunSpec>& runs) {
+                                     const std::vector<WallEntry>& walls, const std::vector<std::string>& run_keys) {
   exec("BEGIN IMMEDIATE");
   try {
     Statement e(db_,
-                "INSERT INTO experiments (name, config_path, config_text, config_hash, baseline, git_revision, compiler, "
-                "cpu, threads, started_at, runs_total) VALUES (?,?,?,?,?,?,?,?,?,?,?)",
+                "INSERT INTO experiments (name, config_path, config_text, config_hash, baseline, command_line, "
+                "git_revision, git_diff_sha256, compiler, build_type, build_flags, host, cpu, cores, os, memory_bytes, "
+                "workers, started_at, runs_total) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
                 file_);
     e.text(1, config.name).text(2, config.path).text(3, config.text).text(4, config.hash).text(5, config.baseline);
-    e.text(6, prov.git_revision).text(7, prov.compiler).text(8, prov.cpu).integer(9, prov.threads);
-    e.text(10, prov.started_at).integer(11, static_cast<long long>(runs.size())).run();
+    e.text(6, prov.command_line).text(7, prov.git_revision).text(8, prov.git_diff_sha256).text(9, prov.compiler);
+    e.text(10, prov.build_type).text(11, prov.build_flags).text(12, prov.host).text(13, prov.cpu);
+    e.integer(14, prov.cores).text(15, prov.os).real(16, prov.memory_bytes).integer(17, prov.workers);
+    e.text(18, prov.started_at).integer(19, static_cast<long long>(run_keys.size())).run();
     const long long id = sqlite3_last_insert_rowid(db_);
     Statement w(db_, "INSERT OR IGNORE INTO walls (hash, name, content) VALUES (?,?,?)", file_);
     Statement ew(db_, "INSERT OR IGNORE INTO experiment_walls (experiment_id, wall_hash, dataset) VALUES (?,?,?)", file_);
     for (const WallEntry& wall : walls) {
       w.text(1, wall.hash).text(2, wall.wall.name).text(3, wall.json).run();
       ew.integer(1, id).text(2, wall.hash).text(3, wall.dataset).run();
+    }
+    // Each dataset's identity: the SHA-256 of its walls' content hashes, in order.
+    Statement ed(db_,
+                 "INSERT INTO experiment_datasets (experiment_id, position, label, source, walls, sha256) VALUES "
+                 "(?,?,?,?,?,?)",
+                 file_);
+    for (std::size_t i = 0; i < config.datasets.size(); ++i) {
+      const DatasetSpec& d = config.datasets[i];
+      std::string hashes;
+      long long count = 0;
+      for (const WallEntry& wall : walls)
+        if (wall.dataset == d.label) hashes += wall.hash + "\n", ++count;
+      const std::string source = d.kind == DatasetSpec::Kind::Family ? "family " + d.family + " count " +
+                                                                           std::to_string(d.count) + " seed " +
+                                                                           std::to_string(d.seed)
+                                 : d.kind == DatasetSpec::Kind::Suite ? "suite " + d.family
+                                                                      : "folder " + d.folder;
+      ed.integer(1, id).integer(2, static_cast<long long>(i)).text(3, d.label).text(4, source).integer(5, count);
+      ed.text(6, sha256Hex(hashes)).run();
     }
     Statement p(db_, "INSERT OR IGNORE INTO planner_configs (id, planner, params) VALUES (?,?,?)", file_);
     Statement ep(db_, "INSERT INTO experiment_planners (experiment_id, position, config_id, label) VALUES (?,?,?,?)", file_);
@@ -257,7 +312,7 @@ long long ResultsDb::beginExperiment(const ExperimentConfig& config, const Prove
       ep.integer(1, id).integer(2, static_cast<long long>(i)).text(3, pc.id).text(4, pc.label).run();
     }
     Statement er(db_, "INSERT OR IGNORE INTO experiment_runs (experiment_id, run_key) VALUES (?,?)", file_);
-    for (const RunSpec& r : runs) er.integer(1, id).text(2, r.key).run();
+    for (const std::string& key : run_keys) er.integer(1, id).text(2, key).run();
     exec("COMMIT");
     return id;
   } catch (...) {
@@ -266,36 +321,47 @@ long long ResultsDb::beginExperiment(const ExperimentConfig& config, const Prove
   }
 }
 
-std::set<std::string> ResultsDb::finishedRuns() {
-  std::set<std::string> keys;
-  Statement s(db_, "SELECT key FROM runs", file_);
-  while (s.step()) keys.insert(s.columnText(0));
-  return keys;
+std::vector<ResultsDb::StoredKey> ResultsDb::storedKeys() {
+  std::vector<StoredKey> out;
+  Statement s(db_, "SELECT key, base_key, planner_version, code_sha256, status FROM runs", file_);
+  while (s.step()) out.push_back({s.columnText(0), s.columnText(1), s.columnText(2), s.columnText(3), s.columnText(4)});
+  return out;
 }
 
 void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
   exec("BEGIN IMMEDIATE");
   try {
+    // A retried run replaces everything stored under its key.
+    for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths"}) {
+      Statement d(db_, std::string("DELETE FROM ") + table + " WHERE run_key = ?", file_);
+      d.text(1, rec.key).run();
+    }
     Statement r(db_,
-                "INSERT OR REPLACE INTO runs (key, wall_hash, config_id, tool_width, clearance, repetition, seed, status, "
-                "reason, valid, plan_time_ms, peak_memory_bytes, finished_at, uncovered_reachable_m2) "
-                "VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
+                "INSERT OR REPLACE INTO runs (key, base_key, wall_hash, config_id, planner_version, code_sha256, build, "
+                "tool_width, clearance, seed, repetitions, status, reason, valid, signal, uncovered_reachable_m2, "
+                "plan_time_ms, cpu_time_s, peak_rss_bytes, peak_memory_bytes, finished_at) "
+                "VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
                 file_);
-    r.text(1, rec.key).text(2, spec.wall->hash).text(3, spec.planner->id).real(4, spec.tool.tool_width);
-    r.real(5, spec.tool.clearance).integer(6, spec.repetition).integer(7, static_cast<long long>(spec.seed));
-    r.text(8, rec.status).text(9, rec.reason).integer(10, rec.valid ? 1 : 0).real(11, rec.plan_time_ms);
-    if (rec.peak_memory_bytes) r.real(12, *rec.peak_memory_bytes);
-    else r.null(12);
-    r.text(13, utcNow()).real(14, rec.uncovered_reachable_m2).run();
-    Statement m(db_, "INSERT OR REPLACE INTO metrics (run_key, position, name, value) VALUES (?,?,?,?)", file_);
+    r.text(1, rec.key).text(2, spec.base_key).text(3, spec.wall->hash).text(4, spec.planner->id);
+    r.text(5, spec.planner_version).text(6, spec.code_sha256).text(7, buildIdentity().describe());
+    r.real(8, spec.tool.tool_width).real(9, spec.tool.clearance).integer(10, static_cast<long long>(spec.seed));
+    r.integer(11, spec.repetitions).text(12, rec.status).text(13, rec.reason).integer(14, rec.valid ? 1 : 0);
+    if (rec.signal) r.integer(15, rec.signal);
+    else r.null(15);
+    r.real(16, rec.uncovered_reachable_m2).real(17, rec.plan_time_ms).real(18, rec.cpu_time_s).real(19, rec.peak_rss_bytes);
+    r.real(20, rec.peak_memory_bytes.value_or(NAN)).text(21, utcNow()).run();
+    Statement rp(db_, "INSERT INTO run_repetitions (run_key, repetition, plan_time_ms) VALUES (?,?,?)", file_);
+    for (std::size_t i = 0; i < rec.plan_times_ms.size(); ++i)
+      rp.text(1, rec.key).integer(2, static_cast<long long>(i)).real(3, rec.plan_times_ms[i]).run();
+    Statement m(db_, "INSERT INTO metrics (run_key, position, name, value) VALUES (?,?,?,?)", file_);
     for (std::size_t i = 0; i < rec.metrics.size(); ++i)
       m.text(1, rec.key).integer(2, static_cast<long long>(i)).text(3, rec.metrics[i].name).real(4, rec.metrics[i].value).run();
-    Statement st(db_, "INSERT OR REPLACE INTO planner_stats (run_key, name, value) VALUES (?,?,?)", file_);
+    Statement st(db_, "INSERT INTO planner_stats (run_key, name, value) VALUES (?,?,?)", file_);
     for (const auto& [name, value] : rec.stats) st.text(1, rec.key).text(2, name).real(3, value).run();
-    Statement tm(db_, "INSERT OR REPLACE INTO planner_timings (run_key, name, ms) VALUES (?,?,?)", file_);
+    Statement tm(db_, "INSERT INTO planner_timings (run_key, name, ms) VALUES (?,?,?)", file_);
     for (const auto& [name, value] : rec.timings_ms) tm.text(1, rec.key).text(2, name).real(3, value).run();
     if (!rec.path.waypoints.empty()) {
-      Statement p(db_, "INSERT OR REPLACE INTO paths (run_key, encoding, waypoints, data) VALUES (?,?,?,?)", file_);
+      Statement p(db_, "INSERT INTO paths (run_key, encoding, waypoints, data) VALUES (?,?,?,?)", file_);
       p.text(1, rec.key).text(2, "zlib-f64le-1").integer(3, static_cast<long long>(rec.path.waypoints.size()));
       p.blob(4, encodePath(rec.path)).run();
     }
@@ -306,9 +372,14 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
   }
 }
 
-void ResultsDb::finishExperiment(long long id, std::size_t executed, std::size_t skipped) {
-  Statement s(db_, "UPDATE experiments SET finished_at = ?, runs_executed = ?, runs_skipped = ? WHERE id = ?", file_);
-  s.text(1, utcNow()).integer(2, static_cast<long long>(executed)).integer(3, static_cast<long long>(skipped)).integer(4, id).run();
+void ResultsDb::finishExperiment(long long id, std::size_t executed, std::size_t skipped, std::size_t reused,
+                                 const std::string& rerun_reasons) {
+  Statement s(db_,
+              "UPDATE experiments SET finished_at = ?, runs_executed = ?, runs_skipped = ?, runs_reused = ?, "
+              "rerun_reasons = ? WHERE id = ?",
+              file_);
+  s.text(1, utcNow()).integer(2, static_cast<long long>(executed)).integer(3, static_cast<long long>(skipped));
+  s.integer(4, static_cast<long long>(reused)).text(5, rerun_reasons).integer(6, id).run();
 }
 
 ResultSet ResultsDb::load(std::optional<long long> experiment) {
@@ -350,7 +421,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   std::map<std::string, std::size_t> index;
   {
     Statement s(db_,
-                "SELECT r.key, r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.repetition, r.status, "
+                "SELECT r.key, r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.seed, r.status, "
                 "r.valid, r.plan_time_ms, r.peak_memory_bytes, r.uncovered_reachable_m2 FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
                 "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 ORDER BY r.key",

@@ -3,17 +3,15 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
-#include <deque>
 #include <filesystem>
-#include <mutex>
+#include <map>
 #include <thread>
 
 #include "coverbench/limits.hpp"
 #include "coverbench/results_db.hpp"
+#include "isolation.hpp"
 
 namespace coverbench {
 namespace {
@@ -65,6 +63,11 @@ class Progress {
 
 }  // namespace
 
+bool isRetryableStatus(const std::string& status) {
+  return status == "timeout" || status == "memory_limit" || status == "crash" || status == "error" ||
+         status == "metrics_error";
+}
+
 std::string resultsDatabasePath(const ExperimentConfig& config) { return (fs::path(config.output) / "results.sqlite").string(); }
 
 RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& options) {
@@ -86,16 +89,59 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
   summary.database = resultsDatabasePath(config);
   ResultsDb db(summary.database);
 
+  // Workers: the option, else the config, else every core; never more than the cores (timings
+  // would measure the contention); one in timing mode.
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   unsigned threads = options.threads ? options.threads : config.threads;
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  if (threads == 0 || threads > cores) threads = cores;
+  if (options.timing) threads = 1;
   summary.threads = threads;
-  summary.experiment_id = db.beginExperiment(config, currentProvenance(threads), walls, runs);
 
-  const std::set<std::string> finished = db.finishedRuns();
+  // What to run: keys not stored yet; with retry_failed also the stored failures of the
+  // environment; a stored run of the same base key but another planner version or code is run
+  // again (and counted with why), unless reuse_across_builds.
+  std::map<std::string, ResultsDb::StoredKey> stored_by_key;
+  std::map<std::string, std::vector<ResultsDb::StoredKey>> stored_by_base;
+  for (ResultsDb::StoredKey& k : db.storedKeys()) {
+    stored_by_base[k.base_key].push_back(k);
+    stored_by_key[k.key] = std::move(k);
+  }
+  std::vector<std::string> experiment_keys;
   std::vector<const RunSpec*> todo;
-  for (const RunSpec& r : runs)
-    if (!finished.count(r.key)) todo.push_back(&r);
-  summary.skipped = runs.size() - todo.size();
+  std::map<std::string, std::size_t> reasons;
+  for (const RunSpec& r : runs) {
+    const auto same = stored_by_key.find(r.key);
+    if (same != stored_by_key.end()) {
+      experiment_keys.push_back(r.key);
+      if (options.retry_failed && isRetryableStatus(same->second.status)) {
+        todo.push_back(&r);
+        ++reasons["retrying " + same->second.status];
+      }
+      continue;
+    }
+    const auto older = stored_by_base.find(r.base_key);
+    if (older != stored_by_base.end() && options.reuse_across_builds) {
+      experiment_keys.push_back(older->second.front().key);  // the stored run, from another build
+      ++summary.reused;
+      continue;
+    }
+    experiment_keys.push_back(r.key);
+    todo.push_back(&r);
+    if (older != stored_by_base.end()) {
+      const bool version = std::none_of(older->second.begin(), older->second.end(), [&](const ResultsDb::StoredKey& k) {
+        return k.planner_version == r.planner_version;
+      });
+      ++reasons[r.planner->planner + (version ? ": planner version changed" : ": planner code or build changed")];
+    }
+  }
+  summary.skipped = runs.size() - todo.size() - summary.reused;
+  for (const auto& [why, n] : reasons) summary.rerun_reasons += (summary.rerun_reasons.empty() ? "" : "; ") + std::to_string(n) + " " + why;
+  summary.experiment_id = db.beginExperiment(config, currentProvenance(threads, options.command_line), walls, experiment_keys);
+  if (options.progress && !summary.rerun_reasons.empty())
+    std::fprintf(options.progress, "run again: %s\n", summary.rerun_reasons.c_str());
+  if (options.progress && summary.reused)
+    std::fprintf(options.progress, "%zu runs reused from other builds (--reuse-across-builds)\n", summary.reused);
+
   // Largest walls first, so the slowest runs do not end up alone at the end (results do not depend
   // on the order; the database is read back sorted).
   // Estimated cost: cells to cover times a power of the obstacle count, fitted loosely to the
@@ -109,64 +155,26 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
   auto cost = [&](const RunSpec* r) { return costs[static_cast<std::size_t>(r - runs.data())]; };
   std::stable_sort(todo.begin(), todo.end(), [&](const RunSpec* a, const RunSpec* b) { return cost(a) > cost(b); });
 
-  // Workers take runs in order; the calling thread is the single database writer.
-  std::atomic<std::size_t> next{0};
-  std::mutex mutex;
-  std::condition_variable ready;
-  std::deque<std::pair<const RunSpec*, RunRecord>> results;
-  std::exception_ptr failure;
-  auto work = [&] {
-    for (;;) {
-      const std::size_t i = next.fetch_add(1);
-      if (i >= todo.size()) return;
-      RunRecord rec;
-      try {
-        rec = executeRun(*todo[i], options.probe);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (!failure) failure = std::current_exception();
-        next = todo.size();
-        ready.notify_one();
-        return;
-      }
-      std::lock_guard<std::mutex> lock(mutex);
-      results.emplace_back(todo[i], std::move(rec));
-      ready.notify_one();
-    }
-  };
-  std::vector<std::thread> pool;
-  const unsigned workers = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(todo.size(), 1)));
-  for (unsigned t = 0; t < workers && !todo.empty(); ++t) pool.emplace_back(work);
-
+  // Each run in its own child process (isolation.cpp), at most `threads` at once; this process is
+  // the single database writer.
   double total_cost = 0.0, done_cost = 0.0;
   for (const RunSpec* r : todo) total_cost += cost(r);
   Progress progress(options.progress, todo.size(), total_cost);
   if (options.progress && summary.skipped)
     std::fprintf(options.progress, "%zu of %zu runs already in %s: skipped\n", summary.skipped, runs.size(),
                  summary.database.c_str());
+  if (options.progress && !todo.empty())
+    std::fprintf(options.progress, "%zu runs on %u worker processes (each run in its own process)\n", todo.size(), threads);
   std::size_t stored = 0;
-  try {
-    while (stored < todo.size()) {
-      std::unique_lock<std::mutex> lock(mutex);
-      ready.wait(lock, [&] { return !results.empty() || failure; });
-      if (failure && results.empty()) break;
-      auto [spec, rec] = std::move(results.front());
-      results.pop_front();
-      lock.unlock();
-      db.storeRun(*spec, rec);
-      ++stored;
-      done_cost += cost(spec);
-      progress.update(stored, done_cost);
-    }
-  } catch (...) {
-    next = todo.size();
-    for (std::thread& t : pool) t.join();
-    throw;
-  }
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  executeIsolated(todo, threads, [&](const RunSpec& spec, RunRecord rec) {
+    ++summary.by_status[rec.status];
+    db.storeRun(spec, rec);
+    ++stored;
+    done_cost += cost(&spec);
+    progress.update(stored, done_cost);
+  });
   summary.executed = stored;
-  db.finishExperiment(summary.experiment_id, summary.executed, summary.skipped);
+  db.finishExperiment(summary.experiment_id, summary.executed, summary.skipped, summary.reused, summary.rerun_reasons);
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return summary;
 }

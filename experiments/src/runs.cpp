@@ -1,12 +1,15 @@
 // Walls of a config, run expansion and keys, executing one run, path encoding.
 #include <zlib.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <set>
 #include <stdexcept>
 
+#include "coverbench/build_identity.hpp"
 #include "coverbench/datasets.hpp"
 #include "coverbench/experiment.hpp"
 #include "coverbench/hash.hpp"
@@ -53,36 +56,44 @@ std::string exact(double v) {
 
 }  // namespace
 
-std::string runKey(const RunSpec& spec) {
+std::string runBaseKey(const RunSpec& spec) {
   std::string text = "coverbench-run/1\nwall=" + spec.wall->hash + "\nplanner=" + spec.planner->planner;
   for (const auto& [k, v] : spec.planner->params.all()) text += "\nparam." + k + "=" + toString(v);
   text += "\ntool_width=" + exact(spec.tool.tool_width) + "\nclearance=" + exact(spec.tool.clearance) +
-          "\nrepetition=" + std::to_string(spec.repetition) + "\nseed=" + std::to_string(spec.seed);
+          "\nseed=" + std::to_string(spec.seed);
   return sha256Hex(text);
+}
+
+std::string runKey(const RunSpec& spec) {
+  return sha256Hex("coverbench-run/2\nbase=" + runBaseKey(spec) + "\nversion=" + spec.planner_version +
+                   "\ncode=" + spec.code_sha256);
 }
 
 std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls) {
   std::vector<RunSpec> runs;
-  runs.reserve(walls.size() * config.planners.size() * config.tools.size() * static_cast<std::size_t>(config.repetitions));
+  runs.reserve(walls.size() * config.planners.size() * config.tools.size());
   for (const WallEntry& wall : walls)
     for (const PlannerConfig& planner : config.planners)
-      for (const ToolParams& tool : config.tools)
-        for (int rep = 0; rep < config.repetitions; ++rep) {
-          RunSpec spec;
-          spec.wall = &wall;
-          spec.planner = &planner;
-          spec.tool = tool;
-          spec.repetition = rep;
-          spec.seed = config.seed;
-          spec.time_limit_s = config.time_limit_s;
-          spec.memory_limit_bytes = static_cast<std::size_t>(config.memory_limit_mb * 1024.0 * 1024.0);
-          spec.key = runKey(spec);
-          runs.push_back(spec);
-        }
+      for (const ToolParams& tool : config.tools) {
+        RunSpec spec;
+        spec.wall = &wall;
+        spec.planner = &planner;
+        spec.tool = tool;
+        spec.repetitions = config.repetitions;
+        spec.seed = config.seed;
+        spec.time_limit_s = config.time_limit_s;
+        spec.memory_limit_bytes = static_cast<std::size_t>(config.memory_limit_mb * 1024.0 * 1024.0);
+        const PlannerInfo& info = findPlanner(planner.planner);
+        spec.planner_version = info.version;
+        spec.code_sha256 = buildIdentity().plannerCode(info.code_folders);
+        spec.base_key = runBaseKey(spec);
+        spec.key = runKey(spec);
+        runs.push_back(spec);
+      }
   return runs;
 }
 
-RunRecord executeRun(const RunSpec& spec, const MemoryProbe* probe) {
+RunRecord executeRun(const RunSpec& spec) {
   RunRecord rec;
   rec.key = spec.key;
   const PlannerInfo& info = findPlanner(spec.planner->planner);
@@ -91,18 +102,15 @@ RunRecord executeRun(const RunSpec& spec, const MemoryProbe* probe) {
   problem.tool = spec.tool;
   problem.params = spec.planner->params;
   problem.seed = spec.seed;
-  if (probe) probe->begin(spec.memory_limit_bytes);
-  PlanResult result = runPlanner(info, problem, Budget(std::chrono::duration<double>(spec.time_limit_s)));
-  if (probe) {
-    rec.peak_memory_bytes = static_cast<double>(probe->end());
-    if (probe->limit_hit()) {
-      result = PlanResult::failure(PlanStatus::Error, "");
-      rec.status = "memory_limit";
-      char limit[64];
-      std::snprintf(limit, sizeof limit, "%.4g MiB", static_cast<double>(spec.memory_limit_bytes) / (1024.0 * 1024.0));
-      rec.reason = std::string("the planner needed more heap than the limit of ") + limit;
-    }
+  PlanResult result;
+  for (int rep = 0; rep < std::max(1, spec.repetitions); ++rep) {
+    PlanResult again = runPlanner(info, problem, Budget(std::chrono::duration<double>(spec.time_limit_s)));
+    rec.plan_times_ms.push_back(again.plan_time_ms);
+    if (rep == 0) result = std::move(again);
   }
+  std::vector<double> sorted = rec.plan_times_ms;
+  std::sort(sorted.begin(), sorted.end());
+  result.plan_time_ms = sorted[sorted.size() / 2];
   rec.plan_time_ms = result.plan_time_ms;
   rec.stats = result.stats;
   rec.timings_ms = result.timings_ms;

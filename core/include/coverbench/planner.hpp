@@ -156,6 +156,12 @@ class Planner {
 /// A registered planner: its name, what it does, its parameters and how to make one.
 struct PlannerInfo {
   std::string name;
+  /// The planner's version: change it when the planner's results change on purpose. It is part of
+  /// every run key, so stored runs of an older version are planned again.
+  std::string version;
+  /// Its folders under algorithms/ (its own, and shared ones it uses): their code's content hash
+  /// is part of every run key (docs/run_lifecycle.md).
+  std::vector<std::string> code_folders;
   std::string summary;
   std::string reference;  ///< the paper or document the algorithm comes from
   std::vector<ParamSpec> params;

@@ -12,6 +12,14 @@ namespace coverbench {
 /// Every registered planner, in registration order.
 const std::vector<PlannerInfo>& registeredPlanners();
 
+/// The planner called `name` among the registered ones and those added for testing; nullptr if
+/// there is none.
+const PlannerInfo* lookupPlanner(const std::string& name);
+
+/// Adds a planner that only tests use (e.g. one that crashes, to test the runner): found by name
+/// like a registered one, but never listed by registeredPlanners() nor run by `planners: [all]`.
+void addPlannerForTesting(PlannerInfo info);
+
 /// The planner called `name`; throws InputError (naming `source`) if there is none.
 const PlannerInfo& findPlanner(const std::string& name, const std::string& source = "--planner");
 

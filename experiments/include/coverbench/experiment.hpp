@@ -4,7 +4,6 @@
 /// cluster node without changing what it computes.
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -79,48 +78,54 @@ struct RunSpec {
   const WallEntry* wall = nullptr;
   const PlannerConfig* planner = nullptr;
   ToolParams tool;
-  int repetition = 0;
+  int repetitions = 1;  ///< the plan is executed this many times in the run's process, each timed
   std::uint64_t seed = 0;
   double time_limit_s = 60.0;
   std::size_t memory_limit_bytes = 0;  ///< 0: none
-  std::string key;                     ///< stable: see runKey
+  std::string planner_version;         ///< the planner's declared version
+  std::string code_sha256;             ///< BuildIdentity::plannerCode of the planner's folders
+  std::string base_key;                ///< what the run computes: see runKey
+  std::string key;                     ///< base key, planner version and code: see runKey
 };
-/// SHA-256 of the wall hash, planner, resolved parameters, tool parameters, repetition and seed.
+/// The base key: SHA-256 of the wall's content hash, the planner, every resolved parameter
+/// (defaults included), the tool parameters and the seed. Limits and repetitions are not in it.
+std::string runBaseKey(const RunSpec& spec);
+/// The run key: SHA-256 of the base key, the planner's version and its code identity, so a
+/// changed planner (or the code every run depends on, or the compiler and flags) is run again.
 std::string runKey(const RunSpec& spec);
-/// Every (wall, planner configuration, tool, repetition) of the config, keys filled in, in a
-/// fixed order.
+/// Every (wall, planner configuration, tool) of the config, keys filled in, in a fixed order.
 std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls);
 
 /// What a run produced.
 struct RunRecord {
   std::string key;
   /// ok, partial (knowingly left reachable parts out), no_reachable_area, invalid_input, timeout,
-  /// memory_limit, crash, error, invalid_output (the path fails the exact check), metrics_error
-  /// (the path could not be scored). docs/run_lifecycle.md.
+  /// memory_limit, crash (with the signal), error, invalid_output (the path fails the exact
+  /// check), metrics_error (the path could not be scored). docs/run_lifecycle.md.
   std::string status;
   std::string reason;
   bool valid = false;
   /// The reachable area the path did not sweep (m²), measured by the metrics engine: what a
   /// partial run left out, in numbers. NaN when not scored.
   double uncovered_reachable_m2 = NAN;
-  double plan_time_ms = 0.0;
-  std::optional<double> peak_memory_bytes;
-  std::vector<NamedMetric> metrics;  ///< empty unless status is ok
+  int signal = 0;                    ///< the signal that ended a crashed run's process
+  std::vector<NamedMetric> metrics;  ///< empty unless the run has a scored path
   std::map<std::string, double> stats;       ///< the planner's deterministic statistics
-  std::map<std::string, double> timings_ms;  ///< the planner's own sub-timings (measured)
+  std::map<std::string, double> timings_ms;  ///< the planner's own sub-timings (measured, first repetition)
   Path path;
+  // Measured: a rerun measures these anew.
+  std::vector<double> plan_times_ms;  ///< wall-clock of every repetition's plan call
+  double plan_time_ms = 0.0;          ///< their median
+  double cpu_time_s = NAN;            ///< user + system CPU of the run's process (rusage)
+  double peak_rss_bytes = NAN;        ///< the run's process's peak resident set (rusage)
+  double start_rss_bytes = NAN;       ///< its resident set when the run started (inherited from the runner)
+  std::optional<double> peak_memory_bytes;  ///< peak_rss_bytes - start_rss_bytes: what the run itself added
 };
 
-/// Measures (and limits) heap use around a plan call, on the calling thread. The coverbench
-/// binary provides one; without it, peak memory is not measured and not limited.
-struct MemoryProbe {
-  std::function<void(std::size_t limit_bytes)> begin;
-  std::function<std::size_t()> end;   ///< peak bytes since begin
-  std::function<bool()> limit_hit;    ///< whether the limit made an allocation fail
-};
-
-/// Executes one run: plan under the time budget, then score the path with the metrics engine.
-RunRecord executeRun(const RunSpec& spec, const MemoryProbe* probe);
+/// Executes one run in this process: plan under the time budget (`repetitions` times, each
+/// timed; the first result is kept), then score the path with the metrics engine. The runner
+/// calls it in a child process per run (hard limits, rusage); tests may call it directly.
+RunRecord executeRun(const RunSpec& spec);
 
 /// Path storage: little-endian doubles and tool flags, zlib-compressed ("zlib-f64le-1").
 std::string encodePath(const Path& path);

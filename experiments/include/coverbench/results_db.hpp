@@ -2,6 +2,7 @@
 /// Experiment results in SQLite (WAL): experiments, walls, planner configurations, runs with every
 /// metric, planner statistics and the compressed path of each run. One transaction per run, so a
 /// killed experiment loses at most the runs in flight. Schema: docs/file_formats.md.
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <set>
@@ -14,15 +15,17 @@ struct sqlite3;
 
 namespace coverbench {
 
-/// Facts about the machine and build that produced results.
+/// Facts about the machine and build that produced results (docs/run_lifecycle.md).
 struct Provenance {
-  std::string git_revision;
-  std::string compiler;
-  std::string cpu;
+  std::string git_revision, git_diff_sha256, compiler, build_type, build_flags;  ///< buildIdentity()
+  std::string host, cpu, os;  ///< host name; CPU model; distribution, kernel release and machine
+  unsigned cores = 0;
+  double memory_bytes = NAN;  ///< physical memory
+  std::string command_line;
   std::string started_at;  ///< UTC, ISO 8601
-  unsigned threads = 0;
+  unsigned workers = 0;    ///< runs executed at once
 };
-Provenance currentProvenance(unsigned threads);
+Provenance currentProvenance(unsigned workers, const std::string& command_line);
 
 class ResultsDb {
  public:
@@ -37,15 +40,19 @@ class ResultsDb {
   ResultsDb(const ResultsDb&) = delete;
   ResultsDb& operator=(const ResultsDb&) = delete;
 
-  /// Records the experiment, its walls and planner configurations, and which runs belong to it.
-  /// Returns its id.
+  /// Records the experiment, its provenance, datasets (with content hashes), walls and planner
+  /// configurations, and which stored runs belong to it. Returns its id.
   long long beginExperiment(const ExperimentConfig& config, const Provenance& provenance,
-                            const std::vector<WallEntry>& walls, const std::vector<RunSpec>& runs);
-  /// Keys of runs already stored (finished, with any status).
-  std::set<std::string> finishedRuns();
+                            const std::vector<WallEntry>& walls, const std::vector<std::string>& run_keys);
+  /// A stored run's identity: its key, the key without planner version and code, and those two.
+  struct StoredKey {
+    std::string key, base_key, planner_version, code_sha256, status;
+  };
+  std::vector<StoredKey> storedKeys();
   /// Stores one run in one transaction.
   void storeRun(const RunSpec& spec, const RunRecord& record);
-  void finishExperiment(long long id, std::size_t executed, std::size_t skipped);
+  void finishExperiment(long long id, std::size_t executed, std::size_t skipped, std::size_t reused,
+                        const std::string& rerun_reasons);
 
   /// The runs of one experiment (default: the latest) as the tables see them.
   ResultSet load(std::optional<long long> experiment = std::nullopt);

@@ -2,6 +2,7 @@
 /// Runs an experiment: every run not already in the results database, in parallel on worker
 /// threads; one writer stores each finished run in its own transaction.
 #include <cstdio>
+#include <map>
 #include <string>
 
 #include "coverbench/experiment.hpp"
@@ -9,15 +10,25 @@
 namespace coverbench {
 
 struct RunnerOptions {
-  unsigned threads = 0;               ///< 0: the config's value, or every core
-  std::FILE* progress = nullptr;      ///< where progress goes (a bar on a terminal, lines otherwise)
-  const MemoryProbe* probe = nullptr; ///< per-thread heap measurement and limit, if available
+  unsigned threads = 0;            ///< runs at once (worker processes); 0: the config's, or every core
+  std::FILE* progress = nullptr;   ///< where progress goes (a bar on a terminal, lines otherwise)
+  bool timing = false;             ///< one run at a time, so timings do not share the machine
+  bool retry_failed = false;       ///< run stored timeouts, memory_limits, crashes and errors again
+  bool reuse_across_builds = false;  ///< count a stored run of another planner version or code as done
+  std::string command_line;        ///< recorded in the experiment's provenance
 };
+
+/// Statuses `retry_failed` runs again: failures of the environment, not of the planner's result
+/// (timeout, memory_limit, crash, error, metrics_error).
+bool isRetryableStatus(const std::string& status);
 
 struct RunnerSummary {
   std::size_t total = 0;
   std::size_t executed = 0;
   std::size_t skipped = 0;  ///< already in the database
+  std::size_t reused = 0;   ///< stored by another build, reused (reuse_across_builds)
+  std::string rerun_reasons;  ///< why stored runs of the same work were run again, e.g. "12 zigzag: planner version changed"
+  std::map<std::string, std::size_t> by_status;  ///< executed runs per status
   std::size_t walls = 0;
   double seconds = 0.0;
   unsigned threads = 0;

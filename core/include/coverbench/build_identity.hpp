@@ -1,0 +1,33 @@
+#pragma once
+/// What built this binary, captured at every build by cmake/build_identity.cmake: the git
+/// revision and a hash of the uncommitted diff (provenance), the compiler, build type and flags,
+/// and content hashes of the code (run keys). docs/run_lifecycle.md says what changes a run key.
+#include <map>
+#include <string>
+#include <vector>
+
+namespace coverbench {
+
+struct BuildIdentity {
+  std::string git_revision;       ///< "unknown" outside a git checkout
+  std::string dirty_diff_sha256;  ///< SHA-256 of `git diff HEAD`; empty when the tree is clean
+  std::string compiler;           ///< id and version, e.g. "GNU 12.2.0"
+  std::string build_type;         ///< e.g. "Release"
+  std::string flags;              ///< the C++ flags of that build type
+  /// SHA-256 over the code every run depends on: core/, metrics/, algorithms/*.cpp, the run
+  /// execution in experiments/, and CMakeLists.txt.
+  std::string shared_code_sha256;
+  /// SHA-256 over each algorithms/<folder>'s .cpp and .hpp files.
+  std::map<std::string, std::string> folder_code_sha256;
+
+  /// The identity of a planner's code: SHA-256 of the shared code, the given algorithms/
+  /// folders' code, the compiler, build type and flags. Unknown folders count as empty.
+  std::string plannerCode(const std::vector<std::string>& folders) const;
+  /// "rev12[-dirty:diff12]": for people.
+  std::string describe() const;
+};
+
+/// This binary's identity (generated source).
+const BuildIdentity& buildIdentity();
+
+}  // namespace coverbench
