@@ -63,7 +63,14 @@ const PlannerInfo* lookupPlanner(const std::string& name) {
 }
 
 void addPlannerForTesting(PlannerInfo info) {
-  if (!lookupPlanner(info.name)) testPlanners().push_back(std::move(info));
+  for (const PlannerInfo& p : registeredPlanners())
+    if (p.name == info.name) return;  // never shadows a registered planner
+  for (PlannerInfo& p : testPlanners())
+    if (p.name == info.name) {
+      p = std::move(info);
+      return;
+    }
+  testPlanners().push_back(std::move(info));
 }
 
 const PlannerInfo& findPlanner(const std::string& name, const std::string& source) {

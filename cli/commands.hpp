@@ -70,6 +70,14 @@ struct ReportOptions {
   std::optional<long long> experiment;
 };
 
+struct RunsOptions {
+  std::string database, format = "csv";
+  std::optional<long long> experiment;
+  bool list = false;
+};
+/// Prints every run of an experiment (default: the latest) as CSV or JSON, or a list of keys.
+int runsCommand(const RunsOptions& options);
+
 struct RedrawOptions {
   std::string database, run, svg;
 };

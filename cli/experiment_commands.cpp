@@ -90,12 +90,20 @@ int runCommand(const RunOptions& o) {
   return 0;
 }
 
+int runsCommand(const RunsOptions& o) {
+  if (o.format != "csv" && o.format != "json") throw InputError("--format", "format", "must be csv or json, got '" + o.format + "'");
+  ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
+  const ResultSet rs = db.load(o.experiment);
+  std::cout << (o.list ? listRuns(rs) : renderRuns(rs, o.format == "json"));
+  return 0;
+}
+
 int reportCommand(const ReportOptions& o) {
   const TableFormat format = parseTableFormat(o.format);
   ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
   ResultSet results = db.load(o.experiment);
   if (!o.baseline.empty()) {
-    if (std::find(results.planners.begin(), results.planners.end(), o.baseline) == results.planners.end())
+    if (std::none_of(results.runs.begin(), results.runs.end(), [&](const ResultRow& r) { return r.config == o.baseline; }))
       throw InputError("--baseline", "baseline", "'" + o.baseline + "' is not a planner configuration of this experiment");
     results.baseline = o.baseline;
   }

@@ -92,6 +92,14 @@ int main(int argc, char** argv) {
   report_cmd->add_option("--baseline", report.baseline, "planner label to compare against (default: the config's)");
   report_cmd->callback([&] { plan_exit = coverbench::cli::reportCommand(report); });
 
+  coverbench::cli::RunsOptions runs;
+  CLI::App* runs_cmd = app.add_subcommand("runs", "Every run of an experiment, one row each (CSV or JSON), or --list");
+  runs_cmd->add_option("database", runs.database, "results.sqlite of an experiment")->required();
+  runs_cmd->add_option("--format", runs.format, "csv or json")->capture_default_str();
+  runs_cmd->add_option("--experiment", runs.experiment, "experiment id in the database (default: the latest)");
+  runs_cmd->add_flag("--list", runs.list, "one line per run: key, status, planner, tool, wall");
+  runs_cmd->callback([&] { plan_exit = coverbench::cli::runsCommand(runs); });
+
   coverbench::cli::RedrawOptions redraw;
   CLI::App* redraw_cmd = app.add_subcommand("redraw", "Draw a stored run of an experiment (wall, path, coverage)");
   redraw_cmd->add_option("database", redraw.database, "results.sqlite of an experiment")->required();

@@ -306,6 +306,9 @@ class Pool {
               w.spec = nullptr;
               --busy;
               if (rec.key != spec.key) throw std::runtime_error("a worker answered for another run");
+              // A worker whose run hit the memory limit ends (its heap may be in any state): it is
+              // reaped now, so no later run is sent to it, and a fresh one is started when needed.
+              if (rec.status == "memory_limit") stop(w, true);
               done(spec, std::move(rec));
             }
           } else if (n == 0 || errno != EINTR) {  // died before answering

@@ -422,9 +422,10 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   {
     Statement s(db_,
                 "SELECT r.key, r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.seed, r.status, "
-                "r.valid, r.plan_time_ms, r.peak_memory_bytes, r.uncovered_reachable_m2 FROM runs r "
+                "r.valid, r.plan_time_ms, r.peak_memory_bytes, r.uncovered_reachable_m2, ws.name FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
-                "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 ORDER BY r.key",
+                "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 "
+                "JOIN walls ws ON ws.hash = r.wall_hash ORDER BY r.key",
                 file_);
     s.integer(1, id);
     while (s.step()) {
@@ -441,9 +442,24 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
       row.metrics["plan_time_ms"] = s.columnReal(9);
       if (!s.columnNull(10)) row.metrics["peak_memory_bytes"] = s.columnReal(10);
       row.uncovered_reachable_m2 = s.columnReal(11);
+      row.config = row.planner;
+      row.key = s.columnText(0);
+      row.wall_name = s.columnText(12);
+      row.tool = ToolParams{s.columnReal(4), s.columnReal(5)};
       index[s.columnText(0)] = rs.runs.size();
       rs.runs.push_back(std::move(row));
     }
+  }
+  // Each tool configuration is its own group: with several, every column is "label @ tool".
+  std::set<std::pair<double, double>> tools;
+  for (const ResultRow& r : rs.runs) tools.insert({r.tool.tool_width, r.tool.clearance});
+  if (tools.size() > 1) {
+    auto suffix = [](double w, double c) { return " @ s=" + shortNumber(w) + " m, c=" + shortNumber(c) + " m"; };
+    std::vector<std::string> columns;
+    for (const std::string& label : rs.planners)
+      for (const auto& [w, c] : tools) columns.push_back(label + suffix(w, c));
+    rs.planners = columns;
+    for (ResultRow& r : rs.runs) r.planner = r.config + suffix(r.tool.tool_width, r.tool.clearance);
   }
   {
     Statement s(db_,

@@ -136,6 +136,16 @@ std::map<std::string, std::map<std::string, std::map<std::string, Summary>>> sum
   return out;
 }
 
+/// Whether a row is the baseline's (at its own tool: pairings include the tool).
+bool isBaseline(const ResultSet& rs, const ResultRow& r) { return (r.config.empty() ? r.planner : r.config) == rs.baseline; }
+
+/// Whether a column is one of the baseline's.
+bool baselineColumn(const ResultSet& rs, const std::string& column) {
+  for (const ResultRow& r : rs.runs)
+    if (r.planner == column) return isBaseline(rs, r);
+  return column == rs.baseline;
+}
+
 struct Paired {
   std::size_t pairs = 0;
   std::map<std::string, std::array<std::size_t, 3>> wtl;  // metric -> wins, ties, losses
@@ -151,7 +161,7 @@ std::vector<std::string> comparedMetrics(const ResultSet& rs) {
 Paired paired(const ResultSet& rs, const std::string& planner, const std::string& dataset) {
   std::map<std::string, const ResultRow*> base;
   for (const ResultRow& r : rs.runs)
-    if (r.planner == rs.baseline && (dataset == "all" || r.dataset == dataset) && usable(r)) base[r.pairing] = &r;
+    if (isBaseline(rs, r) && (dataset == "all" || r.dataset == dataset) && usable(r)) base[r.pairing] = &r;
   Paired out;
   for (const std::string& m : comparedMetrics(rs)) out.wtl[m] = {0, 0, 0};
   for (const ResultRow& r : rs.runs) {
@@ -264,7 +274,7 @@ std::string renderTables(const ResultSet& rs, TableFormat format) {
           out += std::string(measured(m) ? "measured," : "metrics,") + escapeCsv(d) + "," + escapeCsv(p) + "," + m + "," + buf + "\n";
         }
     for (const std::string& p : rs.planners) {
-      if (p == rs.baseline) continue;
+      if (baselineColumn(rs, p)) continue;
       for (const std::string& d : datasets) {
         const Paired pr = paired(rs, p, d);
         for (const auto& [m, w] : pr.wtl)
@@ -297,14 +307,14 @@ std::string renderTables(const ResultSet& rs, TableFormat format) {
   if (rs.planners.size() > 1) {
     Table t;
     t.title = "Paired comparison against " + rs.baseline + ": wins/ties/losses";
-    t.note = "Over the walls (same tool and repetition) where both runs are valid. A win is better than the baseline "
+    t.note = "Over the walls (same tool and seed) where both runs are valid. A win is better than the baseline "
              "(higher coverage; lower everything else); a tie is within 1e-6 relative. Measured figures (time, memory) are "
              "not compared.";
     t.header = {"planner", "dataset", "pairs"};
     const std::vector<std::string> compared = comparedMetrics(rs);
     for (const std::string& m : compared) t.header.push_back(m);
     for (const std::string& p : rs.planners) {
-      if (p == rs.baseline) continue;
+      if (baselineColumn(rs, p)) continue;
       for (const std::string& d : datasets) {
         const Paired pr = paired(rs, p, d);
         std::vector<std::string> row = {p, d, std::to_string(pr.pairs)};

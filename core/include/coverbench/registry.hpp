@@ -16,8 +16,9 @@ const std::vector<PlannerInfo>& registeredPlanners();
 /// there is none.
 const PlannerInfo* lookupPlanner(const std::string& name);
 
-/// Adds a planner that only tests use (e.g. one that crashes, to test the runner): found by name
-/// like a registered one, but never listed by registeredPlanners() nor run by `planners: [all]`.
+/// Adds (or replaces, by name) a planner that only tests use (e.g. one that crashes, to test the
+/// runner): found by name like a registered one, but never listed by registeredPlanners() nor
+/// run by `planners: [all]`; it never shadows a registered planner.
 void addPlannerForTesting(PlannerInfo info);
 
 /// The planner called `name`; throws InputError (naming `source`) if there is none.

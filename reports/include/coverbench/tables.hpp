@@ -6,11 +6,19 @@
 #include <string>
 #include <vector>
 
+#include "coverbench/planner.hpp"
+
 namespace coverbench {
 
 /// One finished run as the tables see it.
 struct ResultRow {
-  std::string planner;  ///< planner configuration label
+  /// The column it belongs to: the planner configuration's label, and with several tool
+  /// configurations in the experiment, "label @ s=... m, c=... m" (never pooled across tools).
+  std::string planner;
+  std::string config;   ///< the planner configuration's label alone
+  std::string key;      ///< run key
+  std::string wall_name;
+  ToolParams tool;
   std::string dataset;
   std::string wall;     ///< wall content hash
   std::string pairing;  ///< what makes two runs comparable: wall, tool and repetition
@@ -23,7 +31,7 @@ struct ResultRow {
 struct ResultSet {
   std::string experiment;   ///< name
   std::string config_hash;
-  std::string baseline;     ///< planner label
+  std::string baseline;     ///< planner configuration label; compared with at the same tool
   std::vector<std::string> planners;       ///< labels, in config order
   std::vector<std::string> metric_order;   ///< metric names, in the order tables list them
   std::vector<ResultRow> runs;
@@ -40,5 +48,12 @@ int metricDirection(const std::string& metric);
 double quantile(const std::vector<double>& sorted, double q);
 
 std::string renderTables(const ResultSet& results, TableFormat format);
+
+/// One row per run: key, dataset, wall, planner configuration, tool, status, valid, the uncovered
+/// reachable area and every metric as a column (what pandas or R load). `json`: an array of
+/// objects (NaN and infinities as null); otherwise CSV. Rows in key order.
+std::string renderRuns(const ResultSet& results, bool json);
+/// One line per run: key, planner configuration, wall, status (for picking a run to redraw).
+std::string listRuns(const ResultSet& results);
 
 }  // namespace coverbench

@@ -1,0 +1,80 @@
+// One row per run, for pandas, R or a spreadsheet; and a short list of runs.
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+#include "coverbench/escape.hpp"
+#include "coverbench/tables.hpp"
+#include "coverbench/wall.hpp"
+
+namespace coverbench {
+namespace {
+
+/// Shortest text that reads back as the same double; empty for NaN and infinities.
+std::string number(double v) { return std::isfinite(v) ? nlohmann::json(v).dump() : std::string(); }
+
+/// The metric columns: every metric but `valid`, which is a fixed column.
+std::vector<std::string> metricColumns(const ResultSet& rs) {
+  std::vector<std::string> out;
+  for (const std::string& m : rs.metric_order)
+    if (m != "valid") out.push_back(m);
+  return out;
+}
+
+}  // namespace
+
+std::string renderRuns(const ResultSet& rs, bool json) {
+  const std::vector<std::string> fixed = {"key", "dataset", "wall", "wall_hash", "planner", "tool_width", "clearance",
+                                          "status", "valid", "uncovered_reachable_m2"};
+  if (json) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (const ResultRow& r : rs.runs) {
+      nlohmann::ordered_json row;
+      row["key"] = r.key;
+      row["dataset"] = r.dataset;
+      row["wall"] = r.wall_name;
+      row["wall_hash"] = r.wall;
+      row["planner"] = r.config;
+      row["tool_width"] = r.tool.tool_width;
+      row["clearance"] = r.tool.clearance;
+      row["status"] = r.status;
+      row["valid"] = r.valid;
+      row["uncovered_reachable_m2"] =
+          std::isfinite(r.uncovered_reachable_m2) ? nlohmann::ordered_json(r.uncovered_reachable_m2) : nullptr;
+      for (const std::string& m : metricColumns(rs)) {
+        const auto it = r.metrics.find(m);
+        row[m] = it != r.metrics.end() && std::isfinite(it->second) ? nlohmann::ordered_json(it->second) : nullptr;
+      }
+      out.push_back(row);
+    }
+    return out.dump(1) + "\n";
+  }
+  std::string text;
+  for (const std::string& h : fixed) text += (text.empty() ? "" : ",") + h;
+  for (const std::string& m : metricColumns(rs)) text += "," + escapeCsv(m);
+  text += "\n";
+  for (const ResultRow& r : rs.runs) {
+    text += r.key + "," + escapeCsv(r.dataset) + "," + escapeCsv(r.wall_name) + "," + r.wall + "," + escapeCsv(r.config) +
+            "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) + "," + escapeCsv(r.status) + "," +
+            (r.valid ? "true" : "false") + "," + number(r.uncovered_reachable_m2);
+    for (const std::string& m : metricColumns(rs)) {
+      const auto it = r.metrics.find(m);
+      text += "," + (it == r.metrics.end() ? std::string() : number(it->second));
+    }
+    text += "\n";
+  }
+  return text;
+}
+
+std::string listRuns(const ResultSet& rs) {
+  std::string text;
+  for (const ResultRow& r : rs.runs) {
+    char tool[96];
+    std::snprintf(tool, sizeof tool, "s=%g c=%g", r.tool.tool_width, r.tool.clearance);
+    text += r.key + "  " + r.status + "  " + r.config + "  " + tool + "  " + r.dataset + "/" + r.wall_name + "\n";
+  }
+  return text;
+}
+
+}  // namespace coverbench

@@ -1,0 +1,272 @@
+// Runs you can trust: misbehaving planners (built only into this test binary) each yield exactly
+// their status and leave the other runs untouched; a changed planner version re-runs exactly that
+// planner; a tool sweep gives one group per tool; kill -9 of the runner or of a worker loses
+// nothing and duplicates nothing.
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <thread>
+
+#include "coverbench/registry.hpp"
+#include "coverbench/results_db.hpp"
+#include "coverbench/runner.hpp"
+#include "coverbench/tables.hpp"
+#include "coverbench/workspace.hpp"
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A planner whose plan() is the given function.
+PlannerInfo misbehaving(const std::string& name, std::function<PlanResult(const Problem&)> plan) {
+  struct Impl final : Planner {
+    std::function<PlanResult(const Problem&)> f;
+    PlanResult plan(const Problem& p, const Budget&) override { return f(p); }
+  };
+  PlannerInfo info;
+  info.name = name;
+  info.version = "1";
+  info.summary = "misbehaves on purpose (tests only)";
+  info.make = [plan] {
+    auto impl = std::make_unique<Impl>();
+    impl->f = plan;
+    return impl;
+  };
+  return info;
+}
+
+/// A straight path along the wall's bottom edge, through anything in the way.
+PlanResult straightThrough(const Problem& p) {
+  const Box b = boundingBox(p.wall->boundary);
+  PlanResult r;
+  r.status = PlanStatus::Ok;
+  r.path.moveTo({b.min_x + 0.2, b.min_y + 0.06}, false);
+  r.path.moveTo({b.max_x - 0.2, b.min_y + 0.06}, true);
+  return r;
+}
+
+void registerMisbehavingPlanners() {
+  addPlannerForTesting(misbehaving("segfaults", [](const Problem&) -> PlanResult {
+    int* volatile nowhere = nullptr;  // read at run time, so the compiler cannot turn it into a trap
+    *nowhere = 1;
+    // Some sandboxes map page zero (a null write survives there, as seen on this project's
+    // machines): then the fault is raised as the kernel would.
+    std::raise(SIGSEGV);
+    return {};
+  }));
+  addPlannerForTesting(misbehaving("loops-forever", [](const Problem&) -> PlanResult {
+    volatile unsigned long spin = 0;
+    for (;;) ++spin;  // ignores its budget
+  }));
+  addPlannerForTesting(misbehaving("allocates-without-bound", [](const Problem&) -> PlanResult {
+    std::vector<std::vector<char>> hoard;
+    for (;;) hoard.emplace_back(1 << 20, 'x');
+  }));
+  addPlannerForTesting(misbehaving("throws", [](const Problem&) -> PlanResult { throw std::runtime_error("on purpose"); }));
+  addPlannerForTesting(misbehaving("cheats", straightThrough));  // through the obstacle at the bottom
+  addPlannerForTesting(misbehaving("chatters", [](const Problem& p) {
+    for (int i = 0; i < 1000; ++i) std::printf("chatter %d\n", i);
+    std::cout << "more chatter" << std::endl;
+    std::cerr << "and on stderr" << std::endl;
+    return straightThrough(p);
+  }));
+}
+
+class Isolation : public test::CommandTest {
+ protected:
+  void SetUp() override {
+    CommandTest::SetUp();
+    registerMisbehavingPlanners();
+    fs::create_directories(dir_ / "walls");
+    // An obstacle across the bottom row: "cheats" paints through it; "chatters" gets a free wall.
+    std::ofstream(dir_ / "walls" / "a.json") << R"({"name": "a", "width": 2, "height": 1,
+      "obstacles": [{"type": "rect", "x": 0.9, "y": 0, "width": 0.2, "height": 0.3}]})";
+    std::ofstream(dir_ / "walls" / "b.json") << R"({"name": "b", "width": 1.5, "height": 1.2,
+      "obstacles": [{"type": "rect", "x": 0.6, "y": 0, "width": 0.2, "height": 0.3}]})";
+  }
+  ExperimentConfig config(const std::string& name, const std::string& planners, const std::string& extra = "") {
+    const fs::path p = dir_ / (name + ".yaml");
+    std::ofstream(p) << "name: " << name << "\noutput: " << name << "\ndatasets:\n  - folder: walls\nplanners: " << planners
+                     << "\nlimits:\n  time_s: 0.5\n  memory_mb: 256\n" << extra;
+    return loadExperimentConfig(p.string());
+  }
+};
+
+TEST_F(Isolation, EachMisbehavingPlannerYieldsItsStatusAndTheRestIsUntouched) {
+  RunnerOptions options;
+  options.threads = 2;
+  const RunnerSummary s = runExperiment(
+      config("bad", "[zigzag, segfaults, loops-forever, allocates-without-bound, throws, cheats, chatters]"), options);
+  EXPECT_EQ(s.executed, 14u);
+  const ResultSet rs = ResultsDb(s.database, ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(rs.runs.size(), 14u);
+  const std::map<std::string, std::string> expected = {
+      {"zigzag", "ok"},           {"segfaults", "crash"},     {"loops-forever", "timeout"},
+      {"allocates-without-bound", "memory_limit"},            {"throws", "error"},
+      {"cheats", "invalid_output"}, {"chatters", "invalid_output"}};
+  for (const ResultRow& r : rs.runs) EXPECT_EQ(r.status, expected.at(r.config)) << r.config << " on " << r.wall_name;
+
+  // The crash names its signal; the reasons say what happened.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(s.database.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db, "SELECT r.status, r.signal, r.reason, r.cpu_time_s FROM runs r JOIN planner_configs p ON p.id = "
+                         "r.config_id WHERE p.planner IN ('segfaults', 'loops-forever', 'throws')", -1, &st, nullptr);
+  int rows = 0;
+  while (sqlite3_step(st) == SQLITE_ROW) {
+    ++rows;
+    const std::string status = reinterpret_cast<const char*>(sqlite3_column_text(st, 0));
+    const std::string reason = reinterpret_cast<const char*>(sqlite3_column_text(st, 2));
+    if (status == "crash") {
+      EXPECT_EQ(sqlite3_column_int(st, 1), SIGSEGV);
+      EXPECT_NE(reason.find("signal 11"), std::string::npos) << reason;
+    }
+    if (status == "timeout")
+      EXPECT_TRUE(reason.find("hard deadline") != std::string::npos || reason.find("CPU-time limit") != std::string::npos)
+          << reason;
+    if (status == "error") EXPECT_NE(reason.find("on purpose"), std::string::npos) << reason;
+  }
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+  EXPECT_EQ(rows, 6);
+
+  // zigzag's runs are identical to a run without the misbehaving planners.
+  const RunnerSummary alone = runExperiment(config("alone", "[zigzag]"), options);
+  const ResultSet clean = ResultsDb(alone.database, ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(clean.runs.size(), 2u);
+  for (const ResultRow& c : clean.runs) {
+    const auto same = std::find_if(rs.runs.begin(), rs.runs.end(), [&](const ResultRow& r) { return r.key == c.key; });
+    ASSERT_NE(same, rs.runs.end());
+    EXPECT_EQ(same->status, c.status);
+    for (const auto& [name, value] : c.metrics)
+      if (name != "plan_time_ms" && name != "peak_memory_bytes") EXPECT_EQ(same->metrics.at(name), value) << name;
+  }
+
+  // Failures are recorded once: a second run does nothing, unless failures are retried.
+  const RunnerSummary again = runExperiment(
+      config("bad", "[zigzag, segfaults, loops-forever, allocates-without-bound, throws, cheats, chatters]"), options);
+  EXPECT_EQ(again.executed, 0u);
+  options.retry_failed = true;
+  const RunnerSummary retried = runExperiment(
+      config("bad", "[zigzag, segfaults, loops-forever, allocates-without-bound, throws, cheats, chatters]"), options);
+  EXPECT_EQ(retried.executed, 8u);  // crash, timeout, memory_limit and error, on two walls
+}
+
+TEST_F(Isolation, AChangedPlannerVersionRerunsExactlyThatPlanner) {
+  PlannerInfo alpha = misbehaving("alpha", straightThrough);
+  alpha.version = "1";
+  addPlannerForTesting(alpha);
+  RunnerOptions options;
+  options.threads = 2;
+  const RunnerSummary first = runExperiment(config("v", "[zigzag, spiral, alpha]"), options);
+  EXPECT_EQ(first.executed, 6u);
+  alpha.version = "2";
+  addPlannerForTesting(alpha);  // replaces it
+  const RunnerSummary second = runExperiment(config("v", "[zigzag, spiral, alpha]"), options);
+  EXPECT_EQ(second.executed, 2u);
+  EXPECT_EQ(second.skipped, 4u);
+  EXPECT_EQ(second.rerun_reasons, "2 alpha: planner version changed");
+  // Reusing across builds counts the version-1 runs as done.
+  alpha.version = "3";
+  addPlannerForTesting(alpha);
+  options.reuse_across_builds = true;
+  const RunnerSummary reused = runExperiment(config("v", "[zigzag, spiral, alpha]"), options);
+  EXPECT_EQ(reused.executed, 0u);
+  EXPECT_EQ(reused.reused, 2u);
+}
+
+TEST_F(Isolation, AToolSweepGivesOneGroupPerTool) {
+  RunnerOptions options;
+  options.threads = 2;
+  const RunnerSummary s = runExperiment(config("tools", "[zigzag, spiral]", "tool:\n  width: [0.05, 0.1]\n"), options);
+  const ResultSet rs = ResultsDb(s.database, ResultsDb::Mode::ReadOnly).load();
+  EXPECT_EQ(rs.planners, (std::vector<std::string>{"zigzag @ s=0.05 m, c=0.02 m", "zigzag @ s=0.1 m, c=0.02 m",
+                                                   "spiral @ s=0.05 m, c=0.02 m", "spiral @ s=0.1 m, c=0.02 m"}));
+  const std::string md = renderTables(rs, TableFormat::Markdown);
+  EXPECT_NE(md.find("| metric | zigzag @ s=0.05 m, c=0.02 m | zigzag @ s=0.1 m, c=0.02 m |"), std::string::npos) << md;
+  // overlap_resolution depends on the tool: one value per column, never a pooled one.
+  EXPECT_NE(md.find("| overlap_resolution | 0.0025 (0) | 0.005 (0) | 0.0025 (0) | 0.005 (0) |"), std::string::npos) << md;
+  // spiral is compared with zigzag at the same tool: two pairs per group.
+  EXPECT_NE(md.find("| spiral @ s=0.05 m, c=0.02 m | walls | 2 |"), std::string::npos) << md;
+}
+
+// --- kill -9 ------------------------------------------------------------------------------------
+
+/// Every run of a database, as comparable text: key, status, valid, and every metric but the
+/// measured ones; plus the number of rows per key.
+std::string dump(const std::string& database) {
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open_v2(database.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  std::string out;
+  auto query = [&](const char* sql) {
+    sqlite3_stmt* s = nullptr;
+    EXPECT_EQ(sqlite3_prepare_v2(db, sql, -1, &s, nullptr), SQLITE_OK) << sql;
+    while (sqlite3_step(s) == SQLITE_ROW) {
+      for (int c = 0; c < sqlite3_column_count(s); ++c) {
+        const unsigned char* t = sqlite3_column_text(s, c);
+        out += (c ? "|" : "") + std::string(t ? reinterpret_cast<const char*>(t) : "NULL");
+      }
+      out += "\n";
+    }
+    sqlite3_finalize(s);
+  };
+  query("PRAGMA integrity_check");
+  query("SELECT COUNT(*), COUNT(DISTINCT key) FROM runs");
+  query("SELECT key, status, valid, reason FROM runs ORDER BY key");
+  query("SELECT run_key, name, quote(value) FROM metrics ORDER BY run_key, name");
+  query("SELECT run_key, waypoints, hex(data) FROM paths ORDER BY run_key");
+  sqlite3_close(db);
+  return out;
+}
+
+TEST_F(Isolation, KillingTheRunnerOrAWorkerLosesAndDuplicatesNothing) {
+  const std::string cfg = write("k.yaml", "name: k\noutput: out\ndatasets:\n  - family: residential\n    count: 60\n"
+                                          "    seed: 5\nplanners: [all]\nthreads: 2\n");
+  fs::create_directories(dir_ / "ref");
+  fs::copy(cfg, dir_ / "ref" / "k.yaml");
+  ASSERT_EQ(run("run " + (dir_ / "ref" / "k.yaml").string()).exit_code, 0);
+  const std::string reference = dump((dir_ / "ref" / "out" / "results.sqlite").string());
+  ASSERT_NE(reference.find("360|360"), std::string::npos) << reference.substr(0, 200);
+
+  // kill -9 at random moments, five times, resuming each time.
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<int> after_ms(250, 900);
+  int killed = 0;
+  for (int attempt = 0; attempt < 20 && killed < 5; ++attempt) {
+    const test::CommandRun r = run("--version > /dev/null; timeout -s KILL " + std::to_string(after_ms(rng) / 1000.0) +
+                                   " " + std::string(COVERBENCH_BINARY) + " run " + cfg);
+    if (r.exit_code == 0) break;  // finished before the kill
+    ASSERT_EQ(r.exit_code, 137) << r.err;
+    ++killed;
+  }
+  EXPECT_EQ(killed, 5) << "the runner was killed mid-way five times";
+  ASSERT_EQ(run("run " + cfg).exit_code, 0);
+  EXPECT_EQ(dump((dir_ / "out" / "results.sqlite").string()), reference);
+
+  // kill -9 a worker: its run is recorded as a crash (or, if it was between runs, a fresh worker
+  // takes over); --retry-failed then completes the same database.
+  fs::remove_all(dir_ / "out");
+  const std::string pid_file = (dir_ / "pid").string();
+  const std::string script = "( " + std::string(COVERBENCH_BINARY) + " run " + cfg + " > /dev/null 2>&1 & echo $! > " +
+                             pid_file + "; wait )";
+  std::thread runner([&] { std::system(script.c_str()); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  const std::string pid = slurp(pid_file);
+  std::system(("pkill -KILL -n -P " + pid.substr(0, pid.find('\n'))).c_str());
+  runner.join();
+  ASSERT_EQ(run("run " + cfg + " --retry-failed").exit_code, 0);
+  EXPECT_EQ(dump((dir_ / "out" / "results.sqlite").string()), reference);
+}
+
+}  // namespace
+}  // namespace coverbench
