@@ -164,7 +164,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     std::fprintf(options.progress, "%zu of %zu runs already in %s: skipped\n", summary.skipped, runs.size(),
                  summary.database.c_str());
   if (options.progress && !todo.empty())
-    std::fprintf(options.progress, "%zu runs on %u worker processes (each run in its own process)\n", todo.size(), threads);
+    std::fprintf(options.progress, "%zu runs on %u worker processes (hard limits per run)\n", todo.size(), threads);
   std::size_t stored = 0;
   executeIsolated(todo, threads, [&](const RunSpec& spec, RunRecord rec) {
     ++summary.by_status[rec.status];
