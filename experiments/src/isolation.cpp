@@ -383,6 +383,7 @@ std::string serializeRecord(const RunRecord& r) {
   w.f64(r.peak_rss_bytes);
   w.f64(r.cpu_time_s);
   w.f64(r.peak_memory_bytes.value_or(NAN));
+  w.f64(r.plan_time_ms);
   w.u64(r.plan_times_ms.size());
   for (double t : r.plan_times_ms) w.f64(t);
   w.u64(r.metrics.size());
@@ -406,6 +407,7 @@ RunRecord deserializeRecord(const std::string& bytes) {
   r.peak_rss_bytes = in.f64();
   r.cpu_time_s = in.f64();
   if (const double m = in.f64(); std::isfinite(m)) r.peak_memory_bytes = m;
+  r.plan_time_ms = in.f64();
   for (std::uint64_t n = in.count(); n > 0; --n) r.plan_times_ms.push_back(in.f64());
   for (std::uint64_t n = in.count(); n > 0; --n) {
     NamedMetric m;
@@ -418,11 +420,6 @@ RunRecord deserializeRecord(const std::string& bytes) {
   const std::string path = in.str();
   if (!path.empty()) r.path = decodePath(path);
   if (!in.done()) throw std::runtime_error("trailing bytes after the run record");
-  if (!r.plan_times_ms.empty()) {
-    std::vector<double> sorted = r.plan_times_ms;
-    std::sort(sorted.begin(), sorted.end());
-    r.plan_time_ms = sorted[sorted.size() / 2];
-  }
   return r;
 }
 

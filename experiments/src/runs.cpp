@@ -110,14 +110,11 @@ RunRecord executeRun(const RunSpec& spec) {
   }
   std::vector<double> sorted = rec.plan_times_ms;
   std::sort(sorted.begin(), sorted.end());
-  result.plan_time_ms = sorted[sorted.size() / 2];
-  rec.plan_time_ms = result.plan_time_ms;
+  rec.plan_time_ms = sorted[sorted.size() / 2];
   rec.stats = result.stats;
   rec.timings_ms = result.timings_ms;
-  if (rec.status.empty()) {
-    rec.status = toString(result.status);
-    rec.reason = result.reason;
-  }
+  rec.status = toString(result.status);
+  rec.reason = result.reason;
   if (result.hasPath()) {
     try {
       const PathMetrics m = computeMetrics(spec.wall->wall, spec.tool, result.path);
