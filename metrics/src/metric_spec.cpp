@@ -1,0 +1,93 @@
+#include "coverbench/metric_spec.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace coverbench {
+
+const std::vector<MetricSpec>& metricSpecs() {
+  using K = MetricKind;
+  // Tie bands: coverage within 0.1 percentage point (far above the engine's area error of about
+  // 1e-6, below what a painter could see); overlap within 0.5 percentage point (the scanline
+  // method's stated error, docs/metrics.md); lengths and durations within 0.1 %; counts exactly;
+  // plan time within 25 % and 0.05 ms (the same code timed three times on one wall here swung
+  // by a third); memory within 5 % and 1 MiB.
+  static const std::vector<MetricSpec> specs = {
+      {"valid", "1", +1, K::Validity, false, 0, 0, "1 when no segment leaves F, else 0"},
+      {"violations", "segments", -1, K::Validity, false, 0.5, 0, "segments whose centre line leaves F"},
+      {"outside_boundary", "segments", -1, K::Validity, false, 0.5, 0, "segments whose tool disk leaves the wall"},
+      {"too_close", "segments", -1, K::Validity, false, 0.5, 0, "segments whose tool disk comes closer than c to an obstacle"},
+      {"min_clearance", "m", +1, K::Validity, false, 1e-6, 0, "smallest gap between the tool disk and any obstacle"},
+      {"min_boundary_gap", "m", +1, K::Validity, false, 1e-6, 0, "smallest gap between the tool disk and the wall's edge"},
+      {"coverage_reachable", "1", +1, K::Quality, true, 1e-3, 0, "share of the reachable area R the tool swept"},
+      {"coverage_wall", "1", +1, K::Quality, true, 1e-3, 0, "share of the paintable wall P (wall minus obstacles) the tool swept"},
+      {"reachable_area", "m2", 0, K::Area, false, 0, 1e-9, "|R|: the area a tool of this width can reach"},
+      {"paintable_area", "m2", 0, K::Area, false, 0, 1e-9, "|P|: the wall minus its obstacles"},
+      {"swept_area", "m2", 0, K::Area, false, 0, 1e-3, "|S|: the union of the tool-on sweeps"},
+      {"overlap", "1", -1, K::Quality, true, 5e-3, 0, "share of the swept area passed over twice or more"},
+      {"passes_1", "1", 0, K::Diagnostic, false, 5e-3, 0, "share of the swept area passed over once (1 - overlap)"},
+      {"passes_2", "1", -1, K::Quality, false, 5e-3, 0, "share of the swept area passed over exactly twice"},
+      {"passes_3", "1", -1, K::Quality, false, 5e-3, 0, "share of the swept area passed over exactly three times"},
+      {"passes_4_or_more", "1", -1, K::Quality, false, 5e-3, 0, "share of the swept area passed over four times or more"},
+      {"overlap_resolution", "m", 0, K::Diagnostic, false, 0, 1e-9, "scanline spacing of the pass counts (r / 10)"},
+      {"length_total", "m", -1, K::Quality, false, 0, 1e-3, "path length, tool on and off"},
+      {"length_cover", "m", -1, K::Quality, false, 0, 1e-3, "path length with the tool on"},
+      {"length_transit", "m", -1, K::Quality, false, 1e-3, 1e-3, "path length with the tool off"},
+      {"length_ratio", "1", -1, K::Quality, true, 0, 1e-3, "length_total / (|R| / s): 1 is a perfect lawnmower on an open wall"},
+      {"turns", "1", -1, K::Quality, false, 0.5, 0, "heading changes over 1 degree"},
+      {"turns_30", "1", -1, K::Quality, true, 0.5, 0, "heading changes over 30 degrees (the robot stops)"},
+      {"turning_angle", "rad", -1, K::Quality, false, 0, 1e-3, "sum of absolute heading changes"},
+      {"duration_s", "s", -1, K::Quality, true, 0, 1e-3, "time to drive the path (0.3 m/s, 0.5 m/s2, stop at turns over 30 degrees)"},
+      {"waypoints", "1", -1, K::Quality, false, 0.5, 0, "waypoints of the path"},
+      {"plan_time_ms", "ms", -1, K::Measured, true, 0.05, 0.25, "wall-clock time of the plan call (median of the repetitions)"},
+      {"peak_memory_bytes", "B", -1, K::Measured, true, 1048576, 0.05, "resident memory the run added at its peak"},
+  };
+  return specs;
+}
+
+const MetricSpec* findMetricSpec(const std::string& name) {
+  for (const MetricSpec& s : metricSpecs())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+std::string toString(MetricKind kind) {
+  switch (kind) {
+    case MetricKind::Quality: return "quality";
+    case MetricKind::Validity: return "validity";
+    case MetricKind::Area: return "area";
+    case MetricKind::Diagnostic: return "diagnostic";
+    case MetricKind::Measured: return "measured";
+  }
+  throw std::logic_error("unknown MetricKind");
+}
+
+bool tied(const MetricSpec& spec, double a, double b) {
+  if (a == b) return true;  // also equal infinities
+  return std::fabs(a - b) <= spec.tie_absolute + spec.tie_relative * std::fmax(std::fabs(a), std::fabs(b));
+}
+
+namespace {
+std::string number(double v) {
+  if (v == 0) return "0";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+}  // namespace
+
+std::string metricSpecsMarkdown() {
+  std::string out = "| name | unit | better | kind | shown | equal within | description |\n|---|---|---|---|---|---|---|\n";
+  for (const MetricSpec& s : metricSpecs()) {
+    std::string band;
+    if (s.tie_absolute > 0) band = number(s.tie_absolute) + (s.unit == "1" ? "" : " " + s.unit);
+    if (s.tie_relative > 0) band += (band.empty() ? "" : " + ") + number(s.tie_relative * 100) + " %";
+    if (band.empty()) band = "exactly";
+    out += "| `" + s.name + "` | " + s.unit + " | " + (s.better > 0 ? "higher" : s.better < 0 ? "lower" : "-") + " | " +
+           toString(s.kind) + " | " + (s.headline ? "headline" : "appendix") + " | " + band + " | " + s.description + " |\n";
+  }
+  return out;
+}
+
+}  // namespace coverbench
