@@ -10,7 +10,7 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
   const ClearanceField field(wall);
   const double r = tool.radius();
   const std::size_t n = path.waypoints.size();
-  auto check = [&](Point a, Point b) {
+  auto check = [&](std::size_t segment, Point a, Point b) {
     const SegmentClearance c = field.measure(a, b, std::fmax(v.min_clearance, tool.clearance) + r);
     const double boundary_gap = c.inside ? c.boundary_distance - r : -c.boundary_distance - r;
     const double obstacle_gap = c.obstacle_distance - r;
@@ -20,10 +20,11 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
     const bool close = obstacle_gap < tool.clearance - kValidityTolerance;
     v.outside_boundary += outside;
     v.too_close += close;
+    if ((outside || close) && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
     v.violations += outside || close;
   };
-  if (n == 1) check(path.waypoints[0], path.waypoints[0]);
-  for (std::size_t i = 0; i + 1 < n; ++i) check(path.waypoints[i], path.waypoints[i + 1]);
+  if (n == 1) check(0, path.waypoints[0], path.waypoints[0]);
+  for (std::size_t i = 0; i + 1 < n; ++i) check(i, path.waypoints[i], path.waypoints[i + 1]);
   v.valid = v.violations == 0;
   return v;
 }

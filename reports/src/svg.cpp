@@ -1,6 +1,9 @@
 #include "coverbench/svg.hpp"
 
 #include "coverbench/escape.hpp"
+#include "coverbench/metrics.hpp"
+#include "coverbench/region_ops.hpp"
+#include "coverbench/workspace.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -51,6 +54,15 @@ std::string renderSvg(const SvgContent& c) {
   const Wall& wall = *c.wall;
   View v;
   v.box = boundingBox(wall.boundary);
+  const Box wall_box = v.box;
+  if (c.path)  // a path that leaves the wall stays in the picture
+    for (const Point& p : c.path->waypoints) {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+      v.box.min_x = std::min(v.box.min_x, p.x);
+      v.box.max_x = std::max(v.box.max_x, p.x);
+      v.box.min_y = std::min(v.box.min_y, p.y);
+      v.box.max_y = std::max(v.box.max_y, p.y);
+    }
   v.k = std::min(kMaxWidthPx / v.box.width(), kMaxHeightPx / v.box.height());
   v.top = kPadPx + 20.0;
   const double w_px = std::max(v.box.width() * v.k + 2 * kPadPx, 740.0);  // room for the legend
@@ -84,8 +96,8 @@ std::string renderSvg(const SvgContent& c) {
       << "\" fill-rule=\"evenodd\" stroke=\"none\"/>\n";
   };
   // Obstacles may reach beyond the wall: draw them clipped to the wall's bounding box.
-  s << "<clipPath id=\"wallbox\"><rect x=\"" << fmt(v.px(v.box.min_x)) << "\" y=\"" << fmt(v.py(v.box.max_y))
-    << "\" width=\"" << fmt(v.box.width() * v.k) << "\" height=\"" << fmt(v.box.height() * v.k) << "\"/></clipPath>\n"
+  s << "<clipPath id=\"wallbox\"><rect x=\"" << fmt(v.px(wall_box.min_x)) << "\" y=\"" << fmt(v.py(wall_box.max_y))
+    << "\" width=\"" << fmt(wall_box.width() * v.k) << "\" height=\"" << fmt(wall_box.height() * v.k) << "\"/></clipPath>\n"
     << "<g clip-path=\"url(#wallbox)\">\n";
   for (const Obstacle& o : wall.obstacles) {
     if (o.type == ObstacleType::Circle) {
@@ -123,6 +135,14 @@ std::string renderSvg(const SvgContent& c) {
     s << "<g fill=\"none\" stroke=\"#1f4f9f\" stroke-width=\"" << fmt(std::clamp(tool_px * 0.12, 0.5, 2.0))
       << "\" stroke-linejoin=\"round\">\n" << on_runs << "</g>\n";
     s << "<g fill=\"none\" stroke=\"#e07b00\" stroke-width=\"1.6\" stroke-dasharray=\"5,3\">\n" << off_runs << "</g>\n";
+    if (c.violating && !c.violating->empty()) {
+      std::string d;
+      for (std::size_t i : *c.violating)
+        if (i + 1 < path.waypoints.size()) d += "M" + v.pt(path.waypoints[i]) + "L" + v.pt(path.waypoints[i + 1]);
+        else if (i < path.waypoints.size()) d += "M" + v.pt(path.waypoints[i]) + "l0.01,0";
+      s << "<path class=\"violation\" d=\"" << d
+        << "\" fill=\"none\" stroke=\"#ff0000\" stroke-width=\"4\" stroke-linecap=\"round\" stroke-opacity=\"0.9\"/>\n";
+    }
     const Point a = path.waypoints.front(), b = path.waypoints.back();
     s << "<circle cx=\"" << fmt(v.px(a.x)) << "\" cy=\"" << fmt(v.py(a.y))
       << "\" r=\"6\" fill=\"#19a33a\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>\n";
@@ -145,15 +165,44 @@ std::string renderSvg(const SvgContent& c) {
     << "<circle cx=\"600\" cy=\"5\" r=\"5\" fill=\"#19a33a\"/><text x=\"610\" y=\"10\">start</text>"
     << "<rect x=\"655\" width=\"10\" height=\"10\" fill=\"#d02f2f\"/><text x=\"670\" y=\"10\">end</text>"
     << "</g>\n";
-  if (c.uncovered || c.overlap)
+  if (c.uncovered || c.overlap || (c.violating && !c.violating->empty())) {
     s << "<g transform=\"translate(0,52)\">"
       << "<rect width=\"14\" height=\"10\" fill=\"#e8383d\" fill-opacity=\"0.75\"/>"
       << "<text x=\"20\" y=\"10\">reachable, not covered</text>"
       << "<rect x=\"180\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>"
-      << "<text x=\"200\" y=\"10\">covered twice or more</text></g>\n";
+      << "<text x=\"200\" y=\"10\">covered twice or more</text>";
+    if (c.violating && !c.violating->empty())
+      s << "<line x1=\"360\" y1=\"5\" x2=\"390\" y2=\"5\" stroke=\"#ff0000\" stroke-width=\"4\"/>"
+        << "<text x=\"396\" y=\"10\">fails the exact check (" << c.violating->size() << " segments"
+        << (c.violating->size() >= kMaxListedViolations ? " or more" : "") << ")</text>";
+    s << "</g>\n";
+  }
   s << "</g>\n";
   s << "</svg>\n";
   return s.str();
+}
+
+/// The picture of a path; with its coverage layer when it can be scored.
+std::string pathPicture(const Wall& wall, const ToolParams& tool, const Path& path, const std::string& title,
+                        bool coverage_layer, double overlap_strips) {
+  const Region free = freeRegion(wall, tool);
+  SvgContent content;
+  content.wall = &wall;
+  content.tool = tool;
+  content.free = &free;
+  content.path = &path;
+  content.title = title;
+  if (!coverage_layer) return renderSvg(content);
+  const CoverageRegions regions = coverageRegions(wall, tool, path);
+  const Validity validity = checkValidity(wall, tool, path);
+  content.violating = &validity.violating;
+  const Region uncovered = subtract(regions.reachable, regions.swept);
+  // Draw the overlap with strips no finer than the measure's and at most `overlap_strips` over the wall.
+  const Box box = boundingBox(wall.boundary);
+  const Region overlap = overlapRegion(path, tool.radius(), std::max(tool.radius() / 10.0, box.height() / overlap_strips));
+  content.uncovered = &uncovered;
+  content.overlap = &overlap;
+  return renderSvg(content);
 }
 
 }  // namespace coverbench

@@ -26,7 +26,11 @@ struct Validity {
   double min_clearance = INFINITY;
   /// Smallest gap (m) between the tool disk and the wall boundary; negative when it leaves.
   double min_boundary_gap = INFINITY;
+  /// Indices of the violating segments (segment i joins waypoints i and i+1), the first
+  /// kMaxListedViolations of them: for pictures that mark where a path goes wrong.
+  std::vector<std::size_t> violating;
 };
+inline constexpr std::size_t kMaxListedViolations = 10000;
 
 /// Checks every segment of the path exactly (closed-form distances, no sampling).
 /// A single waypoint is checked as a point.

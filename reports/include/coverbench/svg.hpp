@@ -1,10 +1,11 @@
 #pragma once
 /// SVG pictures of a wall and a path: wall, obstacles, free region, swept band, coverage layer
 /// (uncovered reachable area, areas passed twice or more), path (tool on solid, transit dashed),
-/// start and end. Scaled to a fixed picture size so a 20 m facade and a
+/// start and end, segments that fail the exact check. Scaled to a fixed picture size so a 20 m facade and a
 /// 1 m strip are equally readable; a scale bar gives metres.
 
 #include <string>
+#include <vector>
 
 #include "coverbench/geometry.hpp"
 #include "coverbench/planner.hpp"
@@ -19,9 +20,19 @@ struct SvgContent {
   const Path* path = nullptr;    ///< optional
   const Region* uncovered = nullptr;  ///< optional coverage layer: reachable but not swept
   const Region* overlap = nullptr;    ///< optional coverage layer: passed over twice or more
+  /// optional: indices of segments that fail the exact validity check, drawn in red over the
+  /// path; the picture's frame grows to hold every waypoint, so a path that leaves the wall is seen.
+  const std::vector<std::size_t>* violating = nullptr;
   std::string title;
 };
 
 std::string renderSvg(const SvgContent& content);
+
+/// The picture of a path on its wall with the free region, and (with `coverage_layer`, for a
+/// path that can be scored) the coverage layer and the segments that fail the exact check.
+/// The overlap layer is drawn with at most `overlap_strips` scanline strips over the wall's
+/// height (1500: finer than the picture's pixels; galleries of thumbnails use fewer).
+std::string pathPicture(const Wall& wall, const ToolParams& tool, const Path& path, const std::string& title,
+                        bool coverage_layer = true, double overlap_strips = 1500.0);
 
 }  // namespace coverbench
