@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "coverbench/escape.hpp"
 #include "coverbench/limits.hpp"
@@ -67,27 +68,6 @@ double peakResidentBytes() {
   return static_cast<double>(usage.ru_maxrss) * 1024.0;
 }
 
-/// The picture of a path; with its coverage layer when it can be scored.
-std::string picture(const Wall& wall, const ToolParams& tool, const Path& path, const std::string& title,
-                    bool coverage_layer = true) {
-  const Region free = freeRegion(wall, tool);
-  SvgContent content;
-  content.wall = &wall;
-  content.tool = tool;
-  content.free = &free;
-  content.path = &path;
-  content.title = title;
-  if (!coverage_layer) return renderSvg(content);
-  const CoverageRegions regions = coverageRegions(wall, tool, path);
-  const Region uncovered = subtract(regions.reachable, regions.swept);
-  // Draw the overlap with strips about a pixel high (at most 1500 of them over the wall).
-  const Box box = boundingBox(wall.boundary);
-  const Region overlap = overlapRegion(path, tool.radius(), std::max(tool.radius() / 10.0, box.height() / 1500.0));
-  content.uncovered = &uncovered;
-  content.overlap = &overlap;
-  return renderSvg(content);
-}
-
 /// Plans one wall with one planner and renders its outputs (nothing is written here). A path
 /// beyond the scoring limits is kept, unscored, with the reason.
 Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams& tool, Params params,
@@ -119,7 +99,7 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
                 : !scored                              ? ", NOT SCORED"
                 : o.plan.metrics.validity.valid        ? ", valid"
                                                        : ", INVALID");
-  if (with_picture) o.svg = picture(wall, tool, o.plan.result.path, title, scored);
+  if (with_picture) o.svg = pathPicture(wall, tool, o.plan.result.path, title, scored);
   return o;
 }
 
@@ -220,7 +200,7 @@ int metricsCommand(const MetricsOptions& options) {
   limitScoringTime(options.plan, options.time_limit_s);
   const PathMetrics m = computeMetrics(wall, tool, plan.path, limits);
   OutputFiles files;  // the picture is written before anything is printed, so a failure prints nothing
-  if (!options.svg.empty()) files.add(options.svg, picture(wall, tool, plan.path, wall.name + " / " + options.plan));
+  if (!options.svg.empty()) files.add(options.svg, pathPicture(wall, tool, plan.path, wall.name + " / " + options.plan));
   ::alarm(0);
   files.commit();
   std::cout << metricsJson(m);
@@ -265,10 +245,12 @@ int showcaseCommand(const ShowcaseOptions& options) {
   for (std::size_t k = 0; k < header.size(); ++k) table += "---|";
   table += "\n";
   std::string csv = joined(csv_header, escapeCsv, "", ",", "\n");
-  std::string html_rows, gallery;
+  // The page comes from the report machinery (reports/python): one layout, walls side by side.
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array(), walls_json = nlohmann::ordered_json::array();
   int exit_code = 0;
   std::size_t next_stem = 0;
   for (const Wall& wall : walls) {
+    nlohmann::ordered_json pictures = nlohmann::ordered_json::array();
     for (const PlannerInfo& planner : registeredPlanners()) {
       const Outcome o = planOnce(wall, planner, options.tool, resolveParams(planner, {}), 60.0, true);
       const std::string& stem = stems[next_stem++];
@@ -285,32 +267,35 @@ int showcaseCommand(const ShowcaseOptions& options) {
           std::to_string(m.waypoints), formatted("%.2f", o.plan.result.plan_time_ms)};
       table += joined(cells, escapeMarkdown, "| ", " | ", " |\n");
       csv += joined(cells, escapeCsv, "", ",", "\n");
-      html_rows += joined(cells, escapeHtml, "<tr><td>", "</td><td>", "</td></tr>\n");
-      gallery += "<figure><img src=\"plans/" + escapeHtml(stem) + ".svg\" alt=\"" + escapeHtml(wall.name + " / " + planner.name) +
-                 "\"><figcaption><a href=\"plans/" + escapeHtml(stem) + ".json\">" + escapeHtml(stem) +
-                 ".json</a></figcaption></figure>\n";
+      rows.push_back(cells);
+      const std::string verdict = !o.plan.not_scored.empty() ? ", not scored" : m.validity.valid ? "" : ", INVALID";
+      pictures.push_back({{"column", planner.name},
+                          {"status", toString(o.plan.result.status) + verdict},
+                          {"file", "plans/" + stem + ".svg"},
+                          {"note", "plan file: plans/" + stem + ".json"}});
       if (!succeeded(o.plan)) exit_code = 3;
       std::cout << "  " << wall.name << " / " << planner.name << ": " << toString(o.plan.result.status)
                 << (!o.plan.not_scored.empty() ? ", NOT SCORED" : m.validity.valid ? ", valid" : ", INVALID")
                 << ", coverage " << percent(m.coverage.coverage_reachable) << " of reachable\n";
     }
+    walls_json.push_back({{"wall_name", wall.name}, {"why", "every planner, default parameters"}, {"pictures", pictures}});
   }
   outputs.add((out / "summary.md").string(),
               "# CoverBench showcase\n\nTool width " + toString(options.tool.tool_width) + " m, clearance " +
                   toString(options.tool.clearance) +
                   " m, default planner parameters. Pictures and plan files are in `plans/`.\n\n" + table);
   outputs.add((out / "summary.csv").string(), csv);
-  outputs.add(
-      (out / "index.html").string(),
-      "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>CoverBench showcase</title><style>"
-      "body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #ccc;"
-      "padding:2px 8px;text-align:right}td:first-child,td:nth-child(2){text-align:left}"
-      "figure{display:inline-block;margin:1em;vertical-align:top}img{max-width:760px}</style></head><body>\n"
-      "<h1>CoverBench showcase</h1>\n<p>Tool width " + toString(options.tool.tool_width) + " m, clearance " +
-          toString(options.tool.clearance) +
-          " m, default planner parameters. Every path is validated exactly. Metric definitions: "
-          "docs/metrics.md.</p>\n<table>\n" + joined(header, escapeHtml, "<tr><th>", "</th><th>", "</th></tr>\n") +
-          html_rows + "</table>\n" + gallery + "</body></html>\n");
+  const std::string tool_text = "tool width " + toString(options.tool.tool_width) + " m, clearance " +
+                                toString(options.tool.clearance) + " m";
+  const nlohmann::ordered_json page = {
+      {"format", "coverbench-showcase"},
+      {"title", "CoverBench showcase"},
+      {"subtitle", "Every wall of " + options.walls + " with every planner (" + tool_text +
+                       ", default parameters). Every path is validated exactly; metric definitions: docs/metrics.md. "
+                       "Plan files and pictures are in plans/, the table also in summary.md and summary.csv."},
+      {"table", {{"title", "Every wall with every planner"}, {"header", header}, {"rows", rows}}},
+      {"gallery", {{{"title", "Walls"}, {"walls", walls_json}}}}};
+  outputs.add((out / "index.html").string(), renderShowcasePage(page.dump(1)));
   outputs.commit();
   std::cout << "summary table: " << (out / "summary.md").string() << "\nreport: " << (out / "index.html").string()
             << "\n";
@@ -323,7 +308,7 @@ int redrawCommand(const RedrawOptions& options) {
   char title[512];
   std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s", run.wall.name.c_str(), run.planner.c_str(),
                 run.tool.tool_width, run.tool.clearance, run.status.c_str());
-  writeFileAtomically(options.svg, picture(run.wall, run.tool, run.path, title));
+  writeFileAtomically(options.svg, pathPicture(run.wall, run.tool, run.path, title));
   std::cout << "run " << run.key << ": " << run.status << (run.reason.empty() ? "" : " (" + run.reason + ")") << ", "
             << run.path.waypoints.size() << " waypoints -> " << options.svg << "\n";
   return 0;

@@ -60,9 +60,11 @@ struct RunOptions {
   unsigned threads = 0;  ///< 0: the config's, else every core
   bool yes = false;      ///< confirms an experiment of more than kLargeExperimentRuns runs
   bool timing = false, retry_failed = false, reuse_across_builds = false;  ///< RunnerOptions
+  bool no_report = false;  ///< skip the report (results are stored either way)
   std::string command_line;
 };
-/// Runs an experiment config and writes its tables next to the results database.
+/// Runs an experiment config and writes its report (OUTPUT/report/index.html with tables and
+/// figures) next to the results database.
 int runCommand(const RunOptions& options);
 
 struct ReportOptions {
@@ -83,7 +85,16 @@ struct RedrawOptions {
 };
 /// Redraws a stored run (its wall, path and coverage layer) as an SVG picture.
 int redrawCommand(const RedrawOptions& options);
-/// Prints (or writes) the comparison tables of an experiment.
+/// html: writes the report folder (--out); md, csv, latex: prints (or writes) its tables.
 int reportCommand(const ReportOptions& options);
+/// Writes the HTML report of `options` into the folder options.out (all or nothing; an earlier
+/// report there is replaced, any other folder refused). Returns the page's path.
+std::string writeReport(const ReportOptions& options);
+/// Runs the analysis (python3 -m coverbench_report, reports/python) on a report data or
+/// showcase file, writing `formats` (comma-separated: html, md, csv, latex) into `folder`.
+void runAnalysis(const std::string& data, const std::string& folder, const std::string& formats);
+/// The showcase page (the report machinery's layout) for showcase data (format
+/// "coverbench-showcase"), as text; nothing is written.
+std::string renderShowcasePage(const std::string& data_json);
 
 }  // namespace coverbench::cli

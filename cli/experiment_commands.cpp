@@ -10,25 +10,11 @@
 #include "coverbench/limits.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
-#include "coverbench/tables.hpp"
 
 namespace coverbench::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// Writes the tables of the latest experiment in `db` as report.md, report.csv and report.tex.
-std::string writeTables(const std::string& database, const std::string& folder) {
-  ResultsDb db(database, ResultsDb::Mode::ReadOnly);
-  const ResultSet rs = db.load();
-  const fs::path out(folder);
-  OutputFiles files;
-  files.add((out / "report.md").string(), renderTables(rs, TableFormat::Markdown));
-  files.add((out / "report.csv").string(), renderTables(rs, TableFormat::Csv));
-  files.add((out / "report.tex").string(), renderTables(rs, TableFormat::Latex));
-  files.commit();
-  return (out / "report.md").string();
-}
 
 }  // namespace
 
@@ -75,7 +61,6 @@ int runCommand(const RunOptions& o) {
   options.reuse_across_builds = o.reuse_across_builds;
   options.command_line = o.command_line;
   const RunnerSummary s = runExperiment(config, options);
-  const std::string report = writeTables(s.database, config.output);
   std::printf("experiment %s: %zu walls, %zu runs (%zu executed, %zu already stored", config.name.c_str(), s.walls,
               s.total, s.executed, s.skipped);
   if (s.reused) std::printf(", %zu reused from other builds", s.reused);
@@ -86,7 +71,14 @@ int runCommand(const RunOptions& o) {
     std::printf("\noutcomes of the executed runs:");
     for (const auto& [status, n] : s.by_status) std::printf(" %s %zu;", status.c_str(), n);
   }
-  std::printf("\nresults: %s\ntables:  %s (also report.csv, report.tex)\n", s.database.c_str(), report.c_str());
+  std::printf("\nresults: %s\n", s.database.c_str());
+  std::fflush(stdout);
+  if (!o.no_report) {
+    ReportOptions report;
+    report.database = s.database;
+    report.out = (fs::path(config.output) / "report").string();
+    std::printf("report:  %s (tables: report.md, report.csv, report.tex)\n", writeReport(report).c_str());
+  }
   return 0;
 }
 
@@ -95,21 +87,6 @@ int runsCommand(const RunsOptions& o) {
   ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
   const ResultSet rs = db.load(o.experiment);
   std::cout << (o.list ? listRuns(rs) : renderRuns(rs, o.format == "json"));
-  return 0;
-}
-
-int reportCommand(const ReportOptions& o) {
-  const TableFormat format = parseTableFormat(o.format);
-  ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
-  ResultSet results = db.load(o.experiment);
-  if (!o.baseline.empty()) {
-    if (std::none_of(results.runs.begin(), results.runs.end(), [&](const ResultRow& r) { return r.config == o.baseline; }))
-      throw InputError("--baseline", "baseline", "'" + o.baseline + "' is not a planner configuration of this experiment");
-    results.baseline = o.baseline;
-  }
-  const std::string text = renderTables(results, format);
-  if (o.out.empty()) std::cout << text;
-  else writeFileAtomically(o.out, text);
   return 0;
 }
 

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "coverbench/metric_spec.hpp"
 #include "coverbench/wall.hpp"
 
 int main(int argc, char** argv) {
@@ -16,6 +17,9 @@ int main(int argc, char** argv) {
   int plan_exit = 0;
   app.add_subcommand("planners", "List the registered planners and their parameters")
       ->callback([] { coverbench::cli::listPlanners(std::cout); });
+
+  app.add_subcommand("metric-specs", "The metric registry as a Markdown table (unit, direction, tie band, ...)")
+      ->callback([] { std::cout << coverbench::metricSpecsMarkdown(); });
 
   coverbench::cli::PlanOptions plan;
   CLI::App* plan_cmd = app.add_subcommand("plan", "Plan one wall with one planner and write a plan file");
@@ -72,7 +76,7 @@ int main(int argc, char** argv) {
       ->callback([&] { plan_exit = coverbench::cli::datasetFamiliesCommand(); });
 
   coverbench::cli::RunOptions run;
-  CLI::App* run_cmd = app.add_subcommand("run", "Run an experiment config; results in SQLite, tables next to them");
+  CLI::App* run_cmd = app.add_subcommand("run", "Run an experiment config; results in SQLite, the report (OUTPUT/report/index.html) next to them");
   run_cmd->add_option("config", run.config, "experiment config (YAML)")->required();
   run_cmd->add_option("--threads", run.threads, "worker threads (default: the config's, else every core)");
   run_cmd->add_flag("--yes", run.yes, "confirm an experiment of more than 100000 runs");
@@ -80,14 +84,15 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--retry-failed", run.retry_failed, "run stored timeouts, memory limits, crashes and errors again");
   run_cmd->add_flag("--reuse-across-builds", run.reuse_across_builds,
                     "count stored runs of another planner version or code as done (know what you do)");
+  run_cmd->add_flag("--no-report", run.no_report, "store the runs only; `coverbench report` writes the report later");
   for (int i = 0; i < argc; ++i) run.command_line += (i ? " " : "") + std::string(argv[i]);
   run_cmd->callback([&] { plan_exit = coverbench::cli::runCommand(run); });
 
   coverbench::cli::ReportOptions report;
-  CLI::App* report_cmd = app.add_subcommand("report", "Comparison tables of an experiment's results");
+  CLI::App* report_cmd = app.add_subcommand("report", "An experiment's report: --format html writes a folder (page, figures, tables); md, csv, latex print its tables");
   report_cmd->add_option("database", report.database, "results.sqlite of an experiment")->required();
-  report_cmd->add_option("--format", report.format, "md, csv or latex")->capture_default_str();
-  report_cmd->add_option("--out", report.out, "file to write (default: standard output)");
+  report_cmd->add_option("--format", report.format, "html, md, csv or latex")->capture_default_str();
+  report_cmd->add_option("--out", report.out, "html: the report folder; otherwise the file to write (default: standard output)");
   report_cmd->add_option("--experiment", report.experiment, "experiment id in the database (default: the latest)");
   report_cmd->add_option("--baseline", report.baseline, "planner label to compare against (default: the config's)");
   report_cmd->callback([&] { plan_exit = coverbench::cli::reportCommand(report); });

@@ -1,16 +1,13 @@
 #!/usr/bin/env bash
 # The main job: build, run the default experiment (every registered planner on a few hundred
-# generated walls and the seeds' cases; about two and a half minutes on 2 cores) and write its tables, then
-# picture every canonical wall with every planner.
-#   results/default/report.md   comparison tables (also report.csv, report.tex)
-#   results/default/results.sqlite   every run: status, metrics, path
-#   results/showcase/index.html      pictures of the canonical walls
-# Running it again reuses the stored runs (no planner work) and rewrites the same tables.
+# generated walls and the seeds' cases; about two and a half minutes on 2 cores) and write its
+# report: rankings, paired statistics, plots, galleries and the reproducibility record.
+#   results/default/report/index.html   the report (open it in a browser; works from disk)
+#   results/default/report/report.md    its tables (also report.csv, report.tex for papers)
+#   results/default/results.sqlite      every run: status, metrics, path
+# Running it again reuses the stored runs (no planner work) and writes the same report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 ./build/coverbench run experiments/default.yaml
-out=results/showcase
-rm -rf "$out"
-./build/coverbench showcase --walls datasets/canonical --out "$out" > /dev/null
-echo "== tables: results/default/report.md   pictures: $out/index.html"
+echo "== open the report: results/default/report/index.html"

@@ -162,7 +162,7 @@ TEST(PathEncoding, RoundTripsExactly) {
   EXPECT_THROW(decodePath(encodePath(p).substr(0, 10)), std::runtime_error);
 }
 
-TEST_F(Experiments, SecondRunDoesNoWorkAndGivesIdenticalTablesAndAGrownConfigOnlyRunsWhatIsNew) {
+TEST_F(Experiments, SecondRunDoesNoWorkAndGivesIdenticalRunsAndAGrownConfigOnlyRunsWhatIsNew) {
   std::string small = kGood;
   small.replace(small.find("count: 4"), 8, "count: 2");
   RunnerOptions options;
@@ -170,14 +170,14 @@ TEST_F(Experiments, SecondRunDoesNoWorkAndGivesIdenticalTablesAndAGrownConfigOnl
   EXPECT_EQ(first.total, (9u + 2u) * 3u);
   EXPECT_EQ(first.executed, first.total);
   const std::string db = first.database;
-  const std::string tables = renderTables(ResultsDb(db).load(), TableFormat::Markdown);
-  const std::string csv = renderTables(ResultsDb(db).load(), TableFormat::Csv);
+  const std::string csv = renderRuns(ResultsDb(db).load(), false);
+  const std::string json = renderRuns(ResultsDb(db).load(), true);
 
   const RunnerSummary second = runExperiment(loadExperimentConfig(config(small)), options);
   EXPECT_EQ(second.executed, 0u);
   EXPECT_EQ(second.skipped, second.total);
-  EXPECT_EQ(renderTables(ResultsDb(db).load(), TableFormat::Markdown), tables);
-  EXPECT_EQ(renderTables(ResultsDb(db).load(), TableFormat::Csv), csv);
+  EXPECT_EQ(renderRuns(ResultsDb(db).load(), false), csv);
+  EXPECT_EQ(renderRuns(ResultsDb(db).load(), true), json);
 
   // Two more walls of the same family: walls 0 and 1 are the same, so only the new ones run (a
   // killed run resumes the same way: whatever is stored is skipped).
@@ -195,45 +195,6 @@ TEST_F(Experiments, SecondRunDoesNoWorkAndGivesIdenticalTablesAndAGrownConfigOnl
     // A partial run says how much reachable area it left, in numbers.
     if (r.status == "partial") EXPECT_GT(r.uncovered_reachable_m2, 0.0);
   }
-}
-
-TEST(Tables, QuantilesAndPairedCountsByHand) {
-  EXPECT_DOUBLE_EQ(quantile({1, 2, 3, 4}, 0.25), 1.75);
-  EXPECT_DOUBLE_EQ(quantile({1, 2, 3, 4}, 0.5), 2.5);
-  EXPECT_DOUBLE_EQ(quantile({5}, 0.75), 5.0);
-  ResultSet rs;
-  rs.experiment = "hand";
-  rs.config_hash = "0123456789abcdef";
-  rs.baseline = "a";
-  rs.planners = {"a", "b"};
-  rs.metric_order = {"coverage_reachable", "length_total"};
-  auto row = [](std::string planner, std::string wall, double cov, double len, std::string status = "ok") {
-    ResultRow r;
-    r.planner = planner;
-    r.dataset = "d";
-    r.wall = r.pairing = wall;
-    r.status = status;
-    r.valid = status == "ok";
-    r.metrics = {{"coverage_reachable", cov}, {"length_total", len}};
-    return r;
-  };
-  // b against a: w1 better coverage, shorter (win, win); w2 equal coverage, longer (tie, loss);
-  // w3 worse coverage, equal length (loss, tie); w4 b timed out (no pair).
-  rs.runs = {row("a", "w1", 0.90, 10), row("b", "w1", 0.95, 9),   row("a", "w2", 0.99, 10),
-             row("b", "w2", 0.99, 11), row("a", "w3", 0.99, 12),  row("b", "w3", 0.98, 12),
-             row("a", "w4", 0.99, 12), row("b", "w4", 0, 0, "timeout")};
-  const std::string md = renderTables(rs, TableFormat::Markdown);
-  EXPECT_NE(md.find("| b | d | 3 | 1/1/1 | 1/1/1 |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| b | 4 | 3 | 1 | - |"), std::string::npos) << "outcomes: 4 runs, 3 ok, 1 timeout\n" << md;
-  // Medians over valid runs: a's lengths 10, 10, 12, 12 -> 11 (IQR 2); b's 9, 11, 12 -> 11 (IQR 1.5).
-  EXPECT_NE(md.find("| length_total | 11 (2) | 11 (1.5) |"), std::string::npos) << md;
-  const std::string csv = renderTables(rs, TableFormat::Csv);
-  EXPECT_NE(csv.find("metrics,d,b,length_total,3,11,10,11.5,,,"), std::string::npos) << csv;
-  EXPECT_NE(csv.find("paired_vs_a,d,b,coverage_reachable,3,,,,1,1,1"), std::string::npos) << csv;
-  const std::string tex = renderTables(rs, TableFormat::Latex);
-  EXPECT_NE(tex.find("\\toprule"), std::string::npos);
-  EXPECT_NE(tex.find("length\\_total"), std::string::npos);
-  EXPECT_THROW(parseTableFormat("html"), InputError);
 }
 
 }  // namespace

@@ -252,7 +252,7 @@ TEST_F(Hostile, ReportsEscapeExperimentNamesAndLabels) {
                                    "name: \"<b>bold</b> | pipe\\nnewline & 50%\"\noutput: out\ndatasets:\n  - folder: walls\n"
                                    "    label: \"<img src=x> | 50% & x\\n end\"\nplanners: [zigzag, spiral]\n");
   ASSERT_EQ(run("run " + config).exit_code, 0);
-  const std::string md = slurp((dir_ / "out" / "report.md").string());
+  const std::string md = slurp((dir_ / "out" / "report" / "report.md").string());
   auto unescaped = [&](const std::string& markup) {  // markup not preceded by a backslash
     for (std::size_t at = md.find(markup); at != std::string::npos; at = md.find(markup, at + 1))
       if (at == 0 || md[at - 1] != '\\') return true;
@@ -260,7 +260,7 @@ TEST_F(Hostile, ReportsEscapeExperimentNamesAndLabels) {
   };
   EXPECT_FALSE(unescaped("<b>")) << md;
   EXPECT_FALSE(unescaped("<img")) << md;
-  EXPECT_NE(md.find("\\<img src=x\\> \\| 50% \\& x  end"), std::string::npos) << md;
+  EXPECT_NE(md.find("\\<img src=x\\> \\| 50% \\& x end"), std::string::npos) << md;
   // Every table row keeps its column count: no label broke a row.
   std::istringstream in(md);
   std::size_t columns = 0;
@@ -274,7 +274,7 @@ TEST_F(Hostile, ReportsEscapeExperimentNamesAndLabels) {
     if (columns == 0) columns = bars;
     EXPECT_EQ(bars, columns) << line;
   }
-  const std::string tex = slurp((dir_ / "out" / "report.tex").string());
+  const std::string tex = slurp((dir_ / "out" / "report" / "report.tex").string());
   EXPECT_EQ(tex.find("& 50%"), std::string::npos) << tex;
   EXPECT_NE(tex.find("50\\% \\& x"), std::string::npos) << tex;
   std::istringstream tin(tex);
@@ -282,7 +282,7 @@ TEST_F(Hostile, ReportsEscapeExperimentNamesAndLabels) {
     if (line.find("newline") != std::string::npos) {
       EXPECT_EQ(line[0], '%') << line;
     }
-  const std::string csv = slurp((dir_ / "out" / "report.csv").string());
+  const std::string csv = slurp((dir_ / "out" / "report" / "report.csv").string());
   EXPECT_NE(csv.find("\"<img src=x> | 50% & x\n end\""), std::string::npos) << csv;
 }
 
@@ -577,7 +577,7 @@ TEST_F(Hostile, TinyObstaclesInsideAreObstaclesAndFoldersAreNotFiles) {
 TEST_F(Hostile, TablesKeepMeasuredFiguresApartAndNeverCountThemAsWins) {
   const std::string config = write("c.yaml", std::string(kHead) + "planners: [zigzag, boustrophedon]\n");
   ASSERT_EQ(run("run " + config).exit_code, 0);
-  const std::string md = slurp((dir_ / "out" / "report.md").string());
+  const std::string md = slurp((dir_ / "out" / "report" / "report.md").string());
   const std::size_t measured = md.find("## Measured on this machine");
   ASSERT_NE(measured, std::string::npos) << md;
   EXPECT_EQ(md.substr(0, measured).find("plan_time_ms"), std::string::npos) << "a timing among the reproducible tables";
@@ -588,7 +588,7 @@ TEST_F(Hostile, TablesKeepMeasuredFiguresApartAndNeverCountThemAsWins) {
   fs::create_directories(dir_ / "again");
   fs::copy(config, dir_ / "again" / "c.yaml");
   ASSERT_EQ(run("run " + (dir_ / "again" / "c.yaml").string()).exit_code, 0);
-  const std::string md2 = slurp((dir_ / "again" / "out" / "report.md").string());
+  const std::string md2 = slurp((dir_ / "again" / "out" / "report" / "report.md").string());
   EXPECT_EQ(md2.substr(0, md2.find("## Measured on this machine")), md.substr(0, measured));
   // The planner's own sub-timings are stored apart from its statistics.
   sqlite3* db = nullptr;

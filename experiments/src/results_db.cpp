@@ -478,6 +478,73 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   return rs;
 }
 
+ExperimentRecord ResultsDb::record(std::optional<long long> experiment) {
+  ExperimentRecord r;
+  {
+    Statement s(db_,
+                std::string("SELECT id, name, COALESCE(config_path, ''), config_text, config_hash, baseline, command_line, "
+                            "git_revision, git_diff_sha256, compiler, build_type, build_flags, host, cpu, cores, os, "
+                            "memory_bytes, workers, started_at, COALESCE(finished_at, ''), runs_total, runs_executed, "
+                            "runs_skipped, runs_reused, COALESCE(rerun_reasons, '') FROM experiments ") +
+                    (experiment ? "WHERE id = ?" : "ORDER BY id DESC LIMIT 1"),
+                file_);
+    if (experiment) s.integer(1, *experiment);
+    if (!s.step())
+      throw InputError(file_, "experiments", experiment ? "has no experiment " + std::to_string(*experiment) : "is empty");
+    r.id = s.columnInt(0);
+    r.name = s.columnText(1);
+    r.config_path = s.columnText(2);
+    r.config_text = s.columnText(3);
+    r.config_hash = s.columnText(4);
+    r.baseline = s.columnText(5);
+    auto count = [&](int column) { return s.columnNull(column) ? std::string("-") : std::to_string(s.columnInt(column)); };
+    const std::string revision = s.columnText(7), diff = s.columnText(8);
+    r.facts = {{"command line", s.columnText(6)},
+               {"git revision", revision + (diff.empty() ? "" : " with uncommitted changes (diff sha256 " + diff + ")")},
+               {"compiler", s.columnText(9)},
+               {"build type", s.columnText(10)},
+               {"build flags", s.columnText(11)},
+               {"host", s.columnText(12)},
+               {"CPU", s.columnText(13)},
+               {"cores", std::to_string(s.columnInt(14))},
+               {"OS", s.columnText(15)},
+               {"memory", s.columnNull(16) ? "-" : toString(s.columnReal(16) / (1024.0 * 1024 * 1024)) + " GiB"},
+               {"worker processes", std::to_string(s.columnInt(17))},
+               {"started (UTC)", s.columnText(18)},
+               {"finished (UTC)", s.columnText(19).empty() ? "not finished" : s.columnText(19)},
+               {"runs", count(20) + " (" + count(21) + " executed, " + count(22) + " already stored, " + count(23) +
+                            " reused from other builds)"},
+               {"run again because", s.columnText(24).empty() ? "-" : s.columnText(24)}};
+  }
+  {
+    Statement s(db_,
+                "SELECT label, source, walls, sha256 FROM experiment_datasets WHERE experiment_id = ? ORDER BY position",
+                file_);
+    s.integer(1, r.id);
+    while (s.step()) r.datasets.push_back({s.columnText(0), s.columnText(1), s.columnText(3), s.columnInt(2)});
+  }
+  {
+    Statement s(db_,
+                "SELECT e.label, p.planner, p.params FROM experiment_planners e JOIN planner_configs p ON p.id = e.config_id "
+                "WHERE e.experiment_id = ? ORDER BY e.position",
+                file_);
+    s.integer(1, r.id);
+    while (s.step()) r.planners.push_back({s.columnText(0), s.columnText(1), s.columnText(2)});
+  }
+  {
+    Statement s(db_,
+                "SELECT w.hash, w.name, w.content FROM walls w JOIN experiment_walls e ON e.wall_hash = w.hash "
+                "WHERE e.experiment_id = ? ORDER BY w.hash",
+                file_);
+    s.integer(1, r.id);
+    while (s.step()) {
+      const Wall wall = parseWallJson(s.columnText(2), file_ + " (wall " + s.columnText(1) + ")");
+      r.walls.push_back({s.columnText(0), s.columnText(1), wall.obstacles.size(), std::fabs(signedArea(wall.boundary))});
+    }
+  }
+  return r;
+}
+
 std::optional<Path> ResultsDb::path(const std::string& run_key) {
   Statement s(db_, "SELECT data FROM paths WHERE run_key = ?", file_);
   s.text(1, run_key);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "coverbench/experiment.hpp"
+#include "coverbench/report_data.hpp"
 #include "coverbench/tables.hpp"
 
 struct sqlite3;
@@ -56,6 +57,9 @@ class ResultsDb {
 
   /// The runs of one experiment (default: the latest) as the tables see them.
   ResultSet load(std::optional<long long> experiment = std::nullopt);
+  /// The experiment's record (config, provenance, datasets, planner configurations, walls) for
+  /// reports; the same experiment as load().
+  ExperimentRecord record(std::optional<long long> experiment = std::nullopt);
   /// The stored path of a run.
   std::optional<Path> path(const std::string& run_key);
 

@@ -1,7 +1,6 @@
 #pragma once
-/// Comparison tables from experiment results: failures per planner, median and IQR of every
-/// metric per planner and dataset, and paired win/tie/loss counts against a baseline.
-/// Rendered as Markdown, CSV or LaTeX; the same results give the same bytes.
+/// Experiment results as reports read them: one row per run, and the exports of every run (CSV,
+/// JSON). The report's tables, statistics and figures are reports/python's (docs/report.md).
 #include <map>
 #include <string>
 #include <vector>
@@ -36,18 +35,6 @@ struct ResultSet {
   std::vector<std::string> metric_order;   ///< metric names, in the order tables list them
   std::vector<ResultRow> runs;
 };
-
-enum class TableFormat { Markdown, Csv, Latex };
-TableFormat parseTableFormat(const std::string& text);  ///< md, csv, latex; throws InputError
-
-/// A metric's direction for paired comparisons: +1 higher is better, -1 lower is better, 0 not
-/// compared.
-int metricDirection(const std::string& metric);
-
-/// Linear-interpolation quantile (type 7) of sorted values.
-double quantile(const std::vector<double>& sorted, double q);
-
-std::string renderTables(const ResultSet& results, TableFormat format);
 
 /// One row per run: key, dataset, wall, planner configuration, tool, status, valid, the uncovered
 /// reachable area and every metric as a column (what pandas or R load). `json`: an array of

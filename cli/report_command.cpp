@@ -1,0 +1,255 @@
+// `coverbench report` and the report at the end of `coverbench run`: the runs are read here, the
+// gallery drawn here, and the analysis (statistics, plots, pages, tables) is reports/python's,
+// run with Debian's python3 (matplotlib, scipy).
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "commands.hpp"
+#include "coverbench/files.hpp"
+#include "coverbench/report_data.hpp"
+#include "coverbench/results_db.hpp"
+#include "coverbench/svg.hpp"
+
+extern char** environ;
+
+namespace coverbench::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Marks a folder as a CoverBench report, so writing a report again may replace it.
+constexpr const char* kReportMarker = ".coverbench-report";
+/// Gallery pictures are shown about 400 pixels wide: 350 overlap strips over a wall's height are
+/// about one per pixel there, and keep a stress wall's picture near 2 MB instead of 18 MB.
+constexpr double kGalleryOverlapStrips = 350.0;
+/// The coverage layer of a path costs about 20 s at 80 000 waypoints (a stress wall's spiral);
+/// gallery pictures of longer paths than this leave it out and say so (`redraw` draws it).
+constexpr std::size_t kGalleryCoverageWaypoints = 20000;
+
+std::string envOr(const char* name, const std::string& fallback) {
+  const char* v = std::getenv(name);
+  return v && *v ? v : fallback;
+}
+
+/// A folder next to `target` that is removed unless released.
+class Staging {
+ public:
+  explicit Staging(const fs::path& target) {
+    const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+    path_ = parent / ("." + target.filename().string() + ".staging-" + std::to_string(::getpid()));
+    fs::remove_all(path_, ec);
+    if (!fs::create_directories(path_, ec) || ec)
+      throw InputError(target.string(), "--out", "cannot create a folder next to it: " + ec.message());
+  }
+  ~Staging() {
+    std::error_code ec;
+    if (!path_.empty()) fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+  /// Moves the staged folder to `target`, replacing an earlier report there.
+  void publish(const fs::path& target) {
+    std::error_code ec;
+    std::ofstream(path_ / kReportMarker) << "written by coverbench report\n";
+    fs::path old;
+    if (fs::exists(target)) {
+      old = target.parent_path() / ("." + target.filename().string() + ".old-" + std::to_string(::getpid()));
+      fs::rename(target, old, ec);
+      if (ec) throw InputError(target.string(), "--out", "cannot replace it: " + ec.message());
+    }
+    fs::rename(path_, target, ec);
+    if (ec) throw InputError(target.string(), "--out", "cannot write it: " + ec.message());
+    path_.clear();
+    if (!old.empty()) fs::remove_all(old, ec);
+  }
+
+ private:
+  fs::path path_;
+};
+
+/// Refuses to replace a folder that holds anything but an earlier report.
+void checkReportTarget(const fs::path& target) {
+  if (!fs::exists(target)) return;
+  if (!fs::is_directory(target)) throw InputError(target.string(), "--out", "exists and is not a folder");
+  if (fs::exists(target / kReportMarker) || fs::is_empty(target)) return;
+  throw InputError(target.string(), "--out", "is a folder that is not a CoverBench report: choose a new or empty folder");
+}
+
+/// Draws every gallery picture into `folder`/gallery, two at a time, and sets their file names.
+void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::path& folder) {
+  std::vector<GalleryPicture*> pictures;
+  std::vector<std::string> names;
+  for (GallerySection& s : gallery)
+    for (GalleryWall& w : s.walls)
+      for (GalleryPicture& p : w.pictures) {
+        pictures.push_back(&p);
+        names.push_back(s.title + "__" + w.wall_name + "__" + p.column);
+      }
+  const std::vector<std::string> stems = uniqueFileNames(names);
+  std::vector<ResultsDb::StoredRun> runs;
+  runs.reserve(pictures.size());
+  for (GalleryPicture* p : pictures) runs.push_back(db.storedRun(p->key));
+  fs::create_directories(folder / "gallery");
+  std::vector<std::string> svgs(pictures.size());
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto work = [&] {
+    for (std::size_t i; (i = next++) < runs.size();) {
+      try {
+        const ResultsDb::StoredRun& r = runs[i];
+        const std::string title = r.wall.name + " / " + pictures[i]->column + "  " + r.status;
+        const bool scorable = !r.path.waypoints.empty() && r.status != "metrics_error";
+        const bool layer = scorable && r.path.waypoints.size() <= kGalleryCoverageWaypoints;
+        if (scorable && !layer)
+          pictures[i]->note = std::to_string(r.path.waypoints.size()) + " waypoints: coverage layer and failed segments " +
+                              "left out (over " + std::to_string(kGalleryCoverageWaypoints) + "; `coverbench redraw` draws them)";
+        svgs[i] = pathPicture(r.wall, r.tool, r.path, title, layer, kGalleryOverlapStrips);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        failure = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  const unsigned n = std::max(1u, std::min(2u, std::thread::hardware_concurrency()));
+  for (unsigned t = 0; t < n; ++t) threads.emplace_back(work);
+  for (std::thread& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+  for (std::size_t i = 0; i < pictures.size(); ++i) {
+    pictures[i]->file = "gallery/" + stems[i] + ".svg";
+    std::ofstream out(folder / pictures[i]->file, std::ios::binary);
+    out << svgs[i];
+    if (!out) throw InputError((folder / pictures[i]->file).string(), "gallery", "cannot be written");
+  }
+}
+
+ResultSet loadResults(ResultsDb& db, const ReportOptions& o) {
+  ResultSet results = db.load(o.experiment);
+  if (!o.baseline.empty()) {
+    if (std::none_of(results.runs.begin(), results.runs.end(), [&](const ResultRow& r) { return r.config == o.baseline; }))
+      throw InputError("--baseline", "baseline", "'" + o.baseline + "' is not a planner configuration of this experiment");
+    results.baseline = o.baseline;
+  }
+  return results;
+}
+
+}  // namespace
+
+void runAnalysis(const std::string& data, const std::string& folder, const std::string& formats) {
+  const std::string python = envOr("COVERBENCH_PYTHON", "/usr/bin/python3");
+  const std::string pythonpath = envOr("COVERBENCH_REPORT_PYTHONPATH", COVERBENCH_REPORT_PYTHONPATH);
+  std::vector<std::string> env_text = {"PYTHONPATH=" + pythonpath, "MPLBACKEND=Agg", "PYTHONHASHSEED=0",
+                                       "MPLCONFIGDIR=" + folder + "/.matplotlib"};
+  std::vector<char*> env;
+  for (std::string& e : env_text) env.push_back(e.data());
+  for (char** e = environ; *e; ++e) {
+    const std::string v = *e;
+    if (v.rfind("PYTHONPATH=", 0) && v.rfind("MPLBACKEND=", 0) && v.rfind("PYTHONHASHSEED=", 0) &&
+        v.rfind("MPLCONFIGDIR=", 0))
+      env.push_back(*e);
+  }
+  env.push_back(nullptr);
+  std::vector<std::string> args = {python, "-m", "coverbench_report", data, "--out", folder, "--formats", formats};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int rc = ::posix_spawn(&pid, python.c_str(), &actions, nullptr, argv.data(), env.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0)
+    throw InputError(python, "report", "cannot start the analysis (" + std::string(std::strerror(rc)) +
+                                           "): it needs python3 with matplotlib and scipy (Debian: python3-matplotlib "
+                                           "python3-scipy; scripts/setup.sh installs them)");
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  std::error_code ec;
+  fs::remove_all(fs::path(folder) / ".matplotlib", ec);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error("the analysis (" + python + " -m coverbench_report, reports/python) failed with " +
+                             (WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
+                                                : "signal " + std::to_string(WTERMSIG(status))) +
+                             "; its message is above");
+}
+
+std::string writeReport(const ReportOptions& o) {
+  const fs::path target(o.out);
+  checkReportTarget(target);
+  ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
+  const ResultSet results = loadResults(db, o);
+  const ExperimentRecord record = db.record(o.experiment);
+  std::vector<std::string> datasets;
+  for (const auto& d : record.datasets)
+    if (std::find(datasets.begin(), datasets.end(), d.label) == datasets.end()) datasets.push_back(d.label);
+  std::vector<GallerySection> gallery = selectGallery(results, datasets);
+  Staging staging(target);
+  drawGallery(db, gallery, staging.path());
+  const fs::path data = staging.path() / "report_data.json";
+  {
+    std::ofstream out(data, std::ios::binary);
+    out << reportDataJson(results, record, gallery);
+    if (!out) throw InputError(data.string(), "report", "cannot be written");
+  }
+  runAnalysis(data.string(), staging.path().string(), "html,md,csv,latex");
+  staging.publish(target);
+  return (target / "index.html").string();
+}
+
+std::string renderShowcasePage(const std::string& data_json) {
+  Staging scratch(fs::temp_directory_path() / ("coverbench-showcase-" + std::to_string(::getpid())));
+  const fs::path data = scratch.path() / "showcase_data.json";
+  std::ofstream(data, std::ios::binary) << data_json;
+  runAnalysis(data.string(), scratch.path().string(), "html");
+  return readFile((scratch.path() / "index.html").string());
+}
+
+int reportCommand(const ReportOptions& o) {
+  static const std::map<std::string, std::pair<std::string, std::string>> formats = {
+      {"md", {"md", "report.md"}}, {"markdown", {"md", "report.md"}}, {"csv", {"csv", "report.csv"}},
+      {"latex", {"latex", "report.tex"}}, {"tex", {"latex", "report.tex"}}};
+  if (o.format == "html") {
+    if (o.out.empty()) throw InputError("--out", "out", "--format html writes a folder: give it with --out");
+    std::cout << "report: " << writeReport(o) << "\n";
+    return 0;
+  }
+  const auto f = formats.find(o.format);
+  if (f == formats.end()) throw InputError("--format", "format", "must be html, md, csv or latex, got '" + o.format + "'");
+  ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
+  const ResultSet results = loadResults(db, o);
+  const ExperimentRecord record = db.record(o.experiment);
+  // The tables alone: the analysis writes them into a scratch folder, read back here.
+  const fs::path scratch_target = fs::temp_directory_path() / ("coverbench-report-" + std::to_string(::getpid()));
+  Staging scratch(scratch_target);
+  const fs::path data = scratch.path() / "report_data.json";
+  {
+    std::ofstream out(data, std::ios::binary);
+    out << reportDataJson(results, record, {});
+  }
+  runAnalysis(data.string(), scratch.path().string(), f->second.first);
+  const std::string text = readFile((scratch.path() / f->second.second).string());
+  if (o.out.empty()) std::cout << text;
+  else writeFileAtomically(o.out, text);
+  return 0;
+}
+
+}  // namespace coverbench::cli

@@ -1,0 +1,63 @@
+#pragma once
+/// What a report needs beyond the runs: the experiment's record (config, provenance, datasets,
+/// planner configurations, walls), the gallery of pictured walls, and the report's data file
+/// (report_data.json) that the analysis (reports/python) reads. Measurement and storage are
+/// C++; statistics, plots and pages are the analysis' (docs/report.md).
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coverbench/tables.hpp"
+
+namespace coverbench {
+
+struct ExperimentRecord {
+  long long id = 0;
+  std::string name, config_path, config_text, config_hash, baseline;
+  /// Provenance and run counts as (label, value), in display order.
+  std::vector<std::pair<std::string, std::string>> facts;
+  struct Dataset {
+    std::string label, source, sha256;
+    long long walls = 0;
+  };
+  std::vector<Dataset> datasets;
+  struct Config {
+    std::string label, planner, params;  ///< params: "key=value, ..." (resolved, defaults included)
+  };
+  std::vector<Config> planners;
+  struct WallInfo {
+    std::string hash, name;
+    std::size_t obstacles = 0;
+    double area = 0.0;  ///< m2 inside the boundary (obstacles not subtracted)
+  };
+  std::vector<WallInfo> walls;  ///< in hash order
+};
+
+/// One picture of the gallery: the run of one planner column on one wall.
+struct GalleryPicture {
+  std::string column, key, status;
+  std::string file;  ///< relative to the report folder, set when drawn
+  std::string note;  ///< what the picture leaves out, if anything
+};
+/// One pictured wall: why it was chosen and every column's run on it.
+struct GalleryWall {
+  std::string wall, wall_name, why;
+  std::vector<GalleryPicture> pictures;
+};
+struct GallerySection {
+  std::string title;
+  std::vector<GalleryWall> walls;
+};
+
+/// The walls a report pictures, per dataset: the median wall (the baseline's length_ratio at the
+/// dataset's median) and each column's worst wall (a failure or invalid path first, then the
+/// lowest coverage of the reachable area, then the highest overlap), each wall once.
+std::vector<GallerySection> selectGallery(const ResultSet& results, const std::vector<std::string>& dataset_order);
+
+/// report_data.json: the record, the metric registry, every run (metrics as numbers, null when
+/// not measured or infinite) and the gallery. Same inputs, same bytes.
+std::string reportDataJson(const ResultSet& results, const ExperimentRecord& record,
+                           const std::vector<GallerySection>& gallery);
+
+}  // namespace coverbench

@@ -1,0 +1,206 @@
+"""The analysis of one experiment's report data: outcomes, summaries, rankings, paired
+comparisons, Friedman tests. Pure functions of report_data.json (no plotting, no formatting)."""
+import json
+import math
+from collections import OrderedDict
+
+import numpy as np
+
+from . import stats
+
+# The statuses in the order tables list them (with a path first); others follow alphabetically.
+STATUS_ORDER = ["ok", "partial", "invalid_output", "metrics_error", "no_reachable_area", "invalid_input",
+                "timeout", "memory_limit", "crash", "error"]
+COMPARED_KINDS = ("quality",)  # measured figures (one noisy sample per run) are never tested
+
+
+def load(path):
+    with open(path, encoding="utf-8") as f:
+        data = json.load(f)
+    if data.get("format") != "coverbench-report-data" or data.get("version") != 1:
+        raise ValueError(f"{path}: format: not CoverBench report data of version 1")
+    return data
+
+
+def usable(run):
+    """A run whose metrics are summarised: a valid path covering everything reachable (ok) or
+    knowingly leaving parts out (partial)."""
+    return run["status"] in ("ok", "partial") and run["valid"]
+
+
+def value(run, metric):
+    v = run["metrics"].get(metric)
+    return math.nan if v is None else float(v)
+
+
+class Analysis:
+    """Everything the report shows, computed once."""
+
+    def __init__(self, data):
+        self.data = data
+        self.experiment = data["experiment"]
+        self.specs = OrderedDict((m["name"], m) for m in data["metrics"])
+        self.runs = data["runs"]
+        self.columns = list(self.experiment["columns"])
+        seen = []
+        for d in self.experiment["datasets"]:
+            if d["label"] not in seen:
+                seen.append(d["label"])
+        for r in self.runs:
+            if r["dataset"] not in seen:
+                seen.append(r["dataset"])
+        self.datasets = [d for d in seen if any(r["dataset"] == d for r in self.runs)]
+        self.baseline = self.experiment["baseline"]
+        self.by_column = {c: [r for r in self.runs if r["column"] == c] for c in self.columns}
+        # Columns grouped by tool: only runs at the same tool are ever compared or ranked together.
+        self.tools = []
+        self.tool_of = {}
+        for c in self.columns:
+            rs = self.by_column[c]
+            t = (rs[0]["tool_width"], rs[0]["clearance"]) if rs else (math.nan, math.nan)
+            self.tool_of[c] = t
+            if t not in self.tools:
+                self.tools.append(t)
+        self.config_of = {c: (self.by_column[c][0]["config"] if self.by_column[c] else c) for c in self.columns}
+        self.headline = [m for m, s in self.specs.items() if s["headline"]]
+        self.headline_quality = [m for m in self.headline if self.specs[m]["kind"] != "measured"]
+        self.headline_measured = [m for m in self.headline if self.specs[m]["kind"] == "measured"]
+        self.compared = [m for m, s in self.specs.items() if s["better"] != 0 and s["kind"] in COMPARED_KINDS]
+        self.appendix = [m for m in self.specs if m not in self.headline and m != "valid"]
+        self._index = {}
+        for r in self.runs:
+            self._index[(r["column"], r["pairing"])] = r
+
+    # --- groups -------------------------------------------------------------------------------
+    def tool_columns(self, tool):
+        return [c for c in self.columns if self.tool_of[c] == tool]
+
+    def baseline_column(self, tool):
+        for c in self.tool_columns(tool):
+            if self.config_of[c] == self.baseline:
+                return c
+        return None
+
+    def runs_of(self, column, dataset):
+        return [r for r in self.by_column[column] if r["dataset"] == dataset]
+
+    def values(self, column, dataset, metric):
+        return [v for v in (value(r, metric) for r in self.runs_of(column, dataset) if usable(r)) if math.isfinite(v)]
+
+    # --- outcomes -----------------------------------------------------------------------------
+    def statuses(self):
+        present = {r["status"] for r in self.runs}
+        return [s for s in STATUS_ORDER if s == "ok" or s in present] + sorted(present - set(STATUS_ORDER))
+
+    def outcomes(self, column, dataset=None):
+        rs = [r for r in self.by_column[column] if dataset is None or r["dataset"] == dataset]
+        counts = OrderedDict((s, 0) for s in self.statuses())
+        for r in rs:
+            counts[r["status"]] += 1
+        ok = sum(1 for r in rs if r["status"] == "ok" and r["valid"])
+        low, high = stats.wilson(ok, len(rs))
+        uncovered = [r["uncovered_reachable_m2"] for r in rs
+                     if r["status"] == "partial" and r["uncovered_reachable_m2"] is not None]
+        return {"runs": len(rs), "counts": counts, "ok": ok, "rate": ok / len(rs) if rs else math.nan,
+                "low": low, "high": high,
+                "partial_uncovered_median": float(np.median(uncovered)) if uncovered else math.nan}
+
+    # --- summaries ----------------------------------------------------------------------------
+    def summary(self, column, dataset, metric):
+        v = self.values(column, dataset, metric)
+        if not v:
+            return {"n": 0, "median": math.nan, "q1": math.nan, "q3": math.nan}
+        q1, med, q3 = np.percentile(v, [25, 50, 75])
+        return {"n": len(v), "median": float(med), "q1": float(q1), "q3": float(q3)}
+
+    # --- paired comparisons -------------------------------------------------------------------
+    def pairs(self, column, other, dataset, metric):
+        """Values of `column` and `other` on the walls where both have a usable run with a value."""
+        a, b = [], []
+        for r in self.runs_of(column, dataset):
+            o = self._index.get((other, r["pairing"]))
+            if o is None or not usable(r) or not usable(o):
+                continue
+            x, y = value(r, metric), value(o, metric)
+            if math.isfinite(x) and math.isfinite(y):
+                a.append(x)
+                b.append(y)
+        return a, b
+
+    def paired_table(self, dataset, metrics):
+        """Every column against its tool's baseline, per metric; Holm across the whole table."""
+        rows = []
+        for tool in self.tools:
+            base = self.baseline_column(tool)
+            if base is None:
+                continue
+            for c in self.tool_columns(tool):
+                if c == base:
+                    continue
+                for m in metrics:
+                    a, b = self.pairs(c, base, dataset, m)
+                    res = stats.paired(self.specs[m], a, b)
+                    res.update({"column": c, "baseline": base, "metric": m})
+                    rows.append(res)
+        for row, adj in zip(rows, stats.holm([r["p"] if r["pairs"] else math.nan for r in rows])):
+            row["p_holm"] = adj
+        return rows
+
+    # --- rankings -----------------------------------------------------------------------------
+    def ranking(self, dataset, tool, metric):
+        """Columns of one tool ordered by median in the metric's direction; the leader is marked
+        best only if Holm-adjusted Wilcoxon tests against every other column say so (never for
+        measured figures)."""
+        spec = self.specs[metric]
+        cols = self.tool_columns(tool)
+        entries = [dict(column=c, **self.summary(c, dataset, metric)) for c in cols]
+        key = (lambda e: (math.isnan(e["median"]), -spec["better"] * (0 if math.isnan(e["median"]) else e["median"])))
+        ordered = sorted(entries, key=key)
+        for i, e in enumerate(ordered):
+            e["rank"] = i + 1 if not math.isnan(e["median"]) else None
+            e["best"] = False
+        if len(ordered) >= 2 and not math.isnan(ordered[0]["median"]) and metric in self.compared:
+            leader = ordered[0]["column"]
+            tests = [stats.paired(spec, *self.pairs(leader, e["column"], dataset, metric)) for e in ordered[1:]]
+            adj = stats.holm([t["p"] if t["pairs"] else math.nan for t in tests])
+            ordered[0]["best"] = all(t["pairs"] > 0 and p < stats.ALPHA and t["wins"] > t["losses"]
+                                     for t, p in zip(tests, adj))
+        return ordered
+
+    # --- Friedman -----------------------------------------------------------------------------
+    def friedman(self, dataset, tool, metric):
+        """Friedman test over the walls where every column of the tool has a usable value."""
+        cols = self.tool_columns(tool)
+        if len(cols) < 3 or metric not in self.compared:
+            return None
+        pairings = sorted({r["pairing"] for c in cols for r in self.runs_of(c, dataset)})
+        table = []
+        for p in pairings:
+            row = []
+            for c in cols:
+                r = self._index.get((c, p))
+                row.append(value(r, metric) if r is not None and usable(r) else math.nan)
+            if all(math.isfinite(v) for v in row):
+                table.append(row)
+        if len(table) < 2:
+            return None
+        res = stats.friedman(self.specs[metric], table)
+        res["columns"] = cols
+        return res
+
+    # --- costs for performance profiles -------------------------------------------------------
+    def costs(self, dataset, tool, metric):
+        """Problems x columns; inf where a column has no usable run. Zero costs (overlap) are
+        shifted by the metric's absolute tie band so that ratios exist."""
+        cols = self.tool_columns(tool)
+        shift = self.specs[metric]["tie_absolute"] if metric == "overlap" else 0.0
+        pairings = sorted({r["pairing"] for c in cols for r in self.runs_of(c, dataset)})
+        table = []
+        for p in pairings:
+            row = []
+            for c in cols:
+                r = self._index.get((c, p))
+                v = value(r, metric) if r is not None and usable(r) else math.nan
+                row.append(v + shift if math.isfinite(v) else math.inf)
+            table.append(row)
+        return cols, np.array(table, dtype=float).reshape(len(table), len(cols)), shift

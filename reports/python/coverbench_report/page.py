@@ -1,0 +1,62 @@
+"""The one HTML page generator: experiment reports and the showcase share its layout, table of
+contents, tables and side-by-side galleries. Everything from data is escaped."""
+import html
+
+STYLE = """
+body{font-family:system-ui,sans-serif;margin:0;color:#222;background:#fff}
+header{padding:1em 2em;background:#f4f1ea;border-bottom:1px solid #ddd}
+nav{position:sticky;top:0;background:#fff;border-bottom:1px solid #ddd;padding:.4em 2em;z-index:2;font-size:14px}
+nav a{margin-right:1.2em}
+main{padding:0 2em 3em}
+h2{border-bottom:2px solid #ccc;padding-top:.6em}
+table{border-collapse:collapse;font-size:13px;margin:.5em 0}
+caption{text-align:left;font-weight:600;padding:.3em 0}
+th,td{border:1px solid #ddd;padding:2px 7px;text-align:right;white-space:nowrap}
+th[scope=row],td:first-child{text-align:left}
+thead th{background:#f6f6f6}
+.table-wrap{overflow-x:auto}
+.note{font-size:12px;color:#555;max-width:110ch}
+img.figure{max-width:100%;border:1px solid #eee;margin:.4em 0}
+.gallery{display:grid;grid-template-columns:repeat(auto-fill,minmax(380px,1fr));gap:10px}
+.gallery figure{margin:0;border:1px solid #ddd;padding:4px;background:#fafafa}
+.gallery img{width:100%;height:auto}
+.gallery figcaption{font-size:12px}
+.status-bad{color:#b00020;font-weight:600}
+pre{background:#f6f6f6;padding:.6em;overflow-x:auto;font-size:12px}
+"""
+
+
+def esc(text):
+    return html.escape(str(text), quote=True)
+
+
+def figure(src, alt):
+    return f'<p><a href="{esc(src)}"><img class="figure" src="{esc(src)}" alt="{esc(alt)}"></a></p>'
+
+
+def gallery_html(section):
+    """Walls of one gallery section, each with every planner's picture side by side."""
+    out = []
+    for wall in section["walls"]:
+        out.append(f"<h4>{esc(wall['wall_name'])} <small>({esc(wall['why'])})</small></h4>")
+        out.append('<div class="gallery">')
+        for p in wall["pictures"]:
+            bad = p["status"] not in ("ok",)
+            out.append(f'<figure><a href="{esc(p["file"])}"><img src="{esc(p["file"])}" '
+                       f'alt="{esc(wall["wall_name"] + " / " + p["column"])}"></a>'
+                       f'<figcaption>{esc(p["column"])}: <span class="{"status-bad" if bad else ""}">'
+                       f'{esc(p["status"])}</span>'
+                       + (f'<br><small>{esc(p["note"])}</small>' if p.get("note") else "") + "</figcaption></figure>")
+        out.append("</div>")
+    return "\n".join(out)
+
+
+def page(title, subtitle_html, sections):
+    """sections: (anchor, heading, body html) in order; the table of contents lists them."""
+    nav = " ".join(f'<a href="#{esc(a)}">{esc(h)}</a>' for a, h, _ in sections)
+    body = "\n".join(f'<section id="{esc(a)}"><h2>{esc(h)}</h2>\n{b}\n</section>' for a, h, b in sections)
+    return (f'<!doctype html>\n<html lang="en"><head><meta charset="utf-8">'
+            f'<meta name="viewport" content="width=device-width, initial-scale=1">'
+            f"<title>{esc(title)}</title><style>{STYLE}</style></head><body>\n"
+            f"<header><h1>{esc(title)}</h1>{subtitle_html}</header>\n<nav>{nav}</nav>\n<main>\n{body}\n</main>\n"
+            f"</body></html>\n")

@@ -1,0 +1,325 @@
+"""The report's figures, drawn with matplotlib (SVG, deterministic: fixed hash salt, no date)."""
+import math
+import re
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from . import analysis as A  # noqa: E402
+from . import stats  # noqa: E402
+from .tables import is_percent, number, unit_label  # noqa: E402
+
+plt.rcParams.update({"svg.hashsalt": "coverbench", "svg.fonttype": "path", "font.size": 9,
+                     "axes.titlesize": 9, "axes.spines.top": False, "axes.spines.right": False,
+                     "figure.dpi": 100})
+PROFILE_METRICS = ["length_total", "overlap", "duration_s", "plan_time_ms"]
+PARAMETER_METRICS = ["coverage_reachable", "overlap", "length_ratio", "plan_time_ms"]
+
+
+def save(fig, path):
+    fig.savefig(path, format="svg", metadata={"Date": None, "Creator": None})
+    plt.close(fig)
+
+
+def scaled(spec, values):
+    v = np.asarray(values, dtype=float)
+    if is_percent(spec):
+        return 100 * v
+    if spec["unit"] == "B":
+        return v / 1048576
+    return v
+
+
+def axis_label(spec):
+    u = unit_label(spec)
+    return spec["name"] + (f" ({u})" if u else "")
+
+
+def short(label, width=22):
+    return label if len(label) <= width else label[: width - 1] + "…"
+
+
+def boxes(a, dataset, tool, path):
+    """Box plots of every headline metric, one panel each, one box per planner configuration."""
+    cols = a.tool_columns(tool)
+    n = len(a.headline)
+    ncol = 4
+    nrow = math.ceil(n / ncol)
+    fig, axes = plt.subplots(nrow, ncol, figsize=(12, 2.9 * nrow), squeeze=False)
+    for ax, m in zip(axes.flat, a.headline):
+        spec = a.specs[m]
+        data = [scaled(spec, a.values(c, dataset, m)) for c in cols]
+        shown = [d if len(d) else np.array([np.nan]) for d in data]
+        ax.boxplot(shown, vert=True, showfliers=True, flierprops={"markersize": 2})
+        ax.set_xticks(range(1, len(cols) + 1), [short(c, 14) for c in cols], rotation=35, ha="right")
+        ax.set_title(axis_label(spec) + (" ↑" if spec["better"] > 0 else " ↓"))
+        if m in ("plan_time_ms", "peak_memory_bytes") and all(len(d) and np.all(d > 0) for d in data):
+            ax.set_yscale("log")
+    for ax in list(axes.flat)[n:]:
+        ax.axis("off")
+    fig.suptitle(f"{dataset}: headline metrics over valid runs (↑ higher is better, ↓ lower is better)")
+    fig.tight_layout()
+    save(fig, path)
+
+
+def profiles(a, dataset, tool, path):
+    """Dolan-More performance profiles; a failure (no valid path) counts as infinitely worse."""
+    metrics = [m for m in PROFILE_METRICS if m in a.specs]
+    fig, axes = plt.subplots(1, len(metrics), figsize=(12, 3.1), squeeze=False)
+    for ax, m in zip(axes.flat, metrics):
+        cols, costs, shift = a.costs(dataset, tool, m)
+        if costs.size == 0:
+            ax.axis("off")
+            continue
+        _, ratio = stats.performance_profile(costs, [1.0])
+        finite = ratio[np.isfinite(ratio)]
+        top = max(2.0, float(finite.max()) * 1.05) if finite.size else 2.0
+        taus = np.unique(np.concatenate([[1.0], np.sort(finite), [top]]))
+        rho, _ = stats.performance_profile(costs, taus)
+        for j, c in enumerate(cols):
+            ax.step(taus, rho[j], where="post", label=short(c))
+        ax.set_xscale("log", base=2)
+        ax.set_ylim(0, 1.02)
+        ax.set_xlabel("τ (within τ × best)")
+        ax.set_title(m + (f" (+{number(shift)} to all)" if shift else ""))
+    axes[0, 0].set_ylabel("share of walls")
+    axes[0, 0].legend(fontsize=7, loc="lower right")
+    fig.suptitle(f"{dataset}: performance profiles (Dolan-Moré); a failure never reaches any τ")
+    fig.tight_layout()
+    save(fig, path)
+
+
+def pareto(a, dataset, tool, path):
+    """Coverage of the reachable area against length ratio: every valid run faint, each planner
+    configuration's median bold, and the Pareto front of the medians (and of each planner's
+    configurations when it has several)."""
+    cols = a.tool_columns(tool)
+    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    medians = []
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for j, c in enumerate(cols):
+        pts = [(A.value(r, "length_ratio"), A.value(r, "coverage_reachable")) for r in a.runs_of(c, dataset) if A.usable(r)]
+        pts = [(x, 100 * y) for x, y in pts if math.isfinite(x) and math.isfinite(y)]
+        color = colors[j % len(colors)]
+        if pts:
+            xs, ys = zip(*pts)
+            ax.scatter(xs, ys, s=6, alpha=0.25, color=color)
+            mx, my = float(np.median(xs)), float(np.median(ys))
+            ax.scatter([mx], [my], s=50, color=color, edgecolor="black", label=short(c), zorder=3)
+            medians.append((mx, my, a.config_of[c]))
+
+    def front(points):
+        best, out = -math.inf, []
+        for x, y, _ in sorted(points, key=lambda p: (p[0], -p[1])):
+            if y > best:
+                out.append((x, y))
+                best = y
+        return out
+
+    f = front(medians)
+    if len(f) >= 1:
+        ax.step([p[0] for p in f], [p[1] for p in f], where="post", color="black", lw=1, ls="--", label="Pareto front")
+    planners = {}
+    for x, y, cfg in medians:
+        planners.setdefault(re.sub(r"\(.*", "", cfg), []).append((x, y, cfg))
+    for name, pts in planners.items():
+        if len(pts) > 1:
+            pf = front(pts)
+            ax.plot([p[0] for p in pf], [p[1] for p in pf], lw=0.8, color="grey")
+    ax.set_xlabel("length_ratio (lower is better)")
+    ax.set_ylabel("coverage_reachable (%), higher is better")
+    ax.set_title(f"{dataset}: coverage against length")
+    ax.legend(fontsize=7, loc="lower right")
+    fig.tight_layout()
+    save(fig, path)
+
+
+def has_cd_diagram(a, dataset, tool):
+    return any(a.friedman(dataset, tool, m) is not None for m in a.headline_quality)
+
+
+def cd_diagram(a, dataset, tool, path):
+    """Critical-difference diagrams (Demsar 2006) of the headline metrics; returns False when no
+    Friedman test applies (fewer than 3 planners or 2 walls)."""
+    results = [(m, a.friedman(dataset, tool, m)) for m in a.headline_quality]
+    results = [(m, f) for m, f in results if f is not None]
+    if not results:
+        return False
+    fig, axes = plt.subplots(len(results), 1, figsize=(9, 1.35 * len(results)), squeeze=False)
+    for ax, (m, f) in zip(axes.flat, results):
+        k = f["k"]
+        order = sorted(zip(f["ranks"], f["columns"]))
+        ax.set_xlim(0.5, k + 0.5)
+        ax.set_ylim(-1.2, 1.0)
+        ax.hlines(0.6, 1, k, color="black", lw=1)
+        for r in range(1, k + 1):
+            ax.vlines(r, 0.55, 0.65, color="black", lw=1)
+            ax.text(r, 0.75, str(r), ha="center", fontsize=7)
+        for i, (rank, c) in enumerate(order):
+            ax.plot([rank], [0.6], "o", ms=4, color="black")
+            y = -0.25 - 0.28 * (i % 3)
+            ax.plot([rank, rank], [0.6, y + 0.08], color="grey", lw=0.6)
+            ax.text(rank, y, short(c, 18), ha="center", va="top", fontsize=7)
+        # Cliques: maximal runs of planners within one CD of each other get a bar.
+        cd = f["cd"]
+        ranks = [r for r, _ in order]
+        bars = []
+        for i in range(k):
+            j = i
+            while j + 1 < k and ranks[j + 1] - ranks[i] <= cd:
+                j += 1
+            if j > i and not any(s <= i and j <= e for s, e in bars):
+                bars.append((i, j))
+        for n, (i, j) in enumerate(bars):
+            ax.hlines(0.38 - 0.1 * n, ranks[i] - 0.05, ranks[j] + 0.05, color="tab:red", lw=2.5)
+        ax.hlines(0.95, 1, 1 + cd, color="tab:blue", lw=2)
+        ax.text(1 + cd / 2, 1.0, f"CD = {cd:.2f}", ha="center", fontsize=7, color="tab:blue")
+        ax.set_title(f"{m}: Friedman p = {f['p']:.2g} over {f['blocks']} walls", loc="left", fontsize=8)
+        ax.axis("off")
+    fig.suptitle(f"{dataset}: average ranks (1 = best); red bars join planners not separable by Nemenyi")
+    fig.tight_layout()
+    save(fig, path)
+    return True
+
+
+def scaling(a, tool, path):
+    """Plan time against obstacle count and wall area, log-log, with fitted exponents (all
+    datasets' walls together: scaling is about size, whatever the family)."""
+    cols = a.tool_columns(tool)
+    walls = a.data["walls"]
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
+    fits = []
+    for ax, feature, label in ((axes[0], "obstacles", "obstacles on the wall"), (axes[1], "area", "wall area (m²)")):
+        for c in cols:
+            xs, ys = [], []
+            for r in a.by_column[c]:
+                if not A.usable(r):
+                    continue
+                x = walls.get(r["wall"], {}).get(feature)
+                y = A.value(r, "plan_time_ms")
+                if x and x > 0 and math.isfinite(y) and y > 0:
+                    xs.append(float(x))
+                    ys.append(y)
+            if not xs:
+                continue
+            fit = stats.power_law(xs, ys)
+            lab = short(c)
+            if fit:
+                lab += f": t ∝ x^{fit['exponent']:.2f} ± {fit['stderr']:.2f}"
+                fits.append((c, feature, fit))
+            sc = ax.scatter(xs, ys, s=6, alpha=0.35, label=lab)
+            if fit:
+                gx = np.logspace(np.log10(min(xs)), np.log10(max(xs)), 20)
+                ax.plot(gx, 10 ** (fit["intercept"] + fit["exponent"] * np.log10(gx)), color=sc.get_facecolor()[0][:3])
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(label + ("; walls without obstacles left out" if feature == "obstacles" else ""))
+        ax.set_ylabel("plan time (ms)")
+        ax.legend(fontsize=7, loc="upper left")
+    fig.suptitle("Plan time scaling (least-squares fit on log-log axes, ± standard error)")
+    fig.tight_layout()
+    save(fig, path)
+    return fits
+
+
+def parse_params(text):
+    out = {}
+    for part in text.split(", "):
+        if "=" in part:
+            k, v = part.split("=", 1)
+            out[k] = v
+    return out
+
+
+def swept_parameters(a):
+    """(planner, parameter, [(value, config label)]) for every numeric parameter that takes
+    several values among one planner's configurations, plus the tool width when it does."""
+    sweeps = []
+    by_planner = {}
+    for p in a.experiment["planners"]:
+        by_planner.setdefault(p["planner"], []).append((parse_params(p["params"]), p["label"]))
+    for planner, configs in by_planner.items():
+        if len(configs) < 2:
+            continue
+        keys = sorted({k for params, _ in configs for k in params})
+        for k in keys:
+            vals = {params.get(k) for params, _ in configs}
+            if len(vals) < 2:
+                continue
+            try:
+                points = sorted((float(params[k]), label) for params, label in configs if k in params)
+            except ValueError:
+                continue
+            sweeps.append((planner, k, points))
+    return sweeps
+
+
+def parameter_plot(a, planner, param, points, path):
+    """Headline metrics against one swept parameter: median and interquartile range per dataset,
+    every other parameter of the configurations as they are (their labels say which)."""
+    metrics = [m for m in PARAMETER_METRICS if m in a.specs]
+    fig, axes = plt.subplots(1, len(metrics), figsize=(12, 3.1), squeeze=False)
+    for ax, m in zip(axes.flat, metrics):
+        spec = a.specs[m]
+        for d in a.datasets:
+            xs, med, lo, hi = [], [], [], []
+            for x, label in points:
+                for c in a.columns:
+                    if a.config_of[c] != label:
+                        continue
+                    v = scaled(spec, a.values(c, d, m))
+                    if len(v):
+                        q1, q2, q3 = np.percentile(v, [25, 50, 75])
+                        xs.append(x)
+                        med.append(q2)
+                        lo.append(q2 - q1)
+                        hi.append(q3 - q2)
+            if xs:
+                ax.errorbar(xs, med, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=short(d, 16))
+        ax.set_xlabel(param)
+        ax.set_title(axis_label(spec))
+    axes[0, 0].legend(fontsize=7)
+    fig.suptitle(f"{planner}: metrics against {param} (median and interquartile range per dataset)")
+    fig.tight_layout()
+    save(fig, path)
+
+
+def tool_plot(a, path):
+    """Headline metrics against the tool width, one line per planner configuration and dataset."""
+    widths = sorted({t[0] for t in a.tools})
+    metrics = [m for m in PARAMETER_METRICS if m in a.specs]
+    fig, axes = plt.subplots(1, len(metrics), figsize=(12, 3.1), squeeze=False)
+    configs = []
+    for c in a.columns:
+        if a.config_of[c] not in configs:
+            configs.append(a.config_of[c])
+    for ax, m in zip(axes.flat, metrics):
+        spec = a.specs[m]
+        for cfg in configs:
+            for d in a.datasets:
+                xs, med, lo, hi = [], [], [], []
+                for c in a.columns:
+                    if a.config_of[c] != cfg:
+                        continue
+                    v = scaled(spec, a.values(c, d, m))
+                    if len(v):
+                        q1, q2, q3 = np.percentile(v, [25, 50, 75])
+                        xs.append(a.tool_of[c][0])
+                        med.append(q2)
+                        lo.append(q2 - q1)
+                        hi.append(q3 - q2)
+                if len(xs) > 1:
+                    order = np.argsort(xs)
+                    ax.errorbar(np.array(xs)[order], np.array(med)[order],
+                                yerr=[np.array(lo)[order], np.array(hi)[order]], marker="o", ms=3, capsize=2,
+                                label=short(f"{cfg} / {d}", 26))
+        ax.set_xlabel("tool width s (m)")
+        ax.set_xticks(widths)
+        ax.set_title(axis_label(spec))
+    axes[0, 0].legend(fontsize=6)
+    fig.suptitle("Metrics against the tool width (median and interquartile range)")
+    fig.tight_layout()
+    save(fig, path)

@@ -1,0 +1,180 @@
+"""An experiment's report: index.html with its figures, and the same tables as Markdown, CSV and
+LaTeX for papers."""
+import multiprocessing
+import os
+import shlex
+
+from . import plots
+from . import tables as T
+from .analysis import Analysis
+from .page import esc, figure, gallery_html, page
+
+
+def tool_suffix(a, i):
+    return "" if len(a.tools) == 1 else f"-t{i + 1}"
+
+
+def write(path, text):
+    with open(path, "w", encoding="utf-8", newline="\n") as f:
+        f.write(text)
+
+
+def preamble(a, fmt):
+    e = a.experiment
+    runs = len(a.runs)
+    line = (f"Experiment {e['name']}: {runs} runs, {len(a.datasets)} datasets, {len(a.columns)} planner "
+            f"configurations, baseline {e['baseline']}, config sha256 {e['config_hash'][:12]}.")
+    if fmt == "md":
+        return f"# {T._md('Experiment ' + e['name'])}\n\n{T._md(line)}\n\n"
+    if fmt == "latex":
+        return f"% {T.latex_escape(line)} Needs \\usepackage{{booktabs}}.\n\n"
+    return ""
+
+
+def write_tables(a, folder, formats):
+    tables = T.paper_tables(a)
+    names = {"md": "report.md", "csv": "report.csv", "latex": "report.tex"}
+    for fmt in formats:
+        write(os.path.join(folder, names[fmt]), T.render(tables, fmt, preamble(a, fmt)))
+
+
+_ANALYSIS = None  # shared with the figure workers (forked after it is set)
+
+
+def _draw(job):
+    name, args = job
+    return getattr(plots, name)(_ANALYSIS, *args)
+
+
+def draw_all(a, jobs):
+    """Draws the figures on every core (matplotlib is single-threaded; processes are forked)."""
+    global _ANALYSIS
+    _ANALYSIS = a
+    workers = min(len(jobs), os.cpu_count() or 1)
+    if workers <= 1:
+        return [_draw(j) for j in jobs]
+    with multiprocessing.get_context("fork").Pool(workers) as pool:
+        return pool.map(_draw, jobs, chunksize=1)
+
+
+def build(data, folder, formats=("html", "md", "csv", "latex")):
+    a = Analysis(data)
+    e = a.experiment
+    write_tables(a, folder, [f for f in formats if f != "html"])
+    if "html" not in formats:
+        return None
+    figs = os.path.join(folder, "figures")
+    os.makedirs(figs, exist_ok=True)
+
+    def fig(name):
+        return os.path.join(figs, name), "figures/" + name
+
+    headline, paired, plots_html, appendix, jobs = [], [], [], [], []
+    for i, d in enumerate(a.datasets):
+        for ti, tool in enumerate(a.tools):
+            stem = f"d{i + 1:02d}{tool_suffix(a, ti)}"
+            label = d + T.tool_label(a, tool)
+            headline.append(f"<h3>{esc(label)}</h3>")
+            headline.append(T.to_html(T.headline_table(a, d, tool)))
+            if a.headline_measured:
+                headline.append(T.to_html(T.headline_table(a, d, tool, measured=True)))
+            path, src = fig(stem + "-boxes.svg")
+            jobs.append(("boxes", (d, tool, path)))
+            headline.append(figure(src, f"{label}: box plots of the headline metrics"))
+            plots_html.append(f"<h3>{esc(label)}</h3>")
+            path, src = fig(stem + "-profiles.svg")
+            jobs.append(("profiles", (d, tool, path)))
+            plots_html.append(figure(src, f"{label}: performance profiles"))
+            path, src = fig(stem + "-pareto.svg")
+            jobs.append(("pareto", (d, tool, path)))
+            plots_html.append(figure(src, f"{label}: coverage against length"))
+            path, src = fig(stem + "-cd.svg")
+            if plots.has_cd_diagram(a, d, tool):
+                jobs.append(("cd_diagram", (d, tool, path)))
+                paired.append(f"<h3>{esc(label)}: critical differences</h3>" + figure(src, f"{label}: critical-difference diagrams"))
+            appendix.append(T.to_html(T.summary_table(a, d, tool, a.appendix, "the other metrics")))
+        if len(a.columns) > 1:
+            paired.insert(len(paired), f"<h3>{esc(d)}</h3>")
+            paired.append(T.to_html(T.paired_table(
+                a, d, [m for m in a.headline if m in a.compared], "paired comparison with the baseline, headline metrics")))
+            rest = [m for m in a.compared if m not in a.headline]
+            appendix.append(T.to_html(T.paired_table(a, d, rest, "paired comparison with the baseline, other metrics")))
+    if len(a.columns) > 1:
+        ft = T.friedman_table(a)
+        if ft.rows:
+            paired.append("<h3>Friedman tests</h3>" + T.to_html(ft))
+    else:
+        paired.append("<p>One planner configuration: nothing to compare.</p>")
+
+    plots_html.append("<h3>Scaling</h3>")
+    for ti, tool in enumerate(a.tools):
+        path, src = fig(f"scaling{tool_suffix(a, ti)}.svg")
+        jobs.append(("scaling", (tool, path)))
+        plots_html.append(figure(src, "plan time against obstacles and wall area"))
+    plots_html.append("<h3>Swept parameters</h3>")
+    sweeps = plots.swept_parameters(a)
+    for k, (planner, param, points) in enumerate(sweeps):
+        path, src = fig(f"param{k + 1:02d}.svg")
+        jobs.append(("parameter_plot", (planner, param, points, path)))
+        plots_html.append(figure(src, f"{planner}: metrics against {param}"))
+    if len(a.tools) > 1 and len({t[0] for t in a.tools}) > 1:
+        path, src = fig("tool-width.svg")
+        jobs.append(("tool_plot", (path,)))
+        plots_html.append(figure(src, "metrics against the tool width"))
+    if not sweeps and len({t[0] for t in a.tools}) < 2:
+        plots_html.append("<p>No planner parameter and no tool width was swept in this experiment.</p>")
+
+    draw_all(a, jobs)
+
+    gallery = []
+    for section in data["gallery"]:
+        gallery.append(f"<h3>{esc(section['title'])}</h3>" + gallery_html(section))
+    if not gallery:
+        gallery.append("<p>No runs to picture.</p>")
+
+    record = ['<div class="table-wrap"><table><tbody>']
+    for k, v in e["facts"]:
+        record.append(f'<tr><th scope="row">{esc(k)}</th><td style="text-align:left;white-space:normal">{esc(v)}</td></tr>')
+    record.append(f'<tr><th scope="row">config sha256</th><td style="text-align:left">{esc(e["config_hash"])}</td></tr>')
+    record.append("</tbody></table></div>")
+    dt = T.Table("Datasets", ["label", "source", "walls", "content sha256"])
+    for d in e["datasets"]:
+        dt.add([d["label"], d["source"], str(d["walls"]), d["sha256"]])
+    pt = T.Table("Planner configurations (resolved parameters, defaults included)", ["label", "planner", "parameters"])
+    for p in e["planners"]:
+        pt.add([p["label"], p["planner"], p["params"] or "-"])
+    record += [T.to_html(dt), T.to_html(pt), f"<h3>Config ({esc(e['config_path'])})</h3><pre>{esc(e['config_text'])}</pre>",
+               "<h3>How to reproduce</h3><pre>" + esc(
+                   "git checkout <the git revision above>\nbash scripts/setup.sh\n"
+                   f"build/coverbench run {shlex.quote(e['config_path'] or 'CONFIG.yaml')}\n"
+                   "build/coverbench report RESULTS.sqlite --format html --out REPORT\n") + "</pre>"
+               "<p class=\"note\">The same config and build give the same metrics byte for byte; plan time and "
+               "memory are measured anew. report_data.json in this folder holds every run this page was made "
+               "from; report.md, report.csv and report.tex hold its tables.</p>"]
+
+    outcomes = [T.to_html(T.outcome_table(a)), T.to_html(T.success_table(a))]
+    subtitle = (f"<p>{len(a.runs)} runs: {len(a.datasets)} datasets, {len(a.columns)} planner configurations, "
+                f"baseline <b>{esc(e['baseline'])}</b>. Definitions of every metric: docs/metrics.md. Tables for "
+                f'papers: <a href="report.md">Markdown</a>, <a href="report.csv">CSV</a>, '
+                f'<a href="report.tex">LaTeX</a>; every run: <a href="report_data.json">report_data.json</a>.</p>')
+    sections = [("headline", "Headline", "\n".join(headline)), ("outcomes", "Outcomes", "\n".join(outcomes)),
+                ("paired", "Paired statistics", "\n".join(paired)), ("plots", "Plots", "\n".join(plots_html)),
+                ("galleries", "Galleries", "\n".join(gallery)), ("appendix", "Appendix", "\n".join(appendix)),
+                ("record", "Reproducibility record", "\n".join(record))]
+    index = os.path.join(folder, "index.html")
+    write(index, page(f"CoverBench: experiment {e['name']}", subtitle, sections))
+    return index
+
+
+def showcase(data, folder):
+    """The showcase page: a summary table and every wall with every planner side by side."""
+    t = T.Table(data["table"]["title"], data["table"]["header"])
+    for row in data["table"]["rows"]:
+        t.add(row)
+    sections = [("summary", "Summary", T.to_html(t))]
+    for section in data["gallery"]:
+        sections.append(("walls", "Walls", gallery_html(section)))
+    subtitle = f"<p>{esc(data['subtitle'])}</p>"
+    index = os.path.join(folder, "index.html")
+    write(index, page(data["title"], subtitle, sections))
+    return index

@@ -1,0 +1,307 @@
+"""The report's tables, independent of format, and their renderings: HTML, Markdown, CSV and
+LaTeX (booktabs) share one layout, so a paper's table and the page say the same thing."""
+import csv
+import html
+import io
+import math
+
+from . import analysis as A
+
+PERCENT_METRICS = ("coverage", "overlap", "passes")
+
+
+def is_percent(spec):
+    return spec["unit"] == "1" and spec["name"].startswith(PERCENT_METRICS)
+
+
+def number(v, digits=3):
+    """`digits` significant digits without exponent for everyday magnitudes."""
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return "-"
+    if math.isinf(v):
+        return "inf" if v > 0 else "-inf"
+    if v == 0:
+        return "0"
+    mag = math.floor(math.log10(abs(v)))
+    if mag >= digits - 1:
+        return f"{v:.0f}"
+    if mag < -4:
+        return f"{v:.{digits - 1}e}"
+    return f"{v:.{digits - 1 - mag}f}"
+
+
+def value(spec, v, with_unit=True):
+    """A metric value with its unit: percentages with two decimals, bytes in MiB."""
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return "-"
+    unit = spec["unit"]
+    if is_percent(spec):
+        return f"{100 * v:.2f} %" if with_unit else f"{100 * v:.2f}"
+    if unit == "B":
+        return number(v / 1048576) + (" MiB" if with_unit else "")
+    if unit in ("1", "segments") and spec["tie_absolute"] == 0.5:  # counts
+        return f"{v:.0f}" if float(v).is_integer() else number(v)
+    return number(v) + (f" {unit.replace('m2', 'm²')}" if with_unit and unit != "1" else "")
+
+
+def difference(spec, v):
+    """A paired difference: percentage points for percentages, else the metric's unit."""
+    if v is None or math.isnan(v):
+        return "-"
+    if is_percent(spec):
+        return f"{100 * v:+.2f} pp"
+    s = value(spec, abs(v))
+    return ("+" if v > 0 else "-" if v < 0 else "") + s if s != "0" else "0"
+
+
+def unit_label(spec):
+    if is_percent(spec):
+        return "%"
+    return {"B": "MiB", "1": "", "m2": "m²"}.get(spec["unit"], spec["unit"])
+
+
+def stars(p):
+    if p is None or math.isnan(p):
+        return ""
+    return "***" if p < 0.001 else "**" if p < 0.01 else "*" if p < 0.05 else ""
+
+
+def pvalue(p):
+    if p is None or math.isnan(p):
+        return "-"
+    return "<1e-4" if p < 1e-4 else f"{p:.2g}" if p < 0.01 else f"{p:.2f}"
+
+
+class Table:
+    def __init__(self, title, header, note="", anchor=""):
+        self.title, self.header, self.note, self.anchor = title, header, note, anchor
+        self.rows = []   # lists of cells; a cell is text or (text, "best") for emphasis
+
+    def add(self, row):
+        self.rows.append(row)
+
+
+def _text(cell):
+    return cell[0] if isinstance(cell, tuple) else cell
+
+
+def _best(cell):
+    return isinstance(cell, tuple) and "best" in cell[1:]
+
+
+def to_html(t):
+    out = [f'<div class="table-wrap"><table{" id=" + chr(34) + html.escape(t.anchor) + chr(34) if t.anchor else ""}>',
+           f"<caption>{html.escape(t.title)}</caption>", "<thead><tr>"]
+    out += [f"<th>{html.escape(h)}</th>" for h in t.header]
+    out.append("</tr></thead><tbody>")
+    for row in t.rows:
+        cells = []
+        for i, c in enumerate(row):
+            text = html.escape(_text(c))
+            if _best(c):
+                text = f"<strong>{text}</strong>"
+            cells.append(f"<{'th scope=row' if i == 0 else 'td'}>{text}</{'th' if i == 0 else 'td'}>")
+        out.append("<tr>" + "".join(cells) + "</tr>")
+    out.append("</tbody></table></div>")
+    if t.note:
+        out.append(f'<p class="note">{html.escape(t.note)}</p>')
+    return "\n".join(out)
+
+
+def _md(text):
+    text = " ".join(str(text).split())
+    for ch in "\\`*[]<>|&":
+        text = text.replace(ch, "\\" + ch)
+    return text
+
+
+def to_markdown(t):
+    out = [f"## {_md(t.title)}", ""]
+    if t.note:
+        out += [_md(t.note), ""]
+    out.append("| " + " | ".join(_md(h) for h in t.header) + " |")
+    out.append("|" + "|".join(["---"] + ["---:"] * (len(t.header) - 1)) + "|")
+    for row in t.rows:
+        out.append("| " + " | ".join(("**" + _md(_text(c)) + "**") if _best(c) else _md(_text(c)) for c in row) + " |")
+    return "\n".join(out) + "\n\n"
+
+
+_LATEX = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_", "{": r"\{",
+          "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}", "<": r"\textless{}",
+          ">": r"\textgreater{}", "²": r"\textsuperscript{2}", "±": r"$\pm$", "★": r"$\star$"}
+
+
+def latex_escape(text):
+    return "".join(_LATEX.get(ch, ch) for ch in " ".join(str(text).split()))
+
+
+def to_latex(t):
+    wide = len(t.header) > 5
+    env = "table*" if wide else "table"
+    out = [f"% {latex_escape(t.title)}", f"\\begin{{{env}}}[htbp]", "\\centering", "\\footnotesize" if wide else "\\small",
+           "\\setlength{\\tabcolsep}{3pt}", "\\begin{tabular}{l" + "r" * (len(t.header) - 1) + "}", "\\toprule",
+           " & ".join(latex_escape(h) for h in t.header) + " \\\\", "\\midrule"]
+    for row in t.rows:
+        out.append(" & ".join(("\\textbf{" + latex_escape(_text(c)) + "}") if _best(c) else latex_escape(_text(c))
+                              for c in row) + " \\\\")
+    out += ["\\bottomrule", "\\end{tabular}", f"\\caption{{{latex_escape(t.title)}" +
+            (f" {latex_escape(t.note)}" if t.note else "") + "}", f"\\end{{{env}}}", ""]
+    return "\n".join(out) + "\n"
+
+
+def to_csv_rows(t, writer):
+    for row in t.rows:
+        writer.writerow([t.title] + [_text(c) for c in row])
+
+
+def render(tables, fmt, preamble=""):
+    if fmt == "md":
+        return preamble + "".join(to_markdown(t) for t in tables)
+    if fmt == "latex":
+        return preamble + "".join(to_latex(t) for t in tables)
+    if fmt == "csv":
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        for t in tables:
+            w.writerow(["table"] + list(t.header))
+            to_csv_rows(t, w)
+        return buf.getvalue()
+    raise ValueError(fmt)
+
+
+# --- the curated tables ---------------------------------------------------------------------------
+
+def tool_label(a, tool):
+    return "" if len(a.tools) == 1 else f" at s = {number(tool[0])} m, c = {number(tool[1])} m"
+
+
+MEASURED_TITLE = "Measured on this machine"
+
+
+def headline_table(a, dataset, tool, measured=False):
+    """Rows: planner configurations; columns: headline metrics, each 'median (rank)'. The
+    measured ones (plan time, memory) get their own table: a rerun measures them anew."""
+    cols = a.tool_columns(tool)
+    metrics = a.headline_measured if measured else a.headline_quality
+    if measured:
+        title = f"{MEASURED_TITLE}: {dataset}{tool_label(a, tool)}, median and rank"
+        note = ("One sample per run (the median of its repetitions), measured anew by every rerun and on every "
+                "machine: ranked, never tested, never marked best. Everything else is reproduced byte for byte.")
+    else:
+        title = f"{dataset}{tool_label(a, tool)}: headline metrics, median and rank"
+        note = ("Median over valid runs (ok and partial), rank 1 = best in the metric's direction. ★ and bold: "
+                "the leader is better than every other planner by a Holm-adjusted Wilcoxon signed-rank test over "
+                "the same walls (p < 0.05); without ★ the leader is not separable from the rest.")
+    t = Table(title, ["planner", "n"] + [f"{m} ({unit_label(a.specs[m])})" if unit_label(a.specs[m]) else m
+                                          for m in metrics], note=note)
+    ranks = {m: {e["column"]: e for e in a.ranking(dataset, tool, m)} for m in metrics}
+    for c in cols:
+        n = a.summary(c, dataset, metrics[0])["n"] if metrics else 0
+        row = [c, str(n)]
+        for m in metrics:
+            e = ranks[m][c]
+            text = value(a.specs[m], e["median"], with_unit=False)
+            if e["rank"] is not None:
+                text += f" ({e['rank']})"
+            row.append((text + " ★", "best") if e["best"] else text)
+        t.add(row)
+    return t
+
+
+def summary_table(a, dataset, tool, metrics, title):
+    cols = a.tool_columns(tool)
+    t = Table(f"{dataset}{tool_label(a, tool)}: {title}", ["metric"] + cols,
+              note="Median [q1, q3] over valid runs (linear-interpolation quartiles). Definitions: docs/metrics.md.")
+    for m in metrics:
+        row = [m + (f" ({unit_label(a.specs[m])})" if unit_label(a.specs[m]) else "")]
+        for c in cols:
+            s = a.summary(c, dataset, m)
+            spec = a.specs[m]
+            row.append("-" if s["n"] == 0 else
+                       f"{value(spec, s['median'], False)} [{value(spec, s['q1'], False)}, {value(spec, s['q3'], False)}]")
+        t.add(row)
+    return t
+
+
+def outcome_table(a):
+    statuses = a.statuses()
+    t = Table("Run outcomes per planner configuration (all datasets)",
+              ["planner", "runs"] + statuses + ["success (ok)", "95 % interval", "partial: uncovered (m²)"],
+              note="ok: a valid path covering everything reachable; partial: a valid path that knowingly leaves "
+                   "reachable parts out (median uncovered reachable area given); invalid_output: the path fails the "
+                   "exact check; the rest have no path. Success rate = ok / runs with a Wilson 95 % interval.",
+              anchor="outcomes-table")
+    for c in a.columns:
+        o = a.outcomes(c)
+        t.add([c, str(o["runs"])] + [str(o["counts"][s]) for s in statuses] +
+              [f"{100 * o['rate']:.1f} %" if o["runs"] else "-",
+               f"[{100 * o['low']:.1f}, {100 * o['high']:.1f}] %" if o["runs"] else "-",
+               number(o["partial_uncovered_median"])])
+    return t
+
+
+def success_table(a):
+    t = Table("Success rate (ok runs) per dataset, with Wilson 95 % interval", ["dataset"] + a.columns)
+    for d in a.datasets:
+        row = [d]
+        for c in a.columns:
+            o = a.outcomes(c, d)
+            row.append("-" if not o["runs"] else
+                       f"{o['ok']}/{o['runs']} [{100 * o['low']:.0f}, {100 * o['high']:.0f}] %")
+        t.add(row)
+    return t
+
+
+def paired_table(a, dataset, metrics, title):
+    rows = a.paired_table(dataset, metrics)
+    t = Table(f"{dataset}: {title}",
+              ["planner", "vs", "metric", "pairs", "median difference", "95 % interval", "win/tie/loss", "p (Holm)"],
+              note="Over the walls where both runs are valid. Difference = planner - baseline; a win is better in the "
+                   "metric's direction beyond its tie band (docs/metrics.md). Interval: percentile bootstrap of the "
+                   "median (2000 resamples, fixed seed). p: two-sided Wilcoxon signed-rank over the untied pairs, "
+                   "Holm-adjusted across every comparison in this table; * p < 0.05, ** p < 0.01, *** p < 0.001.")
+    for r in rows:
+        spec = a.specs[r["metric"]]
+        t.add([r["column"], r["baseline"], r["metric"], str(r["pairs"]), difference(spec, r["median"]),
+               f"[{difference(spec, r['low'])}, {difference(spec, r['high'])}]" if r["pairs"] else "-",
+               f"{r['wins']}/{r['ties']}/{r['losses']}", (pvalue(r["p_holm"]) + " " + stars(r["p_holm"])).strip()])
+    return t
+
+
+def friedman_table(a):
+    t = Table("Friedman tests over the walls every planner of a tool group solved",
+              ["dataset", "metric", "walls", "planners", "chi²", "p", "Nemenyi CD", "average ranks (1 = best)"],
+              note="Friedman's test of equal ranks (scipy.stats.friedmanchisquare); critical difference of average "
+                   "ranks by Nemenyi at alpha = 0.05 (Demsar 2006): two planners whose average ranks differ by more "
+                   "are different. Only walls where every planner has a valid run count.")
+    for d in a.datasets:
+        for tool in a.tools:
+            for m in a.headline_quality:
+                f = a.friedman(d, tool, m)
+                if f is None:
+                    continue
+                ranks = ", ".join(f"{c} {r:.2f}" for c, r in sorted(zip(f["columns"], f["ranks"]), key=lambda x: x[1]))
+                t.add([d + tool_label(a, tool), m, str(f["blocks"]), str(f["k"]), number(f["statistic"]),
+                       pvalue(f["p"]), number(f["cd"]), ranks])
+    return t
+
+
+def paper_tables(a):
+    """The tables a paper takes: outcomes, per dataset the headline ranking, paired comparisons of
+    the headline metrics, and the Friedman tests."""
+    tables = [outcome_table(a), success_table(a)]
+    for d in a.datasets:
+        for tool in a.tools:
+            tables.append(headline_table(a, d, tool))
+    headline_compared = [m for m in a.headline if m in a.compared]
+    if len(a.columns) > 1:
+        for d in a.datasets:
+            tables.append(paired_table(a, d, headline_compared, "paired comparison with the baseline, headline metrics"))
+        ft = friedman_table(a)
+        if ft.rows:
+            tables.append(ft)
+    for d in a.datasets:  # last: what a rerun does not reproduce
+        for tool in a.tools:
+            if a.headline_measured:
+                tables.append(headline_table(a, d, tool, measured=True))
+    return tables

@@ -1,0 +1,155 @@
+"""The analysis and the report on hand-made report data: paired counts and medians by hand, tool
+groups never pooled, escaping, and the same data giving the same bytes."""
+import filecmp
+import json
+import math
+import os
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
+
+from coverbench_report import report  # noqa: E402
+from coverbench_report import tables as T  # noqa: E402
+from coverbench_report.analysis import Analysis  # noqa: E402
+
+SPECS = [
+    {"name": "coverage_reachable", "unit": "1", "better": 1, "kind": "quality", "headline": True,
+     "tie_absolute": 0.001, "tie_relative": 0, "description": "c"},
+    {"name": "length_total", "unit": "m", "better": -1, "kind": "quality", "headline": True,
+     "tie_absolute": 0, "tie_relative": 0.001, "description": "l"},
+    {"name": "overlap", "unit": "1", "better": -1, "kind": "quality", "headline": True,
+     "tie_absolute": 0.005, "tie_relative": 0, "description": "o"},
+    {"name": "length_ratio", "unit": "1", "better": -1, "kind": "quality", "headline": True,
+     "tie_absolute": 0, "tie_relative": 0.001, "description": "r"},
+    {"name": "duration_s", "unit": "s", "better": -1, "kind": "quality", "headline": True,
+     "tie_absolute": 0, "tie_relative": 0.001, "description": "d"},
+    {"name": "plan_time_ms", "unit": "ms", "better": -1, "kind": "measured", "headline": True,
+     "tie_absolute": 0.05, "tie_relative": 0.25, "description": "t"},
+]
+
+
+def run(column, wall, cov, length, status="ok", tool=0.1, dataset="d", time=1.0):
+    return {"key": f"{column}-{wall}-{tool}", "column": column, "config": column.split(" @")[0], "dataset": dataset,
+            "wall": wall, "wall_name": wall, "tool_width": tool, "clearance": 0.02,
+            "pairing": f"{wall}/{tool}/0.02/1", "status": status, "valid": status == "ok",
+            "uncovered_reachable_m2": None,
+            "metrics": {"coverage_reachable": cov, "length_total": length, "overlap": 0.1, "length_ratio": length / 10,
+                        "duration_s": length * 3, "plan_time_ms": time}}
+
+
+def data(runs, columns, name="hand", dataset_label="d"):
+    return {"format": "coverbench-report-data", "version": 1,
+            "experiment": {"id": 1, "name": name, "config_path": "c.yaml", "config_hash": "0123456789abcdef",
+                           "config_text": "name: hand\n", "baseline": "a", "facts": [["host", "h"]],
+                           "datasets": [{"label": dataset_label, "source": "s", "walls": 4, "sha256": "x"}],
+                           "planners": [{"label": c, "planner": c, "params": ""} for c in ("a", "b", "c")],
+                           "columns": columns},
+            "metrics": SPECS, "walls": {}, "runs": runs, "gallery": []}
+
+
+# b against a: w1 better coverage, shorter (win, win); w2 equal coverage, longer (tie, loss);
+# w3 worse coverage, equal length (loss, tie); w4 b timed out (no pair).
+HAND = [run("a", "w1", 0.90, 10), run("b", "w1", 0.95, 9), run("a", "w2", 0.99, 10), run("b", "w2", 0.99, 11),
+        run("a", "w3", 0.99, 12), run("b", "w3", 0.98, 12), run("a", "w4", 0.99, 12),
+        run("b", "w4", math.nan, math.nan, "timeout")]
+
+
+class PairedByHand(unittest.TestCase):
+    def test_counts_medians_and_outcomes(self):
+        a = Analysis(data(HAND, ["a", "b"]))
+        rows = {r["metric"]: r for r in a.paired_table("d", ["coverage_reachable", "length_total"])}
+        cov, length = rows["coverage_reachable"], rows["length_total"]
+        self.assertEqual((cov["pairs"], cov["wins"], cov["ties"], cov["losses"]), (3, 1, 1, 1))
+        self.assertEqual((length["wins"], length["ties"], length["losses"]), (1, 1, 1))
+        self.assertAlmostEqual(length["median"], 0.0)  # differences -1, +1, 0
+        # Medians over valid runs: a's lengths 10, 10, 12, 12 -> 11; b's 9, 11, 12 -> 11, q1 10, q3 11.5.
+        self.assertEqual(a.summary("a", "d", "length_total")["median"], 11)
+        self.assertEqual(a.summary("b", "d", "length_total"), {"n": 3, "median": 11, "q1": 10, "q3": 11.5})
+        o = a.outcomes("b")
+        self.assertEqual((o["runs"], o["ok"], o["counts"]["timeout"]), (4, 3, 1))
+        # Measured figures are ranked but never tested.
+        self.assertNotIn("plan_time_ms", a.compared)
+        ranking = a.ranking("d", a.tools[0], "plan_time_ms")
+        self.assertFalse(any(e["best"] for e in ranking))
+
+    def test_best_is_marked_only_when_the_test_says_so(self):
+        # b shorter than a on 12 walls out of 12: Wilcoxon exact p = 2 / 4096, significant.
+        runs = []
+        for i in range(12):
+            runs += [run("a", f"w{i}", 1.0, 10 + i), run("b", f"w{i}", 1.0, 9 + i)]
+        a = Analysis(data(runs, ["a", "b"]))
+        top = a.ranking("d", a.tools[0], "length_total")[0]
+        self.assertEqual((top["column"], top["best"]), ("b", True))
+        # On 3 walls the same difference is not significant (exact p = 0.25): no mark.
+        a3 = Analysis(data(runs[:6], ["a", "b"]))
+        self.assertFalse(a3.ranking("d", a3.tools[0], "length_total")[0]["best"])
+
+
+class ToolsNeverPooled(unittest.TestCase):
+    def test_comparisons_and_rankings_stay_within_a_tool(self):
+        cols = ["a @ s=0.05 m, c=0.02 m", "a @ s=0.1 m, c=0.02 m", "b @ s=0.05 m, c=0.02 m", "b @ s=0.1 m, c=0.02 m"]
+        runs = []
+        for w in ("w1", "w2", "w3"):
+            for tool, suffix in ((0.05, " @ s=0.05 m, c=0.02 m"), (0.1, " @ s=0.1 m, c=0.02 m")):
+                runs.append(run("a" + suffix, w, 1.0, 20 / tool, tool=tool))
+                runs.append(run("b" + suffix, w, 1.0, 21 / tool, tool=tool))
+        a = Analysis(data(runs, cols))
+        self.assertEqual(len(a.tools), 2)
+        for r in a.paired_table("d", ["length_total"]):
+            self.assertEqual(a.tool_of[r["column"]], a.tool_of[r["baseline"]])
+            self.assertEqual(r["pairs"], 3)
+            self.assertEqual(r["wins"] + r["ties"] + r["losses"], 3)
+        for tool in a.tools:
+            self.assertEqual({e["column"] for e in a.ranking("d", tool, "length_total")}, set(a.tool_columns(tool)))
+
+
+class Rendering(unittest.TestCase):
+    def test_hostile_labels_are_text_in_every_format(self):
+        hostile = '<script>alert("x")</script> | 50% & _x_'
+        d = data([dict(r, dataset=hostile) for r in HAND], ["a", "b"], name=hostile, dataset_label=hostile)
+        with tempfile.TemporaryDirectory() as out:
+            report.build(d, out)
+            page = open(os.path.join(out, "index.html"), encoding="utf-8").read()
+            self.assertNotIn("<script", page)
+            self.assertIn("&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt;", page)
+            md = open(os.path.join(out, "report.md"), encoding="utf-8").read()
+            self.assertNotIn("<script>", md)
+            tex = open(os.path.join(out, "report.tex"), encoding="utf-8").read()
+            self.assertIn(r"50\% \& \_x\_", tex)
+
+    def test_same_data_same_bytes(self):
+        runs = []
+        for i in range(8):
+            for c, k in (("a", 1.0), ("b", 1.1), ("c", 0.95)):
+                runs.append(run(c, f"w{i}", 1.0 - 0.001 * i * k, (10 + i) * k, time=1 + i * k))
+        d = data(runs, ["a", "b", "c"])
+        with tempfile.TemporaryDirectory() as one, tempfile.TemporaryDirectory() as two:
+            report.build(json.loads(json.dumps(d)), one)
+            report.build(json.loads(json.dumps(d)), two)
+            cmp = filecmp.dircmp(one, two)
+            self.assertEqual(cmp.left_only + cmp.right_only, [])
+            for sub in ("", "figures"):
+                names = sorted(os.listdir(os.path.join(one, sub)))
+                self.assertTrue(names)
+                _, mismatch, errors = filecmp.cmpfiles(os.path.join(one, sub), os.path.join(two, sub),
+                                                       [n for n in names if os.path.isfile(os.path.join(one, sub, n))],
+                                                       shallow=False)
+                self.assertEqual(mismatch + errors, [])
+            self.assertTrue(os.path.exists(os.path.join(one, "figures", "d01-cd.svg")))  # 3 planners: a CD diagram
+
+
+class Numbers(unittest.TestCase):
+    def test_units_and_significant_digits(self):
+        cov = {"name": "coverage_reachable", "unit": "1", "tie_absolute": 0.001}
+        self.assertEqual(T.value(cov, 0.99871), "99.87 %")
+        self.assertEqual(T.difference(cov, -0.0007), "-0.07 pp")
+        self.assertEqual(T.value({"name": "length_total", "unit": "m", "tie_absolute": 0}, 15912.3), "15912 m")
+        self.assertEqual(T.value({"name": "x", "unit": "ms", "tie_absolute": 0}, 1.2149), "1.21 ms")
+        self.assertEqual(T.value({"name": "peak_memory_bytes", "unit": "B", "tie_absolute": 0}, 3 * 1048576), "3.00 MiB")
+        self.assertEqual(T.value({"name": "turns_30", "unit": "1", "tie_absolute": 0.5}, 198.0), "198")
+
+
+if __name__ == "__main__":
+    unittest.main()

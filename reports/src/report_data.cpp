@@ -1,0 +1,168 @@
+#include "coverbench/report_data.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <tuple>
+
+#include "coverbench/metric_spec.hpp"
+
+namespace coverbench {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+double metricOr(const ResultRow& r, const std::string& name, double fallback) {
+  const auto it = r.metrics.find(name);
+  return it == r.metrics.end() || !std::isfinite(it->second) ? fallback : it->second;
+}
+
+/// Larger is worse: runs without a valid path first, then partial, then low coverage, then overlap.
+std::tuple<int, double, double> badness(const ResultRow& r) {
+  const int outcome = r.status == "ok" && r.valid ? 0 : r.status == "partial" && r.valid ? 1 : 2;
+  return {outcome, -metricOr(r, "coverage_reachable", 0.0), metricOr(r, "overlap", 0.0)};
+}
+
+}  // namespace
+
+std::vector<GallerySection> selectGallery(const ResultSet& rs, const std::vector<std::string>& dataset_order) {
+  std::vector<GallerySection> out;
+  for (const std::string& dataset : dataset_order) {
+    std::vector<const ResultRow*> runs;
+    for (const ResultRow& r : rs.runs)
+      if (r.dataset == dataset) runs.push_back(&r);
+    if (runs.empty()) continue;
+    // Walls in a stable order (name, then hash) so every choice below is deterministic.
+    std::sort(runs.begin(), runs.end(), [](const ResultRow* a, const ResultRow* b) {
+      return std::tie(a->wall_name, a->wall, a->planner) < std::tie(b->wall_name, b->wall, b->planner);
+    });
+    std::vector<std::pair<std::string, std::string>> chosen;  // (wall hash, why)
+    auto choose = [&](const std::string& wall, const std::string& why) {
+      for (auto& [w, reasons] : chosen)
+        if (w == wall) {
+          reasons += "; " + why;
+          return;
+        }
+      chosen.push_back({wall, why});
+    };
+    // The median wall by the baseline's length ratio (its first column, with several tools).
+    std::string baseline_column;
+    for (const ResultRow* r : runs)
+      if (r->config == rs.baseline) {
+        baseline_column = r->planner;
+        break;
+      }
+    std::vector<std::pair<double, const ResultRow*>> ratios;
+    for (const ResultRow* r : runs)
+      if (r->planner == baseline_column && r->valid && (r->status == "ok" || r->status == "partial"))
+        if (const double v = metricOr(*r, "length_ratio", NAN); std::isfinite(v)) ratios.push_back({v, r});
+    std::stable_sort(ratios.begin(), ratios.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    if (!ratios.empty())
+      choose(ratios[(ratios.size() - 1) / 2].second->wall, "median wall (" + baseline_column + "'s length ratio)");
+    else
+      choose(runs.front()->wall, "first wall (the baseline has no valid path here)");
+    for (const std::string& column : rs.planners) {
+      const ResultRow* worst = nullptr;
+      for (const ResultRow* r : runs)
+        if (r->planner == column && (!worst || badness(*r) > badness(*worst))) worst = r;
+      if (worst) choose(worst->wall, "worst for " + column);
+    }
+    GallerySection section;
+    section.title = dataset;
+    for (const auto& [wall, why] : chosen) {
+      GalleryWall g;
+      g.wall = wall;
+      g.why = why;
+      for (const std::string& column : rs.planners)
+        for (const ResultRow* r : runs)
+          if (r->wall == wall && r->planner == column) {
+            g.wall_name = r->wall_name;
+            g.pictures.push_back({column, r->key, r->status, "", ""});
+          }
+      section.walls.push_back(std::move(g));
+    }
+    out.push_back(std::move(section));
+  }
+  return out;
+}
+
+std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, const std::vector<GallerySection>& gallery) {
+  Json j;
+  j["format"] = "coverbench-report-data";
+  j["version"] = 1;
+  Json e;
+  e["id"] = record.id;
+  e["name"] = record.name;
+  e["config_path"] = record.config_path;
+  e["config_hash"] = record.config_hash;
+  e["config_text"] = record.config_text;
+  e["baseline"] = rs.baseline;
+  e["facts"] = Json::array();
+  for (const auto& [k, v] : record.facts) e["facts"].push_back({k, v});
+  e["datasets"] = Json::array();
+  for (const auto& d : record.datasets)
+    e["datasets"].push_back({{"label", d.label}, {"source", d.source}, {"walls", d.walls}, {"sha256", d.sha256}});
+  e["planners"] = Json::array();
+  for (const auto& p : record.planners)
+    e["planners"].push_back({{"label", p.label}, {"planner", p.planner}, {"params", p.params}});
+  e["columns"] = rs.planners;
+  j["experiment"] = e;
+
+  j["metrics"] = Json::array();
+  for (const MetricSpec& s : metricSpecs())
+    j["metrics"].push_back({{"name", s.name},
+                            {"unit", s.unit},
+                            {"better", s.better},
+                            {"kind", toString(s.kind)},
+                            {"headline", s.headline},
+                            {"tie_absolute", s.tie_absolute},
+                            {"tie_relative", s.tie_relative},
+                            {"description", s.description}});
+  Json walls = Json::object();
+  for (const auto& w : record.walls)
+    walls[w.hash] = {{"name", w.name}, {"obstacles", w.obstacles}, {"area", number(w.area)}};
+  j["walls"] = walls;
+
+  std::vector<const ResultRow*> runs;
+  for (const ResultRow& r : rs.runs) runs.push_back(&r);
+  std::sort(runs.begin(), runs.end(), [](const ResultRow* a, const ResultRow* b) { return a->key < b->key; });
+  j["runs"] = Json::array();
+  for (const ResultRow* r : runs) {
+    Json m = Json::object();
+    for (const MetricSpec& s : metricSpecs()) {
+      const auto it = r->metrics.find(s.name);
+      m[s.name] = it == r->metrics.end() ? Json(nullptr) : number(it->second);
+    }
+    j["runs"].push_back({{"key", r->key},
+                         {"column", r->planner},
+                         {"config", r->config},
+                         {"dataset", r->dataset},
+                         {"wall", r->wall},
+                         {"wall_name", r->wall_name},
+                         {"tool_width", r->tool.tool_width},
+                         {"clearance", r->tool.clearance},
+                         {"pairing", r->pairing},
+                         {"status", r->status},
+                         {"valid", r->valid},
+                         {"uncovered_reachable_m2", number(r->uncovered_reachable_m2)},
+                         {"metrics", m}});
+  }
+  j["gallery"] = Json::array();
+  for (const GallerySection& s : gallery) {
+    Json section = {{"title", s.title}, {"walls", Json::array()}};
+    for (const GalleryWall& w : s.walls) {
+      Json pictures = Json::array();
+      for (const GalleryPicture& p : w.pictures)
+        pictures.push_back({{"column", p.column}, {"key", p.key}, {"status", p.status}, {"file", p.file}, {"note", p.note}});
+      section["walls"].push_back({{"wall", w.wall}, {"wall_name", w.wall_name}, {"why", w.why}, {"pictures", pictures}});
+    }
+    j["gallery"].push_back(section);
+  }
+  return j.dump(1) + "\n";
+}
+
+}  // namespace coverbench

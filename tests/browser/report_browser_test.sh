@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The report as a user sees it: a small experiment (walls and a dataset label that hold markup
+# and quotes), its report and the showcase page opened in headless Chromium; no console error,
+# every image loaded, every section there, the markup shown as text. Screenshots are kept in
+# build/test-artifacts/browser/ to look at.
+# usage: report_browser_test.sh COVERBENCH_BINARY SOURCE_DIR ARTIFACTS_DIR
+set -euo pipefail
+bin=$1 src=$2 shots=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$work/walls" "$shots"
+cat > "$work/walls/a.json" <<'JSON'
+{"name": "<script>alert(\"wall\")</script> 'q'", "width": 2.0, "height": 1.2,
+ "obstacles": [{"type": "rect", "x": 0.8, "y": 0.4, "width": 0.4, "height": 0.3, "label": "<b>win</b>"}]}
+JSON
+cat > "$work/walls/b.json" <<'JSON'
+{"name": "plain wall", "width": 1.5, "height": 1.0}
+JSON
+cat > "$work/c.yaml" <<'YAML'
+name: "browser <i>check</i>"
+output: out
+datasets:
+  - folder: walls
+    label: "<img src=x onerror=alert(1)> \"quoted\""
+  - family: residential
+    count: 3
+    seed: 2
+planners:
+  - zigzag
+  - spiral
+  - name: boustrophedon
+  - name: zigzag
+    params:
+      sweep_angle: [30, 90]
+YAML
+"$bin" run "$work/c.yaml" > "$work/run.log"
+python=${COVERBENCH_PYTHON:-/usr/bin/python3}
+"$python" "$src/tests/browser/check_page.py" "$work/out/report/index.html" "$shots/report" \
+  --section headline --section outcomes --section paired --section plots --section galleries --section record \
+  --min-images 20 --min-tables 10 \
+  --expect-text '<script>alert("wall")</script> '"'q'" --expect-text '<img src=x onerror=alert(1)> "quoted"'
+"$bin" showcase --walls "$src/datasets/canonical" --out "$work/showcase" > /dev/null
+"$python" "$src/tests/browser/check_page.py" "$work/showcase/index.html" "$shots/showcase" --section walls --min-images 30
