@@ -229,7 +229,8 @@ int reportCommand(const ReportOptions& o) {
       {"latex", {"latex", "report.tex"}}, {"tex", {"latex", "report.tex"}}};
   if (o.format == "html") {
     if (o.out.empty()) throw InputError("--out", "out", "--format html writes a folder: give it with --out");
-    std::cout << "report: " << writeReport(o) << "\n";
+    const std::string page = writeReport(o);
+    std::cout << "report: " << page << "\n";
     return 0;
   }
   const auto f = formats.find(o.format);

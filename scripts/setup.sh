@@ -9,7 +9,8 @@ PACKAGES=(g++ cmake ninja-build pkg-config ccache
           libyaml-cpp-dev libsqlite3-dev libssl-dev zlib1g-dev
           libgtest-dev libbenchmark-dev
           python3 python3-numpy python3-scipy python3-matplotlib   # the report's statistics and plots
-          chromium python3-websocket)                              # the browser test of the report
+          chromium python3-websocket                               # the browser test of the report
+          texlive-latex-base texlive-latex-recommended)            # the test that the LaTeX tables compile
 
 missing=()
 for p in "${PACKAGES[@]}"; do

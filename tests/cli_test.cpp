@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <cstdlib>
+#include <iterator>
 
 #include "coverbench/experiment.hpp"
 #include "coverbench/registry.hpp"
@@ -129,6 +131,39 @@ TEST_F(Cli, RunRejectsABadConfigBeforeAnyRunAndReportsAGoodOne) {
                 .exit_code, 0) << out;
   EXPECT_NE(slurp(svg).find("<svg"), std::string::npos);
   EXPECT_EQ(run("redraw " + (dir_ / "out" / "results.sqlite").string() + " --run 000000000 --svg " + svg).exit_code, 2);
+}
+
+TEST_F(Cli, ReportFolderIsAllOrNothingAndNeverReplacesAUsersFolder) {
+  const std::string config = write("r.yaml", "name: r\noutput: out\ndatasets:\n  - family: residential\n    count: 1\n    seed: 3\nplanners: [zigzag, spiral]\n");
+  ASSERT_EQ(run("run " + config + " --no-report").exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "report")) << "--no-report writes none";
+  const std::string db = (dir_ / "out" / "results.sqlite").string();
+  // A folder of the user's is refused, and left as it was.
+  fs::create_directories(dir_ / "mine");
+  std::ofstream(dir_ / "mine" / "notes.txt") << "keep";
+  CommandRun r = run("report " + db + " --format html --out " + (dir_ / "mine").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("is a folder that is not a CoverBench report"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp((dir_ / "mine" / "notes.txt").string()), "keep");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "mine"), fs::directory_iterator()), 1);
+  // The analysis missing: one line naming what to install, nothing written, nothing left behind.
+  std::string printed;
+  setenv("COVERBENCH_PYTHON", (dir_ / "no-python").c_str(), 1);
+  r = run("report " + db + " --format html --out " + (dir_ / "rep").string(), &printed);
+  unsetenv("COVERBENCH_PYTHON");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("python3-matplotlib python3-scipy"), std::string::npos) << r.err;
+  EXPECT_EQ(printed, "");
+  EXPECT_FALSE(fs::exists(dir_ / "rep"));
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().find("staging"), std::string::npos) << entry.path();
+  // A report there is written, and written again over itself.
+  ASSERT_EQ(run("report " + db + " --format html --out " + (dir_ / "rep").string()).exit_code, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "rep" / "index.html"));
+  EXPECT_TRUE(fs::exists(dir_ / "rep" / "report.tex"));
+  ASSERT_EQ(run("report " + db + " --format html --out " + (dir_ / "rep").string()).exit_code, 0);
+  EXPECT_EQ(run("report " + db + " --format pdf").exit_code, 2);
 }
 
 TEST_F(Cli, RunLimitsBecomeStatusesInTheTables) {

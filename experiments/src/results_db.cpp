@@ -14,6 +14,8 @@
 
 #include "coverbench/build_identity.hpp"
 #include "coverbench/hash.hpp"
+#include "coverbench/metric_spec.hpp"
+#include <stdexcept>
 
 namespace coverbench {
 namespace {
@@ -354,8 +356,11 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
     for (std::size_t i = 0; i < rec.plan_times_ms.size(); ++i)
       rp.text(1, rec.key).integer(2, static_cast<long long>(i)).real(3, rec.plan_times_ms[i]).run();
     Statement m(db_, "INSERT INTO metrics (run_key, position, name, value) VALUES (?,?,?,?)", file_);
-    for (std::size_t i = 0; i < rec.metrics.size(); ++i)
+    for (std::size_t i = 0; i < rec.metrics.size(); ++i) {
+      // Every stored metric is one the registry describes (unit, direction), so reports can read it.
+      if (!findMetricSpec(rec.metrics[i].name)) throw std::logic_error("metric '" + rec.metrics[i].name + "' is not in the registry");
       m.text(1, rec.key).integer(2, static_cast<long long>(i)).text(3, rec.metrics[i].name).real(4, rec.metrics[i].value).run();
+    }
     Statement st(db_, "INSERT INTO planner_stats (run_key, name, value) VALUES (?,?,?)", file_);
     for (const auto& [name, value] : rec.stats) st.text(1, rec.key).text(2, name).real(3, value).run();
     Statement tm(db_, "INSERT INTO planner_timings (run_key, name, ms) VALUES (?,?,?)", file_);

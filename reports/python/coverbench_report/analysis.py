@@ -156,9 +156,15 @@ class Analysis:
         entries = [dict(column=c, **self.summary(c, dataset, metric)) for c in cols]
         key = (lambda e: (math.isnan(e["median"]), -spec["better"] * (0 if math.isnan(e["median"]) else e["median"])))
         ordered = sorted(entries, key=key)
-        for i, e in enumerate(ordered):
-            e["rank"] = i + 1 if not math.isnan(e["median"]) else None
+        # Competition ranking: medians within the metric's tie band share a rank.
+        for e in ordered:
             e["best"] = False
+            if math.isnan(e["median"]):
+                e["rank"] = None
+                continue
+            e["rank"] = 1 + sum(1 for o in ordered if not math.isnan(o["median"])
+                                and (o["median"] - e["median"]) * spec["better"] > 0
+                                and not stats.tied(spec, o["median"], e["median"]))
         if len(ordered) >= 2 and not math.isnan(ordered[0]["median"]) and metric in self.compared:
             leader = ordered[0]["column"]
             tests = [stats.paired(spec, *self.pairs(leader, e["column"], dataset, metric)) for e in ordered[1:]]

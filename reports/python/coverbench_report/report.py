@@ -27,7 +27,7 @@ def preamble(a, fmt):
     if fmt == "md":
         return f"# {T._md('Experiment ' + e['name'])}\n\n{T._md(line)}\n\n"
     if fmt == "latex":
-        return f"% {T.latex_escape(line)} Needs \\usepackage{{booktabs}}.\n\n"
+        return f"% {T.latex_escape(line)} Needs \\usepackage{{booktabs,graphicx}}.\n\n"
     return ""
 
 

@@ -139,12 +139,15 @@ def to_latex(t):
     wide = len(t.header) > 5
     env = "table*" if wide else "table"
     out = [f"% {latex_escape(t.title)}", f"\\begin{{{env}}}[htbp]", "\\centering", "\\footnotesize" if wide else "\\small",
-           "\\setlength{\\tabcolsep}{3pt}", "\\begin{tabular}{l" + "r" * (len(t.header) - 1) + "}", "\\toprule",
+           "\\setlength{\\tabcolsep}{3pt}",
+           # shrunk to the column (or page, for table*) only when wider than it (graphicx)
+           "\\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{%",
+           "\\begin{tabular}{l" + "r" * (len(t.header) - 1) + "}", "\\toprule",
            " & ".join(latex_escape(h) for h in t.header) + " \\\\", "\\midrule"]
     for row in t.rows:
         out.append(" & ".join(("\\textbf{" + latex_escape(_text(c)) + "}") if _best(c) else latex_escape(_text(c))
                               for c in row) + " \\\\")
-    out += ["\\bottomrule", "\\end{tabular}", f"\\caption{{{latex_escape(t.title)}" +
+    out += ["\\bottomrule", "\\end{tabular}}", f"\\caption{{{latex_escape(t.title)}." +
             (f" {latex_escape(t.note)}" if t.note else "") + "}", f"\\end{{{env}}}", ""]
     return "\n".join(out) + "\n"
 
@@ -189,7 +192,7 @@ def headline_table(a, dataset, tool, measured=False):
                 "machine: ranked, never tested, never marked best. Everything else is reproduced byte for byte.")
     else:
         title = f"{dataset}{tool_label(a, tool)}: headline metrics, median and rank"
-        note = ("Median over valid runs (ok and partial), rank 1 = best in the metric's direction. ★ and bold: "
+        note = ("Median over valid runs (ok and partial); rank 1 = best in the metric's direction, medians within its tie band share a rank. ★ and bold: "
                 "the leader is better than every other planner by a Holm-adjusted Wilcoxon signed-rank test over "
                 "the same walls (p < 0.05); without ★ the leader is not separable from the rest.")
     t = Table(title, ["planner", "n"] + [f"{m} ({unit_label(a.specs[m])})" if unit_label(a.specs[m]) else m

@@ -4,6 +4,8 @@ import filecmp
 import json
 import math
 import os
+import shutil
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -87,6 +89,15 @@ class PairedByHand(unittest.TestCase):
         self.assertFalse(a3.ranking("d", a3.tools[0], "length_total")[0]["best"])
 
 
+class Ranks(unittest.TestCase):
+    def test_medians_within_the_tie_band_share_a_rank(self):
+        # coverage medians 0.9999, 0.9995 (within 0.001: tied), 0.99 -> ranks 1, 1, 3
+        runs = [run("a", "w", 0.9999, 10), run("b", "w", 0.9995, 10), run("c", "w", 0.99, 10)]
+        a = Analysis(data(runs, ["a", "b", "c"]))
+        ranks = {e["column"]: e["rank"] for e in a.ranking("d", a.tools[0], "coverage_reachable")}
+        self.assertEqual(ranks, {"a": 1, "b": 1, "c": 3})
+
+
 class ToolsNeverPooled(unittest.TestCase):
     def test_comparisons_and_rankings_stay_within_a_tool(self):
         cols = ["a @ s=0.05 m, c=0.02 m", "a @ s=0.1 m, c=0.02 m", "b @ s=0.05 m, c=0.02 m", "b @ s=0.1 m, c=0.02 m"]
@@ -118,6 +129,23 @@ class Rendering(unittest.TestCase):
             self.assertNotIn("<script>", md)
             tex = open(os.path.join(out, "report.tex"), encoding="utf-8").read()
             self.assertIn(r"50\% \& \_x\_", tex)
+
+    def test_latex_tables_compile_and_fit_one_and_two_columns(self):
+        if not shutil.which("pdflatex"):
+            self.skipTest("pdflatex not installed (scripts/setup.sh installs texlive-latex-recommended)")
+        hostile = 'a_b & 50% <x> {y} #z ~'
+        d = data([dict(r, dataset=hostile) for r in HAND] + [run("c", "w1", 0.9, 10), run("c", "w2", 0.9, 10)],
+                 ["a", "b", "c"], name=hostile, dataset_label=hostile)
+        with tempfile.TemporaryDirectory() as out:
+            report.build(d, out, formats=("latex",))
+            for options in ("", "twocolumn"):
+                with open(os.path.join(out, "main.tex"), "w", encoding="utf-8") as f:
+                    f.write(f"\\documentclass[{options}]{{article}}\n\\usepackage[utf8]{{inputenc}}\n"
+                            "\\usepackage{booktabs,graphicx}\n\\begin{document}\n\\input{report.tex}\n\\end{document}\n")
+                r = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "main.tex"], cwd=out,
+                                   capture_output=True, text=True, timeout=120)
+                self.assertEqual(r.returncode, 0, r.stdout[-2000:])
+                self.assertNotIn("Overfull \\hbox", r.stdout)
 
     def test_same_data_same_bytes(self):
         runs = []
