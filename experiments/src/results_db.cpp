@@ -147,6 +147,12 @@ std::string utcNow() {
   return buf;
 }
 
+std::string gibibytes(double bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f GiB", bytes / (1024.0 * 1024 * 1024));
+  return buf;
+}
+
 std::string paramsText(const PlannerConfig& pc) {
   std::string out;
   for (const auto& [k, v] : pc.params.all()) out += (out.empty() ? "" : ", ") + k + "=" + toString(v);
@@ -513,7 +519,7 @@ ExperimentRecord ResultsDb::record(std::optional<long long> experiment) {
                {"CPU", s.columnText(13)},
                {"cores", std::to_string(s.columnInt(14))},
                {"OS", s.columnText(15)},
-               {"memory", s.columnNull(16) ? "-" : toString(s.columnReal(16) / (1024.0 * 1024 * 1024)) + " GiB"},
+               {"memory", s.columnNull(16) ? "-" : gibibytes(s.columnReal(16))},
                {"worker processes", std::to_string(s.columnInt(17))},
                {"started (UTC)", s.columnText(18)},
                {"finished (UTC)", s.columnText(19).empty() ? "not finished" : s.columnText(19)},

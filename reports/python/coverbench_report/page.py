@@ -12,7 +12,7 @@ h2{border-bottom:2px solid #ccc;padding-top:.6em}
 table{border-collapse:collapse;font-size:13px;margin:.5em 0}
 caption{text-align:left;font-weight:600;padding:.3em 0}
 th,td{border:1px solid #ddd;padding:2px 7px;text-align:right;white-space:nowrap}
-th[scope=row],td:first-child{text-align:left}
+th[scope=row],td:first-child,td.text{text-align:left}
 thead th{background:#f6f6f6}
 .table-wrap{overflow-x:auto}
 .note{font-size:12px;color:#555;max-width:110ch}

@@ -24,6 +24,12 @@ def save(fig, path):
     plt.close(fig)
 
 
+def legend(ax, **options):
+    """A legend only where something is labelled (matplotlib warns otherwise)."""
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(**options)
+
+
 def scaled(spec, values):
     v = np.asarray(values, dtype=float)
     if is_percent(spec):
@@ -86,7 +92,7 @@ def profiles(a, dataset, tool, path):
         ax.set_xlabel("τ (within τ × best)")
         ax.set_title(m + (f" (+{number(shift)} to all)" if shift else ""))
     axes[0, 0].set_ylabel("share of walls")
-    axes[0, 0].legend(fontsize=7, loc="lower right")
+    legend(axes[0, 0], fontsize=7, loc="lower right")
     fig.suptitle(f"{dataset}: performance profiles (Dolan-Moré); a failure never reaches any τ")
     fig.tight_layout()
     save(fig, path)
@@ -132,7 +138,7 @@ def pareto(a, dataset, tool, path):
     ax.set_xlabel("length_ratio (lower is better)")
     ax.set_ylabel("coverage_reachable (%), higher is better")
     ax.set_title(f"{dataset}: coverage against length")
-    ax.legend(fontsize=7, loc="lower right")
+    legend(ax, fontsize=7, loc="lower right")
     fig.tight_layout()
     save(fig, path)
 
@@ -218,7 +224,7 @@ def scaling(a, tool, path):
         ax.set_yscale("log")
         ax.set_xlabel(label + ("; walls without obstacles left out" if feature == "obstacles" else ""))
         ax.set_ylabel("plan time (ms)")
-        ax.legend(fontsize=7, loc="upper left")
+        legend(ax, fontsize=7, loc="upper left")
     fig.suptitle("Plan time scaling (least-squares fit on log-log axes, ± standard error)")
     fig.tight_layout()
     save(fig, path)
@@ -281,7 +287,7 @@ def parameter_plot(a, planner, param, points, path):
                 ax.errorbar(xs, med, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=short(d, 16))
         ax.set_xlabel(param)
         ax.set_title(axis_label(spec))
-    axes[0, 0].legend(fontsize=7)
+    legend(axes[0, 0], fontsize=7)
     fig.suptitle(f"{planner}: metrics against {param} (median and interquartile range per dataset)")
     fig.tight_layout()
     save(fig, path)
@@ -319,7 +325,7 @@ def tool_plot(a, path):
         ax.set_xlabel("tool width s (m)")
         ax.set_xticks(widths)
         ax.set_title(axis_label(spec))
-    axes[0, 0].legend(fontsize=6)
+    legend(axes[0, 0], fontsize=6)
     fig.suptitle("Metrics against the tool width (median and interquartile range)")
     fig.tight_layout()
     save(fig, path)

@@ -100,7 +100,10 @@ def to_html(t):
             text = html.escape(_text(c))
             if _best(c):
                 text = f"<strong>{text}</strong>"
-            cells.append(f"<{'th scope=row' if i == 0 else 'td'}>{text}</{'th' if i == 0 else 'td'}>")
+            if i == 0:
+                cells.append(f"<th scope=row>{text}</th>")
+            else:  # words read from the left, numbers line up on the right
+                cells.append(f'<td class="text">{text}</td>' if _text(c)[:1].isalpha() else f"<td>{text}</td>")
         out.append("<tr>" + "".join(cells) + "</tr>")
     out.append("</tbody></table></div>")
     if t.note:

@@ -32,6 +32,11 @@ SPECS = [
 ]
 
 
+def read(path):
+    with open(path, encoding="utf-8") as f:
+        return f.read()
+
+
 def run(column, wall, cov, length, status="ok", tool=0.1, dataset="d", time=1.0):
     return {"key": f"{column}-{wall}-{tool}", "column": column, "config": column.split(" @")[0], "dataset": dataset,
             "wall": wall, "wall_name": wall, "tool_width": tool, "clearance": 0.02,
@@ -122,12 +127,12 @@ class Rendering(unittest.TestCase):
         d = data([dict(r, dataset=hostile) for r in HAND], ["a", "b"], name=hostile, dataset_label=hostile)
         with tempfile.TemporaryDirectory() as out:
             report.build(d, out)
-            page = open(os.path.join(out, "index.html"), encoding="utf-8").read()
+            page = read(os.path.join(out, "index.html"))
             self.assertNotIn("<script", page)
             self.assertIn("&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt;", page)
-            md = open(os.path.join(out, "report.md"), encoding="utf-8").read()
+            md = read(os.path.join(out, "report.md"))
             self.assertNotIn("<script>", md)
-            tex = open(os.path.join(out, "report.tex"), encoding="utf-8").read()
+            tex = read(os.path.join(out, "report.tex"))
             self.assertIn(r"50\% \& \_x\_", tex)
 
     def test_latex_tables_compile_and_fit_one_and_two_columns(self):
