@@ -433,7 +433,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   {
     Statement s(db_,
                 "SELECT r.key, r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.seed, r.status, "
-                "r.valid, r.plan_time_ms, r.peak_memory_bytes, r.uncovered_reachable_m2, ws.name FROM runs r "
+                "r.valid, r.plan_time_ms, r.peak_memory_bytes, r.uncovered_reachable_m2, ws.name, r.planner_version FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
                 "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 "
                 "JOIN walls ws ON ws.hash = r.wall_hash ORDER BY r.key",
@@ -456,6 +456,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
       row.config = row.planner;
       row.key = s.columnText(0);
       row.wall_name = s.columnText(12);
+      row.planner_version = s.columnText(13);
       row.tool = ToolParams{s.columnReal(4), s.columnReal(5)};
       index[s.columnText(0)] = rs.runs.size();
       rs.runs.push_back(std::move(row));

@@ -25,7 +25,7 @@ std::vector<std::string> metricColumns(const ResultSet& rs) {
 }  // namespace
 
 std::string renderRuns(const ResultSet& rs, bool json) {
-  const std::vector<std::string> fixed = {"key", "dataset", "wall", "wall_hash", "planner", "tool_width", "clearance",
+  const std::vector<std::string> fixed = {"key", "dataset", "wall", "wall_hash", "planner", "planner_version", "tool_width", "clearance",
                                           "status", "valid", "uncovered_reachable_m2"};
   if (json) {
     nlohmann::ordered_json out = nlohmann::ordered_json::array();
@@ -36,6 +36,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
       row["wall"] = r.wall_name;
       row["wall_hash"] = r.wall;
       row["planner"] = r.config;
+      row["planner_version"] = r.planner_version;
       row["tool_width"] = r.tool.tool_width;
       row["clearance"] = r.tool.clearance;
       row["status"] = r.status;
@@ -56,7 +57,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
   text += "\n";
   for (const ResultRow& r : rs.runs) {
     text += r.key + "," + escapeCsv(r.dataset) + "," + escapeCsv(r.wall_name) + "," + r.wall + "," + escapeCsv(r.config) +
-            "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) + "," + escapeCsv(r.status) + "," +
+            "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) + "," + escapeCsv(r.status) + "," +
             (r.valid ? "true" : "false") + "," + number(r.uncovered_reachable_m2);
     for (const std::string& m : metricColumns(rs)) {
       const auto it = r.metrics.find(m);

@@ -15,6 +15,7 @@ struct ResultRow {
   /// configurations in the experiment, "label @ s=... m, c=... m" (never pooled across tools).
   std::string planner;
   std::string config;   ///< the planner configuration's label alone
+  std::string planner_version;  ///< the planner's declared version when the run was executed
   std::string key;      ///< run key
   std::string wall_name;
   ToolParams tool;
@@ -36,7 +37,7 @@ struct ResultSet {
   std::vector<ResultRow> runs;
 };
 
-/// One row per run: key, dataset, wall, planner configuration, tool, status, valid, the uncovered
+/// One row per run: key, dataset, wall, planner configuration and version, tool, status, valid, the uncovered
 /// reachable area and every metric as a column (what pandas or R load). `json`: an array of
 /// objects (NaN and infinities as null); otherwise CSV. Rows in key order.
 std::string renderRuns(const ResultSet& results, bool json);
