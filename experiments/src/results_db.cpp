@@ -210,13 +210,19 @@ ResultsDb::ResultsDb(const std::string& path, Mode mode) : file_(path) {
     throw InputError(path, "(database)", "cannot be opened: " + why);
   }
   sqlite3_busy_timeout(db_, 10000);
-  // Nothing is written to a file before it is known to be CoverBench's (or new and empty).
-  const bool empty = !exists || fs::file_size(path, ec) == 0;
-  if (!empty) checkOwnership();
-  if (mode == Mode::ReadWrite) {
-    exec(kSchema);
-    exec("PRAGMA application_id = " + std::to_string(kApplicationId) + "; PRAGMA user_version = " +
-         std::to_string(kSchemaVersion) + ";");
+  try {
+    // Nothing is written to a file before it is known to be CoverBench's (or new and empty).
+    const bool empty = !exists || fs::file_size(path, ec) == 0;
+    if (!empty) checkOwnership();
+    if (mode == Mode::ReadWrite) {
+      exec(kSchema);
+      exec("PRAGMA application_id = " + std::to_string(kApplicationId) + "; PRAGMA user_version = " +
+           std::to_string(kSchemaVersion) + ";");
+    }
+  } catch (...) {  // a constructor that throws runs no destructor: close the connection here
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw;
   }
 }
 
