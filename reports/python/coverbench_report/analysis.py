@@ -68,8 +68,11 @@ class Analysis:
         self.compared = [m for m, s in self.specs.items() if s["better"] != 0 and s["kind"] in COMPARED_KINDS]
         self.appendix = [m for m in self.specs if m not in self.headline and m != "valid"]
         self._index = {}
+        self._by_column_dataset = {}
         for r in self.runs:
             self._index[(r["column"], r["pairing"])] = r
+            self._by_column_dataset.setdefault((r["column"], r["dataset"]), []).append(r)
+        self._friedman = {}  # (dataset, tool, metric) -> result: tables, diagrams and marks ask again
 
     # --- groups -------------------------------------------------------------------------------
     def tool_columns(self, tool):
@@ -82,7 +85,7 @@ class Analysis:
         return None
 
     def runs_of(self, column, dataset):
-        return [r for r in self.by_column[column] if r["dataset"] == dataset]
+        return self._by_column_dataset.get((column, dataset), [])
 
     def values(self, column, dataset, metric):
         return [v for v in (value(r, metric) for r in self.runs_of(column, dataset) if usable(r)) if math.isfinite(v)]
@@ -174,20 +177,29 @@ class Analysis:
         return ordered
 
     # --- Friedman -----------------------------------------------------------------------------
+    def _value_table(self, dataset, tool, metric):
+        """The tool's columns and one row per wall (pairing) of their values, NaN where a column
+        has no usable run there."""
+        cols = self.tool_columns(tool)
+        pairings = sorted({r["pairing"] for c in cols for r in self.runs_of(c, dataset)})
+        rows = []
+        for p in pairings:
+            rs = [self._index.get((c, p)) for c in cols]
+            rows.append([value(r, metric) if r is not None and usable(r) else math.nan for r in rs])
+        return cols, rows
+
     def friedman(self, dataset, tool, metric):
         """Friedman test over the walls where every column of the tool has a usable value."""
-        cols = self.tool_columns(tool)
-        if len(cols) < 3 or metric not in self.compared:
+        key = (dataset, tool, metric)
+        if key not in self._friedman:
+            self._friedman[key] = self._friedman_uncached(dataset, tool, metric)
+        return self._friedman[key]
+
+    def _friedman_uncached(self, dataset, tool, metric):
+        if len(self.tool_columns(tool)) < 3 or metric not in self.compared:
             return None
-        pairings = sorted({r["pairing"] for c in cols for r in self.runs_of(c, dataset)})
-        table = []
-        for p in pairings:
-            row = []
-            for c in cols:
-                r = self._index.get((c, p))
-                row.append(value(r, metric) if r is not None and usable(r) else math.nan)
-            if all(math.isfinite(v) for v in row):
-                table.append(row)
+        cols, rows = self._value_table(dataset, tool, metric)
+        table = [row for row in rows if all(math.isfinite(v) for v in row)]
         if len(table) < 2:
             return None
         res = stats.friedman(self.specs[metric], table)
@@ -198,15 +210,7 @@ class Analysis:
     def costs(self, dataset, tool, metric):
         """Problems x columns; inf where a column has no usable run. Zero costs (overlap) are
         shifted by the metric's absolute tie band so that ratios exist."""
-        cols = self.tool_columns(tool)
         shift = self.specs[metric]["tie_absolute"] if metric == "overlap" else 0.0
-        pairings = sorted({r["pairing"] for c in cols for r in self.runs_of(c, dataset)})
-        table = []
-        for p in pairings:
-            row = []
-            for c in cols:
-                r = self._index.get((c, p))
-                v = value(r, metric) if r is not None and usable(r) else math.nan
-                row.append(v + shift if math.isfinite(v) else math.inf)
-            table.append(row)
+        cols, rows = self._value_table(dataset, tool, metric)
+        table = [[v + shift if math.isfinite(v) else math.inf for v in row] for row in rows]
         return cols, np.array(table, dtype=float).reshape(len(table), len(cols)), shift

@@ -231,6 +231,17 @@ def scaling(a, tool, path):
     return fits
 
 
+def median_bars(ax, points, label, min_points=1):
+    """The median and interquartile range of each (x, values) with values, as error bars in x
+    order; nothing when fewer than `min_points` have values."""
+    pts = sorted(((x, np.percentile(v, [25, 50, 75])) for x, v in points if len(v)), key=lambda p: p[0])
+    if len(pts) < min_points:
+        return
+    q = np.array([q for _, q in pts])
+    ax.errorbar([x for x, _ in pts], q[:, 1], yerr=[q[:, 1] - q[:, 0], q[:, 2] - q[:, 1]], marker="o", ms=3,
+                capsize=2, label=label)
+
+
 def parse_params(text):
     out = {}
     for part in text.split(", "):
@@ -271,20 +282,8 @@ def parameter_plot(a, planner, param, points, path):
     for ax, m in zip(axes.flat, metrics):
         spec = a.specs[m]
         for d in a.datasets:
-            xs, med, lo, hi = [], [], [], []
-            for x, label in points:
-                for c in a.columns:
-                    if a.config_of[c] != label:
-                        continue
-                    v = scaled(spec, a.values(c, d, m))
-                    if len(v):
-                        q1, q2, q3 = np.percentile(v, [25, 50, 75])
-                        xs.append(x)
-                        med.append(q2)
-                        lo.append(q2 - q1)
-                        hi.append(q3 - q2)
-            if xs:
-                ax.errorbar(xs, med, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=short(d, 16))
+            median_bars(ax, [(x, scaled(spec, a.values(c, d, m))) for x, label in points for c in a.columns
+                             if a.config_of[c] == label], short(d, 16))
         ax.set_xlabel(param)
         ax.set_title(axis_label(spec))
     legend(axes[0, 0], fontsize=7)
@@ -306,22 +305,8 @@ def tool_plot(a, path):
         spec = a.specs[m]
         for cfg in configs:
             for d in a.datasets:
-                xs, med, lo, hi = [], [], [], []
-                for c in a.columns:
-                    if a.config_of[c] != cfg:
-                        continue
-                    v = scaled(spec, a.values(c, d, m))
-                    if len(v):
-                        q1, q2, q3 = np.percentile(v, [25, 50, 75])
-                        xs.append(a.tool_of[c][0])
-                        med.append(q2)
-                        lo.append(q2 - q1)
-                        hi.append(q3 - q2)
-                if len(xs) > 1:
-                    order = np.argsort(xs)
-                    ax.errorbar(np.array(xs)[order], np.array(med)[order],
-                                yerr=[np.array(lo)[order], np.array(hi)[order]], marker="o", ms=3, capsize=2,
-                                label=short(f"{cfg} / {d}", 26))
+                median_bars(ax, [(a.tool_of[c][0], scaled(spec, a.values(c, d, m))) for c in a.columns
+                                 if a.config_of[c] == cfg], short(f"{cfg} / {d}", 26), min_points=2)
         ax.set_xlabel("tool width s (m)")
         ax.set_xticks(widths)
         ax.set_title(axis_label(spec))
