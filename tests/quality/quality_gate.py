@@ -4,6 +4,8 @@ committed golden file. Any change fails with a table of what moved and by how mu
   python3 tests/quality/quality_gate.py check  [--coverbench build/coverbench] [--work DIR]
   python3 tests/quality/quality_gate.py update [--coverbench build/coverbench] [--work DIR]
 
+`check --save FILE` also writes what it measured (the golden file's format), for the history.
+
 `update` rewrites tests/quality/golden.csv deliberately (commit it with the planner change, and
 bump the planner's `version`: `check` names every planner whose output changed at the same
 version). Metrics are compared exactly: the same code and inputs give the same bytes."""
@@ -40,6 +42,7 @@ def measure(coverbench, work):
 
 
 def write(rows, path):
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     with open(path, "w", newline="", encoding="utf-8") as f:
         w = csv.DictWriter(f, KEY + FIELDS, lineterminator="\n")
         w.writeheader()
@@ -86,6 +89,7 @@ def main(argv=None):
     ap.add_argument("--coverbench", default=os.path.join(HERE, "..", "..", "build", "coverbench"))
     ap.add_argument("--work", default=None, help="folder for the gate's experiment (default: a temporary one)")
     ap.add_argument("--golden", default=GOLDEN)
+    ap.add_argument("--save", default=None, help="check: also write the measured rows here (CSV, for bench/history.py)")
     args = ap.parse_args(argv)
     work = args.work or tempfile.mkdtemp(prefix="coverbench-quality-")
     try:
@@ -99,6 +103,8 @@ def main(argv=None):
         write(current, args.golden)
         print(f"wrote {args.golden}: {len(current)} runs")
         return 0
+    if args.save:
+        write(current, args.save)
     lines, unbumped = compare(read(args.golden), current)
     if not lines:
         print(f"quality gate: {len(current)} runs as in {os.path.relpath(args.golden)}")

@@ -1,0 +1,134 @@
+// The cost gate's probe (tests/cost/README.md): one case per process, its measured call wrapped
+// in callgrind's collection toggle, so `valgrind --tool=callgrind --collect-atstart=no` counts the
+// instructions of that call alone (not loading the wall, not planning the path a metrics case
+// scores). Run it with LD_BIND_NOW=1 (as the gate does) so that lazy symbol binding is not
+// counted. Outside valgrind the toggles do nothing.
+//   build/bench/coverbench_cost_probe --list       (the cases)
+//   build/bench/coverbench_cost_probe --identity   (compiler, build type, flags)
+//   valgrind --tool=callgrind --collect-atstart=no build/bench/coverbench_cost_probe zigzag/seed_5x5_3obs
+//
+// COVERBENCH_COST_SELFTEST_SLOW=PLANNER (a test switch, for the gate's own test): that planner's
+// cases plan twice inside the counted region, as a planner made twice as slow would.
+#include <valgrind/callgrind.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "coverbench/build_identity.hpp"
+#include "coverbench/metrics.hpp"
+#include "coverbench/registry.hpp"
+#include "coverbench/wall.hpp"
+
+namespace {
+
+using namespace coverbench;
+
+struct WallCase {
+  const char* name;  ///< as in the case name
+  const char* file;  ///< under the project's source folder
+  double tool_width;
+};
+// The seed cases at s = 0.05 m (as bench/planners_bench.cpp), a facade at 0.1 m and the
+// 200-opening benchmark wall at 0.1 m.
+const WallCase kWalls[] = {{"seed_1x1_empty", "datasets/canonical/seed_1x1_empty.json", 0.05},
+                           {"seed_5x5_1obs", "datasets/canonical/seed_5x5_1obs.json", 0.05},
+                           {"seed_5x5_3obs", "datasets/canonical/seed_5x5_3obs.json", 0.05},
+                           {"seed_10x8_3obs", "datasets/canonical/seed_10x8_3obs.json", 0.05},
+                           {"seed_10x10_5obs", "datasets/canonical/seed_10x10_5obs.json", 0.05},
+                           {"facade_20x9_24win", "datasets/canonical/facade_20x9_24win.json", 0.1},
+                           {"bench_50x20_200rect", "bench/walls/bench_50x20_200rect.json", 0.1}};
+// The metrics engine: all metrics of a path planned by the named planner.
+const char* const kMetricsPaths[][2] = {{"zigzag", "seed_5x5_3obs"}, {"zigzag", "facade_20x9_24win"},
+                                        {"spiral", "facade_20x9_24win"}, {"spanning-tree", "seed_10x10_5obs"}};
+
+std::vector<std::string> caseNames() {
+  std::vector<std::string> names;
+  for (const PlannerInfo& p : registeredPlanners())
+    for (const WallCase& w : kWalls) names.push_back(p.name + "/" + w.name);
+  for (const auto& m : kMetricsPaths) names.push_back(std::string("metrics/") + m[0] + "/" + m[1]);
+  return names;
+}
+
+const WallCase& findWall(const std::string& name) {
+  for (const WallCase& w : kWalls)
+    if (name == w.name) return w;
+  throw std::runtime_error("no wall '" + name + "' in the cost probe's cases");
+}
+
+struct Input {
+  Wall wall;
+  Problem problem;
+};
+
+Input load(const std::string& planner, const std::string& wall_name) {
+  const WallCase& w = findWall(wall_name);
+  Input in;
+  in.wall = loadWallFile(std::string(COVERBENCH_SOURCE_DIR) + "/" + w.file);
+  in.problem.wall = &in.wall;
+  in.problem.tool.tool_width = w.tool_width;
+  in.problem.tool.clearance = 0.02;
+  in.problem.params = resolveParams(findPlanner(planner), {});
+  return in;
+}
+
+PlanResult plan(const std::string& planner, const Problem& problem) {
+  PlanResult r = findPlanner(planner).make()->plan(problem, Budget());
+  if (!r.hasPath()) throw std::runtime_error(planner + ": " + toString(r.status) + ": " + r.reason);
+  return r;
+}
+
+int runCase(const std::string& name) {
+  const auto slash = name.find('/');
+  if (slash == std::string::npos) throw std::runtime_error("no case '" + name + "' (see --list)");
+  const std::string first = name.substr(0, slash), rest = name.substr(slash + 1);
+  if (first == "metrics") {
+    const auto slash2 = rest.find('/');
+    const std::string planner = rest.substr(0, slash2), wall = slash2 == std::string::npos ? "" : rest.substr(slash2 + 1);
+    Input in = load(planner, wall);
+    const Path path = plan(planner, in.problem).path;
+    CALLGRIND_TOGGLE_COLLECT;
+    const PathMetrics m = computeMetrics(in.wall, in.problem.tool, path);
+    CALLGRIND_TOGGLE_COLLECT;
+    std::printf("%s: %zu waypoints scored, coverage_reachable %.6f\n", name.c_str(), path.waypoints.size(),
+                m.coverage.coverage_reachable);
+    return 0;
+  }
+  Input in = load(first, rest);
+  const char* slow = std::getenv("COVERBENCH_COST_SELFTEST_SLOW");
+  const int times = slow && first == slow ? 2 : 1;
+  std::size_t waypoints = 0;
+  CALLGRIND_TOGGLE_COLLECT;
+  for (int i = 0; i < times; ++i) waypoints += plan(first, in.problem).path.waypoints.size();
+  CALLGRIND_TOGGLE_COLLECT;
+  std::printf("%s: %zu waypoints\n", name.c_str(), waypoints / times);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    if (argc == 2 && std::string(argv[1]) == "--list") {
+      for (const std::string& n : caseNames()) std::printf("%s\n", n.c_str());
+      return 0;
+    }
+    if (argc == 2 && std::string(argv[1]) == "--identity") {  // what the counts depend on besides the code
+      const BuildIdentity& id = buildIdentity();
+      const std::string flags = id.flags.substr(std::min(id.flags.find_first_not_of(' '), id.flags.size()));
+      std::printf("%s %s, flags '%s'\n", id.compiler.c_str(), id.build_type.c_str(), flags.c_str());
+      return 0;
+    }
+    if (argc != 2) {
+      std::fprintf(stderr, "usage: coverbench_cost_probe --list | --identity | CASE\n");
+      return 2;
+    }
+    return runCase(argv[1]);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "coverbench_cost_probe: %s\n", e.what());
+    return 1;
+  }
+}
