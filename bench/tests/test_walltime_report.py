@@ -1,0 +1,73 @@
+"""The wall-time report's verdicts (a change needs significance and size), its two outputs, and
+one real interleaved run of the same program against itself (COVERBENCH_BENCH names it; ctest
+sets it)."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
+
+import walltime_report as report  # noqa: E402
+
+BENCH = os.environ.get("COVERBENCH_BENCH", os.path.join(report.ROOT, "build", "bench", "coverbench_bench"))
+
+
+class Verdict(unittest.TestCase):
+    def test_a_large_significant_rise_is_slower(self):
+        change, p, v = report.verdict([10.0, 10.1, 9.9, 10.2, 10.0, 9.8], [12.0, 12.1, 11.9, 12.2, 12.0, 11.8])
+        self.assertAlmostEqual(change, 20.0, places=6)
+        self.assertLess(p, 0.05)
+        self.assertEqual(v, "slower")
+
+    def test_a_significant_but_small_shift_is_no_change(self):
+        _, p, v = report.verdict([10.0, 10.01, 10.02, 10.03, 10.04, 10.05], [10.2, 10.21, 10.22, 10.23, 10.24, 10.25])
+        self.assertLess(p, 0.05)
+        self.assertEqual(v, "no change")
+
+    def test_a_large_but_noisy_shift_is_no_change(self):
+        _, p, v = report.verdict([10, 14, 8, 12, 9, 13], [11, 15, 9, 13, 10, 14])
+        self.assertGreater(p, 0.05)
+        self.assertEqual(v, "no change")
+
+    def test_a_large_significant_fall_is_faster(self):
+        self.assertEqual(report.verdict([10, 10.1, 10.2, 10.3, 10.4], [8, 8.1, 8.2, 8.3, 8.4])[2], "faster")
+
+
+class Outputs(unittest.TestCase):
+    def test_markdown_and_dashboard_json(self):
+        samples = {"zigzag/w": {"base": [(1.0, 5000), (1.1, 5100), (1.0, 5000), (1.05, 5000)],
+                                 "head": [(2.0, 6000), (2.1, 6100), (2.0, 6000), (2.05, 6000)]}}
+        rows = report.summarize(samples)
+        md = report.markdown(rows, "base1", "head1", 3)
+        self.assertIn("| zigzag/w | 1.025 | 2.025 | +97.6 % |", md)
+        self.assertIn("| 5.0 | 6.0 |", md)  # peak MiB of base and head (5100 KiB, 6100 KiB)
+        entries = json.loads(report.dashboard_json(rows, "base1"))
+        self.assertEqual([e["name"] for e in entries], ["zigzag/w (time)", "zigzag/w (peak memory)"])
+        self.assertEqual((entries[0]["unit"], entries[0]["value"]), ("ms", 2.025))
+        self.assertEqual((entries[1]["unit"], entries[1]["value"]), ("KiB", 6100))
+        for e in entries:
+            self.assertTrue({"name", "unit", "value"} <= set(e))
+
+
+class RealRun(unittest.TestCase):
+    def test_the_same_program_against_itself(self):
+        out = tempfile.mkdtemp(prefix="coverbench-walltime-test-")
+        run = subprocess.run([sys.executable, os.path.join(report.HERE, "walltime_report.py"), "--base", "HEAD",
+                              "--base-bench", BENCH, "--head-bench", BENCH, "--rounds", "4",
+                              "--filter", "^zigzag/seed_(1x1_empty|5x5_1obs)$", "--min-time", "0.01", "--out", out],
+                             capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        with open(os.path.join(out, "walltime.json"), encoding="utf-8") as f:
+            entries = json.load(f)
+        self.assertEqual(len(entries), 4)
+        with open(os.path.join(out, "walltime.md"), encoding="utf-8") as f:
+            md = f.read()
+        self.assertIn("| zigzag/seed_1x1_empty |", md)
+        self.assertIn("4 interleaved rounds", md)
+
+
+if __name__ == "__main__":
+    unittest.main()
