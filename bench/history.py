@@ -7,9 +7,10 @@ measured to a JSON Lines file keyed by revision (a rerun of a revision replaces 
 
 counts.csv: `cost_gate.py check --save`; quality.csv: `quality_gate.py check --save`. Lines are in
 the order revisions were appended (CI order), which is commit order on one branch.
-`plot` writes DIR/cost_PLANNER.svg (instructions per wall), DIR/quality_PLANNER.svg (coverage,
-overlap, length per wall) and DIR/first_changes.md (every series' first move, the revision that
-moved it and by how much)."""
+`plot` writes DIR/cost_PLANNER.svg (instructions per wall, as % change from the first revision),
+DIR/quality_PLANNER.svg (coverage, overlap, and length as % change, per wall) and DIR/first_changes.md (every
+series' first move: the revision that moved it, before and after). A count moves when it changes
+by more than 1 % (the cost gate's threshold); a quality metric at any change."""
 import argparse
 import csv
 import json
@@ -17,6 +18,9 @@ import os
 import sys
 
 QUALITY_METRICS = ["coverage_reachable", "overlap", "length_total"]
+# A cost series moves when its count changes by more than the cost gate's threshold (1 %): counts
+# of the same code differ by a few dozen instructions between checkouts at different paths.
+COST_TOLERANCE = 0.01
 
 
 def read_history(path):
@@ -72,16 +76,24 @@ def series(entries, section, metric=None):
     return out
 
 
-def first_change(revisions, values):
-    """(revision, before, after) of the first move of a series, or None."""
+def first_change(revisions, values, tolerance=0.0):
+    """(revision, before, after) of the first move of a series, or None. A move is a change from
+    the previous value by more than `tolerance` (relative; 0: any change)."""
     previous = None
     for rev, v in zip(revisions, values):
         if v is None:
             continue
         if previous is not None and v != previous:
-            return rev, previous, v
+            if isinstance(v, str) or abs(v - previous) > tolerance * abs(previous):
+                return rev, previous, v
         previous = v
     return None
+
+
+def relative(values):
+    """Percent change of each value from the series' first value."""
+    first = next((v for v in values if v is not None), None)
+    return [None if v is None or not first else 100.0 * (v - first) / first for v in values]
 
 
 def split_key(key):
@@ -106,25 +118,33 @@ def plot(history, out):
     changes = ["| series | first moved at | before | after |", "|---|---|---|---|"]
 
     def draw(name, panels):
-        """panels: [(title, {key: values})], one figure per planner, one line per wall."""
-        planners = sorted({split_key(k)[0] for _, s in panels for k in s})
+        """panels: [(title, {key: values}, tolerance, transform)]: one figure per planner, one line
+        per wall (a colour and line style of its own, kept across panels); the plot shows
+        transform(values), the table of first moves the values themselves."""
+        planners = sorted({split_key(k)[0] for _, s, _, _ in panels for k in s})
+        palette = plt.get_cmap("tab20").colors
         for planner in planners:
-            fig, axes = plt.subplots(len(panels), 1, figsize=(9, 2.6 * len(panels) + 0.8), squeeze=False)
-            for ax, (title, s) in zip(axes[:, 0], panels):
+            walls = sorted({split_key(k)[1] for _, s, _, _ in panels for k in s if split_key(k)[0] == planner})
+            style = {w: (palette[i % 20], ["-", "--", ":"][i // 20 % 3]) for i, w in enumerate(walls)}
+            fig, axes = plt.subplots(len(panels), 1, figsize=(11, 2.6 * len(panels) + 0.8), squeeze=False)
+            for ax, (title, s, tolerance, transform) in zip(axes[:, 0], panels):
                 for key in sorted(k for k in s if split_key(k)[0] == planner):
                     values = s[key]
+                    shown = transform(values)
                     wall = split_key(key)[1]
-                    ax.plot(x, [float("nan") if v is None else v for v in values], marker="o", ms=3, lw=1, label=wall)
-                    moved = first_change(full, values)
+                    color, dash = style[wall]
+                    ax.plot(x, [float("nan") if v is None else v for v in shown], marker="o", ms=3, lw=1, color=color,
+                            linestyle=dash, label=wall.split(":")[-1])
+                    moved = first_change(full, values, tolerance)
                     if moved:
                         i = full.index(moved[0])
-                        ax.plot([i], [values[i]], marker="o", ms=9, mfc="none", mec="red")
-                        changes.append(f"| {title}: {planner} / {wall} | {moved[0][:12]} | {moved[1]} | {moved[2]} |")
+                        ax.plot([i], [shown[i]], marker="o", ms=9, mfc="none", mec="red", color="red", linestyle="")
+                        changes.append(f"| {title.split(',')[0]}: {planner} / {wall} | {moved[0][:12]} | {moved[1]} | {moved[2]} |")
                 ax.set_title(f"{planner}: {title}", fontsize=9, loc="left")
                 ax.set_xticks(x, revisions, rotation=60, fontsize=7)
                 ax.tick_params(axis="y", labelsize=7)
                 ax.grid(alpha=0.3)
-            axes[0, 0].legend(fontsize=6, ncol=3, loc="best")
+            axes[0, 0].legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), title="wall", title_fontsize=7)
             fig.text(0.99, 0.01, "red ring: the first revision where the series moved", ha="right", fontsize=7)
             fig.tight_layout()
             fig.savefig(os.path.join(out, f"{name}_{planner}.svg"), metadata={"Date": None})
@@ -132,9 +152,13 @@ def plot(history, out):
 
     cost = series(entries, "cost")
     if cost:
-        draw("cost", [("instructions (callgrind)", cost)])
+        draw("cost", [("instructions (callgrind), % change from the first revision", cost, COST_TOLERANCE, relative)])
     if any("quality" in e for e in entries):
-        draw("quality", [(m, series(entries, "quality", m)) for m in QUALITY_METRICS])
+        same = lambda values: values  # noqa: E731
+        draw("quality", [("coverage_reachable", series(entries, "quality", "coverage_reachable"), 0.0, same),
+                         ("overlap", series(entries, "quality", "overlap"), 0.0, same),
+                         ("length_total, % change from the first revision", series(entries, "quality", "length_total"),
+                          0.0, relative)])
     with open(os.path.join(out, "first_changes.md"), "w", encoding="utf-8") as f:
         f.write("\n".join(changes) + "\n")
     return len(changes) - 2

@@ -50,6 +50,9 @@ class History(unittest.TestCase):
         self.assertEqual(history.first_change(["a", "b", "c", "d"], [5, 5, 7, 9]), ("c", 5, 7))
         self.assertEqual(history.first_change(["a", "b", "c"], [None, 5, 5]), None)
         self.assertEqual(history.first_change(["a", "b", "c"], [5, None, 6]), ("c", 5, 6))
+        # counts: a move is more than the tolerance; a few instructions of layout are not
+        self.assertEqual(history.first_change(["a", "b", "c"], [1000, 1004, 1020], 0.01), ("c", 1004, 1020))
+        self.assertEqual(history.first_change(["a", "b"], [1000, 1010], 0.01), None)
 
     def test_plot_draws_each_planner_and_names_the_first_moving_revision(self):
         self.add("r1", 100, 200, "0.1")
