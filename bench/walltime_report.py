@@ -2,9 +2,10 @@
 their Google Benchmark programs timed interleaved in one job (A B A B ...), each benchmark in a
 process of its own so its peak memory is its own. A change is reported as a change only when a
 two-sided Mann-Whitney U test says so (p < ALPHA) and the medians differ by at least
-MIN_EFFECT_PERCENT; everything else is "no change".
+MIN_EFFECT_PERCENT; everything else is "no change". p-values are Holm-adjusted across the
+benchmarks of the report.
 
-  python3 bench/walltime_report.py [--base REV] [--rounds 6] [--filter REGEX] [--out build-abab]
+  python3 bench/walltime_report.py [--base REV] [--rounds 10] [--filter REGEX] [--out build-abab]
 
 Writes OUT/walltime.md (for people) and OUT/walltime.json in github-action-benchmark's
 `customSmallerIsBetter` format (a list of {name, unit, value, range, extra}; also read by
@@ -19,15 +20,18 @@ import shutil
 import statistics
 import subprocess
 import sys
+import tempfile
 
 from scipy import stats
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(ROOT, "reports", "python"))
+from coverbench_report.stats import holm  # noqa: E402  (the report's Holm step-down)
 ALPHA = 0.05
 MIN_EFFECT_PERCENT = 5.0
 # The default subset: every planner on two seed walls, the grid variants and the decomposition
-# planners on the 200-opening wall (about 90 s for 6 rounds on 2 cores).
+# planners on the 200-opening wall: 19 benchmarks, about a minute for 10 rounds.
 DEFAULT_FILTER = r"(seed_5x5_3obs|seed_10x10_5obs|bench_50x20_200rect)$"
 
 
@@ -56,18 +60,34 @@ def listed(bench):
     return subprocess.run([bench, "--benchmark_list_tests"], check=True, capture_output=True, text=True).stdout.split()
 
 
+def exact_filter(name):
+    """A Google Benchmark filter (a POSIX extended regular expression; its backslash escapes are
+    refused) matching `name` alone: special characters go in bracket expressions."""
+    def one(c):
+        if c == "]":
+            return "[]]"
+        if c in "^\\":
+            return "."  # not in bracket expressions' portable set; no benchmark name has them
+        return f"[{c}]" if c in ".[()*+?$|{}" else c
+    return "^" + "".join(one(c) for c in name) + "$"
+
+
 def time_one(bench, name, min_time):
-    """(real time in ms, peak resident memory in KiB) of one benchmark in its own process."""
-    proc = subprocess.Popen([bench, f"--benchmark_filter=^{re.escape(name)}$", "--benchmark_format=json",
-                             f"--benchmark_min_time={min_time}"], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
-    out = proc.stdout.read()
-    _, status, usage = os.wait4(proc.pid, 0)
-    proc.returncode = os.waitstatus_to_exitcode(status)
-    if proc.returncode != 0:
-        raise SystemExit(f"walltime report: {bench} {name}: exit code {proc.returncode}")
-    run = json.loads(out)["benchmarks"][0]
-    scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[run["time_unit"]]
-    return run["real_time"] * scale, usage.ru_maxrss
+    """(real time in ms, peak resident memory in KiB) of one benchmark in its own process. The
+    memory comes from GNU time, whose small process starts the benchmark: a child forked from this
+    Python process would report Python's resident set as its own peak."""
+    with tempfile.NamedTemporaryFile("r", prefix="coverbench-walltime-", suffix=".txt") as peak:
+        run = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", peak.name, bench, f"--benchmark_filter={exact_filter(name)}",
+                              "--benchmark_format=json", f"--benchmark_min_time={min_time}"],
+                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        if run.returncode != 0:
+            raise SystemExit(f"walltime report: {bench} {name}: exit code {run.returncode}")
+        peak_kib = int(peak.read().split()[-1])
+    runs = json.loads(run.stdout)["benchmarks"] if run.stdout.strip() else []
+    if len(runs) != 1:
+        raise SystemExit(f"walltime report: {bench}: the filter {exact_filter(name)} ran {len(runs)} benchmarks, not 1")
+    scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[runs[0]["time_unit"]]
+    return runs[0]["real_time"] * scale, peak_kib
 
 
 def interleave(base, head, names, rounds, min_time):
@@ -81,22 +101,32 @@ def interleave(base, head, names, rounds, min_time):
     return samples
 
 
-def verdict(base_ms, head_ms):
-    """(change % of medians, p, verdict): a change needs both significance and size."""
+def verdict(base_ms, head_ms, p=None):
+    """(change % of medians, p, verdict): a change needs both significance and size. `p` is the
+    Holm-adjusted p-value when given (summarize adjusts across the report), else the test's own."""
     mb, mh = statistics.median(base_ms), statistics.median(head_ms)
     change = 100.0 * (mh - mb) / mb
-    p = float(stats.mannwhitneyu(base_ms, head_ms, alternative="two-sided").pvalue)
+    if p is None:
+        p = mann_whitney(base_ms, head_ms)
     if p < ALPHA and abs(change) >= MIN_EFFECT_PERCENT:
         return change, p, "slower" if change > 0 else "faster"
     return change, p, "no change"
 
 
+def mann_whitney(base_ms, head_ms):
+    return float(stats.mannwhitneyu(base_ms, head_ms, alternative="two-sided").pvalue)
+
+
 def summarize(samples):
+    """One row per benchmark; p-values Holm-adjusted across all of them, so that with twenty
+    benchmarks and no change, one of them is not called changed by chance."""
+    times = {name: ([t for t, _ in s["base"]], [t for t, _ in s["head"]]) for name, s in samples.items()}
+    names = list(samples)
+    adjusted = dict(zip(names, holm([mann_whitney(*times[n]) for n in names])))
     rows = []
     for name, s in samples.items():
-        base_ms = [t for t, _ in s["base"]]
-        head_ms = [t for t, _ in s["head"]]
-        change, p, v = verdict(base_ms, head_ms)
+        base_ms, head_ms = times[name]
+        change, p, v = verdict(base_ms, head_ms, adjusted[name])
         rows.append({"name": name, "base_ms": statistics.median(base_ms), "head_ms": statistics.median(head_ms),
                      "head_iqr_ms": iqr(head_ms), "change_percent": change, "p": p, "verdict": v,
                      "base_peak_kib": max(m for _, m in s["base"]), "head_peak_kib": max(m for _, m in s["head"]),
@@ -112,9 +142,10 @@ def iqr(xs):
 def markdown(rows, base_rev, head_rev, rounds):
     lines = [f"# Wall time: {head_rev} against {base_rev}", "",
              f"{rounds} interleaved rounds (base, head) of each benchmark, each in its own process. A change "
-             f"needs Mann-Whitney p < {ALPHA} (two-sided) and a median change of at least {MIN_EFFECT_PERCENT:g} %; "
-             "this report never fails a build. Peak memory: the largest resident set of the benchmark's processes.", "",
-             "| benchmark | base median (ms) | head median (ms) | change | p | verdict | base peak (MiB) | head peak (MiB) |",
+             f"needs a two-sided Mann-Whitney U test's p, Holm-adjusted across the benchmarks below, under {ALPHA} "
+             f"and a median change of at least {MIN_EFFECT_PERCENT:g} %; this report never fails a build. "
+             "Peak memory: the largest resident set of the benchmark's processes.", "",
+             "| benchmark | base median (ms) | head median (ms) | change | p (Holm) | verdict | base peak (MiB) | head peak (MiB) |",
              "|---|---:|---:|---:|---:|---|---:|---:|"]
     for r in rows:
         lines.append(f"| {r['name']} | {r['base_ms']:.3f} | {r['head_ms']:.3f} | {r['change_percent']:+.1f} % | "
@@ -141,7 +172,7 @@ def main(argv=None):
     ap.add_argument("--base", default="HEAD~1", help="the revision to compare with (default: HEAD~1)")
     ap.add_argument("--base-bench", default=None, help="a built base benchmark program (skips building the base)")
     ap.add_argument("--head-bench", default=os.path.join(ROOT, "build", "bench", "coverbench_bench"))
-    ap.add_argument("--rounds", type=int, default=6)
+    ap.add_argument("--rounds", type=int, default=10)
     ap.add_argument("--filter", default=DEFAULT_FILTER)
     ap.add_argument("--min-time", default="0.05", help="Google Benchmark's --benchmark_min_time per process")
     ap.add_argument("--out", default=os.path.join(ROOT, "build-abab"))

@@ -11,6 +11,7 @@ PACKAGES=(g++ cmake ninja-build pkg-config ccache
           python3 python3-numpy python3-scipy python3-matplotlib   # the report's statistics and plots
           chromium python3-websocket                               # the browser test of the report
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
+          time                                                     # peak memory in the wall-time report
           valgrind                                                 # the cost gate (callgrind)
           clang libclang-rt-14-dev)                                # the sanitizer build and the fuzz targets
 

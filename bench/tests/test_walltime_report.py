@@ -36,6 +36,23 @@ class Verdict(unittest.TestCase):
         self.assertEqual(report.verdict([10, 10.1, 10.2, 10.3, 10.4], [8, 8.1, 8.2, 8.3, 8.4])[2], "faster")
 
 
+class Holm(unittest.TestCase):
+    def samples(self, others):
+        moved = {"base": [(1.0, 1), (1.01, 1), (1.02, 1), (1.03, 1)], "head": [(2.0, 1), (2.01, 1), (2.02, 1), (2.03, 1)]}
+        still = {"base": [(1.0, 1), (1.2, 1), (0.9, 1), (1.1, 1)], "head": [(1.05, 1), (1.15, 1), (0.95, 1), (1.1, 1)]}
+        return {"moved": moved, **{f"still{i}": still for i in range(others)}}
+
+    def test_alone_a_clean_separation_is_a_change(self):
+        row = report.summarize(self.samples(0))[0]
+        self.assertAlmostEqual(row["p"], 2 / 70)  # the exact test's smallest p with 4 and 4
+        self.assertEqual(row["verdict"], "slower")
+
+    def test_among_twenty_benchmarks_the_same_p_is_adjusted_away(self):
+        rows = {r["name"]: r for r in report.summarize(self.samples(19))}
+        self.assertAlmostEqual(rows["moved"]["p"], 20 * 2 / 70)
+        self.assertEqual(rows["moved"]["verdict"], "no change")
+
+
 class Outputs(unittest.TestCase):
     def test_markdown_and_dashboard_json(self):
         samples = {"zigzag/w": {"base": [(1.0, 5000), (1.1, 5100), (1.0, 5000), (1.05, 5000)],
@@ -53,6 +70,14 @@ class Outputs(unittest.TestCase):
 
 
 class RealRun(unittest.TestCase):
+    def test_a_name_with_brackets_and_dashes_selects_exactly_that_benchmark(self):
+        name = "spanning-tree[return]/seed_10x10_5obs"
+        self.assertEqual(report.exact_filter(name), "^spanning-tree[[]return[]]/seed_10x10_5obs$")
+        ms, kib = report.time_one(BENCH, name, "0.01")  # exits unless exactly one benchmark ran
+        self.assertGreater(ms, 0.0)
+        self.assertGreater(kib, 1000)
+        self.assertLess(kib, 50000)  # its own peak, not this Python process's (about 70 MiB with scipy)
+
     def test_the_same_program_against_itself(self):
         out = tempfile.mkdtemp(prefix="coverbench-walltime-test-")
         run = subprocess.run([sys.executable, os.path.join(report.HERE, "walltime_report.py"), "--base", "HEAD",
