@@ -36,6 +36,21 @@ class Verdict(unittest.TestCase):
         self.assertEqual(report.verdict([10, 10.1, 10.2, 10.3, 10.4], [8, 8.1, 8.2, 8.3, 8.4])[2], "faster")
 
 
+class Order(unittest.TestCase):
+    def test_rounds_alternate_which_side_goes_first(self):
+        calls = []
+        real = report.time_one
+        report.time_one = lambda bench, name, min_time: calls.append((bench, name)) or (1.0, 1)
+        try:
+            samples = report.interleave("A", "B", ["x", "y"], 3, "0.01")
+        finally:
+            report.time_one = real
+        self.assertEqual(calls, [("A", "x"), ("B", "x"), ("A", "y"), ("B", "y"),
+                                 ("B", "x"), ("A", "x"), ("B", "y"), ("A", "y"),
+                                 ("A", "x"), ("B", "x"), ("A", "y"), ("B", "y")])
+        self.assertEqual(len(samples["x"]["base"]), 3)
+
+
 class Holm(unittest.TestCase):
     def samples(self, others):
         moved = {"base": [(1.0, 1), (1.01, 1), (1.02, 1), (1.03, 1)], "head": [(2.0, 1), (2.01, 1), (2.02, 1), (2.03, 1)]}
