@@ -15,7 +15,7 @@ struct BuildIdentity {
   std::string build_type;         ///< e.g. "Release"
   std::string flags;              ///< the C++ flags of that build type
   /// SHA-256 over the code every run depends on: core/, metrics/, algorithms/*.cpp, the run
-  /// execution in experiments/, and CMakeLists.txt.
+  /// execution in experiments/ (runs.cpp, isolation.cpp); cmake/build_identity.cmake lists them.
   std::string shared_code_sha256;
   /// SHA-256 over each algorithms/<folder>'s .cpp and .hpp files.
   std::map<std::string, std::string> folder_code_sha256;
