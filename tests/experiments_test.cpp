@@ -193,7 +193,9 @@ TEST_F(Experiments, SecondRunDoesNoWorkAndGivesIdenticalRunsAndAGrownConfigOnlyR
     EXPECT_TRUE(r.status == "ok" || r.status == "partial") << r.status;
     EXPECT_TRUE(r.valid);
     // A partial run says how much reachable area it left, in numbers.
-    if (r.status == "partial") EXPECT_GT(r.uncovered_reachable_m2, 0.0);
+    if (r.status == "partial") {
+      EXPECT_GT(r.uncovered_reachable_m2, 0.0);
+    }
   }
 }
 
