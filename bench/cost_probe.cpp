@@ -59,19 +59,28 @@ const WallCase& findWall(const std::string& name) {
   throw std::runtime_error("no wall '" + name + "' in the cost probe's cases");
 }
 
+/// A case's inputs. The problem is made where it is used, so its pointer to the wall is never
+/// left pointing at a moved-from copy.
 struct Input {
   Wall wall;
-  Problem problem;
+  ToolParams tool;
+  Params params;
+  Problem problem() const {
+    Problem p;
+    p.wall = &wall;
+    p.tool = tool;
+    p.params = params;
+    return p;
+  }
 };
 
 Input load(const std::string& planner, const std::string& wall_name) {
   const WallCase& w = findWall(wall_name);
   Input in;
   in.wall = loadWallFile(std::string(COVERBENCH_SOURCE_DIR) + "/" + w.file);
-  in.problem.wall = &in.wall;
-  in.problem.tool.tool_width = w.tool_width;
-  in.problem.tool.clearance = 0.02;
-  in.problem.params = resolveParams(findPlanner(planner), {});
+  in.tool.tool_width = w.tool_width;
+  in.tool.clearance = 0.02;
+  in.params = resolveParams(findPlanner(planner), {});
   return in;
 }
 
@@ -88,21 +97,22 @@ int runCase(const std::string& name) {
   if (first == "metrics") {
     const auto slash2 = rest.find('/');
     const std::string planner = rest.substr(0, slash2), wall = slash2 == std::string::npos ? "" : rest.substr(slash2 + 1);
-    Input in = load(planner, wall);
-    const Path path = plan(planner, in.problem).path;
+    const Input in = load(planner, wall);
+    const Path path = plan(planner, in.problem()).path;
     CALLGRIND_TOGGLE_COLLECT;
-    const PathMetrics m = computeMetrics(in.wall, in.problem.tool, path);
+    const PathMetrics m = computeMetrics(in.wall, in.tool, path);
     CALLGRIND_TOGGLE_COLLECT;
     std::printf("%s: %zu waypoints scored, coverage_reachable %.6f\n", name.c_str(), path.waypoints.size(),
                 m.coverage.coverage_reachable);
     return 0;
   }
-  Input in = load(first, rest);
+  const Input in = load(first, rest);
+  const Problem problem = in.problem();
   const char* slow = std::getenv("COVERBENCH_COST_SELFTEST_SLOW");
   const int times = slow && first == slow ? 2 : 1;
   std::size_t waypoints = 0;
   CALLGRIND_TOGGLE_COLLECT;
-  for (int i = 0; i < times; ++i) waypoints += plan(first, in.problem).path.waypoints.size();
+  for (int i = 0; i < times; ++i) waypoints += plan(first, problem).path.waypoints.size();
   CALLGRIND_TOGGLE_COLLECT;
   std::printf("%s: %zu waypoints\n", name.c_str(), waypoints / times);
   return 0;

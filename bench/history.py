@@ -83,9 +83,8 @@ def first_change(revisions, values, tolerance=0.0):
     for rev, v in zip(revisions, values):
         if v is None:
             continue
-        if previous is not None and v != previous:
-            if isinstance(v, str) or abs(v - previous) > tolerance * abs(previous):
-                return rev, previous, v
+        if previous is not None and abs(v - previous) > tolerance * abs(previous):
+            return rev, previous, v
         previous = v
     return None
 

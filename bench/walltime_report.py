@@ -165,7 +165,7 @@ def dashboard_json(rows, base_rev):
         out.append({"name": f"{r['name']} (time)", "unit": "ms", "value": round(r["head_ms"], 6),
                     "range": f"IQR {r['head_iqr_ms']:.4f}",
                     "extra": f"base {base_rev}: {r['base_ms']:.4f} ms; change {r['change_percent']:+.2f} %; "
-                             f"Mann-Whitney p {r['p']:.4f}; {r['verdict']}; n {r['n']}"})
+                             f"Mann-Whitney p (Holm) {r['p']:.4f}; {r['verdict']}; n {r['n']}"})
         out.append({"name": f"{r['name']} (peak memory)", "unit": "KiB", "value": r["head_peak_kib"],
                     "extra": f"base {base_rev}: {r['base_peak_kib']} KiB"})
     return json.dumps(out, indent=1) + "\n"

@@ -29,6 +29,8 @@ DEFAULT_PROBE = os.path.join(HERE, "..", "..", "build", "bench", "coverbench_cos
 # far above that noise and far below the wall-time noise (about 30 %) that makes timing gates
 # useless here.
 THRESHOLD_PERCENT = 1.0
+
+
 def cases(probe):
     return subprocess.run([probe, "--list"], check=True, capture_output=True, text=True).stdout.split()
 
@@ -40,12 +42,12 @@ def identity(probe):
     return f"{build}; {valgrind}"
 
 
-def count(probe, case, env=None):
+def count(probe, case):
     """Instructions of the case's measured call, from callgrind's totals."""
     with tempfile.TemporaryDirectory(prefix="coverbench-cost-") as tmp:
         out = os.path.join(tmp, "callgrind.out")
         run = subprocess.run(["valgrind", "--tool=callgrind", "--collect-atstart=no", f"--callgrind-out-file={out}", probe, case],
-                             capture_output=True, text=True, env=dict(env or os.environ, LD_BIND_NOW="1"))
+                             capture_output=True, text=True, env=dict(os.environ, LD_BIND_NOW="1"))
         if run.returncode != 0:
             raise SystemExit(f"cost gate: {case}: the probe failed (exit code {run.returncode}):\n{run.stderr[-2000:]}")
         with open(out, encoding="utf-8") as f:
@@ -55,9 +57,9 @@ def count(probe, case, env=None):
         return int(totals[-1].split()[1])
 
 
-def measure(probe, names, jobs=2, env=None):
+def measure(probe, names, jobs=2):
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        counts = list(pool.map(lambda n: count(probe, n, env), names))
+        counts = list(pool.map(lambda n: count(probe, n), names))
     return dict(zip(names, counts))
 
 
@@ -85,9 +87,7 @@ def compare(baseline, current, threshold=THRESHOLD_PERCENT):
     """(failing lines, improved lines) as Markdown table rows. Only cases in `current` are judged
     (a `--cases` run judges its own); main() adds the baseline's cases the probe no longer has."""
     fails, falls = [], []
-    for name in sorted(set(current) | set(baseline)):
-        if name not in current:
-            continue
+    for name in sorted(current):
         if name not in baseline:
             fails.append(f"| {name} | new | {current[name]:,} | | |")
             continue
@@ -126,7 +126,7 @@ def main(argv=None):
                 print(f"{n},{current[n]}")
         return 0
     if args.mode == "update":
-        old_ident, old = read(args.baseline) if os.path.exists(args.baseline) else ("", {})
+        _, old = read(args.baseline) if os.path.exists(args.baseline) else ("", {})
         if args.cases:
             old.update(current)  # a partial update keeps the other cases' counts
             current = old
