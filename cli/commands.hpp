@@ -61,11 +61,37 @@ struct RunOptions {
   bool yes = false;      ///< confirms an experiment of more than kLargeExperimentRuns runs
   bool timing = false, retry_failed = false, reuse_across_builds = false;  ///< RunnerOptions
   bool no_report = false;  ///< skip the report (results are stored either way)
+  std::string shard;       ///< "I/N": only that shard's runs, into OUTPUT/shards/ (no report)
   std::string command_line;
 };
 /// Runs an experiment config and writes its report (OUTPUT/report/index.html with tables and
 /// figures) next to the results database.
 int runCommand(const RunOptions& options);
+
+struct MergeCommandOptions {
+  std::string out;
+  std::vector<std::string> shards;
+  std::string command_line;
+};
+/// Merges shard databases (`run --shard`) into one; prints what it did. Refusals are InputErrors.
+int mergeCommand(const MergeCommandOptions& options);
+
+struct SlurmCommandOptions {
+  std::string config;
+  unsigned shards = 8, cpus_per_task = 1, throttle = 0;
+  std::string partition, time = "04:00:00", mem, account;
+  bool no_report = false, submit = false, yes = false;
+};
+/// Writes OUTPUT/slurm/run.sbatch (the array) and merge.sbatch; with --submit, submits both
+/// (the merge after the array) with sbatch.
+int slurmCommand(const SlurmCommandOptions& options);
+
+struct ExportOmplOptions {
+  std::string database, out;
+  std::optional<long long> experiment;
+};
+/// Writes one OMPL benchmark log per dataset of an experiment into the folder `out`.
+int exportOmplCommand(const ExportOmplOptions& options);
 
 struct ReportOptions {
   std::string database, format = "md", out, baseline;

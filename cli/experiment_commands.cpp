@@ -1,5 +1,6 @@
 // Sub-commands for datasets, experiments and tables.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -10,6 +11,8 @@
 #include "coverbench/limits.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
+#include "coverbench/shards.hpp"
+#include "coverbench/slurm.hpp"
 
 namespace coverbench::cli {
 namespace {
@@ -60,9 +63,14 @@ int runCommand(const RunOptions& o) {
   options.retry_failed = o.retry_failed;
   options.reuse_across_builds = o.reuse_across_builds;
   options.command_line = o.command_line;
+  if (!o.shard.empty()) options.shard = parseShard(o.shard);
   const RunnerSummary s = runExperiment(config, options);
-  std::printf("experiment %s: %zu walls, %zu runs (%zu executed, %zu already stored", config.name.c_str(), s.walls,
-              s.total, s.executed, s.skipped);
+  if (options.shard)
+    std::printf("experiment %s, shard %s: %zu of the config's %zu runs", config.name.c_str(), toString(*options.shard).c_str(),
+                s.total, s.config_runs);
+  else
+    std::printf("experiment %s: %zu walls, %zu runs", config.name.c_str(), s.walls, s.total);
+  std::printf(" (%zu executed, %zu already stored", s.executed, s.skipped);
   if (s.reused) std::printf(", %zu reused from other builds", s.reused);
   std::printf(") on %u worker processes in %.1f s", s.threads, s.seconds);
   if (s.executed) std::printf(", %.1f runs/s", static_cast<double>(s.executed) / s.seconds);
@@ -73,12 +81,91 @@ int runCommand(const RunOptions& o) {
   }
   std::printf("\nresults: %s\n", s.database.c_str());
   std::fflush(stdout);
+  if (options.shard) {  // a shard's runs alone make no report: merge them first
+    std::printf("merge every shard's database: coverbench merge %s %s/shard-*-of-%u.sqlite\n",
+                resultsDatabasePath(config).c_str(), (fs::path(config.output) / "shards").string().c_str(),
+                options.shard->count);
+    return 0;
+  }
   if (!o.no_report) {
     ReportOptions report;
     report.database = s.database;
     report.out = (fs::path(config.output) / "report").string();
     std::printf("report:  %s (tables: report.md, report.csv, report.tex)\n", writeReport(report).c_str());
   }
+  return 0;
+}
+
+int mergeCommand(const MergeCommandOptions& o) {
+  MergeOptions options;
+  options.out = o.out;
+  options.shards = o.shards;
+  options.command_line = o.command_line;
+  const auto start = std::chrono::steady_clock::now();
+  const MergeSummary s = mergeShards(options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (const std::string& note : s.notes) std::printf("note: %s\n", note.c_str());
+  if (s.unchanged) {
+    std::printf("%s already holds this merge of %u shards (%zu runs; experiment %lld): nothing changed\n", o.out.c_str(),
+                s.shard_count, s.runs, s.experiment_id);
+    return 0;
+  }
+  std::printf("merged %zu shard files (all %u shards, run on %s) into %s in %.2f s: %zu runs, %zu copied, %zu already "
+              "there, %zu stored twice (identical, kept once); experiment %lld\n",
+              s.shard_files, s.shard_count, s.hosts.empty() ? "-" : s.hosts.front().c_str(), o.out.c_str(), seconds, s.runs,
+              s.copied, s.already_stored, s.duplicates, s.experiment_id);
+  return 0;
+}
+
+int slurmCommand(const SlurmCommandOptions& o) {
+  const ExperimentConfig config = loadExperimentConfig(o.config);
+  const std::size_t planned = plannedRuns(config);
+  if (planned > kLargeExperimentRuns && !config.allow_large && !o.yes)
+    throw InputError(o.config, "allow_large",
+                     "the experiment asks for " + std::to_string(planned) + " runs (more than " +
+                         std::to_string(kLargeExperimentRuns) + "): confirm with --yes or `allow_large: true`");
+  SlurmOptions options;
+  options.shards = o.shards;
+  options.cpus_per_task = o.cpus_per_task;
+  options.throttle = o.throttle;
+  options.partition = o.partition;
+  options.time = o.time;
+  options.mem = o.mem;
+  options.account = o.account;
+  options.report = !o.no_report;
+  std::error_code ec;
+  options.binary = fs::canonical("/proc/self/exe", ec).string();
+  options.workdir = fs::current_path().string();
+  const SlurmScripts scripts = slurmScripts(config, options);
+  fs::create_directories(fs::path(scripts.folder) / "logs", ec);
+  if (ec) throw InputError(scripts.folder, "output", "cannot be created: " + ec.message());
+  writeFileAtomically(scripts.run_script, scripts.run_text);
+  writeFileAtomically(scripts.merge_script, scripts.merge_text);
+  std::printf("wrote %s (%u array tasks, %zu runs in all) and %s\n", scripts.run_script.c_str(), o.shards, planned,
+              scripts.merge_script.c_str());
+  if (!o.submit) {
+    std::printf("submit with:\n  job=$(sbatch --parsable %s)\n  sbatch --dependency=afterany:${job%%%%;*} %s\n",
+                scripts.run_script.c_str(), scripts.merge_script.c_str());
+    return 0;
+  }
+  auto sbatch = [](const std::string& args) {
+    const std::string command = "sbatch --parsable " + args;
+    std::FILE* p = ::popen(command.c_str(), "r");
+    if (!p) throw InputError("sbatch", "submit", "cannot run sbatch");
+    std::string out;
+    char buf[256];
+    while (std::fgets(buf, sizeof buf, p)) out += buf;
+    const int rc = ::pclose(p);
+    while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+    const std::string id = out.substr(0, out.find(';'));  // "id" or "id;cluster"
+    if (rc != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError("sbatch", "submit", "`" + command + "` failed (exit " + std::to_string(rc) + "): " + out);
+    return id;
+  };
+  const std::string array = sbatch(shellQuote(scripts.run_script));
+  const std::string merge = sbatch("--dependency=afterany:" + array + " " + shellQuote(scripts.merge_script));
+  std::printf("submitted: array job %s (%u tasks), merge job %s after it\n", array.c_str(), o.shards, merge.c_str());
+  std::printf("array %s\nmerge %s\n", array.c_str(), merge.c_str());
   return 0;
 }
 

@@ -85,8 +85,34 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--reuse-across-builds", run.reuse_across_builds,
                     "count stored runs of another planner version or code as done (know what you do)");
   run_cmd->add_flag("--no-report", run.no_report, "store the runs only; `coverbench report` writes the report later");
+  run_cmd->add_option("--shard", run.shard,
+                      "I/N: run only shard I (0 to N-1) of N, into OUTPUT/shards/shard-I-of-N.sqlite; `coverbench merge` joins them");
   for (int i = 0; i < argc; ++i) run.command_line += (i ? " " : "") + std::string(argv[i]);
   run_cmd->callback([&] { plan_exit = coverbench::cli::runCommand(run); });
+
+  coverbench::cli::MergeCommandOptions merge;
+  CLI::App* merge_cmd = app.add_subcommand(
+      "merge", "Merge shard databases (run --shard) into one, on run key; refuses missing or mismatched shards");
+  merge_cmd->add_option("out", merge.out, "the merged database (e.g. OUTPUT/results.sqlite)")->required();
+  merge_cmd->add_option("shards", merge.shards, "shard databases (OUTPUT/shards/shard-I-of-N.sqlite)")->required();
+  merge.command_line = run.command_line;
+  merge_cmd->callback([&] { plan_exit = coverbench::cli::mergeCommand(merge); });
+
+  coverbench::cli::SlurmCommandOptions slurm;
+  CLI::App* slurm_cmd = app.add_subcommand(
+      "slurm", "Write Slurm job scripts for an experiment: a job array of shards and a merge-and-report job after it");
+  slurm_cmd->add_option("config", slurm.config, "experiment config (YAML)")->required();
+  slurm_cmd->add_option("--shards", slurm.shards, "array tasks, one shard each")->capture_default_str();
+  slurm_cmd->add_option("--cpus-per-task", slurm.cpus_per_task, "worker processes per task")->capture_default_str();
+  slurm_cmd->add_option("--throttle", slurm.throttle, "at most this many tasks at once (0: no limit)")->capture_default_str();
+  slurm_cmd->add_option("--partition", slurm.partition, "Slurm partition (default: the cluster's)");
+  slurm_cmd->add_option("--time", slurm.time, "time limit per task (Slurm format)")->capture_default_str();
+  slurm_cmd->add_option("--mem", slurm.mem, "memory per task, e.g. 4G (default: the config's limit per worker + 1 GiB)");
+  slurm_cmd->add_option("--account", slurm.account, "Slurm account to charge");
+  slurm_cmd->add_flag("--no-report", slurm.no_report, "the merge job only merges");
+  slurm_cmd->add_flag("--submit", slurm.submit, "submit both jobs with sbatch (the merge after the array)");
+  slurm_cmd->add_flag("--yes", slurm.yes, "confirm an experiment of more than 100000 runs");
+  slurm_cmd->callback([&] { plan_exit = coverbench::cli::slurmCommand(slurm); });
 
   coverbench::cli::ReportOptions report;
   CLI::App* report_cmd = app.add_subcommand("report", "An experiment's report: --format html writes a folder (page, figures, tables); md, csv, latex print its tables");

@@ -204,40 +204,13 @@ TEST_F(Isolation, AToolSweepGivesOneGroupPerTool) {
 
 // --- kill -9 ------------------------------------------------------------------------------------
 
-/// Every run of a database, as comparable text: key, status, valid, and every metric but the
-/// measured ones; plus the number of rows per key.
-std::string dump(const std::string& database) {
-  sqlite3* db = nullptr;
-  EXPECT_EQ(sqlite3_open_v2(database.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
-  std::string out;
-  auto query = [&](const char* sql) {
-    sqlite3_stmt* s = nullptr;
-    EXPECT_EQ(sqlite3_prepare_v2(db, sql, -1, &s, nullptr), SQLITE_OK) << sql;
-    while (sqlite3_step(s) == SQLITE_ROW) {
-      for (int c = 0; c < sqlite3_column_count(s); ++c) {
-        const unsigned char* t = sqlite3_column_text(s, c);
-        out += (c ? "|" : "") + std::string(t ? reinterpret_cast<const char*>(t) : "NULL");
-      }
-      out += "\n";
-    }
-    sqlite3_finalize(s);
-  };
-  query("PRAGMA integrity_check");
-  query("SELECT COUNT(*), COUNT(DISTINCT key) FROM runs");
-  query("SELECT key, status, valid, reason FROM runs ORDER BY key");
-  query("SELECT run_key, name, quote(value) FROM metrics ORDER BY run_key, name");
-  query("SELECT run_key, waypoints, hex(data) FROM paths ORDER BY run_key");
-  sqlite3_close(db);
-  return out;
-}
-
 TEST_F(Isolation, KillingTheRunnerOrAWorkerLosesAndDuplicatesNothing) {
   const std::string cfg = write("k.yaml", "name: k\noutput: out\ndatasets:\n  - family: residential\n    count: 60\n"
                                           "    seed: 5\nplanners: [all]\nthreads: 2\n");
   fs::create_directories(dir_ / "ref");
   fs::copy(cfg, dir_ / "ref" / "k.yaml");
   ASSERT_EQ(run("run " + (dir_ / "ref" / "k.yaml").string()).exit_code, 0);
-  const std::string reference = dump((dir_ / "ref" / "out" / "results.sqlite").string());
+  const std::string reference = test::dumpRuns((dir_ / "ref" / "out" / "results.sqlite").string());
   ASSERT_NE(reference.find("360|360"), std::string::npos) << reference.substr(0, 200);
 
   // kill -9 at random moments, five times, resuming each time.
@@ -253,7 +226,7 @@ TEST_F(Isolation, KillingTheRunnerOrAWorkerLosesAndDuplicatesNothing) {
   }
   EXPECT_EQ(killed, 5) << "the runner was killed mid-way five times";
   ASSERT_EQ(run("run " + cfg).exit_code, 0);
-  EXPECT_EQ(dump((dir_ / "out" / "results.sqlite").string()), reference);
+  EXPECT_EQ(test::dumpRuns((dir_ / "out" / "results.sqlite").string()), reference);
 
   // kill -9 a worker: its run is recorded as a crash (or, if it was between runs, a fresh worker
   // takes over); --retry-failed then completes the same database.
@@ -267,7 +240,7 @@ TEST_F(Isolation, KillingTheRunnerOrAWorkerLosesAndDuplicatesNothing) {
   std::system(("pkill -KILL -n -P " + pid.substr(0, pid.find('\n'))).c_str());
   runner.join();
   ASSERT_EQ(run("run " + cfg + " --retry-failed").exit_code, 0);
-  EXPECT_EQ(dump((dir_ / "out" / "results.sqlite").string()), reference);
+  EXPECT_EQ(test::dumpRuns((dir_ / "out" / "results.sqlite").string()), reference);
 }
 
 }  // namespace

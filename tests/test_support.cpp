@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include <sqlite3.h>
+
 #include <unistd.h>
 
 #include <sys/wait.h>
@@ -48,6 +50,37 @@ std::string CommandTest::write(const std::string& name, const std::string& text)
   const std::filesystem::path p = dir_ / name;
   std::ofstream(p, std::ios::binary) << text;
   return p.string();
+}
+
+std::string sqlRows(const std::string& database, const std::string& sql) {
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open_v2(database.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr), SQLITE_OK) << database;
+  std::string out;
+  sqlite3_stmt* s = nullptr;
+  EXPECT_EQ(sqlite3_prepare_v2(db, sql.c_str(), -1, &s, nullptr), SQLITE_OK) << sql << ": " << sqlite3_errmsg(db);
+  int rc = SQLITE_ROW;
+  while ((rc = sqlite3_step(s)) == SQLITE_ROW) {
+    for (int c = 0; c < sqlite3_column_count(s); ++c) {
+      const unsigned char* t = sqlite3_column_text(s, c);
+      out += (c ? "|" : "") + std::string(t ? reinterpret_cast<const char*>(t) : "NULL");
+    }
+    out += "\n";
+  }
+  EXPECT_EQ(rc, SQLITE_DONE) << sql << ": " << sqlite3_errmsg(db);
+  sqlite3_finalize(s);
+  sqlite3_close(db);
+  return out;
+}
+
+std::string dumpRuns(const std::string& database) {
+  std::string out;
+  for (const char* sql : {"PRAGMA integrity_check", "SELECT COUNT(*), COUNT(DISTINCT key) FROM runs",
+                          "SELECT key, status, valid, reason FROM runs ORDER BY key",
+                          "SELECT run_key, name, quote(value) FROM metrics ORDER BY run_key, name",
+                          "SELECT run_key, name, quote(value) FROM planner_stats ORDER BY run_key, name",
+                          "SELECT run_key, waypoints, hex(data) FROM paths ORDER BY run_key"})
+    out += sqlRows(database, sql);
+  return out;
 }
 
 std::vector<std::string> conformanceWallFiles() {

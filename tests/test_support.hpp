@@ -58,4 +58,11 @@ class CommandTest : public TempDirTest {
   std::string write(const std::string& name, const std::string& text);
 };
 
+/// The rows a SQL statement yields on a database file, one line each ("a|b|NULL"); the
+/// statement may also write (opened read-write).
+std::string sqlRows(const std::string& database, const std::string& sql);
+/// Every run of a results database as comparable text: integrity, key counts, and per key its
+/// status, validity, reason, metrics, planner statistics and path; nothing measured.
+std::string dumpRuns(const std::string& database);
+
 }  // namespace coverbench::test

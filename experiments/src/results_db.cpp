@@ -15,6 +15,7 @@
 #include "coverbench/build_identity.hpp"
 #include "coverbench/hash.hpp"
 #include "coverbench/metric_spec.hpp"
+#include "sqlite_statement.hpp"
 #include <stdexcept>
 
 namespace coverbench {
@@ -22,7 +23,9 @@ namespace {
 
 /// Marks a database as CoverBench's (PRAGMA application_id; "CvBn"), and its schema version.
 /// Schema 2: run keys with the planner's version and code identity; runs measured in child
-/// processes (rusage), every repetition's time, provenance per experiment.
+/// processes (rusage), every repetition's time, provenance per experiment. Tables added since,
+/// without a new version because an older build reads such a database correctly by ignoring them:
+/// experiment_shard (which shard an experiment is) and merged_shards (what a merge was made of).
 constexpr long long kApplicationId = 0x4376424e;
 constexpr long long kSchemaVersion = 2;
 
@@ -71,72 +74,19 @@ CREATE TABLE IF NOT EXISTS paths (
   run_key TEXT PRIMARY KEY, encoding TEXT NOT NULL, waypoints INTEGER NOT NULL, data BLOB NOT NULL);
 CREATE TABLE IF NOT EXISTS planner_timings (
   run_key TEXT NOT NULL, name TEXT NOT NULL, ms REAL, PRIMARY KEY (run_key, name)) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS experiment_shard (
+  experiment_id INTEGER PRIMARY KEY, shard_index INTEGER NOT NULL, shard_count INTEGER NOT NULL,
+  config_runs INTEGER NOT NULL);
+CREATE TABLE IF NOT EXISTS merged_shards (
+  experiment_id INTEGER NOT NULL, shard_index INTEGER NOT NULL, shard_count INTEGER NOT NULL,
+  source TEXT NOT NULL, runs INTEGER NOT NULL, runs_sha256 TEXT NOT NULL, host TEXT NOT NULL,
+  workers INTEGER NOT NULL, started_at TEXT NOT NULL, finished_at TEXT,
+  PRIMARY KEY (experiment_id, shard_index, source)) WITHOUT ROWID;
 )sql";
 
 /// The tables every CoverBench database has had since the first schema (before application_id
 /// was set): how a database written by an earlier build is recognised.
 const char* const kCoreTables[] = {"experiments", "walls", "runs", "metrics", "paths"};
-
-/// A prepared statement, finalised on scope exit.
-class Statement {
- public:
-  Statement(sqlite3* db, const std::string& sql, const std::string& file) : db_(db), file_(file) {
-    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK) fail("prepare");
-  }
-  ~Statement() { sqlite3_finalize(stmt_); }
-  Statement& text(int i, const std::string& v) {
-    sqlite3_bind_text(stmt_, i, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
-    return *this;
-  }
-  Statement& real(int i, double v) {
-    if (std::isfinite(v)) sqlite3_bind_double(stmt_, i, v);
-    else sqlite3_bind_null(stmt_, i);  // infinities (no obstacles: min_clearance) and NaN are stored as NULL
-    return *this;
-  }
-  Statement& integer(int i, long long v) {
-    sqlite3_bind_int64(stmt_, i, v);
-    return *this;
-  }
-  Statement& null(int i) {
-    sqlite3_bind_null(stmt_, i);
-    return *this;
-  }
-  Statement& blob(int i, const std::string& v) {
-    sqlite3_bind_blob(stmt_, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
-    return *this;
-  }
-  /// Steps once; true while there is a row.
-  bool step() {
-    const int rc = sqlite3_step(stmt_);
-    if (rc == SQLITE_ROW) return true;
-    if (rc != SQLITE_DONE) fail("step");
-    return false;
-  }
-  void run() {
-    step();
-    sqlite3_reset(stmt_);
-    sqlite3_clear_bindings(stmt_);
-  }
-  std::string columnText(int i) const {
-    const auto* p = sqlite3_column_text(stmt_, i);
-    return p ? reinterpret_cast<const char*>(p) : "";
-  }
-  double columnReal(int i) const { return sqlite3_column_type(stmt_, i) == SQLITE_NULL ? NAN : sqlite3_column_double(stmt_, i); }
-  bool columnNull(int i) const { return sqlite3_column_type(stmt_, i) == SQLITE_NULL; }
-  long long columnInt(int i) const { return sqlite3_column_int64(stmt_, i); }
-  std::string columnBlob(int i) const {
-    const void* p = sqlite3_column_blob(stmt_, i);
-    return p ? std::string(static_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(stmt_, i))) : "";
-  }
-
- private:
-  [[noreturn]] void fail(const char* what) const {
-    throw InputError(file_, "(database)", std::string(what) + ": " + sqlite3_errmsg(db_));
-  }
-  sqlite3* db_;
-  sqlite3_stmt* stmt_ = nullptr;
-  std::string file_;
-};
 
 std::string utcNow() {
   const std::time_t t = std::time(nullptr);
@@ -279,7 +229,8 @@ void ResultsDb::exec(const std::string& sql) {
 }
 
 long long ResultsDb::beginExperiment(const ExperimentConfig& config, const Provenance& prov,
-                                     const std::vector<WallEntry>& walls, const std::vector<std::string>& run_keys) {
+                                     const std::vector<WallEntry>& walls, const std::vector<std::string>& run_keys,
+                                     const ShardRecord* shard) {
   exec("BEGIN IMMEDIATE");
   try {
     Statement e(db_,
@@ -327,6 +278,12 @@ long long ResultsDb::beginExperiment(const ExperimentConfig& config, const Prove
     }
     Statement er(db_, "INSERT OR IGNORE INTO experiment_runs (experiment_id, run_key) VALUES (?,?)", file_);
     for (const std::string& key : run_keys) er.integer(1, id).text(2, key).run();
+    if (shard) {
+      Statement es(db_, "INSERT INTO experiment_shard (experiment_id, shard_index, shard_count, config_runs) VALUES (?,?,?,?)",
+                   file_);
+      es.integer(1, id).integer(2, shard->shard.index).integer(3, shard->shard.count);
+      es.integer(4, static_cast<long long>(shard->config_runs)).run();
+    }
     exec("COMMIT");
     return id;
   } catch (...) {
@@ -533,6 +490,22 @@ ExperimentRecord ResultsDb::record(std::optional<long long> experiment) {
                {"runs", count(20) + " (" + count(21) + " executed, " + count(22) + " already stored, " + count(23) +
                             " reused from other builds)"},
                {"run again because", s.columnText(24).empty() ? "-" : s.columnText(24)}};
+  }
+  {
+    // A shard, or a merge of shards: say so next to the run counts.
+    Statement sh(db_, "SELECT shard_index, shard_count, config_runs FROM experiment_shard WHERE experiment_id = ?", file_);
+    sh.integer(1, r.id);
+    if (sh.step())
+      r.facts.push_back({"shard", std::to_string(sh.columnInt(0)) + "/" + std::to_string(sh.columnInt(1)) + " (" +
+                                      std::to_string(sh.columnInt(2)) + " runs in the whole config)"});
+    Statement m(db_,
+                "SELECT COUNT(DISTINCT shard_index), MAX(shard_count), COUNT(DISTINCT host), SUM(runs) FROM merged_shards "
+                "WHERE experiment_id = ?",
+                file_);
+    m.integer(1, r.id);
+    if (m.step() && m.columnInt(0) > 0)
+      r.facts.push_back({"merged from", std::to_string(m.columnInt(0)) + " shards of " + std::to_string(m.columnInt(1)) +
+                                            " run on " + std::to_string(m.columnInt(2)) + " host(s) (table merged_shards)"});
   }
   {
     Statement s(db_,

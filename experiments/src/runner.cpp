@@ -79,14 +79,22 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
   const std::vector<WallEntry> walls = loadWalls(config);
   for (const WallEntry& w : walls)  // every (wall, tool) pair checked before any run
     for (const ToolParams& tool : config.tools) validateToolForWall(tool, w.wall, config.path);
-  const std::vector<RunSpec> runs = expandRuns(config, walls);
+  std::vector<RunSpec> runs = expandRuns(config, walls);
   summary.walls = walls.size();
+  summary.config_runs = runs.size();
+  std::optional<ShardRecord> shard;
+  if (options.shard) {  // this shard's runs only; the rest are other shards' work
+    shard = ShardRecord{*options.shard, runs.size()};
+    std::erase_if(runs, [&](const RunSpec& r) { return shardOf(r, options.shard->count) != options.shard->index; });
+  }
   summary.total = runs.size();
 
   std::error_code ec;
   fs::create_directories(config.output, ec);
   if (ec) throw InputError(config.output, "output", "cannot be created: " + ec.message());
-  summary.database = resultsDatabasePath(config);
+  summary.database = options.shard ? shardDatabasePath(config, *options.shard) : resultsDatabasePath(config);
+  fs::create_directories(fs::path(summary.database).parent_path(), ec);
+  if (ec) throw InputError(summary.database, "output", "its folder cannot be created: " + ec.message());
   ResultsDb db(summary.database);
 
   // Workers: the option, else the config, else every core; never more than the cores (timings
@@ -136,7 +144,8 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
   }
   summary.skipped = runs.size() - todo.size() - summary.reused;
   for (const auto& [why, n] : reasons) summary.rerun_reasons += (summary.rerun_reasons.empty() ? "" : "; ") + std::to_string(n) + " " + why;
-  summary.experiment_id = db.beginExperiment(config, currentProvenance(threads, options.command_line), walls, experiment_keys);
+  summary.experiment_id = db.beginExperiment(config, currentProvenance(threads, options.command_line), walls, experiment_keys,
+                                             shard ? &*shard : nullptr);
   if (options.progress && !summary.rerun_reasons.empty())
     std::fprintf(options.progress, "run again: %s\n", summary.rerun_reasons.c_str());
   if (options.progress && summary.reused)

@@ -10,6 +10,7 @@
 
 #include "coverbench/experiment.hpp"
 #include "coverbench/report_data.hpp"
+#include "coverbench/shards.hpp"
 #include "coverbench/tables.hpp"
 
 struct sqlite3;
@@ -42,9 +43,11 @@ class ResultsDb {
   ResultsDb& operator=(const ResultsDb&) = delete;
 
   /// Records the experiment, its provenance, datasets (with content hashes), walls and planner
-  /// configurations, and which stored runs belong to it. Returns its id.
+  /// configurations, which stored runs belong to it, and for a shard which shard it is. Returns
+  /// its id.
   long long beginExperiment(const ExperimentConfig& config, const Provenance& provenance,
-                            const std::vector<WallEntry>& walls, const std::vector<std::string>& run_keys);
+                            const std::vector<WallEntry>& walls, const std::vector<std::string>& run_keys,
+                            const ShardRecord* shard = nullptr);
   /// A stored run's identity: its key, the key without planner version and code, and those two.
   struct StoredKey {
     std::string key, base_key, planner_version, code_sha256, status;
@@ -81,6 +84,7 @@ class ResultsDb {
   void limitPagesForTesting(long long pages);
 
  private:
+  friend struct ResultsDbAccess;  // merge.cpp: copies rows through the connection, in one transaction
   void exec(const std::string& sql);
   void checkOwnership();
   void rollback() noexcept;

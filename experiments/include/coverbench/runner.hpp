@@ -3,9 +3,11 @@
 /// threads; one writer stores each finished run in its own transaction.
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "coverbench/experiment.hpp"
+#include "coverbench/shards.hpp"
 
 namespace coverbench {
 
@@ -16,6 +18,8 @@ struct RunnerOptions {
   bool retry_failed = false;       ///< run stored timeouts, memory_limits, crashes and errors again
   bool reuse_across_builds = false;  ///< count a stored run of another planner version or code as done
   std::string command_line;        ///< recorded in the experiment's provenance
+  /// Only this shard's runs (shardOf), stored in shardDatabasePath instead of the results database.
+  std::optional<Shard> shard;
 };
 
 /// Statuses `retry_failed` runs again: failures of the environment, not of the planner's result
@@ -23,7 +27,8 @@ struct RunnerOptions {
 bool isRetryableStatus(const std::string& status);
 
 struct RunnerSummary {
-  std::size_t total = 0;
+  std::size_t total = 0;         ///< the runs this invocation is responsible for (a shard's share)
+  std::size_t config_runs = 0;   ///< the config's runs (all shards)
   std::size_t executed = 0;
   std::size_t skipped = 0;  ///< already in the database
   std::size_t reused = 0;   ///< stored by another build, reused (reuse_across_builds)
