@@ -9,6 +9,7 @@
 #include "coverbench/datasets.hpp"
 #include "coverbench/files.hpp"
 #include "coverbench/limits.hpp"
+#include "coverbench/ompl_export.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
 #include "coverbench/shards.hpp"
@@ -166,6 +167,26 @@ int slurmCommand(const SlurmCommandOptions& o) {
   const std::string merge = sbatch("--dependency=afterany:" + array + " " + shellQuote(scripts.merge_script));
   std::printf("submitted: array job %s (%u tasks), merge job %s after it\n", array.c_str(), o.shards, merge.c_str());
   std::printf("array %s\nmerge %s\n", array.c_str(), merge.c_str());
+  return 0;
+}
+
+int exportOmplCommand(const ExportOmplOptions& o) {
+  ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
+  const ResultSet rs = db.load(o.experiment);
+  const ExperimentRecord record = db.record(o.experiment);
+  const std::vector<OmplLog> logs = omplBenchmarkLogs(rs, record, omplLogSettings(record.config_text));
+  OutputFiles out;  // all logs or none
+  out.folder(o.out);
+  std::size_t runs = 0;
+  for (const OmplLog& log : logs) {
+    out.add((fs::path(o.out) / log.file_name).string(), log.text);
+    runs += log.runs;
+  }
+  out.commit();
+  std::printf("wrote %zu OMPL benchmark logs (one per dataset, %zu runs) to %s\n"
+              "load them into OMPL's benchmark database (Planner Arena reads it) with:\n"
+              "  ompl_benchmark_statistics %s/*.log -d benchmark.db\n",
+              logs.size(), runs, o.out.c_str(), o.out.c_str());
   return 0;
 }
 

@@ -131,6 +131,14 @@ int main(int argc, char** argv) {
   runs_cmd->add_flag("--list", runs.list, "one line per run: key, status, planner, tool, wall");
   runs_cmd->callback([&] { plan_exit = coverbench::cli::runsCommand(runs); });
 
+  coverbench::cli::ExportOmplOptions export_ompl;
+  CLI::App* export_cmd = app.add_subcommand(
+      "export-ompl", "Write an experiment's runs as OMPL benchmark logs (one per dataset) for ompl_benchmark_statistics and Planner Arena");
+  export_cmd->add_option("database", export_ompl.database, "results.sqlite of an experiment")->required();
+  export_cmd->add_option("--out", export_ompl.out, "folder for the .log files")->required();
+  export_cmd->add_option("--experiment", export_ompl.experiment, "experiment id in the database (default: the latest)");
+  export_cmd->callback([&] { plan_exit = coverbench::cli::exportOmplCommand(export_ompl); });
+
   coverbench::cli::RedrawOptions redraw;
   CLI::App* redraw_cmd = app.add_subcommand("redraw", "Draw a stored run of an experiment (wall, path, coverage)");
   redraw_cmd->add_option("database", redraw.database, "results.sqlite of an experiment")->required();

@@ -9,6 +9,7 @@
 
 #include "coverbench/metric_spec.hpp"
 #include "coverbench/metrics.hpp"
+#include "coverbench/ompl_export.hpp"
 #include "coverbench/report_data.hpp"
 #include "coverbench/svg.hpp"
 #include "test_support.hpp"
@@ -125,6 +126,90 @@ TEST(Pictures, FailedSegmentsAreMarkedAndAPathLeavingTheWallStaysInThePicture) {
   EXPECT_NE(svg.find("1024.00,"), std::string::npos);
   const std::string clean = pathPicture(wall, ToolParams{0.1, 0.02}, Path{{{0.2, 0.5}, {1.8, 0.5}}, {true}}, "t");
   EXPECT_EQ(clean.find("class=\"violation\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace coverbench
+
+namespace coverbench {
+namespace {
+
+TEST(OmplExport, ALogByHandForTwoRunsOneOfThemFailed) {
+  ResultSet rs;
+  rs.experiment = "e";
+  rs.planners = {"zigzag"};
+  rs.metric_order = {"valid", "coverage_reachable", "plan_time_ms", "peak_memory_bytes"};
+  ResultRow ok;
+  ok.planner = ok.config = "zigzag";
+  ok.key = "k1";
+  ok.wall_name = "wall; one";
+  ok.tool = ToolParams{0.1, 0.02};
+  ok.dataset = "fam";
+  ok.wall = "w1";
+  ok.status = "partial";
+  ok.valid = true;
+  ok.metrics = {{"valid", 1.0}, {"coverage_reachable", 0.75}, {"plan_time_ms", 2.5}, {"peak_memory_bytes", 3145728.0}};
+  ResultRow failed = ok;
+  failed.key = "k2";
+  failed.wall_name = "two";
+  failed.wall = "w2";
+  failed.status = "timeout";
+  failed.valid = false;
+  failed.metrics = {{"plan_time_ms", 1500.0}};
+  ResultRow other = ok;  // another dataset: its own log
+  other.dataset = "suite";
+  other.key = "k3";
+  rs.runs = {ok, failed, other};
+  ExperimentRecord rec;
+  rec.name = "my exp";
+  rec.config_hash = "abc";
+  rec.config_text = "name: my exp\n";
+  rec.facts = {{"host", "node 7"}, {"started (UTC)", "2026-11-23T10:00:00Z"}, {"CPU", "X"}, {"cores", "2"},
+               {"OS", "Linux"}, {"memory", "1.0 GiB"}};
+  rec.datasets = {{"fam", "family fam", "", 2}, {"suite", "suite s", "", 1}};
+  rec.planners = {{"zigzag", "zigzag", "overlap=0, sweep_angle=90"}};
+  OmplLogSettings settings;
+  settings.time_limit_s = 60;
+  settings.memory_limit_mb = 2048;
+  settings.seed = 1;
+  const std::vector<OmplLog> logs = omplBenchmarkLogs(rs, rec, settings);
+  ASSERT_EQ(logs.size(), 2u);
+  EXPECT_EQ(logs[0].file_name, "my_exp.fam.log");
+  EXPECT_EQ(logs[1].file_name, "my_exp.suite.log");
+  EXPECT_EQ(logs[0].runs, 2u);
+  const std::string expected =
+      "CoverBench version " COVERBENCH_TEST_VERSION "\n"
+      "Experiment my_exp.fam\n"
+      "6 experiment properties\n"
+      "dataset STRING = fam\n"
+      "walls INTEGER = 2\n"
+      "tool_widths STRING = 0.1\n"
+      "clearances STRING = 0.02\n"
+      "config_sha256 STRING = abc\n"
+      "coverbench_experiment STRING = my exp\n"
+      "Running on node_7\n"
+      "Starting at 2026-11-23T10:00:00Z\n"
+      "<<<|\nname: my exp\n|>>>\n"
+      "<<<|\nCPU: X\ncores: 2\nOS: Linux\nmemory: 1.0 GiB\n|>>>\n"
+      "1 is the random seed\n"
+      "60 seconds per run\n"
+      "2048 MB per run\n"
+      "2 runs per planner\n"
+      "1.5025 seconds spent to collect the data\n"
+      "1 enum types\n"
+      "run_status|ok|partial|no_reachable_area|invalid_input|timeout|memory_limit|crash|error|invalid_output|metrics_error\n"
+      "1 planners\n"
+      "zigzag\n"
+      "5 common properties\n"
+      "planner = zigzag\noverlap = 0\nsweep_angle = 90\ntool_width = 0.1\nclearance = 0.02\n"
+      "9 properties for each run\n"
+      "time REAL\nmemory REAL\nsolved BOOLEAN\napproximate solution BOOLEAN\nrun_status ENUM\nvalid BOOLEAN\n"
+      "coverage_reachable REAL\nwall STRING\nrun_key STRING\n"
+      "2 runs\n"
+      "0.0025; 3; 1; 1; 1; 1; 0.75; wall, one; k1; \n"
+      "1.5; nan; 0; 0; 4; nan; nan; two; k2; \n"
+      ".\n";
+  EXPECT_EQ(logs[0].text, expected);
 }
 
 }  // namespace
