@@ -116,7 +116,11 @@ TEST_F(Shards, ShardedThenMergedEqualsOneProcessRunKeyByRunKeyAndMergingAgainCha
     EXPECT_NE(out.find("shard " + std::to_string(i) + "/3"), std::string::npos) << out;
     EXPECT_NE(out.find("of the config's 126 runs"), std::string::npos) << out;
     EXPECT_FALSE(fs::exists(dir_ / "out" / "report")) << "a shard alone writes no report";
-    shard_runs += std::stoul(test::sqlRows(db("out/shards/shard-" + std::to_string(i) + "-of-3.sqlite"), "SELECT COUNT(*) FROM runs"));
+    const std::string shard = db("out/shards/shard-" + std::to_string(i) + "-of-3.sqlite");
+    shard_runs += std::stoul(test::sqlRows(shard, "SELECT COUNT(*) FROM runs"));
+    // A shard lists every wall but stores the content of its own runs' walls only.
+    EXPECT_EQ(test::sqlRows(shard, "SELECT COUNT(*) FROM experiment_walls"), "21\n");
+    EXPECT_EQ(test::sqlRows(shard, "SELECT COUNT(*) FROM walls"), test::sqlRows(shard, "SELECT COUNT(DISTINCT wall_hash) FROM runs"));
   }
   EXPECT_EQ(shard_runs, 126u);
   const std::string shards = db("out/shards/shard-0-of-3.sqlite") + " " + db("out/shards/shard-2-of-3.sqlite") + " " +
@@ -127,6 +131,7 @@ TEST_F(Shards, ShardedThenMergedEqualsOneProcessRunKeyByRunKeyAndMergingAgainCha
   EXPECT_EQ(test::dumpRuns(db("out/results.sqlite")), reference);
   // The merged experiment lists every run, says it was merged, and reports like any other.
   EXPECT_EQ(test::sqlRows(db("out/results.sqlite"), "SELECT COUNT(*) FROM experiment_runs"), "126\n");
+  EXPECT_EQ(test::sqlRows(db("out/results.sqlite"), "SELECT COUNT(*) FROM walls"), "21\n");
   EXPECT_EQ(test::sqlRows(db("out/results.sqlite"), "SELECT COUNT(*), SUM(runs) FROM merged_shards"), "3|126\n");
   std::string table;
   ASSERT_EQ(run("runs " + db("out/results.sqlite") + " --list", &table).exit_code, 0);

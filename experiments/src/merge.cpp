@@ -438,6 +438,14 @@ MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFil
     copyOwnRows("position, label, source, walls, sha256", "experiment_datasets");
     copyOwnRows("wall_hash, dataset", "experiment_walls");
     copyOwnRows("position, config_id, label", "experiment_planners");
+    {  // every wall of the experiment arrived with the shard that ran it
+      Statement s(db, "SELECT COUNT(*) FROM experiment_walls e LEFT JOIN walls w ON w.hash = e.wall_hash "
+                      "WHERE e.experiment_id = ? AND w.hash IS NULL", file);
+      s.integer(1, id);
+      s.step();
+      if (s.columnInt(0) > 0)
+        throw InputError(first.path, "walls", std::to_string(s.columnInt(0)) + " walls of the experiment are in no shard file");
+    }
     Statement er(db, "INSERT INTO experiment_runs (experiment_id, run_key) VALUES (?,?)", file);
     for (const std::string& key : expected_all) er.integer(1, id).text(2, key).run();
     Statement ms(db,

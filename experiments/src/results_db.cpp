@@ -247,7 +247,7 @@ long long ResultsDb::beginExperiment(const ExperimentConfig& config, const Prove
     Statement w(db_, "INSERT OR IGNORE INTO walls (hash, name, content) VALUES (?,?,?)", file_);
     Statement ew(db_, "INSERT OR IGNORE INTO experiment_walls (experiment_id, wall_hash, dataset) VALUES (?,?,?)", file_);
     for (const WallEntry& wall : walls) {
-      w.text(1, wall.hash).text(2, wall.wall.name).text(3, wall.json).run();
+      if (!shard || shard->wall_hashes.count(wall.hash)) w.text(1, wall.hash).text(2, wall.wall.name).text(3, wall.json).run();
       ew.integer(1, id).text(2, wall.hash).text(3, wall.dataset).run();
     }
     // Each dataset's identity: the SHA-256 of its walls' content hashes, in order.

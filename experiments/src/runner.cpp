@@ -86,6 +86,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
   if (options.shard) {  // this shard's runs only; the rest are other shards' work
     shard = ShardRecord{*options.shard, runs.size()};
     std::erase_if(runs, [&](const RunSpec& r) { return shardOf(r, options.shard->count) != options.shard->index; });
+    for (const RunSpec& r : runs) shard->wall_hashes.insert(r.wall->hash);
   }
   summary.total = runs.size();
 

@@ -3,6 +3,7 @@
 /// by its own `coverbench run CONFIG --shard I/N` (a Slurm array task, say) into its own database,
 /// and the merge of those databases into one. docs/scaling.md.
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ std::string shardDatabasePath(const ExperimentConfig& config, const Shard& shard
 struct ShardRecord {
   Shard shard;
   std::size_t config_runs = 0;
+  /// The walls this shard's runs use: only their content is stored in the shard's database (all
+  /// walls are listed in experiment_walls), so N shards do not hold N copies of every wall.
+  std::set<std::string> wall_hashes;
 };
 
 struct MergeOptions {
