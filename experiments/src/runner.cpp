@@ -79,13 +79,16 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
   const std::vector<WallEntry> walls = loadWalls(config);
   for (const WallEntry& w : walls)  // every (wall, tool) pair checked before any run
     for (const ToolParams& tool : config.tools) validateToolForWall(tool, w.wall, config.path);
-  std::vector<RunSpec> runs = expandRuns(config, walls);
+  // With a shard, only its runs are expanded (the rest are other shards' work).
+  std::function<bool(const RunSpec&)> mine;
+  if (options.shard)
+    mine = [shard = *options.shard](const RunSpec& r) { return shardOf(r, shard.count) == shard.index; };
+  const std::vector<RunSpec> runs = expandRuns(config, walls, mine);
   summary.walls = walls.size();
-  summary.config_runs = runs.size();
+  summary.config_runs = walls.size() * config.planners.size() * config.tools.size();  // walls are distinct
   std::optional<ShardRecord> shard;
-  if (options.shard) {  // this shard's runs only; the rest are other shards' work
-    shard = ShardRecord{*options.shard, runs.size()};
-    std::erase_if(runs, [&](const RunSpec& r) { return shardOf(r, options.shard->count) != options.shard->index; });
+  if (options.shard) {
+    shard = ShardRecord{*options.shard, summary.config_runs, {}};
     for (const RunSpec& r : runs) shard->wall_hashes.insert(r.wall->hash);
   }
   summary.total = runs.size();

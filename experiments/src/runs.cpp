@@ -69,9 +69,10 @@ std::string runKey(const RunSpec& spec) {
                    "\ncode=" + spec.code_sha256);
 }
 
-std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls) {
+std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls,
+                                const std::function<bool(const RunSpec&)>& keep) {
   std::vector<RunSpec> runs;
-  runs.reserve(walls.size() * config.planners.size() * config.tools.size());
+  if (!keep) runs.reserve(walls.size() * config.planners.size() * config.tools.size());
   for (const WallEntry& wall : walls)
     for (const PlannerConfig& planner : config.planners)
       for (const ToolParams& tool : config.tools) {
@@ -87,8 +88,9 @@ std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vecto
         spec.planner_version = info.version;
         spec.code_sha256 = buildIdentity().plannerCode(info.code_folders);
         spec.base_key = runBaseKey(spec);
+        if (keep && !keep(spec)) continue;  // a shard holds only its own runs, even while expanding
         spec.key = runKey(spec);
-        runs.push_back(spec);
+        runs.push_back(std::move(spec));
       }
   return runs;
 }

@@ -79,4 +79,12 @@ done
 
 /usr/bin/python3 "$root/tests/slurm/compare_results.py" "$work/single/out/results.sqlite" "$work/array/out/results.sqlite"
 echo "== $runs runs: one process ${single_ms} ms; 4-task array (submission to merged report) ${array_ms} ms"
+
+# Stop the cluster now (the trap stays for failures) and check that no daemon it started is left.
+pids=$(cat "$cluster"/*.pid 2>/dev/null | paste -sd' ')
+bash "$root/tests/slurm/cluster.sh" stop "$cluster"
+for pid in $pids; do
+  if kill -0 "$pid" 2>/dev/null; then echo "slurm_test: daemon $pid still running" >&2; exit 1; fi
+done
+echo "== stopped munged, slurmctld and slurmd (pids $pids); none left"
 echo "slurm_test: PASSED"

@@ -4,6 +4,7 @@
 /// cluster node without changing what it computes.
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -93,8 +94,10 @@ std::string runBaseKey(const RunSpec& spec);
 /// The run key: SHA-256 of the base key, the planner's version and its code identity, so a
 /// changed planner (or the code every run depends on, or the compiler and flags) is run again.
 std::string runKey(const RunSpec& spec);
-/// Every (wall, planner configuration, tool) of the config, keys filled in, in a fixed order.
-std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls);
+/// Every (wall, planner configuration, tool) of the config, keys filled in, in a fixed order; with
+/// `keep`, only the runs it accepts (it sees the base key; the run key is filled in after).
+std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls,
+                                const std::function<bool(const RunSpec&)>& keep = {});
 
 /// What a run produced.
 struct RunRecord {
