@@ -1,4 +1,6 @@
 // Sub-commands for datasets, experiments and tables.
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -156,11 +158,14 @@ int slurmCommand(const SlurmCommandOptions& o) {
     std::string out;
     char buf[256];
     while (std::fgets(buf, sizeof buf, p)) out += buf;
-    const int rc = ::pclose(p);
+    const int status = ::pclose(p);
+    const int rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
     while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
     const std::string id = out.substr(0, out.find(';'));  // "id" or "id;cluster"
     if (rc != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
-      throw InputError("sbatch", "submit", "`" + command + "` failed (exit " + std::to_string(rc) + "): " + out);
+      throw InputError("sbatch", "submit",
+                       "`" + command + "` failed (exit " + std::to_string(rc) + (rc == 127 ? ": sbatch not found" : "") +
+                           "): " + out + "; the scripts are written, submit them by hand");
     return id;
   };
   const std::string array = sbatch(shellQuote(scripts.run_script));

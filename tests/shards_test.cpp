@@ -3,6 +3,7 @@
 // resumes, and the Slurm job scripts. The real Slurm cluster test is tests/slurm/slurm_test.sh.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -236,6 +237,36 @@ TEST_F(Shards, MergeRefusesWhatCannotBeMergedAndWritesNothing) {
                 "UPDATE metrics SET value = value + 1 WHERE run_key = (SELECT MIN(run_key) FROM metrics) AND name = "
                 "(SELECT MIN(name) FROM metrics)");
   refused(s0 + " " + s1 + " " + db("s1-tampered.sqlite"), "has another result than the one already merged");
+}
+
+TEST_F(Shards, TheSlurmCommandWritesBothScriptsOrNothing) {
+  const std::string cfg = write("c.yaml", kConfig);
+  std::string out;
+  test::CommandRun r = run("slurm " + cfg + " --shards 3 --time 30 --mem 2G", &out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string script = slurp(db("out/slurm/run.sbatch"));
+  EXPECT_NE(script.find("#SBATCH --array=0-2\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("#SBATCH --mem=2G\n"), std::string::npos) << script;
+  EXPECT_NE(script.find(" run '" + cfg + "' --shard \"${SLURM_ARRAY_TASK_ID}/3\""), std::string::npos) << script;
+  EXPECT_NE(slurp(db("out/slurm/merge.sbatch")).find(" merge '" + db("out/results.sqlite") + "'"), std::string::npos);
+  EXPECT_TRUE(fs::is_directory(dir_ / "out" / "slurm" / "logs"));
+  EXPECT_NE(out.find("sbatch --dependency=afterany:"), std::string::npos) << out;
+
+  fs::remove_all(dir_ / "out");
+  r = run("slurm " + cfg + " --time 'an hour'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--time: time: must be in Slurm's format"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "slurm")) << "nothing written";
+  // --submit without sbatch on the PATH: a clear error, the scripts kept for submitting by hand.
+  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  setenv("PATH", (dir_ / "no-such-folder").c_str(), 1);
+  r = run("slurm " + cfg + " --submit");
+  setenv("PATH", path.c_str(), 1);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("sbatch: submit: `sbatch --parsable"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("exit 127: sbatch not found"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the scripts are written, submit them by hand"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "slurm" / "run.sbatch"));
 }
 
 TEST(SlurmScripts, AnArrayOfShardsAndAMergeJobWithTheGivenResources) {
