@@ -36,7 +36,7 @@ struct ShardFile {
   long long experiment = 0;  ///< its latest experiment's id in that file
   Shard shard;
   std::size_t config_runs = 0;
-  std::string config_hash, build, datasets, host;  ///< build: revision, diff, compiler, type, flags
+  std::string config_hash, build, datasets, host, cpu;  ///< build: revision, diff, compiler, type, flags
   long long workers = 0, executed = 0;
   std::string started_at, finished_at;   ///< of the file's first and latest experiment
   std::vector<std::string> expected;     ///< the shard's run keys (its latest experiment's), sorted
@@ -76,7 +76,7 @@ ShardFile readShard(const std::string& path) {
     Statement s(db,
                 "SELECT e.id, s.shard_index, s.shard_count, s.config_runs, e.config_hash, e.git_revision || ' ' || "
                 "e.git_diff_sha256 || ' ' || e.compiler || ' ' || e.build_type || ' ' || e.build_flags, e.host, e.workers, "
-                "COALESCE(e.finished_at, ''), COALESCE(e.rerun_reasons, '') FROM experiments e "
+                "COALESCE(e.finished_at, ''), COALESCE(e.rerun_reasons, ''), e.cpu FROM experiments e "
                 "JOIN experiment_shard s ON s.experiment_id = e.id ORDER BY e.id DESC LIMIT 1",
                 path);
     if (!s.step()) throw InputError(path, "experiments", "is empty: the shard never started");
@@ -89,6 +89,7 @@ ShardFile readShard(const std::string& path) {
     f.workers = s.columnInt(7);
     f.finished_at = s.columnText(8);
     f.rerun_reasons = s.columnText(9);
+    f.cpu = s.columnText(10);
   }
   {
     // A shard file holds one shard: every experiment in it (a start and its resumptions) the same.
@@ -400,11 +401,13 @@ MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFil
     }
 
     // The merged experiment: the shards' config, build and datasets; where and when they ran.
-    std::vector<std::string> hosts;
+    // Hosts and CPU models: every distinct one (measured figures of a merge may mix machines).
+    std::vector<std::string> hosts, cpus;
     std::string started = files.front().started_at, finished, reasons;
     long long executed = 0;
     for (const ShardFile& f : files) {
       hosts.push_back(f.host);
+      cpus.push_back(f.cpu);
       started = std::min(started, f.started_at);
       finished = std::max(finished, f.finished_at);
       executed += f.executed;
@@ -417,12 +420,12 @@ MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFil
     {
       Statement sel(src.db,
                     "SELECT name, config_path, config_text, config_hash, baseline, ?2, git_revision, git_diff_sha256, "
-                    "compiler, build_type, build_flags, ?3, cpu, cores, os, memory_bytes, workers, ?4, ?5, ?6, ?7, ?8, 0, ?9 "
+                    "compiler, build_type, build_flags, ?3, ?10, cores, os, memory_bytes, workers, ?4, ?5, ?6, ?7, ?8, 0, ?9 "
                     "FROM experiments WHERE id = ?1",
                     first.path);
       sel.integer(1, first.experiment).text(2, options.command_line).text(3, summary.hosts.front()).text(4, started);
       sel.text(5, finished).integer(6, total).integer(7, std::min(executed, total)).integer(8, std::max(0LL, total - executed));
-      sel.text(9, reasons);
+      sel.text(9, reasons).text(10, joinDistinct(cpus, " / "));
       copyRows(sel, db,
                "INSERT INTO experiments (name, config_path, config_text, config_hash, baseline, command_line, git_revision, "
                "git_diff_sha256, compiler, build_type, build_flags, host, cpu, cores, os, memory_bytes, workers, "
