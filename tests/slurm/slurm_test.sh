@@ -4,7 +4,10 @@
 # `coverbench slurm --shards 4 --submit` (a 4-task job array and a merge-and-report job after it),
 # waits for both, checks that every task and the merge completed, that the merged results equal a
 # single-process run of the same config run key by run key (tests/slurm/compare_results.py), and
-# that the report was written; then stops every daemon it started, by pid, whatever happened.
+# that the report was written. Then it cancels one task of a second array mid-way (scancel),
+# checks the merge refuses and names it, resubmits that task alone, and checks the merge is then
+# complete and equal to a single-process run. It stops every daemon it started, by pid, whatever
+# happened.
 #
 #   bash tests/slurm/slurm_test.sh [build/coverbench] [WORK_DIR]
 #
@@ -16,7 +19,7 @@ coverbench=$(realpath "${1:-$root/build/coverbench}")
 work=${2:-$(mktemp -d /tmp/coverbench-slurm.XXXXXX)}
 mkdir -p "$work"
 work=$(cd "$work" && pwd)
-rm -rf "$work/cluster" "$work/single" "$work/array"  # a fresh cluster and experiment every time
+rm -rf "$work/cluster" "$work/single" "$work/array" "$work/resume" "$work/resume-single"  # fresh every time
 [ "$(id -u)" -eq 0 ] || { echo "slurm_test: must run as root (it starts the Slurm and munge daemons)" >&2; exit 1; }
 [ -x "$coverbench" ] || { echo "slurm_test: $coverbench is not an executable (build first)" >&2; exit 1; }
 
@@ -79,6 +82,49 @@ done
 
 /usr/bin/python3 "$root/tests/slurm/compare_results.py" "$work/single/out/results.sqlite" "$work/array/out/results.sqlite"
 echo "== $runs runs: one process ${single_ms} ms; 4-task array (submission to merged report) ${array_ms} ms"
+
+# Phase 2: a task cancelled mid-way (scancel: SIGTERM, then SIGKILL) keeps what it stored; the merge
+# refuses and names it; resubmitted alone, it resumes; the merge is then complete and equal to a
+# single-process run. Bigger walls count, so the task runs for seconds and is caught mid-way.
+wait_gone() {  # jobs leave the queue within 5 minutes
+  for _ in $(seq 1 600); do [ -z "$(squeue -h -j "$1" 2>/dev/null)" ] && return 0; sleep 0.5; done
+  squeue; echo "slurm_test: job $1 did not finish within 5 minutes" >&2; exit 1
+}
+count_runs() {
+  /usr/bin/python3 -c "import sqlite3,sys; print(sqlite3.connect('file:'+sys.argv[1]+'?mode=ro', uri=True, timeout=0.2).execute('SELECT COUNT(*) FROM runs').fetchone()[0])" "$1" 2>/dev/null || echo 0
+}
+for d in resume resume-single; do
+  mkdir -p "$work/$d"
+  sed 's/^    count: 10$/    count: 60/' "$root/tests/slurm/experiment.yaml" > "$work/$d/experiment.yaml"
+done
+"$coverbench" run "$work/resume-single/experiment.yaml" --no-report > /dev/null 2>&1
+cd "$work/resume"
+"$coverbench" slurm experiment.yaml --shards 4 --cpus-per-task 1 --time 10 --mem 1500M > /dev/null
+job=$(sbatch --parsable out/slurm/run.sbatch)
+shard0=out/shards/shard-0-of-4.sqlite
+for _ in $(seq 1 1200); do [ -s "$shard0" ] && [ "$(count_runs "$shard0")" -ge 5 ] && break; sleep 0.05; done
+scancel "${job}_0"
+wait_gone "$job"
+state0=$(scontrol show job "${job}_0" | grep -oE 'JobState=[A-Z_]+' | head -n1)
+stored0=$(count_runs "$shard0")
+owed0=$(/usr/bin/python3 -c "import sqlite3,sys; print(sqlite3.connect(sys.argv[1]).execute('SELECT COUNT(*) FROM experiment_runs WHERE experiment_id = (SELECT MAX(id) FROM experiments)').fetchone()[0])" "$shard0")
+echo "== task 0 of array $job: $state0 with $stored0 of its $owed0 runs stored"
+[ "$state0" = "JobState=CANCELLED" ] && [ "$stored0" -gt 0 ] && [ "$stored0" -lt "$owed0" ] \
+  || { echo "slurm_test: task 0 was not cancelled mid-way ($state0, $stored0 of $owed0 runs)" >&2; exit 1; }
+if bash out/slurm/merge.sbatch > merge-refused.log 2>&1; then
+  echo "slurm_test: the merge accepted a shard with missing runs" >&2; exit 1
+fi
+grep -q "shard 0/4 .* lacks $(( owed0 - stored0 )) of its $owed0 runs" merge-refused.log \
+  || { echo "slurm_test: the merge did not name the incomplete shard:" >&2; cat merge-refused.log >&2; exit 1; }
+echo "== the merge refused: $(head -c 160 merge-refused.log)..."
+again=$(sbatch --parsable --array=0 out/slurm/run.sbatch)
+wait_gone "$again"
+merge_again=$(sbatch --parsable out/slurm/merge.sbatch)
+wait_gone "$merge_again"
+scontrol show job "$merge_again" | grep -q 'JobState=COMPLETED .*' \
+  || { echo "slurm_test: the merge after the resumed task did not complete" >&2; cat out/slurm/logs/merge-"$merge_again".out >&2; exit 1; }
+grep "merged" out/slurm/logs/merge-"$merge_again".out
+/usr/bin/python3 "$root/tests/slurm/compare_results.py" "$work/resume-single/out/results.sqlite" "$work/resume/out/results.sqlite"
 
 # Stop the cluster now (the trap stays for failures) and check that no daemon it started is left.
 pids=$(cat "$cluster"/*.pid 2>/dev/null | paste -sd' ')
