@@ -2,6 +2,7 @@
 // single-process run key by key, idempotent, refusing what cannot be merged), a killed shard that
 // resumes, and the Slurm job scripts. The real Slurm cluster test is tests/slurm/slurm_test.sh.
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <random>
 #include <set>
 
+#include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
 #include "coverbench/shards.hpp"
 #include "coverbench/slurm.hpp"
@@ -157,16 +159,31 @@ TEST_F(Shards, AKilledShardResumesAndTheMergeRefusesUntilItHas) {
   for (int i : {0, 2}) ASSERT_EQ(run("run " + cfg + " --shard " + std::to_string(i) + "/3").exit_code, 0);
   // kill -9 shard 1 mid-way until it is caught with some but not all of its runs stored.
   const std::string shard1 = db("out/shards/shard-1-of-3.sqlite");
+  // The kill comes later after a kill before any run was stored, sooner after one that came too
+  // late, so slow builds (sanitizers) are caught mid-way as well.
   std::mt19937 rng(3);
-  std::uniform_int_distribution<int> after_ms(150, 450);
+  std::uniform_real_distribution<double> jitter(0.0, 0.15);
+  double delay_s = 0.25;
   bool caught = false;
   for (int attempt = 0; attempt < 30 && !caught; ++attempt) {
     fs::remove(shard1);
-    const test::CommandRun r = run("--version > /dev/null; timeout -s KILL " + std::to_string(after_ms(rng) / 1000.0) + " " +
+    const test::CommandRun r = run("--version > /dev/null; timeout -s KILL " + std::to_string(delay_s + jitter(rng)) + " " +
                                    std::string(COVERBENCH_BINARY) + " run " + cfg + " --shard 1/3 --threads 1");
-    if (r.exit_code != 137 || !fs::exists(shard1)) continue;
+    if (r.exit_code == 0) {  // finished before the kill
+      delay_s *= 0.6;
+      continue;
+    }
+    ASSERT_EQ(r.exit_code, 137) << r.err;
+    // Killed before its first transaction: no tables yet (the resume still takes such a file:
+    // Shards.AResultsFileWithoutTablesIsTakenAsNewAndOneWithDataIsNot). Kill later next time.
+    if (!fs::exists(shard1) ||
+        test::sqlRows(shard1, "SELECT COUNT(*) FROM sqlite_master WHERE name = 'runs'") != "1\n") {
+      delay_s *= 1.5;
+      continue;
+    }
     const int stored = std::stoi(test::sqlRows(shard1, "SELECT COUNT(*) FROM runs"));
     caught = stored > 0 && stored < 40;
+    if (!caught) delay_s *= stored == 0 ? 1.5 : 0.6;
   }
   ASSERT_TRUE(caught) << "shard 1 was never killed with part of its runs stored";
   const std::string all = db("out/shards/shard-0-of-3.sqlite") + " " + shard1 + " " + db("out/shards/shard-2-of-3.sqlite");
@@ -267,6 +284,30 @@ TEST_F(Shards, TheSlurmCommandWritesBothScriptsOrNothing) {
   EXPECT_NE(r.err.find("exit 127: sbatch not found"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("the scripts are written, submit them by hand"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(dir_ / "out" / "slurm" / "run.sbatch"));
+}
+
+TEST_F(Shards, AResultsFileWithoutTablesIsTakenAsNewAndOneWithDataIsNot) {
+  // What a process killed while creating its database leaves: WAL mode set, no table.
+  const std::string empty = db("empty.sqlite");
+  {
+    sqlite3* raw = nullptr;
+    ASSERT_EQ(sqlite3_open(empty.c_str(), &raw), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(raw, "PRAGMA journal_mode = WAL", nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(raw);
+  }
+  ASSERT_GT(fs::file_size(empty), 0u);
+  EXPECT_NO_THROW(ResultsDb{empty});
+  EXPECT_EQ(test::sqlRows(empty, "PRAGMA application_id"), "1131823694\n");
+  // Another program's database with a table is still refused, and left as it was.
+  const std::string other = db("other.sqlite");
+  {
+    sqlite3* raw = nullptr;
+    ASSERT_EQ(sqlite3_open(other.c_str(), &raw), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(raw, "CREATE TABLE notes (text TEXT)", nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(raw);
+  }
+  EXPECT_NE(inputError([&] { ResultsDb{other}; }).find("is not a CoverBench results database"), std::string::npos);
+  EXPECT_EQ(test::sqlRows(other, "SELECT COUNT(*) FROM sqlite_master"), "1\n");
 }
 
 TEST(SlurmScripts, AnArrayOfShardsAndAMergeJobWithTheGivenResources) {

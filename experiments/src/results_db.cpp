@@ -30,8 +30,6 @@ constexpr long long kApplicationId = 0x4376424e;
 constexpr long long kSchemaVersion = 2;
 
 const char* const kSchema = R"sql(
-PRAGMA journal_mode = WAL;
-PRAGMA synchronous = NORMAL;
 CREATE TABLE IF NOT EXISTS experiments (
   id INTEGER PRIMARY KEY, name TEXT NOT NULL, config_path TEXT, config_text TEXT NOT NULL,
   config_hash TEXT NOT NULL, baseline TEXT NOT NULL, command_line TEXT NOT NULL,
@@ -165,9 +163,19 @@ ResultsDb::ResultsDb(const std::string& path, Mode mode) : file_(path) {
     const bool empty = !exists || fs::file_size(path, ec) == 0;
     if (!empty) checkOwnership();
     if (mode == Mode::ReadWrite) {
-      exec(kSchema);
-      exec("PRAGMA application_id = " + std::to_string(kApplicationId) + "; PRAGMA user_version = " +
-           std::to_string(kSchemaVersion) + ";");
+      // The tables and the marks in one transaction: a process killed while creating a database
+      // leaves either no table or all of them, never a half schema that would be refused later.
+      exec("PRAGMA journal_mode = WAL; PRAGMA synchronous = NORMAL;");  // not allowed inside a transaction
+      exec("BEGIN IMMEDIATE");
+      try {
+        exec(kSchema);
+        exec("PRAGMA application_id = " + std::to_string(kApplicationId) + "; PRAGMA user_version = " +
+             std::to_string(kSchemaVersion) + ";");
+        exec("COMMIT");
+      } catch (...) {
+        rollback();
+        throw;
+      }
     }
   } catch (...) {  // a constructor that throws runs no destructor: close the connection here
     sqlite3_close(db_);
@@ -189,6 +197,9 @@ void ResultsDb::checkOwnership() {
   } catch (const InputError& e) {
     throw InputError(file_, "(database)", "is not a CoverBench results database (" + e.problem() + ")");
   }
+  // No table and no mark: a database created (journal mode set) by a process killed before its
+  // first transaction committed, or any empty one. It holds nothing to lose: take it as new.
+  if (application_id == 0 && tables.empty()) return;
   bool legacy = application_id == 0;
   for (const char* table : kCoreTables) legacy = legacy && tables.count(table);
   if (application_id != kApplicationId && !legacy)
