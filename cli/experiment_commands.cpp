@@ -22,6 +22,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// The config's run count; more than kLargeExperimentRuns needs --yes or `allow_large: true`.
+std::size_t requireConfirmedSize(const ExperimentConfig& config, bool yes) {
+  const std::size_t planned = plannedRuns(config);
+  if (planned > kLargeExperimentRuns && !config.allow_large && !yes)
+    throw InputError(config.path, "allow_large",
+                     "the experiment asks for " + std::to_string(planned) + " runs (more than " +
+                         std::to_string(kLargeExperimentRuns) +
+                         "; hours to days of work): confirm with --yes or `allow_large: true`");
+  return planned;
+}
+
 }  // namespace
 
 int datasetGenerateCommand(const DatasetGenerateOptions& o) {
@@ -53,12 +64,7 @@ int datasetFamiliesCommand() {
 
 int runCommand(const RunOptions& o) {
   const ExperimentConfig config = loadExperimentConfig(o.config);  // every check before any run
-  const std::size_t planned = plannedRuns(config);
-  if (planned > kLargeExperimentRuns && !config.allow_large && !o.yes)
-    throw InputError(o.config, "allow_large",
-                     "the experiment asks for " + std::to_string(planned) + " runs (more than " +
-                         std::to_string(kLargeExperimentRuns) +
-                         "; hours to days of work): confirm with --yes or `allow_large: true`");
+  requireConfirmedSize(config, o.yes);
   RunnerOptions options;
   options.threads = o.threads;
   options.progress = stderr;
@@ -115,18 +121,14 @@ int mergeCommand(const MergeCommandOptions& o) {
   }
   std::printf("merged %zu shard files (all %u shards, run on %s) into %s in %.2f s: %zu runs, %zu copied, %zu already "
               "there, %zu stored twice (identical, kept once); experiment %lld\n",
-              s.shard_files, s.shard_count, s.hosts.empty() ? "-" : s.hosts.front().c_str(), o.out.c_str(), seconds, s.runs,
+              s.shard_files, s.shard_count, s.hosts.c_str(), o.out.c_str(), seconds, s.runs,
               s.copied, s.already_stored, s.duplicates, s.experiment_id);
   return 0;
 }
 
 int slurmCommand(const SlurmCommandOptions& o) {
   const ExperimentConfig config = loadExperimentConfig(o.config);
-  const std::size_t planned = plannedRuns(config);
-  if (planned > kLargeExperimentRuns && !config.allow_large && !o.yes)
-    throw InputError(o.config, "allow_large",
-                     "the experiment asks for " + std::to_string(planned) + " runs (more than " +
-                         std::to_string(kLargeExperimentRuns) + "): confirm with --yes or `allow_large: true`");
+  const std::size_t planned = requireConfirmedSize(config, o.yes);
   SlurmOptions options;
   options.shards = o.shards;
   options.cpus_per_task = o.cpus_per_task;

@@ -174,8 +174,9 @@ std::string joinDistinct(const std::vector<std::string>& items, const std::strin
 
 /// Per shard file (index, absolute path): the SHA-256 of its run keys. A merge is the same merge
 /// when these are.
-std::map<std::pair<unsigned, std::string>, std::string> fingerprints(const std::vector<ShardFile>& files) {
-  std::map<std::pair<unsigned, std::string>, std::string> out;
+using Fingerprint = std::map<std::pair<unsigned, std::string>, std::string>;
+Fingerprint fingerprints(const std::vector<ShardFile>& files) {
+  Fingerprint out;
   for (const ShardFile& f : files) {
     std::string keys;
     for (const std::string& k : f.expected) keys += k + "\n";
@@ -186,8 +187,7 @@ std::map<std::pair<unsigned, std::string>, std::string> fingerprints(const std::
 
 /// The output's latest experiment when it is a merge of exactly these shard files' runs (read
 /// only: an idempotent merge does not touch the file at all).
-std::optional<long long> alreadyMerged(const std::string& out,
-                                       const std::map<std::pair<unsigned, std::string>, std::string>& fingerprint) {
+std::optional<long long> alreadyMerged(const std::string& out, const Fingerprint& fingerprint) {
   std::error_code ec;
   if (!std::filesystem::exists(out, ec)) return std::nullopt;
   ResultsDb check(out, ResultsDb::Mode::ReadOnly);  // CoverBench's, of this schema
@@ -198,7 +198,7 @@ std::optional<long long> alreadyMerged(const std::string& out,
               "SELECT e.id, m.shard_index, m.source, m.runs_sha256 FROM experiments e JOIN merged_shards m "
               "ON m.experiment_id = e.id WHERE e.id = (SELECT MAX(id) FROM experiments)",
               out);
-  std::map<std::pair<unsigned, std::string>, std::string> latest;
+  Fingerprint latest;
   long long id = 0;
   while (s.step()) {
     id = s.columnInt(0);
@@ -219,7 +219,7 @@ struct ResultsDbAccess {
 
 namespace {
 MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFile>& files,
-                         const std::set<std::string>& expected_all, MergeSummary summary);
+                         const std::set<std::string>& expected_all, const Fingerprint& fingerprint, MergeSummary summary);
 }  // namespace
 
 MergeSummary mergeShards(const MergeOptions& options) {
@@ -325,19 +325,19 @@ MergeSummary mergeShards(const MergeOptions& options) {
     fs::create_directories(parent, ec);
     if (ec) throw InputError(options.out, "output", "its folder cannot be created: " + ec.message());
   }
-  const auto fingerprint = fingerprints(files);
+  std::vector<std::string> hosts;
+  for (const ShardFile& f : files) hosts.push_back(f.host);
+  summary.hosts = joinDistinct(hosts, ", ");
+  const Fingerprint fingerprint = fingerprints(files);
   if (const std::optional<long long> id = alreadyMerged(options.out, fingerprint)) {
     summary.unchanged = true;
     summary.already_stored = first.config_runs;
     summary.experiment_id = *id;
-    std::vector<std::string> hosts;
-    for (const ShardFile& f : files) hosts.push_back(f.host);
-    summary.hosts = {joinDistinct(hosts, ", ")};
     return summary;
   }
   const bool existed = fs::exists(options.out, ec);
   try {
-    return writeMerged(options, files, expected_all, summary);
+    return writeMerged(options, files, expected_all, fingerprint, summary);
   } catch (...) {
     if (!existed)
       for (const char* suffix : {"", "-wal", "-shm", "-journal"}) fs::remove(options.out + suffix, ec);
@@ -348,14 +348,13 @@ MergeSummary mergeShards(const MergeOptions& options) {
 namespace {
 
 MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFile>& files,
-                         const std::set<std::string>& expected_all, MergeSummary summary) {
+                         const std::set<std::string>& expected_all, const Fingerprint& fingerprint, MergeSummary summary) {
   namespace fs = std::filesystem;
   const ShardFile& first = files.front();
   ResultsDb out(options.out);
   sqlite3* db = ResultsDbAccess::connection(out);
   const std::string& file = options.out;
 
-  const std::map<std::pair<unsigned, std::string>, std::string> fingerprint = fingerprints(files);
   ResultsDbAccess::exec(out, "BEGIN IMMEDIATE");
   try {
     std::set<std::string> stored;  // run keys in the output: before the merge, then as copied
@@ -381,11 +380,9 @@ MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFil
         if (copied_keys.count(k)) ++summary.duplicates;
         else ++summary.already_stored;
       }
-      const std::string of_experiment = " JOIN experiment_runs x ON x.run_key = t.%KEY% WHERE x.experiment_id = ?1";
-      auto select = [&](const std::string& table, const std::string& key_column) {
-        std::string sql = "SELECT t.* FROM " + table + " t" + of_experiment;
-        sql.replace(sql.find("%KEY%"), 5, key_column);
-        return sql;
+      auto select = [](const std::string& table, const std::string& key_column) {  // the experiment's rows
+        return "SELECT t.* FROM " + table + " t JOIN experiment_runs x ON x.run_key = t." + key_column +
+               " WHERE x.experiment_id = ?1";
       };
       copyRows(src, select("runs", "key"), f.experiment, db, "INSERT INTO runs VALUES", file, &to_copy);
       for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths"})
@@ -401,12 +398,11 @@ MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFil
     }
 
     // The merged experiment: the shards' config, build and datasets; where and when they ran.
-    // Hosts and CPU models: every distinct one (measured figures of a merge may mix machines).
-    std::vector<std::string> hosts, cpus;
+    // Every distinct CPU model, as every host (measured figures of a merge may mix machines).
+    std::vector<std::string> cpus;
     std::string started = files.front().started_at, finished, reasons;
     long long executed = 0;
     for (const ShardFile& f : files) {
-      hosts.push_back(f.host);
       cpus.push_back(f.cpu);
       started = std::min(started, f.started_at);
       finished = std::max(finished, f.finished_at);
@@ -414,7 +410,6 @@ MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFil
       if (!f.rerun_reasons.empty())
         reasons += (reasons.empty() ? "" : "; ") + ("shard " + toString(f.shard) + ": " + f.rerun_reasons);
     }
-    summary.hosts = {joinDistinct(hosts, ", ")};
     const long long total = static_cast<long long>(first.config_runs);
     ReadConnection src(first.path);
     {
@@ -423,7 +418,7 @@ MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFil
                     "compiler, build_type, build_flags, ?3, ?10, cores, os, memory_bytes, workers, ?4, ?5, ?6, ?7, ?8, 0, ?9 "
                     "FROM experiments WHERE id = ?1",
                     first.path);
-      sel.integer(1, first.experiment).text(2, options.command_line).text(3, summary.hosts.front()).text(4, started);
+      sel.integer(1, first.experiment).text(2, options.command_line).text(3, summary.hosts).text(4, started);
       sel.text(5, finished).integer(6, total).integer(7, std::min(executed, total)).integer(8, std::max(0LL, total - executed));
       sel.text(9, reasons).text(10, joinDistinct(cpus, " / "));
       copyRows(sel, db,

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "coverbench/experiment.hpp"
+#include "coverbench/files.hpp"
 
 namespace coverbench {
 namespace {
@@ -17,12 +18,6 @@ namespace {
 const char* const kStatuses[] = {"ok",      "partial",      "no_reachable_area", "invalid_input",  "timeout",
                                  "memory_limit", "crash", "error",             "invalid_output", "metrics_error"};
 
-/// One word: OMPL's parser takes the experiment name and host name as the line's last word.
-std::string word(const std::string& text) {
-  std::string out;
-  for (char c : text) out += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-' ? c : '_';
-  return out.empty() ? "_" : out;
-}
 /// A value on a run line, where "; " separates values and a line ends the run.
 std::string value(const std::string& text) {
   std::string out;
@@ -84,10 +79,17 @@ std::vector<OmplLog> omplBenchmarkLogs(const ResultSet& results, const Experimen
   std::map<std::string, std::string> params_of;  // configuration label -> "key=value, ..."
   for (const ExperimentRecord::Config& c : record.planners) params_of[c.label] = "planner=" + c.planner + (c.params.empty() ? "" : ", " + c.params);
 
-  std::vector<std::string> datasets;
-  for (const ExperimentRecord::Dataset& d : record.datasets) datasets.push_back(d.label);
+  // The experiment and host names are the last word of their lines in OMPL's format: made one
+  // word the way file names are; file names unique even where two labels map to one name.
+  std::vector<std::string> datasets, names;
+  for (const ExperimentRecord::Dataset& d : record.datasets) {
+    datasets.push_back(d.label);
+    names.push_back(record.name + "." + d.label);
+  }
+  const std::vector<std::string> file_names = uniqueFileNames(names);
   std::vector<OmplLog> logs;
-  for (const std::string& dataset : datasets) {
+  for (std::size_t di = 0; di < datasets.size(); ++di) {
+    const std::string& dataset = datasets[di];
     // Planner entries in the tables' column order; runs in key order.
     std::map<std::string, std::vector<const ResultRow*>> by_column;
     std::set<std::string> walls;
@@ -114,10 +116,10 @@ std::vector<OmplLog> omplBenchmarkLogs(const ResultSet& results, const Experimen
 
     OmplLog log;
     log.dataset = dataset;
-    log.file_name = word(record.name) + "." + word(dataset) + ".log";
+    log.file_name = file_names[di] + ".log";
     std::string& t = log.text;
     t += "CoverBench version " COVERBENCH_VERSION "\n";
-    t += "Experiment " + word(record.name + "." + dataset) + "\n";
+    t += "Experiment " + safeFileName(names[di]) + "\n";
     t += "6 experiment properties\n";
     t += "dataset STRING = " + value(dataset) + "\n";
     t += "walls INTEGER = " + std::to_string(walls.size()) + "\n";
@@ -125,7 +127,7 @@ std::vector<OmplLog> omplBenchmarkLogs(const ResultSet& results, const Experimen
     t += "clearances STRING = " + list(clearances) + "\n";
     t += "config_sha256 STRING = " + record.config_hash + "\n";
     t += "coverbench_experiment STRING = " + value(record.name) + "\n";
-    t += "Running on " + word(fact(record, "host")) + "\n";
+    t += "Running on " + safeFileName(fact(record, "host")) + "\n";
     t += "Starting at " + value(fact(record, "started (UTC)")) + "\n";
     t += "<<<|\n" + record.config_text + (record.config_text.empty() || record.config_text.back() == '\n' ? "" : "\n") + "|>>>\n";
     t += "<<<|\nCPU: " + value(fact(record, "CPU")) + "\ncores: " + value(fact(record, "cores")) + "\nOS: " +

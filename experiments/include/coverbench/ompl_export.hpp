@@ -25,7 +25,7 @@ OmplLogSettings omplLogSettings(const std::string& config_text);
 
 struct OmplLog {
   std::string dataset;
-  std::string file_name;  ///< EXPERIMENT.DATASET.log, with anything but [A-Za-z0-9_.-] as _
+  std::string file_name;  ///< EXPERIMENT.DATASET.log, through uniqueFileNames
   std::string text;
   std::size_t runs = 0;
 };

@@ -56,7 +56,7 @@ struct MergeSummary {
   std::size_t already_stored = 0;    ///< runs the output held already (a merge again, or a resumed one)
   std::size_t duplicates = 0;        ///< runs found in more than one shard file (identical, kept once)
   std::vector<std::string> notes;    ///< what a user should know: shards given twice, and so on
-  std::vector<std::string> hosts;    ///< the hosts the shards ran on
+  std::string hosts;                 ///< the distinct hosts the shards ran on, comma-separated
   bool unchanged = false;            ///< the output's latest experiment is this merge already: nothing written
   long long experiment_id = 0;       ///< the merged experiment in the output
 };
