@@ -126,7 +126,7 @@ TEST_F(Experiments, RunKeysChangeWithEveryInputAndNothingElse) {
   EXPECT_NE(runKey(r), key);
   // The planner's version and code identity change the key, not the base key.
   r = runs[0];
-  r.planner_version = "2";
+  r.planner_version += "-next";
   EXPECT_NE(runKey(r), key);
   EXPECT_EQ(runBaseKey(r), runs[0].base_key);
   r = runs[0];

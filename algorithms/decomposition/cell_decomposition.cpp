@@ -1,6 +1,7 @@
 #include "cell_decomposition.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace coverbench::decomposition {
@@ -52,6 +53,10 @@ std::vector<Point> Cell::boundaryWalk(double a, double b, bool ceiling) const {
   for (std::size_t i = 0; i + 1 < slices.size(); ++i) {
     const double x = slices[i].x1;
     if (x < a || x > b) continue;
+    // The same edge on both sides: a slab boundary some other vertex made, not a bend here.
+    const Edge& e0 = ceiling ? slices[i].ceiling : slices[i].floor;
+    const Edge& e1 = ceiling ? slices[i + 1].ceiling : slices[i + 1].floor;
+    if (e0.left == e1.left && e0.right == e1.right) continue;
     // Arrive along the left slice (unless the walk starts here), leave along the right one.
     if (x > a) push({x, side(slices[i], x)});
     if (x < b) push({x, side(slices[i + 1], x)});
@@ -73,6 +78,14 @@ struct Link {
   std::size_t left = 0, right = 0;  ///< interval indices in slab k and slab k + 1
   double y0 = 0.0, y1 = 0.0;
 };
+
+/// Whether edge `b` continues edge `a` (a ends where b starts) turning by less than kCornerTurnDeg:
+/// a vertex of an arc's chords, not a corner.
+bool smoothJoin(const Edge& a, const Edge& b) {
+  if (!(a.right == b.left)) return false;
+  const Point da = a.right - a.left, db = b.right - b.left;
+  return dot(da, db) > std::cos(kCornerTurnDeg * M_PI / 180.0) * norm(da) * norm(db);
+}
 
 }  // namespace
 
@@ -137,8 +150,11 @@ Decomposition decompose(const PolygonWithHoles& polygon, Kind kind, double min_c
     for (const Link& link : links) {
       const Interval& p = previous[link.left];
       Interval& c = current[link.right];
-      const bool same = kind == Kind::Trapezoidal ? (p.floor == c.floor && p.ceiling == c.ceiling)
-                                                  : (p.right_links == 1 && c.left_links == 1);
+      const bool same =
+          kind == Kind::Trapezoidal
+              ? ((p.floor == c.floor || smoothJoin(edges[p.floor], edges[c.floor])) &&
+                 (p.ceiling == c.ceiling || smoothJoin(edges[p.ceiling], edges[c.ceiling])))
+              : (p.right_links == 1 && c.left_links == 1);
       if (same) {
         c.cell = p.cell;
         continued[link.right] = true;

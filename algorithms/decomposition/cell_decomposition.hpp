@@ -6,8 +6,11 @@
 /// vertex lies strictly inside, so the polygon's cross-section there is a fixed list of intervals,
 /// each bounded below by one floor edge and above by one ceiling edge. Cells are runs of such slab
 /// intervals in consecutive slabs:
-/// - trapezoidal: an interval continues into the next slab while its floor and ceiling edges both
-///   continue, which is exactly a trapezoid between the vertical lines through vertices;
+/// - trapezoidal: an interval continues into the next slab while its floor and ceiling both
+///   continue, which is a trapezoid between the vertical lines through the corners. A floor or
+///   ceiling continues through a vertex where it turns by less than kCornerTurnDeg: such vertices
+///   are the chords of an arc of F (round offsets of obstacle corners and circles), not corners of
+///   the wall or obstacles as given, and a cell per chord would only add passes;
 /// - boustrophedon: an interval continues while it touches exactly one interval on each side,
 ///   i.e. the cell is split only at critical points where the connectivity of the sweep line
 ///   changes.
@@ -23,6 +26,12 @@
 namespace coverbench::decomposition {
 
 enum class Kind { Trapezoidal, Boustrophedon };
+
+/// The smallest turn (degrees) at which a vertex of the region counts as a corner for the
+/// trapezoidal decomposition. The free region's arcs are drawn with chords turning by at most
+/// about 28 degrees (2 mm tolerance on the smallest radius, r + c = 0.07 m for the default tool);
+/// the corners of walls and obstacles as given turn by 45 degrees or more in every generated family.
+inline constexpr double kCornerTurnDeg = 30.0;
 
 /// A polygon edge that is not vertical, as its left and right end points.
 struct Edge {

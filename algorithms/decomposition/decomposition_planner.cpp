@@ -1,11 +1,13 @@
 #include "decomposition_planner.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
 
 #include "cell_ordering.hpp"
+#include "coverbench/headland.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/sweep_search.hpp"
 #include "coverbench/workspace.hpp"
@@ -33,8 +35,11 @@ struct PassGrid {
 
 /// The x positions of a cell's passes, increasing: the grid positions in [minX, maxX), plus, when
 /// no boundary loop covers F's edges, each end of the cell that is not entirely shared with
-/// neighbours (an edge of F, which a grid line may miss by up to a spacing). A cell with no
-/// position gets one pass at its right end.
+/// neighbours (an edge of F, which a grid line may miss by up to a spacing). Without the loop, a
+/// cell with no position gets one pass at its right end; with it, none: such a cell is a sliver
+/// narrower than the grid step between two critical lines, which the passes on either side paint
+/// as far as their cells reach (what they miss, only fill_leftovers paints). A pass of its own
+/// ran the whole height of the wall beside its neighbours' passes: a full strip painted twice.
 std::vector<double> passPositions(const Cell& cell, double shared_left, double shared_right, const PassGrid& grid,
                                   bool boundary_loop) {
   const double x0 = cell.minX(), x1 = cell.maxX();
@@ -44,8 +49,34 @@ std::vector<double> passPositions(const Cell& cell, double shared_left, double s
   auto k = static_cast<std::size_t>(std::max(0.0, std::floor((x0 - grid.min) / grid.step)));
   for (; k <= grid.count && grid.at(k) < x1; ++k)
     if (grid.at(k) >= x0 && (xs.empty() || grid.at(k) - xs.back() > 1e-9)) xs.push_back(grid.at(k));
-  if ((!boundary_loop && (right.top - right.bottom) - shared_right > 1e-6) || xs.empty()) xs.push_back(x1);
+  if (!boundary_loop && ((right.top - right.bottom) - shared_right > 1e-6 || xs.empty())) xs.push_back(x1);
   return xs;
+}
+
+/// Removes the cells given no pass (and their contacts), renumbering the rest; returns how many.
+std::size_t dropCellsWithoutPasses(Decomposition& d, std::vector<std::vector<double>>& passes) {
+  std::vector<std::size_t> index(d.cells.size(), d.cells.size());
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < d.cells.size(); ++i) {
+    if (passes[i].empty()) continue;
+    index[i] = kept;
+    if (kept != i) {
+      d.cells[kept] = std::move(d.cells[i]);
+      passes[kept] = std::move(passes[i]);
+    }
+    ++kept;
+  }
+  const std::size_t dropped = d.cells.size() - kept;
+  d.cells.resize(kept);
+  passes.resize(kept);
+  std::vector<Contact> contacts;
+  for (Contact c : d.contacts) {
+    if (index[c.left] == index.size() || index[c.right] == index.size()) continue;
+    c.left = index[c.left], c.right = index[c.right];
+    contacts.push_back(c);
+  }
+  d.contacts = std::move(contacts);
+  return dropped;
 }
 
 /// Entry and exit of a cell for its four orientations (see CellEnds).
@@ -110,12 +141,24 @@ class DecompositionPlanner final : public Planner {
       return PlanResult::failure(PlanStatus::NoReachableArea,
                                  "the tool fits nowhere: the free region F is empty for this tool and clearance");
     const Region main{components.front()};
-    // Cells are cut from F drawn with coarser arcs (fewer vertices), in the part of F covered. That
-    // region lies inside F, so each of its parts lies in one part of F; a vertex tells which.
+    // With the boundary loop, passes keep one spacing clear of it across their direction and end
+    // half a spacing from it along it (headland.hpp); without, they run from edge to edge of F
+    // drawn with coarser arcs (fewer vertices, fewer slabs), 2 mm inside F.
+    HeadlandOptions layout;
+    layout.spacing = spacing;
+    layout.radius = problem.tool.tool_width / 2.0;
+    layout.end_inset = problem.params.number("row_end_inset");
+    layout.arc_tolerance = kCellArcTolerance;
+    layout.along_x = false;
+    layout.with_unpainted = problem.params.flag("fill_leftovers");
+    const Headland h = boundary_loop ? headland(ws, main, layout) : Headland{};
+    const Region cell_region =
+        boundary_loop ? h.ends : freeRegion(wall, problem.tool, kCellArcTolerance + kFreeSpaceMargin, kCellArcTolerance);
+    // The headland comes from the part of F covered; the coarser F lies inside F, so each of its
+    // parts lies in one part of F, and a vertex tells which.
     Decomposition cells;
-    for (const PolygonWithHoles& poly :
-         freeRegion(wall, problem.tool, kCellArcTolerance + kFreeSpaceMargin, kCellArcTolerance)) {
-      if (!pointInPolygon(components.front(), poly.outer.front())) continue;
+    for (const PolygonWithHoles& poly : cell_region) {
+      if (!boundary_loop && !pointInPolygon(components.front(), poly.outer.front())) continue;
       Decomposition d = decompose(poly, kind_);
       const std::size_t base = cells.cells.size();
       for (Contact& c : d.contacts) c.left += base, c.right += base;
@@ -137,20 +180,46 @@ class DecompositionPlanner final : public Planner {
     if (!cells.cells.empty()) {
       double lo = INFINITY, hi = -INFINITY;
       for (const Cell& c : cells.cells) lo = std::min(lo, c.minX()), hi = std::max(hi, c.maxX());
+      if (boundary_loop && !h.row_span.empty()) {  // the first and last pass one spacing inside the loop
+        lo = h.row_span.min_x;
+        hi = h.row_span.max_x;
+      }
       grid.min = lo;
       grid.count = static_cast<std::size_t>(std::max(1.0, std::ceil((hi - lo) / spacing - 1e-9)));
       grid.step = (hi - lo) / static_cast<double>(grid.count);
     }
     std::vector<std::vector<double>> passes(cells.cells.size());
+    for (std::size_t i = 0; i < cells.cells.size(); ++i)
+      passes[i] = passPositions(cells.cells[i], shared_left[i], shared_right[i], grid, boundary_loop);
+    const std::size_t passless_cells = dropCellsWithoutPasses(cells, passes);
     std::vector<CellEnds> ends(cells.cells.size());
     std::size_t pass_count = 0;
     for (std::size_t i = 0; i < cells.cells.size(); ++i) {
-      passes[i] = passPositions(cells.cells[i], shared_left[i], shared_right[i], grid, boundary_loop);
       ends[i] = cellEnds(cells.cells[i], passes[i]);
       pass_count += passes[i].size();
     }
     std::vector<CellLink> links;
     for (const Contact& c : cells.contacts) links.push_back({c.left, c.right});
+    // The boundary loops are stops of the same tour, so each is painted between the cells nearest
+    // to it instead of after all of them: entered and left at one of its four extreme vertices
+    // (lowest, rightmost, highest, leftmost: the loop's four "orientations").
+    const std::size_t cell_count = cells.cells.size();
+    std::vector<std::array<std::size_t, 4>> loop_starts;
+    for (const Ring& ring : h.loops) {
+      std::array<std::size_t, 4> at{0, 0, 0, 0};  // lowest, rightmost, highest, leftmost
+      for (std::size_t k = 1; k < ring.size(); ++k) {
+        if (ring[k].y < ring[at[0]].y) at[0] = k;
+        if (ring[k].x > ring[at[1]].x) at[1] = k;
+        if (ring[k].y > ring[at[2]].y) at[2] = k;
+        if (ring[k].x < ring[at[3]].x) at[3] = k;
+      }
+      CellEnds e;
+      for (int o = 0; o < 4; ++o) e.entry[o] = e.exit[o] = ring[at[o]], e.reverse[o] = o;
+      const Box b = boundingBox(ring);
+      e.centre = {(b.min_x + b.max_x) / 2.0, (b.min_y + b.max_y) / 2.0};
+      ends.push_back(e);
+      loop_starts.push_back(at);
+    }
     const Ordering ordering = orderCells(ends, links, order, [&] { return !budget.expired(); });
     std::map<std::pair<std::size_t, std::size_t>, std::vector<const Contact*>> contacts_between;
     for (const Contact& c : cells.contacts) contacts_between[std::minmax(c.left, c.right)].push_back(&c);
@@ -163,6 +232,19 @@ class DecompositionPlanner final : public Planner {
     std::size_t previous = cells.cells.size();
     for (const Visit& visit : ordering.visits) {
       if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the passes");
+      if (visit.cell >= cell_count) {  // a boundary loop
+        const Ring& ring = h.loops[visit.cell - cell_count];
+        const std::size_t start = loop_starts[visit.cell - cell_count][static_cast<std::size_t>(visit.orientation)];
+        if (!builder.moveTo(ring[start], !builder.empty() && distance(builder.current(), ring[start]) <= 1.01 * spacing)) {
+          ++unreachable;
+          continue;
+        }
+        std::vector<Point> loop;
+        for (std::size_t k = 1; k <= ring.size(); ++k) loop.push_back(ring[(start + k) % ring.size()]);
+        builder.follow(loop, true);
+        previous = cell_count;
+        continue;
+      }
       const Cell& cell = cells.cells[visit.cell];
       std::vector<double> xs = passes[visit.cell];
       const bool leftward = (visit.orientation & 1) != 0;
@@ -201,8 +283,13 @@ class DecompositionPlanner final : public Planner {
         up = !up;
       }
     }
-    // The boundary loop last: coverRings starts at the ring nearest to where the cells ended.
-    if (boundary_loop) unreachable += coverRings(builder, allRings(main), 1.01 * spacing);
+    // What the passes and loops left inside the loops (when asked: see fillLeftoversParam).
+    Leftovers left;
+    const bool fill = boundary_loop && problem.params.flag("fill_leftovers");
+    if (fill) {
+      left = coverLeftovers(ws, builder, h.unpainted, 0, spacing, problem.tool.tool_width / 2.0, false);
+      unreachable += left.unreachable;
+    }
     const double synthesis_ms = msSince(t_synthesis);
 
     PlanResult result;
@@ -214,12 +301,14 @@ class DecompositionPlanner final : public Planner {
     result.path = builder.take();
     rotatePoints(result.path.waypoints, turn);
     result.stats["cells"] = static_cast<double>(cells.cells.size());
+    result.stats["cells_without_pass"] = static_cast<double>(passless_cells);
     result.stats["cell_contacts"] = static_cast<double>(cells.contacts.size());
     result.stats["contact_transits"] = static_cast<double>(contact_moves);
     result.stats["slabs"] = static_cast<double>(cells.slabs);
     result.stats["passes"] = static_cast<double>(pass_count);
     result.stats["sweep_angle_deg"] = angle_deg;
     result.stats["order_estimate_m"] = ordering.estimated_cost;
+    if (fill) recordLeftovers(result, left);
     result.timings_ms["decomposition"] = decomposition_ms;
     result.timings_ms["ordering"] = ordering_ms;
     result.timings_ms["synthesis"] = synthesis_ms;
@@ -245,6 +334,8 @@ PlannerInfo plannerInfo(Kind kind) {
       {"direction_search", ParamType::Bool, false, 0, 0, {}, "",
        "search the sweep direction (5-degree steps and the longest edges, then 1-degree steps); overrides sweep_angle"},
       {"turn_penalty", ParamType::Number, 1.0, 0.0, 1000.0, {}, "m", "cost of a turn over 30 degrees in the direction search"},
+      rowEndInsetParam(),
+      fillLeftoversParam(),
   };
   info.capabilities.polygon_boundary = true;
   info.capabilities.circle_obstacles = true;

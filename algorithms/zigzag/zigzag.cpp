@@ -3,12 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "coverbench/headland.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/sweep_search.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::zigzag {
 namespace {
+
+/// How far the chords of the rows' regions may cut inside their arcs (metres): coarse, so they
+/// have few vertices (rows end at most this much short of where they could).
+constexpr double kRowArcTolerance = 1e-3;
 
 /// Where a row crosses a ring edge of the row region.
 struct Crossing {
@@ -101,20 +106,27 @@ class ZigzagPlanner final : public Planner {
                                  "the tool fits nowhere: the free region F is empty for this tool and clearance");
     const Region main{components.front()};
 
+    // Loops along F's boundary first, then rows clear of their paint (headland.hpp), then, with
+    // fill_leftovers, a pass for each piece both left.
+    HeadlandOptions layout;
+    layout.spacing = spacing;
+    layout.radius = problem.tool.tool_width / 2.0;
+    layout.loops = passes;
+    layout.end_inset = problem.params.number("row_end_inset");
+    layout.arc_tolerance = kRowArcTolerance;
+    layout.with_unpainted = problem.params.flag("fill_leftovers");
+    const Headland h = headland(ws, main, layout);
     PathBuilder builder(ws);
-    std::size_t unreachable = 0;
-    for (std::size_t k = 0; k < passes; ++k) {
-      const Region level = k == 0 ? main : offsetRegion(main, -static_cast<double>(k) * spacing, kArcTolerance);
-      unreachable += coverRings(builder, allRings(level), 1.01 * spacing);
-      if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in boundary passes");
-    }
-    const Region row_region =
-        passes <= 1 ? main : offsetRegion(main, -static_cast<double>(passes - 1) * spacing, kArcTolerance);
-    const std::vector<Ring> rings = allRings(row_region);
-    const Box box = boundingBox(row_region);
+    std::size_t unreachable = coverRings(builder, h.loops, 1.01 * spacing);
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in boundary passes");
+    const std::size_t rows_from = builder.path().segments();
+    const std::vector<Ring> rings = allRings(h.ends);
+    const Box box = h.row_span;
+    // The rows' span may hold several parts of F (pinched by obstacles), so a row may be empty.
+    const std::vector<double> heights = box.empty() ? std::vector<double>{} : rowHeights(box.min_y, box.max_y, spacing);
     std::vector<std::vector<Interval>> rows;
-    if (!box.empty()) rows = rowIntervals(rings, rowHeights(box.min_y, box.max_y, spacing));
-    const double row_gap = rows.size() > 1 ? rows[1].front().y - rows[0].front().y : 0.0;
+    if (!heights.empty()) rows = rowIntervals(rings, heights);
+    const double row_gap = heights.size() > 1 ? heights[1] - heights[0] : 0.0;
 
     std::size_t remaining = 0, pieces = 0;
     for (const auto& row : rows) remaining += row.size();
@@ -186,6 +198,13 @@ class ZigzagPlanner final : public Planner {
         rightward = !rightward;
       }
     }
+    // What the loops and rows left, when asked (see fillLeftoversParam).
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in rows");
+    const bool fill = problem.params.flag("fill_leftovers");
+    const Leftovers left =
+        fill ? coverLeftovers(ws, builder, h.unpainted, rows_from, spacing, problem.tool.tool_width / 2.0, true)
+             : Leftovers{};
+    unreachable += left.unreachable;
 
     PlanResult result;
     result.status = PlanStatus::Ok;
@@ -195,6 +214,7 @@ class ZigzagPlanner final : public Planner {
     result.stats["row_spacing"] = row_gap;
     result.stats["intervals"] = static_cast<double>(interval_count);
     result.stats["pieces"] = static_cast<double>(pieces);
+    if (fill) recordLeftovers(result, left);
     result.stats["sweep_angle_deg"] = angle_deg;
     recordOutcome(result, builder, components.size(), unreachable);
     return result;
@@ -206,7 +226,7 @@ class ZigzagPlanner final : public Planner {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "zigzag";
-  info.version = "1";
+  info.version = std::string("2");  // not = "2": GCC 12 warns falsely (-Wrestrict) on that assignment here
   info.code_folders = {"zigzag"};
   info.summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes";
   info.reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013";
@@ -218,6 +238,8 @@ PlannerInfo info() {
       {"direction_search", ParamType::Bool, false, 0, 0, {}, "",
        "search the sweep direction (5-degree steps and the longest edges, then 1-degree steps); overrides sweep_angle"},
       {"turn_penalty", ParamType::Number, 1.0, 0.0, 1000.0, {}, "m", "cost of a turn over 30 degrees in the direction search"},
+      rowEndInsetParam(),
+      fillLeftoversParam(),
   };
   info.capabilities.polygon_boundary = true;
   info.capabilities.circle_obstacles = true;

@@ -62,6 +62,15 @@ Region fromTree(const cl::PolyTree& tree) {
   return out;
 }
 
+/// Adds each ring turned counter-clockwise (for a non-zero union of rings of any orientation).
+void addCounterClockwise(cl::Clipper& clipper, const std::vector<Ring>& rings, cl::PolyType type) {
+  for (const Ring& ring : rings) {
+    cl::Path path = toPath(ring);
+    if (!cl::Orientation(path)) cl::ReversePath(path);
+    clipper.AddPath(path, type, true);
+  }
+}
+
 Region boolean(const Region& a, const Region& b, cl::ClipType type) {
   cl::Clipper clipper;
   clipper.AddPaths(toPaths(a), cl::ptSubject, true);
@@ -161,17 +170,60 @@ Region sweptRegion(const std::vector<std::vector<Point>>& polylines, double radi
   return fromTree(tree);
 }
 
+Region sweepAlong(const Region& region, Point half) {
+  // The region plus what its boundary passes over: each maximal run of edges crossing the
+  // direction the same way (a chain monotone across it) sweeps the simple polygon between the
+  // run moved back and the run moved forward. Runs, not single edges: a union of one
+  // parallelogram per edge costs Clipper quadratic time in shared edges.
+  std::vector<Ring> bands;
+  for (const Ring& ring : allRings(region)) {
+    const std::size_t n = ring.size();
+    auto side = [&](std::size_t i) {
+      const double c = cross(ring[(i + 1) % n] - ring[i], half);
+      return c > 0.0 ? 1 : c < 0.0 ? -1 : 0;
+    };
+    // Start at an edge that begins a run, so no run wraps around the ring's start.
+    std::size_t start = 0;
+    while (start < n && (side(start) == 0 || side(start) == side((start + n - 1) % n))) ++start;
+    if (start == n) start = 0;  // every edge on one side (cannot close) or parallel: nothing sweeps
+    std::vector<Point> run;
+    int run_side = 0;
+    auto flush = [&] {
+      if (run.size() >= 2) {
+        Ring band;
+        for (const Point& p : run) band.push_back(p - half);
+        for (auto it = run.rbegin(); it != run.rend(); ++it) band.push_back(*it + half);
+        bands.push_back(std::move(band));
+      }
+      run.clear();
+    };
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = (start + k) % n;
+      const int s = side(i);
+      if (s == 0 || s != run_side) flush();
+      run_side = s;
+      if (s == 0) continue;
+      if (run.empty()) run.push_back(ring[i]);
+      run.push_back(ring[(i + 1) % n]);
+    }
+    flush();
+  }
+  // One union: the region (holes wind to zero) and the bands, each turned counter-clockwise.
+  cl::Clipper clipper;
+  clipper.AddPaths(toPaths(region), cl::ptSubject, true);
+  addCounterClockwise(clipper, bands, cl::ptClip);
+  cl::PolyTree tree;
+  clipper.Execute(cl::ctUnion, tree, cl::pftNonZero, cl::pftNonZero);
+  return fromTree(tree);
+}
+
 Region unite(const Region& a, const Region& b) { return boolean(a, b, cl::ctUnion); }
 Region intersect(const Region& a, const Region& b) { return boolean(a, b, cl::ctIntersection); }
 Region subtract(const Region& a, const Region& b) { return boolean(a, b, cl::ctDifference); }
 
 Region regionFromRings(const std::vector<Ring>& rings) {
   cl::Clipper clipper;
-  for (const Ring& ring : rings) {
-    cl::Path path = toPath(ring);
-    if (!cl::Orientation(path)) cl::ReversePath(path);
-    clipper.AddPath(path, cl::ptSubject, true);
-  }
+  addCounterClockwise(clipper, rings, cl::ptSubject);
   cl::PolyTree tree;
   clipper.Execute(cl::ctUnion, tree, cl::pftNonZero, cl::pftNonZero);
   return fromTree(tree);

@@ -329,6 +329,15 @@ Wall randomWall(Rng& rng) {
   return d.wall;
 }
 
+Wall openWall(Rng& rng) {
+  // Nothing in the way: what a planner's rows, turns and boundary passes cost by themselves.
+  Draft d;
+  const double W = mm(rng.uniform(5.0, 12.0));
+  const double H = mm(rng.uniform(5.0, 12.0));
+  d.wall.boundary = rectRing(W, H);
+  return d.wall;
+}
+
 Wall narrow(Rng& rng) {
   // Gaps near s + 2c = 0.14 m (the default tool, s = 0.1 m, c = 0.02 m): 0.7 to 1.4 times that,
   // between obstacles and the boundary and between neighbouring obstacles.
@@ -418,7 +427,8 @@ using Generator = std::function<Wall(Rng&)>;
 const std::map<std::string, Generator>& generators() {
   static const std::map<std::string, Generator> g = {
       {"residential", residential}, {"facade", facade}, {"gable", gable},   {"stairwell", stairwell},
-      {"industrial", industrial},   {"random", randomWall}, {"narrow", narrow}, {"stress", stress}};
+      {"industrial", industrial},   {"random", randomWall}, {"narrow", narrow}, {"stress", stress},
+      {"open", openWall}};
   return g;
 }
 
@@ -440,6 +450,7 @@ const std::vector<FamilyInfo>& wallFamilies() {
       {"random", "uniform random rectangles that may overlap each other and touch or cross the boundary"},
       {"narrow", "gaps of 0.7-1.4 times s + 2c (0.14 m for the default tool) between obstacles and the boundary"},
       {"stress", "40-60 m x 15-25 m walls with 150-400 rectangular openings"},
+      {"open", "obstacle-free rectangles 5-12 m x 5-12 m: rows, turns and boundary passes alone"},
       {"seed-cases", "the seeds' cases: 1x1 empty, 5x5 with 1 and 3, 10x8 with 3, 10x10 with 5, 20x10 empty, L-shape, garden trees, narrow passages", true},
   };
   return families;

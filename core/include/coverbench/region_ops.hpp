@@ -28,6 +28,9 @@ Region sweptRegion(const std::vector<std::vector<Point>>& polylines, double radi
 /// metres of the original (either way). Keeps later offsets from multiplying the many short
 /// chords of fine arcs.
 Region simplifyRegion(const Region& region, double tolerance);
+/// The Minkowski sum of the region and the segment from -half to +half: everything the region
+/// passes over when moved along that segment.
+Region sweepAlong(const Region& region, Point half);
 Region unite(const Region& a, const Region& b);
 Region intersect(const Region& a, const Region& b);
 Region subtract(const Region& a, const Region& b);

@@ -1,0 +1,82 @@
+#pragma once
+/// Boundary loops and the rows inside them, for sweep planners (zigzag and the decomposition
+/// planners).
+///
+/// A loop along a ring of F paints a band one tool width wide centred on that ring. Rows that ran
+/// on F's edge would paint that band a second time. So the rows keep one spacing clear of the
+/// last loop across their direction (the first row's band meets the loop's band edge to edge) and
+/// end half a spacing from it along their direction (where the loop's band begins: the row's round
+/// end lies in the band, so no sliver is left between row ends). What neither reaches (under an
+/// obstacle between two rows, a neck narrower than two spacings, a slanted edge between row ends)
+/// is found exactly afterwards and covered by short extra passes: see coverLeftovers.
+
+#include <cstddef>
+#include <vector>
+
+#include "coverbench/geometry.hpp"
+#include "coverbench/planner.hpp"
+
+namespace coverbench {
+
+class PathBuilder;
+class Workspace;
+
+struct Headland {
+  std::vector<Ring> loops;  ///< the loop rings, outermost level first (every ring of each level)
+  Region inner;             ///< where the first and last rows lie: one spacing inside the last loop's outer rings
+  Region ends;              ///< where rows may run along their direction: half a spacing inside it
+  Box row_span;             ///< where the first and last rows lie: `inner`'s extent, grown to reach F's thin parts beyond it
+  Region unpainted;         ///< what the loops leave to the rows: one tool radius inside the last loop (if asked)
+};
+
+struct HeadlandOptions {
+  double spacing = 0.1;        ///< between rows, and between loops (metres)
+  double radius = 0.05;        ///< the tool's radius s / 2 (metres)
+  std::size_t loops = 1;       ///< boundary loops
+  double end_inset = 0.5;      ///< where rows end: this many spacings inside the last loop
+  double arc_tolerance = 1e-3; ///< of the offsets (metres)
+  bool along_x = true;         ///< rows parallel to x (else to y)
+  bool with_unpainted = false; ///< compute Headland::unpainted (for coverLeftovers)
+};
+
+/// The loops and row regions of `free`, the part of the workspace's F a planner covers. With no
+/// loop, `inner` and `ends` are `free` itself (rows from edge to edge) and `unpainted` is empty
+/// (nothing is checked afterwards). Every region lies inside F.
+///
+/// `end_inset` 0.5 ends a row where the loop's band begins: its round end lies in the band, and
+/// nothing is left between row ends. A larger inset paints less twice and leaves small scallops
+/// between the ends of rows that no turn joins (on a 5 m x 5 m wall at s = 0.1 m: 0.5 gives
+/// overlap 0.0195 and full coverage, 0.6 gives 0.0157 and misses 1e-5, 0.8 gives 0.0084 and
+/// misses 4e-4, 1.0 gives 0.0024 and misses 2.1e-3; docs/planner_quality.md).
+Headland headland(const Workspace& ws, const Region& free, const HeadlandOptions& options);
+
+/// A piece smaller than this many squared spacings gets no pass of its own: reaching it would
+/// paint more again than it adds. The corner of a rectangle leaves one of (1 - pi/4) / 4 = 0.054.
+inline constexpr double kMinLeftoverArea = 0.25;
+
+struct Leftovers {
+  std::size_t pieces = 0;          ///< pieces covered by a pass or a loop of their own
+  std::size_t unreachable = 0;     ///< pieces no collision-free move reached
+  std::size_t small_pieces = 0;    ///< pieces left out on purpose (below kMinLeftoverArea)
+  double small_area = 0.0;         ///< their total area (m²)
+};
+
+/// Covers what the loops and rows left unpainted: the parts of `unpainted` outside the tool's
+/// capsules around the path's tool-on segments from waypoint `from` on. Each piece of at least
+/// kMinLeftoverArea spacing² gets one straight pass through its middle along the rows' direction
+/// (`along_x`: rows parallel to x, else to y) when the piece is thinner than the tool across it
+/// and the pass is free, else a loop along each of its rings (a piece no tool disk fits in is
+/// painted entirely by its boundary).
+Leftovers coverLeftovers(Workspace& ws, PathBuilder& builder, const Region& unpainted, std::size_t from, double spacing,
+                         double radius, bool along_x);
+
+/// The parameter `row_end_inset` (HeadlandOptions::end_inset) as sweep planners declare it.
+ParamSpec rowEndInsetParam();
+/// The parameter `fill_leftovers` (run coverLeftovers after the rows). Off by default: in the
+/// default experiment 7 of 981 sweep-planner runs had a piece worth a pass, and finding the
+/// pieces (a union of every painted capsule) cost 85 % of boustrophedon's planning time.
+ParamSpec fillLeftoversParam();
+/// The statistics leftover_passes, leftover_small_pieces and leftover_small_area_m2.
+void recordLeftovers(PlanResult& result, const Leftovers& left);
+
+}  // namespace coverbench
