@@ -33,9 +33,11 @@ TEST(SpanningTree, ShortBranchesFirstNoLongerThanStopWhichIsShorterThanReturn) {
   for (const Wall& wall : walls)
     for (const char* tree : {"dfs", "mst"}) {
       const ToolParams tool{0.1, 0.02};
-      const PlanResult ret = planWith(wall, tool, {{"variant", "return"}, {"tree", tree}});
-      const PlanResult stop = planWith(wall, tool, {{"variant", "stop"}, {"tree", tree}});
-      const PlanResult sbf = planWith(wall, tool, {{"variant", "short-branches-first"}, {"tree", tree}});
+      // A waypoint per cell visit: the seed counts points.
+      const PlanResult ret = planWith(wall, tool, {{"variant", "return"}, {"tree", tree}, {"waypoint_per_cell", "true"}});
+      const PlanResult stop = planWith(wall, tool, {{"variant", "stop"}, {"tree", tree}, {"waypoint_per_cell", "true"}});
+      const PlanResult sbf =
+          planWith(wall, tool, {{"variant", "short-branches-first"}, {"tree", tree}, {"waypoint_per_cell", "true"}});
       if (ret.status != PlanStatus::Ok) continue;
       ASSERT_EQ(stop.status, PlanStatus::Ok);
       ASSERT_EQ(sbf.status, PlanStatus::Ok);
@@ -65,7 +67,7 @@ TEST(SpanningTree, SpiralStcVisitsEveryFreeSubCellExactlyOnce) {
   };
   for (const Wall& wall : walls)
     for (const char* tree : {"dfs", "mst"}) {
-      const PlanResult r = planWith(wall, tool, {{"variant", "spiral-stc"}, {"tree", tree}});
+      const PlanResult r = planWith(wall, tool, {{"variant", "spiral-stc"}, {"tree", tree}, {"waypoint_per_cell", "true"}});
       ASSERT_EQ(r.status, PlanStatus::Ok) << r.reason;
       ASSERT_TRUE(test::isValidPath(wall, tool, r.path));
       EXPECT_EQ(r.stats.at("partially_blocked_sub_cells"), 0.0) << "the wall is built without them";
@@ -81,11 +83,38 @@ TEST(SpanningTree, SpiralStcVisitsEveryFreeSubCellExactlyOnce) {
     }
 }
 
+TEST(SpanningTree, AWaypointOnlyWhereTheWalkTurnsIsTheSamePath) {
+  // The default path keeps a waypoint only where the walk turns or the tool switches: the same
+  // moves as a waypoint per cell, so the same length, coverage and overlap; its waypoints are a
+  // subsequence of the per-cell ones.
+  const ToolParams tool{0.1, 0.02};
+  std::vector<Wall> walls = {loadWallFile(test::sourcePath("datasets/canonical/seed_10x10_5obs.json"))};
+  for (unsigned seed = 1; seed <= 5; ++seed) walls.push_back(test::randomWall(seed));
+  for (const Wall& wall : walls)
+    for (const char* variant : {"return", "short-branches-first", "spiral-stc"}) {
+      const PlanResult few = planWith(wall, tool, {{"variant", variant}});
+      const PlanResult all = planWith(wall, tool, {{"variant", variant}, {"waypoint_per_cell", "true"}});
+      ASSERT_EQ(few.status, all.status) << wall.name << " " << variant;
+      if (!few.hasPath()) continue;
+      EXPECT_LT(few.path.waypoints.size(), all.path.waypoints.size()) << wall.name << " " << variant;
+      const PathMetrics a = computeMetrics(wall, tool, few.path), b = computeMetrics(wall, tool, all.path);
+      EXPECT_NEAR(a.lengths.total, b.lengths.total, 1e-9 * b.lengths.total) << wall.name << " " << variant;
+      EXPECT_NEAR(a.lengths.cover, b.lengths.cover, 1e-9 * b.lengths.total) << wall.name << " " << variant;
+      EXPECT_NEAR(a.coverage.coverage_reachable, b.coverage.coverage_reachable, 1e-9) << wall.name << " " << variant;
+      EXPECT_NEAR(a.passes.overlap, b.passes.overlap, 1e-9) << wall.name << " " << variant;
+      std::size_t k = 0;
+      for (const Point& p : few.path.waypoints) {
+        while (k < all.path.waypoints.size() && !(all.path.waypoints[k] == p)) ++k;
+        ASSERT_LT(k, all.path.waypoints.size()) << wall.name << " " << variant << ": waypoint not on the per-cell path";
+      }
+    }
+}
+
 TEST(SpanningTree, PartiallyBlockedMegaCellsAreStillCovered) {
   // A window that cuts through mega-cells: their free sub-cells are covered by ordinary trees.
   const ToolParams tool{0.1, 0.0};
   const Wall wall = rectWall(2.0, 1.2, {rect(0.75, 0.35, 0.3, 0.3)});
-  const PlanResult stc = planWith(wall, tool, {{"variant", "spiral-stc"}});
+  const PlanResult stc = planWith(wall, tool, {{"variant", "spiral-stc"}, {"waypoint_per_cell", "true"}});
   const PlanResult plain = planWith(wall, tool, {{"variant", "stop"}});
   ASSERT_EQ(stc.status, PlanStatus::Ok);
   EXPECT_GT(stc.stats.at("partially_blocked_sub_cells"), 0.0);

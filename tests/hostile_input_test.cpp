@@ -483,7 +483,8 @@ TEST_F(Hostile, ScoringIsBoundedInWaypointsAndTime) {
   const std::string empty = write("empty.json", R"({"name": "e", "width": 10, "height": 10})");
   const std::string plan = (dir_ / "st.json").string();
   std::string printed;
-  r = run("plan --wall " + empty + " --planner spanning-tree --tool-width 0.0065 --out " + plan, &printed);
+  r = run("plan --wall " + empty + " --planner spanning-tree --param waypoint_per_cell=true --tool-width 0.0065 --out " + plan,
+          &printed);
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(printed.find("NOT SCORED: the path has "), std::string::npos) << printed;
   const std::string written = slurp(plan);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
@@ -102,11 +103,27 @@ Grid buildGrid(const Region& free, const Box& box, double s, bool even) {
   return g;
 }
 
+/// A grid node's children: at most four (its neighbours), stored in place, so a forest over tens
+/// of thousands of cells allocates nothing per cell.
+struct Children {
+  int items[4] = {-1, -1, -1, -1};
+  int count = 0;
+  void push_back(int c) { items[count++] = c; }
+  std::size_t size() const { return static_cast<std::size_t>(count); }
+  int operator[](std::size_t k) const { return items[k]; }
+  int* begin() { return items; }
+  int* end() { return items + count; }
+  const int* begin() const { return items; }
+  const int* end() const { return items + count; }
+  std::reverse_iterator<const int*> rbegin() const { return std::reverse_iterator<const int*>(end()); }
+  std::reverse_iterator<const int*> rend() const { return std::reverse_iterator<const int*>(begin()); }
+};
+
 /// Storage for every tree over one grid, indexed by cell (each cell belongs to one tree at most,
 /// so nothing is reset between trees): memory linear in the number of cells.
 struct Forest {
   explicit Forest(int cells) : children(cells), height(cells, 0), local(cells, -1), placed(cells, 0) {}
-  std::vector<std::vector<int>> children;  // in traversal order
+  std::vector<Children> children;  // in traversal order
   std::vector<int> height;                 // subtree height (a leaf has 0)
   std::vector<int> local;                  // index within its tree's part (MST)
   std::vector<char> placed;                // already hung into its tree (MST)
@@ -202,6 +219,22 @@ Tree mstTree(const Grid& g, int root, const std::array<int, 4>& order, std::vect
 
 enum class Variant { Return, Stop, ShortBranchesFirst, SpiralStc };
 
+/// Appends `p` to a run of moves that starts at `from`, replacing the run's last point when it
+/// lies on the straight line on to `p`, going the same way (the same segment, painted the same),
+/// unless `every_cell` keeps a waypoint per cell.
+void appendStraight(std::vector<Point>& run, Point from, Point p, bool every_cell) {
+  const Point a = run.size() >= 2 ? run[run.size() - 2] : from;
+  if (!run.empty() && !every_cell) {
+    const Point b = run.back();
+    const Point u = b - a, w = p - b;
+    if (cross(u, w) == 0.0 && dot(u, w) > 0.0) {
+      run.back() = p;
+      return;
+    }
+  }
+  run.push_back(p);
+}
+
 /// The walk around a tree: (cell, first visit) steps; `stop` variants end at the last new cell.
 std::vector<std::pair<int, bool>> walk(const Tree& t, Forest& f, Variant variant) {
   if (variant == Variant::ShortBranchesFirst) {
@@ -209,11 +242,14 @@ std::vector<std::pair<int, bool>> walk(const Tree& t, Forest& f, Variant variant
       int h = 0;
       for (int child : f.children[*it]) h = std::max(h, f.height[child] + 1);
       f.height[*it] = h;
-      std::stable_sort(f.children[*it].begin(), f.children[*it].end(),
-                       [&](int a, int b) { return f.height[a] < f.height[b]; });
+      // Stable insertion sort of at most four children (std::stable_sort allocates a buffer).
+      Children& c = f.children[*it];
+      for (int i = 1; i < c.count; ++i)
+        for (int j = i; j > 0 && f.height[c.items[j]] < f.height[c.items[j - 1]]; --j) std::swap(c.items[j], c.items[j - 1]);
     }
   }
   std::vector<std::pair<int, bool>> steps{{t.root, true}};
+  steps.reserve(2 * t.nodes.size());
   std::vector<std::pair<int, std::size_t>> stack{{t.root, 0}};
   while (!stack.empty()) {
     auto& [node, k] = stack.back();
@@ -255,6 +291,7 @@ class SpanningTreePlanner final : public Planner {
                             : variant_name == "spiral-stc" ? Variant::SpiralStc
                                                            : Variant::ShortBranchesFirst;
     const bool mst = problem.params.choice("tree") == "mst";
+    const bool every_cell = problem.params.flag("waypoint_per_cell");
     const std::array<int, 4> order = parseOrder(problem.params.choice("neighbour_order"));
     const double s = problem.tool.tool_width;
 
@@ -289,7 +326,19 @@ class SpanningTreePlanner final : public Planner {
           ++unreachable;
           continue;
         }
-        for (const auto& [cell, first] : walk(t, forest, v)) builder.follow({g.centre(cell)}, first);
+        // One follow per run of equal tool state (the walk alternates new cells and returns),
+        // and a waypoint only where the walk turns: cells in a straight line are one segment.
+        std::vector<Point> run;
+        bool run_tool = true;
+        for (const auto& [cell, first] : walk(t, forest, v)) {
+          if (first != run_tool && !run.empty()) {
+            builder.follow(run, run_tool);
+            run.clear();
+          }
+          run_tool = first;
+          appendStraight(run, builder.empty() ? Point{} : builder.current(), g.centre(cell), every_cell);
+        }
+        builder.follow(run, run_tool);
       }
       return true;
     };
@@ -361,7 +410,10 @@ class SpanningTreePlanner final : public Planner {
           ++unreachable;
           continue;
         }
-        for (int cell = next[start]; cell != start; cell = next[cell]) builder.follow({grid.centre(cell)}, true);
+        std::vector<Point> loop;
+        for (int cell = next[start]; cell != start; cell = next[cell])
+          appendStraight(loop, builder.current(), grid.centre(cell), every_cell);
+        builder.follow(loop, true);
       }
       // Free sub-cells of partially blocked mega-cells: ordinary trees over what is left.
       std::vector<char> left = grid.cell;
@@ -396,7 +448,7 @@ class SpanningTreePlanner final : public Planner {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "spanning-tree";
-  info.version = "1";
+  info.version = std::string("2");  // not = "2": GCC 12 warns falsely (-Wrestrict) on that assignment here
   info.code_folders = {"spanning_tree"};
   info.summary = "Spanning-tree coverage of a grid of tool-sized cells in F; return, stop, short-branches-first or Spiral-STC";
   info.reference = "Gabriely & Rimon, Spanning-tree based coverage of continuous areas by a mobile robot, AMAI 31, 2001";
@@ -407,6 +459,9 @@ PlannerInfo info() {
        "depth-first in neighbour order, or a minimum spanning tree preferring straight runs"},
       {"neighbour_order", ParamType::Choice, std::string("URDL"), 0, 0, allOrders(), "",
        "order neighbours are tried in: U up, R right, D down, L left"},
+      {"waypoint_per_cell", ParamType::Bool, false, 0, 0, {}, "",
+       "a waypoint at every cell visited (the classic STC output) instead of only where the walk turns; "
+       "the same path"},
   };
   info.min_coverage_reachable = 0.0;  // a grid method: corners and strips narrower than a cell stay uncovered
   info.make = [] { return std::make_unique<SpanningTreePlanner>(); };
