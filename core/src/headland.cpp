@@ -12,14 +12,6 @@ namespace {
 /// Chords of the painted capsules: coarse (they only decide which pieces need a pass), and lying
 /// inside the true capsules, so a piece is never missed.
 constexpr double kPaintArcTolerance = 5e-4;
-/// The capsules are drawn this much wider: rows exactly one tool width apart would give capsules
-/// with coincident edges, which Clipper's sweep handles slowly. A piece thinner than this is
-/// not worth a pass anyway.
-constexpr double kPaintOverreach = 1e-5;
-
-}  // namespace
-
-namespace {
 
 /// The parts of `region` that lie in `part` (each lies wholly inside F and so in one part of it;
 /// its first vertex, strictly inside F, tells which).
@@ -49,8 +41,9 @@ Headland headland(const Workspace& ws, const Region& free, const HeadlandOptions
     for (Ring& ring : allRings(last)) h.loops.push_back(std::move(ring));
   }
   // The rows' regions are F drawn deeper inside, straight from the wall (cheap: the obstacles as
-  // given, not F's many arc vertices), with chords of `tol` (few vertices, and chords lie on the
-  // inner side of their arcs, so every region lies inside F).
+  // given, not F's many arc vertices), with chords of `tol` (few vertices). A chord may cut up to
+  // `tol` into an obstacle's rounded margin; every region is drawn at least `tol` deeper than the
+  // planners' F, so it still lies inside F.
   const double tol = o.arc_tolerance;
   const double depth = kFreeSpaceMargin + static_cast<double>(o.loops - 1) * o.spacing;  // of the last loop
   auto inside = [&](double d) { return within(freeRegion(ws.wall(), ws.tool(), depth + d, tol), free); };
@@ -123,7 +116,7 @@ Leftovers coverLeftovers(Workspace& ws, PathBuilder& builder, const Region& unpa
     else
       run.push_back(next);
   }
-  const Region left = subtract(unpainted, sweptRegion(runs, radius + kPaintOverreach, kPaintArcTolerance));
+  const Region left = subtract(unpainted, sweptRegion(runs, radius, kPaintArcTolerance));
   const double min_area = kMinLeftoverArea * spacing * spacing;
   std::vector<Ring> rings;
   std::vector<std::pair<Point, Point>> passes;

@@ -6,9 +6,10 @@
 /// on F's edge would paint that band a second time. So the rows keep one spacing clear of the
 /// last loop across their direction (the first row's band meets the loop's band edge to edge) and
 /// end half a spacing from it along their direction (where the loop's band begins: the row's round
-/// end lies in the band, so no sliver is left between row ends). What neither reaches (under an
-/// obstacle between two rows, a neck narrower than two spacings, a slanted edge between row ends)
-/// is found exactly afterwards and covered by short extra passes: see coverLeftovers.
+/// end lies in the band, so no sliver is left between row ends). A row runs as far as F reaches
+/// within half a spacing either side of it, which keeps the band under an obstacle between two
+/// rows painted. What loops and rows still miss can be found exactly afterwards and given short
+/// extra passes (coverLeftovers, the planners' fill_leftovers).
 
 #include <cstddef>
 #include <vector>
@@ -23,7 +24,7 @@ class Workspace;
 
 struct Headland {
   std::vector<Ring> loops;  ///< the loop rings, outermost level first (every ring of each level)
-  Region inner;             ///< where the first and last rows lie: one spacing inside the last loop's outer rings
+  Region inner;             ///< one spacing inside the last loop's outer rings (its extent places the rows)
   Region ends;              ///< where rows may run along their direction: half a spacing inside it
   Box row_span;             ///< where the first and last rows lie: `inner`'s extent, grown to reach F's thin parts beyond it
   Region unpainted;         ///< what the loops leave to the rows: one tool radius inside the last loop (if asked)
