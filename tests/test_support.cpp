@@ -55,6 +55,9 @@ std::string CommandTest::write(const std::string& name, const std::string& text)
 std::string sqlRows(const std::string& database, const std::string& sql) {
   sqlite3* db = nullptr;
   EXPECT_EQ(sqlite3_open_v2(database.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr), SQLITE_OK) << database;
+  // A runner may be writing it (tests poll a shard while it runs): wait for its transaction
+  // instead of failing at once with "database is locked".
+  sqlite3_busy_timeout(db, 10000);
   std::string out;
   sqlite3_stmt* s = nullptr;
   EXPECT_EQ(sqlite3_prepare_v2(db, sql.c_str(), -1, &s, nullptr), SQLITE_OK) << sql << ": " << sqlite3_errmsg(db);
