@@ -226,7 +226,7 @@ class ZigzagPlanner final : public Planner {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "zigzag";
-  info.version = std::string("2");  // not = "2": GCC 12 warns falsely (-Wrestrict) on that assignment here
+  info.version = std::string("3");  // not = "3": GCC 12 warns falsely (-Wrestrict) on that assignment here
   info.code_folders = {"zigzag"};
   info.summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes";
   info.reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013";

@@ -57,7 +57,20 @@ Headland headland(const Workspace& ws, const Region& free, const HeadlandOptions
   // region reaches anywhere in that strip (past a slanted edge, under an obstacle just above),
   // and never out of F.
   const Point half = o.along_x ? Point{0.0, o.spacing / 2.0} : Point{o.spacing / 2.0, 0.0};
-  const Region reach = inside(o.end_inset * o.spacing);
+  Region reach = inside(o.end_inset * o.spacing);
+  if (o.end_inset > 0.5) {
+    // Thin parts: F half a spacing deep (where rows can end without leaving anything unpainted)
+    // that the deeper region, opened back out by the difference, does not reach: a corridor too
+    // narrow for the deeper inset, such as the one between a window's loop and the wall's. Rows
+    // there end half a spacing inside the loop, so the corridor is still painted. The slivers an
+    // opening leaves at convex corners are far below kMinLeftoverArea and are left out.
+    const Region full = inside(0.5 * o.spacing);
+    const Region opened = offsetRegion(reach, (o.end_inset - 0.5) * o.spacing + tol, tol);
+    Region thin;
+    for (PolygonWithHoles& piece : subtract(full, opened))
+      if (area(piece) >= kMinLeftoverArea * o.spacing * o.spacing) thin.push_back(std::move(piece));
+    if (!thin.empty()) reach = unite(reach, thin);
+  }
   h.ends = intersect(sweepAlong(reach, half), base);
   // Rows span `inner` across their direction; where F has thin parts beyond it (a corridor
   // between a door and a radiator, a strip too thin for `inner` anywhere), the rows' span grows
@@ -81,7 +94,7 @@ Headland headland(const Workspace& ws, const Region& free, const HeadlandOptions
 }
 
 ParamSpec rowEndInsetParam() {
-  return {"row_end_inset", ParamType::Number, 0.5, 0.5, 1.0, {}, "",
+  return {"row_end_inset", ParamType::Number, 0.6, 0.5, 1.0, {}, "",
           "where rows end, in spacings inside the boundary loop: 0.5 paints everything; more paints less "
           "twice but leaves scallops between row ends (docs/planner_quality.md)"};
 }
