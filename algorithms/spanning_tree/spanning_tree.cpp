@@ -40,11 +40,12 @@ struct Grid {
     else
       links[i] |= 1, links[i + cols] |= 4;
   }
-  /// Neighbour of i in direction d (0 up, 1 right, 2 down, 3 left) if joined, else -1.
-  int neighbour(int i, int d) const {
-    if (!(links[i] >> d & 1)) return -1;
-    return i + (d == 0 ? cols : d == 1 ? 1 : d == 2 ? -cols : -1);
-  }
+  /// Index step to the neighbour in direction d (0 up, 1 right, 2 down, 3 left).
+  int step(int d) const { return d == 0 ? cols : d == 1 ? 1 : d == 2 ? -cols : -1; }
+  /// The direction of the step from cell i to its neighbour j.
+  int direction(int i, int j) const { return j - i == cols ? 0 : j - i == 1 ? 1 : j - i == -cols ? 2 : 3; }
+  /// Neighbour of i in direction d if joined, else -1.
+  int neighbour(int i, int d) const { return links[i] >> d & 1 ? i + step(d) : -1; }
 };
 
 /// Where the lines of a grid (y = y0 + r * step, r = 0..n-1 if `horizontal`, else x = ...) cross
@@ -209,6 +210,7 @@ struct Forest {
   }
   static constexpr unsigned char kTaken = 0x80, kHasParent = 0x20;
   const Grid* g;
+  int steps[4] = {g->step(0), g->step(1), g->step(2), g->step(3)};  // Grid::step, looked up
   std::vector<std::uint16_t> kids;
   std::vector<unsigned char> state;
   std::vector<std::uint16_t> height;  // subtree height, a leaf 0, at most 65535 (short-branches-first only)
@@ -220,8 +222,7 @@ struct Forest {
   int count(int node) const { return kids[node] & 7; }
   int direction(int node, int k) const { return kids[node] >> (3 + 2 * k) & 3; }
   int child(int node, int k) const { return node + step(direction(node, k)); }
-  /// Index step to the neighbour in direction d (0 up, 1 right, 2 down, 3 left).
-  int step(int d) const { return d == 0 ? g->cols : d == 1 ? 1 : d == 2 ? -g->cols : -1; }
+  int step(int d) const { return steps[d]; }
   bool hasParent(int node) const { return state[node] & kHasParent; }
   int parent(int node) const { return node + step(state[node] >> 3 & 3); }
   int counter(int node) const { return state[node] & 7; }
@@ -527,17 +528,11 @@ class SpanningTreePlanner final : public Planner {
       // counter-clockwise cycle; each tree edge splices its two cycles into one.
       // The cycle's successor of each sub-cell, always a neighbour: its direction, a byte a cell.
       std::vector<unsigned char> next(grid.size(), 0);
-      auto join = [&](int from, int to) {
-        const int d = to - from;
-        next[from] = static_cast<unsigned char>(d == grid.cols ? 0 : d == 1 ? 1 : d == -grid.cols ? 2 : 3);
-      };
-      auto successor = [&](int cell) {
-        const int d = next[cell];
-        return cell + (d == 0 ? grid.cols : d == 1 ? 1 : d == 2 ? -grid.cols : -1);
-      };
+      auto precede = [&](int from, int to) { next[from] = static_cast<unsigned char>(grid.direction(from, to)); };
+      auto successor = [&](int cell) { return cell + grid.step(next[cell]); };
       for (int m = 0; m < mega.size(); ++m)
         if (mega.cell[m])
-          for (int k = 0; k < 4; ++k) join(sub(m, k), sub(m, (k + 1) % 4));
+          for (int k = 0; k < 4; ++k) precede(sub(m, k), sub(m, (k + 1) % 4));
       Forest forest(mega, mega.cell, false, mst);
       for (int root = 0; root < mega.size(); ++root) {
         if (forest.taken(root)) continue;
@@ -552,12 +547,12 @@ class SpanningTreePlanner final : public Planner {
           const int parent = forest.parent(child);
           if (child == parent + 1 || child == parent - 1) {  // side by side
             const int left = std::min(parent, child), right = std::max(parent, child);
-            join(sub(left, 1), sub(right, 0));
-            join(sub(right, 3), sub(left, 2));
+            precede(sub(left, 1), sub(right, 0));
+            precede(sub(right, 3), sub(left, 2));
           } else {  // one above the other
             const int low = std::min(parent, child), high = std::max(parent, child);
-            join(sub(low, 2), sub(high, 1));
-            join(sub(high, 0), sub(low, 3));
+            precede(sub(low, 2), sub(high, 1));
+            precede(sub(high, 0), sub(low, 3));
           }
         });
         const int start = sub(root, 0);
