@@ -45,7 +45,10 @@ struct Grid {
   /// The direction of the step from cell i to its neighbour j.
   int direction(int i, int j) const { return j - i == cols ? 0 : j - i == 1 ? 1 : j - i == -cols ? 2 : 3; }
   /// Neighbour of i in direction d if joined, else -1.
-  int neighbour(int i, int d) const { return links[i] >> d & 1 ? i + step(d) : -1; }
+  int neighbour(int i, int d) const {
+    if (!(links[i] >> d & 1)) return -1;
+    return i + step(d);
+  }
 };
 
 /// Where the lines of a grid (y = y0 + r * step, r = 0..n-1 if `horizontal`, else x = ...) cross
@@ -210,7 +213,6 @@ struct Forest {
   }
   static constexpr unsigned char kTaken = 0x80, kHasParent = 0x20;
   const Grid* g;
-  int steps[4] = {g->step(0), g->step(1), g->step(2), g->step(3)};  // Grid::step, looked up
   std::vector<std::uint16_t> kids;
   std::vector<unsigned char> state;
   std::vector<std::uint16_t> height;  // subtree height, a leaf 0, at most 65535 (short-branches-first only)
@@ -222,7 +224,7 @@ struct Forest {
   int count(int node) const { return kids[node] & 7; }
   int direction(int node, int k) const { return kids[node] >> (3 + 2 * k) & 3; }
   int child(int node, int k) const { return node + step(direction(node, k)); }
-  int step(int d) const { return steps[d]; }
+  int step(int d) const { return g->step(d); }
   bool hasParent(int node) const { return state[node] & kHasParent; }
   int parent(int node) const { return node + step(state[node] >> 3 & 3); }
   int counter(int node) const { return state[node] & 7; }
