@@ -51,31 +51,6 @@ struct Grid {
   }
 };
 
-/// Where the lines of a grid (y = y0 + r * step, r = 0..n-1 if `horizontal`, else x = ...) cross
-/// the region's rings, per line, sorted: the free intervals are consecutive pairs. Each ring
-/// edge is visited once and handed only the lines it crosses (half-open rule, so a shared vertex
-/// counts once), so the cost is the edges plus the crossings, not lines times edges.
-std::vector<std::vector<double>> crossings(const std::vector<Ring>& rings, bool horizontal, double v0, double step,
-                                           int n) {
-  std::vector<std::vector<double>> out(static_cast<std::size_t>(n));
-  for (const Ring& ring : rings)
-    for (std::size_t k = 0; k < ring.size(); ++k) {
-      Point a = ring[k], b = ring[(k + 1) % ring.size()];
-      if (!horizontal) a = {a.y, a.x}, b = {b.y, b.x};
-      if (a.y == b.y) continue;
-      const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
-      const int first = std::max(0, static_cast<int>(std::floor((lo - v0) / step)));
-      for (int i = first; i < n; ++i) {
-        const double v = v0 + i * step;
-        if (v >= hi) break;
-        if ((a.y > v) == (b.y > v)) continue;
-        out[static_cast<std::size_t>(i)].push_back(a.x + (v - a.y) * (b.x - a.x) / (b.y - a.y));
-      }
-    }
-  for (auto& xs : out) std::sort(xs.begin(), xs.end());
-  return out;
-}
-
 /// Decides what F's conservative polygon cannot, for centres within its margin of F's exact edge:
 /// whether a tool disk there (or moving between two centres) keeps the wall and the clearance,
 /// measured exactly, with the planning margin every transit keeps (so a route can start and end
@@ -108,6 +83,9 @@ Grid buildGrid(const Region& free, Point origin, const Box& box, double s, bool 
   g.cols = count(origin.x, box.max_x + reach);
   g.rows = count(origin.y, box.max_y + reach);
   const std::vector<Ring> rings = allRings(free);
+  std::vector<Ring> swapped = rings;  // x and y swapped: the columns as rows
+  for (Ring& ring : swapped)
+    for (Point& p : ring) p = {p.y, p.x};
   using Intervals = std::vector<std::pair<double, double>>;
   // The free intervals of each grid line (rows if `rows`, else columns), each grown by `grow`;
   // with `shift`, also those of the lines `shift` either side (merged), so a centre on a line
@@ -116,11 +94,14 @@ Grid buildGrid(const Region& free, Point origin, const Box& box, double s, bool 
     const double v0 = rows ? g.y0 : g.x0;
     const int lines = rows ? g.rows : g.cols;
     std::vector<Intervals> out(static_cast<std::size_t>(lines));
+    std::vector<double> ys(static_cast<std::size_t>(lines));
     for (double d : shift > 0.0 ? std::vector<double>{-shift, 0.0, shift} : std::vector<double>{0.0}) {
-      const std::vector<std::vector<double>> xs = crossings(rings, rows, v0 + d, s, lines);
+      for (std::size_t line = 0; line < ys.size(); ++line) ys[line] = v0 + d + static_cast<double>(line) * s;
+      const std::vector<std::vector<RingCrossing>> xs = scanlineCrossings(rows ? rings : swapped, ys);
       for (std::size_t line = 0; line < xs.size(); ++line)
         for (std::size_t k = 0; k + 1 < xs[line].size(); k += 2)
-          if (xs[line][k] - grow <= xs[line][k + 1] + grow) out[line].push_back({xs[line][k] - grow, xs[line][k + 1] + grow});
+          if (xs[line][k].x - grow <= xs[line][k + 1].x + grow)
+            out[line].push_back({xs[line][k].x - grow, xs[line][k + 1].x + grow});
     }
     if (shift > 0.0)
       for (Intervals& iv : out) {

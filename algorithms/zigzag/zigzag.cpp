@@ -16,11 +16,7 @@ namespace {
 constexpr double kRowArcTolerance = 1e-3;
 
 /// Where a row crosses a ring edge of the row region.
-struct Crossing {
-  double x = 0.0;
-  std::size_t ring = 0;
-  std::size_t edge = 0;
-};
+using Crossing = RingCrossing;
 
 /// One free interval of one row: [lo.x, hi.x] at height y.
 struct Interval {
@@ -46,29 +42,10 @@ std::vector<double> rowHeights(double y_min, double y_max, double max_spacing) {
 
 /// Free intervals of every row: crossings of each row with the region's rings, paired even-odd.
 std::vector<std::vector<Interval>> rowIntervals(const std::vector<Ring>& rings, const std::vector<double>& ys) {
-  std::vector<std::vector<Crossing>> crossings(ys.size());
-  const double y0 = ys.front();
-  const double dy = ys.size() > 1 ? ys[1] - ys[0] : 1.0;
-  for (std::size_t r = 0; r < rings.size(); ++r) {
-    const Ring& ring = rings[r];
-    for (std::size_t e = 0; e < ring.size(); ++e) {
-      const Point a = ring[e], b = ring[(e + 1) % ring.size()];
-      if (a.y == b.y) continue;
-      const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
-      // Rows with lo <= y < hi cross this edge (half-open, so shared vertices count once).
-      long first = static_cast<long>(std::floor((lo - y0) / dy)) - 1;
-      first = std::max(first, 0L);
-      for (auto i = static_cast<std::size_t>(first); i < ys.size() && ys[i] < hi + dy; ++i) {
-        const double y = ys[i];
-        if (!((a.y > y) != (b.y > y))) continue;
-        crossings[i].push_back({a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y), r, e});
-      }
-    }
-  }
+  const std::vector<std::vector<Crossing>> crossings = scanlineCrossings(rings, ys);
   std::vector<std::vector<Interval>> rows(ys.size());
   for (std::size_t i = 0; i < ys.size(); ++i) {
-    auto& c = crossings[i];
-    std::sort(c.begin(), c.end(), [](const Crossing& p, const Crossing& q) { return p.x < q.x; });
+    const auto& c = crossings[i];
     for (std::size_t k = 0; k + 1 < c.size(); k += 2) rows[i].push_back({i, ys[i], c[k], c[k + 1], false});
   }
   return rows;

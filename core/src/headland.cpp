@@ -94,7 +94,7 @@ Headland headland(const Workspace& ws, const Region& free, const HeadlandOptions
 }
 
 ParamSpec rowEndInsetParam() {
-  return {"row_end_inset", ParamType::Number, 0.6, 0.5, 1.0, {}, "",
+  return {"row_end_inset", ParamType::Number, HeadlandOptions{}.end_inset, 0.5, 1.0, {}, "",
           "where rows end, in spacings inside the boundary loop: 0.5 paints everything; more paints less "
           "twice but leaves scallops between row ends (docs/planner_quality.md)"};
 }

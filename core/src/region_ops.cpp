@@ -2,6 +2,7 @@
 
 #include <clipper.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace coverbench {
@@ -89,6 +90,31 @@ std::vector<Ring> allRings(const Region& region) {
     for (const Ring& hole : poly.holes) rings.push_back(hole);
   }
   return rings;
+}
+
+std::vector<std::vector<RingCrossing>> scanlineCrossings(const std::vector<Ring>& rings, const std::vector<double>& ys) {
+  std::vector<std::vector<RingCrossing>> out(ys.size());
+  if (ys.empty()) return out;
+  const double y0 = ys.front();
+  const double dy = ys.size() > 1 ? ys[1] - ys[0] : 1.0;
+  for (std::size_t r = 0; r < rings.size(); ++r) {
+    const Ring& ring = rings[r];
+    for (std::size_t e = 0; e < ring.size(); ++e) {
+      const Point a = ring[e], b = ring[(e + 1) % ring.size()];
+      if (a.y == b.y) continue;
+      const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
+      // Lines from one step below `lo` on (the division may round either way) while below hi.
+      const long first = std::max(static_cast<long>(std::floor((lo - y0) / dy)) - 1, 0L);
+      for (auto i = static_cast<std::size_t>(first); i < ys.size() && ys[i] < hi + dy; ++i) {
+        const double y = ys[i];
+        if ((a.y > y) == (b.y > y)) continue;
+        out[i].push_back({a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y), r, e});
+      }
+    }
+  }
+  for (auto& line : out)
+    std::sort(line.begin(), line.end(), [](const RingCrossing& p, const RingCrossing& q) { return p.x < q.x; });
+  return out;
 }
 
 Region offsetRegion(const Region& region, double delta, double arc_tolerance) {

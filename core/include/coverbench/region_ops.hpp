@@ -17,6 +17,20 @@ inline constexpr double kRegionResolution = 1e-6;
 /// Rings of a region (outer rings and holes), each as a closed ring.
 std::vector<Ring> allRings(const Region& region);
 
+/// Where a horizontal line crosses a ring edge: at x, on edge `edge` (from vertex `edge` to the
+/// next) of ring `ring`.
+struct RingCrossing {
+  double x = 0.0;
+  std::size_t ring = 0;
+  std::size_t edge = 0;
+};
+/// The crossings of the lines y = ys[i] (ascending, evenly spaced) with the rings' edges, per
+/// line sorted by x: a region's inside along a line is between crossings 0 and 1, 2 and 3, ...
+/// Half-open (an edge spans lo <= y < hi), so a vertex on a line counts once; horizontal edges
+/// cross nothing. Each edge is handed only the lines it spans: the cost is the edges plus the
+/// crossings, not lines times edges. (Vertical lines: pass the rings with x and y swapped.)
+std::vector<std::vector<RingCrossing>> scanlineCrossings(const std::vector<Ring>& rings, const std::vector<double>& ys);
+
 /// Offsets the region by `delta` metres (positive grows, negative shrinks) with round joins whose
 /// chords deviate at most `arc_tolerance` metres from the true arc.
 Region offsetRegion(const Region& region, double delta, double arc_tolerance);
