@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "coverbench/escape.hpp"
+#include "coverbench/judge.hpp"
 #include "coverbench/limits.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/plan_file.hpp"
@@ -183,8 +184,54 @@ void limitScoringTime(const std::string& plan_file, double seconds) {
 
 }  // namespace
 
+namespace {
+
+nlohmann::ordered_json intervalJson(const judge::Interval& i) { return {i.lower, i.upper}; }
+
+/// The fast engine's value minus the nearest end of the exact interval: 0 inside it.
+double outside(double fast, const judge::Interval& i) {
+  return fast < i.lower ? fast - i.lower : (fast > i.upper ? fast - i.upper : 0.0);
+}
+
+/// The fast engine's metrics, the exact judge's figures, and how far the first lie from the second.
+std::string judgedJson(const PathMetrics& m, const judge::Judgement& j) {
+  using nlohmann::ordered_json;
+  ordered_json doc;
+  doc["metrics"] = ordered_json::parse(metricsJson(m));
+  const judge::ExactCoverage& c = j.coverage;
+  ordered_json exact;
+  exact["method"] =
+      "CGAL exact kernel: validity by exact squared distances, no tolerance; areas certified [lower, upper] "
+      "from inscribed and circumscribed disk polygons with exact Booleans";
+  exact["arc_vertices"] = c.arc_vertices;
+  exact["valid"] = j.validity.valid;
+  exact["violations"] = j.validity.violations;
+  exact["outside_boundary"] = j.validity.outside_boundary;
+  exact["too_close"] = j.validity.too_close;
+  exact["coverage_reachable"] = intervalJson(c.coverage_reachable);
+  exact["coverage_wall"] = intervalJson(c.coverage_wall);
+  exact["reachable_area"] = intervalJson(c.reachable_area);
+  exact["paintable_area"] = intervalJson(c.paintable_area);
+  exact["swept_area"] = intervalJson(c.swept_area);
+  doc["exact_judge"] = exact;
+  ordered_json diff;
+  diff["valid_agrees"] = m.validity.valid == j.validity.valid;
+  diff["violations"] = static_cast<long long>(m.validity.violations) - static_cast<long long>(j.validity.violations);
+  diff["coverage_reachable"] = outside(m.coverage.coverage_reachable, c.coverage_reachable);
+  diff["coverage_wall"] = outside(m.coverage.coverage_wall, c.coverage_wall);
+  diff["reachable_area"] = outside(m.coverage.reachable_area, c.reachable_area);
+  diff["paintable_area"] = outside(m.coverage.paintable_area, c.paintable_area);
+  diff["swept_area"] = outside(m.coverage.swept_area, c.swept_area);
+  doc["fast_outside_exact"] = diff;
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace
+
 int metricsCommand(const MetricsOptions& options) {
   validateTimeLimit(options.time_limit_s, "--time-limit", "time_limit");
+  if (options.arc_vertices < 8 || options.arc_vertices % 8 != 0 || options.arc_vertices > 4096)
+    throw InputError("--arc-vertices", "arc_vertices", "must be a multiple of 8 from 8 to 4096");
   const Wall wall = loadWallFile(options.wall);
   const LoadedPlan plan = loadPlanFile(options.plan);
   ToolParams tool;
@@ -199,12 +246,25 @@ int metricsCommand(const MetricsOptions& options) {
     throw InputError("--acceleration", "acceleration", "must be positive and finite");
   limitScoringTime(options.plan, options.time_limit_s);
   const PathMetrics m = computeMetrics(wall, tool, plan.path, limits);
+  std::optional<judge::Judgement> exact;
+  if (options.judge == "exact") {
+    judge::CoverageOptions judge_options;
+    judge_options.arc_vertices = options.arc_vertices;
+    exact = judge::judgePath(wall, tool, plan.path, judge_options);
+  }
   OutputFiles files;  // the picture is written before anything is printed, so a failure prints nothing
   if (!options.svg.empty()) files.add(options.svg, pathPicture(wall, tool, plan.path, wall.name + " / " + options.plan));
   ::alarm(0);
   files.commit();
-  std::cout << metricsJson(m);
-  return m.validity.valid ? 0 : 3;
+  if (!exact) {
+    std::cout << metricsJson(m);
+    return m.validity.valid ? 0 : 3;
+  }
+  // The time is a measurement: it goes to stderr, so the JSON stays the same at every run.
+  std::fprintf(stderr, "exact judge: %.2f s (validity %.2f s, areas %.2f s)\n",
+               exact->seconds_validity + exact->seconds_coverage, exact->seconds_validity, exact->seconds_coverage);
+  std::cout << judgedJson(m, *exact);
+  return m.validity.valid && exact->validity.valid ? 0 : 3;
 }
 
 int showcaseCommand(const ShowcaseOptions& options) {

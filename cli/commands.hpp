@@ -27,9 +27,11 @@ struct MetricsOptions {
   std::optional<double> tool_width, clearance;  ///< default: the plan file's, else 0.1 / 0.02
   double speed = 0.3, acceleration = 0.5;
   double time_limit_s = 600.0;  ///< scoring (and picture) past it: a one-line error, exit 2
+  std::string judge = "fast";   ///< "fast", or "exact": also the exact judge, side by side
+  int arc_vertices = 128;       ///< the exact judge's disk polygons
 };
 /// Prints every metric of a plan file (from any source) as JSON. Returns 0 when the path is
-/// valid, 3 when it is not.
+/// valid, 3 when it is not (with --judge exact: when either judge finds it invalid).
 int metricsCommand(const MetricsOptions& options);
 
 struct ShowcaseOptions {

@@ -48,6 +48,13 @@ int main(int argc, char** argv) {
   metrics_cmd->add_option("--svg", metrics.svg, "picture with the coverage layer (SVG)");
   metrics_cmd->add_option("--time-limit", metrics.time_limit_s, "seconds scoring may take before it is abandoned")
       ->capture_default_str();
+  metrics_cmd->add_option("--judge", metrics.judge,
+                          "fast: the metrics engine; exact: also CGAL's exact judge, with the difference (docs/metrics.md)")
+      ->check(CLI::IsMember({"fast", "exact"}))
+      ->capture_default_str();
+  metrics_cmd->add_option("--arc-vertices", metrics.arc_vertices,
+                          "vertices of the exact judge's inscribed and circumscribed disk polygons (multiple of 8)")
+      ->capture_default_str();
   metrics_cmd->callback([&] { plan_exit = coverbench::cli::metricsCommand(metrics); });
 
   coverbench::cli::ShowcaseOptions showcase;

@@ -7,6 +7,7 @@ cd "$(dirname "$0")/.."
 PACKAGES=(g++ cmake ninja-build pkg-config ccache
           libpolyclipping-dev nlohmann-json3-dev libcli11-dev libboost-graph-dev
           libyaml-cpp-dev libsqlite3-dev libssl-dev zlib1g-dev
+          libcgal-dev libgmp-dev libmpfr-dev                       # the exact judge
           libgtest-dev libbenchmark-dev
           python3 python3-numpy python3-scipy python3-matplotlib   # the report's statistics and plots
           chromium python3-websocket                               # the browser test of the report

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "coverbench/clearance.hpp"
+#include "coverbench/judge.hpp"
 #include "coverbench/registry.hpp"
 
 namespace coverbench::test {
@@ -186,6 +187,17 @@ testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, c
                                        << path.waypoints.size() << " waypoints";
   for (const Point& p : path.waypoints)
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) return testing::AssertionFailure() << "non-finite waypoint";
+  // The exact judge first: it shares no code with the planners (or with the fast engine, whose
+  // ClearanceField is also the planners' collision check), and has no tolerance.
+  const judge::ExactValidity exact = judge::judgeValidity(wall, tool, path);
+  if (!exact.valid) {
+    const std::size_t i = exact.violating.front();
+    const Point a = path.waypoints[i], b = path.waypoints[std::min(i + 1, path.waypoints.size() - 1)];
+    return testing::AssertionFailure() << "the exact judge finds " << exact.violations << " violating segments ("
+                                       << exact.outside_boundary << " leave the wall, " << exact.too_close
+                                       << " too close to an obstacle); first is #" << i << " (" << a.x << ", " << a.y
+                                       << ") -> (" << b.x << ", " << b.y << ")";
+  }
   const Validity v = checkValidity(wall, tool, path);
   if (v.valid) return testing::AssertionSuccess();
   // Name the first offending segment.

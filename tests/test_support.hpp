@@ -32,7 +32,8 @@ Wall randomWall(unsigned seed);
 PlanResult planWith(const std::string& planner, const Wall& wall, const ToolParams& tool,
                     const std::vector<std::pair<std::string, std::string>>& settings = {});
 
-/// A well-formed, exactly valid path, or a message naming the first offending segment.
+/// A well-formed path that both the exact judge (no tolerance) and the fast engine find valid, or a
+/// message naming the first offending segment.
 testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, const Path& path);
 
 /// A fixture with a fresh folder for each test (named after it), removed afterwards.

@@ -66,6 +66,13 @@ CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const 
 Coverage coverage(const CoverageRegions& regions);
 Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path);
 
+/// The fast engine's error against the exact judge (judge/), measured on the default experiment's
+/// walls, every planner and several tool widths (docs/metrics.md, "Error bounds"; a property test
+/// keeps them): coverage ratios within kFastCoverageErrorBound of the judge's certified interval,
+/// areas within kFastAreaRelativeErrorBound of it, relative to the area.
+inline constexpr double kFastCoverageErrorBound = 1e-5;
+inline constexpr double kFastAreaRelativeErrorBound = 1e-4;
+
 /// Pass counts over the swept area, integrated on horizontal scanlines: exact intervals along each
 /// line, midpoint rule across lines spaced `resolution` apart.
 struct Passes {

@@ -1,0 +1,79 @@
+#pragma once
+/// The exact judge: an independent second opinion on a path, built on CGAL's exact kernel.
+///
+/// It shares no code with the planners or with the fast metrics engine: it reads only the wall,
+/// the tool and the path (plain value types) and builds F, R, P and S itself. Every double of the
+/// wall and the path is taken as the exact rational it is.
+///
+/// - Validity is decided exactly: squared distances between segments, points and circles are
+///   compared with (r + c)^2 and r^2 in exact rational arithmetic, with no tolerance at all.
+/// - Areas are certified intervals: every disk (tool, clearance, round obstacles) is replaced by
+///   an inscribed and a circumscribed polygon with rational vertices, the regions are built from
+///   them with exact Boolean operations, and the true area of every region lies in
+///   [area with inscribed polygons, area with circumscribed ones]. The width of the interval is
+///   the price of the arcs; it shrinks as 1 / arc_vertices^2.
+///
+/// This header does not include CGAL: CGAL stays inside the judge's own translation units.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "coverbench/geometry.hpp"
+#include "coverbench/planner.hpp"
+#include "coverbench/wall.hpp"
+
+namespace coverbench::judge {
+
+/// A certified enclosure of a real number: lower <= true value <= upper.
+struct Interval {
+  double lower = 0.0;
+  double upper = 0.0;
+  double width() const { return upper - lower; }
+  bool contains(double v) const { return lower <= v && v <= upper; }
+  /// The distance from v to the interval (0 when v lies inside it).
+  double distanceTo(double v) const { return v < lower ? lower - v : (v > upper ? v - upper : 0.0); }
+};
+
+/// Exact validity of every segment (segment i joins waypoints i and i + 1; a one-waypoint path is
+/// checked as a point). Same definitions as the fast engine (docs/metrics.md), but with exact
+/// arithmetic and no tolerance: a shortfall of 1e-15 m is a violation here.
+struct ExactValidity {
+  bool valid = true;
+  std::size_t violations = 0;        ///< segments that break either rule below
+  std::size_t outside_boundary = 0;  ///< the tool disk leaves the wall (or the centre is outside it)
+  std::size_t too_close = 0;         ///< the tool disk comes closer than c to an obstacle
+  std::vector<std::size_t> violating;  ///< the first kMaxListed violating segments
+  static constexpr std::size_t kMaxListed = 10000;
+};
+ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path& path);
+
+struct CoverageOptions {
+  /// Vertices of the polygons that stand in for each disk (inscribed and circumscribed); a
+  /// multiple of 8, at least 8. Gap between them: about r (pi / n)^2.
+  int arc_vertices = 128;
+};
+
+/// Certified areas (m^2) and coverage ratios; the regions are those of docs/metrics.md.
+struct ExactCoverage {
+  Interval reachable_area;      ///< |R|, R = F dilated by r, F = erode(B, r) minus dilate(O, r + c)
+  Interval paintable_area;      ///< |P|, P = B minus O
+  Interval swept_area;          ///< |S|, the union of the tool-on capsules
+  Interval coverage_reachable;  ///< |S and R| / |R|
+  Interval coverage_wall;       ///< |S and P| / |P|
+  int arc_vertices = 0;
+};
+ExactCoverage judgeCoverage(const Wall& wall, const ToolParams& tool, const Path& path,
+                            const CoverageOptions& options = {});
+
+/// Everything the exact judge decides about one path.
+struct Judgement {
+  ExactValidity validity;
+  ExactCoverage coverage;
+  double seconds_validity = 0.0;  ///< wall-clock time of each part (measured, not a result)
+  double seconds_coverage = 0.0;
+};
+Judgement judgePath(const Wall& wall, const ToolParams& tool, const Path& path,
+                    const CoverageOptions& options = {});
+
+}  // namespace coverbench::judge

@@ -1,0 +1,168 @@
+// Exact validity: CGAL's exact kernel, no tolerance. Shares nothing with core's predicates or the
+// fast engine's ClearanceField; the only things read from the rest of CoverBench are the wall, the
+// tool and the path as plain numbers.
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
+#include <CGAL/squared_distance_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "coverbench/judge.hpp"
+
+namespace coverbench::judge {
+namespace {
+
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using FT = K::FT;
+using P2 = K::Point_2;
+using S2 = K::Segment_2;
+
+P2 exact(Point p) { return P2(p.x, p.y); }
+
+/// A double box that surely contains everything within `reach` of the box of (a, b): the
+/// comparisons below only skip pairs this box test rules out, so the box must err outwards.
+struct Box {
+  double x0, y0, x1, y1;
+  bool meets(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
+};
+Box boxAround(Point a, Point b, double reach) {
+  const double m = reach * (1.0 + 1e-9) + 1e-9;
+  const double inf = std::numeric_limits<double>::infinity();
+  return {std::nextafter(std::fmin(a.x, b.x) - m, -inf), std::nextafter(std::fmin(a.y, b.y) - m, -inf),
+          std::nextafter(std::fmax(a.x, b.x) + m, inf), std::nextafter(std::fmax(a.y, b.y) + m, inf)};
+}
+
+struct Edge {
+  S2 segment;
+  Box box;
+};
+std::vector<Edge> ringEdges(const Ring& ring) {
+  std::vector<Edge> edges;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Point a = ring[i], b = ring[(i + 1) % ring.size()];
+    edges.push_back({S2(exact(a), exact(b)), boxAround(a, b, 0.0)});
+  }
+  return edges;
+}
+
+struct PolygonShape {
+  std::vector<P2> vertices;
+  std::vector<Edge> edges;
+  Box box;
+};
+PolygonShape polygonShape(const Ring& ring) {
+  PolygonShape p;
+  for (Point q : ring) p.vertices.push_back(exact(q));
+  p.edges = ringEdges(ring);
+  Point lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (Point q : ring) {
+    lo = {std::fmin(lo.x, q.x), std::fmin(lo.y, q.y)};
+    hi = {std::fmax(hi.x, q.x), std::fmax(hi.y, q.y)};
+  }
+  p.box = boxAround(lo, hi, 0.0);
+  return p;
+}
+bool inside(const PolygonShape& p, const P2& q) {
+  return CGAL::bounded_side_2(p.vertices.begin(), p.vertices.end(), q, K()) != CGAL::ON_UNBOUNDED_SIDE;
+}
+bool strictlyInside(const PolygonShape& p, const P2& q) {
+  return CGAL::bounded_side_2(p.vertices.begin(), p.vertices.end(), q, K()) == CGAL::ON_BOUNDED_SIDE;
+}
+
+/// Squared distance from the path piece [a, b] (a point when a == b) to an edge.
+FT squaredDistance(const P2& a, const P2& b, const S2& edge) {
+  if (a == b) return CGAL::squared_distance(a, edge);
+  return CGAL::squared_distance(S2(a, b), edge);
+}
+FT squaredDistance(const P2& a, const P2& b, const P2& centre) {
+  if (a == b) return CGAL::squared_distance(a, centre);
+  return CGAL::squared_distance(S2(a, b), centre);
+}
+
+}  // namespace
+
+ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path& path) {
+  ExactValidity v;
+  const std::size_t n = path.waypoints.size();
+  if (n == 0) return v;
+  const double r = tool.radius(), c = tool.clearance;
+  const FT r_exact = FT(tool.tool_width) / 2;
+  const FT r2 = r_exact * r_exact;
+  const FT rc = r_exact + FT(c);
+  const FT rc2 = rc * rc;
+
+  const PolygonShape boundary = polygonShape(wall.boundary);
+  std::vector<PolygonShape> polygons;
+  struct Round {
+    P2 centre;
+    FT limit2;  ///< (rho + r + c)^2
+    Box box;
+  };
+  std::vector<Round> rounds;
+  for (const Obstacle& o : wall.obstacles) {
+    if (o.type == ObstacleType::Circle) {
+      const FT limit = FT(o.radius) + rc;
+      rounds.push_back({exact(o.center), limit * limit, boxAround(o.center, o.center, o.radius)});
+    } else {
+      polygons.push_back(polygonShape(o.polygon));
+    }
+  }
+
+  // Where each waypoint lies: inside the wall, and not strictly inside any polygon obstacle.
+  // A segment that keeps its distances below crosses no edge, so its first waypoint decides.
+  std::vector<P2> points;
+  points.reserve(n);
+  for (Point p : path.waypoints) points.push_back(exact(p));
+
+  auto check = [&](std::size_t segment, std::size_t ia, std::size_t ib) {
+    const Point a = path.waypoints[ia], b = path.waypoints[ib];
+    const P2 &ea = points[ia], &eb = points[ib];
+    bool outside = !inside(boundary, ea);
+    if (!outside) {
+      const Box reach = boxAround(a, b, r);
+      for (const Edge& e : boundary.edges) {
+        if (!reach.meets(e.box)) continue;
+        if (squaredDistance(ea, eb, e.segment) < r2) {
+          outside = true;
+          break;
+        }
+      }
+    }
+    bool close = false;
+    const Box reach = boxAround(a, b, r + c);
+    for (const PolygonShape& o : polygons) {
+      if (close) break;
+      if (!reach.meets(o.box)) continue;
+      if (strictlyInside(o, ea)) {
+        close = true;
+        break;
+      }
+      for (const Edge& e : o.edges) {
+        if (!reach.meets(e.box)) continue;
+        if (squaredDistance(ea, eb, e.segment) < rc2) {
+          close = true;
+          break;
+        }
+      }
+    }
+    for (const Round& o : rounds) {
+      if (close) break;
+      if (!reach.meets(o.box)) continue;
+      if (squaredDistance(ea, eb, o.centre) < o.limit2) close = true;
+    }
+    v.outside_boundary += outside;
+    v.too_close += close;
+    if (outside || close) {
+      ++v.violations;
+      if (v.violating.size() < ExactValidity::kMaxListed) v.violating.push_back(segment);
+    }
+  };
+  if (n == 1) check(0, 0, 0);
+  for (std::size_t i = 0; i + 1 < n; ++i) check(i, i, i + 1);
+  v.valid = v.violations == 0;
+  return v;
+}
+
+}  // namespace coverbench::judge
