@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The layering check: every library built shared and linked with -Wl,--no-undefined in
 # build-shared/, so a library that uses what only a library above it defines (a core header
-# declaring what the algorithms library defines, say) fails to link; then the command, linked
-# against those shared libraries, plans a wall. Static link order hides such a cycle; this does
+# declaring what the algorithms library defines, say) fails to link; each library's links checked
+# against the layers below it; then the command, linked against those shared libraries, plans a
+# wall and scores it with both judges. Static link order hides such a cycle; this does
 # not. Tests and benchmarks are left out (the static build runs them).
 #   bash scripts/layers.sh
 set -euo pipefail
@@ -15,10 +16,31 @@ if [ ! -f $build/build.ninja ]; then
 fi
 echo "== building every library shared, with -Wl,--no-undefined ($build)"
 cmake --build $build -j 2
-for lib in core metrics datasets algorithms reports experiments; do
+libs="geometry core metrics judge datasets algorithms records reports experiments"
+for lib in $libs; do
   test -f "$build/libcoverbench_$lib.so" || { echo "layers: libcoverbench_$lib.so was not built" >&2; exit 1; }
+done
+# Each library may link only the CoverBench libraries of the layers below it (docs/architecture.md).
+# The judge and the fast metrics engine stand on the geometry layer alone (the judge on nothing of
+# CoverBench: it reads the value types' headers only), so neither can call the planners' code.
+allowed() {
+  case $1 in
+    geometry|judge) echo "" ;;
+    core|metrics|datasets|records) echo "geometry" ;;
+    algorithms) echo "core geometry" ;;
+    reports) echo "core geometry metrics records" ;;
+    experiments) echo "algorithms core datasets geometry metrics records" ;;
+  esac
+}
+for lib in $libs; do
+  needed=$(readelf -d "$build/libcoverbench_$lib.so" | sed -n 's/.*Shared library: \[libcoverbench_\(.*\)\.so\]/\1/p' | sort | tr '\n' ' ')
+  for n in $needed; do
+    case " $(allowed $lib) " in *" $n "*) ;; *) echo "layers: libcoverbench_$lib.so links libcoverbench_$n.so, a layer it must not use" >&2; exit 1 ;; esac
+  done
 done
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 "$build/coverbench" plan --wall datasets/canonical/living_room_north.json --planner zigzag --out "$out/plan.json"
-echo "layers: 6 shared libraries linked with no undefined symbol; the command ran on them"
+"$build/coverbench" metrics --wall datasets/canonical/living_room_north.json --plan "$out/plan.json" --judge exact \
+  --arc-vertices 32 > /dev/null
+echo "layers: 9 shared libraries linked with no undefined symbol, each only to the layers below it; the command ran on them"

@@ -10,7 +10,7 @@
 #include "coverbench/registry.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
-#include "coverbench/tables.hpp"
+#include "coverbench/records.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {

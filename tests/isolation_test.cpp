@@ -19,7 +19,7 @@
 #include "coverbench/report_data.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
-#include "coverbench/tables.hpp"
+#include "coverbench/records.hpp"
 #include "coverbench/workspace.hpp"
 #include "test_support.hpp"
 

@@ -4,7 +4,7 @@
 
 #include "coverbench/metrics.hpp"
 #include "coverbench/region_ops.hpp"
-#include "coverbench/workspace.hpp"
+#include "coverbench/free_region.hpp"
 
 namespace coverbench {
 namespace {

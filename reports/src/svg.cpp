@@ -3,7 +3,7 @@
 #include "coverbench/escape.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/region_ops.hpp"
-#include "coverbench/workspace.hpp"
+#include "coverbench/free_region.hpp"
 
 #include <algorithm>
 #include <cmath>

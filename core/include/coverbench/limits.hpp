@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <string>
 
-#include "coverbench/planner.hpp"
+#include "coverbench/path.hpp"
 #include "coverbench/wall.hpp"
 
 namespace coverbench {

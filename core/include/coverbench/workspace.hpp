@@ -13,27 +13,15 @@
 #include <vector>
 
 #include "coverbench/clearance.hpp"
+#include "coverbench/free_region.hpp"
 #include "coverbench/geometry.hpp"
 #include "coverbench/planner.hpp"
 #include "coverbench/wall.hpp"
 
 namespace coverbench {
 
-/// Largest distance between an arc and the chords approximating it in the free region (metres).
-inline constexpr double kArcTolerance = 5e-5;
-/// How far inside the exact F the approximated free region is drawn (metres).
-inline constexpr double kFreeSpaceMargin = kArcTolerance + 5e-6;
 /// Spare distance planners demand of their own straight moves beyond the exact requirement.
 inline constexpr double kPlanningMargin = 1e-6;
-
-/// Rotates every coordinate of the wall about the origin (for sweep directions).
-Wall rotateWall(const Wall& wall, double radians);
-
-/// The free centre region of a wall for a tool, drawn `margin` metres inside the exact F with arcs
-/// within `arc_tolerance`. The defaults give the planners' conservative F; the metrics engine asks
-/// for margin 0 and a fine tolerance.
-Region freeRegion(const Wall& wall, const ToolParams& tool, double margin = kFreeSpaceMargin,
-                  double arc_tolerance = kArcTolerance);
 
 /// Shortest collision-free polylines between free points, on a visibility graph whose nodes sit
 /// just outside the rounded corners of F (around convex obstacle corners, circles and reflex wall

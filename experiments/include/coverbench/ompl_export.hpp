@@ -8,8 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "coverbench/report_data.hpp"
-#include "coverbench/tables.hpp"
+#include "coverbench/records.hpp"
 
 namespace coverbench {
 

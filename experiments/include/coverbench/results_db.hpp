@@ -9,9 +9,8 @@
 #include <string>
 
 #include "coverbench/experiment.hpp"
-#include "coverbench/report_data.hpp"
+#include "coverbench/records.hpp"
 #include "coverbench/shards.hpp"
-#include "coverbench/tables.hpp"
 
 struct sqlite3;
 

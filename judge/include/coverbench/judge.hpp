@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "coverbench/geometry.hpp"
-#include "coverbench/planner.hpp"
+#include "coverbench/path.hpp"
 #include "coverbench/wall.hpp"
 
 namespace coverbench::judge {

@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "coverbench/geometry.hpp"
-#include "coverbench/planner.hpp"
+#include "coverbench/path.hpp"
 #include "coverbench/wall.hpp"
 
 namespace coverbench {
 
-/// Exact validity of a path: every segment (tool on or off) must keep the whole tool disk inside
+/// Validity of a path: every segment (tool on or off) must keep the whole tool disk inside
 /// the wall and at least `clearance` away from every obstacle.
 struct Validity {
   bool valid = true;
@@ -32,7 +32,8 @@ struct Validity {
 };
 inline constexpr std::size_t kMaxListedViolations = 10000;
 
-/// Checks every segment of the path exactly (closed-form distances, no sampling).
+/// Checks every segment of the path with closed-form distances in doubles (no sampling), forgiving
+/// shortfalls up to kValidityTolerance (1e-9 m). The exact judge (judge/) has no tolerance.
 /// A single waypoint is checked as a point.
 Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path);
 

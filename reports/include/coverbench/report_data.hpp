@@ -1,6 +1,6 @@
 #pragma once
-/// What a report needs beyond the runs: the experiment's record (config, provenance, datasets,
-/// planner configurations, walls), the gallery of pictured walls, and the report's data file
+/// What a report needs beyond the results (records.hpp): the gallery of pictured walls, and the
+/// report's data file
 /// (report_data.json) that the analysis (reports/python) reads. Measurement and storage are
 /// C++; statistics, plots and pages are the analysis' (docs/report.md).
 #include <cstddef>
@@ -8,31 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "coverbench/tables.hpp"
+#include "coverbench/records.hpp"
 
 namespace coverbench {
-
-struct ExperimentRecord {
-  long long id = 0;
-  std::string name, config_path, config_text, config_hash, baseline;
-  /// Provenance and run counts as (label, value), in display order.
-  std::vector<std::pair<std::string, std::string>> facts;
-  struct Dataset {
-    std::string label, source, sha256;
-    long long walls = 0;
-  };
-  std::vector<Dataset> datasets;
-  struct Config {
-    std::string label, planner, params;  ///< params: "key=value, ..." (resolved, defaults included)
-  };
-  std::vector<Config> planners;
-  struct WallInfo {
-    std::string hash, name;
-    std::size_t obstacles = 0;
-    double area = 0.0;  ///< m2 inside the boundary (obstacles not subtracted)
-  };
-  std::vector<WallInfo> walls;  ///< in hash order
-};
 
 /// One picture of the gallery: the run of one planner column on one wall.
 struct GalleryPicture {

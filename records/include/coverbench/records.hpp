@@ -1,11 +1,15 @@
 #pragma once
-/// Experiment results as reports read them: one row per run, and the exports of every run (CSV,
-/// JSON). The report's tables, statistics and figures are reports/python's (docs/report.md).
+/// The results layer: what an experiment produced, as value types (one row per run, and the
+/// experiment's record: its config, datasets, planner configurations and walls), and the exports
+/// of every run (CSV, JSON). The runner and the results database write and read these; the
+/// report reads them. Below both: it depends on the geometry layer alone.
+#include <cstddef>
 #include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
-#include "coverbench/planner.hpp"
+#include "coverbench/path.hpp"
 
 namespace coverbench {
 
@@ -35,6 +39,29 @@ struct ResultSet {
   std::vector<std::string> planners;       ///< labels, in config order
   std::vector<std::string> metric_order;   ///< metric names, in the order tables list them
   std::vector<ResultRow> runs;
+};
+
+/// What was run, besides the runs: the config, provenance, datasets, planner configurations, walls.
+struct ExperimentRecord {
+  long long id = 0;
+  std::string name, config_path, config_text, config_hash, baseline;
+  /// Provenance and run counts as (label, value), in display order.
+  std::vector<std::pair<std::string, std::string>> facts;
+  struct Dataset {
+    std::string label, source, sha256;
+    long long walls = 0;
+  };
+  std::vector<Dataset> datasets;
+  struct Config {
+    std::string label, planner, params;  ///< params: "key=value, ..." (resolved, defaults included)
+  };
+  std::vector<Config> planners;
+  struct WallInfo {
+    std::string hash, name;
+    std::size_t obstacles = 0;
+    double area = 0.0;  ///< m2 inside the boundary (obstacles not subtracted)
+  };
+  std::vector<WallInfo> walls;  ///< in hash order
 };
 
 /// One row per run: key, dataset, wall, planner configuration and version, tool, status, valid, the uncovered

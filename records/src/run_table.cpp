@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "coverbench/escape.hpp"
-#include "coverbench/tables.hpp"
+#include "coverbench/records.hpp"
 #include "coverbench/wall.hpp"
 
 namespace coverbench {
