@@ -48,6 +48,9 @@ foreach(child IN LISTS children)
     string(APPEND folders "      {\"${child}\", \"${h}\"},\n")
   endif()
 endforeach()
+# The exact judge's code: in the identity of runs scored with `judge: exact` (kJudgeCodeFolder).
+hash_files(h "judge/*.cpp" "judge/*.hpp")
+string(APPEND folders "      {\":judge\", \"${h}\"},\n")
 
 string(REPLACE "\\" "\\\\" FLAGS "${FLAGS}")
 string(REPLACE "\"" "\\\"" FLAGS "${FLAGS}")

@@ -39,9 +39,11 @@ def planners(coverbench):
     return [line.split(":")[0] for line in out.splitlines() if line and not line[0].isspace()]
 
 
-def walls(coverbench, per_family, work):
+def walls(coverbench, per_family, families, work):
     found = []
     for family, count, seed in DEFAULT_DATASETS:
+        if families and family not in families:
+            continue
         folder = os.path.join(work, family)
         cmd = [coverbench, "dataset", "generate", "--family", family, "--seed", str(seed), "--out", folder]
         if count is not None:
@@ -88,16 +90,21 @@ def main():
     ap.add_argument("--per-family", type=int, default=3, help="walls per family (0: all of the experiment's)")
     ap.add_argument("--tool-widths", type=float, nargs="+", default=[0.1])
     ap.add_argument("--planners", nargs="*", help="default: every registered planner")
+    ap.add_argument("--families", nargs="*", help="default: every family of the default experiment")
     ap.add_argument("--arc-vertices", type=int, default=128)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--out", required=True, help="CSV of every comparison")
     a = ap.parse_args()
     coverbench = os.path.abspath(a.coverbench)
     with tempfile.TemporaryDirectory() as work:
-        cases = [(f, w, p, s) for f, w in walls(coverbench, a.per_family, work)
+        cases = [(f, w, p, s) for f, w in walls(coverbench, a.per_family, a.families, work)
                  for p in (a.planners or planners(coverbench)) for s in a.tool_widths]
+        rows = []
         with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
-            rows = list(pool.map(lambda c: judge_one(coverbench, *c, a.arc_vertices, work), cases))
+            for row in pool.map(lambda c: judge_one(coverbench, *c, a.arc_vertices, work), cases):
+                rows.append(row)
+                print(f"[{len(rows)}/{len(cases)}] {row['family']} {row['wall']} {row['planner']} "
+                      f"s={row['tool_width']}: {row['status']}", file=sys.stderr, flush=True)
     keys = []
     for r in rows:
         keys += [k for k in r if k not in keys]

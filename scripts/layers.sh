@@ -29,7 +29,7 @@ allowed() {
     core|metrics|datasets|records) echo "geometry" ;;
     algorithms) echo "core geometry" ;;
     reports) echo "core geometry metrics records" ;;
-    experiments) echo "algorithms core datasets geometry metrics records" ;;
+    experiments) echo "algorithms core datasets geometry judge metrics records" ;;
   esac
 }
 for lib in $libs; do

@@ -7,6 +7,8 @@
 
 #include "coverbench/build_identity.hpp"
 #include "coverbench/files.hpp"
+#include "coverbench/metric_spec.hpp"
+#include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
@@ -146,6 +148,39 @@ TEST_F(Experiments, ARunIsAPureFunctionOfItsInputs) {
     ASSERT_EQ(a.metrics.size(), b.metrics.size());
     for (std::size_t k = 0; k < a.metrics.size(); ++k) EXPECT_EQ(a.metrics[k].value, b.metrics[k].value) << a.metrics[k].name;
   }
+}
+
+// `judge: exact`: every scored run also carries the exact judge's verdict and certified coverage
+// intervals, the fast engine's coverage lies within its stated bound of them, and the keys (base
+// key and code identity, which then includes the judge's code) differ from the fast-only runs'.
+TEST_F(Experiments, TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys) {
+  const std::string small = "name: j\noutput: out\ndatasets:\n  - family: gable\n    count: 1\n    seed: 3\n"
+                            "planners:\n  - zigzag\n  - spanning-tree\ntool:\n  width: 0.2\n";
+  const ExperimentConfig fast = loadExperimentConfig(config(small, "fast.yaml"));
+  const ExperimentConfig exact = loadExperimentConfig(config(small + "judge: exact\n", "exact.yaml"));
+  EXPECT_FALSE(fast.exact_judge);
+  ASSERT_TRUE(exact.exact_judge);
+  const std::vector<WallEntry> walls = loadWalls(exact);
+  const std::vector<RunSpec> fast_runs = expandRuns(fast, walls), exact_runs = expandRuns(exact, walls);
+  ASSERT_EQ(exact_runs.size(), 2u);
+  for (std::size_t i = 0; i < exact_runs.size(); ++i) {
+    EXPECT_NE(exact_runs[i].base_key, fast_runs[i].base_key);
+    EXPECT_NE(exact_runs[i].code_sha256, fast_runs[i].code_sha256);
+    const RunRecord rec = executeRun(exact_runs[i]);
+    ASSERT_TRUE(rec.valid) << rec.reason;
+    std::map<std::string, double> m;
+    for (const NamedMetric& x : rec.metrics) m[x.name] = x.value;
+    for (const char* name : kExactJudgeMetrics) ASSERT_TRUE(m.count(name)) << name;
+    EXPECT_EQ(m["exact_valid"], 1.0);
+    EXPECT_EQ(m["exact_violations"], 0.0);
+    EXPECT_LT(m["exact_coverage_reachable_lower"], m["exact_coverage_reachable_upper"]);
+    EXPECT_GE(m["coverage_reachable"], m["exact_coverage_reachable_lower"] - kFastCoverageErrorBound);
+    EXPECT_LE(m["coverage_reachable"], m["exact_coverage_reachable_upper"] + kFastCoverageErrorBound);
+    EXPECT_GE(m["coverage_wall"], m["exact_coverage_wall_lower"] - kFastCoverageErrorBound);
+    EXPECT_LE(m["coverage_wall"], m["exact_coverage_wall_upper"] + kFastCoverageErrorBound);
+    for (const NamedMetric& x : executeRun(fast_runs[i]).metrics) EXPECT_EQ(std::string(x.name).rfind("exact_", 0), std::string::npos);
+  }
+  EXPECT_NE(error(small + "judge: strict\n").find(":12: judge: must be fast or exact, not 'strict'"), std::string::npos);
 }
 
 TEST(PathEncoding, RoundTripsExactly) {

@@ -210,6 +210,28 @@ TEST(ExactJudgeProperty, FastValidityAgreesAwayFromTheLimits) {
   EXPECT_LT(invalid, compared - 300);
 }
 
+// Every planner on a hundred generated walls of every family but the 50 m stress walls: the exact
+// judge's verdict and violation counts equal the fast engine's (all planners' paths are valid).
+TEST(ExactJudgeProperty, PlannedPathsValidityAgreesOnAHundredWalls) {
+  int judged = 0;
+  for (const std::string& family : {"residential", "facade", "gable", "stairwell", "industrial", "random", "narrow", "open"}) {
+    for (const Wall& wall : generateWalls(family, 21, family == std::string("facade") ? 4 : 14)) {
+      for (const PlannerInfo& info : registeredPlanners()) {
+        ToolParams tool;
+        tool.tool_width = 0.15;
+        const PlanResult result = test::planWith(info.name, wall, tool);
+        if (result.path.waypoints.empty()) continue;
+        const Validity fast = checkValidity(wall, tool, result.path);
+        const judge::ExactValidity exact = judge::judgeValidity(wall, tool, result.path);
+        ASSERT_EQ(exact.valid, fast.valid) << family << " " << wall.name << " " << info.name;
+        ASSERT_EQ(exact.violations, fast.violations) << family << " " << wall.name << " " << info.name;
+        ++judged;
+      }
+    }
+  }
+  EXPECT_GT(judged, 500);
+}
+
 // Planned paths on generated walls of every family: both judges find them valid, and the fast
 // engine's coverage and areas lie within its stated error bounds of the certified intervals.
 TEST(ExactJudgeProperty, FastCoverageWithinItsStatedBoundsOnPlannedPaths) {

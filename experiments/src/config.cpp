@@ -200,7 +200,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   }
   if (!doc.isMap()) r.fail(doc, "(document)", "must be a mapping (name, datasets, planners, ...)");
   r.onlyKeys(doc, "", {"name", "output", "datasets", "planners", "tool", "repetitions", "limits", "baseline", "threads",
-                       "seed", "allow_large"});
+                       "seed", "allow_large", "judge"});
   const fs::path base = fs::path(path).parent_path();
   auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).lexically_normal().string(); };
 
@@ -370,6 +370,11 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   if (const Yaml* n = doc.find("threads")) c.threads = static_cast<unsigned>(r.integer(*n, "threads", 0, 1024));
   if (const Yaml* n = doc.find("seed")) c.seed = static_cast<std::uint64_t>(r.integer(*n, "seed", 0, 1LL << 53));
   if (const Yaml* n = doc.find("allow_large")) c.allow_large = r.boolean(*n, "allow_large");
+  if (const Yaml* n = doc.find("judge")) {
+    const std::string judge = r.text(*n, "judge");
+    if (judge != "fast" && judge != "exact") r.fail(*n, "judge", "must be fast or exact, not '" + judge + "'");
+    c.exact_judge = judge == "exact";
+  }
   c.baseline = c.planners.front().label;
   if (const Yaml* b = doc.find("baseline")) {
     c.baseline = r.text(*b, "baseline");

@@ -13,6 +13,8 @@
 #include "coverbench/datasets.hpp"
 #include "coverbench/experiment.hpp"
 #include "coverbench/hash.hpp"
+#include "coverbench/judge.hpp"
+#include "coverbench/metric_spec.hpp"
 #include "coverbench/registry.hpp"
 
 namespace coverbench {
@@ -61,6 +63,7 @@ std::string runBaseKey(const RunSpec& spec) {
   for (const auto& [k, v] : spec.planner->params.all()) text += "\nparam." + k + "=" + toString(v);
   text += "\ntool_width=" + exact(spec.tool.tool_width) + "\nclearance=" + exact(spec.tool.clearance) +
           "\nseed=" + std::to_string(spec.seed);
+  if (spec.exact_judge) text += "\njudge=exact";
   return sha256Hex(text);
 }
 
@@ -84,9 +87,12 @@ std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vecto
         spec.seed = config.seed;
         spec.time_limit_s = config.time_limit_s;
         spec.memory_limit_bytes = static_cast<std::size_t>(config.memory_limit_mb * 1024.0 * 1024.0);
+        spec.exact_judge = config.exact_judge;
         const PlannerInfo& info = findPlanner(planner.planner);
         spec.planner_version = info.version;
-        spec.code_sha256 = buildIdentity().plannerCode(info.code_folders);
+        std::vector<std::string> folders = info.code_folders;
+        if (spec.exact_judge) folders.push_back(kJudgeCodeFolder);  // the judge's code is in what it computes
+        spec.code_sha256 = buildIdentity().plannerCode(folders);
         spec.base_key = runBaseKey(spec);
         if (keep && !keep(spec)) continue;  // a shard holds only its own runs, even while expanding
         spec.key = runKey(spec);
@@ -123,7 +129,23 @@ RunRecord executeRun(const RunSpec& spec) {
       rec.valid = m.validity.valid;
       rec.metrics = flatten(m);
       rec.uncovered_reachable_m2 = m.coverage.reachable_area * (1.0 - m.coverage.coverage_reachable);
-      if (!rec.valid) {  // the planner's claim does not survive the exact check
+      if (spec.exact_judge) {
+        const judge::Judgement j = judge::judgePath(spec.wall->wall, spec.tool, result.path);
+        const double exact_figures[] = {
+            j.validity.valid ? 1.0 : 0.0, static_cast<double>(j.validity.violations),
+            j.coverage.coverage_reachable.lower, j.coverage.coverage_reachable.upper,
+            j.coverage.coverage_wall.lower, j.coverage.coverage_wall.upper};
+        for (std::size_t i = 0; i < std::size(kExactJudgeMetrics); ++i)
+          rec.metrics.push_back({std::string(kExactJudgeMetrics[i]), exact_figures[i]});
+        if (rec.valid && !j.validity.valid) {
+          rec.valid = false;
+          rec.status = "invalid_output";
+          rec.reason = "the exact judge finds " + std::to_string(j.validity.violations) +
+                       " segments that violate the wall or the clearance (the fast engine, with its 1e-9 m tolerance, "
+                       "finds none)" + (result.reason.empty() ? "" : "; the planner said: " + result.reason);
+        }
+      }
+      if (!rec.valid && rec.status != "invalid_output") {  // the planner's claim does not survive the check
         rec.status = "invalid_output";
         rec.reason = std::to_string(m.validity.violations) + " segments violate the wall or the clearance" +
                      (result.reason.empty() ? "" : "; the planner said: " + result.reason);

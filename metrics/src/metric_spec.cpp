@@ -40,6 +40,13 @@ const std::vector<MetricSpec>& metricSpecs() {
       {"turning_angle", "rad", -1, K::Quality, false, 0, 1e-3, "sum of absolute heading changes"},
       {"duration_s", "s", -1, K::Quality, true, 0, 1e-3, "time to drive the path (0.3 m/s, 0.5 m/s2, stop at turns over 30 degrees)"},
       {"waypoints", "1", -1, K::Quality, false, 0.5, 0, "waypoints of the path"},
+      // Only with `judge: exact` in an experiment: the exact judge's verdict and certified bounds.
+      {"exact_valid", "1", +1, K::Validity, false, 0, 0, "1 when the exact judge (CGAL, no tolerance) finds no violating segment"},
+      {"exact_violations", "segments", -1, K::Validity, false, 0.5, 0, "segments the exact judge finds leaving F"},
+      {"exact_coverage_reachable_lower", "1", 0, K::Diagnostic, false, 1e-3, 0, "certified lower bound of coverage_reachable (exact judge)"},
+      {"exact_coverage_reachable_upper", "1", 0, K::Diagnostic, false, 1e-3, 0, "certified upper bound of coverage_reachable (exact judge)"},
+      {"exact_coverage_wall_lower", "1", 0, K::Diagnostic, false, 1e-3, 0, "certified lower bound of coverage_wall (exact judge)"},
+      {"exact_coverage_wall_upper", "1", 0, K::Diagnostic, false, 1e-3, 0, "certified upper bound of coverage_wall (exact judge)"},
       {"plan_time_ms", "ms", -1, K::Measured, true, 0.05, 0.25, "wall-clock time of the plan call (median of the repetitions)"},
       {"peak_memory_bytes", "B", -1, K::Measured, true, 1048576, 0.05, "resident memory the run added at its peak"},
   };

@@ -17,7 +17,8 @@ struct BuildIdentity {
   /// SHA-256 over the code every run depends on: core/, metrics/, algorithms/*.cpp, the run
   /// execution in experiments/ (runs.cpp, isolation.cpp); cmake/build_identity.cmake lists them.
   std::string shared_code_sha256;
-  /// SHA-256 over each algorithms/<folder>'s .cpp and .hpp files.
+  /// SHA-256 over each algorithms/<folder>'s .cpp and .hpp files, and over the exact judge's
+  /// (judge/) under the name kJudgeCodeFolder.
   std::map<std::string, std::string> folder_code_sha256;
 
   /// The identity of a planner's code: SHA-256 of the shared code, the given algorithms/
@@ -26,6 +27,9 @@ struct BuildIdentity {
   /// "rev12[-dirty:diff12]": for people.
   std::string describe() const;
 };
+
+/// The name of the exact judge's code in folder_code_sha256 (no algorithms/ folder can have it).
+inline constexpr const char* kJudgeCodeFolder = ":judge";
 
 /// This binary's identity (generated source).
 const BuildIdentity& buildIdentity();

@@ -52,6 +52,10 @@ struct ExperimentConfig {
   unsigned threads = 0;     ///< 0: every core
   std::uint64_t seed = 0;   ///< passed to planners (Problem::seed)
   bool allow_large = false; ///< confirms an experiment of more than kLargeExperimentRuns runs
+  /// Also score every path with the exact judge (judge/), config key `judge: exact`: its verdict
+  /// and certified coverage intervals are stored as the exact_* metrics, and a path only it finds
+  /// invalid is `invalid_output`.
+  bool exact_judge = false;
 };
 
 /// The number of runs a config asks for (walls counted before loading, duplicates included):
@@ -85,11 +89,13 @@ struct RunSpec {
   std::size_t memory_limit_bytes = 0;  ///< 0: none
   std::string planner_version;         ///< the planner's declared version
   std::string code_sha256;             ///< BuildIdentity::plannerCode of the planner's folders
+  bool exact_judge = false;            ///< also scored by the exact judge (in the base key when set)
   std::string base_key;                ///< what the run computes: see runKey
   std::string key;                     ///< base key, planner version and code: see runKey
 };
 /// The base key: SHA-256 of the wall's content hash, the planner, every resolved parameter
-/// (defaults included), the tool parameters and the seed. Limits and repetitions are not in it.
+/// (defaults included), the tool parameters, the seed, and (only when set) the exact judge.
+/// Limits and repetitions are not in it.
 std::string runBaseKey(const RunSpec& spec);
 /// The run key: SHA-256 of the base key, the planner's version and its code identity, so a
 /// changed planner (or the code every run depends on, or the compiler and flags) is run again.

@@ -28,6 +28,11 @@ struct MetricSpec {
   std::string description;  ///< one line
 };
 
+/// The exact judge's figures an experiment stores with `judge: exact` (docs/metrics.md), in order.
+inline constexpr const char* kExactJudgeMetrics[] = {
+    "exact_valid", "exact_violations", "exact_coverage_reachable_lower", "exact_coverage_reachable_upper",
+    "exact_coverage_wall_lower", "exact_coverage_wall_upper"};
+
 /// Every metric, in the order plan files and tables list them.
 const std::vector<MetricSpec>& metricSpecs();
 /// The spec of `name`, or nullptr.
