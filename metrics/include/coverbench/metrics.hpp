@@ -72,7 +72,7 @@ Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path);
 /// keeps them): coverage ratios within kFastCoverageErrorBound of the judge's certified interval,
 /// areas within kFastAreaRelativeErrorBound of it, relative to the area.
 inline constexpr double kFastCoverageErrorBound = 1e-5;
-inline constexpr double kFastAreaRelativeErrorBound = 1e-4;
+inline constexpr double kFastAreaRelativeErrorBound = 2e-5;
 
 /// Pass counts over the swept area, integrated on horizontal scanlines: exact intervals along each
 /// line, midpoint rule across lines spaced `resolution` apart.
