@@ -17,7 +17,7 @@
 namespace coverbench {
 namespace {
 
-TEST(MetricRegistry, ListsExactlyTheEngineMetricsInOrderThenTheMeasuredOnes) {
+TEST(MetricRegistry, ListsExactlyTheEngineMetricsInOrderThenTheExactJudgesThenTheMeasuredOnes) {
   Wall wall;
   wall.name = "w";
   wall.boundary = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
@@ -26,6 +26,7 @@ TEST(MetricRegistry, ListsExactlyTheEngineMetricsInOrderThenTheMeasuredOnes) {
   path.tool_on = {true};
   std::vector<std::string> engine;
   for (const NamedMetric& m : flatten(computeMetrics(wall, ToolParams{0.1, 0.02}, path))) engine.push_back(m.name);
+  for (const char* name : kExactJudgeMetrics) engine.push_back(name);  // an experiment with `judge: exact`
   std::vector<std::string> registry, measured;
   for (const MetricSpec& s : metricSpecs()) (s.kind == MetricKind::Measured ? measured : registry).push_back(s.name);
   EXPECT_EQ(engine, registry);
