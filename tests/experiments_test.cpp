@@ -174,10 +174,10 @@ TEST_F(Experiments, TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys) {
     EXPECT_EQ(m["exact_valid"], 1.0);
     EXPECT_EQ(m["exact_violations"], 0.0);
     EXPECT_LT(m["exact_coverage_reachable_lower"], m["exact_coverage_reachable_upper"]);
-    EXPECT_GE(m["coverage_reachable"], m["exact_coverage_reachable_lower"] - kFastCoverageErrorBound);
-    EXPECT_LE(m["coverage_reachable"], m["exact_coverage_reachable_upper"] + kFastCoverageErrorBound);
-    EXPECT_GE(m["coverage_wall"], m["exact_coverage_wall_lower"] - kFastCoverageErrorBound);
-    EXPECT_LE(m["coverage_wall"], m["exact_coverage_wall_upper"] + kFastCoverageErrorBound);
+    EXPECT_GE(m["coverage_reachable"], m["exact_coverage_reachable_lower"] - fastErrorBound(0.2));
+    EXPECT_LE(m["coverage_reachable"], m["exact_coverage_reachable_upper"] + fastErrorBound(0.2));
+    EXPECT_GE(m["coverage_wall"], m["exact_coverage_wall_lower"] - fastErrorBound(0.2));
+    EXPECT_LE(m["coverage_wall"], m["exact_coverage_wall_upper"] + fastErrorBound(0.2));
     for (const NamedMetric& x : executeRun(fast_runs[i]).metrics) EXPECT_EQ(std::string(x.name).rfind("exact_", 0), std::string::npos);
   }
   EXPECT_NE(error(small + "judge: strict\n").find(":12: judge: must be fast or exact, not 'strict'"), std::string::npos);

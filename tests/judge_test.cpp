@@ -253,14 +253,15 @@ TEST(ExactJudgeProperty, FastCoverageWithinItsStatedBoundsOnPlannedPaths) {
         EXPECT_EQ(exact.validity.valid, fast.validity.valid) << where;
         EXPECT_EQ(exact.validity.violations, fast.validity.violations) << where;
         const judge::ExactCoverage& c = exact.coverage;
-        EXPECT_LE(c.coverage_reachable.distanceTo(fast.coverage.coverage_reachable), kFastCoverageErrorBound) << where;
-        EXPECT_LE(c.coverage_wall.distanceTo(fast.coverage.coverage_wall), kFastCoverageErrorBound) << where;
+        const double bound = fastErrorBound(tool.tool_width);
+        EXPECT_LE(c.coverage_reachable.distanceTo(fast.coverage.coverage_reachable), bound) << where;
+        EXPECT_LE(c.coverage_wall.distanceTo(fast.coverage.coverage_wall), bound) << where;
         EXPECT_LE(c.reachable_area.distanceTo(fast.coverage.reachable_area),
-                  kFastAreaRelativeErrorBound * c.reachable_area.upper) << where;
+                  bound * c.reachable_area.upper) << where;
         EXPECT_LE(c.paintable_area.distanceTo(fast.coverage.paintable_area),
-                  kFastAreaRelativeErrorBound * c.paintable_area.upper) << where;
+                  bound * c.paintable_area.upper) << where;
         EXPECT_LE(c.swept_area.distanceTo(fast.coverage.swept_area),
-                  kFastAreaRelativeErrorBound * c.swept_area.upper) << where;
+                  bound * c.swept_area.upper) << where;
         ++judged;
       }
     }

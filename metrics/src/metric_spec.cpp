@@ -8,8 +8,8 @@ namespace coverbench {
 
 const std::vector<MetricSpec>& metricSpecs() {
   using K = MetricKind;
-  // Tie bands: coverage within 0.1 percentage point (far above the engine's area error of about
-  // 1e-6, below what a painter could see); overlap within 0.5 percentage point (the scanline
+  // Tie bands: coverage within 0.1 percentage point (far above the fast engine's error against the
+  // exact judge, at most 1.6e-5 measured, docs/metrics.md; below what a painter could see); overlap within 0.5 percentage point (the scanline
   // method's stated error, docs/metrics.md); lengths and durations within 0.1 %; counts exactly;
   // plan time within 25 % and 0.05 ms (the same code timed three times on one wall here swung
   // by a third); memory within 5 % and 1 MiB.
