@@ -11,7 +11,6 @@
 // polygon placed at both ends.) F shrinks as D grows, so F's lower bound uses the circumscribed
 // polygons and R's lower bound uses F's lower bound with the inscribed polygon.
 #include <CGAL/Boolean_set_operations_2.h>
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_2.h>
 #include <CGAL/Polygon_set_2.h>
 #include <CGAL/Polygon_with_holes_2.h>
@@ -21,14 +20,11 @@
 #include <stdexcept>
 
 #include "coverbench/judge.hpp"
+#include "exact_kernel.hpp"
 
 namespace coverbench::judge {
 namespace {
 
-using K = CGAL::Exact_predicates_exact_constructions_kernel;
-using FT = K::FT;
-using P2 = K::Point_2;
-using V2 = K::Vector_2;
 using Polygon = CGAL::Polygon_2<K>;
 using PolygonWithHoles = CGAL::Polygon_with_holes_2<K>;
 using PolygonSet = CGAL::Polygon_set_2<K>;
@@ -83,7 +79,7 @@ Polygon hullAt(const P2& a, const P2& b, const std::vector<V2>& disk) {
 
 Polygon polygonOf(const Ring& ring) {
   Polygon p;
-  for (Point q : ring) p.push_back(P2(q.x, q.y));
+  for (Point q : ring) p.push_back(exactPoint(q));
   if (p.is_clockwise_oriented()) p.reverse_orientation();
   return p;
 }
@@ -123,7 +119,7 @@ std::vector<Polygon> ringHulls(const Ring& ring, const std::vector<V2>& disk) {
   std::vector<Polygon> hulls;
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const Point a = ring[i], b = ring[(i + 1) % ring.size()];
-    hulls.push_back(hullAt(P2(a.x, a.y), P2(b.x, b.y), disk));
+    hulls.push_back(hullAt(exactPoint(a), exactPoint(b), disk));
   }
   return hulls;
 }
@@ -147,7 +143,7 @@ Regions buildRegions(const Wall& wall, const ToolParams& tool, const Path& path,
   std::vector<Polygon> grown_pieces;
   for (const Obstacle& o : wall.obstacles) {
     if (o.type == ObstacleType::Circle) {
-      const P2 centre(o.center.x, o.center.y);
+      const P2 centre = exactPoint(o.center);
       // P's obstacles: inner bound of P uses the circumscribed polygon (a larger obstacle).
       obstacles.join(hullAt(centre, centre, diskPolygon(o.radius, n, side == Side::Inner ? Side::Outer : Side::Inner)));
       // The grown disk of radius rho + r + c, on F's side.
@@ -175,7 +171,7 @@ Regions buildRegions(const Wall& wall, const ToolParams& tool, const Path& path,
   for (std::size_t i = 0; i < path.tool_on.size(); ++i) {
     if (!path.tool_on[i]) continue;
     const Point a = path.waypoints[i], b = path.waypoints[i + 1];
-    capsules.push_back(hullAt(P2(a.x, a.y), P2(b.x, b.y), tool_disk));
+    capsules.push_back(hullAt(exactPoint(a), exactPoint(b), tool_disk));
   }
   g.swept = unionOf(capsules);
   return g;

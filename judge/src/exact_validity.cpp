@@ -1,7 +1,6 @@
 // Exact validity: CGAL's exact kernel, no tolerance. Shares nothing with core's predicates or the
 // fast engine's ClearanceField; the only things read from the rest of CoverBench are the wall, the
 // tool and the path as plain numbers.
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/squared_distance_2.h>
 
@@ -10,16 +9,10 @@
 #include <limits>
 
 #include "coverbench/judge.hpp"
+#include "exact_kernel.hpp"
 
 namespace coverbench::judge {
 namespace {
-
-using K = CGAL::Exact_predicates_exact_constructions_kernel;
-using FT = K::FT;
-using P2 = K::Point_2;
-using S2 = K::Segment_2;
-
-P2 exact(Point p) { return P2(p.x, p.y); }
 
 /// A double box that surely contains everything within `reach` of the box of (a, b): the
 /// comparisons below only skip pairs this box test rules out, so the box must err outwards.
@@ -42,7 +35,7 @@ std::vector<Edge> ringEdges(const Ring& ring) {
   std::vector<Edge> edges;
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const Point a = ring[i], b = ring[(i + 1) % ring.size()];
-    edges.push_back({S2(exact(a), exact(b)), boxAround(a, b, 0.0)});
+    edges.push_back({S2(exactPoint(a), exactPoint(b)), boxAround(a, b, 0.0)});
   }
   return edges;
 }
@@ -54,7 +47,7 @@ struct PolygonShape {
 };
 PolygonShape polygonShape(const Ring& ring) {
   PolygonShape p;
-  for (Point q : ring) p.vertices.push_back(exact(q));
+  for (Point q : ring) p.vertices.push_back(exactPoint(q));
   p.edges = ringEdges(ring);
   Point lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
   for (Point q : ring) {
@@ -104,7 +97,7 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
   for (const Obstacle& o : wall.obstacles) {
     if (o.type == ObstacleType::Circle) {
       const FT limit = FT(o.radius) + rc;
-      rounds.push_back({exact(o.center), limit * limit, boxAround(o.center, o.center, o.radius)});
+      rounds.push_back({exactPoint(o.center), limit * limit, boxAround(o.center, o.center, o.radius)});
     } else {
       polygons.push_back(polygonShape(o.polygon));
     }
@@ -114,7 +107,7 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
   // A segment that keeps its distances below crosses no edge, so its first waypoint decides.
   std::vector<P2> points;
   points.reserve(n);
-  for (Point p : path.waypoints) points.push_back(exact(p));
+  for (Point p : path.waypoints) points.push_back(exactPoint(p));
 
   auto check = [&](std::size_t segment, std::size_t ia, std::size_t ib) {
     const Point a = path.waypoints[ia], b = path.waypoints[ib];
