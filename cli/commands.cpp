@@ -182,16 +182,7 @@ void limitScoringTime(const std::string& plan_file, double seconds) {
   ::alarm(static_cast<unsigned>(std::ceil(seconds)));
 }
 
-}  // namespace
-
-namespace {
-
 nlohmann::ordered_json intervalJson(const judge::Interval& i) { return {i.lower, i.upper}; }
-
-/// The fast engine's value minus the nearest end of the exact interval: 0 inside it.
-double outside(double fast, const judge::Interval& i) {
-  return fast < i.lower ? fast - i.lower : (fast > i.upper ? fast - i.upper : 0.0);
-}
 
 /// The fast engine's metrics, the exact judge's figures, and how far the first lie from the second.
 std::string judgedJson(const PathMetrics& m, const judge::Judgement& j) {
@@ -217,11 +208,11 @@ std::string judgedJson(const PathMetrics& m, const judge::Judgement& j) {
   ordered_json diff;
   diff["valid_agrees"] = m.validity.valid == j.validity.valid;
   diff["violations"] = static_cast<long long>(m.validity.violations) - static_cast<long long>(j.validity.violations);
-  diff["coverage_reachable"] = outside(m.coverage.coverage_reachable, c.coverage_reachable);
-  diff["coverage_wall"] = outside(m.coverage.coverage_wall, c.coverage_wall);
-  diff["reachable_area"] = outside(m.coverage.reachable_area, c.reachable_area);
-  diff["paintable_area"] = outside(m.coverage.paintable_area, c.paintable_area);
-  diff["swept_area"] = outside(m.coverage.swept_area, c.swept_area);
+  diff["coverage_reachable"] = c.coverage_reachable.offset(m.coverage.coverage_reachable);
+  diff["coverage_wall"] = c.coverage_wall.offset(m.coverage.coverage_wall);
+  diff["reachable_area"] = c.reachable_area.offset(m.coverage.reachable_area);
+  diff["paintable_area"] = c.paintable_area.offset(m.coverage.paintable_area);
+  diff["swept_area"] = c.swept_area.offset(m.coverage.swept_area);
   doc["fast_outside_exact"] = diff;
   return doc.dump(2) + "\n";
 }

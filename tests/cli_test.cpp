@@ -1,6 +1,7 @@
 // The command line: bad input gives one line naming file, field and problem, a non-zero exit and
 // no output file; good input gives a plan file and a picture.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -41,6 +42,41 @@ double jsonNumber(const std::string& text, const std::string& key) {
   const std::size_t at = text.find("\"" + key + "\":");
   if (at == std::string::npos) return NAN;
   return std::stod(text.substr(at + key.size() + 3));
+}
+
+// `metrics --judge exact`: the exact judge's figures beside the fast engine's, the fast values
+// inside (or within the stated bound of) its intervals, the same bytes at every run (the time goes
+// to stderr), exit 3 when the path is invalid, and a one-line error for a bad --arc-vertices.
+TEST_F(Cli, MetricsWithTheExactJudge) {
+  const std::string wall = write("wall.json", R"({ "name": "hand", "width": 4.0, "height": 2.0, "obstacles": [] })");
+  const std::string plan = write("plan.json", R"({ "waypoints": [[1, 1], [3, 1], [3.5, 1.5]], "tool_on": [true, false] })");
+  std::string out, again;
+  const std::string args = "metrics --wall " + wall + " --plan " + plan + " --tool-width 0.2 --clearance 0 --judge exact --arc-vertices 64";
+  const CommandRun r = run(args, &out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("exact judge: "), std::string::npos) << r.err;
+  ASSERT_EQ(run(args, &again).exit_code, 0);
+  EXPECT_EQ(out, again);
+  const nlohmann::json doc = nlohmann::json::parse(out);
+  const double swept = 0.4 + M_PI * 0.01;
+  EXPECT_EQ(doc["exact_judge"]["valid"], true);
+  EXPECT_EQ(doc["exact_judge"]["arc_vertices"], 64);
+  EXPECT_LE(doc["exact_judge"]["swept_area"][0].get<double>(), swept);
+  EXPECT_GE(doc["exact_judge"]["swept_area"][1].get<double>(), swept);
+  EXPECT_EQ(doc["fast_outside_exact"]["valid_agrees"], true);
+  EXPECT_LE(std::fabs(doc["fast_outside_exact"]["coverage_reachable"].get<double>()), fastErrorBound(0.2));
+  EXPECT_NEAR(doc["metrics"]["swept_area"].get<double>(), swept, 1e-4);
+
+  const std::string window = write("window.json", R"({ "name": "w", "width": 4.0, "height": 2.0,
+    "obstacles": [ { "type": "rect", "x": 1.8, "y": 0.8, "width": 0.4, "height": 0.4 } ] })");
+  EXPECT_EQ(run("metrics --wall " + window + " --plan " + plan + " --tool-width 0.2 --clearance 0 --judge exact", &out).exit_code, 3);
+  EXPECT_EQ(nlohmann::json::parse(out)["exact_judge"]["too_close"], 1);
+
+  const CommandRun e = run("metrics --wall " + wall + " --plan " + plan + " --judge exact --arc-vertices 12", &out);
+  EXPECT_EQ(e.exit_code, 2);
+  EXPECT_EQ(lines(e.err), 1) << e.err;
+  EXPECT_NE(e.err.find("arc_vertices: must be a multiple of 8"), std::string::npos) << e.err;
+  EXPECT_TRUE(out.empty()) << out;
 }
 
 TEST_F(Cli, MetricsScoresAHandWrittenPlan) {

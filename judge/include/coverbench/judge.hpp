@@ -31,6 +31,8 @@ struct Interval {
   double upper = 0.0;
   double width() const { return upper - lower; }
   bool contains(double v) const { return lower <= v && v <= upper; }
+  /// v minus the interval's nearest end: negative below it, positive above it, 0 inside it.
+  double offset(double v) const { return v < lower ? v - lower : (v > upper ? v - upper : 0.0); }
   /// The distance from v to the interval (0 when v lies inside it).
   double distanceTo(double v) const { return v < lower ? lower - v : (v > upper ? v - upper : 0.0); }
 };
