@@ -41,7 +41,6 @@ std::vector<V2> diskPolygon(double rho, int n, Side side) {
   const double step = 2.0 * pi / n;
   const double scale = side == Side::Inner ? rho * (1.0 - 1e-12) : rho / std::cos(pi / n) * (1.0 + 1e-12);
   const double phase = side == Side::Inner ? 0.0 : step / 2.0;
-  std::vector<V2> half;
   std::vector<double> xs, ys;
   for (int k = 0; k < n / 2; ++k) {
     xs.push_back(scale * std::cos(phase + step * k));
@@ -139,13 +138,13 @@ Regions buildRegions(const Wall& wall, const ToolParams& tool, const Path& path,
   Regions g;
 
   const PolygonSet wall_set(polygonOf(wall.boundary));
-  PolygonSet obstacles, obstacles_grown;
+  PolygonSet obstacles;
   std::vector<Polygon> grown_pieces;
   for (const Obstacle& o : wall.obstacles) {
     if (o.type == ObstacleType::Circle) {
       const P2 centre = exactPoint(o.center);
-      // P's obstacles: inner bound of P uses the circumscribed polygon (a larger obstacle).
-      obstacles.join(hullAt(centre, centre, diskPolygon(o.radius, n, side == Side::Inner ? Side::Outer : Side::Inner)));
+      // P, like F, shrinks as its obstacles grow: their polygons are on F's side too.
+      obstacles.join(hullAt(centre, centre, diskPolygon(o.radius, n, f_side)));
       // The grown disk of radius rho + r + c, on F's side.
       grown_pieces.push_back(hullAt(centre, centre, diskPolygon(o.radius + r + tool.clearance, n, f_side)));
     } else {
@@ -155,7 +154,7 @@ Regions buildRegions(const Wall& wall, const ToolParams& tool, const Path& path,
       for (Polygon& h : ringHulls(o.polygon, f_clear_disk)) grown_pieces.push_back(std::move(h));
     }
   }
-  obstacles_grown = unionOf(grown_pieces);
+  const PolygonSet obstacles_grown = unionOf(grown_pieces);
 
   g.paintable = wall_set;
   g.paintable.difference(obstacles);
