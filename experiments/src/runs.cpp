@@ -129,6 +129,11 @@ RunRecord executeRun(const RunSpec& spec) {
       rec.valid = m.validity.valid;
       rec.metrics = flatten(m);
       rec.uncovered_reachable_m2 = m.coverage.reachable_area * (1.0 - m.coverage.coverage_reachable);
+      if (!rec.valid) {  // the planner's claim does not survive the check
+        rec.status = "invalid_output";
+        rec.reason = std::to_string(m.validity.violations) + " segments violate the wall or the clearance" +
+                     (result.reason.empty() ? "" : "; the planner said: " + result.reason);
+      }
       if (spec.exact_judge) {
         const judge::Judgement j = judge::judgePath(spec.wall->wall, spec.tool, result.path);
         const double exact_figures[] = {
@@ -144,11 +149,6 @@ RunRecord executeRun(const RunSpec& spec) {
                        " segments that violate the wall or the clearance (the fast engine, with its 1e-9 m tolerance, "
                        "finds none)" + (result.reason.empty() ? "" : "; the planner said: " + result.reason);
         }
-      }
-      if (!rec.valid && rec.status != "invalid_output") {  // the planner's claim does not survive the check
-        rec.status = "invalid_output";
-        rec.reason = std::to_string(m.validity.violations) + " segments violate the wall or the clearance" +
-                     (result.reason.empty() ? "" : "; the planner said: " + result.reason);
       }
     } catch (const std::exception& e) {  // a path beyond the scoring limits, or a bug in the judge
       rec.status = "metrics_error";
