@@ -52,16 +52,65 @@ bool capsuleSpan(Point a, Point b, double radius, double y, double& lo, double& 
 
 }  // namespace
 
-CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const Path& path) {
+namespace {
+
+/// R = F dilated by r, built polygon by polygon: a point is outside a polygon dilated by r iff its
+/// r-disk lies in one component of the polygon's complement (the disk is connected), so each
+/// polygon of F gives its outer ring grown by r minus each hole shrunk by r. The same region as
+/// growing F in one offset, without Clipper uniting the loops its round joins throw inside the
+/// holes (2-3x faster on walls with many windows).
+/// One polygon of F grown by r, as its outer ring grown and its holes shrunk (disjoint, inside).
+struct GrownPolygon {
+  Region outer;
+  Region holes;
+};
+std::vector<GrownPolygon> grownFreeRegion(const Wall& wall, const ToolParams& tool) {
   const double r = tool.radius();
-  const double tol = kMetricArcTolerance;
-  CoverageRegions g;
-  g.reachable = offsetRegion(freeRegion(wall, tool, 0.0, tol), r, tol);
+  std::vector<GrownPolygon> out;
+  for (const PolygonWithHoles& poly : freeRegion(wall, tool, 0.0, kMetricArcTolerance)) {
+    GrownPolygon g{offsetRegion({{poly.outer, {}}}, r, kMetricArcTolerance), {}};
+    for (const Ring& hole : poly.holes) {
+      Ring inside = hole;
+      std::reverse(inside.begin(), inside.end());  // the hole as a polygon of its own
+      const Region shrunk = offsetRegion({{std::move(inside), {}}}, -r, kMetricArcTolerance);
+      g.holes.insert(g.holes.end(), shrunk.begin(), shrunk.end());
+    }
+    out.push_back(std::move(g));
+  }
+  return out;
+}
+
+Region reachableRegion(std::vector<GrownPolygon> grown) {
+  Region out;
+  for (GrownPolygon& g : grown) {
+    Region piece = g.holes.empty() ? std::move(g.outer) : subtract(g.outer, g.holes);
+    out = out.empty() ? std::move(piece) : unite(out, piece);
+  }
+  return out;
+}
+
+/// |R| without building R: a connected F's shrunk holes are disjoint and inside its grown outer
+/// ring, so their areas subtract; the pieces of a disconnected F may overlap once grown.
+double reachableArea(const Wall& wall, const ToolParams& tool) {
+  std::vector<GrownPolygon> grown = grownFreeRegion(wall, tool);
+  if (grown.size() != 1) return area(reachableRegion(std::move(grown)));
+  return area(grown[0].outer) - area(grown[0].holes);
+}
+
+Region paintableRegion(const Wall& wall) {
   std::vector<Ring> obstacle_rings;
   for (const Obstacle& o : wall.obstacles)
-    for (const Ring& ring : allRings(obstacleRegion(o, tol))) obstacle_rings.push_back(ring);
-  g.paintable = subtract(regionFromRings({wall.boundary}), regionFromRings(obstacle_rings));
-  g.swept = sweptRegion(toolOnRuns(path), r, tol);
+    for (const Ring& ring : allRings(obstacleRegion(o, kMetricArcTolerance))) obstacle_rings.push_back(ring);
+  return subtract(regionFromRings({wall.boundary}), regionFromRings(obstacle_rings));
+}
+
+}  // namespace
+
+CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const Path& path) {
+  CoverageRegions g;
+  g.reachable = reachableRegion(grownFreeRegion(wall, tool));
+  g.paintable = paintableRegion(wall);
+  g.swept = sweptRegion(toolOnRuns(path), tool.radius(), kMetricArcTolerance);
   return g;
 }
 
@@ -75,8 +124,23 @@ Coverage coverage(const CoverageRegions& g) {
   return c;
 }
 
+Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path, const Validity& validity,
+                  double swept_area) {
+  if (!validity.valid) return coverage(coverageRegions(wall, tool, path));
+  // Every segment keeps its tool disk inside the wall and c away from the obstacles (to 1e-9 m), so
+  // S lies in R and in P: both intersections are S itself, whose area is exact.
+  Coverage c;
+  c.reachable_area = reachableArea(wall, tool);
+  c.paintable_area = area(paintableRegion(wall));
+  c.swept_area = swept_area;
+  // R's and P's arcs are chords (50 um): a path covering all of R may measure a hair over it.
+  c.coverage_reachable = c.reachable_area > 0 ? std::fmin(1.0, swept_area / c.reachable_area) : 0.0;
+  c.coverage_wall = c.paintable_area > 0 ? std::fmin(1.0, swept_area / c.paintable_area) : 0.0;
+  return c;
+}
+
 Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path) {
-  return coverage(coverageRegions(wall, tool, path));
+  return coverage(wall, tool, path, checkValidity(wall, tool, path), passLevelAreas(path, tool.radius(), 1)[0]);
 }
 
 int passCount(const Path& path, double radius, Point q) {
@@ -143,21 +207,30 @@ void scanPasses(const Path& path, double radius, double h, Visit visit) {
 
 }  // namespace
 
-Passes passes(const Path& path, double radius, double resolution, std::size_t bins) {
+Passes passesOnScanlines(const Path& path, double radius, double resolution, std::size_t bins) {
   Passes out;
   out.histogram.assign(bins, 0.0);
-  const double h = resolution > 0.0 ? resolution : radius / 10.0;
-  out.resolution = h;
   std::vector<double> length_with(bins + 1, 0.0);  // index = pass count (capped at bins)
-  scanPasses(path, radius, h, [&](double, double x0, double x1, int count) {
+  scanPasses(path, radius, resolution, [&](double, double x0, double x1, int count) {
     length_with[std::min<std::size_t>(static_cast<std::size_t>(count), bins)] += x1 - x0;
   });
-  double swept = 0.0;
-  for (std::size_t k = 1; k <= bins; ++k) swept += length_with[k] * h;
-  out.swept_area_estimate = swept;
-  if (swept > 0.0) {
-    for (std::size_t k = 1; k <= bins; ++k) out.histogram[k - 1] = length_with[k] * h / swept;
+  for (std::size_t k = 1; k <= bins; ++k) out.swept_area += length_with[k] * resolution;
+  if (out.swept_area > 0.0) {
+    for (std::size_t k = 1; k <= bins; ++k) out.histogram[k - 1] = length_with[k] * resolution / out.swept_area;
     out.overlap = 1.0 - out.histogram[0];
+  }
+  return out;
+}
+
+Passes passes(const Path& path, double radius, std::size_t bins) {
+  Passes out;
+  out.histogram.assign(bins, 0.0);
+  const std::vector<double> at_least = passLevelAreas(path, radius, bins);
+  out.swept_area = bins > 0 ? at_least[0] : 0.0;
+  if (out.swept_area > 0.0) {
+    for (std::size_t k = 0; k < bins; ++k)
+      out.histogram[k] = (at_least[k] - (k + 1 < bins ? at_least[k + 1] : 0.0)) / out.swept_area;
+    out.overlap = bins > 1 ? at_least[1] / out.swept_area : 0.0;
   }
   return out;
 }

@@ -30,7 +30,6 @@ const std::vector<MetricSpec>& metricSpecs() {
       {"passes_2", "1", -1, K::Quality, false, 5e-3, 0, "share of the swept area passed over exactly twice"},
       {"passes_3", "1", -1, K::Quality, false, 5e-3, 0, "share of the swept area passed over exactly three times"},
       {"passes_4_or_more", "1", -1, K::Quality, false, 5e-3, 0, "share of the swept area passed over four times or more"},
-      {"overlap_resolution", "m", 0, K::Diagnostic, false, 0, 1e-9, "scanline spacing of the pass counts (r / 10)"},
       {"length_total", "m", -1, K::Quality, false, 0, 1e-3, "path length, tool on and off"},
       {"length_cover", "m", -1, K::Quality, false, 0, 1e-3, "path length with the tool on"},
       {"length_transit", "m", -1, K::Quality, false, 1e-3, 1e-3, "path length with the tool off"},

@@ -24,8 +24,8 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
   PathMetrics m;
   m.validity = checkValidity(wall, tool, path);
   m.lengths = pathLengths(path);
-  m.coverage = coverage(wall, tool, path);
   m.passes = passes(path, tool.radius());
+  m.coverage = coverage(wall, tool, path, m.validity, m.passes.swept_area);
   m.motion = motion(path, limits);
   m.waypoints = path.waypoints.size();
   const double ideal = m.coverage.reachable_area / tool.tool_width;
@@ -53,7 +53,6 @@ std::vector<NamedMetric> flatten(const PathMetrics& m) {
     out.push_back({"passes_" + std::to_string(k + 1) + (last ? "_or_more" : ""), m.passes.histogram[k]});
   }
   const std::vector<NamedMetric> rest = {
-      {"overlap_resolution", m.passes.resolution},
       {"length_total", m.lengths.total},
       {"length_cover", m.lengths.cover},
       {"length_transit", m.lengths.transit},

@@ -64,7 +64,14 @@ struct CoverageRegions {
   Region swept;      ///< S
 };
 CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const Path& path);
+/// Coverage from the polygons: |S and R| and |S and P| by Clipper, S with chords (kMetricArcTolerance).
 Coverage coverage(const CoverageRegions& regions);
+/// Coverage of a path whose validity and exact swept area |S| (passLevelAreas) are known: for a valid
+/// path S lies in R and in P, so both numerators are |S| and only |R| and |P| are polygons; an
+/// invalid path is scored from the polygons.
+Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path, const Validity& validity,
+                  double swept_area);
+/// The same, checking validity and measuring |S| itself.
 Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path);
 
 /// The fast engine's error against the exact judge (judge/), measured on the default experiment's
@@ -77,16 +84,23 @@ Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path);
 inline constexpr double kFastErrorTimesToolWidth = 1.5e-6;  ///< m
 inline double fastErrorBound(double tool_width) { return kFastErrorTimesToolWidth / tool_width; }
 
-/// Pass counts over the swept area, integrated on horizontal scanlines: exact intervals along each
-/// line, midpoint rule across lines spaced `resolution` apart.
+/// Pass counts over the swept area, exact: the areas of the sets {q : passes(q) >= k} are line
+/// integrals over the boundary of the arrangement of capsules and continuation disks (straight
+/// pieces and circular arcs in closed form; docs/metrics.md, "Pass counts").
 struct Passes {
-  double overlap = 0.0;            ///< |{q in S : passes(q) >= 2}| / |S|
-  std::vector<double> histogram;   ///< histogram[k-1] = |{passes == k}| / |S|; last bin is ">= k"
-  double resolution = 0.0;         ///< scanline spacing (m)
-  double swept_area_estimate = 0.0;  ///< |S| by the same scanlines, a check on the resolution
+  double overlap = 0.0;           ///< |{q in S : passes(q) >= 2}| / |S|
+  std::vector<double> histogram;  ///< histogram[k-1] = |{passes == k}| / |S|; last bin is ">= k"
+  double swept_area = 0.0;        ///< |S| = |{passes >= 1}| (m^2), exact up to rounding
 };
-/// `resolution` <= 0 picks r / 10.
-Passes passes(const Path& path, double radius, double resolution = 0.0, std::size_t bins = 4);
+Passes passes(const Path& path, double radius, std::size_t bins = 4);
+/// The areas |{q : passes(q) >= k}| for k = 1 .. levels (m^2). Waypoints closer than 1 nm are
+/// taken as one, and sides running along each other within 1 nm as touching.
+std::vector<double> passLevelAreas(const Path& path, double radius, std::size_t levels);
+
+/// The same pass counts on horizontal scanlines `resolution` apart (exact along each line, the
+/// midpoint rule across lines): the method behind the overlap pictures, whose strips are one
+/// scanline high. Its error is of the order of the spacing; the metrics use passes().
+Passes passesOnScanlines(const Path& path, double radius, double resolution, std::size_t bins = 4);
 /// The points passed over twice or more, as strips one scanline high (for pictures).
 Region overlapRegion(const Path& path, double radius, double resolution);
 /// Number of passes over one point (the definition, point by point).
