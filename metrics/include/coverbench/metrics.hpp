@@ -76,11 +76,11 @@ Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path);
 
 /// The fast engine's error against the exact judge (judge/), measured on the default experiment's
 /// walls, every planner and tool widths 0.05, 0.1 and 0.2 m (docs/metrics.md, "The fast engine's
-/// error bounds"; tests/judge_test.cpp keeps it). It comes from the 50 um chords of the capsules'
-/// round ends, whose length per unit area grows as 1 / s; so the bound is stated for a tool width
-/// s: coverage ratios within kFastErrorTimesToolWidth / s of the judge's certified interval, and
-/// areas within kFastErrorTimesToolWidth / s of it relative to the area (measured: at most
-/// 8.5e-7 m / s).
+/// error bounds"; tests/judge_test.cpp keeps it): coverage ratios within kFastErrorTimesToolWidth / s
+/// of the judge's certified interval, and areas within kFastErrorTimesToolWidth / s of it relative
+/// to the area. Set when |S| had 50 um chords (an error growing as 1 / s, measured up to
+/// 8.5e-7 m / s); with |S| exact, what is left are R's and P's chords (measured: coverage within
+/// 2.3e-8, areas within 7.7e-7 of their size, at s = 0.05-0.2 m).
 inline constexpr double kFastErrorTimesToolWidth = 1.5e-6;  ///< m
 inline double fastErrorBound(double tool_width) { return kFastErrorTimesToolWidth / tool_width; }
 
@@ -136,7 +136,7 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
 
 /// Scoring limits. Exact scoring grows with the path's waypoints (memory: a spanning-tree path of
 /// 10^6 waypoints took 18 s and 0.46 GB here) and, much faster, with how often the path crosses
-/// itself (3000 random waypoints: 12 s), so `coverbench metrics` also has a time limit; longer
+/// itself (3000 random waypoints: 2.6 s), so `coverbench metrics` also has a time limit; longer
 /// paths are refused. A coordinate beyond kMaxPathCoordinate cannot be on any wall (walls lie
 /// within 10 km of the origin) and would overflow the exact area grid.
 inline constexpr std::size_t kMaxScoredWaypoints = 2000000;
