@@ -44,11 +44,11 @@ TEST(Metrics, OneStraightPassOnAnEmptyWall) {
   const Wall w = rectWall(4, 2);
   const PathMetrics m = computeMetrics(w, kTool, makePath({0.5, 1}, {{{3.5, 1}, true}}));
   const double reachable = 4 * 2 - (4 - M_PI) * kR * kR;  // the wall with its corners rounded by r
-  EXPECT_NEAR(m.coverage.swept_area, kCapsule3, 1e-4);
+  EXPECT_NEAR(m.coverage.swept_area, kCapsule3, 1e-12);  // exact: a valid path's |S| is the pass areas' level 1
   EXPECT_NEAR(m.coverage.reachable_area, reachable, 1e-4);
   EXPECT_NEAR(m.coverage.paintable_area, 8.0, 1e-9);
   EXPECT_NEAR(m.coverage.coverage_reachable, kCapsule3 / reachable, 1e-5);
-  EXPECT_NEAR(m.coverage.coverage_wall, kCapsule3 / 8.0, 1e-5);
+  EXPECT_NEAR(m.coverage.coverage_wall, kCapsule3 / 8.0, 1e-12);
   EXPECT_NEAR(m.passes.overlap, 0.0, 1e-12);
   EXPECT_NEAR(m.passes.histogram[0], 1.0, 1e-12);
   EXPECT_NEAR(m.passes.swept_area, kCapsule3, 1e-12);
@@ -70,7 +70,7 @@ TEST(Metrics, TwoParallelPassesCloserThanTheToolWidth) {
   const double lens = 2 * kR * kR * std::acos(d / (2 * kR)) - d / 2 * std::sqrt(4 * kR * kR - d * d);
   const double both = (2 * kR - d) * 3.0 + lens;
   const double swept = 2 * kCapsule3 - both;
-  EXPECT_NEAR(m.coverage.swept_area, swept, 1e-4);
+  EXPECT_NEAR(m.coverage.swept_area, swept, 1e-12);
   EXPECT_NEAR(overlapArea(m), both, 1e-12);  // exact
   EXPECT_NEAR(m.passes.histogram[1], both / swept, 0.005);
   EXPECT_EQ(passCount(p, kR, {2.0, 1.05}), 2);
@@ -85,7 +85,7 @@ TEST(Metrics, LTurnHasACornerCoveredTwice) {
   const PathMetrics m = computeMetrics(w, kTool, p);
   const double twice = kR * kR * (1 - M_PI / 4);
   const double swept = 0.8 + M_PI * kR * kR - kR * kR + M_PI * kR * kR / 4;
-  EXPECT_NEAR(m.coverage.swept_area, swept, 1e-4);
+  EXPECT_NEAR(m.coverage.swept_area, swept, 1e-12);
   EXPECT_NEAR(overlapArea(m), twice, 1e-12);
   EXPECT_EQ(passCount(p, kR, {2.95, 1.05}), 1);  // near the corner: one continuous pass
   EXPECT_EQ(passCount(p, kR, {2.92, 1.08}), 2);  // in the inner corner, beyond r of the waypoint
@@ -121,7 +121,7 @@ TEST(Metrics, TransitOverPaintedAreaPaintsNothing) {
   const double twice = kR * kR + 3 * M_PI * kR * kR / 4;
   EXPECT_NEAR(overlapArea(m), twice, 1e-12);
   const double swept = kCapsule3 + (2 * kR * 0.5 + M_PI * kR * kR) - twice;
-  EXPECT_NEAR(m.coverage.swept_area, swept, 1e-4);
+  EXPECT_NEAR(m.coverage.swept_area, swept, 1e-12);
 }
 
 TEST(Metrics, PathThroughAnObstacleIsInvalidButStillScored) {
@@ -234,6 +234,9 @@ TEST(MetricsProperties, ScanlinesOfThePicturesWithinHalfAPercentOfTheExactPassCo
     for (const Ring& ring : allRings(regions.swept))
       for (std::size_t k = 0; k < ring.size(); ++k) perimeter += distance(ring[k], ring[(k + 1) % ring.size()]);
     EXPECT_LE(polygons, exact.swept_area + 1e-9) << what;
+    // |R| from the grown outer ring minus the shrunk holes' areas, against the region itself.
+    const double reachable = area(regions.reachable);
+    EXPECT_NEAR(coverage(wall, tool, path).reachable_area, reachable, 1e-9 * reachable) << what;
     EXPECT_GE(polygons, exact.swept_area - kMetricArcTolerance * perimeter) << what;
   });
 }

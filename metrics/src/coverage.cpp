@@ -1,4 +1,6 @@
-// Coverage on polygons and pass counts on scanlines.
+// Coverage (R and P as polygons; S exact for a valid path, as polygons otherwise), the pass
+// histogram from the exact level areas (pass_areas.cpp), and the scanline pass counts behind the
+// overlap pictures.
 #include <algorithm>
 #include <cmath>
 
@@ -54,12 +56,11 @@ bool capsuleSpan(Point a, Point b, double radius, double y, double& lo, double& 
 
 namespace {
 
-/// R = F dilated by r, built polygon by polygon: a point is outside a polygon dilated by r iff its
-/// r-disk lies in one component of the polygon's complement (the disk is connected), so each
-/// polygon of F gives its outer ring grown by r minus each hole shrunk by r. The same region as
-/// growing F in one offset, without Clipper uniting the loops its round joins throw inside the
-/// holes (2-3x faster on walls with many windows).
-/// One polygon of F grown by r, as its outer ring grown and its holes shrunk (disjoint, inside).
+/// One polygon of F grown by r, as its outer ring grown by r and its holes shrunk by r. A point is
+/// outside a polygon grown by r iff its r-disk lies in one component of the polygon's complement
+/// (the disk is connected): the polygon grown is `outer` minus `holes`, which are disjoint and
+/// inside it. The same region as growing F in one offset, without Clipper uniting the loops its
+/// round joins throw inside the holes (2-3x faster on walls with many windows).
 struct GrownPolygon {
   Region outer;
   Region holes;
@@ -80,6 +81,7 @@ std::vector<GrownPolygon> grownFreeRegion(const Wall& wall, const ToolParams& to
   return out;
 }
 
+/// R = F grown by r: the union of its polygons grown.
 Region reachableRegion(std::vector<GrownPolygon> grown) {
   Region out;
   for (GrownPolygon& g : grown) {

@@ -26,10 +26,12 @@
 #include <cstdint>
 #include <unordered_map>
 
+// Boost 1.74's R-tree includes a header Boost itself has deprecated (a #pragma message per build).
+#define BOOST_ALLOW_DEPRECATED_HEADERS
 #include <boost/geometry/geometries/box.hpp>
 #include <boost/geometry/geometries/point.hpp>
-#include <boost/function_output_iterator.hpp>
 #include <boost/geometry/index/rtree.hpp>
+#include <boost/iterator/function_output_iterator.hpp>
 
 #include "coverbench/metrics.hpp"
 

@@ -86,7 +86,7 @@ inline double fastErrorBound(double tool_width) { return kFastErrorTimesToolWidt
 
 /// Pass counts over the swept area, exact: the areas of the sets {q : passes(q) >= k} are line
 /// integrals over the boundary of the arrangement of capsules and continuation disks (straight
-/// pieces and circular arcs in closed form; docs/metrics.md, "Pass counts").
+/// pieces and circular arcs in closed form; docs/metrics.md, "Passes and overlap").
 struct Passes {
   double overlap = 0.0;           ///< |{q in S : passes(q) >= 2}| / |S|
   std::vector<double> histogram;  ///< histogram[k-1] = |{passes == k}| / |S|; last bin is ">= k"
