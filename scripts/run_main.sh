@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: build, run the default experiment (every registered planner on a few hundred
-# generated walls and the seeds' cases; about two and a half minutes on 2 cores) and write its
+# generated walls and the seeds' cases; about a minute on 2 cores, with the report) and write its
 # report: rankings, paired statistics, plots, galleries and the reproducibility record.
 #   results/default/report/index.html   the report (open it in a browser; works from disk)
 #   results/default/report/report.md    its tables (also report.csv, report.tex for papers)
