@@ -9,9 +9,9 @@
 // just left and just right of it is constant, so the piece bounds the level sets whose level
 // lies between the two counts, and adds its line integral
 // 1/2 (x dy - y dx) to their areas (a straight piece exactly, an arc in closed form). No chords,
-// no scanlines: the error is floating-point rounding, plus the three rules below (each moves an
-// area by less than 1e-8 m^2 per occurrence; tests/pass_areas_test.cpp finds reversed and
-// translated random paths within 1e-12 m^2 of each other).
+// no scanlines: the error is floating-point rounding, plus the three rules below (each moves a
+// boundary by at most about kSnap; tests/pass_areas_test.cpp finds reversed and translated random
+// paths within 1e-12 m^2 of each other).
 //
 // - Waypoints closer than kSnap are one point (otherwise two almost equal circles would cross at
 //   points rounding cannot place).
