@@ -445,7 +445,12 @@ class LevelAreas {
 }  // namespace
 
 std::vector<double> passLevelAreas(const Path& path, double radius, std::size_t levels) {
-  return LevelAreas(path, radius, levels).compute();
+  std::vector<double> areas = LevelAreas(path, radius, levels).compute();
+  // An empty level sums its pieces to a rounding residue of either sign (about 1e-16 m^2), and
+  // two equal levels may come out in either order: the sets are nested, so their areas are not.
+  for (std::size_t k = 0; k < areas.size(); ++k)
+    areas[k] = std::fmax(0.0, k > 0 ? std::fmin(areas[k], areas[k - 1]) : areas[k]);
+  return areas;
 }
 
 }  // namespace coverbench
