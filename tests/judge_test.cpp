@@ -214,7 +214,7 @@ TEST(ExactJudgeProperty, FastValidityAgreesAwayFromTheLimits) {
 // judge's verdict and violation counts equal the fast engine's (all planners' paths are valid).
 TEST(ExactJudgeProperty, PlannedPathsValidityAgreesOnAHundredWalls) {
   int judged = 0;
-  for (const std::string& family : {"residential", "facade", "gable", "stairwell", "industrial", "random", "narrow", "open"}) {
+  for (const char* family : {"residential", "facade", "gable", "stairwell", "industrial", "random", "narrow", "open"}) {
     for (const Wall& wall : generateWalls(family, 21, family == std::string("facade") ? 4 : 14)) {
       for (const PlannerInfo& info : registeredPlanners()) {
         ToolParams tool;
@@ -236,10 +236,10 @@ TEST(ExactJudgeProperty, PlannedPathsValidityAgreesOnAHundredWalls) {
 // engine's coverage and areas lie within its stated error bounds of the certified intervals.
 TEST(ExactJudgeProperty, FastCoverageWithinItsStatedBoundsOnPlannedPaths) {
   int judged = 0;
-  for (const std::string& family : {"residential", "gable", "stairwell", "random", "open"}) {
+  for (const char* family : {"residential", "gable", "stairwell", "random", "open"}) {
     const std::vector<Wall> walls = generateWalls(family, 11, 1);
     for (const Wall& wall : walls) {
-      for (const std::string& planner : {"zigzag", "spiral", "spanning-tree"}) {
+      for (const char* planner : {"zigzag", "spiral", "spanning-tree"}) {
         ToolParams tool;
         tool.tool_width = 0.2;
         const PlanResult result = test::planWith(planner, wall, tool);
@@ -249,7 +249,7 @@ TEST(ExactJudgeProperty, FastCoverageWithinItsStatedBoundsOnPlannedPaths) {
         }
         const PathMetrics fast = computeMetrics(wall, tool, result.path);
         const judge::Judgement exact = judge::judgePath(wall, tool, result.path, {32});
-        const std::string where = family + " " + wall.name + " " + planner;
+        const std::string where = std::string(family) + " " + wall.name + " " + planner;
         EXPECT_EQ(exact.validity.valid, fast.validity.valid) << where;
         EXPECT_EQ(exact.validity.violations, fast.validity.violations) << where;
         const judge::ExactCoverage& c = exact.coverage;

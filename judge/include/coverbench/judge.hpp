@@ -15,6 +15,7 @@
 ///
 /// This header does not include CGAL: CGAL stays inside the judge's own translation units.
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -34,7 +35,7 @@ struct Interval {
   /// v minus the interval's nearest end: negative below it, positive above it, 0 inside it.
   double offset(double v) const { return v < lower ? v - lower : (v > upper ? v - upper : 0.0); }
   /// The distance from v to the interval (0 when v lies inside it).
-  double distanceTo(double v) const { return v < lower ? lower - v : (v > upper ? v - upper : 0.0); }
+  double distanceTo(double v) const { return std::fabs(offset(v)); }
 };
 
 /// Exact validity of every segment (segment i joins waypoints i and i + 1; a one-waypoint path is
