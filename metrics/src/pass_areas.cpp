@@ -87,7 +87,13 @@ class LevelAreas {
     if (shapes_.empty() || r_ <= 0.0) return areas_;
     std::vector<std::pair<BBox, std::uint32_t>> boxes;
     boxes.reserve(shapes_.size());
-    for (std::uint32_t k = 0; k < shapes_.size(); ++k) boxes.push_back({shapeBox(shapes_[k]), k});
+    boxes_.reserve(shapes_.size());
+    for (std::uint32_t k = 0; k < shapes_.size(); ++k) {
+      const Shape& s = shapes_[k];
+      boxes_.push_back({std::fmin(s.a.x, s.b.x) - r_, std::fmin(s.a.y, s.b.y) - r_, std::fmax(s.a.x, s.b.x) + r_,
+                        std::fmax(s.a.y, s.b.y) + r_});
+      boxes.push_back({BBox(BPoint(boxes_[k].min_x, boxes_[k].min_y), BPoint(boxes_[k].max_x, boxes_[k].max_y)), k});
+    }
     index_ = Index(boxes.begin(), boxes.end());
     for (Shape& s : shapes_)
       if (!s.isDisk()) {
@@ -96,14 +102,24 @@ class LevelAreas {
         const double len = std::sqrt(dot(s.d, s.d));
         s.n = {-s.d.y / len * r_, s.d.x / len * r_};
       }
-    for (std::size_t k = 0; k < shapes_.size(); ++k)
+    // One query per shape: its box holds both its sides and the whole circles around its ends, so
+    // the shapes near any of them are among those found; each element keeps those near its own box.
+    // A circle is walked with the first shape it bounds (circles_ is in that order).
+    std::size_t next_circle = 0;
+    for (std::size_t k = 0; k < shapes_.size(); ++k) {
+      around_.clear();
+      const Box& box = boxes_[k];
+      index_.query(bgi::intersects(BBox(BPoint(box.min_x, box.min_y), BPoint(box.max_x, box.max_y))),
+                   boost::make_function_output_iterator([&](const auto& found) { around_.push_back(found.second); }));
       if (!shapes_[k].isDisk()) {
         const Point n = shapes_[k].n;
         // Oriented with the capsule on the left: back along the left side, forward along the right.
         side(k, shapes_[k].b + n, shapes_[k].a + n);
         side(k, shapes_[k].a - n, shapes_[k].b - n);
       }
-    for (const Circle& c : circles_) circle(c);
+      for (; next_circle < circles_.size() && circles_[next_circle].owners.front().shape == k; ++next_circle)
+        circle(circles_[next_circle]);
+    }
     return areas_;
   }
 
@@ -172,9 +188,13 @@ class LevelAreas {
     }
   }
 
-  BBox shapeBox(const Shape& s) const {
-    return {BPoint(std::fmin(s.a.x, s.b.x) - r_, std::fmin(s.a.y, s.b.y) - r_),
-            BPoint(std::fmax(s.a.x, s.b.x) + r_, std::fmax(s.a.y, s.b.y) + r_)};
+  /// The shapes found around the current shape whose boxes meet [lo, hi] (into near_).
+  void nearBox(double lo_x, double lo_y, double hi_x, double hi_y) {
+    near_.clear();
+    for (const std::uint32_t k : around_) {
+      const Box& b = boxes_[k];
+      if (b.max_x >= lo_x && b.min_x <= hi_x && b.max_y >= lo_y && b.min_y <= hi_y) near_.push_back(k);
+    }
   }
 
   /// Adds `integral` to the areas of the levels between the counts on the piece's two sides.
@@ -323,9 +343,7 @@ class LevelAreas {
   /// One straight side of capsule `self`, from p to q with the capsule on its left.
   void side(std::size_t self, Point p, Point q) {
     const Point v = q - p;
-    near_.clear();
-    index_.query(bgi::intersects(BBox(BPoint(std::fmin(p.x, q.x), std::fmin(p.y, q.y)), BPoint(std::fmax(p.x, q.x), std::fmax(p.y, q.y)))),
-                 boost::make_function_output_iterator([&](const auto& found) { near_.push_back(found.second); }));
+    nearBox(std::fmin(p.x, q.x), std::fmin(p.y, q.y), std::fmax(p.x, q.x), std::fmax(p.y, q.y));
     // Long sides pass many shapes: keep those whose axis comes within r of the side.
     if (dot(v, v) > r2_)
       near_.erase(std::remove_if(near_.begin(), near_.end(),
@@ -384,9 +402,7 @@ class LevelAreas {
           lo_x = std::fmin(lo_x, x.x), hi_x = std::fmax(hi_x, x.x), lo_y = std::fmin(lo_y, x.y), hi_y = std::fmax(hi_y, x.y);
         }
       }
-      near_.clear();
-      index_.query(bgi::intersects(BBox(BPoint(lo_x, lo_y), BPoint(hi_x, hi_y))),
-                   boost::make_function_output_iterator([&](const auto& found) { near_.push_back(found.second); }));
+      nearBox(lo_x, lo_y, hi_x, hi_y);
       // A point x (relative to o) on the circle is on the arc unless it is on the rest of the circle.
       const Point u0 = p0 - o, u1 = p1 - o;
       const bool whole = t1 - t0 >= kTwoPi;
@@ -434,8 +450,9 @@ class LevelAreas {
   Point origin_{0.0, 0.0};
   std::vector<Shape> shapes_;
   std::vector<Circle> circles_;
+  std::vector<Box> boxes_;  ///< each shape's box (its axis' box grown by r)
   Index index_;
-  std::vector<std::uint32_t> near_;
+  std::vector<std::uint32_t> around_, near_;
   std::vector<double> cuts_, found_, own_, line_, ends_;
   std::vector<std::size_t> owners_;
   std::vector<Point> points_;
