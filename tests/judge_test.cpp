@@ -269,5 +269,39 @@ TEST(ExactJudgeProperty, FastCoverageWithinItsStatedBoundsOnPlannedPaths) {
   EXPECT_EQ(judged, 15);  // every planner plans every one of these walls
 }
 
+// The fast engine's closed forms for |R| and |P| (regionAreas) against the certified intervals on
+// generated walls: inside them where a closed form covers the whole area, and within the stated
+// bound where the rest of the wall is polygons.
+TEST(ExactJudgeProperty, RegionAreasClosedFormsInsideTheCertifiedIntervals) {
+  ToolParams tool;
+  tool.tool_width = 0.2;
+  int whole_reachable = 0, whole_paintable = 0, obstacles = 0;
+  for (const char* family : {"residential", "gable", "stairwell"}) {
+    for (const Wall& wall : generateWalls(family, 3, 2)) {
+      const RegionAreas fast = regionAreas(wall, tool);
+      const judge::ExactCoverage exact = judge::judgeCoverage(wall, tool, Path{}, {128});
+      const std::string where = std::string(family) + " " + wall.name;
+      const bool paintable_closed = fast.obstacles_in_closed_form == wall.obstacles.size();
+      const double slack = 1e-12 * exact.reachable_area.upper;  // rounding
+      if (fast.wall_in_closed_form) {
+        EXPECT_LE(exact.reachable_area.distanceTo(fast.reachable), slack) << where;
+        ++whole_reachable;
+      }
+      if (paintable_closed) {
+        EXPECT_LE(exact.paintable_area.distanceTo(fast.paintable), slack) << where;
+        ++whole_paintable;
+      }
+      const double bound = fastErrorBound(tool.tool_width);
+      EXPECT_LE(exact.reachable_area.distanceTo(fast.reachable), bound * exact.reachable_area.upper) << where;
+      EXPECT_LE(exact.paintable_area.distanceTo(fast.paintable), bound * exact.paintable_area.upper) << where;
+      obstacles += static_cast<int>(fast.obstacles_in_closed_form);
+    }
+  }
+  // These walls exercise both closed forms (counts from the generators' seed 3).
+  EXPECT_GE(whole_reachable, 2);
+  EXPECT_GE(whole_paintable, 4);
+  EXPECT_GE(obstacles, 8);
+}
+
 }  // namespace
 }  // namespace coverbench

@@ -45,9 +45,9 @@ TEST(Metrics, OneStraightPassOnAnEmptyWall) {
   const PathMetrics m = computeMetrics(w, kTool, makePath({0.5, 1}, {{{3.5, 1}, true}}));
   const double reachable = 4 * 2 - (4 - M_PI) * kR * kR;  // the wall with its corners rounded by r
   EXPECT_NEAR(m.coverage.swept_area, kCapsule3, 1e-12);  // exact: a valid path's |S| is the pass areas' level 1
-  EXPECT_NEAR(m.coverage.reachable_area, reachable, 1e-4);
-  EXPECT_NEAR(m.coverage.paintable_area, 8.0, 1e-9);
-  EXPECT_NEAR(m.coverage.coverage_reachable, kCapsule3 / reachable, 1e-5);
+  EXPECT_NEAR(m.coverage.reachable_area, reachable, 1e-12);  // closed form (regionAreas)
+  EXPECT_NEAR(m.coverage.paintable_area, 8.0, 1e-12);
+  EXPECT_NEAR(m.coverage.coverage_reachable, kCapsule3 / reachable, 1e-12);
   EXPECT_NEAR(m.coverage.coverage_wall, kCapsule3 / 8.0, 1e-12);
   EXPECT_NEAR(m.passes.overlap, 0.0, 1e-12);
   EXPECT_NEAR(m.passes.histogram[0], 1.0, 1e-12);
@@ -155,6 +155,70 @@ TEST(Metrics, SlitNarrowerThanToolPlusClearanceIsNotReachable) {
   EXPECT_LT(c.coverage_wall, c.coverage_reachable);
 }
 
+double outlineLength(const Region& region) {
+  double total = 0.0;
+  for (const Ring& ring : allRings(region))
+    for (std::size_t k = 0; k < ring.size(); ++k) total += distance(ring[k], ring[(k + 1) % ring.size()]);
+  return total;
+}
+
+TEST(Metrics, RegionAreasInClosedFormForObstaclesApart) {
+  // A 2 m x 1 m wall, r = 0.1, c = 0.02; a 0.4 m x 0.3 m window and a round socket of radius 0.05,
+  // each more than 2 r + c inside the wall and more than 2 (r + c) from the other.
+  const double r = 0.1, c = 0.02;
+  const ToolParams tool{2 * r, c};
+  const Wall w = rectWall(2, 1, {rect(0.8, 0.35, 0.4, 0.3), test::circle(0.4, 0.5, 0.05)});
+  const RegionAreas a = regionAreas(w, tool);
+  EXPECT_EQ(a.obstacles_in_closed_form, 2u);
+  EXPECT_TRUE(a.wall_in_closed_form);
+  const double opened = 2.0 - (4.0 - M_PI) * r * r;  // the wall with its corners rounded by r
+  const double window = 0.4 * 0.3 + c * 1.4 + M_PI * c * c;  // the window dilated by c
+  const double socket = M_PI * (0.05 + c) * (0.05 + c);
+  EXPECT_NEAR(a.reachable, opened - window - socket, 1e-12);
+  EXPECT_NEAR(a.paintable, 2.0 - 0.4 * 0.3 - M_PI * 0.05 * 0.05, 1e-12);
+  // The polygons (chords within 50 um) agree to within their chords.
+  const CoverageRegions g = coverageRegions(w, tool, Path{});
+  EXPECT_NEAR(area(g.reachable), a.reachable, kMetricArcTolerance * outlineLength(g.reachable));
+  EXPECT_NEAR(area(g.paintable), a.paintable, kMetricArcTolerance * outlineLength(g.paintable));
+  // A gable (a convex pentagon) opens in closed form too: each corner of angle t loses
+  // r^2 (cot(t / 2) - (pi - t) / 2).
+  Wall gable;
+  gable.boundary = {{0, 0}, {4, 0}, {4, 2}, {2, 3}, {0, 2}};
+  double lost = 0.0;
+  for (const double t : {M_PI / 2, M_PI / 2, M_PI / 2 + std::atan(0.5), 2 * std::atan(2.0), M_PI / 2 + std::atan(0.5)})
+    lost += r * r * (1.0 / std::tan(t / 2) - (M_PI - t) / 2);
+  const RegionAreas ga = regionAreas(gable, tool);
+  EXPECT_TRUE(ga.wall_in_closed_form);
+  EXPECT_NEAR(ga.reachable, 10.0 - lost, 1e-12);
+  EXPECT_NEAR(ga.paintable, 10.0, 1e-12);
+}
+
+TEST(Metrics, RegionAreasTakeThePolygonsForObstaclesNearTheEdgeOrEachOther) {
+  // r = 0.1, c = 0.02: a door on the bottom edge, two windows 0.2 m apart (under 2 (r + c)), an
+  // L-shaped obstacle (not convex), a window 0.219 m inside the top edge (under 2 r + c), and one
+  // window apart from everything: only the last is taken away in closed form.
+  const ToolParams tool{0.2, 0.02};
+  Obstacle ell;
+  ell.type = ObstacleType::Polygon;
+  ell.polygon = {{5.0, 0.5}, {5.6, 0.5}, {5.6, 0.7}, {5.2, 0.7}, {5.2, 1.2}, {5.0, 1.2}};
+  const Obstacle apart = rect(3.0, 0.6, 0.5, 0.5);
+  const Wall w = rectWall(7, 2.5, {rect(0.3, 0.0, 0.8, 2.0), rect(1.6, 0.5, 0.4, 0.6), rect(2.2, 0.5, 0.4, 0.6), ell,
+                                   rect(4.0, 1.6, 0.5, 2.5 - 1.6 - 0.219), apart});
+  const RegionAreas a = regionAreas(w, tool);
+  EXPECT_EQ(a.obstacles_in_closed_form, 1u);
+  EXPECT_FALSE(a.wall_in_closed_form);
+  // The rest as polygons, minus the window apart in closed form.
+  Wall rest = w;
+  rest.obstacles.pop_back();
+  const CoverageRegions g = coverageRegions(rest, tool, Path{});
+  EXPECT_NEAR(a.reachable, area(g.reachable) - (0.25 + 0.02 * 2.0 + M_PI * 0.02 * 0.02), 1e-9 * a.reachable);
+  EXPECT_NEAR(a.paintable, area(g.paintable) - 0.25, 1e-9 * a.paintable);
+  // Moved 2 mm deeper (0.221 m inside), the window near the top edge is apart too.
+  Wall deeper = w;
+  deeper.obstacles[4] = rect(4.0, 1.6 - 0.002, 0.5, 2.5 - 1.6 - 0.219);
+  EXPECT_EQ(regionAreas(deeper, tool).obstacles_in_closed_form, 2u);
+}
+
 TEST(Metrics, ZeroLengthToolOnSegmentSweepsADisk) {
   const Wall w = rectWall(2, 2);
   const Path p = makePath({1, 1}, {{{1, 1}, true}});
@@ -234,9 +298,9 @@ TEST(MetricsProperties, ScanlinesOfThePicturesWithinHalfAPercentOfTheExactPassCo
     for (const Ring& ring : allRings(regions.swept))
       for (std::size_t k = 0; k < ring.size(); ++k) perimeter += distance(ring[k], ring[(k + 1) % ring.size()]);
     EXPECT_LE(polygons, exact.swept_area + 1e-9) << what;
-    // |R| from the grown outer ring minus the shrunk holes' areas, against the region itself.
-    const double reachable = area(regions.reachable);
-    EXPECT_NEAR(coverage(wall, tool, path).reachable_area, reachable, 1e-9 * reachable) << what;
+    // |R| from the closed forms and the rest's polygons, against the region itself: within R's chords.
+    EXPECT_NEAR(coverage(wall, tool, path).reachable_area, area(regions.reachable),
+                kMetricArcTolerance * outlineLength(regions.reachable)) << what;
     EXPECT_GE(polygons, exact.swept_area - kMetricArcTolerance * perimeter) << what;
   });
 }

@@ -99,6 +99,46 @@ double reachableArea(const Wall& wall, const ToolParams& tool) {
   return area(grown[0].outer) - area(grown[0].holes);
 }
 
+/// Whether a counter-clockwise ring turns left at every vertex (strictly convex).
+bool strictlyConvex(const Ring& ring) {
+  const std::size_t n = ring.size();
+  if (n < 3) return false;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(cross(ring[(i + 1) % n] - ring[i], ring[(i + 2) % n] - ring[(i + 1) % n]) > 0.0)) return false;
+  return true;
+}
+
+/// An obstacle as a convex region: a counter-clockwise strictly convex ring, or a disk.
+struct ConvexObstacle {
+  Ring ring;  ///< empty for a disk
+  Point centre{0.0, 0.0};
+  double radius = 0.0;
+  Box box;
+  bool isDisk() const { return ring.empty(); }
+  /// |O grown by g| (Steiner's formula: exact for a convex set).
+  double grownArea(double g) const {
+    if (isDisk()) return M_PI * (radius + g) * (radius + g);
+    double perimeter = 0.0;
+    for (std::size_t i = 0; i < ring.size(); ++i) perimeter += distance(ring[i], ring[(i + 1) % ring.size()]);
+    return signedArea(ring) + g * perimeter + M_PI * g * g;
+  }
+};
+
+/// The distance between two disjoint convex obstacles, 0 if they meet.
+double obstacleDistance(const ConvexObstacle& a, const ConvexObstacle& b) {
+  if (a.isDisk() && b.isDisk()) return std::fmax(0.0, distance(a.centre, b.centre) - a.radius - b.radius);
+  if (a.isDisk() || b.isDisk()) {
+    const ConvexObstacle& disk = a.isDisk() ? a : b;
+    const ConvexObstacle& poly = a.isDisk() ? b : a;
+    return std::fmax(0.0, distanceSegmentFilledRing(disk.centre, disk.centre, poly.ring) - disk.radius);
+  }
+  double d = INFINITY;
+  for (std::size_t i = 0; i < a.ring.size(); ++i)
+    d = std::fmin(d, distanceSegmentFilledRing(a.ring[i], a.ring[(i + 1) % a.ring.size()], b.ring));
+  // b inside a: none of a's edges comes near b, but b's vertices lie in a.
+  return pointInRing(b.ring[0], a.ring) ? 0.0 : d;
+}
+
 Region paintableRegion(const Wall& wall) {
   std::vector<Ring> obstacle_rings;
   for (const Obstacle& o : wall.obstacles)
@@ -106,7 +146,109 @@ Region paintableRegion(const Wall& wall) {
   return subtract(regionFromRings({wall.boundary}), regionFromRings(obstacle_rings));
 }
 
+/// |opening of B by r| = |erode(B, r)| + r perimeter(erode(B, r)) + pi r^2 for a strictly convex B
+/// (Steiner's formula), if eroding B by r keeps every edge; false otherwise.
+bool convexOpeningArea(const Ring& b, double r, double& out) {
+  if (!strictlyConvex(b)) return false;
+  const std::size_t n = b.size();
+  std::vector<Point> normal(n);  // inward unit normals
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point e = b[(i + 1) % n] - b[i];
+    normal[i] = Point{-e.y, e.x} * (1.0 / norm(e));
+  }
+  // Vertex i of erode(B, r) is where edges i - 1 and i, each moved r inwards, meet.
+  Ring eroded(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point n0 = normal[(i + n - 1) % n], n1 = normal[i];
+    eroded[i] = b[i] + (n0 + n1) * (r / (1.0 + dot(n0, n1)));
+  }
+  double perimeter = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point e = eroded[(i + 1) % n] - eroded[i];
+    if (!(dot(e, b[(i + 1) % n] - b[i]) > 0.0)) return false;  // the edge vanished or turned over
+    perimeter += norm(e);
+  }
+  out = signedArea(eroded) + r * perimeter + M_PI * r * r;
+  return true;
+}
+
+/// Whether a convex obstacle lies inside B at least `depth` from its boundary.
+bool deepInside(const ConvexObstacle& q, const Ring& boundary, double depth) {
+  const Point probe = q.isDisk() ? q.centre : q.ring[0];
+  if (!pointInRing(probe, boundary)) return false;
+  if (q.isDisk()) return distanceSegmentRingEdges(q.centre, q.centre, boundary) - q.radius >= depth;
+  for (std::size_t i = 0; i < q.ring.size(); ++i)
+    if (!(distanceSegmentRingEdges(q.ring[i], q.ring[(i + 1) % q.ring.size()], boundary) >= depth)) return false;
+  return true;
+}
+
 }  // namespace
+
+/// Why the closed forms hold (the header says when they apply). R is the wall B
+/// minus the obstacles dilated by c (X), opened by the tool disk. An obstacle O apart from the rest
+/// changes R by exactly Q = O dilated by c, which lies inside the opening of the rest: a point
+/// outside Q within 2 r of it is in the tool disk touching Q from outside at Q's point nearest to it
+/// (that disk stays in B and clear of the other obstacles); a point farther is in a disk of the
+/// rest's opening that keeps clear of Q; and the disk around any point of Q is in B and clear of
+/// the other obstacles. So |R| = |R without those obstacles| - sum |Q| and, as they are disjoint
+/// and inside B, |P| = |P without them| - sum |O|, with |Q| = |O| + c perimeter(O) + pi c^2
+/// (Steiner's formula for convex sets). On a wall of many windows this skips the offsets of all
+/// their rounded corners, most of the cost of scoring before.
+RegionAreas regionAreas(const Wall& wall, const ToolParams& tool) {
+  constexpr double kSpare = 1e-9;
+  const double r = tool.radius(), c = tool.clearance;
+  const std::size_t n = wall.obstacles.size();
+  std::vector<ConvexObstacle> convex(n);
+  std::vector<bool> is_convex(n, false), apart(n, false);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Obstacle& o = wall.obstacles[k];
+    ConvexObstacle& q = convex[k];
+    if (o.type == ObstacleType::Circle) {
+      q.centre = o.center, q.radius = o.radius;
+      q.box = {o.center.x - o.radius, o.center.y - o.radius, o.center.x + o.radius, o.center.y + o.radius};
+      is_convex[k] = o.radius > 0.0;
+    } else {
+      q.ring = o.polygon;
+      if (signedArea(q.ring) < 0.0) std::reverse(q.ring.begin(), q.ring.end());
+      q.box = boundingBox(q.ring);
+      is_convex[k] = strictlyConvex(q.ring);
+    }
+    apart[k] = is_convex[k] && deepInside(q, wall.boundary, 2.0 * r + c + kSpare);
+  }
+  // An obstacle nearer than 2 (r + c) to any other is not apart. Only pairs whose boxes come that
+  // near are measured (a sweep over the boxes' left ends); a pair with an obstacle that is not
+  // convex is near if its boxes are.
+  const double gap = 2.0 * (r + c) + kSpare;
+  std::vector<std::size_t> order(n);
+  for (std::size_t k = 0; k < n; ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return convex[x].box.min_x < convex[y].box.min_x; });
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n && convex[order[j]].box.min_x < convex[order[i]].box.max_x + gap; ++j) {
+      const std::size_t x = order[i], y = order[j];
+      if ((!apart[x] && !apart[y]) || boxDistance(convex[x].box, convex[y].box) >= gap) continue;
+      if (is_convex[x] && is_convex[y] && obstacleDistance(convex[x], convex[y]) >= gap) continue;
+      apart[x] = apart[y] = false;
+    }
+  Wall rest = wall;
+  rest.obstacles.clear();
+  double apart_reachable = 0.0, apart_paintable = 0.0;
+  RegionAreas out;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!apart[k]) {
+      rest.obstacles.push_back(wall.obstacles[k]);
+      continue;
+    }
+    apart_reachable += convex[k].grownArea(c);
+    apart_paintable += convex[k].grownArea(0.0);
+    ++out.obstacles_in_closed_form;
+  }
+  out.wall_in_closed_form = rest.obstacles.empty() && convexOpeningArea(rest.boundary, r, out.reachable);
+  if (!out.wall_in_closed_form) out.reachable = reachableArea(rest, tool);
+  out.paintable = rest.obstacles.empty() ? signedArea(rest.boundary) : area(paintableRegion(rest));
+  out.reachable -= apart_reachable;
+  out.paintable -= apart_paintable;
+  return out;
+}
 
 CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const Path& path) {
   CoverageRegions g;
@@ -132,8 +274,9 @@ Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path, co
   // Every segment keeps its tool disk inside the wall and c away from the obstacles (to 1e-9 m), so
   // S lies in R and in P: both intersections are S itself, whose area is exact.
   Coverage c;
-  c.reachable_area = reachableArea(wall, tool);
-  c.paintable_area = area(paintableRegion(wall));
+  const RegionAreas areas = regionAreas(wall, tool);
+  c.reachable_area = areas.reachable;
+  c.paintable_area = areas.paintable;
   c.swept_area = swept_area;
   // R's and P's arcs are chords (50 um): a path covering all of R may measure a hair over it.
   c.coverage_reachable = c.reachable_area > 0 ? std::fmin(1.0, swept_area / c.reachable_area) : 0.0;

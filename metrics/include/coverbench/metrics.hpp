@@ -66,8 +66,20 @@ struct CoverageRegions {
 CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const Path& path);
 /// Coverage from the polygons: |S and R| and |S and P| by Clipper, S with chords (kMetricArcTolerance).
 Coverage coverage(const CoverageRegions& regions);
+/// |R| and |P| (m^2) as a valid path's coverage takes them, and how. Every obstacle that is convex,
+/// at least 2 r + c inside the wall and at least 2 (r + c) from every other obstacle takes away
+/// exactly itself dilated by c from R and itself from P (closed forms, exact up to rounding); the
+/// wall with the other obstacles is opened by the tool disk in closed form if it is strictly
+/// convex and no obstacle is left, and as polygons (chords within kMetricArcTolerance) otherwise.
+struct RegionAreas {
+  double reachable = 0.0;  ///< |R|
+  double paintable = 0.0;  ///< |P|
+  std::size_t obstacles_in_closed_form = 0;  ///< obstacles taken away in closed form
+  bool wall_in_closed_form = false;          ///< the wall (and what is left on it) in closed form
+};
+RegionAreas regionAreas(const Wall& wall, const ToolParams& tool);
 /// Coverage of a path whose validity and exact swept area |S| (passLevelAreas) are known: for a valid
-/// path S lies in R and in P, so both numerators are |S| and only |R| and |P| are polygons; an
+/// path S lies in R and in P, so both numerators are |S|, with |R| and |P| from regionAreas(); an
 /// invalid path is scored from the polygons.
 Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path, const Validity& validity,
                   double swept_area);
