@@ -46,9 +46,12 @@ using BBox = bg::model::box<BPoint>;
 constexpr double kSnap = 1e-9;  ///< m
 constexpr double kTwoPi = 2.0 * M_PI;
 
+/// a into [0, 2 pi): the angles here lie within a few turns of it.
 double wrapAngle(double a) {
-  a = std::fmod(a, kTwoPi);
-  return a < 0.0 ? a + kTwoPi : a;
+  if (!(std::fabs(a) < 8.0 * kTwoPi)) return std::fmod(std::fmod(a, kTwoPi) + kTwoPi, kTwoPi);
+  while (a < 0.0) a += kTwoPi;
+  while (a >= kTwoPi) a -= kTwoPi;
+  return a;
 }
 
 /// A shape of the arrangement: the capsule of radius r around [a, b], minus the disk of radius r
@@ -69,6 +72,7 @@ struct Owner {
   std::size_t shape;
   double start, span;
   bool inside;
+  Point from{1.0, 0.0};  ///< the unit vector at angle `start` (a half circle ends at -from)
   bool covers(double angle) const { return span >= kTwoPi || wrapAngle(angle - start) < span; }
 };
 
@@ -127,45 +131,42 @@ class LevelAreas {
   using Index = bgi::rtree<std::pair<BBox, std::uint32_t>, bgi::quadratic<16>>;
 
   void build(const Path& path) {
-    // Tool-on waypoints, snapped: a point within kSnap of an earlier one becomes that one.
-    std::unordered_map<long long, std::vector<Point>> grid;
-    auto cellKey = [](long long x, long long y) { return x * 1000003LL + y; };
+    // Tool-on waypoints, snapped: a point within kSnap (in x and in y) of an earlier one that was
+    // kept becomes the earliest such. Found among the points sorted by x, those within kSnap in x.
+    const std::size_t n = path.waypoints.size();
+    std::vector<std::uint32_t> by_x;
+    for (std::size_t k = 0; k < n; ++k)
+      if ((k < path.tool_on.size() && path.tool_on[k]) || (k > 0 && path.tool_on[k - 1])) by_x.push_back(static_cast<std::uint32_t>(k));
+    if (by_x.empty()) return;
+    std::sort(by_x.begin(), by_x.end(), [&](std::uint32_t u, std::uint32_t v) {
+      return path.waypoints[u].x < path.waypoints[v].x || (path.waypoints[u].x == path.waypoints[v].x && u < v);
+    });
+    std::vector<std::uint32_t> rank(n), kept(n);  // rank in by_x; the waypoint each one became
+    for (std::uint32_t k = 0; k < by_x.size(); ++k) rank[by_x[k]] = k;
     Box extent;
-    bool first = true;
-    auto snap = [&](Point p) {
-      const long long cx = std::llround(std::floor(p.x / kSnap)), cy = std::llround(std::floor(p.y / kSnap));
-      for (long long dx = -1; dx <= 1; ++dx)
-        for (long long dy = -1; dy <= 1; ++dy) {
-          auto it = grid.find(cellKey(cx + dx, cy + dy));
-          if (it == grid.end()) continue;
-          for (const Point& q : it->second)
-            if (std::fabs(q.x - p.x) <= kSnap && std::fabs(q.y - p.y) <= kSnap) return q;
-        }
-      grid[cellKey(cx, cy)].push_back(p);
-      return p;
-    };
-    std::vector<Point> snapped(path.waypoints.size());
-    for (std::size_t i = 0; i < path.tool_on.size(); ++i) {
-      if (!path.tool_on[i]) continue;
-      for (std::size_t j : {i, i + 1}) {
-        snapped[j] = snap(path.waypoints[j]);
-        if (first) extent = {snapped[j].x, snapped[j].y, snapped[j].x, snapped[j].y}, first = false;
-        extent.min_x = std::fmin(extent.min_x, snapped[j].x), extent.max_x = std::fmax(extent.max_x, snapped[j].x);
-        extent.min_y = std::fmin(extent.min_y, snapped[j].y), extent.max_y = std::fmax(extent.max_y, snapped[j].y);
-      }
+    for (std::uint32_t k = 0; k < n; ++k) {
+      if (!((k < path.tool_on.size() && path.tool_on[k]) || (k > 0 && path.tool_on[k - 1]))) continue;
+      const Point p = path.waypoints[k];
+      kept[k] = k;
+      auto consider = [&](std::uint32_t m) {
+        const Point q = path.waypoints[m];
+        if (m < k && kept[m] == m && m < kept[k] && std::fabs(q.y - p.y) <= kSnap) kept[k] = m;
+      };
+      for (std::uint32_t r = rank[k]; r-- > 0 && p.x - path.waypoints[by_x[r]].x <= kSnap;) consider(by_x[r]);
+      for (std::uint32_t r = rank[k] + 1; r < by_x.size() && path.waypoints[by_x[r]].x - p.x <= kSnap; ++r) consider(by_x[r]);
+      extent.add(path.waypoints[kept[k]]);
     }
-    if (first) return;
+    std::vector<Point> snapped(n);
+    for (std::uint32_t k : by_x) snapped[k] = path.waypoints[kept[k]];
     // Integrals about the path's centre keep the terms (and their rounding) small.
     origin_ = {(extent.min_x + extent.max_x) / 2, (extent.min_y + extent.max_y) / 2};
-    // Registered through a hash of the snapped coordinates (equal points, equal keys).
-    std::unordered_map<long long, std::vector<std::size_t>> by_key;
-    auto addOwner = [&](Point c, Owner o) {
-      const long long key = cellKey(std::llround(std::floor(c.x / kSnap)), std::llround(std::floor(c.y / kSnap)));
-      std::vector<std::size_t>& list = by_key[key];
-      for (std::size_t k : list)
-        if (circles_[k].centre == c) return circles_[k].owners.push_back(o);
-      list.push_back(circles_.size());
-      circles_.push_back({c, {o}});
+    // One circle per kept waypoint.
+    std::vector<std::uint32_t> circle_of(n, UINT32_MAX);
+    auto addOwner = [&](std::size_t waypoint, Owner o) {
+      std::uint32_t& c = circle_of[kept[waypoint]];
+      if (c != UINT32_MAX) return circles_[c].owners.push_back(o);
+      c = static_cast<std::uint32_t>(circles_.size());
+      circles_.push_back({snapped[waypoint] - origin_, {o}});
     };
     for (std::size_t i = 0; i < path.tool_on.size(); ++i) {
       if (!path.tool_on[i]) continue;
@@ -175,16 +176,17 @@ class LevelAreas {
       if (a == b) {
         if (bite) continue;  // a disk minus the same disk: nothing
         shapes_.push_back({a, b, false});
-        addOwner(a, {k, 0.0, kTwoPi, true});
+        addOwner(i, {k, 0.0, kTwoPi, true});
         continue;
       }
       shapes_.push_back({a, b, bite});
       const double heading = std::atan2(b.y - a.y, b.x - a.x);
-      addOwner(b, {k, wrapAngle(heading - M_PI / 2), M_PI, true});  // the end cap faces forward
+      const Point right = Point{b.y - a.y, a.x - b.x} * (1.0 / std::sqrt(dot(b - a, b - a)));  // heading - pi / 2
+      addOwner(i + 1, {k, wrapAngle(heading - M_PI / 2), M_PI, true, right});  // the end cap faces forward
       if (bite)
-        addOwner(a, {k, wrapAngle(heading - M_PI / 2), M_PI, false});  // the bite's forward half is inside the capsule
+        addOwner(i, {k, wrapAngle(heading - M_PI / 2), M_PI, false, right});  // the bite's forward half is inside the capsule
       else
-        addOwner(a, {k, wrapAngle(heading + M_PI / 2), M_PI, true});  // the start cap faces back
+        addOwner(i, {k, wrapAngle(heading + M_PI / 2), M_PI, true, right * -1.0});  // the start cap faces back
     }
   }
 
@@ -277,21 +279,30 @@ class LevelAreas {
     return dist2 < r2_ && !(s.bite && dot(q - s.a, q - s.a) < r2_);
   }
 
-  /// Cuts the element t in [t0, t1] where the nearby shapes' boundaries cross it, counts the shapes
-  /// containing each piece (not `self` nor those in `owners`, the shapes the element bounds: of
-  /// those, `on_left` lie on its left and `on_right` on its right), and adds each piece's integral
-  /// to the levels between the counts on its two sides. A shape no boundary of which crosses the
-  /// element contains all of it or none: it is tested once.
-  /// Every point of the element lies within `reach` of its midpoint, and the distance to a shape's
-  /// axis changes no faster than the point: a shape whose axis is farther than r + reach from the
-  /// midpoint, or nearer than r - reach, is crossed by none of the element.
-  template <class Crossings, class At, class Integral>
-  void pieces(double t0, double t1, double reach, int on_left, int on_right, std::size_t self, Point dir,
-              const std::vector<std::size_t>& owners, Crossings crossings, At at, Integral integral) {
-    cuts_.assign({t0, t1});
+  /// A point of an element: its parameter t (along a side, or the angle around a circle) and the
+  /// point (on a side) or its offset from the centre (on a circle).
+  struct Cut {
+    double t;
+    Point p;
+    bool operator<(const Cut& o) const { return t < o.t; }
+  };
+
+  /// Cuts the element from `start` to `end` where the nearby shapes' boundaries cross it, counts
+  /// the shapes containing each piece (not `self` nor those in `owners`, the shapes the element
+  /// bounds: of those, `on_left` lie on its left and `on_right` on its right), and adds each piece's
+  /// integral to the levels between the counts on its two sides. A shape no boundary of which
+  /// crosses the element contains all of it or none: it is tested once.
+  /// Every point of the element lies within `reach` of `mid`, and the distance to a shape's axis
+  /// changes no faster than the point: a shape whose axis is farther than r + reach from `mid`, or
+  /// nearer than r - reach, is crossed by none of the element.
+  template <class Crossings, class Middle, class Integral>
+  void pieces(Cut start, Cut end, Point mid, double reach, int on_left, int on_right, std::size_t self, Point dir,
+              const std::vector<std::size_t>& owners, Crossings crossings, Middle middle, Integral integral) {
+    cuts_.clear();
+    cuts_.push_back(start);
+    cuts_.push_back(end);
     events_.clear();
     int base = 0;
-    const Point mid = at((t0 + t1) / 2);
     const double far = r_ + reach + kSnap, near = r_ - reach - kSnap;
     for (const std::uint32_t k : near_) {
       if (k == self || std::find(owners.begin(), owners.end(), k) != owners.end()) continue;
@@ -304,26 +315,24 @@ class LevelAreas {
         ++base;
         continue;
       }
-      found_.clear();
-      crossings(k, found_);
       // Where k's boundary crosses the element, and whether k contains each stretch between.
-      own_.assign({t0});
-      for (double t : found_)
-        if (t > t0 && t < t1) own_.push_back(t);
+      own_.clear();
+      own_.push_back(start);
+      crossings(k, own_);
       if (own_.size() == 1) {
         base += contains(k, mid, self, dir);
         continue;
       }
       std::sort(own_.begin() + 1, own_.end());
-      own_.push_back(t1);
+      own_.push_back(end);
       bool was = false;
       for (std::size_t j = 0; j + 1 < own_.size(); ++j) {
-        if (!(own_[j + 1] > own_[j])) continue;
-        const bool in = contains(k, at((own_[j] + own_[j + 1]) / 2), self, dir);
+        if (!(own_[j + 1].t > own_[j].t)) continue;
+        const bool in = contains(k, middle(own_[j], own_[j + 1]), self, dir);
         if (j == 0) {
           base += in;
         } else {
-          if (in != was) events_.push_back({own_[j], in ? 1 : -1});
+          if (in != was) events_.push_back({own_[j].t, in ? 1 : -1});
           cuts_.push_back(own_[j]);
         }
         was = in;
@@ -334,9 +343,10 @@ class LevelAreas {
     int count = base;
     std::size_t next = 0;
     for (std::size_t c = 0; c + 1 < cuts_.size(); ++c) {
-      const double a = cuts_[c], b = cuts_[c + 1];
-      while (next < events_.size() && events_[next].first <= a) count += events_[next++].second;
-      if (b > a) add(count + on_left, count + on_right, integral(a, b));
+      const Cut& a = cuts_[c];
+      const Cut& b = cuts_[c + 1];
+      while (next < events_.size() && events_[next].first <= a.t) count += events_[next++].second;
+      if (b.t > a.t) add(count + on_left, count + on_right, integral(a, b));
     }
   }
 
@@ -350,68 +360,85 @@ class LevelAreas {
                                  [&](std::uint32_t k) { return k != self && !axisWithin(k, p, q, r_ + kSnap); }),
                   near_.end());
     // The side touches the circles around its own capsule's ends, at its ends, and crosses
-    // nothing of them.
+    // nothing of them. Crossings strictly inside the side are kept.
     const Point own_a = shapes_[self].a, own_b = shapes_[self].b;
-    auto crossings = [&](std::size_t k, std::vector<double>& out) {
+    auto keep = [&](double t, std::vector<Cut>& out) {
+      if (t > 0.0 && t < 1.0) out.push_back({t, p + v * t});
+    };
+    auto crossings = [&](std::size_t k, std::vector<Cut>& out) {
       const Shape& s = shapes_[k];
-      if (!(s.a == own_a) && !(s.a == own_b)) lineCircle(p, v, s.a, out);
-      if (s.isDisk()) return;
-      if (!(s.b == own_a) && !(s.b == own_b)) lineCircle(p, v, s.b, out);
-      const Point n = s.n, w = s.d;
-      for (const Point& a : {s.a + n, s.a - n}) {
-        const double denom = cross(v, w);
-        if (std::fabs(denom) <= 1e-12 * std::sqrt(dot(v, v) * dot(w, w))) continue;  // parallel
-        const double u = cross(a - p, v) / denom;
-        if (u >= 0.0 && u <= 1.0) out.push_back(cross(a - p, w) / denom);
+      line_.clear();
+      if (!(s.a == own_a) && !(s.a == own_b)) lineCircle(p, v, s.a, line_);
+      if (!s.isDisk()) {
+        if (!(s.b == own_a) && !(s.b == own_b)) lineCircle(p, v, s.b, line_);
+        const Point n = s.n, w = s.d;
+        for (const Point& a : {s.a + n, s.a - n}) {
+          const double denom = cross(v, w);
+          if (std::fabs(denom) <= 1e-12 * std::sqrt(dot(v, v) * dot(w, w))) continue;  // parallel
+          const double u = cross(a - p, v) / denom;
+          if (u >= 0.0 && u <= 1.0) line_.push_back(cross(a - p, w) / denom);
+        }
       }
+      for (double t : line_) keep(t, out);
     };
     owners_.clear();
-    pieces(0.0, 1.0, std::sqrt(dot(v, v)) / 2, 1, 0, self, v, owners_, crossings, [&](double t) { return p + v * t; },
-           [&](double a, double b) { return 0.5 * cross(p + v * a, p + v * b); });
+    pieces({0.0, p}, {1.0, q}, (p + q) * 0.5, std::sqrt(dot(v, v)) / 2, 1, 0, self, v, owners_, crossings,
+           [](const Cut& a, const Cut& b) { return (a.p + b.p) * 0.5; },
+           [](const Cut& a, const Cut& b) { return 0.5 * cross(a.p, b.p); });
+  }
+
+  /// The offset from the centre of the middle of the arc from a to b (counter-clockwise).
+  Point arcMiddle(const Cut& a, const Cut& b) const {
+    if (b.t - a.t < 3.0) {  // well under a half circle: along the bisector of the two ends
+      const Point u = a.p + b.p;
+      return u * (r_ / std::sqrt(dot(u, u)));
+    }
+    const double t = (a.t + b.t) / 2;
+    return Point{std::cos(t), std::sin(t)} * r_;
   }
 
   /// One circle of radius r around a waypoint, counter-clockwise (its disk on the left), in the
   /// arcs where the shapes it bounds do not cancel.
   void circle(const Circle& c) {
     const Point o = c.centre;
-    std::vector<double>& ends = ends_;
+    std::vector<Cut>& ends = ends_;  // angles where an owner's arc begins or ends, unit vectors
     ends.clear();
     for (const Owner& w : c.owners)
-      if (w.span < kTwoPi) ends.push_back(w.start), ends.push_back(wrapAngle(w.start + w.span));
+      if (w.span < kTwoPi) ends.push_back({w.start, w.from}), ends.push_back({wrapAngle(w.start + w.span), w.from * -1.0});
     std::sort(ends.begin(), ends.end());
-    if (ends.empty()) ends.push_back(0.0);
-    ends.push_back(ends.front() + kTwoPi);
-    auto at = [&](double t) { return o + Point{std::cos(t), std::sin(t)} * r_; };
+    if (ends.empty()) ends.push_back({0.0, {1.0, 0.0}});
+    ends.push_back({ends.front().t + kTwoPi, ends.front().p});
     std::vector<std::size_t>& owners = owners_;
     for (std::size_t e = 0; e + 1 < ends.size(); ++e) {
-      const double t0 = ends[e], t1 = ends[e + 1];
+      const double t0 = ends[e].t, t1 = ends[e + 1].t;
       if (!(t1 > t0)) continue;
       int on_left = 0, on_right = 0;
       owners.clear();
       for (const Owner& w : c.owners)
         if (w.covers((t0 + t1) / 2)) ++(w.inside ? on_left : on_right), owners.push_back(w.shape);
       if (on_left == on_right) continue;  // the shapes on the two sides cancel: no level changes here
+      const Cut start{t0, ends[e].p * r_}, end{t1, ends[e + 1].p * r_};
       // The arc's box: its ends and the extreme points of the circle it passes.
-      const Point p0 = at(t0), p1 = at(t1);
+      const Point p0 = o + start.p, p1 = o + end.p;
       double lo_x = std::fmin(p0.x, p1.x), hi_x = std::fmax(p0.x, p1.x);
       double lo_y = std::fmin(p0.y, p1.y), hi_y = std::fmax(p0.y, p1.y);
       for (int quarter = 0; quarter < 8; ++quarter) {
-        const double angle = quarter * M_PI / 2;
-        if (angle > t0 && angle < t1) {
-          const Point x = at(angle);
+        if (quarter * M_PI / 2 > t0 && quarter * M_PI / 2 < t1) {
+          static constexpr double kCos[4] = {1.0, 0.0, -1.0, 0.0}, kSin[4] = {0.0, 1.0, 0.0, -1.0};
+          const Point x = o + Point{kCos[quarter % 4], kSin[quarter % 4]} * r_;
           lo_x = std::fmin(lo_x, x.x), hi_x = std::fmax(hi_x, x.x), lo_y = std::fmin(lo_y, x.y), hi_y = std::fmax(hi_y, x.y);
         }
       }
       nearBox(lo_x, lo_y, hi_x, hi_y);
       // A point x (relative to o) on the circle is on the arc unless it is on the rest of the circle.
-      const Point u0 = p0 - o, u1 = p1 - o;
+      const Point u0 = start.p, u1 = end.p;
       const bool whole = t1 - t0 >= kTwoPi;
       auto onArc = [&](Point x) {
         if (whole) return true;
         if (t1 - t0 <= M_PI) return cross(u0, x) > 0.0 && cross(x, u1) > 0.0;
         return !(cross(u1, x) > 0.0 && cross(x, u0) > 0.0);
       };
-      auto crossings = [&](std::size_t k, std::vector<double>& out) {
+      auto crossings = [&](std::size_t k, std::vector<Cut>& out) {
         const Shape& s = shapes_[k];
         points_.clear();
         circleCircle(o, s.a, points_);
@@ -426,20 +453,20 @@ class LevelAreas {
               if (t >= 0.0 && t <= 1.0) points_.push_back(a + s.d * t - o);
           }
         }
-        for (const Point& x : points_)
-          if (onArc(x)) out.push_back(t0 + wrapAngle(std::atan2(x.y, x.x) - t0));  // into [t0, t0 + 2 pi)
+        for (const Point& x : points_) {
+          if (!onArc(x)) continue;
+          double t = std::atan2(x.y, x.x);  // into [t0, t0 + 2 pi)
+          while (t < t0) t += kTwoPi;
+          while (t >= t0 + kTwoPi) t -= kTwoPi;
+          if (t > t0 && t < t1) out.push_back({t, x});
+        }
       };
-      // Consecutive pieces share an end: its point is computed once.
-      double last_t = NAN;
-      Point last{0.0, 0.0};
-      auto point = [&](double t) {
-        if (t != last_t) last_t = t, last = Point{std::cos(t), std::sin(t)} * r_;
-        return last;
-      };
-      pieces(t0, t1, 2.0 * r_ * std::sin((t1 - t0) / 4), on_left, on_right, shapes_.size(), {0.0, 0.0}, owners, crossings, at,
-             [&](double a, double b) {
-               const Point pa = point(a), pb = point(b);
-               return 0.5 * (o.x * (pb.y - pa.y) - o.y * (pb.x - pa.x) + r2_ * (b - a));
+      const double span = t1 - t0;
+      const double reach = r_ * std::fmin(span / 2, 2.0);  // at least the chord from the middle to an end
+      pieces(start, end, o + arcMiddle(start, end), reach, on_left, on_right, shapes_.size(), {0.0, 0.0}, owners,
+             crossings, [&](const Cut& a, const Cut& b) { return o + arcMiddle(a, b); },
+             [&](const Cut& a, const Cut& b) {
+               return 0.5 * (o.x * (b.p.y - a.p.y) - o.y * (b.p.x - a.p.x) + r2_ * (b.t - a.t));
              });
     }
   }
@@ -453,7 +480,8 @@ class LevelAreas {
   std::vector<Box> boxes_;  ///< each shape's box (its axis' box grown by r)
   Index index_;
   std::vector<std::uint32_t> around_, near_;
-  std::vector<double> cuts_, found_, own_, line_, ends_;
+  std::vector<Cut> cuts_, own_, ends_;
+  std::vector<double> line_;
   std::vector<std::size_t> owners_;
   std::vector<Point> points_;
   std::vector<std::pair<double, int>> events_;  ///< (where, change of the count)
