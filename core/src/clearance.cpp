@@ -67,20 +67,35 @@ double ClearanceField::obstacleDistance(std::size_t i, Point a, Point b) const {
 
 SegmentClearance ClearanceField::measure(Point a, Point b, double obstacle_cutoff) const {
   SegmentClearance c;
-  c.boundary_distance = distanceSegmentRingEdges(a, b, wall_->boundary);
-  // A segment that does not touch the boundary is entirely inside or entirely outside it.
-  c.inside = c.boundary_distance > 0.0 && pointInRing(a, wall_->boundary);
   Box seg;
   seg.add(a);
   seg.add(b);
+  // The nearest boundary edge: an edge whose box is farther than the nearest edge so far is
+  // skipped (the same minimum as distanceSegmentRingEdges; squared, one square root at the end).
+  const Ring& ring = wall_->boundary;
+  double best2 = INFINITY;
+  for (std::size_t i = 0, n = ring.size(); i < n && best2 > 0.0; ++i) {
+    const Point p = ring[i], q = ring[(i + 1) % n];
+    const Box edge{std::fmin(p.x, q.x), std::fmin(p.y, q.y), std::fmax(p.x, q.x), std::fmax(p.y, q.y)};
+    if (squaredBoxDistance(seg, edge) > best2 * (1.0 + 1e-12)) continue;  // room for rounding
+    best2 = std::fmin(best2, squaredDistanceSegmentSegment(a, b, p, q));
+  }
+  c.boundary_distance = std::sqrt(best2);
+  // A segment that does not touch the boundary is entirely inside or entirely outside it.
+  c.inside = c.boundary_distance > 0.0 && pointInRing(a, wall_->boundary);
   double best = obstacle_cutoff;
+  // An obstacle whose box is at least `best` away cannot be nearer; compared squared, with room for
+  // the rounding of best^2 (measuring one more obstacle changes nothing).
+  auto maybeNearer = [&](std::size_t i) {
+    return squaredBoxDistance(seg, obstacle_boxes_[i]) < best * best * (1.0 + 1e-12);
+  };
   if (!grid_.empty() && std::isinf(best)) {
     // Unbounded: a scan of every obstacle finds the nearest at the same cost as the grid would.
     for (std::size_t i = 0; i < obstacle_boxes_.size(); ++i)
-      if (boxDistance(seg, obstacle_boxes_[i]) < best) best = std::fmin(best, obstacleDistance(i, a, b));
+      if (maybeNearer(i)) best = std::fmin(best, obstacleDistance(i, a, b));
   } else {
     forObstaclesNear(seg, best, [&](std::size_t i) {
-      if (boxDistance(seg, obstacle_boxes_[i]) < best) best = std::fmin(best, obstacleDistance(i, a, b));
+      if (maybeNearer(i)) best = std::fmin(best, obstacleDistance(i, a, b));
       return true;
     });
   }

@@ -29,12 +29,6 @@ Box boundingBox(const Region& region) {
 
 double boxDistance(const Box& a, const Box& b) { return std::sqrt(squaredBoxDistance(a, b)); }
 
-double squaredBoxDistance(const Box& a, const Box& b) {
-  const double dx = std::fmax(0.0, std::fmax(a.min_x - b.max_x, b.min_x - a.max_x));
-  const double dy = std::fmax(0.0, std::fmax(a.min_y - b.max_y, b.min_y - a.max_y));
-  return dx * dx + dy * dy;
-}
-
 double signedArea(const Ring& ring) {
   double twice = 0.0;
   const std::size_t n = ring.size();
@@ -119,11 +113,13 @@ bool pointInRing(Point p, const Ring& ring) {
 }
 
 double distanceSegmentRingEdges(Point a, Point b, const Ring& ring) {
-  double best = INFINITY;
+  // The nearest edge by squared distance, one square root (the same number: sqrt is monotone and
+  // correctly rounded).
+  double best2 = INFINITY;
   const std::size_t n = ring.size();
-  for (std::size_t i = 0; i < n && best > 0.0; ++i)
-    best = std::fmin(best, distanceSegmentSegment(a, b, ring[i], ring[(i + 1) % n]));
-  return best;
+  for (std::size_t i = 0; i < n && best2 > 0.0; ++i)
+    best2 = std::fmin(best2, squaredDistanceSegmentSegment(a, b, ring[i], ring[(i + 1) % n]));
+  return std::sqrt(best2);
 }
 
 double distanceSegmentFilledRing(Point a, Point b, const Ring& ring) {

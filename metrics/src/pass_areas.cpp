@@ -106,15 +106,29 @@ class LevelAreas {
         const double len = std::sqrt(dot(s.d, s.d));
         s.n = {-s.d.y / len * r_, s.d.x / len * r_};
       }
-    // One query per shape: its box holds both its sides and the whole circles around its ends, so
-    // the shapes near any of them are among those found; each element keeps those near its own box.
-    // A circle is walked with the first shape it bounds (circles_ is in that order).
-    std::size_t next_circle = 0;
+    // One query per group of consecutive shapes: a shape's box holds both its sides and the whole
+    // circles around its ends, so the shapes near any of them are among those found around the
+    // group's box; each element keeps those near its own box. A group is shapes whose boxes
+    // together are at most r wider and taller than the first's (the 1 mm steps of a rounded turn:
+    // one query instead of dozens). A circle is walked with the first shape it bounds (circles_
+    // is in that order).
+    constexpr std::size_t kMaxGroup = 32;
+    std::size_t next_circle = 0, group_end = 0;
     for (std::size_t k = 0; k < shapes_.size(); ++k) {
-      around_.clear();
-      const Box& box = boxes_[k];
-      index_.query(bgi::intersects(BBox(BPoint(box.min_x, box.min_y), BPoint(box.max_x, box.max_y))),
-                   boost::make_function_output_iterator([&](const auto& found) { around_.push_back(found.second); }));
+      if (k == group_end) {
+        Box group = boxes_[k];
+        const double max_w = group.width() + r_, max_h = group.height() + r_;
+        for (group_end = k + 1; group_end < shapes_.size() && group_end - k < kMaxGroup; ++group_end) {
+          Box grown = group;
+          grown.add({boxes_[group_end].min_x, boxes_[group_end].min_y});
+          grown.add({boxes_[group_end].max_x, boxes_[group_end].max_y});
+          if (grown.width() > max_w || grown.height() > max_h) break;
+          group = grown;
+        }
+        around_.clear();
+        index_.query(bgi::intersects(BBox(BPoint(group.min_x, group.min_y), BPoint(group.max_x, group.max_y))),
+                     boost::make_function_output_iterator([&](const auto& found) { around_.push_back(found.second); }));
+      }
       if (!shapes_[k].isDisk()) {
         const Point n = shapes_[k].n;
         // Oriented with the capsule on the left: back along the left side, forward along the right.
@@ -438,15 +452,29 @@ class LevelAreas {
         if (t1 - t0 <= M_PI) return cross(u0, x) > 0.0 && cross(x, u1) > 0.0;
         return !(cross(u1, x) > 0.0 && cross(x, u0) > 0.0);
       };
+      const double span = t1 - t0;
+      const double reach = r_ * std::fmin(span / 2, 2.0);  // at least the chord from the middle to an end
+      const Point mid = o + arcMiddle(start, end);
+      // Every point of the arc lies within `reach` of mid: a circle whose centre is not between
+      // r - reach and r + reach from mid, or a line farther than reach from it, meets none of the
+      // arc (1e-8 m to spare for the rules of what touches).
+      const double slack = reach + 1e-8;
+      const double in2 = r_ > slack ? (r_ - slack) * (r_ - slack) : 0.0, out2 = (r_ + slack) * (r_ + slack);
+      auto mayMeetCircle = [&](Point c) {
+        const double d2 = dot(c - mid, c - mid);
+        return d2 >= in2 && d2 <= out2;
+      };
       auto crossings = [&](std::size_t k, std::vector<Cut>& out) {
         const Shape& s = shapes_[k];
         points_.clear();
-        circleCircle(o, s.a, points_);
-        if (!s.isDisk()) circleCircle(o, s.b, points_);
+        if (mayMeetCircle(s.a)) circleCircle(o, s.a, points_);
+        if (!s.isDisk() && mayMeetCircle(s.b)) circleCircle(o, s.b, points_);
         // A shape with an end at o has sides touching this circle where its cap or bite ends
         // (already a cut), and crossing it nowhere else.
         if (!s.isDisk() && !(s.a == o) && !(s.b == o)) {
           for (const Point& a : {s.a + s.n, s.a - s.n}) {
+            const double off = cross(s.d, mid - a);
+            if (off * off * s.inv_dd > slack * slack) continue;
             line_.clear();
             lineCircle(a, s.d, o, line_);
             for (double t : line_)
@@ -461,9 +489,7 @@ class LevelAreas {
           if (t > t0 && t < t1) out.push_back({t, x});
         }
       };
-      const double span = t1 - t0;
-      const double reach = r_ * std::fmin(span / 2, 2.0);  // at least the chord from the middle to an end
-      pieces(start, end, o + arcMiddle(start, end), reach, on_left, on_right, shapes_.size(), {0.0, 0.0}, owners,
+      pieces(start, end, mid, reach, on_left, on_right, shapes_.size(), {0.0, 0.0}, owners,
              crossings, [&](const Cut& a, const Cut& b) { return o + arcMiddle(a, b); },
              [&](const Cut& a, const Cut& b) {
                return 0.5 * (o.x * (b.p.y - a.p.y) - o.y * (b.p.x - a.p.x) + r2_ * (b.t - a.t));

@@ -58,7 +58,11 @@ Box boundingBox(const Ring& ring);
 Box boundingBox(const Region& region);
 /// Distance between two boxes (0 when they overlap).
 double boxDistance(const Box& a, const Box& b);
-double squaredBoxDistance(const Box& a, const Box& b);
+inline double squaredBoxDistance(const Box& a, const Box& b) {
+  const double dx = std::fmax(0.0, std::fmax(a.min_x - b.max_x, b.min_x - a.max_x));
+  const double dy = std::fmax(0.0, std::fmax(a.min_y - b.max_y, b.min_y - a.max_y));
+  return dx * dx + dy * dy;
+}
 
 /// Signed area: positive for counter-clockwise rings.
 double signedArea(const Ring& ring);
