@@ -128,6 +128,8 @@ class LevelAreas {
         around_.clear();
         index_.query(bgi::intersects(BBox(BPoint(group.min_x, group.min_y), BPoint(group.max_x, group.max_y))),
                      boost::make_function_output_iterator([&](const auto& found) { around_.push_back(found.second); }));
+        around_boxes_.clear();
+        for (const std::uint32_t j : around_) around_boxes_.push_back(boxes_[j]);  // scanned in order, often
       }
       if (!shapes_[k].isDisk()) {
         const Point n = shapes_[k].n;
@@ -204,13 +206,17 @@ class LevelAreas {
     }
   }
 
-  /// The shapes found around the current shape whose boxes meet [lo, hi] (into near_).
+  /// The shapes found around the current shape whose boxes meet [lo, hi] (into near_). Without
+  /// branches: which boxes meet is hard to predict, a mispredicted branch costs more than the test.
   void nearBox(double lo_x, double lo_y, double hi_x, double hi_y) {
-    near_.clear();
-    for (const std::uint32_t k : around_) {
-      const Box& b = boxes_[k];
-      if (b.max_x >= lo_x && b.min_x <= hi_x && b.max_y >= lo_y && b.min_y <= hi_y) near_.push_back(k);
+    near_.resize(around_.size());
+    std::size_t m = 0;
+    for (std::size_t j = 0; j < around_.size(); ++j) {
+      const Box& b = around_boxes_[j];
+      near_[m] = around_[j];
+      m += static_cast<std::size_t>((b.max_x >= lo_x) & (b.min_x <= hi_x) & (b.max_y >= lo_y) & (b.min_y <= hi_y));
     }
+    near_.resize(m);
   }
 
   /// Adds `integral` to the areas of the levels between the counts on the piece's two sides.
@@ -226,13 +232,13 @@ class LevelAreas {
   /// up to the point where it touches that side's end circle, which must therefore be a cut; and
   /// rounding alone, at a line that touches, would open a chord of 1e-8 r with a sliver no test can
   /// place. (A real chord that short, 2 sqrt(2 r kSnap), bounds a sliver of 1e-14 m^2 at most.)
-  void lineCircle(Point p, Point v, Point c, std::vector<double>& out) const {
-    const double vv = dot(v, v);
-    const double t0 = dot(c - p, v) / vv;  // foot of the perpendicular from c
+  /// `inv_vv` is 1 / |v|^2.
+  void lineCircle(Point p, Point v, double inv_vv, Point c, std::vector<double>& out) const {
+    const double t0 = dot(c - p, v) * inv_vv;  // foot of the perpendicular from c
     const Point off = p + v * t0 - c;
     const double h2 = dot(off, off);
     if (h2 > touch_out2_) return;
-    const double half = h2 >= touch_in2_ ? 0.0 : std::sqrt((r2_ - h2) / vv);
+    const double half = h2 >= touch_in2_ ? 0.0 : std::sqrt((r2_ - h2) * inv_vv);
     out.push_back(t0 - half);
     out.push_back(t0 + half);
   }
@@ -367,6 +373,7 @@ class LevelAreas {
   /// One straight side of capsule `self`, from p to q with the capsule on its left.
   void side(std::size_t self, Point p, Point q) {
     const Point v = q - p;
+    const double inv_vv = 1.0 / dot(v, v);
     nearBox(std::fmin(p.x, q.x), std::fmin(p.y, q.y), std::fmax(p.x, q.x), std::fmax(p.y, q.y));
     // Long sides pass many shapes: keep those whose axis comes within r of the side.
     if (dot(v, v) > r2_)
@@ -382,9 +389,9 @@ class LevelAreas {
     auto crossings = [&](std::size_t k, std::vector<Cut>& out) {
       const Shape& s = shapes_[k];
       line_.clear();
-      if (!(s.a == own_a) && !(s.a == own_b)) lineCircle(p, v, s.a, line_);
+      if (!(s.a == own_a) && !(s.a == own_b)) lineCircle(p, v, inv_vv, s.a, line_);
       if (!s.isDisk()) {
-        if (!(s.b == own_a) && !(s.b == own_b)) lineCircle(p, v, s.b, line_);
+        if (!(s.b == own_a) && !(s.b == own_b)) lineCircle(p, v, inv_vv, s.b, line_);
         const Point n = s.n, w = s.d;
         for (const Point& a : {s.a + n, s.a - n}) {
           const double denom = cross(v, w);
@@ -476,7 +483,7 @@ class LevelAreas {
             const double off = cross(s.d, mid - a);
             if (off * off * s.inv_dd > slack * slack) continue;
             line_.clear();
-            lineCircle(a, s.d, o, line_);
+            lineCircle(a, s.d, s.inv_dd, o, line_);
             for (double t : line_)
               if (t >= 0.0 && t <= 1.0) points_.push_back(a + s.d * t - o);
           }
@@ -506,6 +513,7 @@ class LevelAreas {
   std::vector<Box> boxes_;  ///< each shape's box (its axis' box grown by r)
   Index index_;
   std::vector<std::uint32_t> around_, near_;
+  std::vector<Box> around_boxes_;  ///< the boxes of around_, in its order
   std::vector<Cut> cuts_, own_, ends_;
   std::vector<double> line_;
   std::vector<std::size_t> owners_;
