@@ -76,7 +76,7 @@ SegmentClearance ClearanceField::measure(Point a, Point b, double obstacle_cutof
   double best2 = INFINITY;
   for (std::size_t i = 0, n = ring.size(); i < n && best2 > 0.0; ++i) {
     const Point p = ring[i], q = ring[(i + 1) % n];
-    const Box edge{std::fmin(p.x, q.x), std::fmin(p.y, q.y), std::fmax(p.x, q.x), std::fmax(p.y, q.y)};
+    const Box edge{std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)};
     if (squaredBoxDistance(seg, edge) > best2 * (1.0 + 1e-12)) continue;  // room for rounding
     best2 = std::fmin(best2, squaredDistanceSegmentSegment(a, b, p, q));
   }

@@ -374,7 +374,7 @@ class LevelAreas {
   void side(std::size_t self, Point p, Point q) {
     const Point v = q - p;
     const double inv_vv = 1.0 / dot(v, v);
-    nearBox(std::fmin(p.x, q.x), std::fmin(p.y, q.y), std::fmax(p.x, q.x), std::fmax(p.y, q.y));
+    nearBox(std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y));
     // Long sides pass many shapes: keep those whose axis comes within r of the side.
     if (dot(v, v) > r2_)
       near_.erase(std::remove_if(near_.begin(), near_.end(),
@@ -441,13 +441,13 @@ class LevelAreas {
       const Cut start{t0, ends[e].p * r_}, end{t1, ends[e + 1].p * r_};
       // The arc's box: its ends and the extreme points of the circle it passes.
       const Point p0 = o + start.p, p1 = o + end.p;
-      double lo_x = std::fmin(p0.x, p1.x), hi_x = std::fmax(p0.x, p1.x);
-      double lo_y = std::fmin(p0.y, p1.y), hi_y = std::fmax(p0.y, p1.y);
+      double lo_x = std::min(p0.x, p1.x), hi_x = std::max(p0.x, p1.x);
+      double lo_y = std::min(p0.y, p1.y), hi_y = std::max(p0.y, p1.y);
       for (int quarter = 0; quarter < 8; ++quarter) {
         if (quarter * M_PI / 2 > t0 && quarter * M_PI / 2 < t1) {
           static constexpr double kCos[4] = {1.0, 0.0, -1.0, 0.0}, kSin[4] = {0.0, 1.0, 0.0, -1.0};
           const Point x = o + Point{kCos[quarter % 4], kSin[quarter % 4]} * r_;
-          lo_x = std::fmin(lo_x, x.x), hi_x = std::fmax(hi_x, x.x), lo_y = std::fmin(lo_y, x.y), hi_y = std::fmax(hi_y, x.y);
+          lo_x = std::min(lo_x, x.x), hi_x = std::max(hi_x, x.x), lo_y = std::min(lo_y, x.y), hi_y = std::max(hi_y, x.y);
         }
       }
       nearBox(lo_x, lo_y, hi_x, hi_y);

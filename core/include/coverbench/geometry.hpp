@@ -5,6 +5,7 @@
 /// intersection computations on the true shapes (no sampling, no rasters); the only error is
 /// floating-point rounding, which callers absorb with a stated tolerance.
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -58,9 +59,10 @@ Box boundingBox(const Ring& ring);
 Box boundingBox(const Region& region);
 /// Distance between two boxes (0 when they overlap).
 double boxDistance(const Box& a, const Box& b);
+/// (Finite boxes: std::max compiles to one instruction, std::fmax to a call that handles NaN.)
 inline double squaredBoxDistance(const Box& a, const Box& b) {
-  const double dx = std::fmax(0.0, std::fmax(a.min_x - b.max_x, b.min_x - a.max_x));
-  const double dy = std::fmax(0.0, std::fmax(a.min_y - b.max_y, b.min_y - a.max_y));
+  const double dx = std::max(0.0, std::max(a.min_x - b.max_x, b.min_x - a.max_x));
+  const double dy = std::max(0.0, std::max(a.min_y - b.max_y, b.min_y - a.max_y));
   return dx * dx + dy * dy;
 }
 
