@@ -51,7 +51,9 @@ class Gate(unittest.TestCase):
         run = check(self.CASE, COVERBENCH_COST_SELFTEST_SLOW="zigzag")
         self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
         self.assertIn(f"| {self.CASE} |", run.stdout)
-        self.assertRegex(run.stdout, r"\+(99|100)\.\d+ % \|")
+        # Planning twice costs about twice: the second plan skips the first one's one-time costs
+        # (allocations, first touches), a few per cent of a 5 million instruction case.
+        self.assertRegex(run.stdout, r"\+(9[5-9]|100)\.\d+ % \|")
 
     def test_a_different_planner_slowed_leaves_this_case_alone(self):
         run = check(self.CASE, COVERBENCH_COST_SELFTEST_SLOW="spiral")
