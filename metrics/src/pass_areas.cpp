@@ -109,8 +109,8 @@ class LevelAreas {
     // One query per group of consecutive shapes: a shape's box holds both its sides and the whole
     // circles around its ends, so the shapes near any of them are among those found around the
     // group's box; each element keeps those near its own box. A group is shapes whose boxes
-    // together are at most r wider and taller than the first's (the 1 mm steps of a rounded turn:
-    // one query instead of dozens). A circle is walked with the first shape it bounds (circles_
+    // together are at most r wider and taller than the first's (the millimetre steps of a rounded
+    // turn: one query instead of dozens). A circle is walked with the first shape it bounds (circles_
     // is in that order).
     constexpr std::size_t kMaxGroup = 32;
     std::size_t next_circle = 0, group_end = 0;
@@ -129,7 +129,7 @@ class LevelAreas {
         index_.query(bgi::intersects(BBox(BPoint(group.min_x, group.min_y), BPoint(group.max_x, group.max_y))),
                      boost::make_function_output_iterator([&](const auto& found) { around_.push_back(found.second); }));
         around_boxes_.clear();
-        for (const std::uint32_t j : around_) around_boxes_.push_back(boxes_[j]);  // scanned in order, often
+        for (const std::uint32_t j : around_) around_boxes_.push_back(boxes_[j]);  // nearBox scans these per element
       }
       if (!shapes_[k].isDisk()) {
         const Point n = shapes_[k].n;
