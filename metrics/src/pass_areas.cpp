@@ -462,26 +462,15 @@ class LevelAreas {
       const double span = t1 - t0;
       const double reach = r_ * std::fmin(span / 2, 2.0);  // at least the chord from the middle to an end
       const Point mid = o + arcMiddle(start, end);
-      // Every point of the arc lies within `reach` of mid: a circle whose centre is not between
-      // r - reach and r + reach from mid, or a line farther than reach from it, meets none of the
-      // arc (1e-8 m to spare for the rules of what touches).
-      const double slack = reach + 1e-8;
-      const double in2 = r_ > slack ? (r_ - slack) * (r_ - slack) : 0.0, out2 = (r_ + slack) * (r_ + slack);
-      auto mayMeetCircle = [&](Point c) {
-        const double d2 = dot(c - mid, c - mid);
-        return d2 >= in2 && d2 <= out2;
-      };
       auto crossings = [&](std::size_t k, std::vector<Cut>& out) {
         const Shape& s = shapes_[k];
         points_.clear();
-        if (mayMeetCircle(s.a)) circleCircle(o, s.a, points_);
-        if (!s.isDisk() && mayMeetCircle(s.b)) circleCircle(o, s.b, points_);
+        circleCircle(o, s.a, points_);
+        if (!s.isDisk()) circleCircle(o, s.b, points_);
         // A shape with an end at o has sides touching this circle where its cap or bite ends
         // (already a cut), and crossing it nowhere else.
         if (!s.isDisk() && !(s.a == o) && !(s.b == o)) {
           for (const Point& a : {s.a + s.n, s.a - s.n}) {
-            const double off = cross(s.d, mid - a);
-            if (off * off * s.inv_dd > slack * slack) continue;
             line_.clear();
             lineCircle(a, s.d, s.inv_dd, o, line_);
             for (double t : line_)
