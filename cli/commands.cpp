@@ -30,6 +30,19 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// The command line's vehicle over `base` (the default, or the plan file's), checked.
+VehicleModel resolveVehicle(const VehicleOptions& given, VehicleModel base) {
+  if (given.model && !parseVehicleKind(*given.model, base.kind))
+    throw InputError("--vehicle", "vehicle", "must be holonomic or gantry, not '" + *given.model + "'");
+  if ((given.lift_s || given.lower_s) && !base.liftsTool())
+    throw InputError(given.lift_s ? "--lift-s" : "--lower-s", "vehicle",
+                     "lift and lower times belong to a gantry (--vehicle gantry); a holonomic vehicle never lifts its tool");
+  if (given.lift_s) base.lift_s = *given.lift_s;
+  if (given.lower_s) base.lower_s = *given.lower_s;
+  validateVehicle(base, "command line", "vehicle");
+  return base;
+}
+
 std::string typeName(ParamType t) {
   switch (t) {
     case ParamType::Number: return "number";
@@ -71,23 +84,25 @@ double peakResidentBytes() {
 
 /// Plans one wall with one planner and renders its outputs (nothing is written here). A path
 /// beyond the scoring limits is kept, unscored, with the reason.
-Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams& tool, Params params,
-                 double time_limit_s, bool with_picture) {
+Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams& tool, const VehicleModel& vehicle,
+                 Params params, double time_limit_s, bool with_picture) {
   Problem problem;
   problem.wall = &wall;
   problem.tool = tool;
+  problem.vehicle = vehicle;
   problem.params = params;
   Outcome o;
   o.plan.planner = planner.name;
   o.plan.wall = wall.name;
   o.plan.tool = tool;
+  o.plan.vehicle = vehicle;
   o.plan.params = std::move(params);
   const double rss_before = residentBytes();
   o.plan.result = runPlanner(planner, problem, Budget(std::chrono::duration<double>(time_limit_s)));
   // The process's peak resident set grew by this much during the plan (0 if an earlier peak was higher).
   o.plan.peak_memory_bytes = std::max(0.0, peakResidentBytes() - rss_before);
   try {
-    o.plan.metrics = computeMetrics(wall, tool, o.plan.result.path);
+    o.plan.metrics = computeMetrics(wall, tool, o.plan.result.path, vehicle);
   } catch (const InputError& e) {  // beyond the scoring limits (docs/metrics.md)
     o.plan.not_scored = "the path " + e.problem();
   }
@@ -100,7 +115,7 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
                 : !scored                              ? ", NOT SCORED"
                 : o.plan.metrics.validity.valid        ? ", valid"
                                                        : ", INVALID");
-  if (with_picture) o.svg = pathPicture(wall, tool, o.plan.result.path, title, scored);
+  if (with_picture) o.svg = pathPicture(wall, tool, vehicle, o.plan.result.path, title, scored);
   return o;
 }
 
@@ -143,7 +158,9 @@ int planCommand(const PlanOptions& options) {
   validateToolForWall(options.tool, wall, "command line");
   const PlannerInfo& planner = findPlanner(options.planner);
   Params params = resolveParams(planner, splitSettings(options.params));
-  const Outcome o = planOnce(wall, planner, options.tool, std::move(params), options.time_limit_s, !options.svg.empty());
+  const VehicleModel vehicle = resolveVehicle(options.vehicle, VehicleModel{});
+  const Outcome o =
+      planOnce(wall, planner, options.tool, vehicle, std::move(params), options.time_limit_s, !options.svg.empty());
   OutputFiles files;  // both files or neither
   files.add(options.out, o.plan_json);
   if (!options.svg.empty()) files.add(options.svg, o.svg);
@@ -236,15 +253,16 @@ int metricsCommand(const MetricsOptions& options) {
   if (!(limits.acceleration > 0.0) || !std::isfinite(limits.acceleration))
     throw InputError("--acceleration", "acceleration", "must be positive and finite");
   limitScoringTime(options.plan, options.time_limit_s);
-  const PathMetrics m = computeMetrics(wall, tool, plan.path, limits);
+  const VehicleModel vehicle = resolveVehicle(options.vehicle, plan.vehicle.value_or(VehicleModel{}));
+  const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits);
   std::optional<judge::Judgement> exact;
   if (options.judge == "exact") {
     judge::CoverageOptions judge_options;
     judge_options.arc_vertices = options.arc_vertices;
-    exact = judge::judgePath(wall, tool, plan.path, judge_options);
+    exact = judge::judgePath(wall, tool, plan.path, vehicle, judge_options);
   }
   OutputFiles files;  // the picture is written before anything is printed, so a failure prints nothing
-  if (!options.svg.empty()) files.add(options.svg, pathPicture(wall, tool, plan.path, wall.name + " / " + options.plan));
+  if (!options.svg.empty()) files.add(options.svg, pathPicture(wall, tool, vehicle, plan.path, wall.name + " / " + options.plan));
   ::alarm(0);
   files.commit();
   if (!exact) {
@@ -303,7 +321,7 @@ int showcaseCommand(const ShowcaseOptions& options) {
   for (const Wall& wall : walls) {
     nlohmann::ordered_json pictures = nlohmann::ordered_json::array();
     for (const PlannerInfo& planner : registeredPlanners()) {
-      const Outcome o = planOnce(wall, planner, options.tool, resolveParams(planner, {}), 60.0, true);
+      const Outcome o = planOnce(wall, planner, options.tool, VehicleModel{}, resolveParams(planner, {}), 60.0, true);
       const std::string& stem = stems[next_stem++];
       outputs.add((out / "plans" / (stem + ".json")).string(), o.plan_json);
       outputs.add((out / "plans" / (stem + ".svg")).string(), o.svg);
@@ -359,7 +377,7 @@ int redrawCommand(const RedrawOptions& options) {
   char title[512];
   std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s", run.wall.name.c_str(), run.planner.c_str(),
                 run.tool.tool_width, run.tool.clearance, run.status.c_str());
-  writeFileAtomically(options.svg, pathPicture(run.wall, run.tool, run.path, title));
+  writeFileAtomically(options.svg, pathPicture(run.wall, run.tool, run.vehicle, run.path, title));
   std::cout << "run " << run.key << ": " << run.status << (run.reason.empty() ? "" : " (" + run.reason + ")") << ", "
             << run.path.waypoints.size() << " waypoints -> " << options.svg << "\n";
   return 0;

@@ -12,9 +12,17 @@ namespace coverbench::cli {
 
 void listPlanners(std::ostream& out);
 
+/// A vehicle as the command line gives it (--vehicle, --lift-s, --lower-s); unset: the default's
+/// (or, for `metrics`, the plan file's).
+struct VehicleOptions {
+  std::optional<std::string> model;
+  std::optional<double> lift_s, lower_s;
+};
+
 struct PlanOptions {
   std::string wall, planner, out, svg;
   ToolParams tool;
+  VehicleOptions vehicle;
   std::vector<std::string> params;  ///< key=value
   double time_limit_s = 60.0;
 };
@@ -25,6 +33,7 @@ int planCommand(const PlanOptions& options);
 struct MetricsOptions {
   std::string wall, plan, svg;
   std::optional<double> tool_width, clearance;  ///< default: the plan file's, else 0.1 / 0.02
+  VehicleOptions vehicle;  ///< default: the plan file's, else holonomic
   double speed = 0.3, acceleration = 0.5;
   double time_limit_s = 600.0;  ///< scoring (and picture) past it: a one-line error, exit 2
   std::string judge = "fast";   ///< "fast", or "exact": also the exact judge, side by side

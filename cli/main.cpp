@@ -28,6 +28,9 @@ int main(int argc, char** argv) {
   plan_cmd->add_option("--tool-width", plan.tool.tool_width, "tool diameter s in metres")->capture_default_str();
   plan_cmd->add_option("--clearance", plan.tool.clearance, "gap c between tool and obstacles, metres")
       ->capture_default_str();
+  plan_cmd->add_option("--vehicle", plan.vehicle.model, "holonomic (default): every move stays in F; gantry: tool-off moves are lifted");
+  plan_cmd->add_option("--lift-s", plan.vehicle.lift_s, "gantry: seconds to lift the tool (default 1)");
+  plan_cmd->add_option("--lower-s", plan.vehicle.lower_s, "gantry: seconds to lower the tool (default 1)");
   plan_cmd->add_option("--param", plan.params, "planner parameter key=value (repeatable)");
   plan_cmd->add_option("--time-limit", plan.time_limit_s, "seconds before the planner must stop")
       ->capture_default_str();
@@ -42,6 +45,9 @@ int main(int argc, char** argv) {
   metrics_cmd->add_option("--plan", metrics.plan, "plan file: needs only waypoints and tool_on")->required();
   metrics_cmd->add_option("--tool-width", metrics.tool_width, "tool diameter s in metres (default: the plan's, else 0.1)");
   metrics_cmd->add_option("--clearance", metrics.clearance, "gap c in metres (default: the plan's, else 0.02)");
+  metrics_cmd->add_option("--vehicle", metrics.vehicle.model, "holonomic or gantry (default: the plan's, else holonomic)");
+  metrics_cmd->add_option("--lift-s", metrics.vehicle.lift_s, "gantry: seconds to lift the tool (default: the plan's, else 1)");
+  metrics_cmd->add_option("--lower-s", metrics.vehicle.lower_s, "gantry: seconds to lower the tool (default: the plan's, else 1)");
   metrics_cmd->add_option("--speed", metrics.speed, "tool speed v for duration_s, m/s")->capture_default_str();
   metrics_cmd->add_option("--acceleration", metrics.acceleration, "acceleration a for duration_s, m/s^2")
       ->capture_default_str();

@@ -120,7 +120,7 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
         if (scorable && !layer)
           pictures[i]->note = std::to_string(r.path.waypoints.size()) + " waypoints: coverage layer and failed segments " +
                               "left out (over " + std::to_string(kGalleryCoverageWaypoints) + "; `coverbench redraw` draws them)";
-        svgs[i] = pathPicture(r.wall, r.tool, r.path, title, layer, kGalleryOverlapStrips);
+        svgs[i] = pathPicture(r.wall, r.tool, r.vehicle, r.path, title, layer, kGalleryOverlapStrips);
       } catch (...) {
         std::lock_guard<std::mutex> lock(failure_mutex);
         failure = std::current_exception();

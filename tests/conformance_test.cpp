@@ -34,10 +34,11 @@ void PrintTo(const Case& c, std::ostream* os) { *os << caseName(c); }
 /// Plans and checks the planner contract: ok means a well-formed, exactly valid path; anything
 /// else means no path and a reason.
 testing::AssertionResult honours(const PlannerInfo& info, const Wall& wall, const ToolParams& tool,
-                                 const Params& params, PlanResult* out = nullptr) {
+                                 const Params& params, PlanResult* out = nullptr, const VehicleModel& vehicle = {}) {
   Problem problem;
   problem.wall = &wall;
   problem.tool = tool;
+  problem.vehicle = vehicle;
   problem.params = params;
   PlanResult r = runPlanner(info, problem, Budget(std::chrono::seconds(60)));
   if (out) *out = r;
@@ -45,7 +46,7 @@ testing::AssertionResult honours(const PlannerInfo& info, const Wall& wall, cons
     if (r.status == PlanStatus::Partial && !r.leftPartsOut())
       return testing::AssertionFailure() << "partial without saying what was left out";
     if (r.status == PlanStatus::Partial && r.reason.empty()) return testing::AssertionFailure() << "partial without a reason";
-    testing::AssertionResult valid = test::isValidPath(wall, tool, r.path);
+    testing::AssertionResult valid = test::isValidPath(wall, tool, r.path, vehicle);
     if (!valid) return valid << " (" << info.name << " on " << wall.name << ")";
     return testing::AssertionSuccess();
   }
@@ -187,18 +188,7 @@ TEST_P(GeneratedWalls, ValidOnManyRandomWalls) {
   EXPECT_GE(ok, 55) << "almost every random wall has room for the tool";
 }
 
-std::vector<std::string> plannerNames() {
-  std::vector<std::string> names;
-  for (const PlannerInfo& p : registeredPlanners()) names.push_back(p.name);
-  return names;
-}
-
-INSTANTIATE_TEST_SUITE_P(AllPlanners, GeneratedWalls, testing::ValuesIn(plannerNames()),
-                         [](const testing::TestParamInfo<std::string>& param_info) {
-                           std::string name = param_info.param;  // test names allow letters, digits, _
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(AllPlanners, GeneratedWalls, testing::ValuesIn(test::plannerNames()), test::plannerTestName);
 
 }  // namespace
 }  // namespace coverbench

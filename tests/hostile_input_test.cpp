@@ -31,12 +31,7 @@ class Hostile : public test::CommandTest {
  protected:
   /// The InputError message of loading a config ("" if it loads).
   std::string configError(const std::string& text) {
-    try {
-      loadExperimentConfig(write("c.yaml", text));
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
+    return test::inputError([&] { loadExperimentConfig(write("c.yaml", text)); });
   }
   /// Every file under the test folder, relative to it.
   std::vector<std::string> filesUnder(const fs::path& root) {

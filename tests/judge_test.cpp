@@ -248,7 +248,7 @@ TEST(ExactJudgeProperty, FastCoverageWithinItsStatedBoundsOnPlannedPaths) {
           continue;
         }
         const PathMetrics fast = computeMetrics(wall, tool, result.path);
-        const judge::Judgement exact = judge::judgePath(wall, tool, result.path, {32});
+        const judge::Judgement exact = judge::judgePath(wall, tool, result.path, {}, {32});
         const std::string where = std::string(family) + " " + wall.name + " " + planner;
         EXPECT_EQ(exact.validity.valid, fast.validity.valid) << where;
         EXPECT_EQ(exact.validity.violations, fast.validity.violations) << where;

@@ -119,13 +119,13 @@ TEST(Pictures, FailedSegmentsAreMarkedAndAPathLeavingTheWallStaysInThePicture) {
   path.tool_on = {true, true};
   const Validity v = checkValidity(wall, ToolParams{0.1, 0.02}, path);
   EXPECT_EQ(v.violating, (std::vector<std::size_t>{1}));
-  const std::string svg = pathPicture(wall, ToolParams{0.1, 0.02}, path, "t");
+  const std::string svg = pathPicture(wall, ToolParams{0.1, 0.02}, VehicleModel{}, path, "t");
   EXPECT_NE(svg.find("class=\"violation\""), std::string::npos);
   EXPECT_NE(svg.find("fails the exact check (1 segments)"), std::string::npos);
   // The frame holds x = 3 m: 3 m across 1000 px gives k = 333.3 px/m, so x = 3 m is drawn at
   // 24 + 3 k = 1024 px (with the wall's frame alone it would be at 24 + 3 * 500 = 1524, outside).
   EXPECT_NE(svg.find("1024.00,"), std::string::npos);
-  const std::string clean = pathPicture(wall, ToolParams{0.1, 0.02}, Path{{{0.2, 0.5}, {1.8, 0.5}}, {true}}, "t");
+  const std::string clean = pathPicture(wall, ToolParams{0.1, 0.02}, VehicleModel{}, Path{{{0.2, 0.5}, {1.8, 0.5}}, {true}}, "t");
   EXPECT_EQ(clean.find("class=\"violation\""), std::string::npos);
 }
 

@@ -36,14 +36,7 @@ tool:
 threads: 2
 )";
 
-std::string inputError(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::inputError;
 
 TEST(ShardParsing, AcceptsIOverNAndNamesWhatIsWrong) {
   EXPECT_EQ(toString(parseShard("0/8")), "0/8");

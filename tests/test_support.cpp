@@ -180,7 +180,8 @@ Wall randomWall(unsigned seed) {
   return kept;
 }
 
-testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, const Path& path) {
+testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, const Path& path,
+                                     const VehicleModel& vehicle) {
   if (path.waypoints.empty()) return testing::AssertionFailure() << "path has no waypoints";
   if (path.tool_on.size() + 1 != path.waypoints.size())
     return testing::AssertionFailure() << "tool_on has " << path.tool_on.size() << " entries for "
@@ -189,7 +190,7 @@ testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, c
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) return testing::AssertionFailure() << "non-finite waypoint";
   // The exact judge first: it shares no code with the planners (or with the fast engine, whose
   // ClearanceField is also the planners' collision check), and has no tolerance.
-  const judge::ExactValidity exact = judge::judgeValidity(wall, tool, path);
+  const judge::ExactValidity exact = judge::judgeValidity(wall, tool, path, vehicle);
   if (!exact.valid) {
     const std::size_t i = exact.violating.front();
     const Point a = path.waypoints[i], b = path.waypoints[std::min(i + 1, path.waypoints.size() - 1)];
@@ -198,12 +199,18 @@ testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, c
                                        << " too close to an obstacle); first is #" << i << " (" << a.x << ", " << a.y
                                        << ") -> (" << b.x << ", " << b.y << ")";
   }
-  const Validity v = checkValidity(wall, tool, path);
+  const Validity v = checkValidity(wall, tool, path, vehicle);
   if (v.valid) return testing::AssertionSuccess();
   // Name the first offending segment.
   const ClearanceField field(wall);
   for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
     const Point a = path.waypoints[i], b = path.waypoints[i + 1];
+    if (vehicle.liftsTool() && !path.tool_on[i]) {
+      if (std::find(v.violating.begin(), v.violating.end(), i) == v.violating.end()) continue;
+      return testing::AssertionFailure() << v.violations << " violating segments; first is #" << i << " (" << a.x
+                                         << ", " << a.y << ") -> (" << b.x << ", " << b.y
+                                         << "), lifted, leaves the wall's bounding box";
+    }
     if (!field.segmentFree(a, b, tool.radius(), tool.clearance, -kValidityTolerance)) {
       const SegmentClearance c = field.measure(a, b);
       return testing::AssertionFailure()
@@ -213,6 +220,27 @@ testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, c
     }
   }
   return testing::AssertionFailure() << v.violations << " violating segments";
+}
+
+std::vector<std::string> plannerNames() {
+  std::vector<std::string> names;
+  for (const PlannerInfo& p : registeredPlanners()) names.push_back(p.name);
+  return names;
+}
+
+std::string plannerTestName(const testing::TestParamInfo<std::string>& param_info) {
+  std::string name = param_info.param;
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
+std::string inputError(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace coverbench::test

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,16 @@ PlanResult planWith(const std::string& planner, const Wall& wall, const ToolPara
 
 /// A well-formed path that both the exact judge (no tolerance) and the fast engine find valid, or a
 /// message naming the first offending segment.
-testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, const Path& path);
+testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, const Path& path,
+                                     const VehicleModel& vehicle = {});
+
+/// Every registered planner's name, for suites parameterised by planner, and the test name of one
+/// (letters, digits and _ only).
+std::vector<std::string> plannerNames();
+std::string plannerTestName(const testing::TestParamInfo<std::string>& param_info);
+
+/// The message of the InputError `action` throws ("" if it throws none).
+std::string inputError(const std::function<void()>& action);
 
 /// A fixture with a fresh folder for each test (named after it), removed afterwards.
 class TempDirTest : public testing::Test {

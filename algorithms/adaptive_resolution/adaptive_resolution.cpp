@@ -19,20 +19,23 @@ class AdaptivePlanner final : public Planner {
  public:
   PlanResult plan(const Problem& problem, const Budget& budget) override {
     const double s = problem.tool.tool_width;
-    Workspace ws(*problem.wall, problem.tool);
+    Workspace ws(*problem.wall, problem.tool, problem.vehicle);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())
       return PlanResult::failure(PlanStatus::NoReachableArea,
                                  "the tool fits nowhere: the free region F is empty for this tool and clearance");
-    const PolygonWithHoles& main = components.front();
-    const std::vector<Ring> rings = allRings(Region{main});
+    const Region main = coveredPart(components, problem.vehicle);
+    auto inMain = [&](Point p) {
+      return std::any_of(main.begin(), main.end(), [&](const PolygonWithHoles& part) { return pointInPolygon(part, p); });
+    };
+    const std::vector<Ring> rings = allRings(main);
     const EdgeIndex edges(rings, 4.0 * s);
 
     // Quadtree over F's bounding square, cells aligned to a grid of pitch s. A node whose inner
     // rectangle (cell shrunk by s/2, where row centres run) meets no boundary edge of F is wholly
     // inside or outside; inside, it becomes an open leaf covered by rows. Nodes the boundary
     // crosses split down to single cells (fine leaves), kept when their centre is in F.
-    const Box box = boundingBox(main.outer);
+    const Box box = boundingBox(main);
     int levels = 0;
     while (s * std::ldexp(1.0, levels) < std::fmax(box.width(), box.height()) + s) ++levels;
     const double X0 = box.min_x - s / 2.0 + 1e-4, Y0 = box.min_y - s / 2.0 + 1e-4;
@@ -53,7 +56,7 @@ class AdaptivePlanner final : public Planner {
       inner.add({X0 + (n.cx + n.size - 0.5) * s, Y0 + (n.cy + n.size - 0.5) * s});
       if (inner.min_x > box.max_x || inner.min_y > box.max_y) continue;  // beyond F entirely
       if (!edges.meetsBox(inner)) {
-        if (!pointInPolygon(main, {inner.min_x, inner.min_y})) continue;  // wholly outside F
+        if (!inMain({inner.min_x, inner.min_y})) continue;  // wholly outside F
         for (int j = 0; j < n.size; ++j) rows[n.cy + j].push_back({inner.min_x, inner.max_x});
         ++(n.size == 1 ? fine_leaves : open_leaves);
         largest = std::max<std::size_t>(largest, static_cast<std::size_t>(n.size));
@@ -61,7 +64,7 @@ class AdaptivePlanner final : public Planner {
       }
       if (n.size == 1) {
         const Point c{inner.min_x, inner.min_y};
-        if (pointInPolygon(main, c) && ws.router().isFree(c, c)) {
+        if (inMain(c) && ws.router().isFree(c, c)) {
           rows[n.cy].push_back({c.x, c.x});
           ++fine_leaves;
         }

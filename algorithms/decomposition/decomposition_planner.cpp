@@ -135,12 +135,12 @@ class DecompositionPlanner final : public Planner {
     const double turn = (angle_deg - 90.0) * M_PI / 180.0;
     const Wall wall = rotateWall(*problem.wall, -turn);
 
-    Workspace ws(wall, problem.tool);
+    Workspace ws(wall, problem.tool, problem.vehicle);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())
       return PlanResult::failure(PlanStatus::NoReachableArea,
                                  "the tool fits nowhere: the free region F is empty for this tool and clearance");
-    const Region main{components.front()};
+    const Region main = coveredPart(components, problem.vehicle);
     // With the boundary loop, passes keep one spacing clear of it across their direction and end
     // half a spacing from it along it (headland.hpp); without, they run from edge to edge of F
     // drawn with coarser arcs (fewer vertices, fewer slabs), 2 mm inside F.
@@ -158,7 +158,10 @@ class DecompositionPlanner final : public Planner {
     // parts lies in one part of F, and a vertex tells which.
     Decomposition cells;
     for (const PolygonWithHoles& poly : cell_region) {
-      if (!boundary_loop && !pointInPolygon(components.front(), poly.outer.front())) continue;
+      if (!boundary_loop && std::none_of(main.begin(), main.end(), [&](const PolygonWithHoles& part) {
+          return pointInPolygon(part, poly.outer.front());
+        }))
+        continue;
       Decomposition d = decompose(poly, kind_);
       const std::size_t base = cells.cells.size();
       for (Contact& c : d.contacts) c.left += base, c.right += base;
@@ -255,7 +258,9 @@ class DecompositionPlanner final : public Planner {
       const auto touching = previous < cells.cells.size()
                                 ? contacts_between.find(std::minmax(previous, visit.cell))
                                 : contacts_between.end();
-      if (touching != contacts_between.end() && !ws.router().isFree(builder.current(), entry)) {
+      // (A vehicle that lifts its tool crosses straight instead: PathBuilder::moveTo.)
+      if (touching != contacts_between.end() && !ws.vehicle().liftsTool() &&
+          !ws.router().isFree(builder.current(), entry)) {
         std::vector<Point> best;
         for (const Contact* c : touching->second) {
           std::vector<Point> walk = throughContact(cells.cells[previous], builder.current(), cell, entry, *c);

@@ -419,18 +419,19 @@ class SpanningTreePlanner final : public Planner {
     const double s = problem.tool.tool_width;
     const bool loop = problem.params.flag("boundary_loop");
 
-    Workspace ws(*problem.wall, problem.tool);
+    Workspace ws(*problem.wall, problem.tool, problem.vehicle);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())
       return PlanResult::failure(PlanStatus::NoReachableArea,
                                  "the tool fits nowhere: the free region F is empty for this tool and clearance");
-    // Like every planner here: the largest free component (the others cannot be reached).
+    // Like every planner here: the largest free component (the others cannot be reached), or all
+    // of them for a vehicle that lifts its tool across.
     // With the boundary loop, the cells start one tool width inside F's extent, where the loop's
     // band ends. Without it, two planning margins inside F's exact edge where the wall's edge is
     // straight (such cells are measured). A centre one cell-multiple from there lies outside the opposite
     // edge of a part exactly that wide, and is dropped: a grid of pitch exactly s cannot keep a
     // margin from both edges of it. The loop paints that strip.
-    const Region part{components.front()};
+    const Region part = coveredPart(components, problem.vehicle);
     const Box box = boundingBox(part);
     const Box wall_box = boundingBox(problem.wall->boundary);
     const double reach = problem.tool.radius() + problem.tool.clearance + 2.0 * kPlanningMargin;

@@ -99,12 +99,12 @@ class SpiralPlanner final : public Planner {
     const double tolerance = std::clamp(s / 10.0, kArcTolerance, 1e-2);
     const double coarse = s / 5.0;
 
-    Workspace ws(*problem.wall, problem.tool);
+    Workspace ws(*problem.wall, problem.tool, problem.vehicle);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())
       return PlanResult::failure(PlanStatus::NoReachableArea,
                                  "the tool fits nowhere: the free region F is empty for this tool and clearance");
-    const Region main{components.front()};
+    const Region main = coveredPart(components, problem.vehicle);
 
     // Ring j is the boundary of F eroded by j * spacing (outer rings shrink, rings around
     // obstacles grow, until they meet).

@@ -76,12 +76,12 @@ class ZigzagPlanner final : public Planner {
     const auto passes = static_cast<std::size_t>(problem.params.integer("boundary_passes"));
 
     // Work in a frame where rows are horizontal; rotate the result back at the end.
-    Workspace ws(rotateWall(*problem.wall, -angle), problem.tool);
+    Workspace ws(rotateWall(*problem.wall, -angle), problem.tool, problem.vehicle);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())
       return PlanResult::failure(PlanStatus::NoReachableArea,
                                  "the tool fits nowhere: the free region F is empty for this tool and clearance");
-    const Region main{components.front()};
+    const Region main = coveredPart(components, problem.vehicle);
 
     // Loops along F's boundary first, then rows clear of their paint (headland.hpp), then, with
     // fill_leftovers, a pass for each piece both left.

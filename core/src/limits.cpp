@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace coverbench {
 void validateTool(const ToolParams& tool, const std::string& source) {
@@ -32,6 +33,13 @@ void validateToolForWall(const ToolParams& tool, const Wall& wall, const std::st
 void validateTimeLimit(double seconds, const std::string& source, const std::string& field) {
   if (!std::isfinite(seconds) || seconds <= 0.0 || seconds > kMaxTimeLimitSeconds)
     throw InputError(source, field, "must be in (0, " + shortNumber(kMaxTimeLimitSeconds) + "] s, got " + shortNumber(seconds));
+}
+
+void validateVehicle(const VehicleModel& vehicle, const std::string& source, const std::string& field) {
+  for (const auto& [name, value] : {std::pair<const char*, double>{"lift_s", vehicle.lift_s}, {"lower_s", vehicle.lower_s}})
+    if (!std::isfinite(value) || value < 0.0 || value > kMaxLiftTime)
+      throw InputError(source, field + "." + name,
+                       "must be in [0, " + shortNumber(kMaxLiftTime) + "] s, got " + shortNumber(value));
 }
 
 }  // namespace coverbench

@@ -6,8 +6,8 @@
 
 namespace coverbench {
 
-Workspace::Workspace(const Wall& wall, const ToolParams& tool)
-    : wall_(wall), tool_(tool), field_(wall_), free_(freeRegion(wall_, tool_)), router_(field_, tool_) {
+Workspace::Workspace(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle)
+    : wall_(wall), tool_(tool), vehicle_(vehicle), field_(wall_), free_(freeRegion(wall_, tool_)), router_(field_, tool_) {
   router_.setFreeRegion(&free_);
 }
 
@@ -24,6 +24,11 @@ bool PathBuilder::moveTo(Point to, bool tool_on_if_straight) {
   if (from == to) return true;
   if (ws_->router().isFree(from, to)) {
     path_.moveTo(to, tool_on_if_straight);
+    return true;
+  }
+  if (ws_->vehicle().liftsTool()) {
+    path_.moveTo(to, false);
+    ++lifted_;
     return true;
   }
   const auto route = ws_->router().route(from, to);
@@ -76,9 +81,10 @@ std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max
   return unreachable;
 }
 
-std::string partialCoverageNote(std::size_t free_components, std::size_t unreachable_parts) {
+std::string partialCoverageNote(std::size_t free_components, std::size_t covered_components,
+                                std::size_t unreachable_parts) {
   std::string note;
-  if (free_components > 1)
+  if (covered_components < free_components)
     note = "covered the largest of " + std::to_string(free_components) +
            " disconnected free components; the others cannot be reached without leaving F";
   if (unreachable_parts > 0)
@@ -89,11 +95,13 @@ std::string partialCoverageNote(std::size_t free_components, std::size_t unreach
 
 void recordOutcome(PlanResult& result, const PathBuilder& builder, std::size_t free_components,
                    std::size_t unreachable_parts) {
+  const bool lifts = builder.workspace().vehicle().liftsTool();
   result.stats["routed_transits"] = static_cast<double>(builder.transits());
+  if (lifts) result.stats["lifted_crossings"] = static_cast<double>(builder.liftedCrossings());
   result.free_components = free_components;
-  result.covered_components = std::min<std::size_t>(free_components, 1);
+  result.covered_components = lifts ? free_components : std::min<std::size_t>(free_components, 1);
   result.unreachable_parts = unreachable_parts;
-  result.reason = partialCoverageNote(free_components, unreachable_parts);
+  result.reason = partialCoverageNote(free_components, result.covered_components, unreachable_parts);
   if (result.status == PlanStatus::Ok && result.leftPartsOut()) result.status = PlanStatus::Partial;
 }
 
@@ -107,6 +115,12 @@ std::vector<PolygonWithHoles> componentsByArea(const Region& region) {
     return ba.min_x < bb.min_x;
   });
   return parts;
+}
+
+Region coveredPart(const std::vector<PolygonWithHoles>& components, const VehicleModel& vehicle) {
+  if (components.empty()) return {};
+  if (vehicle.liftsTool()) return Region(components.begin(), components.end());
+  return Region{components.front()};
 }
 
 }  // namespace coverbench

@@ -10,13 +10,14 @@ namespace coverbench::perimeter {
 class PerimeterPlanner final : public Planner {
  public:
   PlanResult plan(const Problem& problem, const Budget& /*budget*/) override {
-    Workspace ws(*problem.wall, problem.tool);       // F, exact checks, transits
+    Workspace ws(*problem.wall, problem.tool, problem.vehicle);  // F, exact checks, transits
     if (ws.free().empty())
       return PlanResult::failure(PlanStatus::NoReachableArea, "the tool fits nowhere on this wall");
-    const Region largest{componentsByArea(ws.free()).front()};
+    // The largest free component, or every one for a vehicle that lifts its tool (docs/vehicles.md).
+    const Region part = coveredPart(componentsByArea(ws.free()), problem.vehicle);
     PathBuilder builder(ws);                          // never writes an unchecked move
     const double inset = problem.params.number("inset");
-    const Region rings = inset > 0 ? offsetRegion(largest, -inset, 1e-4) : largest;
+    const Region rings = inset > 0 ? offsetRegion(part, -inset, 1e-4) : part;
     coverRings(builder, allRings(rings), problem.tool.tool_width);
     PlanResult result;
     result.status = PlanStatus::Ok;

@@ -200,7 +200,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   }
   if (!doc.isMap()) r.fail(doc, "(document)", "must be a mapping (name, datasets, planners, ...)");
   r.onlyKeys(doc, "", {"name", "output", "datasets", "planners", "tool", "repetitions", "limits", "baseline", "threads",
-                       "seed", "allow_large", "judge"});
+                       "seed", "allow_large", "judge", "vehicle"});
   const fs::path base = fs::path(path).parent_path();
   auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).lexically_normal().string(); };
 
@@ -360,6 +360,19 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   }
   for (double w : widths)
     for (double cl : clearances) c.tools.push_back(ToolParams{w, cl});
+
+  // Vehicle: one model per experiment (docs/vehicles.md).
+  if (const Yaml* v = doc.find("vehicle")) {
+    r.onlyKeys(*v, "vehicle", {"model", "lift_s", "lower_s"});
+    const Yaml* model = v->find("model");
+    if (!model) r.fail(*v, "vehicle.model", "missing (holonomic or gantry)");
+    const std::string name = r.text(*model, "vehicle.model");
+    if (!parseVehicleKind(name, c.vehicle.kind)) r.fail(*model, "vehicle.model", "must be holonomic or gantry, not '" + name + "'");
+    if (const Yaml* t = v->find("lift_s")) c.vehicle.lift_s = r.number(*t, "vehicle.lift_s", 0.0, kMaxLiftTime);
+    if (const Yaml* t = v->find("lower_s")) c.vehicle.lower_s = r.number(*t, "vehicle.lower_s", 0.0, kMaxLiftTime);
+    if (c.vehicle.isDefault() && (v->find("lift_s") || v->find("lower_s")))
+      r.fail(*v, "vehicle", "lift_s and lower_s belong to a gantry; a holonomic vehicle never lifts its tool");
+  }
 
   if (const Yaml* n = doc.find("repetitions")) c.repetitions = static_cast<int>(r.integer(*n, "repetitions", 1, 1000));
   if (const Yaml* l = doc.find("limits")) {

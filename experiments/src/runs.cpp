@@ -64,6 +64,9 @@ std::string runBaseKey(const RunSpec& spec) {
   text += "\ntool_width=" + exact(spec.tool.tool_width) + "\nclearance=" + exact(spec.tool.clearance) +
           "\nseed=" + std::to_string(spec.seed);
   if (spec.exact_judge) text += "\njudge=exact";
+  if (!spec.vehicle.isDefault())
+    text += "\nvehicle=" + toString(spec.vehicle.kind) + "\nlift_s=" + exact(spec.vehicle.lift_s) +
+            "\nlower_s=" + exact(spec.vehicle.lower_s);
   return sha256Hex(text);
 }
 
@@ -83,6 +86,7 @@ std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vecto
         spec.wall = &wall;
         spec.planner = &planner;
         spec.tool = tool;
+        spec.vehicle = config.vehicle;
         spec.repetitions = config.repetitions;
         spec.seed = config.seed;
         spec.time_limit_s = config.time_limit_s;
@@ -108,6 +112,7 @@ RunRecord executeRun(const RunSpec& spec) {
   Problem problem;
   problem.wall = &spec.wall->wall;
   problem.tool = spec.tool;
+  problem.vehicle = spec.vehicle;
   problem.params = spec.planner->params;
   problem.seed = spec.seed;
   PlanResult result;
@@ -125,7 +130,7 @@ RunRecord executeRun(const RunSpec& spec) {
   rec.reason = result.reason;
   if (result.hasPath()) {
     try {
-      const PathMetrics m = computeMetrics(spec.wall->wall, spec.tool, result.path);
+      const PathMetrics m = computeMetrics(spec.wall->wall, spec.tool, result.path, spec.vehicle);
       rec.valid = m.validity.valid;
       rec.metrics = flatten(m);
       rec.uncovered_reachable_m2 = m.coverage.reachable_area * (1.0 - m.coverage.coverage_reachable);
@@ -135,7 +140,7 @@ RunRecord executeRun(const RunSpec& spec) {
                      (result.reason.empty() ? "" : "; the planner said: " + result.reason);
       }
       if (spec.exact_judge) {
-        const judge::Judgement j = judge::judgePath(spec.wall->wall, spec.tool, result.path);
+        const judge::Judgement j = judge::judgePath(spec.wall->wall, spec.tool, result.path, spec.vehicle);
         const double exact_figures[] = {
             j.validity.valid ? 1.0 : 0.0, static_cast<double>(j.validity.violations),
             j.coverage.coverage_reachable.lower, j.coverage.coverage_reachable.upper,

@@ -76,7 +76,7 @@ FT squaredDistance(const P2& a, const P2& b, const P2& centre) {
 
 }  // namespace
 
-ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path& path) {
+ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle) {
   ExactValidity v;
   const std::size_t n = path.waypoints.size();
   if (n == 0) return v;
@@ -152,8 +152,31 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
       if (v.violating.size() < ExactValidity::kMaxListed) v.violating.push_back(segment);
     }
   };
+  // A gantry's lifted segment: the disk at both ends within the wall's bounding box, compared
+  // exactly (the box is convex, so the whole segment's disks are then inside it).
+  double lo_x = INFINITY, lo_y = INFINITY, hi_x = -INFINITY, hi_y = -INFINITY;
+  for (Point p : wall.boundary) {
+    lo_x = std::min(lo_x, p.x);
+    lo_y = std::min(lo_y, p.y);
+    hi_x = std::max(hi_x, p.x);
+    hi_y = std::max(hi_y, p.y);
+  }
+  auto inFrame = [&](std::size_t i) {
+    const FT x(path.waypoints[i].x), y(path.waypoints[i].y);
+    return x - r_exact >= FT(lo_x) && x + r_exact <= FT(hi_x) && y - r_exact >= FT(lo_y) && y + r_exact <= FT(hi_y);
+  };
+  auto lifted = [&](std::size_t segment) {
+    if (inFrame(segment) && inFrame(segment + 1)) return;
+    ++v.outside_boundary;
+    ++v.violations;
+    if (v.violating.size() < ExactValidity::kMaxListed) v.violating.push_back(segment);
+  };
   if (n == 1) check(0, 0, 0);
-  for (std::size_t i = 0; i + 1 < n; ++i) check(i, i, i + 1);
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    if (vehicle.liftsTool() && !path.tool_on[i])
+      lifted(i);
+    else
+      check(i, i, i + 1);
   v.valid = v.violations == 0;
   return v;
 }

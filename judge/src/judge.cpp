@@ -6,11 +6,12 @@
 
 namespace coverbench::judge {
 
-Judgement judgePath(const Wall& wall, const ToolParams& tool, const Path& path, const CoverageOptions& options) {
+Judgement judgePath(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle,
+                    const CoverageOptions& options) {
   using Clock = std::chrono::steady_clock;
   Judgement j;
   const auto t0 = Clock::now();
-  j.validity = judgeValidity(wall, tool, path);
+  j.validity = judgeValidity(wall, tool, path, vehicle);
   const auto t1 = Clock::now();
   j.coverage = judgeCoverage(wall, tool, path, options);
   const auto t2 = Clock::now();

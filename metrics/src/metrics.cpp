@@ -19,14 +19,15 @@ void checkScorable(const Path& path, const std::string& source) {
   }
 }
 
-PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const MotionLimits& limits) {
+PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle,
+                           const MotionLimits& limits) {
   checkScorable(path, "path");
   PathMetrics m;
-  m.validity = checkValidity(wall, tool, path);
+  m.validity = checkValidity(wall, tool, path, vehicle);
   m.lengths = pathLengths(path);
   m.passes = passes(path, tool.radius());
   m.coverage = coverage(wall, tool, path, m.validity, m.passes.swept_area);
-  m.motion = motion(path, limits);
+  m.motion = motion(path, limits, vehicle);
   m.waypoints = path.waypoints.size();
   const double ideal = m.coverage.reachable_area / tool.tool_width;
   m.length_ratio = ideal > 0.0 ? m.lengths.total / ideal : 0.0;

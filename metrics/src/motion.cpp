@@ -23,12 +23,22 @@ double runTime(double length, const MotionLimits& m) {
 
 }  // namespace
 
-Motion motion(const Path& path, const MotionLimits& limits) {
+Motion motion(const Path& path, const MotionLimits& limits, const VehicleModel& vehicle) {
   Motion m;
   double run = 0.0;
   bool have_heading = false;
   double heading = 0.0;
+  const bool lifts = vehicle.liftsTool();
   for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
+    // A gantry stops to lower its tool before each run of tool-on segments and to lift it after.
+    if (lifts && path.tool_on[i] && (i == 0 || !path.tool_on[i - 1])) {
+      ++m.lifts;
+      m.duration_s += vehicle.lower_s + vehicle.lift_s;
+    }
+    if (lifts && i > 0 && path.tool_on[i] != path.tool_on[i - 1]) {
+      m.duration_s += runTime(run, limits);
+      run = 0.0;
+    }
     const Point d = path.waypoints[i + 1] - path.waypoints[i];
     const double len = norm(d);
     if (len == 0.0) continue;  // zero-length segments have no heading

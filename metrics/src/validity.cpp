@@ -5,11 +5,24 @@
 
 namespace coverbench {
 
-Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path) {
+Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle) {
   Validity v;
   const ClearanceField field(wall);
   const double r = tool.radius();
   const std::size_t n = path.waypoints.size();
+  // A gantry's lifted move: the disk at both ends inside the wall's bounding box (then the whole
+  // move is, the box being convex).
+  const Box frame = boundingBox(wall.boundary);
+  auto inFrame = [&](Point p) {
+    return p.x - r >= frame.min_x - kValidityTolerance && p.x + r <= frame.max_x + kValidityTolerance &&
+           p.y - r >= frame.min_y - kValidityTolerance && p.y + r <= frame.max_y + kValidityTolerance;
+  };
+  auto lifted = [&](std::size_t segment, Point a, Point b) {
+    const bool outside = !inFrame(a) || !inFrame(b);
+    v.outside_boundary += outside;
+    v.violations += outside;
+    if (outside && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
+  };
   auto check = [&](std::size_t segment, Point a, Point b) {
     const SegmentClearance c = field.measure(a, b, std::fmax(v.min_clearance, tool.clearance) + r);
     const double boundary_gap = c.inside ? c.boundary_distance - r : -c.boundary_distance - r;
@@ -24,7 +37,12 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
     v.violations += outside || close;
   };
   if (n == 1) check(0, path.waypoints[0], path.waypoints[0]);
-  for (std::size_t i = 0; i + 1 < n; ++i) check(i, path.waypoints[i], path.waypoints[i + 1]);
+  const bool lifts = vehicle.liftsTool();
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    if (lifts && !path.tool_on[i])
+      lifted(i, path.waypoints[i], path.waypoints[i + 1]);
+    else
+      check(i, path.waypoints[i], path.waypoints[i + 1]);
   v.valid = v.violations == 0;
   return v;
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "coverbench/json_input.hpp"
+#include "coverbench/limits.hpp"
 
 namespace coverbench {
 namespace {
@@ -45,6 +46,7 @@ std::string planFileJson(const PlanFile& plan) {
   doc["wall"] = plan.wall;
   doc["tool_width"] = plan.tool.tool_width;
   doc["clearance"] = plan.tool.clearance;
+  if (!plan.vehicle.isDefault()) doc["vehicle"] = ordered_json::parse(vehicleJson(plan.vehicle));
   ordered_json params = ordered_json::object();
   for (const auto& [name, value] : plan.params.all()) params[name] = paramJson(value);
   doc["params"] = params;
@@ -111,7 +113,29 @@ LoadedPlan loadPlanFile(const std::string& file) {
     if (!doc[key].is_number()) throw InputError(file, key, "must be a number");
     (std::string(key) == "tool_width" ? plan.tool_width : plan.clearance) = doc[key].get<double>();
   }
+  if (doc.contains("vehicle")) {
+    const auto& v = doc["vehicle"];
+    if (!v.is_object()) throw InputError(file, "vehicle", "must be an object with model, lift_s and lower_s");
+    VehicleModel vehicle;
+    if (!v.contains("model") || !v["model"].is_string() || !parseVehicleKind(v["model"].get<std::string>(), vehicle.kind))
+      throw InputError(file, "vehicle.model", "must be \"holonomic\" or \"gantry\"");
+    for (const auto& [key, value] : {std::pair<const char*, double*>{"lift_s", &vehicle.lift_s}, {"lower_s", &vehicle.lower_s}}) {
+      if (!v.contains(key)) continue;
+      if (!v[key].is_number()) throw InputError(file, std::string("vehicle.") + key, "must be a number of seconds");
+      *value = v[key].get<double>();
+    }
+    validateVehicle(vehicle, file, "vehicle");
+    plan.vehicle = vehicle;
+  }
   return plan;
+}
+
+std::string vehicleJson(const VehicleModel& vehicle) {
+  ordered_json v;
+  v["model"] = toString(vehicle.kind);
+  v["lift_s"] = vehicle.lift_s;
+  v["lower_s"] = vehicle.lower_s;
+  return v.dump();
 }
 
 }  // namespace coverbench

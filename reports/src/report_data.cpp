@@ -137,19 +137,23 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
       const auto it = r->metrics.find(s.name);
       m[s.name] = it == r->metrics.end() ? Json(nullptr) : number(it->second);
     }
-    j["runs"].push_back({{"key", r->key},
-                         {"column", r->planner},
-                         {"config", r->config},
-                         {"dataset", r->dataset},
-                         {"wall", r->wall},
-                         {"wall_name", r->wall_name},
-                         {"tool_width", r->tool.tool_width},
-                         {"clearance", r->tool.clearance},
-                         {"pairing", r->pairing},
-                         {"status", r->status},
-                         {"valid", r->valid},
-                         {"uncovered_reachable_m2", number(r->uncovered_reachable_m2)},
-                         {"metrics", m}});
+    Json run = {{"key", r->key},
+                {"column", r->planner},
+                {"config", r->config},
+                {"dataset", r->dataset},
+                {"wall", r->wall},
+                {"wall_name", r->wall_name},
+                {"tool_width", r->tool.tool_width},
+                {"clearance", r->tool.clearance},
+                {"pairing", r->pairing},
+                {"status", r->status},
+                {"valid", r->valid},
+                {"uncovered_reachable_m2", number(r->uncovered_reachable_m2)},
+                         {"metrics", m}};
+    // Only a vehicle other than holonomic is named, so holonomic reports stay as they were.
+    if (!r->vehicle.isDefault())
+      run["vehicle"] = {{"model", toString(r->vehicle.kind)}, {"lift_s", r->vehicle.lift_s}, {"lower_s", r->vehicle.lower_s}};
+    j["runs"].push_back(std::move(run));
   }
   j["gallery"] = Json::array();
   for (const GallerySection& s : gallery) {

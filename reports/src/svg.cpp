@@ -134,7 +134,11 @@ std::string renderSvg(const SvgContent& c) {
     region(c.overlap, "#9b3fd1", "0.45");
     s << "<g fill=\"none\" stroke=\"#1f4f9f\" stroke-width=\"" << fmt(std::clamp(tool_px * 0.12, 0.5, 2.0))
       << "\" stroke-linejoin=\"round\">\n" << on_runs << "</g>\n";
-    s << "<g fill=\"none\" stroke=\"#e07b00\" stroke-width=\"1.6\" stroke-dasharray=\"5,3\">\n" << off_runs << "</g>\n";
+    if (c.vehicle.liftsTool())
+      s << "<g class=\"lifted\" fill=\"none\" stroke=\"#8e44ad\" stroke-width=\"1.6\" stroke-dasharray=\"1.5,3\" "
+           "stroke-linecap=\"round\">\n" << off_runs << "</g>\n";
+    else
+      s << "<g fill=\"none\" stroke=\"#e07b00\" stroke-width=\"1.6\" stroke-dasharray=\"5,3\">\n" << off_runs << "</g>\n";
     if (c.violating && !c.violating->empty()) {
       std::string d;
       for (std::size_t i : *c.violating)
@@ -160,8 +164,11 @@ std::string renderSvg(const SvgContent& c) {
     << "<rect x=\"120\" width=\"14\" height=\"10\" fill=\"#9a9a9a\"/><text x=\"140\" y=\"10\">obstacle</text>"
     << "<line x1=\"220\" y1=\"5\" x2=\"250\" y2=\"5\" stroke=\"#1f4f9f\" stroke-width=\"2\"/>"
     << "<text x=\"256\" y=\"10\">tool on (band = tool width)</text>"
-    << "<line x1=\"440\" y1=\"5\" x2=\"470\" y2=\"5\" stroke=\"#e07b00\" stroke-width=\"2\" stroke-dasharray=\"5,3\"/>"
-    << "<text x=\"476\" y=\"10\">transit (tool off)</text>"
+    << (c.vehicle.liftsTool()
+            ? "<line x1=\"440\" y1=\"5\" x2=\"470\" y2=\"5\" stroke=\"#8e44ad\" stroke-width=\"2\" "
+              "stroke-dasharray=\"1.5,3\" stroke-linecap=\"round\"/><text x=\"476\" y=\"10\">lifted (tool off)</text>"
+            : "<line x1=\"440\" y1=\"5\" x2=\"470\" y2=\"5\" stroke=\"#e07b00\" stroke-width=\"2\" "
+              "stroke-dasharray=\"5,3\"/><text x=\"476\" y=\"10\">transit (tool off)</text>")
     << "<circle cx=\"600\" cy=\"5\" r=\"5\" fill=\"#19a33a\"/><text x=\"610\" y=\"10\">start</text>"
     << "<rect x=\"655\" width=\"10\" height=\"10\" fill=\"#d02f2f\"/><text x=\"670\" y=\"10\">end</text>"
     << "</g>\n";
@@ -183,18 +190,19 @@ std::string renderSvg(const SvgContent& c) {
 }
 
 /// The picture of a path; with its coverage layer when it can be scored.
-std::string pathPicture(const Wall& wall, const ToolParams& tool, const Path& path, const std::string& title,
-                        bool coverage_layer, double overlap_strips) {
+std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle, const Path& path,
+                        const std::string& title, bool coverage_layer, double overlap_strips) {
   const Region free = freeRegion(wall, tool);
   SvgContent content;
   content.wall = &wall;
   content.tool = tool;
+  content.vehicle = vehicle;
   content.free = &free;
   content.path = &path;
   content.title = title;
   if (!coverage_layer) return renderSvg(content);
   const CoverageRegions regions = coverageRegions(wall, tool, path);
-  const Validity validity = checkValidity(wall, tool, path);
+  const Validity validity = checkValidity(wall, tool, path, vehicle);
   content.violating = &validity.violating;
   const Region uncovered = subtract(regions.reachable, regions.swept);
   // Draw the overlap with strips no finer than the measure's and at most `overlap_strips` over the wall.

@@ -34,6 +34,11 @@ void validateTool(const ToolParams& tool, const std::string& source);
 /// `source` names where the tool came from, `wall_source` the wall.
 void validateToolForWall(const ToolParams& tool, const Wall& wall, const std::string& source);
 
+/// A gantry's lift and lower times, seconds: an hour bounds any tool change.
+inline constexpr double kMaxLiftTime = 3600.0;
+/// lift_s and lower_s in [0, kMaxLiftTime] s, finite. Throws InputError(source, `field`.lift_s, ...).
+void validateVehicle(const VehicleModel& vehicle, const std::string& source, const std::string& field);
+
 /// A time limit in (0, kMaxTimeLimitSeconds] s. Throws InputError(source, field, ...).
 void validateTimeLimit(double seconds, const std::string& source, const std::string& field);
 

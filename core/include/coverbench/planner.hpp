@@ -65,10 +65,13 @@ struct Capabilities {
   bool deterministic = true;
 };
 
-/// One planning problem: a wall, the tool, and the planner's resolved parameters.
+/// One planning problem: a wall, the tool, the vehicle, and the planner's resolved parameters.
 struct Problem {
   const Wall* wall = nullptr;
   ToolParams tool;
+  /// Under a model that lifts the tool (gantry), planners cover every free component and cross
+  /// obstacles with the tool lifted (PathBuilder does it for planners built on it).
+  VehicleModel vehicle;
   Params params;
   /// For planners that randomise: all randomness must come from this seed (experiments set it
   /// from the config's seed), so a run is a pure function of its inputs.

@@ -71,9 +71,10 @@ class TransitRouter {
 /// The geometry of one problem, built once and shared by a planner's stages.
 class Workspace {
  public:
-  Workspace(const Wall& wall, const ToolParams& tool);
+  Workspace(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle = {});
   const Wall& wall() const { return wall_; }
   const ToolParams& tool() const { return tool_; }
+  const VehicleModel& vehicle() const { return vehicle_; }
   const Region& free() const { return free_; }
   const ClearanceField& field() const { return field_; }
   TransitRouter& router() { return router_; }
@@ -81,6 +82,7 @@ class Workspace {
  private:
   Wall wall_;
   ToolParams tool_;
+  VehicleModel vehicle_;
   ClearanceField field_;
   Region free_;
   TransitRouter router_;
@@ -99,11 +101,16 @@ class PathBuilder {
   /// Moves along points known to lie in the free region (e.g. a ring of `free()`), tool state
   /// as given. The first point must be the current position or reachable straight from it.
   void follow(const std::vector<Point>& points, bool tool_on);
-  /// Moves to `to`: straight if free (tool as `tool_on_if_straight`), else along the shortest
-  /// route with the tool off. Returns false (and leaves the path unchanged) if `to` is unreachable.
+  /// Moves to `to`: straight if free (tool as `tool_on_if_straight`); else, when the vehicle lifts
+  /// its tool (gantry), straight with the tool lifted (off); else along the shortest route with
+  /// the tool off. Returns false (and leaves the path unchanged) if `to` is unreachable. A lifted
+  /// move between two points of F stays in the wall's bounding box, which is convex.
   bool moveTo(Point to, bool tool_on_if_straight);
   /// How many moves so far went along a routed detour with the tool off.
   std::size_t transits() const { return transits_; }
+  /// How many moves so far crossed what is not free with the tool lifted (gantry only).
+  std::size_t liftedCrossings() const { return lifted_; }
+  const Workspace& workspace() const { return *ws_; }
   Path take() { return std::move(path_); }
   const Path& path() const { return path_; }
 
@@ -111,6 +118,7 @@ class PathBuilder {
   Workspace* ws_;
   Path path_;
   std::size_t transits_ = 0;
+  std::size_t lifted_ = 0;
 };
 
 /// Covers each ring with one closed loop (tool on), visiting rings in greedy nearest order and
@@ -119,18 +127,26 @@ class PathBuilder {
 /// rings that could not be reached.
 std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max_painted_link);
 
-/// The reason an ok plan gives for what it left out: the free components other than the largest,
-/// and parts (rings, rows) no collision-free transit reached. Empty when nothing was left out.
-std::string partialCoverageNote(std::size_t free_components, std::size_t unreachable_parts);
+/// The reason an ok plan gives for what it left out: the free components it did not cover (all
+/// but the largest, when `covered_components` is 1), and parts (rings, rows) no collision-free
+/// transit reached. Empty when nothing was left out.
+std::string partialCoverageNote(std::size_t free_components, std::size_t covered_components,
+                                std::size_t unreachable_parts);
 
-/// Records what every planner built on PathBuilder reports the same way: the statistic
-/// `routed_transits`, the typed fields free_components, covered_components (the largest only) and
-/// unreachable_parts, the reason above, and status Partial for an Ok plan that left parts out.
+/// Records what every planner built on PathBuilder reports the same way: the statistics
+/// `routed_transits` (and, for a vehicle that lifts its tool, `lifted_crossings`), the typed fields
+/// free_components, covered_components (coveredPart's) and unreachable_parts, the reason above,
+/// and status Partial for an Ok plan that left parts out.
 void recordOutcome(PlanResult& result, const PathBuilder& builder, std::size_t free_components,
                    std::size_t unreachable_parts);
 
 /// The connected components of a region, largest area first (ties broken by position, so the
 /// order is deterministic).
 std::vector<PolygonWithHoles> componentsByArea(const Region& region);
+
+/// The part of F a planner covers, given its components by area: all of them when the vehicle
+/// lifts its tool across what separates them (gantry), else the largest (the others cannot be
+/// reached without leaving F).
+Region coveredPart(const std::vector<PolygonWithHoles>& components, const VehicleModel& vehicle);
 
 }  // namespace coverbench

@@ -45,6 +45,9 @@ struct ExperimentConfig {
   std::vector<DatasetSpec> datasets;
   std::vector<PlannerConfig> planners;
   std::vector<ToolParams> tools;  ///< product of the tool widths and clearances given
+  /// How the robot carries the tool (config section `vehicle:`; holonomic when absent). One per
+  /// experiment, so no table pools two models: compare them with two experiments.
+  VehicleModel vehicle;
   int repetitions = 1;
   double time_limit_s = 60.0;
   double memory_limit_mb = 4096.0;
@@ -83,6 +86,7 @@ struct RunSpec {
   const WallEntry* wall = nullptr;
   const PlannerConfig* planner = nullptr;
   ToolParams tool;
+  VehicleModel vehicle;
   int repetitions = 1;  ///< the plan is executed this many times in the run's process, each timed
   std::uint64_t seed = 0;
   double time_limit_s = 60.0;
@@ -94,7 +98,8 @@ struct RunSpec {
   std::string key;                     ///< base key, planner version and code: see runKey
 };
 /// The base key: SHA-256 of the wall's content hash, the planner, every resolved parameter
-/// (defaults included), the tool parameters, the seed, and (only when set) the exact judge.
+/// (defaults included), the tool parameters, the seed, and (only when set) the exact judge and a
+/// vehicle other than holonomic (so keys from before vehicle models are unchanged).
 /// Limits and repetitions are not in it.
 std::string runBaseKey(const RunSpec& spec);
 /// The run key: SHA-256 of the base key, the planner's version and its code identity, so a

@@ -71,6 +71,7 @@ class ResultsDb {
     Wall wall;
     std::string planner;  ///< planner name and resolved parameters
     ToolParams tool;
+    VehicleModel vehicle;
     std::string status, reason;
     Path path;  ///< empty when the run failed
   };

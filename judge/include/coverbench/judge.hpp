@@ -40,16 +40,18 @@ struct Interval {
 
 /// Exact validity of every segment (segment i joins waypoints i and i + 1; a one-waypoint path is
 /// checked as a point). Same definitions as the fast engine (docs/metrics.md), but with exact
-/// arithmetic and no tolerance: a shortfall of 1e-15 m is a violation here.
+/// arithmetic and no tolerance: a shortfall of 1e-15 m is a violation here. A gantry's tool-off
+/// segments are lifted: the tool disk at both ends must lie in the wall's bounding box.
 struct ExactValidity {
   bool valid = true;
   std::size_t violations = 0;        ///< segments that break either rule below
-  std::size_t outside_boundary = 0;  ///< the tool disk leaves the wall (or the centre is outside it)
+  std::size_t outside_boundary = 0;  ///< the tool disk leaves the wall (or the centre is outside it; lifted: the box)
   std::size_t too_close = 0;         ///< the tool disk comes closer than c to an obstacle
   std::vector<std::size_t> violating;  ///< the first kMaxListed violating segments
   static constexpr std::size_t kMaxListed = 10000;
 };
-ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path& path);
+ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path& path,
+                            const VehicleModel& vehicle = {});
 
 struct CoverageOptions {
   /// Vertices of the polygons that stand in for each disk (inscribed and circumscribed); a
@@ -76,7 +78,7 @@ struct Judgement {
   double seconds_validity = 0.0;  ///< wall-clock time of each part (measured, not a result)
   double seconds_coverage = 0.0;
 };
-Judgement judgePath(const Wall& wall, const ToolParams& tool, const Path& path,
+Judgement judgePath(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle = {},
                     const CoverageOptions& options = {});
 
 }  // namespace coverbench::judge

@@ -13,18 +13,22 @@
 
 namespace coverbench {
 
-/// Validity of a path: every segment (tool on or off) must keep the whole tool disk inside
-/// the wall and at least `clearance` away from every obstacle.
+/// Validity of a path: every segment the tool is on the wall for (every segment for a holonomic
+/// vehicle; the tool-on ones for a gantry) must keep the whole tool disk inside the wall and at
+/// least `clearance` away from every obstacle. A gantry's tool-off (lifted) segments must keep the
+/// disk inside the wall's bounding box.
 struct Validity {
   bool valid = true;
-  std::size_t violations = 0;        ///< segments whose centre leaves F (either reason below)
-  std::size_t outside_boundary = 0;  ///< segments where the tool disk leaves the wall
+  std::size_t violations = 0;        ///< segments breaking a rule (either reason below)
+  /// Segments where the tool disk leaves the wall (a gantry's lifted segments: its bounding box).
+  std::size_t outside_boundary = 0;
   std::size_t too_close = 0;         ///< segments where the disk comes closer than c to an obstacle
-  /// Smallest gap (m) between the tool disk and any obstacle over the whole path; negative when
-  /// the disk overlaps an obstacle (down to -r when the centre touches it). Infinite when the
-  /// wall has no obstacles.
+  /// Smallest gap (m) between the tool disk and any obstacle over the segments checked against
+  /// the obstacles (all but a gantry's lifted ones); negative when the disk overlaps an obstacle
+  /// (down to -r when the centre touches it). Infinite when the wall has no obstacles.
   double min_clearance = INFINITY;
-  /// Smallest gap (m) between the tool disk and the wall boundary; negative when it leaves.
+  /// Smallest gap (m) between the tool disk and the wall boundary over the same segments;
+  /// negative when it leaves.
   double min_boundary_gap = INFINITY;
   /// Indices of the violating segments (segment i joins waypoints i and i+1), the first
   /// kMaxListedViolations of them: for pictures that mark where a path goes wrong.
@@ -35,7 +39,8 @@ inline constexpr std::size_t kMaxListedViolations = 10000;
 /// Checks every segment of the path with closed-form distances in doubles (no sampling), forgiving
 /// shortfalls up to kValidityTolerance (1e-9 m). The exact judge (judge/) has no tolerance.
 /// A single waypoint is checked as a point.
-Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path);
+Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path,
+                       const VehicleModel& vehicle = {});
 
 /// Path lengths in metres.
 struct Lengths {
@@ -123,13 +128,16 @@ struct Motion {
   std::size_t turns = 0;     ///< heading changes > 1 degree at interior waypoints
   std::size_t turns_30 = 0;  ///< heading changes > 30 degrees
   double turning_angle = 0.0;  ///< sum of |heading change|, radians
-  double duration_s = 0.0;     ///< trapezoidal speed profile, stopping at every turn > 30 degrees
+  /// Trapezoidal speed profile, stopping at every turn > 30 degrees; for a gantry also at every
+  /// change of tool state, plus lower_s + lift_s for every run of tool-on segments.
+  double duration_s = 0.0;
+  std::size_t lifts = 0;  ///< runs of tool-on segments of a gantry (each lowered, then lifted); 0 otherwise
 };
 struct MotionLimits {
   double speed = 0.3;         ///< v, m/s
   double acceleration = 0.5;  ///< a, m/s^2
 };
-Motion motion(const Path& path, const MotionLimits& limits = {});
+Motion motion(const Path& path, const MotionLimits& limits = {}, const VehicleModel& vehicle = {});
 
 /// Every metric of one path.
 struct PathMetrics {
@@ -144,7 +152,7 @@ struct PathMetrics {
 /// Scores a path. Throws InputError (field `waypoints`) for a path beyond the scoring limits
 /// below, before any work.
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path,
-                           const MotionLimits& limits = {});
+                           const VehicleModel& vehicle = {}, const MotionLimits& limits = {});
 
 /// Scoring limits. Exact scoring grows with the path's waypoints (memory: a spanning-tree path of
 /// 10^6 waypoints took 18 s and 0.46 GB here) and, much faster, with how often the path crosses

@@ -23,6 +23,7 @@ struct ResultRow {
   std::string key;      ///< run key
   std::string wall_name;
   ToolParams tool;
+  VehicleModel vehicle;
   std::string dataset;
   std::string wall;     ///< wall content hash
   std::string pairing;  ///< what makes two runs comparable: wall, tool and repetition

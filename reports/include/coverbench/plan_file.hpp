@@ -15,6 +15,7 @@ struct PlanFile {
   std::string planner;
   std::string wall;
   ToolParams tool;
+  VehicleModel vehicle;  ///< written only when not holonomic (older files, and holonomic ones, have none)
   Params params;
   PlanResult result;
   PathMetrics metrics;
@@ -31,12 +32,15 @@ std::string planFileJson(const PlanFile& plan);
 std::string metricsJson(const PathMetrics& metrics);
 
 /// A path read from a plan file of any source: only `waypoints` and `tool_on` are required;
-/// `tool_width` and `clearance` are read when present.
+/// `tool_width`, `clearance` and `vehicle` are read when present.
 struct LoadedPlan {
   Path path;
   std::optional<double> tool_width;
   std::optional<double> clearance;
+  std::optional<VehicleModel> vehicle;
 };
+/// The plan file's `vehicle` object: {"model": "gantry", "lift_s": 1, "lower_s": 1}.
+std::string vehicleJson(const VehicleModel& vehicle);
 /// Throws InputError (file, field, problem) for anything malformed, and for paths beyond the
 /// scoring limits (kMaxScoredWaypoints, kMaxPathCoordinate).
 LoadedPlan loadPlanFile(const std::string& file);

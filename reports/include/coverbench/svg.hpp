@@ -1,6 +1,7 @@
 #pragma once
 /// SVG pictures of a wall and a path: wall, obstacles, free region, swept band, coverage layer
-/// (uncovered reachable area, areas passed twice or more), path (tool on solid, transit dashed),
+/// (uncovered reachable area, areas passed twice or more), path (tool on solid, transit dashed, a
+/// gantry's lifted moves dotted in purple),
 /// start and end, segments that fail the exact check. Scaled to a fixed picture size so a 20 m facade and a
 /// 1 m strip are equally readable; a scale bar gives metres.
 
@@ -16,6 +17,7 @@ namespace coverbench {
 struct SvgContent {
   const Wall* wall = nullptr;
   ToolParams tool;
+  VehicleModel vehicle;  ///< a gantry's tool-off moves are drawn as lifted
   const Region* free = nullptr;  ///< optional: the free centre region F
   const Path* path = nullptr;    ///< optional
   const Region* uncovered = nullptr;  ///< optional coverage layer: reachable but not swept
@@ -32,7 +34,7 @@ std::string renderSvg(const SvgContent& content);
 /// path that can be scored) the coverage layer and the segments that fail the exact check.
 /// The overlap layer is drawn with at most `overlap_strips` scanline strips over the wall's
 /// height (1500: finer than the picture's pixels; galleries of thumbnails use fewer).
-std::string pathPicture(const Wall& wall, const ToolParams& tool, const Path& path, const std::string& title,
-                        bool coverage_layer = true, double overlap_strips = 1500.0);
+std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle, const Path& path,
+                        const std::string& title, bool coverage_layer = true, double overlap_strips = 1500.0);
 
 }  // namespace coverbench

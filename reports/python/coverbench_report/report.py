@@ -19,11 +19,27 @@ def write(path, text):
         f.write(text)
 
 
+def vehicle_text(a):
+    """' Vehicle: gantry (lift 1 s, lower 1 s).' when the runs name a vehicle (holonomic runs name none)."""
+    named = []
+    for r in a.runs:
+        v = r.get("vehicle")
+        if v:
+            text = f"{v['model']} (lift {v['lift_s']:g} s, lower {v['lower_s']:g} s)"
+            if text not in named:
+                named.append(text)
+    if not named:
+        return ""
+    if any("vehicle" not in r for r in a.runs):
+        named.append("holonomic")
+    return " Vehicle: " + ", ".join(named) + "."
+
+
 def preamble(a, fmt):
     e = a.experiment
     runs = len(a.runs)
     line = (f"Experiment {e['name']}: {runs} runs, {len(a.datasets)} datasets, {len(a.columns)} planner "
-            f"configurations, baseline {e['baseline']}, config sha256 {e['config_hash'][:12]}.")
+            f"configurations, baseline {e['baseline']}, config sha256 {e['config_hash'][:12]}.{vehicle_text(a)}")
     if fmt == "md":
         return f"# {T._md('Experiment ' + e['name'])}\n\n{T._md(line)}\n\n"
     if fmt == "latex":
@@ -154,7 +170,8 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
 
     outcomes = [T.to_html(T.outcome_table(a)), T.to_html(T.success_table(a))]
     subtitle = (f"<p>{len(a.runs)} runs: {len(a.datasets)} datasets, {len(a.columns)} planner configurations, "
-                f"baseline <b>{esc(e['baseline'])}</b>. Definitions of every metric: docs/metrics.md. Tables for "
+                f"baseline <b>{esc(e['baseline'])}</b>.{esc(vehicle_text(a))} Definitions of every metric: docs/metrics.md "
+                f"(vehicle models: docs/vehicles.md). Tables for "
                 f'papers: <a href="report.md">Markdown</a>, <a href="report.csv">CSV</a>, '
                 f'<a href="report.tex">LaTeX</a>; every run: <a href="report_data.json">report_data.json</a>.</p>')
     sections = [("headline", "Headline", "\n".join(headline)), ("outcomes", "Outcomes", "\n".join(outcomes)),
