@@ -20,6 +20,7 @@
 namespace coverbench {
 namespace {
 
+using test::CommandRun;
 using test::rect;
 using test::rectWall;
 
@@ -272,6 +273,34 @@ TEST_F(VehicleFiles, ConfigsNameAVehicleAndOnlyAGantryChangesTheRunKeys) {
   EXPECT_NE(configError(base + "vehicle:\n  lift_s: 2\n").find("vehicle.model: missing"), std::string::npos);
   EXPECT_NE(configError(base + "vehicle:\n  model: holonomic\n  lift_s: 2\n").find("belong to a gantry"), std::string::npos);
   EXPECT_NE(configError(base + "vehicle:\n  model: gantry\n  speed: 2\n").find("vehicle.speed"), std::string::npos);
+}
+
+// As a user runs it: plan for a gantry, score the plan file (which carries the vehicle), override it.
+class VehicleCommands : public test::CommandTest {};
+
+TEST_F(VehicleCommands, PlanAndScoreForAGantry) {
+  const std::string wall = test::sourcePath("tests/data/conformance/narrow_gap_disconnected.json");
+  const std::string plan = (dir_ / "plan.json").string(), svg = (dir_ / "plan.svg").string();
+  CommandRun r = run("plan --wall " + wall + " --planner zigzag --vehicle gantry --lift-s 2 --out " + plan + " --svg " + svg);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = slurp(plan);
+  EXPECT_NE(text.find(" \"vehicle\": {\"model\":\"gantry\",\"lift_s\":2.0,\"lower_s\":1.0},\n"), std::string::npos);
+  EXPECT_NE(text.find("\"status\": \"ok\""), std::string::npos);
+  EXPECT_NE(slurp(svg).find("class=\"lifted\""), std::string::npos);
+  std::string out;
+  r = run("metrics --wall " + wall + " --plan " + plan, &out);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(out.find("\"valid\": true"), std::string::npos);
+  r = run("metrics --wall " + wall + " --plan " + plan + " --vehicle holonomic --judge exact", &out);
+  EXPECT_EQ(r.exit_code, 3) << "judged as a dragged tool the lifted crossings are violations";
+  EXPECT_NE(out.find("\"valid\": false"), std::string::npos);
+
+  r = run("plan --wall " + wall + " --planner zigzag --vehicle tank --out " + plan);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "coverbench: --vehicle: vehicle: must be holonomic or gantry, not 'tank'\n");
+  r = run("plan --wall " + wall + " --planner zigzag --lift-s 2 --out " + plan);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("belong to a gantry"), std::string::npos) << r.err;
 }
 
 TEST(Gantry, PicturesDrawLiftedMovesAsLifted) {
