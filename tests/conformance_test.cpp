@@ -107,6 +107,8 @@ std::vector<Case> allCases() {
     cases.push_back({"spanning-tree", test::sourcePath(wall), {}, {{"tree", "mst"}, {"variant", "spiral-stc"}}});
     cases.push_back({"spanning-tree", test::sourcePath(wall), {}, {{"neighbour_order", "LDRU"}}});
     cases.push_back({"adaptive-resolution", test::sourcePath(wall), {}, {{"dense_waypoints", "true"}}});
+    for (const char* planner : {"spanning-tree", "adaptive-resolution"})
+      cases.push_back({planner, test::sourcePath(wall), {}, {{"corner_spurs", "true"}}});
   }
   for (const char* planner : {"trapezoidal", "boustrophedon"})
     for (const char* wall : {"tests/data/conformance/garden_circles.json", "tests/data/conformance/stairwell.json",
@@ -158,6 +160,7 @@ TEST(FamilyWalls, EveryPlannerAndVariantValidOnEveryGeneratedFamily) {
   for (const char* variant : {"return", "stop", "spiral-stc"}) configs.push_back({"spanning-tree", {{"variant", variant}}});
   configs.push_back({"spanning-tree", {{"tree", "mst"}}});
   configs.push_back({"adaptive-resolution", {{"dense_waypoints", "true"}}});
+  for (const char* planner : {"spanning-tree", "adaptive-resolution"}) configs.push_back({planner, {{"corner_spurs", "true"}}});
   for (const FamilyInfo& family : wallFamilies()) {
     if (family.fixed_suite || family.name == "stress") continue;
     for (std::size_t i = 0; i < 2; ++i) {

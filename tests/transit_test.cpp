@@ -1,6 +1,8 @@
 // Transits go around obstacles, never through them, and are as short as the graph allows.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "coverbench/metrics.hpp"
 #include "coverbench/workspace.hpp"
 #include "test_support.hpp"
@@ -75,6 +77,57 @@ TEST(Transit, ThroughANarrowPassageWhenItFits) {
   Path p;
   for (const Point& q : *route) p.moveTo(q, false);
   EXPECT_TRUE(test::isValidPath(w, tool, p));
+}
+
+// Spurs (corner_spurs): hand-computed tips on an L-shaped painted run, r = 0.1 m.
+TEST(CornerSpurs, OutAndBackAtCornersAndRunEnds) {
+  const Wall w = rectWall(4, 3);
+  Workspace ws(w, ToolParams{0.2, 0.0});
+  Path p;
+  p.moveTo({0.5, 0.5}, false);
+  p.moveTo({2.0, 0.5}, true);
+  p.moveTo({2.0, 1.5}, true);
+  p.moveTo({3.0, 2.5}, false);  // a tool-off move: no spur at its ends
+  std::size_t spurs = 0;
+  const Path q = withCornerSpurs(p, 0.1, ws.router(), spurs);
+  EXPECT_EQ(spurs, 3u);
+  // The run starts at (0.5, 0.5): r back; the 90-degree corner at (2, 0.5): r (sqrt 2 - 1) along
+  // the outward bisector (1, -1) / sqrt 2, i.e. 0.1 (1 - 1 / sqrt 2) in x and y; the run ends at
+  // (2, 1.5): r on.
+  const double d = 0.1 * (1.0 - 1.0 / std::sqrt(2.0));
+  const std::vector<Point> want = {{0.5, 0.5}, {0.4, 0.5}, {0.5, 0.5}, {2.0, 0.5}, {2.0 + d, 0.5 - d}, {2.0, 0.5},
+                                   {2.0, 1.5}, {2.0, 1.6}, {2.0, 1.5}, {3.0, 2.5}};
+  const std::vector<bool> tool = {true, true, true, true, true, true, true, true, false};
+  ASSERT_EQ(q.waypoints.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    EXPECT_NEAR(q.waypoints[i].x, want[i].x, 1e-12) << i;
+    EXPECT_NEAR(q.waypoints[i].y, want[i].y, 1e-12) << i;
+  }
+  EXPECT_EQ(q.tool_on, tool);
+}
+
+TEST(CornerSpurs, ShortenedOrLeftOutWhereNotFree) {
+  // The run ends 0.15 m from the wall's right edge: the disk may move 0.05 m on, not r = 0.1, and
+  // planners keep kPlanningMargin spare, so the spur is r / 4 = 0.025 m (halved twice); at 0.1 m
+  // from the edge there is no room at all and none is added (spurs stop at r / 8).
+  const Wall w = rectWall(4, 3);
+  Workspace ws(w, ToolParams{0.2, 0.0});
+  for (const auto& [end_x, tip_x] : {std::pair<double, double>{3.85, 3.875}, {3.9, NAN}}) {
+    Path p;
+    p.moveTo({3.0, 1.0}, false);
+    p.moveTo({end_x, 1.0}, true);
+    std::size_t spurs = 0;
+    const Path q = withCornerSpurs(p, 0.1, ws.router(), spurs);
+    EXPECT_TRUE(test::isValidPath(w, ToolParams{0.2, 0.0}, q));
+    if (std::isnan(tip_x)) {
+      EXPECT_EQ(spurs, 1u) << "only the start's";
+      EXPECT_EQ(q.waypoints.back().x, end_x);
+    } else {
+      EXPECT_EQ(spurs, 2u);
+      ASSERT_GE(q.waypoints.size(), 2u);
+      EXPECT_NEAR(q.waypoints[q.waypoints.size() - 2].x, tip_x, 1e-12);
+    }
+  }
 }
 
 }  // namespace

@@ -164,6 +164,8 @@ class AdaptivePlanner final : public Planner {
     if (path.waypoints.empty())
       return PlanResult::failure(PlanStatus::NoReachableArea, "no cell centre of the quadtree lies in F");
 
+    std::size_t spurs = 0;
+    if (problem.params.flag("corner_spurs")) path = withCornerSpurs(path, problem.tool.radius(), ws.router(), spurs);
     if (problem.params.flag("dense_waypoints")) path = densify(path, ws, problem.params);
 
     PlanResult result;
@@ -174,6 +176,7 @@ class AdaptivePlanner final : public Planner {
     result.stats["fine_leaves"] = static_cast<double>(fine_leaves);
     result.stats["largest_leaf_cells"] = static_cast<double>(largest);
     result.stats["rows"] = static_cast<double>(passes);
+    if (problem.params.flag("corner_spurs")) result.stats["corner_spurs"] = static_cast<double>(spurs);
     recordOutcome(result, builder, components.size(), unreachable);
     return result;
   }
@@ -219,6 +222,7 @@ PlannerInfo info() {
       {"far_spacing", ParamType::Number, 0.02, 0.0005, 1.0, {}, "m", "waypoint spacing elsewhere"},
       {"near_distance", ParamType::Number, 0.1, 0.0, 100.0, {}, "m", "gap (from the tool's edge) that counts as near"},
       {"mid_distance", ParamType::Number, 0.5, 0.0, 100.0, {}, "m", "gap that counts as mid"},
+      cornerSpursParam(),
   };
   info.min_coverage_reachable = 0.99;
   info.make = [] { return std::make_unique<AdaptivePlanner>(); };

@@ -562,6 +562,11 @@ class SpanningTreePlanner final : public Planner {
     PlanResult result;
     result.status = PlanStatus::Ok;
     result.path = builder.take();
+    if (problem.params.flag("corner_spurs")) {
+      std::size_t spurs = 0;
+      result.path = withCornerSpurs(result.path, problem.tool.radius(), ws.router(), spurs);
+      result.stats["corner_spurs"] = static_cast<double>(spurs);
+    }
     result.stats["grid_cells"] = static_cast<double>(grid.size());
     result.stats["free_cells"] = static_cast<double>(free_cells);
     result.stats["grid_spacing_x"] = grid.dx;
@@ -599,6 +604,7 @@ PlannerInfo info() {
       {"waypoint_per_cell", ParamType::Bool, false, 0, 0, {}, "",
        "a waypoint at every cell visited (the classic STC output) instead of only where the walk turns; "
        "the same path"},
+      cornerSpursParam(),
   };
   // The loop paints what the cells leave along F's edge; a round tool still leaves the outer corner
   // of each turn of the walk (lowest on the conformance walls: 0.988, gable walls at s = 0.1 m).

@@ -52,12 +52,9 @@ bool somethingVanished(const std::vector<Ring>& outer, const std::vector<Ring>& 
   return false;
 }
 
-/// An inner ring with out-and-back spurs at its convex corners. Between two levels `spacing`
-/// apart the bands of the two loops meet along the edges, but at a convex corner of interior
-/// angle a the inner loop sweeps a disk, leaving a curved triangle uncovered beyond the corner;
-/// a spur of r / sin(a / 2) - r along the outward bisector reaches its far point. A spur is kept
-/// only when it is free (exact check), shortened by halves otherwise; a corner sharper than
-/// 30 degrees gets a spur of at most 2 r.
+/// An inner ring with out-and-back spurs at its convex corners (cornerSpurTip). Between two
+/// levels `spacing` apart the bands of the two loops meet along the edges, but at a convex corner
+/// the inner loop sweeps a disk, leaving a curved triangle uncovered beyond the corner.
 Ring withCornerSpurs(const Ring& ring, double r, const TransitRouter& router, std::size_t& spurs) {
   const std::size_t n = ring.size();
   Ring out;
@@ -65,22 +62,11 @@ Ring withCornerSpurs(const Ring& ring, double r, const TransitRouter& router, st
   for (std::size_t i = 0; i < n; ++i) {
     out.push_back(ring[i]);
     const double angle = interiorAngle(ring, i);
-    if (angle >= M_PI - 0.09) continue;  // nearly straight or reflex: nothing left beyond it
-    const Point v = ring[i];
-    const Point u = ring[i] - ring[(i + n - 1) % n], w = ring[(i + 1) % n] - ring[i];
-    const double lu = norm(u), lw = norm(w);
-    if (lu == 0.0 || lw == 0.0) continue;
-    const Point outward = u * (1.0 / lu) - w * (1.0 / lw);  // minus the inward bisector
-    const double lo = norm(outward);
-    if (lo == 0.0) continue;
-    double length = std::fmin(r / std::sin(angle / 2.0) - r, 2.0 * r);
-    for (int attempt = 0; attempt < 3; ++attempt, length /= 2.0) {
-      const Point tip = v + outward * (length / lo);
-      if (!router.isFree(v, tip)) continue;
-      out.push_back(tip);
-      out.push_back(v);
+    if (angle >= kStraightCorner) continue;  // nearly straight or reflex: nothing left beyond it
+    if (const auto tip = cornerSpurTip(ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n], angle, r, router)) {
+      out.push_back(*tip);
+      out.push_back(ring[i]);
       ++spurs;
-      break;
     }
   }
   return out;

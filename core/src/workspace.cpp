@@ -1,6 +1,7 @@
 #include "coverbench/workspace.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "coverbench/region_ops.hpp"
 
@@ -79,6 +80,70 @@ std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max
     builder.follow(loop, true);
   }
   return unreachable;
+}
+
+std::optional<Point> cornerSpurTip(Point prev, Point v, Point next, double angle, double r, const TransitRouter& router) {
+  const Point u = v - prev, w = next - v;
+  const double lu = norm(u), lw = norm(w);
+  if (lu == 0.0 || lw == 0.0) return std::nullopt;
+  const Point outward = u * (1.0 / lu) - w * (1.0 / lw);  // minus the inward bisector
+  const double lo = norm(outward);
+  if (lo == 0.0) return std::nullopt;
+  double length = std::fmin(r / std::sin(angle / 2.0) - r, 2.0 * r);
+  for (int attempt = 0; attempt < 3; ++attempt, length /= 2.0) {
+    const Point tip = v + outward * (length / lo);
+    if (router.isFree(v, tip)) return tip;
+  }
+  return std::nullopt;
+}
+
+Path withCornerSpurs(const Path& path, double r, const TransitRouter& router, std::size_t& spurs) {
+  const std::size_t n = path.waypoints.size();
+  Path out;
+  if (n == 0) return out;
+  out.waypoints.reserve(n);
+  out.tool_on.reserve(n);
+  auto spur = [&](Point v, Point tip) {
+    out.waypoints.push_back(tip);
+    out.tool_on.push_back(true);
+    out.waypoints.push_back(v);
+    out.tool_on.push_back(true);
+    ++spurs;
+  };
+  // An end of a painted run: r straight on (or back) reaches the cell's far corners; halved while
+  // not free.
+  auto endSpur = [&](Point v, Point along) {
+    const double l = norm(along);
+    if (l == 0.0) return;
+    for (double length = r; length > r / 8.0; length /= 2.0) {
+      const Point tip = v + along * (length / l);
+      if (!router.isFree(v, tip)) continue;
+      spur(v, tip);
+      return;
+    }
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    // Waypoint i, reached by segment i - 1, left by segment i.
+    const Point v = path.waypoints[i];
+    out.waypoints.push_back(v);
+    if (i > 0) out.tool_on.push_back(path.tool_on[i - 1]);
+    const bool in = i > 0 && path.tool_on[i - 1], on = i + 1 < n && path.tool_on[i];
+    if (on && !in) endSpur(v, v - path.waypoints[i + 1]);  // a painted run starts here
+    if (in && !on) endSpur(v, v - path.waypoints[i - 1]);  // a painted run ends here
+    if (!in || !on) continue;
+    const Point prev = path.waypoints[i - 1], next = path.waypoints[i + 1];
+    const Point u = v - prev, w = next - v;
+    const double angle = M_PI - std::fabs(std::atan2(cross(u, w), dot(u, w)));
+    if (angle >= kStraightCorner) continue;
+    if (const auto tip = cornerSpurTip(prev, v, next, angle, r, router)) spur(v, *tip);
+  }
+  return out;
+}
+
+ParamSpec cornerSpursParam() {
+  return {"corner_spurs", ParamType::Bool, false, 0, 0, {}, "",
+          "an out-and-back spur at every painted corner, so the disk reaches the corner the turn leaves "
+          "unpainted (longer, more overlap; docs/planner_quality.md)"};
 }
 
 std::string partialCoverageNote(std::size_t free_components, std::size_t covered_components,

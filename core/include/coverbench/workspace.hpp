@@ -127,6 +127,26 @@ class PathBuilder {
 /// rings that could not be reached.
 std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max_painted_link);
 
+/// Corners of a painted polyline at least this wide (radians) count as straight: no spur.
+inline constexpr double kStraightCorner = M_PI - 0.09;
+
+/// The tip of an out-and-back spur at the corner `v` of a painted polyline prev -> v -> next whose
+/// angle between the two segments is `angle` (< pi). Turning there, the disk leaves a curved
+/// triangle unpainted beyond the corner, on the outside of the turn; a spur of
+/// r / sin(angle / 2) - r along the outward bisector reaches its far point. The spur is kept only
+/// when free (exact check), shortened by halves otherwise (three tries); a corner sharper than
+/// 30 degrees gets a spur of at most 2 r. nullopt: no free spur (or a degenerate corner).
+std::optional<Point> cornerSpurTip(Point prev, Point v, Point next, double angle, double r, const TransitRouter& router);
+
+/// The path with an out-and-back spur (tool on) at every corner between two tool-on segments that
+/// is sharper than kStraightCorner (cornerSpurTip), and one of r straight on at both ends of every
+/// run of tool-on segments (it reaches the far corners of a cell of side 2 r whose centre the run
+/// ends at), where free (shortened by halves otherwise); `spurs` counts them.
+Path withCornerSpurs(const Path& path, double r, const TransitRouter& router, std::size_t& spurs);
+/// The parameter `corner_spurs` (withCornerSpurs on the finished path) as grid planners declare it.
+/// Off by default, so their default results stay as they were.
+ParamSpec cornerSpursParam();
+
 /// The reason an ok plan gives for what it left out: the free components it did not cover (all
 /// but the largest, when `covered_components` is 1), and parts (rings, rows) no collision-free
 /// transit reached. Empty when nothing was left out.
