@@ -85,17 +85,22 @@ double peakResidentBytes() {
 /// Plans one wall with one planner and renders its outputs (nothing is written here). A path
 /// beyond the scoring limits is kept, unscored, with the reason.
 Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams& tool, const VehicleModel& vehicle,
-                 Params params, double time_limit_s, bool with_picture) {
+                 Params params, double time_limit_s, bool with_picture, const TransitSpec& transit = {},
+                 std::uint64_t seed = 0) {
   Problem problem;
   problem.wall = &wall;
   problem.tool = tool;
   problem.vehicle = vehicle;
+  problem.transit = transit;
+  problem.seed = seed;
   problem.params = params;
   Outcome o;
   o.plan.planner = planner.name;
   o.plan.wall = wall.name;
   o.plan.tool = tool;
   o.plan.vehicle = vehicle;
+  o.plan.transit = transit;
+  o.plan.seed = seed;
   o.plan.params = std::move(params);
   const double rss_before = residentBytes();
   o.plan.result = runPlanner(planner, problem, Budget(std::chrono::duration<double>(time_limit_s)));
@@ -149,6 +154,9 @@ void listPlanners(std::ostream& out) {
       out << "  " << s.description << "\n";
     }
   }
+  out << "\ntransit planners (--transit, `transit:` in a config; docs/transits.md):\n";
+  for (const TransitPlannerInfo& t : transitPlanners())
+    out << t.name << ": " << t.summary << "\n  reference: " << t.reference << "\n";
 }
 
 int planCommand(const PlanOptions& options) {
@@ -159,8 +167,16 @@ int planCommand(const PlanOptions& options) {
   const PlannerInfo& planner = findPlanner(options.planner);
   Params params = resolveParams(planner, splitSettings(options.params));
   const VehicleModel vehicle = resolveVehicle(options.vehicle, VehicleModel{});
-  const Outcome o =
-      planOnce(wall, planner, options.tool, vehicle, std::move(params), options.time_limit_s, !options.svg.empty());
+  const TransitPlannerInfo* transit = findTransitPlanner(options.transit.planner);
+  if (!transit) throw InputError("--transit", "transit", "'" + options.transit.planner + "' is not a transit planner (see `coverbench planners`)");
+  if (!transit->sampling && options.transit_options_given)
+    throw InputError("--transit-iterations", "transit", "iterations and a time cap belong to a sampling planner; visibility has neither");
+  if (options.transit.iterations < 1 || options.transit.iterations > kMaxTransitIterations)
+    throw InputError("--transit-iterations", "transit.iterations", "must be from 1 to " + std::to_string(kMaxTransitIterations));
+  validateTimeLimit(options.transit.time_cap_s, "--transit-time-cap", "transit.time_cap_s");
+  if (options.seed > (1ULL << 53)) throw InputError("--seed", "seed", "must be from 0 to 2^53");
+  const Outcome o = planOnce(wall, planner, options.tool, vehicle, std::move(params), options.time_limit_s,
+                             !options.svg.empty(), options.transit, options.seed);
   OutputFiles files;  // both files or neither
   files.add(options.out, o.plan_json);
   if (!options.svg.empty()) files.add(options.svg, o.svg);

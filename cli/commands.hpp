@@ -23,6 +23,9 @@ struct PlanOptions {
   std::string wall, planner, out, svg;
   ToolParams tool;
   VehicleOptions vehicle;
+  TransitSpec transit;        ///< --transit, --transit-iterations, --transit-time-cap
+  bool transit_options_given = false;  ///< --transit-iterations or --transit-time-cap was given
+  unsigned long long seed = 0;  ///< --seed: what planners and sampling transit planners draw from
   std::vector<std::string> params;  ///< key=value
   double time_limit_s = 60.0;
 };

@@ -31,12 +31,23 @@ int main(int argc, char** argv) {
   plan_cmd->add_option("--vehicle", plan.vehicle.model, "holonomic (default): every move stays in F; gantry: tool-off moves are lifted");
   plan_cmd->add_option("--lift-s", plan.vehicle.lift_s, "gantry: seconds to lift the tool (default 1)");
   plan_cmd->add_option("--lower-s", plan.vehicle.lower_s, "gantry: seconds to lower the tool (default 1)");
+  plan_cmd->add_option("--transit", plan.transit.planner,
+                       "transit planner for detours: visibility (default, shortest), rrtstar, prmstar, bitstar, informed-rrtstar")
+      ->capture_default_str();
+  CLI::Option* transit_iterations = plan_cmd->add_option("--transit-iterations", plan.transit.iterations,
+                                                         "sampling transit planners: iterations per query")->capture_default_str();
+  CLI::Option* transit_cap = plan_cmd->add_option("--transit-time-cap", plan.transit.time_cap_s,
+                                                  "sampling transit planners: seconds a query may take at most")->capture_default_str();
+  plan_cmd->add_option("--seed", plan.seed, "seed of the planner and a sampling transit planner")->capture_default_str();
   plan_cmd->add_option("--param", plan.params, "planner parameter key=value (repeatable)");
   plan_cmd->add_option("--time-limit", plan.time_limit_s, "seconds before the planner must stop")
       ->capture_default_str();
   plan_cmd->add_option("--out", plan.out, "plan file to write (JSON)")->required();
   plan_cmd->add_option("--svg", plan.svg, "picture to write (SVG)");
-  plan_cmd->callback([&] { plan_exit = coverbench::cli::planCommand(plan); });
+  plan_cmd->callback([&] {
+    plan.transit_options_given = transit_iterations->count() > 0 || transit_cap->count() > 0;
+    plan_exit = coverbench::cli::planCommand(plan);
+  });
 
   coverbench::cli::MetricsOptions metrics;
   CLI::App* metrics_cmd =

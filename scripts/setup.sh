@@ -13,6 +13,7 @@ PACKAGES=(g++ cmake ninja-build pkg-config ccache
           chromium python3-websocket                               # the browser test of the report
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
+          libompl-dev libeigen3-dev                                # the sampling transit planners
           ompl-demos                                               # OMPL's log parser, for the export-ompl test
           valgrind                                                 # the cost gate (callgrind)
           clang libclang-rt-14-dev)                                # the sanitizer build and the fuzz targets

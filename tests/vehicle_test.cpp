@@ -209,13 +209,8 @@ TEST_P(GantryFamilies, EveryPlannerCoversEveryComponentOfNarrowAndRandomWalls) {
 
 INSTANTIATE_TEST_SUITE_P(AllPlanners, GantryFamilies, testing::ValuesIn(test::plannerNames()), test::plannerTestName);
 
-class VehicleFiles : public test::TempDirTest {
+class VehicleFiles : public test::CommandTest {
  protected:
-  std::string write(const std::string& name, const std::string& text) {
-    const std::filesystem::path p = dir_ / name;
-    std::ofstream(p) << text;
-    return p.string();
-  }
   std::string loadError(const std::string& text) {
     return test::inputError([&] { loadPlanFile(write("plan.json", text)); });
   }

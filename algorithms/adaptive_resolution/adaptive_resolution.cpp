@@ -19,7 +19,7 @@ class AdaptivePlanner final : public Planner {
  public:
   PlanResult plan(const Problem& problem, const Budget& budget) override {
     const double s = problem.tool.tool_width;
-    Workspace ws(*problem.wall, problem.tool, problem.vehicle);
+    Workspace ws(*problem.wall, problem);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())
       return PlanResult::failure(PlanStatus::NoReachableArea,

@@ -135,7 +135,7 @@ class DecompositionPlanner final : public Planner {
     const double turn = (angle_deg - 90.0) * M_PI / 180.0;
     const Wall wall = rotateWall(*problem.wall, -turn);
 
-    Workspace ws(wall, problem.tool, problem.vehicle);
+    Workspace ws(wall, problem);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())
       return PlanResult::failure(PlanStatus::NoReachableArea,
@@ -267,7 +267,7 @@ class DecompositionPlanner final : public Planner {
           if (best.empty() || polylineLength(walk) < polylineLength(best)) best = std::move(walk);
         }
         // The shortest collision-free route when it is shorter than the walk through the cells.
-        const auto route = ws.router().route(builder.current(), entry);
+        const auto route = ws.route(builder.current(), entry);
         if (route && polylineLength(*route) < polylineLength(best)) {
           builder.follow(*route, false);
           ++routed_between_cells;

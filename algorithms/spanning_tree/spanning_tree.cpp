@@ -419,7 +419,7 @@ class SpanningTreePlanner final : public Planner {
     const double s = problem.tool.tool_width;
     const bool loop = problem.params.flag("boundary_loop");
 
-    Workspace ws(*problem.wall, problem.tool, problem.vehicle);
+    Workspace ws(*problem.wall, problem);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())
       return PlanResult::failure(PlanStatus::NoReachableArea,

@@ -85,7 +85,7 @@ class SpiralPlanner final : public Planner {
     const double tolerance = std::clamp(s / 10.0, kArcTolerance, 1e-2);
     const double coarse = s / 5.0;
 
-    Workspace ws(*problem.wall, problem.tool, problem.vehicle);
+    Workspace ws(*problem.wall, problem);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())
       return PlanResult::failure(PlanStatus::NoReachableArea,

@@ -76,7 +76,7 @@ class ZigzagPlanner final : public Planner {
     const auto passes = static_cast<std::size_t>(problem.params.integer("boundary_passes"));
 
     // Work in a frame where rows are horizontal; rotate the result back at the end.
-    Workspace ws(rotateWall(*problem.wall, -angle), problem.tool, problem.vehicle);
+    Workspace ws(rotateWall(*problem.wall, -angle), problem);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())
       return PlanResult::failure(PlanStatus::NoReachableArea,

@@ -292,4 +292,26 @@ std::optional<std::vector<Point>> TransitRouter::search(Point a, Point b, const 
   return result;
 }
 
+const std::vector<TransitPlannerInfo>& transitPlanners() {
+  static const std::vector<TransitPlannerInfo> planners = {
+      {"visibility", "the exact shortest path on a visibility graph around F's rounded corners (lazy A*)",
+       "Lozano-Perez & Wesley, An algorithm for planning collision-free paths among polyhedral obstacles, CACM 1979", false},
+      {"rrtstar", "OMPL's RRT*: a tree of random samples, rewired towards shorter paths",
+       "Karaman & Frazzoli, Sampling-based algorithms for optimal motion planning, IJRR 2011", true},
+      {"prmstar", "OMPL's PRM*: a roadmap of random samples, each joined to its k-nearest (k growing with log n); the shortest path through it",
+       "Karaman & Frazzoli, IJRR 2011", true},
+      {"bitstar", "OMPL's BIT*: batches of samples searched in order of an informed cost heuristic",
+       "Gammell, Srinivasa & Barfoot, Batch Informed Trees, ICRA 2015", true},
+      {"informed-rrtstar", "OMPL's Informed RRT*: RRT* sampling the ellipse that can still shorten the path once one is found",
+       "Gammell, Srinivasa & Barfoot, Informed RRT*, IROS 2014", true},
+  };
+  return planners;
+}
+
+const TransitPlannerInfo* findTransitPlanner(const std::string& name) {
+  for (const TransitPlannerInfo& p : transitPlanners())
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
 }  // namespace coverbench

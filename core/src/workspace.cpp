@@ -1,15 +1,36 @@
 #include "coverbench/workspace.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "coverbench/region_ops.hpp"
 
 namespace coverbench {
 
-Workspace::Workspace(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle)
-    : wall_(wall), tool_(tool), vehicle_(vehicle), field_(wall_), free_(freeRegion(wall_, tool_)), router_(field_, tool_) {
+Workspace::Workspace(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle,
+                     const TransitSpec& transit, std::uint64_t seed)
+    : wall_(wall), tool_(tool), vehicle_(vehicle), transit_(transit), seed_(seed), field_(wall_), free_(freeRegion(wall_, tool_)), router_(field_, tool_) {
   router_.setFreeRegion(&free_);
+}
+
+Workspace::~Workspace() = default;
+
+std::optional<std::vector<Point>> Workspace::route(Point a, Point b) {
+  if (transit_.isDefault()) return router_.route(a, b);
+  if (!sampling_) sampling_ = makeSamplingTransit(transit_, router_, boundingBox(wall_.boundary), seed_);
+  const auto t0 = std::chrono::steady_clock::now();
+  SampledRoute found = sampling_->route(a, b);
+  transit_stats_.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  ++transit_stats_.queries;
+  transit_stats_.time_capped += found.time_capped;
+  if (!found.route) {
+    ++transit_stats_.failures;
+    return std::nullopt;
+  }
+  transit_stats_.length += polylineLength(*found.route);
+  if (const auto exact = router_.route(a, b)) transit_stats_.shortest += polylineLength(*exact);
+  return found.route;
 }
 
 void PathBuilder::follow(const std::vector<Point>& points, bool tool_on) {
@@ -32,7 +53,7 @@ bool PathBuilder::moveTo(Point to, bool tool_on_if_straight) {
     ++lifted_;
     return true;
   }
-  const auto route = ws_->router().route(from, to);
+  const auto route = ws_->route(from, to);
   if (!route) return false;
   for (std::size_t i = 1; i < route->size(); ++i) path_.moveTo((*route)[i], false);
   ++transits_;
@@ -163,10 +184,23 @@ void recordOutcome(PlanResult& result, const PathBuilder& builder, std::size_t f
   const bool lifts = builder.workspace().vehicle().liftsTool();
   result.stats["routed_transits"] = static_cast<double>(builder.transits());
   if (lifts) result.stats["lifted_crossings"] = static_cast<double>(builder.liftedCrossings());
+  if (!builder.workspace().transitSpec().isDefault()) {
+    const TransitStats& t = builder.workspace().transitStats();
+    result.stats["transit_queries"] = static_cast<double>(t.queries);
+    result.stats["transit_failures"] = static_cast<double>(t.failures);
+    result.stats["transit_length_m"] = t.length;
+    result.stats["transit_shortest_m"] = t.shortest;
+    result.stats["transit_length_ratio"] = t.shortest > 0.0 ? t.length / t.shortest : 1.0;
+    result.timings_ms["transit"] = t.ms;
+    if (t.time_capped > 0) result.timings_ms["transit_time_capped_queries"] = static_cast<double>(t.time_capped);
+  }
   result.free_components = free_components;
   result.covered_components = lifts ? free_components : std::min<std::size_t>(free_components, 1);
   result.unreachable_parts = unreachable_parts;
   result.reason = partialCoverageNote(free_components, result.covered_components, unreachable_parts);
+  if (const std::size_t capped = builder.workspace().transitStats().time_capped; capped > 0)
+    result.reason += (result.reason.empty() ? "" : "; ") + std::to_string(capped) +
+                     " transit queries were stopped by the time cap, not the iterations: a rerun may differ";
   if (result.status == PlanStatus::Ok && result.leftPartsOut()) result.status = PlanStatus::Partial;
 }
 
@@ -186,6 +220,30 @@ Region coveredPart(const std::vector<PolygonWithHoles>& components, const Vehicl
   if (components.empty()) return {};
   if (vehicle.liftsTool()) return Region(components.begin(), components.end());
   return Region{components.front()};
+}
+
+std::vector<DetourQuery> detourQueries(Workspace& ws, std::size_t count) {
+  std::vector<DetourQuery> out;
+  const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
+  if (components.empty()) return out;
+  const Box box = boundingBox(ws.wall().boundary);
+  std::vector<Point> points;
+  constexpr int kGrid = 12;
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i) {
+      const Point p{box.min_x + (i + 0.5) * box.width() / kGrid, box.min_y + (j + 0.5) * box.height() / kGrid};
+      if (pointInPolygon(components.front(), p) && ws.router().isFree(p, p)) points.push_back(p);
+    }
+  // Pairs far apart in the list first (opposite sides of the wall), then nearer ones.
+  for (std::size_t gap = points.size() / 2; gap > 0 && out.size() < count; gap = gap * 2 / 3)
+    for (std::size_t k = 0; k + gap < points.size() && out.size() < count; k += gap + 1) {
+      const Point a = points[k], b = points[k + gap];
+      if (ws.router().isFree(a, b)) continue;
+      const auto route = ws.router().route(a, b);
+      if (!route) continue;
+      out.push_back({a, b, polylineLength(*route)});
+    }
+  return out;
 }
 
 }  // namespace coverbench

@@ -10,7 +10,7 @@ namespace coverbench::perimeter {
 class PerimeterPlanner final : public Planner {
  public:
   PlanResult plan(const Problem& problem, const Budget& /*budget*/) override {
-    Workspace ws(*problem.wall, problem.tool, problem.vehicle);  // F, exact checks, transits
+    Workspace ws(*problem.wall, problem);  // F, exact checks, transits
     if (ws.free().empty())
       return PlanResult::failure(PlanStatus::NoReachableArea, "the tool fits nowhere on this wall");
     // The largest free component, or every one for a vehicle that lifts its tool (docs/vehicles.md).

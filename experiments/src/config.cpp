@@ -200,7 +200,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   }
   if (!doc.isMap()) r.fail(doc, "(document)", "must be a mapping (name, datasets, planners, ...)");
   r.onlyKeys(doc, "", {"name", "output", "datasets", "planners", "tool", "repetitions", "limits", "baseline", "threads",
-                       "seed", "allow_large", "judge", "vehicle"});
+                       "seed", "allow_large", "judge", "vehicle", "transit"});
   const fs::path base = fs::path(path).parent_path();
   auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).lexically_normal().string(); };
 
@@ -374,6 +374,35 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
       r.fail(*v, "vehicle", "lift_s and lower_s belong to a gantry; a holonomic vehicle never lifts its tool");
   }
 
+  // Transit planners: a name or a list of names, each its own runs (docs/transits.md).
+  if (const Yaml* t = doc.find("transit")) {
+    r.onlyKeys(*t, "transit", {"planner", "iterations", "time_cap_s"});
+    const Yaml* planner = t->find("planner");
+    if (!planner) r.fail(*t, "transit.planner", "missing (visibility, rrtstar, prmstar, bitstar or informed-rrtstar)");
+    TransitSpec common;
+    if (const Yaml* n = t->find("iterations")) common.iterations = r.integer(*n, "transit.iterations", 1, kMaxTransitIterations);
+    if (const Yaml* n = t->find("time_cap_s"))
+      common.time_cap_s = r.number(*n, "transit.time_cap_s", 0.0, kMaxTimeLimitSeconds, true);
+    c.transits.clear();
+    bool sampling = false;
+    for (const Yaml* v : r.values(*planner, "transit.planner")) {
+      TransitSpec spec = common;
+      spec.planner = r.text(*v, "transit.planner");
+      const TransitPlannerInfo* info = findTransitPlanner(spec.planner);
+      if (!info) {
+        std::string known;
+        for (const TransitPlannerInfo& p : transitPlanners()) known += (known.empty() ? "" : ", ") + p.name;
+        r.fail(*v, "transit.planner", "'" + spec.planner + "' is not a transit planner (" + known + ")");
+      }
+      for (const TransitSpec& before : c.transits)
+        if (before.planner == spec.planner) r.fail(*v, "transit.planner", "lists " + spec.planner + " twice");
+      sampling = sampling || info->sampling;
+      c.transits.push_back(spec);
+    }
+    if (!sampling && (t->find("iterations") || t->find("time_cap_s")))
+      r.fail(*t, "transit", "iterations and time_cap_s belong to a sampling planner; visibility has neither");
+  }
+
   if (const Yaml* n = doc.find("repetitions")) c.repetitions = static_cast<int>(r.integer(*n, "repetitions", 1, 1000));
   if (const Yaml* l = doc.find("limits")) {
     r.onlyKeys(*l, "limits", {"time_s", "memory_mb"});
@@ -403,7 +432,8 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
 std::size_t plannedRuns(const ExperimentConfig& config) {
   std::size_t walls = 0;
   for (const DatasetSpec& d : config.datasets) walls += d.count;
-  return walls * config.planners.size() * config.tools.size() * static_cast<std::size_t>(config.repetitions);
+  return walls * config.planners.size() * config.tools.size() * config.transits.size() *
+         static_cast<std::size_t>(config.repetitions);
 }
 
 }  // namespace coverbench

@@ -26,8 +26,9 @@ namespace {
 /// processes (rusage), every repetition's time, provenance per experiment. Tables added since,
 /// without a new version because an older build reads such a database correctly by ignoring them:
 /// experiment_shard (which shard an experiment is), merged_shards (what a merge was made of) and
-/// run_vehicles (the vehicle of each run that is not holonomic: an older build, which knows only
-/// holonomic runs, stores and reads none; it would draw a gantry run's lifted moves as transits).
+/// run_options (the vehicle and transit planner of each run that has another than holonomic and
+/// visibility: an older build knows only those, stores and reads none, and would draw a gantry
+/// run's lifted moves as transits).
 constexpr long long kApplicationId = 0x4376424e;
 constexpr long long kSchemaVersion = 2;
 
@@ -74,8 +75,9 @@ CREATE TABLE IF NOT EXISTS paths (
   run_key TEXT PRIMARY KEY, encoding TEXT NOT NULL, waypoints INTEGER NOT NULL, data BLOB NOT NULL);
 CREATE TABLE IF NOT EXISTS planner_timings (
   run_key TEXT NOT NULL, name TEXT NOT NULL, ms REAL, PRIMARY KEY (run_key, name)) WITHOUT ROWID;
-CREATE TABLE IF NOT EXISTS run_vehicles (
-  run_key TEXT PRIMARY KEY, model TEXT NOT NULL, lift_s REAL NOT NULL, lower_s REAL NOT NULL);
+CREATE TABLE IF NOT EXISTS run_options (
+  run_key TEXT PRIMARY KEY, vehicle TEXT NOT NULL, lift_s REAL NOT NULL, lower_s REAL NOT NULL,
+  transit TEXT NOT NULL, transit_iterations INTEGER NOT NULL);
 CREATE TABLE IF NOT EXISTS experiment_shard (
   experiment_id INTEGER PRIMARY KEY, shard_index INTEGER NOT NULL, shard_count INTEGER NOT NULL,
   config_runs INTEGER NOT NULL);
@@ -90,15 +92,19 @@ CREATE TABLE IF NOT EXISTS merged_shards (
 /// was set): how a database written by an earlier build is recognised.
 const char* const kCoreTables[] = {"experiments", "walls", "runs", "metrics", "paths"};
 
-/// The vehicle in columns i .. i + 2 (model, lift_s, lower_s) of a LEFT JOIN on run_vehicles:
-/// holonomic when the run has no row there.
-VehicleModel storedVehicle(const Statement& s, int i) {
-  VehicleModel v;
-  if (s.columnNull(i)) return v;
-  if (!parseVehicleKind(s.columnText(i), v.kind)) throw std::runtime_error("run_vehicles: unknown model " + s.columnText(i));
-  v.lift_s = s.columnReal(i + 1);
-  v.lower_s = s.columnReal(i + 2);
-  return v;
+/// The columns of run_options a LEFT JOIN selects (alias o), in the order storedOptions reads.
+constexpr const char* kOptionColumns = "o.vehicle, o.lift_s, o.lower_s, o.transit, o.transit_iterations";
+/// The vehicle and transit planner in columns i .. i + 4 (kOptionColumns): holonomic and
+/// visibility when the run has no row in run_options.
+void storedOptions(const Statement& s, int i, VehicleModel& vehicle, TransitSpec& transit) {
+  vehicle = VehicleModel{};
+  transit = TransitSpec{};
+  if (s.columnNull(i)) return;
+  if (!parseVehicleKind(s.columnText(i), vehicle.kind)) throw std::runtime_error("run_options: unknown vehicle " + s.columnText(i));
+  vehicle.lift_s = s.columnReal(i + 1);
+  vehicle.lower_s = s.columnReal(i + 2);
+  transit.planner = s.columnText(i + 3);
+  transit.iterations = s.columnInt(i + 4);
 }
 
 std::string utcNow() {
@@ -329,7 +335,7 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
   exec("BEGIN IMMEDIATE");
   try {
     // A retried run replaces everything stored under its key.
-    for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_vehicles"}) {
+    for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options"}) {
       Statement d(db_, std::string("DELETE FROM ") + table + " WHERE run_key = ?", file_);
       d.text(1, rec.key).run();
     }
@@ -347,9 +353,13 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
     else r.null(15);
     r.real(16, rec.uncovered_reachable_m2).real(17, rec.plan_time_ms).real(18, rec.cpu_time_s).real(19, rec.peak_rss_bytes);
     r.real(20, rec.peak_memory_bytes.value_or(NAN)).text(21, utcNow()).run();
-    if (!spec.vehicle.isDefault()) {
-      Statement v(db_, "INSERT INTO run_vehicles (run_key, model, lift_s, lower_s) VALUES (?,?,?,?)", file_);
-      v.text(1, rec.key).text(2, toString(spec.vehicle.kind)).real(3, spec.vehicle.lift_s).real(4, spec.vehicle.lower_s).run();
+    if (!spec.vehicle.isDefault() || !spec.transit.isDefault()) {
+      Statement v(db_,
+                  "INSERT INTO run_options (run_key, vehicle, lift_s, lower_s, transit, transit_iterations) "
+                  "VALUES (?,?,?,?,?,?)",
+                  file_);
+      v.text(1, rec.key).text(2, toString(spec.vehicle.kind)).real(3, spec.vehicle.lift_s).real(4, spec.vehicle.lower_s);
+      v.text(5, spec.transit.planner).integer(6, spec.transit.iterations).run();
     }
     Statement rp(db_, "INSERT INTO run_repetitions (run_key, repetition, plan_time_ms) VALUES (?,?,?)", file_);
     for (std::size_t i = 0; i < rec.plan_times_ms.size(); ++i)
@@ -426,11 +436,11 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   {
     Statement s(db_,
                 "SELECT r.key, r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.seed, r.status, "
-                "r.valid, r.plan_time_ms, r.peak_memory_bytes, r.uncovered_reachable_m2, ws.name, r.planner_version, "
-                "v.model, v.lift_s, v.lower_s FROM runs r "
+                "r.valid, r.plan_time_ms, r.peak_memory_bytes, r.uncovered_reachable_m2, ws.name, r.planner_version, " +
+                    std::string(kOptionColumns) + " FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
                 "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 "
-                "JOIN walls ws ON ws.hash = r.wall_hash LEFT JOIN run_vehicles v ON v.run_key = r.key ORDER BY r.key",
+                "JOIN walls ws ON ws.hash = r.wall_hash LEFT JOIN run_options o ON o.run_key = r.key ORDER BY r.key",
                 file_);
     s.integer(1, id);
     while (s.step()) {
@@ -452,7 +462,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
       row.wall_name = s.columnText(12);
       row.planner_version = s.columnText(13);
       row.tool = ToolParams{s.columnReal(4), s.columnReal(5)};
-      row.vehicle = storedVehicle(s, 14);
+      storedOptions(s, 14, row.vehicle, row.transit);
       index[s.columnText(0)] = rs.runs.size();
       rs.runs.push_back(std::move(row));
     }
@@ -468,20 +478,37 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
     rs.planners = columns;
     for (ResultRow& r : rs.runs) r.planner = r.config + suffix(r.tool.tool_width, r.tool.clearance);
   }
-  {
-    Statement s(db_,
-                "SELECT m.run_key, m.name, m.value FROM metrics m JOIN experiment_runs e ON e.run_key = m.run_key "
-                "WHERE e.experiment_id = ?",
-                file_);
+  // So is each transit planner: with several, every column also gets "@ transit=NAME" (in the
+  // registry's order), and runs differing only in it pair up on the same walls.
+  std::set<std::string> used;
+  for (const ResultRow& r : rs.runs) used.insert(r.transit.planner);
+  if (used.size() > 1) {
+    std::vector<std::string> columns;
+    for (const std::string& label : rs.planners)
+      for (const TransitPlannerInfo& t : transitPlanners())
+        if (used.count(t.name)) columns.push_back(label + " @ transit=" + t.name);
+    rs.planners = columns;
+    for (ResultRow& r : rs.runs) r.planner += " @ transit=" + r.transit.planner;
+  }
+  // Rows (run key, name, value) of the experiment's runs into a map of each run. NULL is how
+  // infinities are stored (min_clearance with no obstacles): kept out of statistics.
+  auto named = [&](const std::string& sql, std::map<std::string, double> ResultRow::*into) {
+    Statement s(db_, sql, file_);
     s.integer(1, id);
     while (s.step()) {
       const auto it = index.find(s.columnText(0));
-      if (it == index.end()) continue;
-      const std::string name = s.columnText(1);
-      // NULL is how infinities are stored (min_clearance with no obstacles): keep them out of statistics.
-      if (!s.columnNull(2)) rs.runs[it->second].metrics[name] = s.columnReal(2);
+      if (it != index.end() && !s.columnNull(2)) (rs.runs[it->second].*into)[s.columnText(1)] = s.columnReal(2);
     }
-  }
+  };
+  named("SELECT m.run_key, m.name, m.value FROM metrics m JOIN experiment_runs e ON e.run_key = m.run_key "
+        "WHERE e.experiment_id = ?1",
+        &ResultRow::metrics);
+  if (used.size() > 1 || (used.size() == 1 && *used.begin() != TransitSpec{}.planner))
+    named("SELECT t.run_key, t.name, t.value FROM planner_stats t JOIN experiment_runs e ON e.run_key = t.run_key "
+          "WHERE e.experiment_id = ?1 AND t.name LIKE 'transit\\_%' ESCAPE '\\' "
+          "UNION ALL SELECT t.run_key, 'transit_ms', t.ms FROM planner_timings t JOIN experiment_runs e "
+          "ON e.run_key = t.run_key WHERE e.experiment_id = ?1 AND t.name = 'transit'",
+          &ResultRow::transit_figures);
   return rs;
 }
 
@@ -583,10 +610,10 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
   if (key_prefix.size() < 6 || key_prefix.find_first_not_of("0123456789abcdef") != std::string::npos)
     throw InputError("--run", "run", "must be at least 6 lowercase hex digits of a run key");
   Statement s(db_,
-              "SELECT r.key, w.content, w.name, p.planner, p.params, r.tool_width, r.clearance, r.status, r.reason, "
-              "v.model, v.lift_s, v.lower_s "
-              "FROM runs r JOIN walls w ON w.hash = r.wall_hash JOIN planner_configs p ON p.id = r.config_id "
-              "LEFT JOIN run_vehicles v ON v.run_key = r.key "
+              "SELECT r.key, w.content, w.name, p.planner, p.params, r.tool_width, r.clearance, r.status, r.reason, " +
+                  std::string(kOptionColumns) +
+                  " FROM runs r JOIN walls w ON w.hash = r.wall_hash JOIN planner_configs p ON p.id = r.config_id "
+                  "LEFT JOIN run_options o ON o.run_key = r.key "
               "WHERE r.key >= ?1 AND r.key < ?1 || 'g' ORDER BY r.key LIMIT 2",
               file_);
   s.text(1, key_prefix);
@@ -598,7 +625,8 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
   run.tool = ToolParams{s.columnReal(5), s.columnReal(6)};
   run.status = s.columnText(7);
   run.reason = s.columnText(8);
-  run.vehicle = storedVehicle(s, 9);
+  TransitSpec transit;
+  storedOptions(s, 9, run.vehicle, transit);
   if (s.step()) throw InputError(file_, "runs", "several run keys start with " + key_prefix + ": give more digits");
   if (std::optional<Path> p = path(run.key)) run.path = std::move(*p);
   return run;

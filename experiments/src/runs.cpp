@@ -67,6 +67,8 @@ std::string runBaseKey(const RunSpec& spec) {
   if (!spec.vehicle.isDefault())
     text += "\nvehicle=" + toString(spec.vehicle.kind) + "\nlift_s=" + exact(spec.vehicle.lift_s) +
             "\nlower_s=" + exact(spec.vehicle.lower_s);
+  if (!spec.transit.isDefault())
+    text += "\ntransit=" + spec.transit.planner + "\ntransit_iterations=" + std::to_string(spec.transit.iterations);
   return sha256Hex(text);
 }
 
@@ -78,30 +80,32 @@ std::string runKey(const RunSpec& spec) {
 std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls,
                                 const std::function<bool(const RunSpec&)>& keep) {
   std::vector<RunSpec> runs;
-  if (!keep) runs.reserve(walls.size() * config.planners.size() * config.tools.size());
+  if (!keep) runs.reserve(walls.size() * config.planners.size() * config.tools.size() * config.transits.size());
   for (const WallEntry& wall : walls)
     for (const PlannerConfig& planner : config.planners)
-      for (const ToolParams& tool : config.tools) {
-        RunSpec spec;
-        spec.wall = &wall;
-        spec.planner = &planner;
-        spec.tool = tool;
-        spec.vehicle = config.vehicle;
-        spec.repetitions = config.repetitions;
-        spec.seed = config.seed;
-        spec.time_limit_s = config.time_limit_s;
-        spec.memory_limit_bytes = static_cast<std::size_t>(config.memory_limit_mb * 1024.0 * 1024.0);
-        spec.exact_judge = config.exact_judge;
-        const PlannerInfo& info = findPlanner(planner.planner);
-        spec.planner_version = info.version;
-        std::vector<std::string> folders = info.code_folders;
-        if (spec.exact_judge) folders.push_back(kJudgeCodeFolder);  // the judge's code is in what it computes
-        spec.code_sha256 = buildIdentity().plannerCode(folders);
-        spec.base_key = runBaseKey(spec);
-        if (keep && !keep(spec)) continue;  // a shard holds only its own runs, even while expanding
-        spec.key = runKey(spec);
-        runs.push_back(std::move(spec));
-      }
+      for (const ToolParams& tool : config.tools)
+        for (const TransitSpec& transit : config.transits) {
+          RunSpec spec;
+          spec.wall = &wall;
+          spec.planner = &planner;
+          spec.tool = tool;
+          spec.vehicle = config.vehicle;
+          spec.transit = transit;
+          spec.repetitions = config.repetitions;
+          spec.seed = config.seed;
+          spec.time_limit_s = config.time_limit_s;
+          spec.memory_limit_bytes = static_cast<std::size_t>(config.memory_limit_mb * 1024.0 * 1024.0);
+          spec.exact_judge = config.exact_judge;
+          const PlannerInfo& info = findPlanner(planner.planner);
+          spec.planner_version = info.version;
+          std::vector<std::string> folders = info.code_folders;
+          if (spec.exact_judge) folders.push_back(kJudgeCodeFolder);  // the judge's code is in what it computes
+          spec.code_sha256 = buildIdentity().plannerCode(folders);
+          spec.base_key = runBaseKey(spec);
+          if (keep && !keep(spec)) continue;  // a shard holds only its own runs, even while expanding
+          spec.key = runKey(spec);
+          runs.push_back(std::move(spec));
+        }
   return runs;
 }
 
@@ -113,6 +117,7 @@ RunRecord executeRun(const RunSpec& spec) {
   problem.wall = &spec.wall->wall;
   problem.tool = spec.tool;
   problem.vehicle = spec.vehicle;
+  problem.transit = spec.transit;
   problem.params = spec.planner->params;
   problem.seed = spec.seed;
   PlanResult result;

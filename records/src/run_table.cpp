@@ -22,11 +22,24 @@ std::vector<std::string> metricColumns(const ResultSet& rs) {
   return out;
 }
 
+/// The columns `vehicle` and `transit`, each only when some run has another than holonomic or
+/// visibility (so tables of runs from before them keep their columns).
+struct OptionColumns {
+  bool vehicle = false, transit = false;
+  explicit OptionColumns(const ResultSet& rs) {
+    for (const ResultRow& r : rs.runs) {
+      vehicle = vehicle || !r.vehicle.isDefault();
+      transit = transit || !r.transit.isDefault();
+    }
+  }
+};
+
 }  // namespace
 
 std::string renderRuns(const ResultSet& rs, bool json) {
   const std::vector<std::string> fixed = {"key", "dataset", "wall", "wall_hash", "planner", "planner_version", "tool_width", "clearance",
                                           "status", "valid", "uncovered_reachable_m2"};
+  const OptionColumns options(rs);
   if (json) {
     nlohmann::ordered_json out = nlohmann::ordered_json::array();
     for (const ResultRow& r : rs.runs) {
@@ -39,6 +52,8 @@ std::string renderRuns(const ResultSet& rs, bool json) {
       row["planner_version"] = r.planner_version;
       row["tool_width"] = r.tool.tool_width;
       row["clearance"] = r.tool.clearance;
+      if (options.vehicle) row["vehicle"] = toString(r.vehicle.kind);
+      if (options.transit) row["transit"] = r.transit.planner;
       row["status"] = r.status;
       row["valid"] = r.valid;
       row["uncovered_reachable_m2"] =
@@ -52,12 +67,17 @@ std::string renderRuns(const ResultSet& rs, bool json) {
     return out.dump(1) + "\n";
   }
   std::string text;
-  for (const std::string& h : fixed) text += (text.empty() ? "" : ",") + h;
+  for (const std::string& h : fixed) {
+    text += (text.empty() ? "" : ",") + h;
+    if (h == "clearance") text += std::string(options.vehicle ? ",vehicle" : "") + (options.transit ? ",transit" : "");
+  }
   for (const std::string& m : metricColumns(rs)) text += "," + escapeCsv(m);
   text += "\n";
   for (const ResultRow& r : rs.runs) {
     text += r.key + "," + escapeCsv(r.dataset) + "," + escapeCsv(r.wall_name) + "," + r.wall + "," + escapeCsv(r.config) +
-            "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) + "," + escapeCsv(r.status) + "," +
+            "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) + "," +
+            (options.vehicle ? toString(r.vehicle.kind) + "," : "") + (options.transit ? r.transit.planner + "," : "") +
+            escapeCsv(r.status) + "," +
             (r.valid ? "true" : "false") + "," + number(r.uncovered_reachable_m2);
     for (const std::string& m : metricColumns(rs)) {
       const auto it = r.metrics.find(m);

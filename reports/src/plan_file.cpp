@@ -47,6 +47,9 @@ std::string planFileJson(const PlanFile& plan) {
   doc["tool_width"] = plan.tool.tool_width;
   doc["clearance"] = plan.tool.clearance;
   if (!plan.vehicle.isDefault()) doc["vehicle"] = ordered_json::parse(vehicleJson(plan.vehicle));
+  if (!plan.transit.isDefault())
+    doc["transit"] = {{"planner", plan.transit.planner}, {"iterations", plan.transit.iterations},
+                      {"time_cap_s", plan.transit.time_cap_s}, {"seed", plan.seed}};
   ordered_json params = ordered_json::object();
   for (const auto& [name, value] : plan.params.all()) params[name] = paramJson(value);
   doc["params"] = params;

@@ -153,6 +153,11 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
     // Only a vehicle other than holonomic is named, so holonomic reports stay as they were.
     if (!r->vehicle.isDefault())
       run["vehicle"] = {{"model", toString(r->vehicle.kind)}, {"lift_s", r->vehicle.lift_s}, {"lower_s", r->vehicle.lower_s}};
+    if (!r->transit.isDefault()) {
+      Json figures = Json::object();
+      for (const auto& [name, value] : r->transit_figures) figures[name] = number(value);
+      run["transit"] = {{"planner", r->transit.planner}, {"iterations", r->transit.iterations}, {"figures", figures}};
+    }
     j["runs"].push_back(std::move(run));
   }
   j["gallery"] = Json::array();

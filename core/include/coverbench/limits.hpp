@@ -39,6 +39,9 @@ inline constexpr double kMaxLiftTime = 3600.0;
 /// lift_s and lower_s in [0, kMaxLiftTime] s, finite. Throws InputError(source, `field`.lift_s, ...).
 void validateVehicle(const VehicleModel& vehicle, const std::string& source, const std::string& field);
 
+/// A sampling transit planner's iterations per query: 10^7 took minutes per query here.
+inline constexpr long long kMaxTransitIterations = 10000000;
+
 /// A time limit in (0, kMaxTimeLimitSeconds] s. Throws InputError(source, field, ...).
 void validateTimeLimit(double seconds, const std::string& source, const std::string& field);
 

@@ -17,6 +17,7 @@
 
 #include "coverbench/geometry.hpp"
 #include "coverbench/path.hpp"
+#include "coverbench/transit_planners.hpp"
 #include "coverbench/wall.hpp"
 
 namespace coverbench {
@@ -72,6 +73,9 @@ struct Problem {
   /// Under a model that lifts the tool (gantry), planners cover every free component and cross
   /// obstacles with the tool lifted (PathBuilder does it for planners built on it).
   VehicleModel vehicle;
+  /// How tool-off detours are found (PathBuilder uses it for planners built on it); sampling
+  /// planners are seeded from `seed`.
+  TransitSpec transit;
   Params params;
   /// For planners that randomise: all randomness must come from this seed (experiments set it
   /// from the config's seed), so a run is a pure function of its inputs.

@@ -7,6 +7,7 @@
 /// and kFreeSpaceMargin + 1e-6 m inside the exact F, so any path drawn inside it is valid and
 /// it misses at most a band of kFreeSpaceMargin along F's boundary.
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -68,13 +69,33 @@ class TransitRouter {
   std::unique_ptr<Graph> graph_;
 };
 
+/// What a problem's transit planner did, for the plan's statistics (recordOutcome). Only sampling
+/// planners keep them; `visibility` is the reference they are measured against.
+struct TransitStats {
+  std::size_t queries = 0;
+  std::size_t failures = 0;     ///< queries with no route within the iterations
+  std::size_t time_capped = 0;  ///< queries stopped by the wall-clock cap (not repeatable)
+  double length = 0.0;          ///< total length of the routes found, m
+  double shortest = 0.0;        ///< the exact shortest paths' total length for the same queries, m
+  double ms = 0.0;              ///< time spent in the sampling planner (measured)
+};
+
 /// The geometry of one problem, built once and shared by a planner's stages.
 class Workspace {
  public:
-  Workspace(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle = {});
+  Workspace(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle = {},
+            const TransitSpec& transit = {}, std::uint64_t seed = 0);
+  /// The problem's tool, vehicle, transit planner and seed, on `wall` (the problem's, or turned).
+  Workspace(const Wall& wall, const Problem& problem)
+      : Workspace(wall, problem.tool, problem.vehicle, problem.transit, problem.seed) {}
+  ~Workspace();
   const Wall& wall() const { return wall_; }
   const ToolParams& tool() const { return tool_; }
   const VehicleModel& vehicle() const { return vehicle_; }
+  const TransitSpec& transitSpec() const { return transit_; }
+  const TransitStats& transitStats() const { return transit_stats_; }
+  /// A collision-free route a, ..., b with the problem's transit planner (nullopt: none found).
+  std::optional<std::vector<Point>> route(Point a, Point b);
   const Region& free() const { return free_; }
   const ClearanceField& field() const { return field_; }
   TransitRouter& router() { return router_; }
@@ -83,9 +104,13 @@ class Workspace {
   Wall wall_;
   ToolParams tool_;
   VehicleModel vehicle_;
+  TransitSpec transit_;
+  std::uint64_t seed_;
   ClearanceField field_;
   Region free_;
   TransitRouter router_;
+  std::unique_ptr<SamplingTransit> sampling_;  // made at the first query
+  TransitStats transit_stats_;
 };
 
 /// Appends moves to a path, checking every straight move and routing around obstacles when a
@@ -154,11 +179,22 @@ std::string partialCoverageNote(std::size_t free_components, std::size_t covered
                                 std::size_t unreachable_parts);
 
 /// Records what every planner built on PathBuilder reports the same way: the statistics
-/// `routed_transits` (and, for a vehicle that lifts its tool, `lifted_crossings`), the typed fields
+/// `routed_transits` (and, for a vehicle that lifts its tool, `lifted_crossings`; for a sampling
+/// transit planner, `transit_*` and the measured `transit` time), the typed fields
 /// free_components, covered_components (coveredPart's) and unreachable_parts, the reason above,
 /// and status Partial for an Ok plan that left parts out.
 void recordOutcome(PlanResult& result, const PathBuilder& builder, std::size_t free_components,
                    std::size_t unreachable_parts);
+
+/// Up to `count` transit queries that need a detour, for measuring transit planners (tests and
+/// bench/transit_bench.cpp): points of a grid of about 12 x 12 over the wall's bounding box that lie
+/// in F's largest component, paired (in a fixed order) where the straight move between them is not
+/// free, each with its exact shortest route (TransitRouter). Deterministic.
+struct DetourQuery {
+  Point a, b;
+  double shortest = 0.0;  ///< length of the exact shortest route, m
+};
+std::vector<DetourQuery> detourQueries(Workspace& ws, std::size_t count);
 
 /// The connected components of a region, largest area first (ties broken by position, so the
 /// order is deterministic).

@@ -48,6 +48,10 @@ struct ExperimentConfig {
   /// How the robot carries the tool (config section `vehicle:`; holonomic when absent). One per
   /// experiment, so no table pools two models: compare them with two experiments.
   VehicleModel vehicle;
+  /// How planners find their tool-off detours (config section `transit:`; visibility when absent):
+  /// one run per transit planner listed, compared side by side like tool widths (never pooled).
+  /// Sampling planners are seeded from `seed`.
+  std::vector<TransitSpec> transits{TransitSpec{}};
   int repetitions = 1;
   double time_limit_s = 60.0;
   double memory_limit_mb = 4096.0;
@@ -87,6 +91,7 @@ struct RunSpec {
   const PlannerConfig* planner = nullptr;
   ToolParams tool;
   VehicleModel vehicle;
+  TransitSpec transit;
   int repetitions = 1;  ///< the plan is executed this many times in the run's process, each timed
   std::uint64_t seed = 0;
   double time_limit_s = 60.0;
@@ -98,8 +103,9 @@ struct RunSpec {
   std::string key;                     ///< base key, planner version and code: see runKey
 };
 /// The base key: SHA-256 of the wall's content hash, the planner, every resolved parameter
-/// (defaults included), the tool parameters, the seed, and (only when set) the exact judge and a
-/// vehicle other than holonomic (so keys from before vehicle models are unchanged).
+/// (defaults included), the tool parameters, the seed, and (only when set) the exact judge, a
+/// vehicle other than holonomic and a transit planner other than visibility with its iterations
+/// (so keys from before vehicle models and transit planners are unchanged).
 /// Limits and repetitions are not in it.
 std::string runBaseKey(const RunSpec& spec);
 /// The run key: SHA-256 of the base key, the planner's version and its code identity, so a

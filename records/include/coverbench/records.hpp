@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "coverbench/path.hpp"
+#include "coverbench/transit_planners.hpp"  // TransitSpec alone (a value type)
 
 namespace coverbench {
 
@@ -24,6 +25,7 @@ struct ResultRow {
   std::string wall_name;
   ToolParams tool;
   VehicleModel vehicle;
+  TransitSpec transit;
   std::string dataset;
   std::string wall;     ///< wall content hash
   std::string pairing;  ///< what makes two runs comparable: wall, tool and repetition
@@ -31,6 +33,9 @@ struct ResultRow {
   bool valid = false;
   double uncovered_reachable_m2 = 0.0;  ///< NaN when not scored
   std::map<std::string, double> metrics;  ///< includes plan_time_ms and peak_memory_bytes if measured
+  /// A sampling transit planner's statistics (transit_queries, transit_failures, transit_length_m,
+  /// transit_shortest_m, transit_length_ratio) and its measured time (transit_ms); empty otherwise.
+  std::map<std::string, double> transit_figures;
 };
 
 struct ResultSet {

@@ -16,6 +16,8 @@ struct PlanFile {
   std::string wall;
   ToolParams tool;
   VehicleModel vehicle;  ///< written only when not holonomic (older files, and holonomic ones, have none)
+  TransitSpec transit;   ///< written only when not visibility, with the seed
+  std::uint64_t seed = 0;  ///< the problem's seed (what a sampling transit planner draws from)
   Params params;
   PlanResult result;
   PathMetrics metrics;

@@ -35,11 +35,24 @@ def vehicle_text(a):
     return " Vehicle: " + ", ".join(named) + "."
 
 
+def transit_text(a):
+    """' Transit planner: rrtstar (2000 iterations a query).' when the runs name one (visibility runs name none)."""
+    named = []
+    for r in sorted(a.runs, key=lambda r: (r.get("transit") or {}).get("planner", "")):
+        t = r.get("transit")
+        text = f"{t['planner']} ({t['iterations']} iterations a query)" if t else "visibility"
+        if text not in named:
+            named.append(text)
+    if named in ([], ["visibility"]):
+        return ""
+    return (" Transit planner: " if len(named) == 1 else " Transit planners (one column each): ") + ", ".join(named) + "."
+
+
 def preamble(a, fmt):
     e = a.experiment
     runs = len(a.runs)
     line = (f"Experiment {e['name']}: {runs} runs, {len(a.datasets)} datasets, {len(a.columns)} planner "
-            f"configurations, baseline {e['baseline']}, config sha256 {e['config_hash'][:12]}.{vehicle_text(a)}")
+            f"configurations, baseline {e['baseline']}, config sha256 {e['config_hash'][:12]}.{vehicle_text(a)}{transit_text(a)}")
     if fmt == "md":
         return f"# {T._md('Experiment ' + e['name'])}\n\n{T._md(line)}\n\n"
     if fmt == "latex":
@@ -169,8 +182,11 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
                "from; report.md, report.csv and report.tex hold its tables.</p>"]
 
     outcomes = [T.to_html(T.outcome_table(a)), T.to_html(T.success_table(a))]
+    transit = T.transit_table(a)
+    if transit:
+        outcomes.append(T.to_html(transit))
     subtitle = (f"<p>{len(a.runs)} runs: {len(a.datasets)} datasets, {len(a.columns)} planner configurations, "
-                f"baseline <b>{esc(e['baseline'])}</b>.{esc(vehicle_text(a))} Definitions of every metric: docs/metrics.md "
+                f"baseline <b>{esc(e['baseline'])}</b>.{esc(vehicle_text(a) + transit_text(a))} Definitions of every metric: docs/metrics.md "
                 f"(vehicle models: docs/vehicles.md). Tables for "
                 f'papers: <a href="report.md">Markdown</a>, <a href="report.csv">CSV</a>, '
                 f'<a href="report.tex">LaTeX</a>; every run: <a href="report_data.json">report_data.json</a>.</p>')

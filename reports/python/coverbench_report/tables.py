@@ -2,6 +2,7 @@
 LaTeX (booktabs) share one layout, so a paper's table and the page say the same thing."""
 import csv
 import html
+import statistics
 import io
 import math
 
@@ -243,6 +244,35 @@ def outcome_table(a):
               [f"{100 * o['rate']:.1f} %" if o["runs"] else "-",
                f"[{100 * o['low']:.1f}, {100 * o['high']:.1f}] %" if o["runs"] else "-",
                number(o["partial_uncovered_median"])])
+    return t
+
+
+def transit_table(a):
+    """The sampling transit planners' routes per column: None when no run used one (docs/transits.md)."""
+    columns = [c for c in a.columns if any(r.get("transit") for r in a.by_column[c])]
+    if not columns:
+        return None
+    t = Table("Transit planners: routes against the visibility route (all datasets)",
+              ["planner", "runs", "queries", "no route", "length / visibility, all routes", "median per run",
+               "ms per query (measured)"],
+              note="Every detour a planner asked for, answered by the column's sampling transit planner within its "
+                   "iterations and compared with the visibility route for the same query (the shortest path through "
+                   "nodes circumscribing F's round corners: a sampled route may be a little shorter). 'no route': "
+                   "queries without an answer, whose parts the run left out (partial). Time: the sampling planner's "
+                   "own, measured anew by every rerun. docs/transits.md.",
+              anchor="transit-table")
+    for c in columns:
+        figs = [r["transit"]["figures"] for r in a.by_column[c] if r.get("transit")]
+        queries = sum(f.get("transit_queries", 0) for f in figs)
+        failures = sum(f.get("transit_failures", 0) for f in figs)
+        length = sum(f.get("transit_length_m", 0) for f in figs)
+        shortest = sum(f.get("transit_shortest_m", 0) for f in figs)
+        ratios = sorted(f["transit_length_ratio"] for f in figs if f.get("transit_queries", 0) > f.get("transit_failures", 0))
+        ms = sum(f.get("transit_ms", 0) for f in figs)
+        t.add([c, str(len(figs)), f"{queries:.0f}", f"{failures:.0f}",
+               f"{length / shortest:.4f}" if shortest > 0 else "-",
+               f"{statistics.median(ratios):.4f}" if ratios else "-",
+               f"{ms / queries:.2f}" if queries else "-"])
     return t
 
 

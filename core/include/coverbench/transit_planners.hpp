@@ -1,0 +1,73 @@
+#pragma once
+/// Transit planners: how a planner's tool-off detours around obstacles are found (docs/transits.md).
+///
+/// `visibility` is the exact shortest path (TransitRouter, the default: every result before
+/// transit planners is this). The others are OMPL's sampling-based planners over F, in one
+/// translation unit (core/src/ompl_transit.cpp; this header does not include OMPL): their states
+/// are checked with our exact geometry (a point is valid when the tool disk there keeps the
+/// clearance, a motion when the straight move is free: TransitRouter::isFree, no sampling along
+/// it), so every route they return is valid. A route is a pure function of its query, the
+/// planner, its iteration budget and the problem's seed: planners stop after a number of
+/// iterations, not after a time (a wall-clock cap only stops a runaway query, and says so).
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coverbench/geometry.hpp"
+
+namespace coverbench {
+
+class TransitRouter;
+
+/// The transit planner of a problem (config section `transit:`, `--transit` on the command line).
+struct TransitSpec {
+  std::string planner = "visibility";
+  /// Sampling planners: iterations per query (what makes a route repeatable).
+  long long iterations = 2000;
+  /// Sampling planners: wall-clock cap per query, seconds; a query stopped by it may differ on a
+  /// rerun, and the plan says so.
+  double time_cap_s = 10.0;
+  bool isDefault() const { return planner == "visibility"; }
+};
+
+/// What every sampling planner's route stays within, as a multiple of the exact shortest path, on
+/// the conformance walls at the default iterations (tests/transit_planners_test.cpp; measured
+/// factors per planner in docs/transits.md).
+inline constexpr double kSamplingTransitFactor = 1.3;
+
+/// A registered transit planner.
+struct TransitPlannerInfo {
+  std::string name;
+  std::string summary;
+  std::string reference;
+  bool sampling = false;  ///< OMPL's: takes iterations and the seed
+};
+/// Every transit planner, `visibility` first.
+const std::vector<TransitPlannerInfo>& transitPlanners();
+/// The planner named `name`, or nullptr.
+const TransitPlannerInfo* findTransitPlanner(const std::string& name);
+
+/// One query's answer from a sampling planner.
+struct SampledRoute {
+  std::optional<std::vector<Point>> route;  ///< nullopt: no route within the budget
+  bool time_capped = false;                 ///< stopped by the wall-clock cap, not the iterations
+};
+
+/// A sampling-based transit planner over F (OMPL), for one problem.
+class SamplingTransit {
+ public:
+  virtual ~SamplingTransit() = default;
+  /// A free polyline a, ..., b (every segment checked with router.isFree), or none.
+  virtual SampledRoute route(Point a, Point b) = 0;
+};
+
+/// OMPL's planner `name` (a sampling entry of transitPlanners()) over the free region `router`
+/// checks, sampling within `bounds` (the wall's bounding box). Query k of this object is seeded
+/// from (seed, k), so a plan's routes repeat exactly.
+std::unique_ptr<SamplingTransit> makeSamplingTransit(const TransitSpec& spec, const TransitRouter& router,
+                                                     const Box& bounds, std::uint64_t seed);
+
+}  // namespace coverbench
