@@ -10,7 +10,14 @@ namespace coverbench {
 
 Workspace::Workspace(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle,
                      const TransitSpec& transit, std::uint64_t seed)
-    : wall_(wall), tool_(tool), vehicle_(vehicle), transit_(transit), seed_(seed), field_(wall_), free_(freeRegion(wall_, tool_)), router_(field_, tool_) {
+    : wall_(wall),
+      tool_(tool),
+      vehicle_(vehicle),
+      transit_(transit),
+      seed_(seed),
+      field_(wall_),
+      free_(freeRegion(wall_, tool_)),
+      router_(field_, tool_) {
   router_.setFreeRegion(&free_);
 }
 
@@ -190,7 +197,7 @@ void recordOutcome(PlanResult& result, const PathBuilder& builder, std::size_t f
     result.stats["transit_failures"] = static_cast<double>(t.failures);
     result.stats["transit_length_m"] = t.length;
     result.stats["transit_shortest_m"] = t.shortest;
-    result.stats["transit_length_ratio"] = t.shortest > 0.0 ? t.length / t.shortest : 1.0;
+    if (t.shortest > 0.0) result.stats["transit_length_ratio"] = t.length / t.shortest;  // none without a route
     result.timings_ms["transit"] = t.ms;
     if (t.time_capped > 0) result.timings_ms["transit_time_capped_queries"] = static_cast<double>(t.time_capped);
   }
