@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   plan_cmd->add_option("--lift-s", plan.vehicle.lift_s, "gantry: seconds to lift the tool (default 1)");
   plan_cmd->add_option("--lower-s", plan.vehicle.lower_s, "gantry: seconds to lower the tool (default 1)");
   plan_cmd->add_option("--transit", plan.transit.planner,
-                       "transit planner for detours: visibility (default, shortest), rrtstar, prmstar, bitstar, informed-rrtstar")
+                       "transit planner for detours: visibility (default: shortest on its visibility graph), rrtstar, prmstar, bitstar, informed-rrtstar")
       ->capture_default_str();
   CLI::Option* transit_iterations = plan_cmd->add_option("--transit-iterations", plan.transit.iterations,
                                                          "sampling transit planners: iterations per query")->capture_default_str();

@@ -1,5 +1,5 @@
 // Transit planners (docs/transits.md): OMPL's sampling planners over F, checked with our exact
-// geometry, against the exact shortest path on the conformance walls.
+// geometry, against the visibility route on the conformance walls.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,7 +33,7 @@ TEST(TransitPlanners, RegistryNamesVisibilityFirstAndFourOmplPlanners) {
 class SamplingTransits : public testing::TestWithParam<std::string> {};
 
 // Acceptance (issue 16, item 2): on every conformance wall, every route valid, found, and within
-// the stated factor of the exact shortest path (docs/transits.md); the same seed gives the same
+// the stated factor of the visibility route (docs/transits.md); the same seed gives the same
 // route.
 TEST_P(SamplingTransits, ValidAndWithinTheStatedFactorOfTheShortestPathOnTheConformanceWalls) {
   TransitSpec spec;

@@ -294,7 +294,7 @@ std::optional<std::vector<Point>> TransitRouter::search(Point a, Point b, const 
 
 const std::vector<TransitPlannerInfo>& transitPlanners() {
   static const std::vector<TransitPlannerInfo> planners = {
-      {"visibility", "the exact shortest path on a visibility graph around F's rounded corners (lazy A*)",
+      {"visibility", "the shortest path on a visibility graph whose nodes circumscribe F's rounded corners (lazy A*)",
        "Lozano-Perez & Wesley, An algorithm for planning collision-free paths among polyhedral obstacles, CACM 1979", false},
       {"rrtstar", "OMPL's RRT*: a tree of random samples, rewired towards shorter paths",
        "Karaman & Frazzoli, Sampling-based algorithms for optimal motion planning, IJRR 2011", true},

@@ -1,8 +1,9 @@
 #pragma once
 /// Transit planners: how a planner's tool-off detours around obstacles are found (docs/transits.md).
 ///
-/// `visibility` is the exact shortest path (TransitRouter, the default: every result before
-/// transit planners is this). The others are OMPL's sampling-based planners over F, in one
+/// `visibility` is the shortest path on TransitRouter's visibility graph (the default: every result
+/// before transit planners is this); its nodes circumscribe F's round corners, so along an arc it
+/// can be up to 4 / pi longer than the true shortest path (docs/transits.md). The others are OMPL's sampling-based planners over F, in one
 /// translation unit (core/src/ompl_transit.cpp; this header does not include OMPL): their states
 /// are checked with our exact geometry (a point is valid when the tool disk there keeps the
 /// clearance, a motion when the straight move is free: TransitRouter::isFree, no sampling along
@@ -33,7 +34,7 @@ struct TransitSpec {
   bool isDefault() const { return planner == "visibility"; }
 };
 
-/// What every sampling planner's route stays within, as a multiple of the exact shortest path, on
+/// What every sampling planner's route stays within, as a multiple of the visibility route, on
 /// the conformance walls at the default iterations (tests/transit_planners_test.cpp; measured
 /// factors per planner in docs/transits.md).
 inline constexpr double kSamplingTransitFactor = 1.3;

@@ -76,7 +76,7 @@ struct TransitStats {
   std::size_t failures = 0;     ///< queries with no route within the iterations
   std::size_t time_capped = 0;  ///< queries stopped by the wall-clock cap (not repeatable)
   double length = 0.0;          ///< total length of the routes found, m
-  double shortest = 0.0;        ///< the exact shortest paths' total length for the same queries, m
+  double shortest = 0.0;        ///< the visibility routes' total length for the same queries, m
   double ms = 0.0;              ///< time spent in the sampling planner (measured)
 };
 
@@ -189,10 +189,10 @@ void recordOutcome(PlanResult& result, const PathBuilder& builder, std::size_t f
 /// Up to `count` transit queries that need a detour, for measuring transit planners (tests and
 /// bench/transit_bench.cpp): points of a grid of about 12 x 12 over the wall's bounding box that lie
 /// in F's largest component, paired (in a fixed order) where the straight move between them is not
-/// free, each with its exact shortest route (TransitRouter). Deterministic.
+/// free, each with its visibility route (TransitRouter). Deterministic.
 struct DetourQuery {
   Point a, b;
-  double shortest = 0.0;  ///< length of the exact shortest route, m
+  double shortest = 0.0;  ///< length of the visibility route, m
 };
 std::vector<DetourQuery> detourQueries(Workspace& ws, std::size_t count);
 
