@@ -389,11 +389,12 @@ int showcaseCommand(const ShowcaseOptions& options) {
 
 int redrawCommand(const RedrawOptions& options) {
   ResultsDb db(options.database, ResultsDb::Mode::ReadOnly);
-  const ResultsDb::StoredRun run = db.storedRun(options.run);
+  const ResultsDb::StoredRun run = options.replan ? db.storedReplan(options.run, *options.replan) : db.storedRun(options.run);
   char title[512];
   std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s", run.wall.name.c_str(), run.planner.c_str(),
                 run.tool.tool_width, run.tool.clearance, run.status.c_str());
-  writeFileAtomically(options.svg, pathPicture(run.wall, run.tool, run.vehicle, run.path, title));
+  writeFileAtomically(options.svg, pathPicture(run.wall, run.tool, run.vehicle, run.path, title, true, 1500.0,
+                                               run.first_judged_segment));
   std::cout << "run " << run.key << ": " << run.status << (run.reason.empty() ? "" : " (" + run.reason + ")") << ", "
             << run.path.waypoints.size() << " waypoints -> " << options.svg << "\n";
   return 0;

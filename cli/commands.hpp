@@ -122,6 +122,7 @@ int runsCommand(const RunsOptions& options);
 
 struct RedrawOptions {
   std::string database, run, svg;
+  std::optional<std::size_t> replan;  ///< draw this repair of the run instead (replans table, 0-based)
 };
 /// Redraws a stored run (its wall, path and coverage layer) as an SVG picture.
 int redrawCommand(const RedrawOptions& options);

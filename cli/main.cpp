@@ -168,6 +168,8 @@ int main(int argc, char** argv) {
   redraw_cmd->add_option("database", redraw.database, "results.sqlite of an experiment")->required();
   redraw_cmd->add_option("--run", redraw.run, "run key, or its first 6 or more hex digits")->required();
   redraw_cmd->add_option("--svg", redraw.svg, "picture to write")->required();
+  redraw_cmd->add_option("--replan", redraw.replan,
+                         "draw the run's repair number N after surprise obstacles (0-based; docs/replanning.md)");
   redraw_cmd->callback([&] { plan_exit = coverbench::cli::redrawCommand(redraw); });
 
   try {

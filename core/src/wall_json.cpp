@@ -212,30 +212,52 @@ Wall loadWallFile(const std::string& path) {
   return wall;
 }
 
+namespace {
+
+std::string jsonNumber(double v) { return json(v).dump(); }
+
+std::string pointsToJson(const Ring& ring) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < ring.size(); ++i)
+    out += (i ? ", [" : "[") + jsonNumber(ring[i].x) + ", " + jsonNumber(ring[i].y) + "]";
+  return out + "]";
+}
+
+std::string obstacleToJson(const Obstacle& o) {
+  std::string out;
+  if (o.type == ObstacleType::Circle)
+    out = "{\"type\": \"circle\", \"x\": " + jsonNumber(o.center.x) + ", \"y\": " + jsonNumber(o.center.y) +
+          ", \"radius\": " + jsonNumber(o.radius);
+  else
+    out = "{\"type\": \"polygon\", \"points\": " + pointsToJson(o.polygon);
+  if (!o.label.empty()) out += ", \"label\": " + json(o.label).dump();
+  return out + "}";
+}
+
+}  // namespace
+
 std::string wallToJson(const Wall& wall) {
   // One obstacle per line; numbers in their shortest round-trip form, so equal walls give equal
   // bytes on every machine. Rects are written as their polygons: exact, no arithmetic on corners.
-  auto num = [](double v) { return json(v).dump(); };
-  auto points = [&](const Ring& ring) {
-    std::string out = "[";
-    for (std::size_t i = 0; i < ring.size(); ++i)
-      out += (i ? ", [" : "[") + num(ring[i].x) + ", " + num(ring[i].y) + "]";
-    return out + "]";
-  };
-  std::string out = "{\n  \"name\": " + json(wall.name).dump() + ",\n  \"boundary\": " + points(wall.boundary) +
+  std::string out = "{\n  \"name\": " + json(wall.name).dump() + ",\n  \"boundary\": " + pointsToJson(wall.boundary) +
                     ",\n  \"obstacles\": [";
-  for (std::size_t i = 0; i < wall.obstacles.size(); ++i) {
-    const Obstacle& o = wall.obstacles[i];
-    out += i ? ",\n    " : "\n    ";
-    if (o.type == ObstacleType::Circle)
-      out += "{\"type\": \"circle\", \"x\": " + num(o.center.x) + ", \"y\": " + num(o.center.y) +
-             ", \"radius\": " + num(o.radius);
-    else
-      out += "{\"type\": \"polygon\", \"points\": " + points(o.polygon);
-    if (!o.label.empty()) out += ", \"label\": " + json(o.label).dump();
-    out += "}";
-  }
+  for (std::size_t i = 0; i < wall.obstacles.size(); ++i) out += (i ? ",\n    " : "\n    ") + obstacleToJson(wall.obstacles[i]);
   out += wall.obstacles.empty() ? "]\n}\n" : "\n  ]\n}\n";
+  return out;
+}
+
+std::string obstaclesToJson(const std::vector<Obstacle>& obstacles) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < obstacles.size(); ++i) out += (i ? ", " : "") + obstacleToJson(obstacles[i]);
+  return out + "]";
+}
+
+std::vector<Obstacle> parseObstaclesJson(const std::string& text, const std::string& source) {
+  Reader r(source);
+  const json doc = parseJsonStrict(text, source);
+  if (!doc.is_array()) r.fail("obstacles", "must be an array");
+  std::vector<Obstacle> out;
+  for (std::size_t i = 0; i < doc.size(); ++i) out.push_back(parseObstacle(r, doc[i], "obstacles[" + std::to_string(i) + "]"));
   return out;
 }
 

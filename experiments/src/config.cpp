@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <type_traits>
 
 #include "coverbench/datasets.hpp"
 #include "coverbench/experiment.hpp"
@@ -200,7 +201,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   }
   if (!doc.isMap()) r.fail(doc, "(document)", "must be a mapping (name, datasets, planners, ...)");
   r.onlyKeys(doc, "", {"name", "output", "datasets", "planners", "tool", "repetitions", "limits", "baseline", "threads",
-                       "seed", "allow_large", "judge", "vehicle", "transit"});
+                       "seed", "allow_large", "judge", "vehicle", "transit", "replanning"});
   const fs::path base = fs::path(path).parent_path();
   auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).lexically_normal().string(); };
 
@@ -401,6 +402,40 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     }
     if (!sampling && (t->find("iterations") || t->find("time_cap_s")))
       r.fail(*t, "transit", "iterations and time_cap_s belong to a sampling planner; visibility has neither");
+  }
+
+  // Replanning: obstacles appear at fractions of every path; each repair is measured (docs/replanning.md).
+  if (const Yaml* p = doc.find("replanning")) {
+    r.onlyKeys(*p, "replanning", {"at", "obstacles", "kinds", "repairs"});
+    const Yaml* at = p->find("at");
+    if (!at) r.fail(*p, "replanning.at", "missing (fractions of the path's length, e.g. [0.3, 0.7])");
+    for (const Yaml* v : r.values(*at, "replanning.at")) {
+      const double f = r.number(*v, "replanning.at", 0.0, 1.0, true);
+      if (f >= 1.0) r.fail(*v, "replanning.at", "must be below 1 (at the end nothing is left to repair), got " + v->scalar);
+      if (std::find(c.replanning.at.begin(), c.replanning.at.end(), f) != c.replanning.at.end())
+        r.fail(*v, "replanning.at", "lists " + v->scalar + " twice");
+      c.replanning.at.push_back(f);
+    }
+    if (const Yaml* n = p->find("obstacles"))
+      c.replanning.obstacles = static_cast<int>(r.integer(*n, "replanning.obstacles", 1, kMaxSurpriseObstacles));
+    // A name or a list of distinct names, each parsed by `parse`.
+    auto names = [&](const char* key, auto parse, const std::string& known, auto& into) {
+      const Yaml* k = p->find(key);
+      if (!k) return;
+      const std::string field = std::string("replanning.") + key;
+      into.clear();
+      for (const Yaml* v : r.values(*k, field)) {
+        typename std::decay_t<decltype(into)>::value_type value;
+        const std::string name = r.text(*v, field);
+        if (!parse(name, value)) r.fail(*v, field, "must be " + known + ", not '" + name + "'");
+        if (std::find(into.begin(), into.end(), value) != into.end()) r.fail(*v, field, "lists " + name + " twice");
+        into.push_back(value);
+      }
+    };
+    names("kinds", [](const std::string& n, SurpriseKind& k) { return parseSurpriseKind(n, k); },
+          "scaffolding, ladder or duct", c.replanning.kinds);
+    names("repairs", [](const std::string& n, RepairMethod& m) { return parseRepairMethod(n, m); }, "replan or detour",
+          c.replanning.repairs);
   }
 
   if (const Yaml* n = doc.find("repetitions")) c.repetitions = static_cast<int>(r.integer(*n, "repetitions", 1, 1000));

@@ -368,7 +368,9 @@ class Pool {
 }  // namespace
 
 double hardDeadlineSeconds(const RunSpec& spec) {
-  return 2.0 * spec.time_limit_s * static_cast<double>(std::max(1, spec.repetitions)) + 5.0;
+  // Replanning plans once more per fraction (the plan from scratch with the obstacles known) and
+  // repairs and scores up to twice: two budgets more per fraction.
+  return 2.0 * spec.time_limit_s * static_cast<double>(std::max(1, spec.repetitions) + 2 * spec.replanning.at.size()) + 5.0;
 }
 
 std::string serializeRecord(const RunRecord& r) {
@@ -391,6 +393,21 @@ std::string serializeRecord(const RunRecord& r) {
   w.map(r.stats);
   w.map(r.timings_ms);
   w.str(r.path.waypoints.empty() ? std::string() : encodePath(r.path));
+  w.u64(r.replans.size());
+  for (const ReplanRecord& p : r.replans) {
+    w.f64(p.fraction);
+    w.str(p.repair);
+    w.u64(p.obstacles);
+    w.u64(p.requested);
+    w.str(p.obstacles_json);
+    w.str(p.status);
+    w.str(p.reason);
+    w.u64(p.valid ? 1 : 0);
+    w.f64(p.repair_ms);
+    w.map(p.figures);
+    w.str(p.path.waypoints.empty() ? std::string() : encodePath(p.path));
+    w.u64(p.cut_waypoint);
+  }
   return w.take();
 }
 
@@ -419,6 +436,22 @@ RunRecord deserializeRecord(const std::string& bytes) {
   r.timings_ms = in.map();
   const std::string path = in.str();
   if (!path.empty()) r.path = decodePath(path);
+  for (std::uint64_t n = in.count(); n > 0; --n) {
+    ReplanRecord p;
+    p.fraction = in.f64();
+    p.repair = in.str();
+    p.obstacles = in.u64();
+    p.requested = in.u64();
+    p.obstacles_json = in.str();
+    p.status = in.str();
+    p.reason = in.str();
+    p.valid = in.u64() != 0;
+    p.repair_ms = in.f64();
+    p.figures = in.map();
+    if (const std::string blob = in.str(); !blob.empty()) p.path = decodePath(blob);
+    p.cut_waypoint = in.u64();
+    r.replans.push_back(std::move(p));
+  }
   if (!in.done()) throw std::runtime_error("trailing bytes after the run record");
   return r;
 }

@@ -20,7 +20,8 @@ void executeIsolated(const std::vector<const RunSpec*>& runs, unsigned workers,
                      const std::function<void(const RunSpec&, RunRecord)>& done);
 
 /// The hard wall-clock deadline of a run: planning has `time_limit_s` (the cooperative budget),
-/// repeated `repetitions` times, and scoring gets as long again, plus 5 s to start and report.
+/// repeated `repetitions` times, and scoring gets as long again, plus 5 s to start and report;
+/// with replanning, two budgets more per fraction (a plan from scratch, repairs, their scores).
 double hardDeadlineSeconds(const RunSpec& spec);
 
 /// A record as bytes and back (the pipe's protocol). Throws std::runtime_error on malformed bytes.

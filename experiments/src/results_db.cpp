@@ -28,7 +28,9 @@ namespace {
 /// experiment_shard (which shard an experiment is), merged_shards (what a merge was made of) and
 /// run_options (the vehicle and transit planner of each run that has another than holonomic and
 /// visibility: an older build knows only those, stores and reads none, and would draw a gantry
-/// run's lifted moves as transits).
+/// run's lifted moves as transits); replans and replan_figures (docs/replanning.md: a run's
+/// repairs after surprise obstacles, only for experiments with replanning; an older build ignores
+/// them and still reads every run correctly).
 constexpr long long kApplicationId = 0x4376424e;
 constexpr long long kSchemaVersion = 2;
 
@@ -78,6 +80,14 @@ CREATE TABLE IF NOT EXISTS planner_timings (
 CREATE TABLE IF NOT EXISTS run_options (
   run_key TEXT PRIMARY KEY, vehicle TEXT NOT NULL, lift_s REAL NOT NULL, lower_s REAL NOT NULL,
   transit TEXT NOT NULL, transit_iterations INTEGER NOT NULL);
+CREATE TABLE IF NOT EXISTS replans (
+  run_key TEXT NOT NULL, position INTEGER NOT NULL, fraction REAL NOT NULL, repair TEXT NOT NULL,
+  obstacles INTEGER NOT NULL, requested INTEGER NOT NULL, obstacles_json TEXT NOT NULL, status TEXT NOT NULL,
+  reason TEXT NOT NULL, valid INTEGER NOT NULL, repair_ms REAL, path BLOB, cut_waypoint INTEGER NOT NULL,
+  PRIMARY KEY (run_key, position)) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS replan_figures (
+  run_key TEXT NOT NULL, position INTEGER NOT NULL, name TEXT NOT NULL, value REAL,
+  PRIMARY KEY (run_key, position, name)) WITHOUT ROWID;
 CREATE TABLE IF NOT EXISTS experiment_shard (
   experiment_id INTEGER PRIMARY KEY, shard_index INTEGER NOT NULL, shard_count INTEGER NOT NULL,
   config_runs INTEGER NOT NULL);
@@ -335,7 +345,8 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
   exec("BEGIN IMMEDIATE");
   try {
     // A retried run replaces everything stored under its key.
-    for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options"}) {
+    for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options",
+                              "replans", "replan_figures"}) {
       Statement d(db_, std::string("DELETE FROM ") + table + " WHERE run_key = ?", file_);
       d.text(1, rec.key).run();
     }
@@ -360,6 +371,24 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
                   file_);
       v.text(1, rec.key).text(2, toString(spec.vehicle.kind)).real(3, spec.vehicle.lift_s).real(4, spec.vehicle.lower_s);
       v.text(5, spec.transit.planner).integer(6, spec.transit.iterations).run();
+    }
+    if (!rec.replans.empty()) {
+      Statement rr(db_,
+                   "INSERT INTO replans (run_key, position, fraction, repair, obstacles, requested, obstacles_json, status, "
+                   "reason, valid, repair_ms, path, cut_waypoint) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?)",
+                   file_);
+      Statement rf(db_, "INSERT INTO replan_figures (run_key, position, name, value) VALUES (?,?,?,?)", file_);
+      for (std::size_t i = 0; i < rec.replans.size(); ++i) {
+        const ReplanRecord& p = rec.replans[i];
+        const auto pos = static_cast<long long>(i);
+        rr.text(1, rec.key).integer(2, pos).real(3, p.fraction).text(4, p.repair);
+        rr.integer(5, static_cast<long long>(p.obstacles)).integer(6, static_cast<long long>(p.requested));
+        rr.text(7, p.obstacles_json).text(8, p.status).text(9, p.reason).integer(10, p.valid ? 1 : 0).real(11, p.repair_ms);
+        if (p.path.waypoints.empty()) rr.null(12);
+        else rr.blob(12, encodePath(p.path));
+        rr.integer(13, static_cast<long long>(p.cut_waypoint)).run();
+        for (const auto& [name, value] : p.figures) rf.text(1, rec.key).integer(2, pos).text(3, name).real(4, value).run();
+      }
     }
     Statement rp(db_, "INSERT INTO run_repetitions (run_key, repetition, plan_time_ms) VALUES (?,?,?)", file_);
     for (std::size_t i = 0; i < rec.plan_times_ms.size(); ++i)
@@ -509,6 +538,39 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
           "UNION ALL SELECT t.run_key, 'transit_ms', t.ms FROM planner_timings t JOIN experiment_runs e "
           "ON e.run_key = t.run_key WHERE e.experiment_id = ?1 AND t.name = 'transit'",
           &ResultRow::transit_figures);
+  {
+    Statement s(db_,
+                "SELECT p.run_key, p.position, p.fraction, p.repair, p.obstacles, p.requested, p.status, p.valid, p.repair_ms "
+                "FROM replans p JOIN experiment_runs e ON e.run_key = p.run_key WHERE e.experiment_id = ?1 "
+                "ORDER BY p.run_key, p.position",
+                file_);
+    s.integer(1, id);
+    while (s.step()) {
+      const auto it = index.find(s.columnText(0));
+      if (it == index.end()) continue;
+      ReplanRow p;
+      p.fraction = s.columnReal(2);
+      p.repair = s.columnText(3);
+      p.obstacles = static_cast<std::size_t>(s.columnInt(4));
+      p.requested = static_cast<std::size_t>(s.columnInt(5));
+      p.status = s.columnText(6);
+      p.valid = s.columnInt(7) != 0;
+      p.repair_ms = s.columnNull(8) ? NAN : s.columnReal(8);
+      rs.runs[it->second].replans.push_back(std::move(p));
+    }
+    Statement f(db_,
+                "SELECT f.run_key, f.position, f.name, f.value FROM replan_figures f JOIN experiment_runs e "
+                "ON e.run_key = f.run_key WHERE e.experiment_id = ?1",
+                file_);
+    f.integer(1, id);
+    while (f.step()) {
+      const auto it = index.find(f.columnText(0));
+      if (it == index.end() || f.columnNull(3)) continue;
+      auto& replans = rs.runs[it->second].replans;
+      const auto pos = static_cast<std::size_t>(f.columnInt(1));
+      if (pos < replans.size()) replans[pos].figures[f.columnText(2)] = f.columnReal(3);
+    }
+  }
   return rs;
 }
 
@@ -629,6 +691,35 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
   storedOptions(s, 9, run.vehicle, transit);
   if (s.step()) throw InputError(file_, "runs", "several run keys start with " + key_prefix + ": give more digits");
   if (std::optional<Path> p = path(run.key)) run.path = std::move(*p);
+  return run;
+}
+
+ResultsDb::StoredRun ResultsDb::storedReplan(const std::string& key_prefix, std::size_t position) {
+  StoredRun run = storedRun(key_prefix);
+  Statement s(db_,
+              "SELECT fraction, repair, obstacles_json, status, reason, path, cut_waypoint FROM replans WHERE run_key = ? AND position = ?",
+              file_);
+  s.text(1, run.key).integer(2, static_cast<long long>(position));
+  if (!s.step()) {
+    Statement n(db_, "SELECT COUNT(*) FROM replans WHERE run_key = ?", file_);
+    n.text(1, run.key);
+    n.step();
+    const long long count = n.columnInt(0);
+    throw InputError("--replan", "replan",
+                     "run " + run.key.substr(0, 12) + " has " +
+                         (count ? std::to_string(count) + " repairs (numbers 0 to " + std::to_string(count - 1) + ")"
+                                : std::string("no repairs (its experiment had no replanning: section)")) +
+                         ", not number " + std::to_string(position));
+  }
+  char what[96];
+  std::snprintf(what, sizeof what, ", obstacles at %g, repaired by %s", s.columnReal(0), s.columnText(1).c_str());
+  run.planner += what;
+  for (Obstacle& o : parseObstaclesJson(s.columnText(2), file_ + " (replans of " + run.key.substr(0, 12) + ")"))
+    run.wall.obstacles.push_back(std::move(o));
+  run.status = s.columnText(3);
+  run.reason = s.columnText(4);
+  run.path = s.columnNull(5) ? Path{} : decodePath(s.columnBlob(5));
+  run.first_judged_segment = static_cast<std::size_t>(s.columnInt(6));
   return run;
 }
 

@@ -56,6 +56,95 @@ std::string exact(double v) {
   return buf;
 }
 
+/// The run's path under each surprise and repair of spec.replanning (docs/replanning.md). The
+/// plan from scratch on the new wall is made once per fraction: it is the replan repair's plan and
+/// the detour's yardstick.
+std::vector<ReplanRecord> replanRecords(const RunSpec& spec, const PlannerInfo& info, const Problem& problem,
+                                        const Path& path, const PathMetrics& original) {
+  using Clock = std::chrono::steady_clock;
+  auto ms = [](Clock::time_point since) { return std::chrono::duration<double, std::milli>(Clock::now() - since).count(); };
+  std::vector<ReplanRecord> out;
+  const double original_uncovered = original.coverage.reachable_area * (1.0 - original.coverage.coverage_reachable);
+  for (double fraction : spec.replanning.at) {
+    const Surprise surprise = makeSurprise(spec.wall->wall, spec.tool, path, fraction, spec.replanning, spec.seed);
+    const std::string obstacles = obstaclesToJson(surprise.obstacles);
+    Problem changed = problem;
+    changed.wall = &surprise.wall;
+    const auto plan_start = Clock::now();
+    const PlanResult scratch = runPlanner(info, changed, Budget(std::chrono::duration<double>(spec.time_limit_s)));
+    const double plan_ms = ms(plan_start);
+    std::optional<PathMetrics> scratch_metrics;
+    if (scratch.hasPath()) scratch_metrics = computeMetrics(surprise.wall, spec.tool, scratch.path, spec.vehicle);
+    for (RepairMethod method : spec.replanning.repairs) {
+      ReplanRecord rec;
+      rec.fraction = fraction;
+      rec.repair = toString(method);
+      rec.obstacles = surprise.obstacles.size();
+      rec.requested = surprise.requested;
+      rec.obstacles_json = obstacles;
+      for (const char* name : kReplanFigures) rec.figures[name] = NAN;
+      rec.figures["executed_m"] = surprise.cut.length;
+      if (scratch_metrics) {
+        rec.figures["scratch_coverage_reachable"] = scratch_metrics->coverage.coverage_reachable;
+        rec.figures["scratch_length_m"] = scratch_metrics->lengths.total;
+      }
+      Repair repair;
+      if (method == RepairMethod::Replan) {
+        if (!scratch.hasPath()) {
+          rec.status = "failed";
+          rec.reason = "the new plan failed (" + toString(scratch.status) + "): " + scratch.reason;
+          rec.repair_ms = plan_ms;
+          out.push_back(std::move(rec));
+          continue;
+        }
+        const auto start = Clock::now();
+        repair = repairFromPlan(surprise, changed, scratch.path);
+        rec.repair_ms = plan_ms + ms(start);
+        if (scratch.status == PlanStatus::Partial)
+          repair.reason += std::string(repair.reason.empty() ? "" : "; ") + "the new plan is partial: " + scratch.reason;
+      } else {
+        const auto start = Clock::now();
+        repair = repairByDetour(surprise, changed);
+        rec.repair_ms = ms(start);
+      }
+      rec.figures["kept_moves"] = static_cast<double>(repair.kept_moves);
+      rec.figures["dropped_moves"] = static_cast<double>(repair.dropped_moves);
+      rec.figures["unreachable_moves"] = static_cast<double>(repair.unreachable_moves);
+      rec.figures["transits"] = static_cast<double>(repair.transits);
+      rec.figures["blocked_m"] = repair.blocked_m;
+      if (!repair.ok) {
+        rec.status = "failed";
+        rec.reason = "nothing was left to repair";
+        out.push_back(std::move(rec));
+        continue;
+      }
+      // The executed part was driven before the obstacles appeared: it is judged on the old wall,
+      // the repaired part on the new one; coverage and lengths are of the whole path on the new wall.
+      const PathMetrics m = computeMetrics(surprise.wall, spec.tool, repair.path, spec.vehicle);
+      const Path repaired = repair.repairedPart();
+      const Validity before = checkValidity(spec.wall->wall, spec.tool, surprise.cut.executed, spec.vehicle);
+      const Validity after = checkValidity(surprise.wall, spec.tool, repaired, spec.vehicle);
+      rec.valid = before.valid && after.valid;
+      if (rec.valid && spec.exact_judge)
+        rec.valid = judge::judgeValidity(spec.wall->wall, spec.tool, surprise.cut.executed, spec.vehicle).valid &&
+                    judge::judgeValidity(surprise.wall, spec.tool, repaired, spec.vehicle).valid;
+      rec.figures["added_length_m"] = m.lengths.total - original.lengths.total;
+      rec.figures["added_duration_s"] = m.motion.duration_s - original.motion.duration_s;
+      rec.figures["coverage_reachable"] = m.coverage.coverage_reachable;
+      rec.figures["uncovered_added_m2"] = m.coverage.reachable_area * (1.0 - m.coverage.coverage_reachable) - original_uncovered;
+      const bool left_out = repair.leftOut() || (method == RepairMethod::Replan && scratch.status == PlanStatus::Partial);
+      rec.status = !rec.valid ? "invalid_output" : left_out ? "partial" : "ok";
+      rec.reason = rec.valid ? repair.reason
+                             : std::to_string(before.violations) + " executed segments violate the wall, " +
+                                   std::to_string(after.violations) + " repaired segments the new wall (or the exact judge finds one)";
+      rec.cut_waypoint = repair.cut_waypoint;
+      rec.path = std::move(repair.path);
+      out.push_back(std::move(rec));
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string runBaseKey(const RunSpec& spec) {
@@ -69,6 +158,7 @@ std::string runBaseKey(const RunSpec& spec) {
             "\nlower_s=" + exact(spec.vehicle.lower_s);
   if (!spec.transit.isDefault())
     text += "\ntransit=" + spec.transit.planner + "\ntransit_iterations=" + std::to_string(spec.transit.iterations);
+  if (spec.replanning.enabled()) text += "\nreplanning=" + spec.replanning.describe();
   return sha256Hex(text);
 }
 
@@ -91,6 +181,7 @@ std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vecto
           spec.tool = tool;
           spec.vehicle = config.vehicle;
           spec.transit = transit;
+          spec.replanning = config.replanning;
           spec.repetitions = config.repetitions;
           spec.seed = config.seed;
           spec.time_limit_s = config.time_limit_s;
@@ -134,8 +225,10 @@ RunRecord executeRun(const RunSpec& spec) {
   rec.status = toString(result.status);
   rec.reason = result.reason;
   if (result.hasPath()) {
+    std::optional<PathMetrics> original;
     try {
       const PathMetrics m = computeMetrics(spec.wall->wall, spec.tool, result.path, spec.vehicle);
+      original = m;
       rec.valid = m.validity.valid;
       rec.metrics = flatten(m);
       rec.uncovered_reachable_m2 = m.coverage.reachable_area * (1.0 - m.coverage.coverage_reachable);
@@ -163,6 +256,16 @@ RunRecord executeRun(const RunSpec& spec) {
     } catch (const std::exception& e) {  // a path beyond the scoring limits, or a bug in the judge
       rec.status = "metrics_error";
       rec.reason = std::string("the path could not be scored: ") + e.what();
+    }
+    // Surprises only for a valid, scored path (an invalid one has nothing to repair honestly).
+    if (spec.replanning.enabled() && rec.valid && original) {
+      try {
+        rec.replans = replanRecords(spec, info, problem, result.path, *original);
+      } catch (const std::exception& e) {
+        rec.status = "metrics_error";
+        rec.reason = std::string("replanning could not be scored: ") + e.what();
+        rec.replans.clear();
+      }
     }
     rec.path = std::move(result.path);
   }

@@ -158,6 +158,17 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
       for (const auto& [name, value] : r->transit_figures) figures[name] = number(value);
       run["transit"] = {{"planner", r->transit.planner}, {"iterations", r->transit.iterations}, {"figures", figures}};
     }
+    if (!r->replans.empty()) {  // only with replanning, so other reports stay as they were
+      Json replans = Json::array();
+      for (const ReplanRow& p : r->replans) {
+        Json figures = Json::object();
+        for (const auto& [name, value] : p.figures) figures[name] = number(value);
+        replans.push_back({{"fraction", p.fraction}, {"repair", p.repair}, {"obstacles", p.obstacles},
+                           {"requested", p.requested}, {"status", p.status}, {"valid", p.valid},
+                           {"repair_ms", number(p.repair_ms)}, {"figures", figures}});
+      }
+      run["replans"] = std::move(replans);
+    }
     j["runs"].push_back(std::move(run));
   }
   j["gallery"] = Json::array();

@@ -191,7 +191,8 @@ std::string renderSvg(const SvgContent& c) {
 
 /// The picture of a path; with its coverage layer when it can be scored.
 std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle, const Path& path,
-                        const std::string& title, bool coverage_layer, double overlap_strips) {
+                        const std::string& title, bool coverage_layer, double overlap_strips,
+                        std::size_t first_judged_segment) {
   const Region free = freeRegion(wall, tool);
   SvgContent content;
   content.wall = &wall;
@@ -202,7 +203,8 @@ std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleM
   content.title = title;
   if (!coverage_layer) return renderSvg(content);
   const CoverageRegions regions = coverageRegions(wall, tool, path);
-  const Validity validity = checkValidity(wall, tool, path, vehicle);
+  Validity validity = checkValidity(wall, tool, path, vehicle);
+  std::erase_if(validity.violating, [&](std::size_t i) { return i < first_judged_segment; });
   content.violating = &validity.violating;
   const Region uncovered = subtract(regions.reachable, regions.swept);
   // Draw the overlap with strips no finer than the measure's and at most `overlap_strips` over the wall.

@@ -55,6 +55,10 @@ Wall parseWallJson(const std::string& text, const std::string& source);
 Wall loadWallFile(const std::string& path);
 /// Serialises a wall to JSON text (boundary always written as a polygon).
 std::string wallToJson(const Wall& wall);
+/// Obstacles as a wall file's "obstacles" array, on one line (rects as polygons, as wallToJson).
+std::string obstaclesToJson(const std::vector<Obstacle>& obstacles);
+/// Parses such an array (every obstacle checked as the wall parser checks it; not against a wall).
+std::vector<Obstacle> parseObstaclesJson(const std::string& text, const std::string& source);
 
 /// Checks a parsed wall for geometric sense (simple polygons, obstacles inside, something left
 /// to cover). Called by the parser; exposed for generators and tests.

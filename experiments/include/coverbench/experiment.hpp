@@ -12,6 +12,7 @@
 
 #include "coverbench/metrics.hpp"
 #include "coverbench/planner.hpp"
+#include "coverbench/replanning.hpp"
 #include "coverbench/wall.hpp"
 
 namespace coverbench {
@@ -52,6 +53,10 @@ struct ExperimentConfig {
   /// one run per transit planner listed, compared side by side like tool widths (never pooled).
   /// Sampling planners are seeded from `seed`.
   std::vector<TransitSpec> transits{TransitSpec{}};
+  /// Obstacles that appear while paths are executed, and how they are repaired (config section
+  /// `replanning:`; off when absent). Every run with a valid path gets one record per fraction and
+  /// repair (docs/replanning.md).
+  ReplanningSpec replanning;
   int repetitions = 1;
   double time_limit_s = 60.0;
   double memory_limit_mb = 4096.0;
@@ -92,6 +97,7 @@ struct RunSpec {
   ToolParams tool;
   VehicleModel vehicle;
   TransitSpec transit;
+  ReplanningSpec replanning;  ///< off unless the config has a `replanning:` section
   int repetitions = 1;  ///< the plan is executed this many times in the run's process, each timed
   std::uint64_t seed = 0;
   double time_limit_s = 60.0;
@@ -104,8 +110,8 @@ struct RunSpec {
 };
 /// The base key: SHA-256 of the wall's content hash, the planner, every resolved parameter
 /// (defaults included), the tool parameters, the seed, and (only when set) the exact judge, a
-/// vehicle other than holonomic and a transit planner other than visibility with its iterations
-/// (so keys from before vehicle models and transit planners are unchanged).
+/// vehicle other than holonomic, a transit planner other than visibility with its iterations, and
+/// replanning (so keys from before vehicle models, transit planners and replanning are unchanged).
 /// Limits and repetitions are not in it.
 std::string runBaseKey(const RunSpec& spec);
 /// The run key: SHA-256 of the base key, the planner's version and its code identity, so a
@@ -115,6 +121,42 @@ std::string runKey(const RunSpec& spec);
 /// `keep`, only the runs it accepts (it sees the base key; the run key is filled in after).
 std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls,
                                 const std::function<bool(const RunSpec&)>& keep = {});
+
+/// One repair of a run's path (docs/replanning.md): obstacles appeared at `fraction` of its
+/// length and the rest was repaired by `repair`. The repaired path is scored on the new wall by the
+/// metrics engine like any path; the figures compare it with the original path and with a plan
+/// made from scratch with the obstacles known.
+struct ReplanRecord {
+  double fraction = 0.0;
+  std::string repair;  ///< replan or detour
+  std::size_t obstacles = 0;   ///< that appeared
+  std::size_t requested = 0;   ///< that were asked for (more than appeared: no place found)
+  std::string obstacles_json;  ///< what appeared, as a wall file's obstacles array
+  /// ok; partial (the repair knowingly left painting out: blocked stretches of passes, moves no
+  /// transit reached, or a new plan that was itself partial); failed (no repaired path: the
+  /// reason says why); invalid_output (the metrics engine, or the exact judge with `judge: exact`,
+  /// finds the repaired path invalid on the new wall).
+  std::string status;
+  std::string reason;
+  bool valid = false;
+  double repair_ms = NAN;  ///< measured: replan includes its plan call; detour its routing
+  /// Named figures (NaN when not measured): see kReplanFigures.
+  std::map<std::string, double> figures;
+  Path path;  ///< the repaired path (executed part and repaired remainder)
+  std::size_t cut_waypoint = 0;  ///< the index in `path` of the robot's position when the obstacles appeared
+};
+/// The figures of a ReplanRecord, in the order tables show them.
+inline constexpr const char* kReplanFigures[] = {
+    "executed_m",               // length executed before the obstacles appeared
+    "added_length_m",           // repaired path's length minus the original path's
+    "added_duration_s",         // the same for duration_s
+    "coverage_reachable",       // of the repaired path, on the new wall
+    "scratch_coverage_reachable",  // of a plan made from scratch on the new wall (same planner)
+    "scratch_length_m",         // that plan's length
+    "uncovered_added_m2",       // reachable area left unpainted after the repair, minus what the original path left
+    "blocked_m",                // detour: painting length the obstacles block
+    "kept_moves", "dropped_moves", "unreachable_moves", "transits",  // Repair's counts
+};
 
 /// What a run produced.
 struct RunRecord {
@@ -133,6 +175,7 @@ struct RunRecord {
   std::map<std::string, double> stats;       ///< the planner's deterministic statistics
   std::map<std::string, double> timings_ms;  ///< the planner's own sub-timings (measured, first repetition)
   Path path;
+  std::vector<ReplanRecord> replans;  ///< with replanning: one per fraction and repair, in that order
   // Measured: a rerun measures these anew.
   std::vector<double> plan_times_ms;  ///< wall-clock of every repetition's plan call
   double plan_time_ms = 0.0;          ///< their median

@@ -74,10 +74,16 @@ class ResultsDb {
     VehicleModel vehicle;
     std::string status, reason;
     Path path;  ///< empty when the run failed
+    /// A repair (storedReplan): segments before it were driven before the obstacles appeared.
+    std::size_t first_judged_segment = 0;
   };
   /// The run whose key starts with `key_prefix` (at least 6 characters); throws InputError when
   /// none or several match.
   StoredRun storedRun(const std::string& key_prefix);
+  /// The repair number `position` (0-based, in the order of the replans table) of that run: the
+  /// wall with the obstacles that appeared, the repaired path, the repair's status and reason;
+  /// `planner` names the fraction and the repair. Throws InputError when the run has no such repair.
+  StoredRun storedReplan(const std::string& key_prefix, std::size_t position);
 
   /// Caps the database's size (SQLite's max_page_count), so tests can make a write fail as a full
   /// disk would.

@@ -15,6 +15,17 @@
 namespace coverbench {
 
 /// One finished run as the tables see it.
+/// One repair of a run's path after surprise obstacles (docs/replanning.md; table replans).
+struct ReplanRow {
+  double fraction = 0.0;
+  std::string repair;  ///< replan or detour
+  std::size_t obstacles = 0, requested = 0;
+  std::string status;  ///< ok, partial, failed, invalid_output
+  bool valid = false;
+  double repair_ms = 0.0;  ///< measured; NaN when not
+  std::map<std::string, double> figures;  ///< kReplanFigures (experiment.hpp) that were measured
+};
+
 struct ResultRow {
   /// The column it belongs to: the planner configuration's label, and with several tool
   /// configurations in the experiment, "label @ s=... m, c=... m" (never pooled across tools).
@@ -36,6 +47,8 @@ struct ResultRow {
   /// A sampling transit planner's statistics (transit_queries, transit_failures, transit_length_m,
   /// transit_shortest_m, transit_length_ratio) and its measured time (transit_ms); empty otherwise.
   std::map<std::string, double> transit_figures;
+  /// With replanning: one per fraction and repair, in that order; empty otherwise.
+  std::vector<ReplanRow> replans;
 };
 
 struct ResultSet {

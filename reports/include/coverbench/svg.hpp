@@ -33,8 +33,11 @@ std::string renderSvg(const SvgContent& content);
 /// The picture of a path on its wall with the free region, and (with `coverage_layer`, for a
 /// path that can be scored) the coverage layer and the segments that fail the exact check.
 /// The overlap layer is drawn with at most `overlap_strips` scanline strips over the wall's
-/// height (1500: finer than the picture's pixels; galleries of thumbnails use fewer).
+/// height (1500: finer than the picture's pixels; galleries of thumbnails use fewer). Segments
+/// before `first_judged_segment` are not marked (a repaired path's executed part, driven before
+/// the obstacles appeared, is judged on the wall it had then).
 std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle, const Path& path,
-                        const std::string& title, bool coverage_layer = true, double overlap_strips = 1500.0);
+                        const std::string& title, bool coverage_layer = true, double overlap_strips = 1500.0,
+                        std::size_t first_judged_segment = 0);
 
 }  // namespace coverbench

@@ -48,11 +48,20 @@ def transit_text(a):
     return (" Transit planner: " if len(named) == 1 else " Transit planners (one column each): ") + ", ".join(named) + "."
 
 
+def replanning_text(a):
+    """' Replanning: obstacles appear at 0.3, 0.7 of each path (section Replanning).' when runs were repaired."""
+    fractions = sorted({p["fraction"] for r in a.runs for p in r.get("replans", [])})
+    if not fractions:
+        return ""
+    return (" Replanning: obstacles appear at " + ", ".join(f"{f:g}" for f in fractions) +
+            " of each path's length (docs/replanning.md).")
+
+
 def preamble(a, fmt):
     e = a.experiment
     runs = len(a.runs)
     line = (f"Experiment {e['name']}: {runs} runs, {len(a.datasets)} datasets, {len(a.columns)} planner "
-            f"configurations, baseline {e['baseline']}, config sha256 {e['config_hash'][:12]}.{vehicle_text(a)}{transit_text(a)}")
+            f"configurations, baseline {e['baseline']}, config sha256 {e['config_hash'][:12]}.{vehicle_text(a)}{transit_text(a)}{replanning_text(a)}")
     if fmt == "md":
         return f"# {T._md('Experiment ' + e['name'])}\n\n{T._md(line)}\n\n"
     if fmt == "latex":
@@ -186,11 +195,13 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
     if transit:
         outcomes.append(T.to_html(transit))
     subtitle = (f"<p>{len(a.runs)} runs: {len(a.datasets)} datasets, {len(a.columns)} planner configurations, "
-                f"baseline <b>{esc(e['baseline'])}</b>.{esc(vehicle_text(a) + transit_text(a))} Definitions of every metric: docs/metrics.md "
+                f"baseline <b>{esc(e['baseline'])}</b>.{esc(vehicle_text(a) + transit_text(a) + replanning_text(a))} Definitions of every metric: docs/metrics.md "
                 f"(vehicle models: docs/vehicles.md). Tables for "
                 f'papers: <a href="report.md">Markdown</a>, <a href="report.csv">CSV</a>, '
                 f'<a href="report.tex">LaTeX</a>; every run: <a href="report_data.json">report_data.json</a>.</p>')
+    replanning = [T.to_html(t) for t in T.replanning_tables(a)]
     sections = [("headline", "Headline", "\n".join(headline)), ("outcomes", "Outcomes", "\n".join(outcomes)),
+                *([("replanning", "Replanning", "\n".join(replanning))] if replanning else []),
                 ("paired", "Paired statistics", "\n".join(paired)), ("plots", "Plots", "\n".join(plots_html)),
                 ("galleries", "Galleries", "\n".join(gallery)), ("appendix", "Appendix", "\n".join(appendix)),
                 ("record", "Reproducibility record", "\n".join(record))]

@@ -276,6 +276,58 @@ def transit_table(a):
     return t
 
 
+def replanning_tables(a):
+    """Per dataset, the repairs after surprise obstacles (docs/replanning.md): one row per planner
+    column, fraction and repair. Empty when the experiment has no replanning."""
+    out = []
+    for d in a.datasets:
+        rows = []
+        for c in a.columns:
+            repairs = {}
+            for r in a.by_column[c]:
+                if r["dataset"] != d:
+                    continue
+                for p in r.get("replans", []):
+                    repairs.setdefault((p["fraction"], p["repair"]), []).append(p)
+            for (fraction, repair), ps in sorted(repairs.items()):
+                rows.append((c, fraction, repair, ps))
+        if not rows:
+            continue
+        t = Table(f"{d}: replanning after surprise obstacles",
+                  ["planner", "at", "repair", "n", "ok/partial/failed/invalid", "obstacles", "ms [max]",
+                   "+length", "+unpainted", "coverage", "scratch"],
+                  note="Medians over the walls (n repairs). At the fraction 'at' of each valid path's length, obstacles drawn from the run's seed appear "
+                       "(placed / asked for); the rest of the path is repaired by planning again with the same planner "
+                       "(replan: its moves that paint something new, linked from the robot) or by detours around them "
+                       "(detour: the free stretches of blocked passes). 'invalid' counts repaired paths the metrics engine "
+                       "rejects (the executed part on the old wall, the rest on the new). ms: the repair's time, "
+                       "measured anew by every rerun (replan's includes its plan call), median and maximum. +length: "
+                       "repaired path minus the original; +unpainted: reachable area left unpainted after the repair "
+                       "minus what the original left (m², new wall); coverage: coverage_reachable of the repaired path "
+                       "on the new wall; scratch: of the same planner's plan with the obstacles known. "
+                       "docs/replanning.md.",
+                  anchor="replanning-" + d)
+        for c, fraction, repair, ps in rows:
+            def med(name):
+                vals = [p["figures"][name] for p in ps if p["figures"].get(name) is not None]
+                return statistics.median(vals) if vals else None
+            counts = {s: sum(1 for p in ps if p["status"] == s) for s in ("ok", "partial", "failed", "invalid_output")}
+            ms = [p["repair_ms"] for p in ps if p.get("repair_ms") is not None]
+            placed = sum(p["obstacles"] for p in ps)
+            asked = sum(p["requested"] for p in ps)
+            after, scratch = med("coverage_reachable"), med("scratch_coverage_reachable")
+            t.add([c, f"{fraction:g}", repair, str(len(ps)),
+                   f"{counts['ok']} / {counts['partial']} / {counts['failed']} / {counts['invalid_output']}",
+                   f"{placed}/{asked}",
+                   f"{number(statistics.median(ms))} [{number(max(ms))}]" if ms else "-",
+                   number(med("added_length_m")) + " m" if med("added_length_m") is not None else "-",
+                   number(med("uncovered_added_m2")) + " m²" if med("uncovered_added_m2") is not None else "-",
+                   f"{100 * after:.2f} %" if after is not None else "-",
+                   f"{100 * scratch:.2f} %" if scratch is not None else "-"])
+        out.append(t)
+    return out
+
+
 def success_table(a):
     t = Table("Success rate (ok runs) per dataset, with Wilson 95 % interval", ["dataset"] + a.columns)
     for d in a.datasets:
@@ -336,6 +388,7 @@ def paper_tables(a):
         ft = friedman_table(a)
         if ft.rows:
             tables.append(ft)
+    tables += replanning_tables(a)
     for d in a.datasets:  # last: what a rerun does not reproduce
         for tool in a.tools:
             if a.headline_measured:

@@ -173,6 +173,38 @@ class Rendering(unittest.TestCase):
             self.assertTrue(os.path.exists(os.path.join(one, "figures", "d01-cd.svg")))  # 3 planners: a CD diagram
 
 
+def replan(fraction, repair, status, ms, added, after, scratch, obstacles=2):
+    return {"fraction": fraction, "repair": repair, "obstacles": obstacles, "requested": 2, "status": status,
+            "valid": status != "invalid_output", "repair_ms": ms,
+            "figures": {"added_length_m": added, "uncovered_added_m2": 0.0, "coverage_reachable": after,
+                        "scratch_coverage_reachable": scratch}}
+
+
+class Replanning(unittest.TestCase):
+    def test_one_row_per_planner_fraction_and_repair_with_medians_by_hand(self):
+        runs = [run("a", w, 0.99, 10) for w in ("w1", "w2", "w3")] + [run("b", "w1", 0.99, 10)]
+        runs[0]["replans"] = [replan(0.3, "replan", "ok", 10.0, 1.0, 0.99, 0.99), replan(0.3, "detour", "partial", 2.0, 5.0, 0.95, 0.99)]
+        runs[1]["replans"] = [replan(0.3, "replan", "partial", 30.0, 3.0, 0.98, 0.98), replan(0.3, "detour", "partial", 4.0, 7.0, 0.96, 0.98)]
+        runs[2]["replans"] = [replan(0.3, "replan", "failed", 20.0, None, None, None, 1),
+                              replan(0.3, "detour", "invalid_output", 6.0, 9.0, 0.97, None, 1)]
+        a = Analysis(data(runs, ["a", "b"]))
+        [t] = T.replanning_tables(a)
+        self.assertEqual(t.title, "d: replanning after surprise obstacles")
+        self.assertEqual([r[:3] for r in t.rows], [["a", "0.3", "detour"], ["a", "0.3", "replan"]])
+        detour, replan_row = t.rows
+        # detour: ms 2, 4, 6 -> median 4, max 6; added 5, 7, 9 -> 7; coverage 0.95, 0.96, 0.97 -> 0.96
+        self.assertEqual(detour[3:], ["3", "0 / 2 / 0 / 1", "5/6", "4.00 [6.00]", "7.00 m", "0 m²", "96.00 %", "98.50 %"])
+        # replan: the failed one has no figures: medians of the other two; its time counts
+        self.assertEqual(replan_row[3:], ["3", "1 / 1 / 1 / 0", "5/6", "20.0 [30.0]", "2.00 m", "0 m²", "98.50 %", "98.50 %"])
+        self.assertIn(t.title, [x.title for x in T.paper_tables(a)])
+        self.assertIn("obstacles appear at 0.3 of each path", report.replanning_text(a))
+
+    def test_no_section_without_replanning(self):
+        a = Analysis(data(HAND, ["a", "b"]))
+        self.assertEqual(T.replanning_tables(a), [])
+        self.assertEqual(report.replanning_text(a), "")
+
+
 class Numbers(unittest.TestCase):
     def test_units_and_significant_digits(self):
         cov = {"name": "coverage_reachable", "unit": "1", "tie_absolute": 0.001}
