@@ -33,12 +33,17 @@ namespace fs = std::filesystem;
 /// The command line's vehicle over `base` (the default, or the plan file's), checked.
 VehicleModel resolveVehicle(const VehicleOptions& given, VehicleModel base) {
   if (given.model && !parseVehicleKind(*given.model, base.kind))
-    throw InputError("--vehicle", "vehicle", "must be holonomic or gantry, not '" + *given.model + "'");
+    throw InputError("--vehicle", "vehicle", "must be holonomic, gantry or car, not '" + *given.model + "'");
   if ((given.lift_s || given.lower_s) && !base.liftsTool())
     throw InputError(given.lift_s ? "--lift-s" : "--lower-s", "vehicle",
                      "lift and lower times belong to a gantry (--vehicle gantry); a holonomic vehicle never lifts its tool");
+  if ((given.turn_radius || given.reverse) && !base.isCar())
+    throw InputError(given.turn_radius ? "--turn-radius" : "--reverse", "vehicle",
+                     "a turn radius and reversing belong to a car (--vehicle car)");
   if (given.lift_s) base.lift_s = *given.lift_s;
   if (given.lower_s) base.lower_s = *given.lower_s;
+  if (given.turn_radius) base.turn_radius = *given.turn_radius;
+  if (given.reverse) base.reverse = true;
   validateVehicle(base, "command line", "vehicle");
   return base;
 }
@@ -167,6 +172,7 @@ int planCommand(const PlanOptions& options) {
   const PlannerInfo& planner = findPlanner(options.planner);
   Params params = resolveParams(planner, splitSettings(options.params));
   const VehicleModel vehicle = resolveVehicle(options.vehicle, VehicleModel{});
+  if (vehicle.isCar()) throw InputError("--vehicle", "vehicle", std::string(kCarNotPlannedYet));
   const TransitPlannerInfo* transit = findTransitPlanner(options.transit.planner);
   if (!transit) throw InputError("--transit", "transit", "'" + options.transit.planner + "' is not a transit planner (see `coverbench planners`)");
   if (!transit->sampling && options.transit_options_given)

@@ -17,6 +17,8 @@ void listPlanners(std::ostream& out);
 struct VehicleOptions {
   std::optional<std::string> model;
   std::optional<double> lift_s, lower_s;
+  std::optional<double> turn_radius;  ///< car
+  bool reverse = false;               ///< car: --reverse
 };
 
 struct PlanOptions {

@@ -56,7 +56,9 @@ int main(int argc, char** argv) {
   metrics_cmd->add_option("--plan", metrics.plan, "plan file: needs only waypoints and tool_on")->required();
   metrics_cmd->add_option("--tool-width", metrics.tool_width, "tool diameter s in metres (default: the plan's, else 0.1)");
   metrics_cmd->add_option("--clearance", metrics.clearance, "gap c in metres (default: the plan's, else 0.02)");
-  metrics_cmd->add_option("--vehicle", metrics.vehicle.model, "holonomic or gantry (default: the plan's, else holonomic)");
+  metrics_cmd->add_option("--vehicle", metrics.vehicle.model, "holonomic, gantry or car (default: the plan's, else holonomic)");
+  metrics_cmd->add_option("--turn-radius", metrics.vehicle.turn_radius, "car: its smallest turn radius, m (default: the plan's, else 0.5)");
+  metrics_cmd->add_flag("--reverse", metrics.vehicle.reverse, "car: it may reverse (Reeds-Shepp; default: the plan's, else forward only)");
   metrics_cmd->add_option("--lift-s", metrics.vehicle.lift_s, "gantry: seconds to lift the tool (default: the plan's, else 1)");
   metrics_cmd->add_option("--lower-s", metrics.vehicle.lower_s, "gantry: seconds to lower the tool (default: the plan's, else 1)");
   metrics_cmd->add_option("--speed", metrics.speed, "tool speed v for duration_s, m/s")->capture_default_str();

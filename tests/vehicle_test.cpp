@@ -301,7 +301,7 @@ TEST_F(VehicleCommands, PlanAndScoreForAGantry) {
 
   r = run("plan --wall " + wall + " --planner zigzag --vehicle tank --out " + plan);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, "coverbench: --vehicle: vehicle: must be holonomic or gantry, not 'tank'\n");
+  EXPECT_EQ(r.err, "coverbench: --vehicle: vehicle: must be holonomic, gantry or car, not 'tank'\n");
   r = run("plan --wall " + wall + " --planner zigzag --lift-s 2 --out " + plan);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("belong to a gantry"), std::string::npos) << r.err;

@@ -284,6 +284,8 @@ std::string encodePath(const Path& path) {
   };
   for (const Point& p : path.waypoints) put(p.x), put(p.y);
   for (bool on : path.tool_on) raw.push_back(on ? 1 : 0);
+  if (path.hasArcs())  // then one bulge per segment (a car's arcs); paths without arcs keep their bytes
+    for (double b : path.bulge) put(b);
   uLongf size = compressBound(static_cast<uLong>(raw.size()));
   std::string out(size, '\0');
   if (compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
@@ -316,7 +318,9 @@ Path decodePath(const std::string& blob) {
       size != raw.size())
     throw corrupt("zlib data does not decompress to the stated size");
   const std::uint64_t n = u32(raw, 0);
-  if (raw.size() != 4 + 16ULL * n + (n ? n - 1 : 0)) throw corrupt("wrong size for its waypoint count");
+  const std::uint64_t segments = n ? n - 1 : 0;
+  const bool arcs = raw.size() == 4 + 16ULL * n + 9 * segments && segments > 0;
+  if (raw.size() != 4 + 16ULL * n + segments && !arcs) throw corrupt("wrong size for its waypoint count");
   Path path;
   auto get = [&](std::size_t at) {
     std::uint64_t bits = 0;
@@ -331,6 +335,12 @@ Path decodePath(const std::string& blob) {
     path.waypoints.push_back(p);
   }
   for (std::uint64_t i = 0; i + 1 < n; ++i) path.tool_on.push_back(raw[4 + 16 * n + i] != 0);
+  if (arcs)
+    for (std::uint64_t i = 0; i < segments; ++i) {
+      const double b = get(4 + 16 * n + segments + 8 * i);
+      if (!std::isfinite(b) || std::fabs(b) > 1.0) throw corrupt("bulge " + std::to_string(i) + " is not in [-1, 1]");
+      path.bulge.push_back(b);
+    }
   return path;
 }
 

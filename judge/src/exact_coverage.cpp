@@ -20,6 +20,7 @@
 #include <stdexcept>
 
 #include "coverbench/judge.hpp"
+#include "exact_arcs.hpp"
 #include "exact_kernel.hpp"
 
 namespace coverbench::judge {
@@ -170,7 +171,19 @@ Regions buildRegions(const Wall& wall, const ToolParams& tool, const Path& path,
   for (std::size_t i = 0; i < path.tool_on.size(); ++i) {
     if (!path.tool_on[i]) continue;
     const Point a = path.waypoints[i], b = path.waypoints[i + 1];
-    capsules.push_back(hullAt(exactPoint(a), exactPoint(b), tool_disk));
+    const double bulge = path.bulge.empty() ? 0.0 : path.bulge[i];
+    if (bulge == 0.0) {
+      capsules.push_back(hullAt(exactPoint(a), exactPoint(b), tool_disk));
+      continue;
+    }
+    // An arc: its chords, swept by a disk shrunk (inner) or grown (outer) by the arc's certified
+    // stray from them, enclose what the disk sweeps along the arc from inside and outside.
+    const ExactArc arc = exactArc(a, b, bulge, kArcCoverageSagitta);
+    if (!arc.ordered) throw std::logic_error("judge: an arc of more than a half circle in one segment");
+    const double stray = CGAL::to_interval(arc.stray).second;
+    const double radius = side == Side::Inner ? std::nextafter(r - stray, 0.0) : std::nextafter(r + stray, INFINITY);
+    const std::vector<V2> disk = diskPolygon(std::fmax(radius, 0.0), n, side);
+    for (std::size_t k = 0; k + 1 < arc.points.size(); ++k) capsules.push_back(hullAt(arc.points[k], arc.points[k + 1], disk));
   }
   g.swept = unionOf(capsules);
   return g;

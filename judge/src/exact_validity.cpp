@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "coverbench/judge.hpp"
+#include "exact_arcs.hpp"
 #include "exact_kernel.hpp"
 
 namespace coverbench::judge {
@@ -74,6 +76,46 @@ FT squaredDistance(const P2& a, const P2& b, const P2& centre) {
   return CGAL::squared_distance(S2(a, b), centre);
 }
 
+/// The directions a segment starts and ends with, exactly: the chord's for a straight segment;
+/// for an arc, its radius at each end turned a quarter the arc's way.
+std::pair<V2, V2> tangents(const std::vector<P2>& points, std::size_t i, double bulge) {
+  if (bulge == 0.0) return {points[i + 1] - points[i], points[i + 1] - points[i]};
+  const ExactArc arc = exactArc({CGAL::to_double(points[i].x()), CGAL::to_double(points[i].y())},
+                                {CGAL::to_double(points[i + 1].x()), CGAL::to_double(points[i + 1].y())}, bulge, 1.0);
+  const V2 ra = points[i] - arc.centre, rb = points[i + 1] - arc.centre;
+  const FT t(arc.turn);
+  return {V2(-ra.y() * t, ra.x() * t), V2(-rb.y() * t, rb.x() * t)};
+}
+
+/// A car's rules, exactly: every arc's radius at least the turn radius; at every waypoint the
+/// next segment starts in the direction the last one ended (within kCarHeadingTolerance: the sine
+/// of the angle between them at most its sine, and the two facing the same way), or, for a car
+/// that reverses, in the opposite one.
+void drivable(const Path& path, const VehicleModel& car, const std::vector<P2>& points, ExactValidity& v) {
+  const FT rho(car.turn_radius), sin_tol(std::sin(kCarHeadingTolerance));
+  bool have = false;
+  V2 before;
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    if (points[i] == points[i + 1]) continue;
+    const double bulge = path.bulge.empty() ? 0.0 : path.bulge[i];
+    bool bad = false;
+    if (bulge != 0.0 && exactArc(path.waypoints[i], path.waypoints[i + 1], bulge, 1.0).radius2 < rho * rho) bad = true;
+    const auto [start, end] = tangents(points, i, bulge);
+    if (have) {
+      const FT cross = before.x() * start.y() - before.y() * start.x();
+      const FT dot = before * start;
+      const bool parallel = cross * cross <= sin_tol * sin_tol * before.squared_length() * start.squared_length();
+      if (!parallel || (dot < 0 && !car.reverse) || dot == 0) bad = true;
+    }
+    before = end;
+    have = true;
+    if (!bad) continue;
+    ++v.not_drivable;
+    ++v.violations;
+    if (v.violating.size() < ExactValidity::kMaxListed) v.violating.push_back(i);
+  }
+}
+
 }  // namespace
 
 ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle) {
@@ -90,14 +132,13 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
   std::vector<PolygonShape> polygons;
   struct Round {
     P2 centre;
-    FT limit2;  ///< (rho + r + c)^2
+    FT radius;  ///< rho
     Box box;
   };
   std::vector<Round> rounds;
   for (const Obstacle& o : wall.obstacles) {
     if (o.type == ObstacleType::Circle) {
-      const FT limit = FT(o.radius) + rc;
-      rounds.push_back({exactPoint(o.center), limit * limit, boxAround(o.center, o.center, o.radius)});
+      rounds.push_back({exactPoint(o.center), FT(o.radius), boxAround(o.center, o.center, o.radius)});
     } else {
       polygons.push_back(polygonShape(o.polygon));
     }
@@ -109,22 +150,24 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
   points.reserve(n);
   for (Point p : path.waypoints) points.push_back(exactPoint(p));
 
-  auto check = [&](std::size_t segment, std::size_t ia, std::size_t ib) {
-    const Point a = path.waypoints[ia], b = path.waypoints[ib];
-    const P2 &ea = points[ia], &eb = points[ib];
-    bool outside = !inside(boundary, ea);
+  // The piece [ea, eb] of a segment with the disk grown by `grow` (0, or an arc's stray from its
+  // chords): whether it leaves the wall or comes too close to an obstacle.
+  auto piece = [&](const P2& ea, const P2& eb, const FT& grow, bool& outside, bool& close) {
+    const Point a{CGAL::to_double(ea.x()), CGAL::to_double(ea.y())}, b{CGAL::to_double(eb.x()), CGAL::to_double(eb.y())};
+    const double g = CGAL::to_interval(grow).second;
+    const FT rr = r_exact + grow, rr2 = rr * rr, rrc = rr + FT(c), rrc2 = rrc * rrc;
+    if (!outside) outside = !inside(boundary, ea);
     if (!outside) {
-      const Box reach = boxAround(a, b, r);
+      const Box reach = boxAround(a, b, r + g);
       for (const Edge& e : boundary.edges) {
         if (!reach.meets(e.box)) continue;
-        if (squaredDistance(ea, eb, e.segment) < r2) {
+        if (squaredDistance(ea, eb, e.segment) < rr2) {
           outside = true;
           break;
         }
       }
     }
-    bool close = false;
-    const Box reach = boxAround(a, b, r + c);
+    const Box reach = boxAround(a, b, r + c + g);
     for (const PolygonShape& o : polygons) {
       if (close) break;
       if (!reach.meets(o.box)) continue;
@@ -134,7 +177,7 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
       }
       for (const Edge& e : o.edges) {
         if (!reach.meets(e.box)) continue;
-        if (squaredDistance(ea, eb, e.segment) < rc2) {
+        if (squaredDistance(ea, eb, e.segment) < rrc2) {
           close = true;
           break;
         }
@@ -143,7 +186,20 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
     for (const Round& o : rounds) {
       if (close) break;
       if (!reach.meets(o.box)) continue;
-      if (squaredDistance(ea, eb, o.centre) < o.limit2) close = true;
+      const FT limit = o.radius + rrc;
+      if (squaredDistance(ea, eb, o.centre) < limit * limit) close = true;
+    }
+  };
+  auto check = [&](std::size_t segment, std::size_t ia, std::size_t ib) {
+    bool outside = false, close = false;
+    const double bulge = path.bulge.empty() || ia == ib ? 0.0 : path.bulge[segment];
+    if (bulge == 0.0) {
+      piece(points[ia], points[ib], FT(0), outside, close);
+    } else {
+      const ExactArc arc = exactArc(path.waypoints[ia], path.waypoints[ib], bulge, kArcChordSagitta);
+      if (!arc.ordered) outside = true;  // no certified bound: refused
+      for (std::size_t k = 0; k + 1 < arc.points.size() && !(outside && close); ++k)
+        piece(arc.points[k], arc.points[k + 1], arc.stray, outside, close);
     }
     v.outside_boundary += outside;
     v.too_close += close;
@@ -177,6 +233,7 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
       lifted(i);
     else
       check(i, i, i + 1);
+  if (vehicle.isCar()) drivable(path, vehicle, points, v);
   v.valid = v.violations == 0;
   return v;
 }

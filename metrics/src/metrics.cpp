@@ -25,8 +25,12 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
   PathMetrics m;
   m.validity = checkValidity(wall, tool, path, vehicle);
   m.lengths = pathLengths(path);
-  m.passes = passes(path, tool.radius());
-  m.coverage = coverage(wall, tool, path, m.validity, m.passes.swept_area);
+  // Arcs (a car's path) are swept as chords within the coverage engine's arc tolerance.
+  const bool arcs = path.hasArcs();
+  const Path chords = arcs ? chordalPath(path, kMetricArcTolerance) : Path{};
+  const Path& swept = arcs ? chords : path;
+  m.passes = passes(swept, tool.radius());
+  m.coverage = coverage(wall, tool, swept, m.validity, m.passes.swept_area);
   m.motion = motion(path, limits, vehicle);
   m.waypoints = path.waypoints.size();
   const double ideal = m.coverage.reachable_area / tool.tool_width;

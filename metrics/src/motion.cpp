@@ -1,5 +1,7 @@
 // Turns and duration.
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "coverbench/metrics.hpp"
 
@@ -21,11 +23,43 @@ double runTime(double length, const MotionLimits& m) {
   return 2.0 * std::sqrt(length / a);
 }
 
+/// Time to drive pieces of (length, speed cap) from standstill to standstill, accelerating and
+/// braking at a, never faster than a piece's cap (the time-optimal profile: the speed at each
+/// junction is the largest both neighbours allow and braking distance permits, found forward
+/// then backward; within a piece it rises to min(cap, what the two ends allow) and falls).
+double profileTime(const std::vector<std::pair<double, double>>& pieces, const MotionLimits& m) {
+  const double a = m.acceleration;
+  const std::size_t n = pieces.size();
+  if (n == 0) return 0.0;
+  std::vector<double> u(n + 1, 0.0);  // speed at junction k (before piece k)
+  for (std::size_t k = 1; k < n; ++k)
+    u[k] = std::fmin(std::fmin(pieces[k - 1].second, pieces[k].second), std::sqrt(u[k - 1] * u[k - 1] + 2.0 * a * pieces[k - 1].first));
+  for (std::size_t k = n - 1; k >= 1; --k) u[k] = std::fmin(u[k], std::sqrt(u[k + 1] * u[k + 1] + 2.0 * a * pieces[k].first));
+  double t = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double len = pieces[k].first, cap = pieces[k].second, v0 = u[k], v1 = u[k + 1];
+    if (len <= 0.0) continue;
+    const double peak = std::fmin(cap, std::sqrt((2.0 * a * len + v0 * v0 + v1 * v1) / 2.0));
+    const double accel = (peak * peak - v0 * v0) / (2.0 * a), brake = (peak * peak - v1 * v1) / (2.0 * a);
+    t += (peak - v0) / a + (peak - v1) / a + std::fmax(0.0, len - accel - brake) / peak;
+  }
+  return t;
+}
+
 }  // namespace
 
 Motion motion(const Path& path, const MotionLimits& limits, const VehicleModel& vehicle) {
   Motion m;
   double run = 0.0;
+  // With arcs (a car's path), a run is pieces of (length, speed cap): sqrt(a R) on an arc of
+  // radius R. Paths without arcs keep the single-number run (and their durations to the bit).
+  const bool arcs = path.hasArcs();
+  std::vector<std::pair<double, double>> pieces;
+  auto endRun = [&] {
+    m.duration_s += arcs ? profileTime(pieces, limits) : runTime(run, limits);
+    run = 0.0;
+    pieces.clear();
+  };
   bool have_heading = false;
   double heading = 0.0;
   const bool lifts = vehicle.liftsTool();
@@ -35,29 +69,35 @@ Motion motion(const Path& path, const MotionLimits& limits, const VehicleModel& 
       ++m.lifts;
       m.duration_s += vehicle.lower_s + vehicle.lift_s;
     }
-    if (lifts && i > 0 && path.tool_on[i] != path.tool_on[i - 1]) {
-      m.duration_s += runTime(run, limits);
-      run = 0.0;
-    }
+    if (lifts && i > 0 && path.tool_on[i] != path.tool_on[i - 1]) endRun();
     const Point d = path.waypoints[i + 1] - path.waypoints[i];
     const double len = norm(d);
     if (len == 0.0) continue;  // zero-length segments have no heading
     const double h = std::atan2(d.y, d.x);
+    // An arc starts turned back by half its sweep from its chord and ends turned on by as much.
+    const double bulge = arcs ? path.bulge[i] : 0.0;
+    const double half = bulge == 0.0 ? 0.0 : 2.0 * std::atan(bulge);
     if (have_heading) {
-      const double change = std::fabs(std::remainder(h - heading, 2.0 * M_PI));
+      const double change = std::fabs(std::remainder(h - half - heading, 2.0 * M_PI));
       m.turning_angle += change;
       if (change > kTurnThreshold) ++m.turns;
       if (change > kStopThreshold) {
         ++m.turns_30;
-        m.duration_s += runTime(run, limits);
-        run = 0.0;
+        endRun();
       }
     }
-    heading = h;
+    heading = h + half;
     have_heading = true;
-    run += len;
+    if (bulge == 0.0) {
+      run += len;
+      if (arcs) pieces.emplace_back(len, limits.speed);
+    } else {
+      const ArcGeometry g = arcGeometry(path.waypoints[i], path.waypoints[i + 1], bulge);
+      m.turning_angle += std::fabs(g.sweep);
+      pieces.emplace_back(g.radius * std::fabs(g.sweep), std::fmin(limits.speed, std::sqrt(limits.acceleration * g.radius)));
+    }
   }
-  m.duration_s += runTime(run, limits);
+  endRun();
   return m;
 }
 

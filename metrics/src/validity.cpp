@@ -1,9 +1,75 @@
 #include <cmath>
+#include <utility>
 
 #include "coverbench/clearance.hpp"
 #include "coverbench/metrics.hpp"
 
 namespace coverbench {
+namespace {
+
+/// The headings (radians) a segment starts and ends with: the chord's, turned by half the arc's
+/// sweep back and forth.
+std::pair<double, double> headings(const Path& path, std::size_t i) {
+  const Point d = path.waypoints[i + 1] - path.waypoints[i];
+  const double chord = std::atan2(d.y, d.x);
+  const double bulge = path.bulgeOf(i);
+  const double half = bulge == 0.0 ? 0.0 : 2.0 * std::atan(bulge);
+  return {chord - half, chord + half};
+}
+
+/// A car's rules: arcs no tighter than its turn radius; the heading continuous at every waypoint
+/// (within kCarHeadingTolerance), or reversed there when the car may reverse.
+void checkDrivable(const Path& path, const VehicleModel& car, Validity& v) {
+  bool have = false;
+  double end_heading = 0.0;
+  for (std::size_t i = 0; i < path.segments(); ++i) {
+    if (path.waypoints[i] == path.waypoints[i + 1]) continue;
+    bool bad = false;
+    const double bulge = path.bulgeOf(i);
+    if (bulge != 0.0 && arcGeometry(path.waypoints[i], path.waypoints[i + 1], bulge).radius < car.turn_radius * (1.0 - 1e-12))
+      bad = true;
+    const auto [start, end] = headings(path, i);
+    if (have) {
+      const double change = std::fabs(std::remainder(start - end_heading, 2.0 * M_PI));
+      const bool smooth = change <= kCarHeadingTolerance;
+      const bool cusp = car.reverse && change >= M_PI - kCarHeadingTolerance;
+      if (!smooth && !cusp) bad = true;
+    }
+    end_heading = end;
+    have = true;
+    if (!bad) continue;
+    ++v.not_drivable;
+    ++v.violations;
+    if (v.violating.size() < kMaxListedViolations) v.violating.push_back(i);
+  }
+}
+
+}  // namespace
+
+Path chordalPath(const Path& path, double sagitta) {
+  if (!path.hasArcs()) return path;
+  Path out;
+  if (!path.waypoints.empty()) out.moveTo(path.waypoints[0], false);
+  for (std::size_t i = 0; i < path.segments(); ++i) {
+    const Point a = path.waypoints[i], b = path.waypoints[i + 1];
+    const double bulge = path.bulgeOf(i);
+    if (bulge == 0.0) {
+      out.moveTo(b, path.tool_on[i]);
+      continue;
+    }
+    const ArcGeometry g = arcGeometry(a, b, bulge);
+    // Sub-arcs of angle psi have sagitta R (1 - cos(psi / 2)) <= sagitta.
+    const double psi_max = 2.0 * std::acos(std::fmax(-1.0, 1.0 - sagitta / g.radius));
+    const auto k = static_cast<std::size_t>(std::ceil(std::fabs(g.sweep) / std::fmax(psi_max, 1e-12)));
+    const double start = std::atan2(a.y - g.centre.y, a.x - g.centre.x);
+    for (std::size_t j = 1; j < k; ++j) {
+      const double t = start + g.sweep * static_cast<double>(j) / static_cast<double>(k);
+      out.moveTo(g.centre + Point{std::cos(t), std::sin(t)} * g.radius, path.tool_on[i]);
+    }
+    out.moveTo(b, path.tool_on[i]);
+  }
+  return out;
+}
 
 Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle) {
   Validity v;
@@ -23,14 +89,29 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
     v.violations += outside;
     if (outside && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
   };
-  auto check = [&](std::size_t segment, Point a, Point b) {
-    const SegmentClearance c = field.measure(a, b, std::fmax(v.min_clearance, tool.clearance) + r);
-    const double boundary_gap = c.inside ? c.boundary_distance - r : -c.boundary_distance - r;
-    const double obstacle_gap = c.obstacle_distance - r;
+  // The gaps of [a, b] for a disk of radius rr (r, or r grown by an arc chord's sagitta).
+  auto gaps = [&](Point a, Point b, double rr, bool& outside, bool& close) {
+    const SegmentClearance c = field.measure(a, b, std::fmax(v.min_clearance, tool.clearance) + rr);
+    const double boundary_gap = c.inside ? c.boundary_distance - rr : -c.boundary_distance - rr;
+    const double obstacle_gap = c.obstacle_distance - rr;
     v.min_boundary_gap = std::fmin(v.min_boundary_gap, boundary_gap);
     v.min_clearance = std::fmin(v.min_clearance, obstacle_gap);
-    const bool outside = boundary_gap < -kValidityTolerance;
-    const bool close = obstacle_gap < tool.clearance - kValidityTolerance;
+    outside = outside || boundary_gap < -kValidityTolerance;
+    close = close || obstacle_gap < tool.clearance - kValidityTolerance;
+  };
+  const bool arcs = path.hasArcs();
+  auto check = [&](std::size_t segment, Point a, Point b) {
+    bool outside = false, close = false;
+    if (arcs && n > 1 && path.bulge[segment] != 0.0) {
+      Path arc;
+      arc.moveTo(a, true);
+      arc.arcTo(b, path.bulge[segment], true);
+      const Path chords = chordalPath(arc, kArcCheckSagitta);
+      for (std::size_t k = 0; k + 1 < chords.waypoints.size(); ++k)
+        gaps(chords.waypoints[k], chords.waypoints[k + 1], r + kArcCheckSagitta + 1e-9, outside, close);
+    } else {
+      gaps(a, b, r, outside, close);
+    }
     v.outside_boundary += outside;
     v.too_close += close;
     if ((outside || close) && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
@@ -43,6 +124,7 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
       lifted(i, path.waypoints[i], path.waypoints[i + 1]);
     else
       check(i, path.waypoints[i], path.waypoints[i + 1]);
+  if (vehicle.isCar()) checkDrivable(path, vehicle, v);
   v.valid = v.violations == 0;
   return v;
 }
@@ -50,7 +132,7 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
 Lengths pathLengths(const Path& path) {
   Lengths l;
   for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
-    const double d = distance(path.waypoints[i], path.waypoints[i + 1]);
+    const double d = path.bulge.empty() ? distance(path.waypoints[i], path.waypoints[i + 1]) : segmentLength(path, i);
     l.total += d;
     (path.tool_on[i] ? l.cover : l.transit) += d;
   }

@@ -61,6 +61,11 @@ std::string planFileJson(const PlanFile& plan) {
   ordered_json tool_on = ordered_json::array();
   for (bool on : plan.result.path.tool_on) tool_on.push_back(on);
   doc["tool_on"] = tool_on;
+  if (plan.result.path.hasArcs()) {  // only paths with arcs (a car's) carry it
+    ordered_json bulge = ordered_json::array();
+    for (double b : plan.result.path.bulge) bulge.push_back(b);
+    doc["bulge"] = bulge;
+  }
   ordered_json stats = ordered_json::object();
   for (const auto& [name, value] : plan.result.stats) stats[name] = number(value);
   doc["planner_stats"] = stats;
@@ -110,6 +115,18 @@ LoadedPlan loadPlanFile(const std::string& file) {
     throw InputError(file, "tool_on", "has " + std::to_string(plan.path.tool_on.size()) + " entries; " +
                                           std::to_string(plan.path.waypoints.size()) + " waypoints need " +
                                           std::to_string(expected));
+  if (doc.contains("bulge")) {
+    const auto& bulge = doc["bulge"];
+    if (!bulge.is_array() || bulge.size() != expected)
+      throw InputError(file, "bulge", "must be an array of one number per segment (" + std::to_string(expected) + ")");
+    for (std::size_t i = 0; i < bulge.size(); ++i) {
+      if (!bulge[i].is_number() || !std::isfinite(bulge[i].get<double>()) || std::fabs(bulge[i].get<double>()) > 1.0)
+        throw InputError(file, "bulge[" + std::to_string(i) + "]",
+                         "must be a number in [-1, 1] (tan of a quarter of the arc's angle: at most a half circle)");
+      plan.path.bulge.push_back(bulge[i].get<double>());
+    }
+    if (!plan.path.hasArcs()) plan.path.bulge.clear();
+  }
   checkScorable(plan.path, file);
   for (const char* key : {"tool_width", "clearance"}) {
     if (!doc.contains(key)) continue;
@@ -121,11 +138,16 @@ LoadedPlan loadPlanFile(const std::string& file) {
     if (!v.is_object()) throw InputError(file, "vehicle", "must be an object with model, lift_s and lower_s");
     VehicleModel vehicle;
     if (!v.contains("model") || !v["model"].is_string() || !parseVehicleKind(v["model"].get<std::string>(), vehicle.kind))
-      throw InputError(file, "vehicle.model", "must be \"holonomic\" or \"gantry\"");
-    for (const auto& [key, value] : {std::pair<const char*, double*>{"lift_s", &vehicle.lift_s}, {"lower_s", &vehicle.lower_s}}) {
+      throw InputError(file, "vehicle.model", "must be \"holonomic\", \"gantry\" or \"car\"");
+    for (const auto& [key, value] : {std::pair<const char*, double*>{"lift_s", &vehicle.lift_s}, {"lower_s", &vehicle.lower_s},
+                                     {"turn_radius", &vehicle.turn_radius}}) {
       if (!v.contains(key)) continue;
-      if (!v[key].is_number()) throw InputError(file, std::string("vehicle.") + key, "must be a number of seconds");
+      if (!v[key].is_number()) throw InputError(file, std::string("vehicle.") + key, "must be a number");
       *value = v[key].get<double>();
+    }
+    if (v.contains("reverse")) {
+      if (!v["reverse"].is_boolean()) throw InputError(file, "vehicle.reverse", "must be true or false");
+      vehicle.reverse = v["reverse"].get<bool>();
     }
     validateVehicle(vehicle, file, "vehicle");
     plan.vehicle = vehicle;
@@ -136,8 +158,13 @@ LoadedPlan loadPlanFile(const std::string& file) {
 std::string vehicleJson(const VehicleModel& vehicle) {
   ordered_json v;
   v["model"] = toString(vehicle.kind);
-  v["lift_s"] = vehicle.lift_s;
-  v["lower_s"] = vehicle.lower_s;
+  if (vehicle.isCar()) {
+    v["turn_radius"] = vehicle.turn_radius;
+    v["reverse"] = vehicle.reverse;
+  } else {
+    v["lift_s"] = vehicle.lift_s;
+    v["lower_s"] = vehicle.lower_s;
+  }
   return v.dump();
 }
 

@@ -121,10 +121,22 @@ std::string renderSvg(const SvgContent& c) {
     const Path& path = *c.path;
     // Runs of consecutive segments with the same tool state become one polyline each.
     std::string on_runs, off_runs;
+    // The points that draw segment j after its first: its end, and along an arc (a car's) chords
+    // within 1 mm of it.
+    auto segmentPoints = [&](std::size_t j) {
+      std::string out;
+      if (path.bulgeOf(j) == 0.0) return " " + v.pt(path.waypoints[j + 1]);
+      Path arc;
+      arc.moveTo(path.waypoints[j], true);
+      arc.arcTo(path.waypoints[j + 1], path.bulgeOf(j), true);
+      const Path chords = chordalPath(arc, 1e-3);
+      for (std::size_t k = 1; k < chords.waypoints.size(); ++k) out += " " + v.pt(chords.waypoints[k]);
+      return out;
+    };
     for (std::size_t i = 0; i < path.tool_on.size();) {
       std::size_t j = i;
       std::string pts = v.pt(path.waypoints[i]);
-      while (j < path.tool_on.size() && path.tool_on[j] == path.tool_on[i]) pts += " " + v.pt(path.waypoints[++j]);
+      while (j < path.tool_on.size() && path.tool_on[j] == path.tool_on[i]) pts += segmentPoints(j++);
       (path.tool_on[i] ? on_runs : off_runs) += "<polyline points=\"" + pts + "\"/>\n";
       i = j;
     }

@@ -9,17 +9,38 @@
 
 namespace coverbench {
 
-/// A polyline of waypoints; `tool_on[i]` says whether segment i (waypoints[i] -> waypoints[i+1])
+/// A path of waypoints; `tool_on[i]` says whether segment i (waypoints[i] -> waypoints[i+1])
 /// covers (tool on) or only moves (transit, tool off). tool_on.size() == waypoints.size() - 1.
+/// Segments are straight unless `bulge` says otherwise (docs/vehicles.md, the car).
 struct Path {
   std::vector<Point> waypoints;
   std::vector<bool> tool_on;
+  /// Empty (every segment straight: every path before the car), or one per segment: 0 for a
+  /// straight segment, else the circular arc from waypoints[i] to waypoints[i+1] with bulge
+  /// b = tan(phi / 4), phi its signed central angle (positive: counter-clockwise, a left turn),
+  /// 0 < |b| <= 1 (at most a half circle per segment).
+  std::vector<double> bulge;
 
-  /// Appends a waypoint reached by a segment with the given tool state (the first waypoint
-  /// starts the path). Repeated points are dropped.
+  /// Appends a waypoint reached by a straight segment with the given tool state (the first
+  /// waypoint starts the path). Repeated points are dropped.
   void moveTo(Point p, bool tool);
+  /// Appends a waypoint reached along the arc of bulge `b` (0: straight). Repeated points are dropped.
+  void arcTo(Point p, double b, bool tool);
   std::size_t segments() const { return tool_on.size(); }
+  double bulgeOf(std::size_t i) const { return bulge.empty() ? 0.0 : bulge[i]; }
+  bool hasArcs() const;
 };
+
+/// The circle of an arc segment: centre, radius, and its signed central angle phi.
+struct ArcGeometry {
+  Point centre;
+  double radius = 0.0;
+  double sweep = 0.0;  ///< phi, radians; positive: counter-clockwise
+};
+/// The arc from a to b with bulge b (nonzero).
+ArcGeometry arcGeometry(Point a, Point b, double bulge);
+/// The length of segment i: the chord, or the arc's radius times |phi|.
+double segmentLength(const Path& path, std::size_t i);
 
 /// The tool and clearance of a problem (metres).
 struct ToolParams {
@@ -39,16 +60,35 @@ struct VehicleModel {
     /// cross obstacles and leave F, within the wall's bounding box (the gantry's frame). Every
     /// run of tool-on moves is preceded by lowering the tool and followed by lifting it.
     Gantry,
+    /// A car-like robot (a mower, a wall robot on wheels): every move stays in F like a holonomic
+    /// one, but it drives lines and arcs of radius at least `turn_radius` with a continuous
+    /// heading; with `reverse` (Reeds-Shepp) it may also stop and back up (a cusp), without it
+    /// (Dubins) it never does. Its speed on an arc of radius R is at most sqrt(a R).
+    Car,
   };
   Kind kind = Kind::Holonomic;
   double lift_s = 1.0;   ///< gantry: time to lift the tool off the wall (s)
   double lower_s = 1.0;  ///< gantry: time to lower it onto the wall (s)
+  double turn_radius = 0.5;  ///< car: the smallest radius it turns on (m)
+  bool reverse = false;      ///< car: it may reverse (Reeds-Shepp); false: forward only (Dubins)
 
   /// Tool-off moves may leave F (they are made with the tool lifted).
   bool liftsTool() const { return kind == Kind::Gantry; }
   bool isDefault() const { return kind == Kind::Holonomic; }
+  bool isCar() const { return kind == Kind::Car; }
 };
-/// "holonomic" or "gantry".
+
+/// The heading change a car may make at a waypoint (radians): its heading is continuous, so what
+/// the path's numbers leave between one segment's end tangent and the next one's start tangent
+/// must be rounding, nothing a wheel would notice. At a cusp of a reversing car the two tangents
+/// are opposite within the same tolerance.
+inline constexpr double kCarHeadingTolerance = 1e-6;
+/// Why `plan` and experiments refuse a car for now: the metrics engine and the exact judge check
+/// and time a car's path, but no planner plans one yet.
+inline constexpr const char* kCarNotPlannedYet =
+    "no planner plans for a car yet (their paths turn on the spot); a car's path from elsewhere is scored with "
+    "`coverbench metrics --vehicle car --turn-radius R [--reverse]` (docs/vehicles.md)";
+/// "holonomic", "gantry" or "car".
 std::string toString(VehicleModel::Kind kind);
 /// The kind named `name`; false when there is none.
 bool parseVehicleKind(const std::string& name, VehicleModel::Kind& kind);

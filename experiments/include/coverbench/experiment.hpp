@@ -190,7 +190,8 @@ struct RunRecord {
 /// calls it in a child process per run (hard limits, rusage); tests may call it directly.
 RunRecord executeRun(const RunSpec& spec);
 
-/// Path storage: little-endian doubles and tool flags, zlib-compressed ("zlib-f64le-1").
+/// Path storage: little-endian doubles and tool flags, then (only for a path with arcs) one bulge
+/// per segment, zlib-compressed ("zlib-f64le-1").
 std::string encodePath(const Path& path);
 /// Throws InputError ("path blob", "data", why) for a corrupt blob, before allocating more than
 /// its contents can expand to.

@@ -41,15 +41,27 @@ struct Interval {
 /// Exact validity of every segment (segment i joins waypoints i and i + 1; a one-waypoint path is
 /// checked as a point). Same definitions as the fast engine (docs/metrics.md), but with exact
 /// arithmetic and no tolerance: a shortfall of 1e-15 m is a violation here. A gantry's tool-off
-/// segments are lifted: the tool disk at both ends must lie in the wall's bounding box.
+/// segments are lifted: the tool disk at both ends must lie in the wall's bounding box. Arcs (a
+/// car's path): kArcChordSagitta; a car's path must also be drivable (not_drivable).
 struct ExactValidity {
   bool valid = true;
   std::size_t violations = 0;        ///< segments that break either rule below
   std::size_t outside_boundary = 0;  ///< the tool disk leaves the wall (or the centre is outside it; lifted: the box)
   std::size_t too_close = 0;         ///< the tool disk comes closer than c to an obstacle
   std::vector<std::size_t> violating;  ///< the first kMaxListed violating segments
+  /// A car's segments it cannot drive (in `violations`): an arc of radius below the turn radius,
+  /// or a heading that jumps at the segment's start (exact comparisons; docs/vehicles.md).
+  std::size_t not_drivable = 0;
   static constexpr std::size_t kMaxListed = 10000;
 };
+/// An arc segment is judged as chords whose ends lie exactly on its circle, about this far from
+/// it (m); each is checked with the tool disk grown by a certified bound of how far the arc strays
+/// from its chords, so a valid verdict holds for the arc itself.
+inline constexpr double kArcChordSagitta = 1e-7;
+/// For areas, arcs are swept as coarser chords (about this far from the arc, m; exact Boolean
+/// operations cost by the polygon), with the disk shrunk and grown by the certified stray: the
+/// swept-area interval stays certified and widens by about the stray times the arc's length.
+inline constexpr double kArcCoverageSagitta = 1e-4;
 ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path& path,
                             const VehicleModel& vehicle = {});
 

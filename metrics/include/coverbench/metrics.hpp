@@ -33,12 +33,26 @@ struct Validity {
   /// Indices of the violating segments (segment i joins waypoints i and i+1), the first
   /// kMaxListedViolations of them: for pictures that mark where a path goes wrong.
   std::vector<std::size_t> violating;
+  /// A car's segments it cannot drive (counted in `violations`): an arc tighter than its turn
+  /// radius, or a segment starting with another heading than the one before it ended with (for a
+  /// reversing car, other than the opposite one at a cusp). Not one of the flattened metrics.
+  std::size_t not_drivable = 0;
 };
 inline constexpr std::size_t kMaxListedViolations = 10000;
+/// An arc segment is checked as chords whose sagitta is at most this (m), each with the tool's
+/// radius grown by the sagitta (and 1e-9 m for rounding): every point of the arc lies within that
+/// of a chord, so a valid answer holds for the arc; an arc closer than this to its limit may be
+/// refused (planners keep kPlanningMargin to spare).
+inline constexpr double kArcCheckSagitta = 1e-7;
+/// The path with every arc replaced by chords whose points lie on it and whose sagitta is at most
+/// `sagitta` (m); a path without arcs is returned as it is. Coverage and passes measure arcs on
+/// these chords with kMetricArcTolerance.
+Path chordalPath(const Path& path, double sagitta);
 
 /// Checks every segment of the path with closed-form distances in doubles (no sampling), forgiving
 /// shortfalls up to kValidityTolerance (1e-9 m). The exact judge (judge/) has no tolerance.
-/// A single waypoint is checked as a point.
+/// A single waypoint is checked as a point. Arcs: see kArcCheckSagitta; a car's path also has to
+/// be drivable (Validity::not_drivable).
 Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path,
                        const VehicleModel& vehicle = {});
 
@@ -125,11 +139,13 @@ int passCount(const Path& path, double radius, Point q);
 
 /// Turns and the time to drive the path.
 struct Motion {
-  std::size_t turns = 0;     ///< heading changes > 1 degree at interior waypoints
+  std::size_t turns = 0;     ///< heading changes > 1 degree at interior waypoints (arcs turn smoothly: not counted)
   std::size_t turns_30 = 0;  ///< heading changes > 30 degrees
-  double turning_angle = 0.0;  ///< sum of |heading change|, radians
-  /// Trapezoidal speed profile, stopping at every turn > 30 degrees; for a gantry also at every
-  /// change of tool state, plus lower_s + lift_s for every run of tool-on segments.
+  double turning_angle = 0.0;  ///< sum of |heading change|, radians (at waypoints and along arcs)
+  /// Trapezoidal speed profile, stopping at every turn > 30 degrees (a reversing car's cusp is
+  /// one); for a gantry also at every change of tool state, plus lower_s + lift_s for every run of
+  /// tool-on segments. On an arc of radius R the speed is at most sqrt(a R) (the lateral
+  /// acceleration a), and the profile accelerates and brakes at a between such limits.
   double duration_s = 0.0;
   std::size_t lifts = 0;  ///< runs of tool-on segments of a gantry (each lowered, then lifted); 0 otherwise
 };

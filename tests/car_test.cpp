@@ -1,0 +1,270 @@
+// The car (docs/vehicles.md): arcs in paths, their validity by the fast engine and the exact judge,
+// a car's drivability (turn radius, continuous heading, cusps only when it reverses), its
+// duration with curvature-limited speed, against hand-computed values; plan files, path blobs and
+// the command line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "coverbench/experiment.hpp"
+#include "coverbench/judge.hpp"
+#include "coverbench/metrics.hpp"
+#include "coverbench/plan_file.hpp"
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+using test::CommandRun;
+using test::rect;
+using test::rectWall;
+
+const ToolParams kTool{0.1, 0.02};  // r = 0.05, r + c = 0.07
+
+VehicleModel car(double turn_radius, bool reverse = false) {
+  VehicleModel v;
+  v.kind = VehicleModel::Kind::Car;
+  v.turn_radius = turn_radius;
+  v.reverse = reverse;
+  return v;
+}
+
+/// 1 m east from (0.5, 1), a quarter circle of radius R turning left (centre (1.5, 1 + R)), then
+/// 1 m north.
+Path leftTurn(double radius) {
+  Path p;
+  p.moveTo({0.5, 1.0}, false);
+  p.moveTo({1.5, 1.0}, true);
+  p.arcTo({1.5 + radius, 1.0 + radius}, std::tan(M_PI / 8.0), true);
+  p.moveTo({1.5 + radius, 2.0 + radius}, true);
+  return p;
+}
+
+TEST(Arcs, GeometryLengthAndChordsByHand) {
+  const ArcGeometry quarter = arcGeometry({1, 0}, {0, 1}, std::tan(M_PI / 8.0));
+  EXPECT_NEAR(quarter.centre.x, 0.0, 1e-15);
+  EXPECT_NEAR(quarter.centre.y, 0.0, 1e-15);
+  EXPECT_NEAR(quarter.radius, 1.0, 1e-15);
+  EXPECT_NEAR(quarter.sweep, M_PI / 2.0, 1e-15);
+  const ArcGeometry clockwise = arcGeometry({1, 0}, {-1, 0}, -1.0);  // a half circle clockwise, through (0, 1)
+  EXPECT_NEAR(clockwise.centre.x, 0.0, 1e-15);
+  EXPECT_NEAR(clockwise.centre.y, 0.0, 1e-15);
+  EXPECT_NEAR(clockwise.sweep, -M_PI, 1e-15);
+
+  const Path p = leftTurn(0.5);
+  ASSERT_EQ(p.bulge.size(), 3u);
+  EXPECT_EQ(p.bulge[0], 0.0);
+  EXPECT_TRUE(p.hasArcs());
+  EXPECT_NEAR(segmentLength(p, 1), M_PI / 4.0, 1e-15);
+  const Lengths l = pathLengths(p);
+  EXPECT_NEAR(l.total, 1.0 + M_PI / 4.0 + 1.0, 1e-12);
+  EXPECT_NEAR(l.cover, l.total, 1e-12);
+  EXPECT_EQ(l.transit, 0.0);
+
+  // Chords: every point on the circle, every sagitta within the bound.
+  const Path chords = chordalPath(p, 1e-4);
+  EXPECT_FALSE(chords.hasArcs());
+  EXPECT_EQ(chords.waypoints.front(), p.waypoints.front());
+  EXPECT_EQ(chords.waypoints.back(), p.waypoints.back());
+  std::size_t on_arc = 0;
+  for (std::size_t i = 0; i + 1 < chords.waypoints.size(); ++i) {
+    const Point a = chords.waypoints[i], b = chords.waypoints[i + 1];
+    if (std::fabs(distance(a, {1.5, 1.5}) - 0.5) > 1e-12 || std::fabs(distance(b, {1.5, 1.5}) - 0.5) > 1e-12) continue;
+    ++on_arc;
+    const double half = distance(a, b) / 2.0;
+    EXPECT_LE(0.5 - std::sqrt(0.25 - half * half), 1e-4 + 1e-15);
+  }
+  // A quarter circle of radius 0.5 in chords of sagitta at most 1e-4: ceil((pi / 2) / (2 acos(1 - 2e-4))) = 40.
+  EXPECT_EQ(on_arc, 40u);
+  EXPECT_TRUE(chordalPath(Path{}, 1e-4).waypoints.empty());
+}
+
+TEST(Car, DrivesArcsNoTighterThanItsRadiusWithAContinuousHeading) {
+  const Wall wall = rectWall(4.0, 4.0);
+  const Path p = leftTurn(0.5);
+  for (const VehicleModel& v : {car(0.5), car(0.3), car(0.5, true)}) {
+    const Validity fast = checkValidity(wall, kTool, p, v);
+    EXPECT_TRUE(fast.valid) << v.turn_radius;
+    EXPECT_EQ(fast.not_drivable, 0u);
+    EXPECT_TRUE(judge::judgeValidity(wall, kTool, p, v).valid) << v.turn_radius;
+  }
+  // Too tight for a turn radius of 0.6: the arc is the one segment it cannot drive.
+  const Validity tight = checkValidity(wall, kTool, p, car(0.6));
+  EXPECT_EQ(tight.not_drivable, 1u);
+  EXPECT_EQ(tight.violating, std::vector<std::size_t>{1});
+  const judge::ExactValidity exact_tight = judge::judgeValidity(wall, kTool, p, car(0.6));
+  EXPECT_EQ(exact_tight.not_drivable, 1u);
+  EXPECT_EQ(exact_tight.violating, std::vector<std::size_t>{1});
+  // Holonomic and gantry ignore the arcs' radius: the same path is valid for them.
+  EXPECT_TRUE(checkValidity(wall, kTool, p).valid);
+
+  // A corner: east, then north without an arc. No car drives it.
+  Path corner;
+  corner.moveTo({0.5, 1.0}, false);
+  corner.moveTo({1.5, 1.0}, true);
+  corner.moveTo({1.5, 2.0}, true);
+  EXPECT_EQ(checkValidity(wall, kTool, corner, car(0.1, true)).not_drivable, 1u);
+  EXPECT_EQ(judge::judgeValidity(wall, kTool, corner, car(0.1, true)).not_drivable, 1u);
+  EXPECT_TRUE(checkValidity(wall, kTool, corner).valid);
+
+  // A cusp: east, then straight back west. Only a car that reverses drives it.
+  Path cusp;
+  cusp.moveTo({0.5, 1.0}, false);
+  cusp.moveTo({1.5, 1.0}, true);
+  cusp.moveTo({1.0, 1.0}, true);
+  EXPECT_EQ(checkValidity(wall, kTool, cusp, car(0.5)).not_drivable, 1u);
+  EXPECT_EQ(checkValidity(wall, kTool, cusp, car(0.5, true)).not_drivable, 0u);
+  EXPECT_EQ(judge::judgeValidity(wall, kTool, cusp, car(0.5)).not_drivable, 1u);
+  EXPECT_TRUE(judge::judgeValidity(wall, kTool, cusp, car(0.5, true)).valid);
+
+  // A heading jump of 2e-6 rad is a corner; within 1e-6 rad (rounding) it is continuous.
+  for (const auto& [angle, drivable] : {std::pair<double, bool>{2e-6, false}, {0.5e-6, true}}) {
+    Path kink;
+    kink.moveTo({0.5, 1.0}, false);
+    kink.moveTo({1.5, 1.0}, true);
+    kink.moveTo({1.5 + std::cos(angle), 1.0 + std::sin(angle)}, true);
+    EXPECT_EQ(checkValidity(wall, kTool, kink, car(0.5)).not_drivable == 0, drivable) << angle;
+    EXPECT_EQ(judge::judgeValidity(wall, kTool, kink, car(0.5)).not_drivable == 0, drivable) << angle;
+  }
+}
+
+// A half circle from (1, 2) to (3, 2) with bulge +1 turns left: it leaves (1, 2) heading south,
+// passes (2, 1) and arrives heading north. Its chord (y = 2) is far from a window below it; the
+// arc comes within `gap` of the window's top edge (y = 1 - gap).
+TEST(Arcs, AreCheckedWhereTheyGoNotAlongTheirChord) {
+  for (const auto& [gap, valid] : {std::pair<double, bool>{0.05, false}, {0.069, false}, {0.0701, true}, {0.2, true}}) {
+    const Wall wall = rectWall(4.0, 4.0, {rect(1.8, 0.3, 0.4, 0.7 - gap)});
+    Path p;
+    p.moveTo({1.0, 2.0}, true);
+    p.arcTo({3.0, 2.0}, 1.0, true);
+    const Validity fast = checkValidity(wall, kTool, p);
+    EXPECT_EQ(fast.valid, valid) << gap;
+    EXPECT_EQ(fast.too_close, valid ? 0u : 1u) << gap;
+    EXPECT_EQ(judge::judgeValidity(wall, kTool, p).valid, valid) << gap;
+    Path chord;
+    chord.moveTo({1.0, 2.0}, true);
+    chord.moveTo({3.0, 2.0}, true);
+    EXPECT_TRUE(checkValidity(wall, kTool, chord).valid) << "the chord alone passes far above";
+  }
+  // The boundary too: the arc dips to y = 1 - 0.95 = 0.05 on a wall whose bottom is y = 0 when its
+  // radius is 1.95 (the disk of r = 0.05 just touches it); a little more and it leaves.
+  for (const auto& [radius, valid] : {std::pair<double, bool>{1.9499, true}, {1.9501, false}}) {
+    const Wall wall = rectWall(6.0, 4.0);
+    Path p;
+    p.moveTo({3.0 - radius, 2.0}, true);
+    p.arcTo({3.0 + radius, 2.0}, 1.0, true);
+    EXPECT_EQ(checkValidity(wall, kTool, p).valid, valid) << radius;
+    EXPECT_EQ(judge::judgeValidity(wall, kTool, p).valid, valid) << radius;
+  }
+}
+
+TEST(Car, DurationSlowsOnTightArcsAndStopsAtCusps) {
+  const MotionLimits limits;  // v = 0.3 m/s, a = 0.5 m/s^2
+  const double v = limits.speed, a = limits.acceleration;
+  // A wide turn (R = 0.5: sqrt(a R) = 0.5 > v): one run of 2 + pi / 4 m at v.
+  const double wide = 2.0 + M_PI / 4.0;
+  EXPECT_NEAR(motion(leftTurn(0.5), limits, car(0.5)).duration_s, wide / v + v / a, 1e-12);
+  // A tight one (R = 0.1: at most sqrt(0.05) on the arc): accelerate to v, brake to the arc's
+  // speed, drive the arc at it, accelerate back to v and brake to a stop.
+  const double cap = std::sqrt(a * 0.1), arc = M_PI / 2.0 * 0.1;
+  const double straight = v / a + (v - cap) / a + (1.0 - v * v / (2 * a) - (v * v - cap * cap) / (2 * a)) / v;
+  const Motion tight = motion(leftTurn(0.1), limits, car(0.1));
+  EXPECT_NEAR(tight.duration_s, 2.0 * straight + arc / cap, 1e-12);
+  EXPECT_NEAR(tight.turning_angle, M_PI / 2.0, 1e-12);
+  EXPECT_EQ(tight.turns, 0u) << "the heading turns along the arc, never at a waypoint";
+  // A reversing car stops at a cusp: two runs of 1 m and 0.5 m.
+  Path cusp;
+  cusp.moveTo({0.5, 1.0}, false);
+  cusp.moveTo({1.5, 1.0}, true);
+  cusp.moveTo({1.0, 1.0}, true);
+  auto run = [&](double len) { return len >= v * v / a ? len / v + v / a : 2.0 * std::sqrt(len / a); };
+  EXPECT_NEAR(motion(cusp, limits, car(0.5, true)).duration_s, run(1.0) + run(0.5), 1e-12);
+}
+
+TEST(Arcs, CoverageMeasuresTheBandAlongTheArc) {
+  // A half circle of radius 1 painted with s = 0.1: the band is half an annulus, pi (1.05^2 - 0.95^2) / 2,
+  // plus two half disks at the ends, pi 0.05^2.
+  const Wall wall = rectWall(4.0, 4.0);
+  Path p;
+  p.moveTo({1.0, 2.0}, true);
+  p.arcTo({3.0, 2.0}, 1.0, true);
+  const PathMetrics m = computeMetrics(wall, kTool, p);
+  const double band = M_PI * (1.05 * 1.05 - 0.95 * 0.95) / 2.0 + M_PI * 0.05 * 0.05;
+  EXPECT_NEAR(m.coverage.swept_area, band, 2e-5);
+  EXPECT_NEAR(m.lengths.total, M_PI, 1e-12);
+  const judge::ExactCoverage exact = judge::judgeCoverage(wall, kTool, p);
+  EXPECT_TRUE(exact.swept_area.contains(band)) << exact.swept_area.lower << " " << exact.swept_area.upper;
+  EXPECT_LT(exact.swept_area.width(), 0.003) << "the certified stray of the chords (1e-4 m) both ways along 2 pi m of edges";
+}
+
+class CarFiles : public test::CommandTest {};
+
+TEST_F(CarFiles, PlanFilesAndBlobsCarryArcsAndTheCarAndScoringFollowsThem) {
+  PlanFile plan;
+  plan.planner = "external";
+  plan.wall = "w";
+  plan.result.status = PlanStatus::Ok;
+  plan.result.path = leftTurn(0.5);
+  plan.vehicle = car(0.5, true);
+  const std::string text = planFileJson(plan);
+  EXPECT_NE(text.find("\"vehicle\": {\"model\":\"car\",\"turn_radius\":0.5,\"reverse\":true}"), std::string::npos) << text;
+  EXPECT_NE(text.find("\n \"bulge\": [0.0,0.41421356237309503,0.0],\n"), std::string::npos) << text;
+  const LoadedPlan back = loadPlanFile(write("plan.json", text));
+  EXPECT_EQ(back.path.bulge, plan.result.path.bulge);
+  ASSERT_TRUE(back.vehicle.has_value());
+  EXPECT_TRUE(back.vehicle->isCar());
+  EXPECT_EQ(back.vehicle->turn_radius, 0.5);
+  EXPECT_TRUE(back.vehicle->reverse);
+  // Paths without arcs write no bulge, as before.
+  plan.result.path = chordalPath(leftTurn(0.5), 1e-3);
+  plan.vehicle = {};
+  EXPECT_EQ(planFileJson(plan).find("bulge"), std::string::npos);
+
+  // The blob keeps arcs; a path without arcs keeps its bytes.
+  const Path arcs = leftTurn(0.5);
+  const Path decoded = decodePath(encodePath(arcs));
+  EXPECT_EQ(decoded.waypoints, arcs.waypoints);
+  EXPECT_EQ(decoded.tool_on, arcs.tool_on);
+  EXPECT_EQ(decoded.bulge, arcs.bulge);
+  Path straight = arcs;
+  straight.bulge.clear();
+  EXPECT_TRUE(decodePath(encodePath(straight)).bulge.empty());
+  EXPECT_LT(encodePath(straight).size(), encodePath(arcs).size());
+
+  // Bad bulges are refused with the field named.
+  const std::string path = R"("waypoints": [[0.5, 1.0], [1.5, 1.0]], "tool_on": [true])";
+  EXPECT_NE(test::inputError([&] { loadPlanFile(write("b.json", "{" + path + R"(, "bulge": [2]})")); })
+                .find("b.json: bulge[0]: must be a number in [-1, 1]"),
+            std::string::npos);
+  EXPECT_NE(test::inputError([&] { loadPlanFile(write("c.json", "{" + path + R"(, "bulge": [0, 0]})")); })
+                .find("c.json: bulge: must be an array of one number per segment (1)"),
+            std::string::npos);
+
+  // The command line scores it as a car: drivable with a radius of 0.5, not with 0.6.
+  const std::string wall = write("wall.json", R"({"name": "w", "width": 4, "height": 4})");
+  plan.result.path = leftTurn(0.5);
+  plan.vehicle = car(0.5);
+  const std::string file = write("car.json", planFileJson(plan));
+  std::string out;
+  CommandRun r = run("metrics --wall " + wall + " --plan " + file + " --judge exact", &out);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(out.find("\"valid\": true"), std::string::npos) << out;
+  r = run("metrics --wall " + wall + " --plan " + file + " --turn-radius 0.6", &out);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(out.find("\"valid\": false"), std::string::npos);
+  r = run("metrics --wall " + wall + " --plan " + file + " --vehicle holonomic --turn-radius 0.6", &out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--turn-radius: vehicle: a turn radius and reversing belong to a car"), std::string::npos) << r.err;
+  // No planner plans for a car yet: plan and experiments say so.
+  r = run("plan --wall " + wall + " --planner zigzag --vehicle car --out " + (dir_ / "p.json").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no planner plans for a car yet"), std::string::npos) << r.err;
+  EXPECT_NE(test::inputError([&] {
+              loadExperimentConfig(write("e.yaml", "name: e\noutput: o\ndatasets:\n  - suite: seed-cases\nplanners:\n  - zigzag\n"
+                                                   "vehicle:\n  model: car\n"));
+            }).find("e.yaml:8: vehicle.model: no planner plans for a car yet"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace coverbench
