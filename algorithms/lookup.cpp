@@ -2,6 +2,9 @@
 // (Params and the toString functions of planner.hpp are core's: core/src/planner.cpp.)
 #include "coverbench/registry.hpp"
 
+#include "coverbench/car.hpp"
+#include "coverbench/workspace.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -110,7 +113,27 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
   const auto start = std::chrono::steady_clock::now();
   PlanResult result;
   try {
-    result = planner.make()->plan(problem, budget);
+    if (problem.vehicle.isCar()) {
+      // Planners plan for a tool that turns on the spot; the car drives their path smoothed
+      // (core/car.hpp): corners rounded or turned, what it cannot reach left out and said.
+      Problem holonomic = problem;
+      holonomic.vehicle = VehicleModel{};
+      result = planner.make()->plan(holonomic, budget);
+      if (result.hasPath()) {
+        const Workspace ws(*problem.wall, problem);
+        const CarSmoothing car = smoothForCar(ws, result.path);
+        result.path = car.path;
+        result.stats["car_fillets"] = static_cast<double>(car.fillets);
+        result.stats["car_turns"] = static_cast<double>(car.turns);
+        result.stats["car_cusps"] = static_cast<double>(car.cusps);
+        result.stats["car_skipped_segments"] = static_cast<double>(car.skipped);
+        result.stats["car_undriven_m"] = car.cut_m;
+        if (car.skipped > 0 || car.stopped) result.status = PlanStatus::Partial;
+        if (!car.reason.empty()) result.reason += (result.reason.empty() ? "" : "; ") + car.reason;
+      }
+    } else {
+      result = planner.make()->plan(problem, budget);
+    }
   } catch (const std::exception& e) {
     result = PlanResult::failure(PlanStatus::Error, std::string("planner threw: ") + e.what());
   } catch (...) {

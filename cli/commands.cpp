@@ -172,7 +172,6 @@ int planCommand(const PlanOptions& options) {
   const PlannerInfo& planner = findPlanner(options.planner);
   Params params = resolveParams(planner, splitSettings(options.params));
   const VehicleModel vehicle = resolveVehicle(options.vehicle, VehicleModel{});
-  if (vehicle.isCar()) throw InputError("--vehicle", "vehicle", std::string(kCarNotPlannedYet));
   const TransitPlannerInfo* transit = findTransitPlanner(options.transit.planner);
   if (!transit) throw InputError("--transit", "transit", "'" + options.transit.planner + "' is not a transit planner (see `coverbench planners`)");
   if (!transit->sampling && options.transit_options_given)

@@ -28,9 +28,12 @@ int main(int argc, char** argv) {
   plan_cmd->add_option("--tool-width", plan.tool.tool_width, "tool diameter s in metres")->capture_default_str();
   plan_cmd->add_option("--clearance", plan.tool.clearance, "gap c between tool and obstacles, metres")
       ->capture_default_str();
-  plan_cmd->add_option("--vehicle", plan.vehicle.model, "holonomic (default): every move stays in F; gantry: tool-off moves are lifted");
+  plan_cmd->add_option("--vehicle", plan.vehicle.model,
+                       "holonomic (default): every move stays in F; gantry: tool-off moves are lifted; car: turns of --turn-radius");
   plan_cmd->add_option("--lift-s", plan.vehicle.lift_s, "gantry: seconds to lift the tool (default 1)");
   plan_cmd->add_option("--lower-s", plan.vehicle.lower_s, "gantry: seconds to lower the tool (default 1)");
+  plan_cmd->add_option("--turn-radius", plan.vehicle.turn_radius, "car: its smallest turn radius, m (default 0.5)");
+  plan_cmd->add_flag("--reverse", plan.vehicle.reverse, "car: it may reverse (Reeds-Shepp); default forward only (Dubins)");
   plan_cmd->add_option("--transit", plan.transit.planner,
                        "transit planner for detours: visibility (default: shortest on its visibility graph), rrtstar, prmstar, bitstar, informed-rrtstar")
       ->capture_default_str();

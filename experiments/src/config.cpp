@@ -369,7 +369,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     if (!model) r.fail(*v, "vehicle.model", "missing (holonomic or gantry)");
     const std::string name = r.text(*model, "vehicle.model");
     if (!parseVehicleKind(name, c.vehicle.kind)) r.fail(*model, "vehicle.model", "must be holonomic or gantry, not '" + name + "'");
-    if (c.vehicle.isCar()) r.fail(*model, "vehicle.model", kCarNotPlannedYet);
+    if (c.vehicle.isCar()) r.fail(*model, "vehicle.model", kCarNotInExperimentsYet);
     if (const Yaml* t = v->find("lift_s")) c.vehicle.lift_s = r.number(*t, "vehicle.lift_s", 0.0, kMaxLiftTime);
     if (const Yaml* t = v->find("lower_s")) c.vehicle.lower_s = r.number(*t, "vehicle.lower_s", 0.0, kMaxLiftTime);
     if (c.vehicle.isDefault() && (v->find("lift_s") || v->find("lower_s")))

@@ -1,0 +1,70 @@
+#pragma once
+/// Planning for a car (docs/vehicles.md): the shortest curve between two poses from OMPL's
+/// Dubins and Reeds-Shepp state spaces as a path of arcs and lines, checks of arcs against the
+/// free region, and the smoothing that makes any planner's path drivable by a car.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coverbench/path.hpp"
+
+namespace coverbench {
+
+class Workspace;
+
+/// A position and a heading (radians).
+struct Pose {
+  Point at;
+  double heading = 0.0;
+};
+
+/// One piece of a car's curve: a turn left ('L') or right ('R') by `amount` radians, or a straight
+/// ('S') of `amount` turn radii; negative: driven backwards.
+struct CurvePrimitive {
+  char kind = 'S';
+  double amount = 0.0;
+};
+/// OMPL's shortest Reeds-Shepp curve (core/src/ompl_transit.cpp).
+std::vector<CurvePrimitive> reedsSheppPrimitives(Pose from, Pose to, double radius);
+/// The length of OMPL's shortest Dubins curve, for cross-checking ours (tests only: OMPL's Dubins
+/// aborts the process on an internal assertion for some pairs of poses tens of radii apart, in
+/// Debian's build, so curves are not made with it).
+double omplDubinsLength(Pose from, Pose to, double radius);
+
+/// The shortest curve a car of turn radius `radius` drives from `from` to `to`: Dubins when it
+/// goes forward only (the six words of Dubins 1957 in closed form, Shkel & Lumelsky 2001; each
+/// candidate driven out and kept only if it arrives), Reeds-Shepp when it may reverse (cusps where
+/// it does; OMPL's ReedsSheppStateSpace). Returned as a path of lines and arcs (each arc at most a
+/// quarter circle) from from.at to exactly to.at, every segment with tool state `tool`; empty
+/// when no curve arrives within 1e-9 m and rad.
+Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool);
+
+/// Whether the arc (or line, bulge 0) from a to b keeps the tool valid with kPlanningMargin to
+/// spare: checked as chords whose sagitta is added to the tool's radius, so the arc itself is.
+bool arcFree(const Workspace& ws, Point a, Point b, double bulge);
+/// Every segment of the path is free (arcFree).
+bool pathFree(const Workspace& ws, const Path& path);
+
+/// A planner's path made drivable by the workspace's car.
+struct CarSmoothing {
+  Path path;
+  std::size_t fillets = 0;    ///< corners rounded by an arc of the turn radius
+  std::size_t turns = 0;      ///< corners (and runs of short segments) replaced by a Dubins / Reeds-Shepp curve
+  std::size_t cusps = 0;      ///< reversals in those curves (a Reeds-Shepp car's three-point turns)
+  std::size_t skipped = 0;    ///< segments left out because no curve reached past them
+  double cut_m = 0.0;         ///< length of the planner's tool-on segments not driven (cut back or skipped)
+  bool stopped = false;       ///< no curve reached any later segment: the path ends early
+  std::string reason;         ///< what was left out, for the plan's reason
+};
+
+/// Makes `path` drivable by the car of `ws` (its vehicle): each corner is rounded by an arc of the
+/// turn radius where that arc is free and fits its two segments; else replaced by the shortest
+/// Dubins / Reeds-Shepp curve from a point on the segment before to a point on one of the next
+/// three segments, the two points moved back from the corner (0 to 3 turn radii) until the curve is
+/// free; else the corner's segments are skipped to the first later one a free curve reaches. Every
+/// piece is checked (arcFree), so the result is valid wherever the input was; painting continues
+/// through a turn only when the segments on both sides are painted.
+CarSmoothing smoothForCar(const Workspace& ws, const Path& path);
+
+}  // namespace coverbench

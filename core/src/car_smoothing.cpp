@@ -1,0 +1,406 @@
+// A planner's path made drivable by a car: fillets, Dubins / Reeds-Shepp turns, skips
+// (docs/vehicles.md). Every piece is checked against the free region before it is used.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "coverbench/car.hpp"
+#include "coverbench/workspace.hpp"
+
+namespace coverbench {
+namespace {
+
+/// Arcs are checked as chords at most this far from the arc first (the tool grown by it), finer
+/// where that fails.
+constexpr double kCheckSagitta = 1e-3;
+/// Turns are planned on a radius this much above the car's (relative), so that ending a curve
+/// exactly on its target (moving the last arc's end by rounding) never makes an arc tighter.
+constexpr double kRadiusSlack = 1e-4;
+
+struct Segment {
+  Point a, b;
+  bool tool = false;
+  double length = 0.0;
+  Point dir;  ///< unit
+  double heading = 0.0;
+};
+
+double angleBetween(double from, double to) { return std::remainder(to - from, 2.0 * M_PI); }
+
+/// A curve that turns more than a quarter circle beyond what its two poses differ by is a loop (a
+/// Dubins car circling round to line up with a pose just beside it): painted, it scribbles
+/// circles over the wall; such a curve is not taken.
+bool loops(const Path& curve, Pose from, Pose to) {
+  double turning = 0.0;
+  for (std::size_t k = 0; k < curve.segments(); ++k) turning += std::fabs(4.0 * std::atan(curve.bulgeOf(k)));
+  return turning > std::fabs(angleBetween(from.heading, to.heading)) + M_PI / 2.0 + 1e-9;
+}
+
+/// Appends a primitive to the curve, from `pose` (advanced); arcs in pieces of at most a quarter
+/// circle.
+void appendPrimitive(Path& out, Pose& pose, CurvePrimitive c, double radius, bool tool) {
+  // Pieces of rounding size are left out (the arrival check below bounds what that costs): a
+  // tiny arc's radius would not survive ending the curve exactly on its target.
+  if (c.kind == 'S' ? std::fabs(c.amount) * radius < 1e-9 : std::fabs(c.amount) < 1e-6) return;
+  if (c.kind == 'S') {
+    pose.at = pose.at + Point{std::cos(pose.heading), std::sin(pose.heading)} * (c.amount * radius);
+    out.moveTo(pose.at, tool);
+    return;
+  }
+  const double turn = c.kind == 'L' ? 1.0 : -1.0;  // the heading turns by turn * amount
+  const Point centre = pose.at + Point{-std::sin(pose.heading), std::cos(pose.heading)} * (turn * radius);
+  const int pieces = static_cast<int>(std::ceil(std::fabs(c.amount) / (M_PI / 2.0)));
+  for (int k = 1; k <= pieces; ++k) {
+    const double heading = pose.heading + turn * c.amount / pieces;
+    const Point next = centre + Point{std::sin(heading), -std::cos(heading)} * (turn * radius);
+    // The position turns about the centre by the heading's change: that is the arc's signed angle.
+    out.arcTo(next, std::tan(turn * c.amount / pieces / 4.0), tool);
+    pose.heading = heading;
+    pose.at = next;
+  }
+}
+
+double mod2pi(double a) {
+  const double r = std::fmod(a, 2.0 * M_PI);
+  return r < 0.0 ? r + 2.0 * M_PI : r;
+}
+
+/// The six Dubins words between the normalised poses (Shkel & Lumelsky 2001): distance d in radii,
+/// headings alpha and beta relative to the line between them. Each gives (t, p, q) or nothing.
+std::vector<std::vector<CurvePrimitive>> dubinsWords(double d, double alpha, double beta) {
+  const double sa = std::sin(alpha), sb = std::sin(beta), ca = std::cos(alpha), cb = std::cos(beta);
+  const double cab = std::cos(alpha - beta);
+  std::vector<std::vector<CurvePrimitive>> out;
+  double p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb);  // LSL
+  if (p2 >= 0.0) {
+    const double tmp = std::atan2(cb - ca, d + sa - sb);
+    out.push_back({{'L', mod2pi(tmp - alpha)}, {'S', std::sqrt(p2)}, {'L', mod2pi(beta - tmp)}});
+  }
+  p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa);  // RSR
+  if (p2 >= 0.0) {
+    const double tmp = std::atan2(ca - cb, d - sa + sb);
+    out.push_back({{'R', mod2pi(alpha - tmp)}, {'S', std::sqrt(p2)}, {'R', mod2pi(tmp - beta)}});
+  }
+  p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb);  // LSR
+  if (p2 >= 0.0) {
+    const double p = std::sqrt(p2);
+    const double tmp = std::atan2(-ca - cb, d + sa + sb) - std::atan2(-2.0, p);
+    out.push_back({{'L', mod2pi(tmp - alpha)}, {'S', p}, {'R', mod2pi(tmp - beta)}});
+  }
+  p2 = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb);  // RSL
+  if (p2 >= 0.0) {
+    const double p = std::sqrt(p2);
+    const double tmp = std::atan2(ca + cb, d - sa - sb) - std::atan2(2.0, p);
+    out.push_back({{'R', mod2pi(alpha - tmp)}, {'S', p}, {'L', mod2pi(beta - tmp)}});
+  }
+  double tmp = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0;  // RLR
+  if (std::fabs(tmp) <= 1.0) {
+    const double p = mod2pi(2.0 * M_PI - std::acos(tmp));
+    const double t = mod2pi(alpha - std::atan2(ca - cb, d - sa + sb) + p / 2.0);
+    out.push_back({{'R', t}, {'L', p}, {'R', mod2pi(alpha - beta - t + p)}});
+  }
+  tmp = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0;  // LRL
+  if (std::fabs(tmp) <= 1.0) {
+    const double p = mod2pi(2.0 * M_PI - std::acos(tmp));
+    const double t = mod2pi(-alpha - std::atan2(ca - cb, d + sa - sb) + p / 2.0);
+    out.push_back({{'L', t}, {'R', p}, {'L', mod2pi(beta - alpha - t + p)}});
+  }
+  return out;
+}
+
+/// The curve of `primitives` from `from`: its path, and whether it arrives at `to`.
+Path drive(Pose from, Pose to, const std::vector<CurvePrimitive>& primitives, double radius, bool tool, bool& arrives) {
+  Path out;
+  out.moveTo(from.at, tool);
+  Pose pose = from;
+  for (const CurvePrimitive& c : primitives) appendPrimitive(out, pose, c, radius, tool);
+  // Within 1e-9 m (and a fifth of the heading tolerance: the pieces left out turn at most 1e-6 rad).
+  arrives = distance(pose.at, to.at) <= 1e-9 * (1.0 + radius) &&
+            std::fabs(angleBetween(pose.heading, to.heading)) <= kCarHeadingTolerance / 5.0;
+  return out;
+}
+
+}  // namespace
+
+Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool) {
+  std::vector<std::vector<CurvePrimitive>> candidates;
+  if (reverse) {
+    candidates.push_back(reedsSheppPrimitives(from, to, radius));
+  } else {
+    const Point delta = to.at - from.at;
+    const double d = norm(delta) / radius, phi = std::atan2(delta.y, delta.x);
+    candidates = dubinsWords(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi));
+    auto length = [](const std::vector<CurvePrimitive>& w) {
+      double sum = 0.0;
+      for (const CurvePrimitive& c : w) sum += std::fabs(c.amount);
+      return sum;
+    };
+    std::stable_sort(candidates.begin(), candidates.end(), [&](const auto& x, const auto& y) { return length(x) < length(y); });
+  }
+  for (const auto& primitives : candidates) {
+    bool arrives = false;
+    const Path out = drive(from, to, primitives, radius, tool, arrives);
+    if (!arrives) continue;
+    // End exactly at `to` (the last chord moves by rounding), without segments of rounding
+    // length, whose direction means nothing.
+    Path clean;
+    clean.moveTo(from.at, tool);
+    for (std::size_t i = 0; i < out.segments(); ++i) {
+      const bool last = i + 1 == out.segments();
+      const Point p = last ? to.at : out.waypoints[i + 1];
+      if (distance(clean.waypoints.back(), p) <= 1e-9 * (1.0 + radius)) {
+        if (last && clean.waypoints.size() > 1) clean.waypoints.back() = to.at;
+        continue;
+      }
+      clean.arcTo(p, out.bulgeOf(i), tool);
+    }
+    return clean;
+  }
+  return Path{};
+}
+
+bool arcFree(const Workspace& ws, Point a, Point b, double bulge) {
+  const ToolParams& tool = ws.tool();
+  if (bulge == 0.0) return ws.field().segmentFree(a, b, tool.radius(), tool.clearance, kPlanningMargin);
+  const ArcGeometry g = arcGeometry(a, b, bulge);
+  const double start = std::atan2(a.y - g.centre.y, a.x - g.centre.x);
+  auto at = [&](double t) { return g.centre + Point{std::cos(t), std::sin(t)} * g.radius; };
+  // The sub-arc [t0, t1] (ends p, q) is free when its chord is, with the tool grown by the chord's
+  // sagitta (every point of the sub-arc lies within it of the chord); where that fails, the halves
+  // are checked, down to a sagitta of kMinSagitta (planners keep their moves 1e-6 m inside F's
+  // limit, so finer chords would not pass either).
+  constexpr double kMinSagitta = 1e-7;
+  auto free = [&](auto&& self, double t0, double t1, Point p, Point q) -> bool {
+    const double sagitta = g.radius * (1.0 - std::cos(std::fabs(t1 - t0) / 2.0)) * (1.0 + 1e-9) + 1e-12;
+    if (ws.field().segmentFree(p, q, tool.radius() + sagitta, tool.clearance, kPlanningMargin)) return true;
+    if (sagitta <= kMinSagitta) return false;
+    const double tm = 0.5 * (t0 + t1);
+    const Point mid = at(tm);
+    return self(self, t0, tm, p, mid) && self(self, tm, t1, mid, q);
+  };
+  // Start from chords of at most kCheckSagitta.
+  const double step = 2.0 * std::acos(std::fmax(-1.0, 1.0 - kCheckSagitta / g.radius));
+  const int pieces = std::max(1, static_cast<int>(std::ceil(std::fabs(g.sweep) / std::fmax(step, 1e-9))));
+  Point prev = a;
+  for (int k = 1; k <= pieces; ++k) {
+    const double t0 = start + g.sweep * (k - 1) / pieces, t1 = start + g.sweep * k / pieces;
+    const Point next = k == pieces ? b : at(t1);
+    if (!free(free, t0, t1, prev, next)) return false;
+    prev = next;
+  }
+  return true;
+}
+
+bool pathFree(const Workspace& ws, const Path& path) {
+  for (std::size_t i = 0; i < path.segments(); ++i)
+    if (!arcFree(ws, path.waypoints[i], path.waypoints[i + 1], path.bulgeOf(i))) return false;
+  return true;
+}
+
+CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
+  const VehicleModel& car = ws.vehicle();
+  const double rho = car.turn_radius * (1.0 + kRadiusSlack);
+  CarSmoothing out;
+  if (in.waypoints.empty()) return out;
+  out.path.moveTo(in.waypoints.front(), false);
+  // The path by arc length: segment k from w[k] to w[k + 1] starts at along[k].
+  std::vector<Segment> segs;
+  std::vector<double> along;
+  double total = 0.0;
+  for (std::size_t i = 0; i < in.segments(); ++i) {
+    Segment sg{in.waypoints[i], in.waypoints[i + 1], in.tool_on[i]};
+    sg.length = distance(sg.a, sg.b);
+    if (sg.length == 0.0) continue;
+    sg.dir = (sg.b - sg.a) * (1.0 / sg.length);
+    sg.heading = std::atan2(sg.dir.y, sg.dir.x);
+    segs.push_back(sg);
+    along.push_back(total);
+    total += sg.length;
+  }
+  const std::size_t m = segs.size();
+  if (m == 0) return out;
+  // The segment holding arc length x (the later one at a vertex), and the pose there.
+  auto segmentAt = [&](double x) {
+    const auto it = std::upper_bound(along.begin(), along.end(), x);
+    return static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, (it - along.begin()) - 1));
+  };
+  // The pose at arc length x: heading as the car arrives there (at a vertex: the segment before
+  // it) or as it leaves (the segment after it).
+  auto poseAt = [&](double x, bool arriving) {
+    std::size_t k = segmentAt(x);
+    if (arriving && k > 0 && x <= along[k]) --k;
+    const double into = std::clamp(x - along[k], 0.0, segs[k].length);
+    return Pose{into >= segs[k].length ? segs[k].b : segs[k].a + segs[k].dir * into, segs[k].heading};
+  };
+  // Painted all along [x0, x1]; and the painted length within it (what a turn leaves undriven).
+  auto paintedThrough = [&](double x0, double x1) {
+    for (std::size_t k = segmentAt(x0); k < m && along[k] < x1; ++k)
+      if (!segs[k].tool) return false;
+    return true;
+  };
+  auto paintedLength = [&](double x0, double x1) {
+    double sum = 0.0;
+    for (std::size_t k = segmentAt(x0); k < m && along[k] < x1; ++k)
+      if (segs[k].tool) sum += std::max(0.0, std::min(x1, along[k] + segs[k].length) - std::max(x0, along[k]));
+    return sum;
+  };
+  auto append = [&](const Path& piece) {
+    for (std::size_t k = 0; k < piece.segments(); ++k) out.path.arcTo(piece.waypoints[k + 1], piece.bulgeOf(k), piece.tool_on[k]);
+  };
+  auto cuspsOf = [&](const Path& piece) {
+    std::size_t n = 0;
+    for (std::size_t k = 1; k < piece.segments(); ++k) {
+      const Point d0 = piece.waypoints[k] - piece.waypoints[k - 1], d1 = piece.waypoints[k + 1] - piece.waypoints[k];
+      const double h0 = std::atan2(d0.y, d0.x) + 2.0 * std::atan(piece.bulgeOf(k - 1));
+      const double h1 = std::atan2(d1.y, d1.x) - 2.0 * std::atan(piece.bulgeOf(k));
+      n += std::fabs(angleBetween(h0, h1)) > M_PI / 2.0;
+    }
+    return n;
+  };
+  // Drives the path straight from x to the point at y (no corner between them), tool as the segment.
+  auto driveTo = [&](double y) {
+    const std::size_t k = segmentAt(y);
+    const Point target = poseAt(y, true).at;
+    // Where the car already is, but for rounding: a segment of 1e-14 m has no heading to keep.
+    if (distance(out.path.waypoints.back(), target) <= 1e-9) return;
+    out.path.moveTo(target, segs[k > 0 && y <= along[k] ? k - 1 : k].tool);
+  };
+  // Where the car was after each step (the output's waypoints then, its arc length), to go back to.
+  struct Checkpoint {
+    std::size_t waypoints;
+    double x;
+  };
+  std::vector<Checkpoint> checkpoints;
+  // The car is at arc length x, on the path, heading along it.
+  double x = 0.0;
+  std::size_t corner = 1;  // the next vertex that may be a corner
+  while (true) {
+    if (checkpoints.empty() || checkpoints.back().x < x) checkpoints.push_back({out.path.waypoints.size(), x});
+    while (corner < m && (along[corner] <= x || std::fabs(angleBetween(segs[corner - 1].heading, segs[corner].heading)) <= 1e-12))
+      ++corner;
+    if (corner >= m) {  // no corner left: drive to the end
+      for (std::size_t k = segmentAt(x); k < m; ++k) out.path.moveTo(segs[k].b, segs[k].tool);
+      break;
+    }
+    const double at = along[corner];  // the corner's arc length
+    const Segment &s = segs[corner - 1], &t = segs[corner];
+    const double theta = angleBetween(s.heading, t.heading);
+    // 1. A fillet of the turn radius, tangent to both segments, where both are long enough.
+    const double d = std::fabs(theta) < M_PI - 1e-9 ? rho * std::tan(std::fabs(theta) / 2.0) : INFINITY;
+    if (d <= at - x && d <= at - along[corner - 1] && d <= t.length) {
+      const Point p = s.b - s.dir * d, q = t.a + t.dir * d;
+      const double bulge = std::tan(theta / 4.0);
+      if (arcFree(ws, p, q, bulge)) {
+        driveTo(at - d);
+        out.path.arcTo(q, bulge, s.tool && t.tool);
+        ++out.fillets;
+        out.cut_m += paintedLength(at - d, at + d);
+        x = at + d;
+        continue;
+      }
+    }
+    // 2. A Dubins / Reeds-Shepp curve from a point moved back before the corner to a point moved
+    //    on after it (in turn radii; fewest first), past any corners in between.
+    bool done = false;
+    const double steps[] = {0.0, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0};
+    for (double sum = 0.0; sum <= 6.0 + 1e-9 && !done; sum += 0.25) {
+      for (double back : steps) {
+        const double on = sum - back;
+        if (on < -1e-9 || std::find_if(std::begin(steps), std::end(steps), [&](double v) { return std::fabs(v - on) < 1e-9; }) == std::end(steps))
+          continue;
+        const double from = at - back * rho, to = at + on * rho;
+        if (from < x || to > total) continue;
+        const Pose p = poseAt(from, true), q = poseAt(to, false);
+        const Path curve = carCurve(p, q, rho, car.reverse, paintedThrough(from, to));
+        if (curve.waypoints.empty() || loops(curve, p, q) || !pathFree(ws, curve)) continue;
+        driveTo(from);
+        append(curve);
+        ++out.turns;
+        out.cusps += cuspsOf(curve);
+        out.cut_m += paintedLength(from, to);
+        out.skipped += segmentAt(to) - segmentAt(from) > 1 ? segmentAt(to) - segmentAt(from) - 1 : 0;
+        x = to;
+        done = true;
+        break;
+      }
+    }
+    if (done) continue;
+    // 3. Skip, tool off: from the corner, or a point further back (a forward-only car facing a
+    //    wall needs room to turn), to the start of the first later segment a free curve reaches.
+    for (double back : {0.0, 1.0, 2.0, 4.0, 8.0}) {
+      const double from = at - back * rho;
+      if (from < x || done) continue;
+      const Pose p = poseAt(from, true);
+      for (std::size_t j = corner + 1; j < m && !done; ++j) {
+        const Path curve = carCurve(p, {segs[j].a, segs[j].heading}, rho, car.reverse, false);
+        if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
+        driveTo(from);
+        append(curve);
+        ++out.turns;
+        out.cusps += cuspsOf(curve);
+        out.cut_m += paintedLength(from, along[j]);
+        out.skipped += j - corner;
+        x = along[j];
+        done = true;
+      }
+    }
+    if (done) continue;
+    // 4. Stuck (a forward-only car that drove into a passage too narrow to turn in): go back to
+    //    where it was some steps ago, drop what it drove since, and skip from there to a segment
+    //    beyond this corner.
+    for (std::size_t steps = 1; steps <= checkpoints.size() && !done; steps *= 2) {
+      const Checkpoint& c = checkpoints[checkpoints.size() - steps];
+      const Pose p = poseAt(c.x, false);
+      for (std::size_t j = corner + 1; j < m && !done; ++j) {
+        const Path curve = carCurve(p, {segs[j].a, segs[j].heading}, rho, car.reverse, false);
+        if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
+        out.path.waypoints.resize(c.waypoints);
+        out.path.tool_on.resize(c.waypoints - 1);
+        if (!out.path.bulge.empty()) out.path.bulge.resize(c.waypoints - 1);
+        append(curve);
+        ++out.turns;
+        out.cusps += cuspsOf(curve);
+        out.cut_m += paintedLength(c.x, along[j]);  // what it painted since is dropped too
+        out.skipped += j - segmentAt(c.x);
+        x = along[j];
+        checkpoints.resize(checkpoints.size() - steps);
+        done = true;
+      }
+    }
+    if (done) continue;
+    driveTo(at);
+    out.stopped = true;
+    out.cut_m += paintedLength(at, total);
+    out.skipped += m - corner;
+    break;
+  }
+  // The car's rules, checked on what was built (the judges check again): a slip here is a bug,
+  // and the plan fails with it rather than hand over a path the car cannot drive.
+  double end_heading = 0.0;
+  for (std::size_t k = 0; k < out.path.segments(); ++k) {
+    const Point a = out.path.waypoints[k], b = out.path.waypoints[k + 1];
+    const double bulge = out.path.bulgeOf(k);
+    if (bulge != 0.0 && arcGeometry(a, b, bulge).radius < car.turn_radius)
+      throw std::logic_error("car smoothing made an arc tighter than the turn radius at segment " + std::to_string(k));
+    const double chord = std::atan2(b.y - a.y, b.x - a.x), half = bulge == 0.0 ? 0.0 : 2.0 * std::atan(bulge);
+    if (k > 0) {
+      const double jump = std::fabs(angleBetween(end_heading, chord - half));
+      if (jump > kCarHeadingTolerance / 2.0 && !(car.reverse && jump > M_PI - kCarHeadingTolerance / 2.0))
+        throw std::logic_error("car smoothing left a heading jump of " + std::to_string(jump) + " rad at segment " +
+                               std::to_string(k));
+    }
+    end_heading = chord + half;
+  }
+  char buf[200];
+  if (out.stopped || out.skipped) {
+    std::snprintf(buf, sizeof buf, "the car skips %zu segments%s", out.skipped,
+                  out.stopped ? " and stops where no curve it can drive reaches further" : "");
+    out.reason = buf;
+  }
+  return out;
+}
+
+}  // namespace coverbench
