@@ -14,6 +14,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/plan_file.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/results_db.hpp"
 #include "coverbench/workspace.hpp"
 #include "test_support.hpp"
 
@@ -420,12 +421,46 @@ TEST_F(CarFiles, PlanFilesAndBlobsCarryArcsAndTheCarAndScoringFollowsThem) {
   r = run("metrics --wall " + wall + " --plan " + planned + " --judge exact", &out);
   EXPECT_NE(out.find("\"valid\": true"), std::string::npos) << out;
   EXPECT_EQ(out.find("\"valid\": false"), std::string::npos) << out;
-  // Experiments do not carry the car yet: the config says so.
-  EXPECT_NE(test::inputError([&] {
-              loadExperimentConfig(write("e.yaml", "name: e\noutput: o\ndatasets:\n  - suite: seed-cases\nplanners:\n  - zigzag\n"
-                                                   "vehicle:\n  model: car\n"));
-            }).find("e.yaml:8: vehicle.model: experiments do not run a car yet"),
+}
+
+TEST_F(CarFiles, ExperimentsRunACarAndKeyStoreAndReportIt) {
+  const std::string base = "name: e\noutput: out\ndatasets:\n  - suite: seed-cases\nplanners:\n  - zigzag\n  - spiral\n";
+  const ExperimentConfig plain = loadExperimentConfig(write("a.yaml", base));
+  const ExperimentConfig dubins = loadExperimentConfig(write("b.yaml", base + "vehicle:\n  model: car\n  turn_radius: 0.3\n"));
+  const ExperimentConfig rs =
+      loadExperimentConfig(write("c.yaml", base + "vehicle:\n  model: car\n  turn_radius: 0.3\n  reverse: true\n"));
+  ASSERT_TRUE(dubins.vehicle.isCar());
+  EXPECT_EQ(dubins.vehicle.turn_radius, 0.3);
+  EXPECT_FALSE(dubins.vehicle.reverse);
+  EXPECT_TRUE(rs.vehicle.reverse);
+  const std::vector<WallEntry> walls = loadWalls(plain);
+  const auto a = expandRuns(plain, walls), b = expandRuns(dubins, walls), c = expandRuns(rs, walls);
+  EXPECT_NE(a[0].key, b[0].key);
+  EXPECT_NE(b[0].key, c[0].key) << "reversing is part of the run";
+  auto configError = [&](const std::string& text) { return test::inputError([&] { loadExperimentConfig(write("e.yaml", text)); }); };
+  EXPECT_NE(configError(base + "vehicle:\n  model: car\n  turn_radius: 0\n").find("e.yaml:10: vehicle.turn_radius: must be in (0, 10000]"),
             std::string::npos);
+  EXPECT_NE(configError(base + "vehicle:\n  model: car\n  lift_s: 1\n").find("lift_s and lower_s belong to a gantry; a car never lifts"),
+            std::string::npos);
+  EXPECT_NE(configError(base + "vehicle:\n  model: gantry\n  reverse: true\n").find("turn_radius and reverse belong to a car"),
+            std::string::npos);
+
+  // Run it: every run stored with its car, every path valid as the car drives it.
+  std::string out;
+  const CommandRun r = run("run " + (dir_ / "c.yaml").string(), &out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string db = (dir_ / "out" / "results.sqlite").string();
+  EXPECT_EQ(test::sqlRows(db, "SELECT COUNT(*), MIN(turn_radius), MAX(reverse) FROM run_car"), "18|0.3|1\n");
+  EXPECT_EQ(test::sqlRows(db, "SELECT COUNT(*) FROM runs WHERE valid = 0 OR status = 'invalid_output'"), "0\n");
+  EXPECT_EQ(test::sqlRows(db, "SELECT COUNT(*) FROM planner_stats WHERE name = 'car_turns'"), "18\n");
+  const std::string report = slurp((dir_ / "out" / "report" / "index.html").string());
+  EXPECT_NE(report.find("Vehicle: car (turn radius 0.3 m, Reeds-Shepp: reverses)."), std::string::npos);
+  ResultsDb results(db, ResultsDb::Mode::ReadOnly);
+  for (const ResultRow& row : results.load().runs) {
+    EXPECT_TRUE(row.vehicle.isCar());
+    EXPECT_EQ(row.vehicle.turn_radius, 0.3);
+    EXPECT_TRUE(row.vehicle.reverse);
+  }
 }
 
 }  // namespace

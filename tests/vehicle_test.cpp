@@ -271,7 +271,7 @@ TEST_F(VehicleFiles, ConfigsNameAVehicleAndOnlyAGantryChangesTheRunKeys) {
   EXPECT_TRUE(rec.valid);
   EXPECT_GE(rec.stats.at("lifted_crossings"), 1.0);
 
-  EXPECT_NE(configError(base + "vehicle:\n  model: tank\n").find("exp.yaml:10: vehicle.model: must be holonomic or gantry, not 'tank'"),
+  EXPECT_NE(configError(base + "vehicle:\n  model: tank\n").find("exp.yaml:10: vehicle.model: must be holonomic, gantry or car, not 'tank'"),
             std::string::npos);
   EXPECT_NE(configError(base + "vehicle:\n  model: gantry\n  lift_s: -2\n").find("vehicle.lift_s"), std::string::npos);
   EXPECT_NE(configError(base + "vehicle:\n  lift_s: 2\n").find("vehicle.model: missing"), std::string::npos);

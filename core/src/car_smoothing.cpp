@@ -220,6 +220,28 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     along.push_back(total);
     total += sg.length;
   }
+  // A forward-only car cannot drive a spur (out and straight back the same way, as the spiral's
+  // corners have): its painting is left out and the path closes over it.
+  if (!car.reverse) {
+    std::vector<Segment> kept;
+    for (const Segment& sg : segs) {
+      if (!kept.empty() && sg.a == kept.back().b && sg.b == kept.back().a) {
+        if (kept.back().tool) out.cut_m += kept.back().length;
+        if (sg.tool) out.cut_m += sg.length;
+        out.skipped += 2;
+        kept.pop_back();
+        continue;
+      }
+      kept.push_back(sg);
+    }
+    segs = std::move(kept);
+    along.clear();
+    total = 0.0;
+    for (const Segment& sg : segs) {
+      along.push_back(total);
+      total += sg.length;
+    }
+  }
   const std::size_t m = segs.size();
   if (m == 0) return out;
   // The segment holding arc length x (the later one at a vertex), and the pose there.

@@ -364,16 +364,21 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
 
   // Vehicle: one model per experiment (docs/vehicles.md).
   if (const Yaml* v = doc.find("vehicle")) {
-    r.onlyKeys(*v, "vehicle", {"model", "lift_s", "lower_s"});
+    r.onlyKeys(*v, "vehicle", {"model", "lift_s", "lower_s", "turn_radius", "reverse"});
     const Yaml* model = v->find("model");
-    if (!model) r.fail(*v, "vehicle.model", "missing (holonomic or gantry)");
+    if (!model) r.fail(*v, "vehicle.model", "missing (holonomic, gantry or car)");
     const std::string name = r.text(*model, "vehicle.model");
-    if (!parseVehicleKind(name, c.vehicle.kind)) r.fail(*model, "vehicle.model", "must be holonomic or gantry, not '" + name + "'");
-    if (c.vehicle.isCar()) r.fail(*model, "vehicle.model", kCarNotInExperimentsYet);
+    if (!parseVehicleKind(name, c.vehicle.kind))
+      r.fail(*model, "vehicle.model", "must be holonomic, gantry or car, not '" + name + "'");
     if (const Yaml* t = v->find("lift_s")) c.vehicle.lift_s = r.number(*t, "vehicle.lift_s", 0.0, kMaxLiftTime);
     if (const Yaml* t = v->find("lower_s")) c.vehicle.lower_s = r.number(*t, "vehicle.lower_s", 0.0, kMaxLiftTime);
-    if (c.vehicle.isDefault() && (v->find("lift_s") || v->find("lower_s")))
-      r.fail(*v, "vehicle", "lift_s and lower_s belong to a gantry; a holonomic vehicle never lifts its tool");
+    if (const Yaml* t = v->find("turn_radius"))
+      c.vehicle.turn_radius = r.number(*t, "vehicle.turn_radius", 0.0, kMaxExtent, true);
+    if (const Yaml* t = v->find("reverse")) c.vehicle.reverse = r.boolean(*t, "vehicle.reverse");
+    if (!c.vehicle.liftsTool() && (v->find("lift_s") || v->find("lower_s")))
+      r.fail(*v, "vehicle", "lift_s and lower_s belong to a gantry; a " + name + " never lifts its tool");
+    if (!c.vehicle.isCar() && (v->find("turn_radius") || v->find("reverse")))
+      r.fail(*v, "vehicle", "turn_radius and reverse belong to a car; a " + name + " turns on the spot");
   }
 
   // Transit planners: a name or a list of names, each its own runs (docs/transits.md).

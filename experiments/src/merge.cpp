@@ -386,7 +386,7 @@ MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFil
       };
       copyRows(src, select("runs", "key"), f.experiment, db, "INSERT INTO runs VALUES", file, &to_copy);
       for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options",
-                                "replans", "replan_figures"})
+                                "run_car", "replans", "replan_figures"})
         copyRows(src, select(table, "run_key"), f.experiment, db, std::string("INSERT INTO ") + table + " VALUES", file, &to_copy);
       copyRows(src, "SELECT w.* FROM walls w JOIN experiment_walls x ON x.wall_hash = w.hash WHERE x.experiment_id = ?1",
                f.experiment, db, "INSERT OR IGNORE INTO walls VALUES", file, nullptr);

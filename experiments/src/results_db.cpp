@@ -30,7 +30,8 @@ namespace {
 /// visibility: an older build knows only those, stores and reads none, and would draw a gantry
 /// run's lifted moves as transits); replans and replan_figures (docs/replanning.md: a run's
 /// repairs after surprise obstacles, only for experiments with replanning; an older build ignores
-/// them and still reads every run correctly).
+/// them and still reads every run correctly); run_car (a car's turn radius and reversing, beside
+/// its run_options row; an older build would read such a run as a holonomic one with arcs).
 constexpr long long kApplicationId = 0x4376424e;
 constexpr long long kSchemaVersion = 2;
 
@@ -80,6 +81,8 @@ CREATE TABLE IF NOT EXISTS planner_timings (
 CREATE TABLE IF NOT EXISTS run_options (
   run_key TEXT PRIMARY KEY, vehicle TEXT NOT NULL, lift_s REAL NOT NULL, lower_s REAL NOT NULL,
   transit TEXT NOT NULL, transit_iterations INTEGER NOT NULL);
+CREATE TABLE IF NOT EXISTS run_car (
+  run_key TEXT PRIMARY KEY, turn_radius REAL NOT NULL, reverse INTEGER NOT NULL);
 CREATE TABLE IF NOT EXISTS replans (
   run_key TEXT NOT NULL, position INTEGER NOT NULL, fraction REAL NOT NULL, repair TEXT NOT NULL,
   obstacles INTEGER NOT NULL, requested INTEGER NOT NULL, obstacles_json TEXT NOT NULL, status TEXT NOT NULL,
@@ -103,7 +106,10 @@ CREATE TABLE IF NOT EXISTS merged_shards (
 const char* const kCoreTables[] = {"experiments", "walls", "runs", "metrics", "paths"};
 
 /// The columns of run_options a LEFT JOIN selects (alias o), in the order storedOptions reads.
-constexpr const char* kOptionColumns = "o.vehicle, o.lift_s, o.lower_s, o.transit, o.transit_iterations";
+constexpr const char* kOptionColumns =
+    "o.vehicle, o.lift_s, o.lower_s, o.transit, o.transit_iterations, car.turn_radius, car.reverse";
+/// The joins kOptionColumns needs (after the runs table, alias r).
+constexpr const char* kOptionJoins = " LEFT JOIN run_options o ON o.run_key = r.key LEFT JOIN run_car car ON car.run_key = r.key ";
 /// The vehicle and transit planner in columns i .. i + 4 (kOptionColumns): holonomic and
 /// visibility when the run has no row in run_options.
 void storedOptions(const Statement& s, int i, VehicleModel& vehicle, TransitSpec& transit) {
@@ -115,6 +121,10 @@ void storedOptions(const Statement& s, int i, VehicleModel& vehicle, TransitSpec
   vehicle.lower_s = s.columnReal(i + 2);
   transit.planner = s.columnText(i + 3);
   transit.iterations = s.columnInt(i + 4);
+  if (!s.columnNull(i + 5)) {
+    vehicle.turn_radius = s.columnReal(i + 5);
+    vehicle.reverse = s.columnInt(i + 6) != 0;
+  }
 }
 
 std::string utcNow() {
@@ -346,7 +356,7 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
   try {
     // A retried run replaces everything stored under its key.
     for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options",
-                              "replans", "replan_figures"}) {
+                              "run_car", "replans", "replan_figures"}) {
       Statement d(db_, std::string("DELETE FROM ") + table + " WHERE run_key = ?", file_);
       d.text(1, rec.key).run();
     }
@@ -371,6 +381,10 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
                   file_);
       v.text(1, rec.key).text(2, toString(spec.vehicle.kind)).real(3, spec.vehicle.lift_s).real(4, spec.vehicle.lower_s);
       v.text(5, spec.transit.planner).integer(6, spec.transit.iterations).run();
+    }
+    if (spec.vehicle.isCar()) {
+      Statement car(db_, "INSERT INTO run_car (run_key, turn_radius, reverse) VALUES (?,?,?)", file_);
+      car.text(1, rec.key).real(2, spec.vehicle.turn_radius).integer(3, spec.vehicle.reverse ? 1 : 0).run();
     }
     if (!rec.replans.empty()) {
       Statement rr(db_,
@@ -469,7 +483,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
                     std::string(kOptionColumns) + " FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
                 "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 "
-                "JOIN walls ws ON ws.hash = r.wall_hash LEFT JOIN run_options o ON o.run_key = r.key ORDER BY r.key",
+                "JOIN walls ws ON ws.hash = r.wall_hash" + std::string(kOptionJoins) + "ORDER BY r.key",
                 file_);
     s.integer(1, id);
     while (s.step()) {
@@ -674,8 +688,8 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
   Statement s(db_,
               "SELECT r.key, w.content, w.name, p.planner, p.params, r.tool_width, r.clearance, r.status, r.reason, " +
                   std::string(kOptionColumns) +
-                  " FROM runs r JOIN walls w ON w.hash = r.wall_hash JOIN planner_configs p ON p.id = r.config_id "
-                  "LEFT JOIN run_options o ON o.run_key = r.key "
+                  " FROM runs r JOIN walls w ON w.hash = r.wall_hash JOIN planner_configs p ON p.id = r.config_id" +
+                  std::string(kOptionJoins) +
               "WHERE r.key >= ?1 AND r.key < ?1 || 'g' ORDER BY r.key LIMIT 2",
               file_);
   s.text(1, key_prefix);

@@ -153,7 +153,9 @@ std::string runBaseKey(const RunSpec& spec) {
   text += "\ntool_width=" + exact(spec.tool.tool_width) + "\nclearance=" + exact(spec.tool.clearance) +
           "\nseed=" + std::to_string(spec.seed);
   if (spec.exact_judge) text += "\njudge=exact";
-  if (!spec.vehicle.isDefault())
+  if (spec.vehicle.isCar())
+    text += "\nvehicle=car\nturn_radius=" + exact(spec.vehicle.turn_radius) + "\nreverse=" + (spec.vehicle.reverse ? "1" : "0");
+  else if (!spec.vehicle.isDefault())
     text += "\nvehicle=" + toString(spec.vehicle.kind) + "\nlift_s=" + exact(spec.vehicle.lift_s) +
             "\nlower_s=" + exact(spec.vehicle.lower_s);
   if (!spec.transit.isDefault())

@@ -151,7 +151,9 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
                 {"uncovered_reachable_m2", number(r->uncovered_reachable_m2)},
                          {"metrics", m}};
     // Only a vehicle other than holonomic is named, so holonomic reports stay as they were.
-    if (!r->vehicle.isDefault())
+    if (r->vehicle.isCar())
+      run["vehicle"] = {{"model", "car"}, {"turn_radius", r->vehicle.turn_radius}, {"reverse", r->vehicle.reverse}};
+    else if (!r->vehicle.isDefault())
       run["vehicle"] = {{"model", toString(r->vehicle.kind)}, {"lift_s", r->vehicle.lift_s}, {"lower_s", r->vehicle.lower_s}};
     if (!r->transit.isDefault()) {
       Json figures = Json::object();

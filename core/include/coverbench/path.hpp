@@ -83,11 +83,7 @@ struct VehicleModel {
 /// must be rounding, nothing a wheel would notice. At a cusp of a reversing car the two tangents
 /// are opposite within the same tolerance.
 inline constexpr double kCarHeadingTolerance = 1e-6;
-/// Why experiment configs refuse a car for now: planning for it works (`coverbench plan --vehicle
-/// car`), but its run key, results tables and report do not carry the car yet.
-inline constexpr const char* kCarNotInExperimentsYet =
-    "experiments do not run a car yet (run keys and results tables do not carry it); plan for one with "
-    "`coverbench plan --vehicle car --turn-radius R [--reverse]` (docs/vehicles.md)";
+
 /// "holonomic", "gantry" or "car".
 std::string toString(VehicleModel::Kind kind);
 /// The kind named `name`; false when there is none.

@@ -25,7 +25,8 @@ def vehicle_text(a):
     for r in a.runs:
         v = r.get("vehicle")
         if v:
-            text = f"{v['model']} (lift {v['lift_s']:g} s, lower {v['lower_s']:g} s)"
+            text = (f"car (turn radius {v['turn_radius']:g} m, {'Reeds-Shepp: reverses' if v['reverse'] else 'Dubins: forward only'})"
+                    if v["model"] == "car" else f"{v['model']} (lift {v['lift_s']:g} s, lower {v['lower_s']:g} s)")
             if text not in named:
                 named.append(text)
     if not named:
