@@ -444,6 +444,9 @@ TEST_F(CarFiles, ExperimentsRunACarAndKeyStoreAndReportIt) {
             std::string::npos);
   EXPECT_NE(configError(base + "vehicle:\n  model: gantry\n  reverse: true\n").find("turn_radius and reverse belong to a car"),
             std::string::npos);
+  EXPECT_NE(configError(base + "vehicle:\n  model: car\nreplanning:\n  at: 0.5\n")
+                .find("e.yaml:11: replanning: is not built for a car yet"),
+            std::string::npos);
 
   // Run it: every run stored with its car, every path valid as the car drives it.
   std::string out;

@@ -444,6 +444,9 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
           c.replanning.repairs);
   }
 
+  if (c.replanning.enabled() && c.vehicle.isCar())
+    r.fail(*doc.find("replanning"), "replanning",
+           "is not built for a car yet: its repairs are straight moves a car cannot drive (docs/replanning.md)");
   if (const Yaml* n = doc.find("repetitions")) c.repetitions = static_cast<int>(r.integer(*n, "repetitions", 1, 1000));
   if (const Yaml* l = doc.find("limits")) {
     r.onlyKeys(*l, "limits", {"time_s", "memory_mb"});
