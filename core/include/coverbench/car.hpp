@@ -58,13 +58,16 @@ struct CarSmoothing {
   std::string reason;         ///< what was left out, for the plan's reason
 };
 
-/// Makes `path` drivable by the car of `ws` (its vehicle): each corner is rounded by an arc of the
-/// turn radius where that arc is free and fits its two segments; else replaced by the shortest
-/// Dubins / Reeds-Shepp curve from a point on the segment before to a point on one of the next
-/// three segments, the two points moved back from the corner (0 to 3 turn radii) until the curve is
-/// free; else the corner's segments are skipped to the first later one a free curve reaches. Every
-/// piece is checked (arcFree), so the result is valid wherever the input was; painting continues
-/// through a turn only when the segments on both sides are painted.
+/// Makes `path` drivable by the car of `ws` (its vehicle; docs/vehicles.md): a forward-only car
+/// first drops spurs (out and straight back). Then each corner is rounded by an arc of the turn
+/// radius where that arc is free and fits its two segments; else replaced by the shortest Dubins /
+/// Reeds-Shepp curve from a point moved back before the corner to a point moved on after it (0 to
+/// 3 turn radii each, past any corners between), the first that is free and does not loop; else
+/// skipped, tool off, to the first later segment a free curve reaches (from the corner or up to 8
+/// radii before it); else the car backs off to where it was 1, 2, 4, ... steps before and skips
+/// from there; else the path ends (`stopped`). Every piece is checked (arcFree), and the result is
+/// checked for the car's rules (std::logic_error on a slip). Painting continues through a turn
+/// only where the path it replaces was painted all along.
 CarSmoothing smoothForCar(const Workspace& ws, const Path& path);
 
 }  // namespace coverbench
