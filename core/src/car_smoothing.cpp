@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coverbench/car.hpp"
@@ -29,6 +30,15 @@ struct Segment {
 };
 
 double angleBetween(double from, double to) { return std::remainder(to - from, 2.0 * M_PI); }
+
+/// The headings segment k of `path` starts and ends with: its chord's, turned back and on by half
+/// an arc's angle.
+std::pair<double, double> headings(const Path& path, std::size_t k) {
+  const Point d = path.waypoints[k + 1] - path.waypoints[k];
+  const double chord = std::atan2(d.y, d.x), bulge = path.bulgeOf(k);
+  const double half = bulge == 0.0 ? 0.0 : 2.0 * std::atan(bulge);
+  return {chord - half, chord + half};
+}
 
 /// A curve that turns more than a quarter circle beyond what its two poses differ by is a loop (a
 /// Dubins car circling round to line up with a pose just beside it): painted, it scribbles
@@ -274,12 +284,8 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
   };
   auto cuspsOf = [&](const Path& piece) {
     std::size_t n = 0;
-    for (std::size_t k = 1; k < piece.segments(); ++k) {
-      const Point d0 = piece.waypoints[k] - piece.waypoints[k - 1], d1 = piece.waypoints[k + 1] - piece.waypoints[k];
-      const double h0 = std::atan2(d0.y, d0.x) + 2.0 * std::atan(piece.bulgeOf(k - 1));
-      const double h1 = std::atan2(d1.y, d1.x) - 2.0 * std::atan(piece.bulgeOf(k));
-      n += std::fabs(angleBetween(h0, h1)) > M_PI / 2.0;
-    }
+    for (std::size_t k = 1; k < piece.segments(); ++k)
+      n += std::fabs(angleBetween(headings(piece, k - 1).second, headings(piece, k).first)) > M_PI / 2.0;
     return n;
   };
   // Drives the path straight from x to the point at y (no corner between them), tool as the segment.
@@ -298,6 +304,27 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
   std::vector<Checkpoint> checkpoints;
   // The car is at arc length x, on the path, heading along it.
   double x = 0.0;
+  // Drives `curve` (from where the output ends), which leaves the path's painting `cut` m undriven
+  // and `skipped` segments out, to arc length `to`.
+  auto take = [&](const Path& curve, double to, double cut, std::size_t skipped) {
+    append(curve);
+    ++out.turns;
+    out.cusps += cuspsOf(curve);
+    out.cut_m += cut;
+    out.skipped += skipped;
+    x = to;
+  };
+  // Where a turn may start and end, in turn radii back before and on after a corner: fewest first.
+  static const std::vector<std::pair<double, double>> kTurnShifts = [] {
+    const double steps[] = {0.0, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0};
+    std::vector<std::pair<double, double>> shifts;
+    for (double back : steps)
+      for (double on : steps) shifts.emplace_back(back, on);
+    std::stable_sort(shifts.begin(), shifts.end(), [](const auto& u, const auto& v) {
+      return u.first + u.second < v.first + v.second || (u.first + u.second == v.first + v.second && u.first < v.first);
+    });
+    return shifts;
+  }();
   std::size_t corner = 1;  // the next vertex that may be a corner
   while (true) {
     if (checkpoints.empty() || checkpoints.back().x < x) checkpoints.push_back({out.path.waypoints.size(), x});
@@ -327,27 +354,17 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     // 2. A Dubins / Reeds-Shepp curve from a point moved back before the corner to a point moved
     //    on after it (in turn radii; fewest first), past any corners in between.
     bool done = false;
-    const double steps[] = {0.0, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0};
-    for (double sum = 0.0; sum <= 6.0 + 1e-9 && !done; sum += 0.25) {
-      for (double back : steps) {
-        const double on = sum - back;
-        if (on < -1e-9 || std::find_if(std::begin(steps), std::end(steps), [&](double v) { return std::fabs(v - on) < 1e-9; }) == std::end(steps))
-          continue;
-        const double from = at - back * rho, to = at + on * rho;
-        if (from < x || to > total) continue;
-        const Pose p = poseAt(from, true), q = poseAt(to, false);
-        const Path curve = carCurve(p, q, rho, car.reverse, paintedThrough(from, to));
-        if (curve.waypoints.empty() || loops(curve, p, q) || !pathFree(ws, curve)) continue;
-        driveTo(from);
-        append(curve);
-        ++out.turns;
-        out.cusps += cuspsOf(curve);
-        out.cut_m += paintedLength(from, to);
-        out.skipped += segmentAt(to) - segmentAt(from) > 1 ? segmentAt(to) - segmentAt(from) - 1 : 0;
-        x = to;
-        done = true;
-        break;
-      }
+    for (const auto& [back, on] : kTurnShifts) {
+      const double from = at - back * rho, to = at + on * rho;
+      if (from < x || to > total) continue;
+      const Pose p = poseAt(from, true), q = poseAt(to, false);
+      const Path curve = carCurve(p, q, rho, car.reverse, paintedThrough(from, to));
+      if (curve.waypoints.empty() || loops(curve, p, q) || !pathFree(ws, curve)) continue;
+      driveTo(from);
+      const std::size_t s0 = segmentAt(from), s1 = segmentAt(to);
+      take(curve, to, paintedLength(from, to), s1 - s0 > 1 ? s1 - s0 - 1 : 0);
+      done = true;
+      break;
     }
     if (done) continue;
     // 3. Skip, tool off: from the corner, or a point further back (a forward-only car facing a
@@ -360,12 +377,7 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
         const Path curve = carCurve(p, {segs[j].a, segs[j].heading}, rho, car.reverse, false);
         if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
         driveTo(from);
-        append(curve);
-        ++out.turns;
-        out.cusps += cuspsOf(curve);
-        out.cut_m += paintedLength(from, along[j]);
-        out.skipped += j - corner;
-        x = along[j];
+        take(curve, along[j], paintedLength(from, along[j]), j - corner);
         done = true;
       }
     }
@@ -382,12 +394,7 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
         out.path.waypoints.resize(c.waypoints);
         out.path.tool_on.resize(c.waypoints - 1);
         if (!out.path.bulge.empty()) out.path.bulge.resize(c.waypoints - 1);
-        append(curve);
-        ++out.turns;
-        out.cusps += cuspsOf(curve);
-        out.cut_m += paintedLength(c.x, along[j]);  // what it painted since is dropped too
-        out.skipped += j - segmentAt(c.x);
-        x = along[j];
+        take(curve, along[j], paintedLength(c.x, along[j]), j - segmentAt(c.x));  // what it painted since is dropped too
         checkpoints.resize(checkpoints.size() - steps);
         done = true;
       }
@@ -403,18 +410,17 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
   // and the plan fails with it rather than hand over a path the car cannot drive.
   double end_heading = 0.0;
   for (std::size_t k = 0; k < out.path.segments(); ++k) {
-    const Point a = out.path.waypoints[k], b = out.path.waypoints[k + 1];
     const double bulge = out.path.bulgeOf(k);
-    if (bulge != 0.0 && arcGeometry(a, b, bulge).radius < car.turn_radius)
+    if (bulge != 0.0 && arcGeometry(out.path.waypoints[k], out.path.waypoints[k + 1], bulge).radius < car.turn_radius)
       throw std::logic_error("car smoothing made an arc tighter than the turn radius at segment " + std::to_string(k));
-    const double chord = std::atan2(b.y - a.y, b.x - a.x), half = bulge == 0.0 ? 0.0 : 2.0 * std::atan(bulge);
+    const auto [start, end] = headings(out.path, k);
     if (k > 0) {
-      const double jump = std::fabs(angleBetween(end_heading, chord - half));
+      const double jump = std::fabs(angleBetween(end_heading, start));
       if (jump > kCarHeadingTolerance / 2.0 && !(car.reverse && jump > M_PI - kCarHeadingTolerance / 2.0))
         throw std::logic_error("car smoothing left a heading jump of " + std::to_string(jump) + " rad at segment " +
                                std::to_string(k));
     }
-    end_heading = chord + half;
+    end_heading = end;
   }
   char buf[200];
   if (out.stopped || out.skipped) {

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 #include "coverbench/judge.hpp"
 #include "exact_arcs.hpp"
@@ -76,17 +75,6 @@ FT squaredDistance(const P2& a, const P2& b, const P2& centre) {
   return CGAL::squared_distance(S2(a, b), centre);
 }
 
-/// The directions a segment starts and ends with, exactly: the chord's for a straight segment;
-/// for an arc, its radius at each end turned a quarter the arc's way.
-std::pair<V2, V2> tangents(const std::vector<P2>& points, std::size_t i, double bulge) {
-  if (bulge == 0.0) return {points[i + 1] - points[i], points[i + 1] - points[i]};
-  const ExactArc arc = exactArc({CGAL::to_double(points[i].x()), CGAL::to_double(points[i].y())},
-                                {CGAL::to_double(points[i + 1].x()), CGAL::to_double(points[i + 1].y())}, bulge, 1.0);
-  const V2 ra = points[i] - arc.centre, rb = points[i + 1] - arc.centre;
-  const FT t(arc.turn);
-  return {V2(-ra.y() * t, ra.x() * t), V2(-rb.y() * t, rb.x() * t)};
-}
-
 /// A car's rules, exactly: every arc's radius at least the turn radius; at every waypoint the
 /// next segment starts in the direction the last one ended (within kCarHeadingTolerance: the sine
 /// of the angle between them at most its sine, and the two facing the same way), or, for a car
@@ -99,8 +87,17 @@ void drivable(const Path& path, const VehicleModel& car, const std::vector<P2>& 
     if (points[i] == points[i + 1]) continue;
     const double bulge = path.bulge.empty() ? 0.0 : path.bulge[i];
     bool bad = false;
-    if (bulge != 0.0 && exactArc(path.waypoints[i], path.waypoints[i + 1], bulge, 1.0).radius2 < rho * rho) bad = true;
-    const auto [start, end] = tangents(points, i, bulge);
+    // The directions it starts and ends with, exactly: the chord's for a straight segment; for an
+    // arc, its radius at each end turned a quarter the arc's way.
+    V2 start = points[i + 1] - points[i], end = start;
+    if (bulge != 0.0) {
+      const ExactArc arc = exactArc(path.waypoints[i], path.waypoints[i + 1], bulge, 1.0);
+      if (arc.radius2 < rho * rho) bad = true;
+      const V2 ra = points[i] - arc.centre, rb = points[i + 1] - arc.centre;
+      const FT t(arc.turn);
+      start = V2(-ra.y() * t, ra.x() * t);
+      end = V2(-rb.y() * t, rb.x() * t);
+    }
     if (have) {
       const FT cross = before.x() * start.y() - before.y() * start.x();
       const FT dot = before * start;
