@@ -36,7 +36,8 @@ VehicleModel resolveVehicle(const VehicleOptions& given, VehicleModel base) {
     throw InputError("--vehicle", "vehicle", "must be holonomic, gantry or car, not '" + *given.model + "'");
   if ((given.lift_s || given.lower_s) && !base.liftsTool())
     throw InputError(given.lift_s ? "--lift-s" : "--lower-s", "vehicle",
-                     "lift and lower times belong to a gantry (--vehicle gantry); a holonomic vehicle never lifts its tool");
+                     std::string("lift and lower times belong to a gantry (--vehicle gantry); ") +
+                         (base.isCar() ? "a car" : "a holonomic vehicle") + " never lifts its tool");
   if ((given.turn_radius || given.reverse) && !base.isCar())
     throw InputError(given.turn_radius ? "--turn-radius" : "--reverse", "vehicle",
                      "a turn radius and reversing belong to a car (--vehicle car)");

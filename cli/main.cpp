@@ -1,13 +1,57 @@
 // The `coverbench` command. Every user error surfaces here as one line on stderr and exit code 2.
 #include <CLI/CLI.hpp>
 
+#include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
 #include "coverbench/metric_spec.hpp"
 #include "coverbench/wall.hpp"
+
+namespace {
+
+/// Every option's value, read one way before CLI11 converts it: an empty value is refused (CLI11
+/// keeps the default for `--turn-radius ""`), and a number must be one its option's type holds
+/// (CLI11 saturates `--experiment 99999999999999999999` to the largest long long) and finite.
+CLI::Validator valueReader(const std::string& type) {
+  return CLI::Validator(
+      [type](std::string& value) -> std::string {
+        if (value.empty()) return "must not be empty";
+        if (type == "INT" || type == "UINT") {
+          const char* first = value.data();
+          const char* last = value.data() + value.size();
+          if (type == "UINT" && *first == '-') return "must be a whole number of at least 0, got '" + value + "'";
+          long long s = 0;
+          unsigned long long u = 0;
+          const auto [end, ec] = type == "INT" ? std::from_chars(first, last, s) : std::from_chars(first, last, u);
+          if (ec == std::errc::result_out_of_range)
+            return "must be a whole number of at most " +
+                   (type == "INT" ? std::to_string(std::numeric_limits<long long>::max())
+                                  : std::to_string(std::numeric_limits<unsigned long long>::max())) +
+                   ", got '" + value + "'";
+          if (ec != std::errc() || end != last) return "must be a whole number, got '" + value + "'";
+        } else if (type == "FLOAT") {
+          char* end = nullptr;
+          const double v = std::strtod(value.c_str(), &end);
+          if (end != value.c_str() + value.size() || !std::isfinite(v)) return "must be a finite number, got '" + value + "'";
+        }
+        return std::string();
+      },
+      "", "value");
+}
+
+void readValuesOneWay(CLI::App& app) {
+  for (CLI::Option* option : app.get_options())
+    if (option->get_type_size_max() > 0) option->check(valueReader(option->get_type_name()));
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) readValuesOneWay(*sub);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"CoverBench: benchmark 2-D coverage path planners"};
@@ -177,6 +221,7 @@ int main(int argc, char** argv) {
                          "draw the run's repair number N after surprise obstacles (0-based; docs/replanning.md)");
   redraw_cmd->callback([&] { plan_exit = coverbench::cli::redrawCommand(redraw); });
 
+  readValuesOneWay(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -2,13 +2,15 @@
 // gallery drawn here, and the analysis (statistics, plots, pages, tables) is reports/python's,
 // run with Debian's python3 (matplotlib, scipy).
 #include <fcntl.h>
-#include <spawn.h>
+#include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -46,13 +48,35 @@ std::string envOr(const char* name, const std::string& fallback) {
   return v && *v ? v : fallback;
 }
 
-/// A folder next to `target` that is removed unless released.
+/// Whether process `pid` is alive (signal 0 tells; a process of another user counts as alive).
+bool processAlive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
+
+/// Removes what killed writers left next to `target`: ".NAME.staging-PID" and ".NAME.old-PID"
+/// folders whose process is gone.
+void removeLeftovers(const fs::path& parent, const std::string& name) {
+  std::error_code ec;
+  for (const char* kind : {".staging-", ".old-"}) {
+    const std::string prefix = "." + name + kind;
+    for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string file = it->path().filename().string();
+      if (file.rfind(prefix, 0) != 0) continue;
+      const std::string digits = file.substr(prefix.size());
+      if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+      if (!processAlive(std::stol(digits))) fs::remove_all(it->path(), ec);
+    }
+  }
+}
+
+/// A folder next to `target` that is removed unless published. Publishing swaps it with the
+/// target in one step (renameat2 RENAME_EXCHANGE), so a reader sees the old report or the new
+/// one, never none; a kill at any moment leaves at most a leftover that the next writer removes.
 class Staging {
  public:
   explicit Staging(const fs::path& target) {
     const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
     std::error_code ec;
     fs::create_directories(parent, ec);
+    removeLeftovers(parent, target.filename().string());
     path_ = parent / ("." + target.filename().string() + ".staging-" + std::to_string(::getpid()));
     fs::remove_all(path_, ec);
     if (!fs::create_directories(path_, ec) || ec)
@@ -63,20 +87,19 @@ class Staging {
     if (!path_.empty()) fs::remove_all(path_, ec);
   }
   const fs::path& path() const { return path_; }
-  /// Moves the staged folder to `target`, replacing an earlier report there.
+  /// Puts the staged folder at `target`, replacing an earlier report there in one step.
   void publish(const fs::path& target) {
     std::error_code ec;
     std::ofstream(path_ / kReportMarker) << "written by coverbench report\n";
-    fs::path old;
     if (fs::exists(target)) {
-      old = target.parent_path() / ("." + target.filename().string() + ".old-" + std::to_string(::getpid()));
-      fs::rename(target, old, ec);
-      if (ec) throw InputError(target.string(), "--out", "cannot replace it: " + ec.message());
+      if (::renameat2(AT_FDCWD, path_.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) != 0)
+        throw InputError(target.string(), "--out", std::string("cannot replace it: ") + std::strerror(errno));
+      fs::remove_all(path_, ec);  // the old report, now at the staging name
+    } else {
+      fs::rename(path_, target, ec);
+      if (ec) throw InputError(target.string(), "--out", "cannot write it: " + ec.message());
     }
-    fs::rename(path_, target, ec);
-    if (ec) throw InputError(target.string(), "--out", "cannot write it: " + ec.message());
     path_.clear();
-    if (!old.empty()) fs::remove_all(old, ec);
   }
 
  private:
@@ -136,7 +159,8 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
     pictures[i]->file = "gallery/" + stems[i] + ".svg";
     std::ofstream out(folder / pictures[i]->file, std::ios::binary);
     out << svgs[i];
-    if (!out) throw InputError((folder / pictures[i]->file).string(), "gallery", "cannot be written");
+    out.flush();  // a full disk shows here, with its reason in errno
+    if (!out) throw InputError((folder / pictures[i]->file).string(), "gallery", std::string("cannot be written: ") + std::strerror(errno));
   }
 }
 
@@ -155,36 +179,46 @@ ResultSet loadResults(ResultsDb& db, const ReportOptions& o) {
 void runAnalysis(const std::string& data, const std::string& folder, const std::string& formats) {
   const std::string python = envOr("COVERBENCH_PYTHON", "/usr/bin/python3");
   const std::string pythonpath = envOr("COVERBENCH_REPORT_PYTHONPATH", COVERBENCH_REPORT_PYTHONPATH);
+  // No __pycache__ in the source tree (PYTHONDONTWRITEBYTECODE), whatever the caller's environment.
   std::vector<std::string> env_text = {"PYTHONPATH=" + pythonpath, "MPLBACKEND=Agg", "PYTHONHASHSEED=0",
-                                       "MPLCONFIGDIR=" + folder + "/.matplotlib"};
+                                       "MPLCONFIGDIR=" + folder + "/.matplotlib", "PYTHONDONTWRITEBYTECODE=1"};
   std::vector<char*> env;
   for (std::string& e : env_text) env.push_back(e.data());
   for (char** e = environ; *e; ++e) {
     const std::string v = *e;
-    if (v.rfind("PYTHONPATH=", 0) && v.rfind("MPLBACKEND=", 0) && v.rfind("PYTHONHASHSEED=", 0) &&
-        v.rfind("MPLCONFIGDIR=", 0))
-      env.push_back(*e);
+    const bool ours = std::any_of(env_text.begin(), env_text.end(),
+                                  [&](const std::string& t) { return v.compare(0, t.find('=') + 1, t, 0, t.find('=') + 1) == 0; });
+    if (!ours) env.push_back(*e);
   }
   env.push_back(nullptr);
   std::vector<std::string> args = {python, "-m", "coverbench_report", data, "--out", folder, "--formats", formats};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int rc = ::posix_spawn(&pid, python.c_str(), &actions, nullptr, argv.data(), env.data());
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0)
-    throw InputError(python, "report", "cannot start the analysis (" + std::string(std::strerror(rc)) +
-                                           "): it needs python3 with matplotlib and scipy (Debian: python3-matplotlib "
-                                           "python3-scipy; scripts/setup.sh installs them)");
+  // The analysis dies with its parent (a killed `coverbench` leaves no child writing into its
+  // staging folder); it is checked again after the death signal is set, in case the parent died
+  // in between. Only async-signal-safe calls between fork and exec.
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0)
+    throw InputError(python, "report", "cannot start the analysis (" + std::string(std::strerror(errno)) + ")");
+  if (pid == 0) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(127);
+    const int devnull = ::open("/dev/null", O_WRONLY);
+    if (devnull >= 0) ::dup2(devnull, STDOUT_FILENO);
+    ::execve(python.c_str(), argv.data(), env.data());
+    ::_exit(127);  // exec failed
+  }
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   std::error_code ec;
   fs::remove_all(fs::path(folder) / ".matplotlib", ec);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 127 && ::access(python.c_str(), X_OK) != 0)
+    throw InputError(python, "report", "cannot start the analysis (" + std::string(std::strerror(errno)) +
+                                           "): it needs python3 with matplotlib and scipy (Debian: python3-matplotlib "
+                                           "python3-scipy; scripts/setup.sh installs them)");
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw std::runtime_error("the analysis (" + python + " -m coverbench_report, reports/python) failed with " +
                              (WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
@@ -208,7 +242,8 @@ std::string writeReport(const ReportOptions& o) {
   {
     std::ofstream out(data, std::ios::binary);
     out << reportDataJson(results, record, gallery);
-    if (!out) throw InputError(data.string(), "report", "cannot be written");
+    out.flush();
+    if (!out) throw InputError(data.string(), "report", std::string("cannot be written: ") + std::strerror(errno));
   }
   runAnalysis(data.string(), staging.path().string(), "html,md,csv,latex");
   staging.publish(target);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "coverbench/limits.hpp"
 #include "coverbench/car.hpp"
 #include "coverbench/datasets.hpp"
 #include "coverbench/experiment.hpp"
@@ -310,7 +311,7 @@ TEST(CarSmoothing, TurnsAtPassEndsAndNeverMakesAPathInvalid) {
 /// whatever it leaves out. Stress walls: the next suite.
 class CarFamilies : public testing::TestWithParam<std::string> {
  protected:
-  void check(const Wall& wall, bool exact) {
+  void check(const Wall& wall, bool exact, double radius = 0.3) {
     for (const std::string& name : test::plannerNames()) {
       const PlannerInfo& info = findPlanner(name);
       for (bool reverse : {false, true}) {
@@ -318,7 +319,7 @@ class CarFamilies : public testing::TestWithParam<std::string> {
         problem.wall = &wall;
         problem.tool = kTool;
         problem.params = resolveParams(info, {});
-        problem.vehicle = car(0.3, reverse);
+        problem.vehicle = car(radius, reverse);
         const PlanResult r = runPlanner(info, problem, Budget());
         ASSERT_TRUE(r.hasPath()) << name << " " << reverse << ": " << toString(r.status) << " " << r.reason;
         const std::string where = wall.name + " " + name + (reverse ? " reeds-shepp" : " dubins");
@@ -337,6 +338,14 @@ TEST_P(CarFamilies, EveryPlannersSmoothedPathIsValidAndDrivable) {
   const Wall wall = family == "seed-cases" ? generateWall(family, 0, 3) : generateWall(family, 3, 0);
   // The exact judge takes seconds on a car's path (its arcs as chords of 1e-7 m): on one family.
   check(wall, family == "residential");
+}
+
+// The range of turn radii is one that works: at its smallest (1 mm; 1e-8 m used to pass the range
+// check and end every planner in `error`) every planner plans a valid, drivable path.
+TEST_P(CarFamilies, AtTheSmallestTurnRadiusEveryPlannerPlans) {
+  const std::string family = GetParam();
+  const Wall wall = family == "seed-cases" ? generateWall(family, 0, 3) : generateWall(family, 3, 0);
+  check(wall, false, kMinTurnRadius);
 }
 
 INSTANTIATE_TEST_SUITE_P(Families, CarFamilies,
@@ -438,7 +447,7 @@ TEST_F(CarFiles, ExperimentsRunACarAndKeyStoreAndReportIt) {
   EXPECT_NE(a[0].key, b[0].key);
   EXPECT_NE(b[0].key, c[0].key) << "reversing is part of the run";
   auto configError = [&](const std::string& text) { return test::inputError([&] { loadExperimentConfig(write("e.yaml", text)); }); };
-  EXPECT_NE(configError(base + "vehicle:\n  model: car\n  turn_radius: 0\n").find("e.yaml:10: vehicle.turn_radius: must be in (0, 10000]"),
+  EXPECT_NE(configError(base + "vehicle:\n  model: car\n  turn_radius: 0\n").find("e.yaml:10: vehicle.turn_radius: must be in [0.001, 10000]"),
             std::string::npos);
   EXPECT_NE(configError(base + "vehicle:\n  model: car\n  lift_s: 1\n").find("lift_s and lower_s belong to a gantry; a car never lifts"),
             std::string::npos);

@@ -1,6 +1,7 @@
 // The registry and parameter resolution.
 #include <gtest/gtest.h>
 
+#include "coverbench/build_identity.hpp"
 #include "coverbench/limits.hpp"
 #include "coverbench/registry.hpp"
 
@@ -24,6 +25,24 @@ TEST(Registry, FoundationPlannersAreRegistered) {
       }
     }
   }
+}
+
+// A planner's code folders are in its run keys: each must be a folder of algorithms/ with code in
+// it, or a changed planner's stored runs would be reused (a misspelt folder used to hash as empty).
+TEST(Registry, EveryPlannersCodeFoldersExistAndAMisspeltOneIsAnError) {
+  const BuildIdentity& id = buildIdentity();
+  for (const PlannerInfo& p : registeredPlanners()) {
+    EXPECT_FALSE(p.code_folders.empty()) << p.name << " names no code folder";
+    for (const std::string& f : p.code_folders) {
+      ASSERT_TRUE(id.folder_code_sha256.count(f)) << p.name << ": algorithms/" << f << " is not a folder";
+      // SHA-256 of nothing: a folder without a .cpp or .hpp file.
+      EXPECT_NE(id.folder_code_sha256.at(f), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855") << f;
+    }
+    EXPECT_NO_THROW(id.plannerCode(p.code_folders)) << p.name;
+  }
+  EXPECT_THROW(id.plannerCode({"zigzg"}), std::logic_error);
+  // Two planners' folders give two identities; a folder's code changes its planner's identity only.
+  EXPECT_NE(id.plannerCode({"zigzag"}), id.plannerCode({"spiral"}));
 }
 
 TEST(Registry, UnknownPlannerListsKnownOnes) {

@@ -306,8 +306,9 @@ TEST_F(ReplanningExperiments, TheConfigSectionIsCheckedAndOnlyReplanningChangesT
 
   const std::string at = base_ + "replanning:\n";
   EXPECT_NE(configError(at + "  obstacles: 2\n").find("exp.yaml:11: replanning.at: missing"), std::string::npos);
-  EXPECT_NE(configError(at + "  at: 1\n").find("replanning.at: must be below 1"), std::string::npos);
-  EXPECT_NE(configError(at + "  at: 0\n").find("replanning.at: must be in (0, 1]"), std::string::npos);
+  // The range says what it takes: 0 and 1 are both refused, and it says so.
+  EXPECT_NE(configError(at + "  at: 1\n").find("replanning.at: must be in (0, 1), got 1"), std::string::npos);
+  EXPECT_NE(configError(at + "  at: 0\n").find("replanning.at: must be in (0, 1), got 0"), std::string::npos);
   EXPECT_NE(configError(at + "  at: [0.5, 0.5]\n").find("replanning.at: lists 0.5 twice"), std::string::npos);
   EXPECT_NE(configError(at + "  at: 0.5\n  obstacles: 0\n").find("replanning.obstacles: must be in [1, 20]"), std::string::npos);
   EXPECT_NE(configError(at + "  at: 0.5\n  kinds: [crane]\n").find("replanning.kinds: must be scaffolding, ladder or duct, not 'crane'"),

@@ -95,6 +95,87 @@ TEST_F(Shards, ThePartitionCoversEveryRunOnceAndNoRunMovesWhenTheConfigGrows) {
   EXPECT_EQ(shardOf(r, 1), 0u);
 }
 
+// Every axis a config can have (datasets, a parameter sweep, tool widths x clearances, transit
+// planners; repetitions and replanning make no runs of their own) is counted once, by the
+// expansion: each shard's count of the config's runs is the whole expansion's.
+TEST_F(Shards, EveryShardCountsEveryAxisOfTheConfigAsTheExpansionDoes) {
+  const std::string text = R"(name: axes
+output: out
+datasets:
+  - suite: seed-cases
+  - family: facade
+    count: 2
+    seed: 3
+planners:
+  - name: zigzag
+    params:
+      sweep_angle: [0, 90]
+  - boustrophedon
+tool:
+  width: [0.1, 0.2]
+  clearance: [0.0, 0.02, 0.05]
+transit:
+  planner: [visibility, rrtstar, bitstar]
+  iterations: 100
+replanning:
+  at: [0.5]
+  repairs: [replan, detour]
+repetitions: 2
+)";
+  std::vector<WallEntry> walls;
+  ExperimentConfig config;
+  const std::vector<RunSpec> all = runsOf(text, "axes.yaml", walls, config);
+  // By hand: 11 walls x (2 + 1) planner configurations x 2 widths x 3 clearances x 3 transits.
+  ASSERT_EQ(walls.size(), 11u);
+  EXPECT_EQ(all.size(), 11u * 3u * 6u * 3u);
+  EXPECT_EQ(plannedRuns(config), all.size());
+  std::set<std::string> keys;
+  for (const RunSpec& r : all) keys.insert(r.key);
+  EXPECT_EQ(keys.size(), all.size()) << "two expanded runs share a key";
+  std::size_t in_shards = 0;
+  for (unsigned i = 0; i < 5; ++i) {
+    std::size_t expanded = 0;
+    const std::vector<RunSpec> mine =
+        expandRuns(config, walls, [i](const RunSpec& r) { return shardOf(r, 5) == i; }, &expanded);
+    EXPECT_EQ(expanded, all.size()) << "shard " << i << "/5 counts the config's runs otherwise";
+    in_shards += mine.size();
+  }
+  EXPECT_EQ(in_shards, all.size());
+}
+
+// A config with a transit list, sharded and merged, equals one process (the shards used to record
+// the config's runs without the transit axis, and the merge refused them).
+TEST_F(Shards, AConfigWithATransitListMergesAfterShardingAndEqualsOneProcess) {
+  const std::string text = R"(name: transits
+output: out
+datasets:
+  - suite: seed-cases
+planners: [zigzag]
+tool:
+  width: 0.1
+  clearance: 0.02
+transit:
+  planner: [visibility, rrtstar]
+  iterations: 200
+seed: 1
+)";
+  fs::create_directories(dir_ / "single");
+  std::ofstream(dir_ / "single" / "c.yaml") << text;
+  ASSERT_EQ(run("run " + (dir_ / "single" / "c.yaml").string() + " --no-report").exit_code, 0);
+  const std::string cfg = write("c.yaml", text);
+  std::string out, shards;
+  for (int i = 0; i < 3; ++i) {
+    const test::CommandRun r = run("run " + cfg + " --shard " + std::to_string(i) + "/3", &out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(out.find("of the config's 18 runs"), std::string::npos) << out;
+    shards += " " + db("out/shards/shard-" + std::to_string(i) + "-of-3.sqlite");
+  }
+  const test::CommandRun merged = run("merge " + db("out/results.sqlite") + shards, &out);
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  EXPECT_NE(out.find("18 runs, 18 copied"), std::string::npos) << out;
+  EXPECT_EQ(test::dumpRuns(db("out/results.sqlite")), test::dumpRuns(db("single/out/results.sqlite")));
+}
+
 TEST_F(Shards, ShardedThenMergedEqualsOneProcessRunKeyByRunKeyAndMergingAgainChangesNothing) {
   fs::create_directories(dir_ / "single");
   const std::string single_cfg = (dir_ / "single" / "c.yaml").string();
@@ -249,6 +330,68 @@ TEST_F(Shards, MergeRefusesWhatCannotBeMergedAndWritesNothing) {
   refused(s0 + " " + s1 + " " + db("s1-tampered.sqlite"), "has another result than the one already merged");
 }
 
+// Inputs are never written: a shard as OUT, the same file under another name (a hard link), and a
+// refused merge onto an existing output all leave every file's bytes as they were.
+TEST_F(Shards, AMergeNeverWritesItsInputsAndARefusedOneLeavesTheOutputsBytes) {
+  const std::string cfg = write("c.yaml", kConfig);
+  for (int i : {0, 1}) ASSERT_EQ(run("run " + cfg + " --shard " + std::to_string(i) + "/2").exit_code, 0);
+  const std::string s0 = db("out/shards/shard-0-of-2.sqlite"), s1 = db("out/shards/shard-1-of-2.sqlite");
+  const std::string s0_bytes = slurp(s0), s1_bytes = slurp(s1);
+  auto refused = [&](const std::string& args, const std::string& expected) {
+    const test::CommandRun r = run("merge " + args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    EXPECT_TRUE(slurp(s0) == s0_bytes && slurp(s1) == s1_bytes) << "a shard was written: " << args;
+  };
+  // A shard as the output: it would hold a merged experiment and never merge again.
+  refused(s0 + " " + s1, "shard-0-of-2.sqlite: output: is a shard database");
+  fs::copy_file(s0, db("shard0-copy.sqlite"));
+  refused(db("shard0-copy.sqlite") + " " + s0 + " " + s1, "output: is a shard database");
+  // The output is a hard link of a shard: the same file.
+  fs::create_hard_link(s1, db("link.sqlite"));
+  refused(db("link.sqlite") + " " + s0 + " " + s1, "is the output database itself");
+  // A refused merge onto an existing merged output changes none of its bytes (SQLite's header
+  // counts every write: opening it for writing used to bump it).
+  std::string out;
+  ASSERT_EQ(run("merge " + db("merged.sqlite") + " " + s0 + " " + s1, &out).exit_code, 0) << out;
+  const std::string merged = slurp(db("merged.sqlite"));
+  fs::copy_file(s1, db("s1-tampered.sqlite"));
+  test::sqlRows(db("s1-tampered.sqlite"),
+                "UPDATE metrics SET value = value + 1 WHERE run_key = (SELECT MIN(run_key) FROM metrics) AND name = "
+                "(SELECT MIN(name) FROM metrics)");
+  const test::CommandRun r = run("merge " + db("merged.sqlite") + " " + s0 + " " + db("s1-tampered.sqlite"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("has another result than the one already merged"), std::string::npos) << r.err;
+  EXPECT_TRUE(slurp(db("merged.sqlite")) == merged) << "a refused merge changed the output's bytes";
+}
+
+// A file that is not a results database is named for what it is, by every command that reads one.
+TEST_F(Shards, AnEmptyFileIsNotAResultsDatabaseForEveryCommandThatReadsOne) {
+  const std::string empty = write("empty.sqlite", "");
+  for (const std::string& command :
+       {"report " + empty + " --format md", "report " + empty + " --out " + db("rep"), "runs " + empty, "runs " + empty + " --list",
+        "export-ompl " + empty + " --out " + db("ompl"), "redraw " + empty + " --run abcdef --svg " + db("x.svg"),
+        "merge " + db("m.sqlite") + " " + empty}) {
+    const test::CommandRun r = run(command);
+    EXPECT_EQ(r.exit_code, 2) << command;
+    EXPECT_NE(r.err.find("empty.sqlite: (database): is not a CoverBench results database (an empty file)"), std::string::npos)
+        << command << ": " << r.err;
+    EXPECT_EQ(fs::file_size(empty), 0u) << command;
+    EXPECT_FALSE(fs::exists(db("m.sqlite")) || fs::exists(db("rep")) || fs::exists(db("x.svg"))) << command;
+  }
+  // An SQLite database with no tables likewise (a reader finds nothing to read in it).
+  {
+    sqlite3* raw = nullptr;
+    ASSERT_EQ(sqlite3_open(db("bare.sqlite").c_str(), &raw), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(raw, "PRAGMA user_version = 0; VACUUM", nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(raw);
+  }
+  const test::CommandRun r = run("runs " + db("bare.sqlite"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("is not a CoverBench results database"), std::string::npos) << r.err;
+}
+
 TEST_F(Shards, TheSlurmCommandWritesBothScriptsOrNothing) {
   const std::string cfg = write("c.yaml", kConfig);
   std::string out;
@@ -301,6 +444,20 @@ TEST_F(Shards, AResultsFileWithoutTablesIsTakenAsNewAndOneWithDataIsNot) {
   }
   EXPECT_NE(inputError([&] { ResultsDb{other}; }).find("is not a CoverBench results database"), std::string::npos);
   EXPECT_EQ(test::sqlRows(other, "SELECT COUNT(*) FROM sqlite_master"), "1\n");
+  // Another program's WAL database, refused, keeps only what it had beside it (SQLite makes -wal
+  // and -shm files for any connection to it, even one that only reads).
+  const std::string wal = db("wal.sqlite");
+  {
+    sqlite3* raw = nullptr;
+    ASSERT_EQ(sqlite3_open(wal.c_str(), &raw), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(raw, "PRAGMA journal_mode = WAL; CREATE TABLE notes (text TEXT)", nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(raw);
+  }
+  ASSERT_FALSE(fs::exists(wal + "-wal"));
+  for (ResultsDb::Mode mode : {ResultsDb::Mode::ReadOnly, ResultsDb::Mode::ReadWrite}) {
+    EXPECT_NE(inputError([&] { ResultsDb(wal, mode); }).find("is not a CoverBench results database"), std::string::npos);
+    EXPECT_FALSE(fs::exists(wal + "-wal") || fs::exists(wal + "-shm")) << "files left beside a refused database";
+  }
 }
 
 TEST(SlurmScripts, AnArrayOfShardsAndAMergeJobWithTheGivenResources) {

@@ -3,6 +3,8 @@
 
 #include "coverbench/hash.hpp"
 
+#include <stdexcept>
+
 namespace coverbench {
 
 std::string BuildIdentity::plannerCode(const std::vector<std::string>& folders) const {
@@ -10,7 +12,10 @@ std::string BuildIdentity::plannerCode(const std::vector<std::string>& folders) 
                      "\nbuild_type=" + build_type + "\nflags=" + flags;
   for (const std::string& f : folders) {
     const auto it = folder_code_sha256.find(f);
-    text += "\nfolder." + f + "=" + (it == folder_code_sha256.end() ? std::string() : it->second);
+    // A misspelt folder would hash as empty, and a changed planner's stored runs would be reused.
+    if (it == folder_code_sha256.end())
+      throw std::logic_error("code folder '" + f + "' is not a folder of algorithms/ (a planner's code_folders is misspelt)");
+    text += "\nfolder." + f + "=" + it->second;
   }
   return sha256Hex(text);
 }

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <set>
 
 #include "coverbench/files.hpp"
@@ -19,8 +20,13 @@ InputError::InputError(std::string source, std::string field, std::string proble
       problem_(std::move(problem)) {}
 
 std::string shortNumber(double v) {
+  // Six significant digits, or as many more as it takes to read back as v: 3600.0000001 is not
+  // printed as the bound 3600 it exceeds, and 0.1 stays 0.1.
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v || !std::isfinite(v)) break;
+  }
   return buf;
 }
 

@@ -120,7 +120,7 @@ class Reader {
     if (!n.isScalar()) fail(n, field, "must be a single value");
     return n.scalar;
   }
-  double number(const Yaml& n, const std::string& field, double lo, double hi, bool open_lo = false) const {
+  double number(const Yaml& n, const std::string& field, double lo, double hi, bool open_lo = false, bool open_hi = false) const {
     const std::string t = text(n, field);
     double v = 0.0;
     std::size_t used = 0;
@@ -130,8 +130,9 @@ class Reader {
       used = 0;
     }
     if (used != t.size() || t.empty() || !std::isfinite(v)) fail(n, field, "must be a number, got '" + t + "'");
-    if (v < lo || v > hi || (open_lo && v == lo))
-      fail(n, field, "must be in " + std::string(open_lo ? "(" : "[") + toString(lo) + ", " + toString(hi) + "], got " + t);
+    if (v < lo || v > hi || (open_lo && v == lo) || (open_hi && v == hi))
+      fail(n, field, "must be in " + std::string(open_lo ? "(" : "[") + toString(lo) + ", " + toString(hi) + (open_hi ? ")" : "]") +
+                         ", got " + t);
     return v;
   }
   long long integer(const Yaml& n, const std::string& field, long long lo, long long hi) const {
@@ -373,7 +374,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     if (const Yaml* t = v->find("lift_s")) c.vehicle.lift_s = r.number(*t, "vehicle.lift_s", 0.0, kMaxLiftTime);
     if (const Yaml* t = v->find("lower_s")) c.vehicle.lower_s = r.number(*t, "vehicle.lower_s", 0.0, kMaxLiftTime);
     if (const Yaml* t = v->find("turn_radius"))
-      c.vehicle.turn_radius = r.number(*t, "vehicle.turn_radius", 0.0, kMaxExtent, true);
+      c.vehicle.turn_radius = r.number(*t, "vehicle.turn_radius", kMinTurnRadius, kMaxExtent);  // validateVehicle's range
     if (const Yaml* t = v->find("reverse")) c.vehicle.reverse = r.boolean(*t, "vehicle.reverse");
     if (!c.vehicle.liftsTool() && (v->find("lift_s") || v->find("lower_s")))
       r.fail(*v, "vehicle", "lift_s and lower_s belong to a gantry; a " + name + " never lifts its tool");
@@ -416,8 +417,8 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     const Yaml* at = p->find("at");
     if (!at) r.fail(*p, "replanning.at", "missing (fractions of the path's length, e.g. [0.3, 0.7])");
     for (const Yaml* v : r.values(*at, "replanning.at")) {
-      const double f = r.number(*v, "replanning.at", 0.0, 1.0, true);
-      if (f >= 1.0) r.fail(*v, "replanning.at", "must be below 1 (at the end nothing is left to repair), got " + v->scalar);
+      // At 0 nothing was driven yet, at 1 nothing is left to repair.
+      const double f = r.number(*v, "replanning.at", 0.0, 1.0, true, true);
       if (std::find(c.replanning.at.begin(), c.replanning.at.end(), f) != c.replanning.at.end())
         r.fail(*v, "replanning.at", "lists " + v->scalar + " twice");
       c.replanning.at.push_back(f);
@@ -476,8 +477,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
 std::size_t plannedRuns(const ExperimentConfig& config) {
   std::size_t walls = 0;
   for (const DatasetSpec& d : config.datasets) walls += d.count;
-  return walls * config.planners.size() * config.tools.size() * config.transits.size() *
-         static_cast<std::size_t>(config.repetitions);
+  return walls * runsPerWall(config);
 }
 
 }  // namespace coverbench

@@ -50,6 +50,16 @@ std::string firstKeys(const std::vector<std::string>& keys) {
   return out + (keys.size() > 3 ? ", ..." : "");
 }
 
+/// Whether a CoverBench results database holds a shard's experiments (read only).
+bool isShardDatabase(const std::string& path) {
+  ResultsDb check(path, ResultsDb::Mode::ReadOnly);  // a CoverBench database of this schema, or an InputError
+  const ReadConnection connection(path);
+  Statement t(connection.db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'experiment_shard'", path);
+  if (!t.step()) return false;
+  Statement n(connection.db, "SELECT 1 FROM experiment_shard LIMIT 1", path);
+  return n.step();
+}
+
 /// Reads what the merge needs from one shard file (opened read-only; never written).
 ShardFile readShard(const std::string& path) {
   ResultsDb check(path, ResultsDb::Mode::ReadOnly);  // a CoverBench database of this schema, or an InputError
@@ -232,15 +242,22 @@ MergeSummary mergeShards(const MergeOptions& options) {
   std::set<std::string> seen_paths;
   std::error_code ec;
   const fs::path out_path = fs::weakly_canonical(options.out, ec);
+  const bool out_exists = fs::exists(options.out, ec);
   for (const std::string& path : options.shards) {
     const std::string canonical = fs::weakly_canonical(path, ec).string();
-    if (canonical == out_path.string()) throw InputError(path, "shards", "is the output database itself");
+    // The same file by another name too (a hard link, a bind mount): inputs are never written.
+    if (canonical == out_path.string() || (out_exists && fs::exists(path, ec) && fs::equivalent(path, options.out, ec)))
+      throw InputError(path, "shards", "is the output database itself (" + options.out + "): a merge never writes its inputs");
     if (!seen_paths.insert(canonical).second) {
       summary.notes.push_back(path + " given twice: read once");
       continue;
     }
     files.push_back(readShard(path));
   }
+  if (out_exists && fs::file_size(options.out, ec) > 0 && isShardDatabase(options.out))
+    throw InputError(options.out, "output",
+                     "is a shard database (written by `coverbench run --shard`): merging into it would make it "
+                     "unmergeable; name a new file or a merged results database");
   std::sort(files.begin(), files.end(), [](const ShardFile& a, const ShardFile& b) {
     return a.shard.index != b.shard.index ? a.shard.index < b.shard.index : a.path < b.path;
   });

@@ -191,6 +191,13 @@ ResultsDb::ResultsDb(const std::string& path, Mode mode) : file_(path) {
   const bool exists = fs::exists(path, ec);
   if (exists && fs::is_directory(path, ec)) throw InputError(path, "(database)", "is a folder, not a database file");
   if (mode == Mode::ReadOnly && !exists) throw InputError(path, "(file)", "does not exist");
+  // Nothing is written to a file before it is known to be CoverBench's (or new and empty).
+  const bool empty = !exists || fs::file_size(path, ec) == 0;
+  if (mode == Mode::ReadOnly && empty)
+    throw InputError(path, "(database)", "is not a CoverBench results database (an empty file)");
+  // SQLite makes -wal and -shm files beside a WAL database it opens, even to read: a file that is
+  // refused keeps only what it had beside it.
+  const bool had_wal = fs::exists(path + "-wal", ec), had_shm = fs::exists(path + "-shm", ec);
   const int flags = mode == Mode::ReadOnly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
   if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
@@ -200,18 +207,18 @@ ResultsDb::ResultsDb(const std::string& path, Mode mode) : file_(path) {
   }
   sqlite3_busy_timeout(db_, 10000);
   try {
-    // Nothing is written to a file before it is known to be CoverBench's (or new and empty).
-    const bool empty = !exists || fs::file_size(path, ec) == 0;
-    if (!empty) checkOwnership();
+    const Marks marks = empty ? Marks{} : checkOwnership(mode);
     if (mode == Mode::ReadWrite) {
       // The tables and the marks in one transaction: a process killed while creating a database
       // leaves either no table or all of them, never a half schema that would be refused later.
+      // A database of this schema is not written at all (its header's change counter stays).
       exec("PRAGMA journal_mode = WAL; PRAGMA synchronous = NORMAL;");  // not allowed inside a transaction
       exec("BEGIN IMMEDIATE");
       try {
         exec(kSchema);
-        exec("PRAGMA application_id = " + std::to_string(kApplicationId) + "; PRAGMA user_version = " +
-             std::to_string(kSchemaVersion) + ";");
+        if (marks.application_id != kApplicationId || marks.version != kSchemaVersion)
+          exec("PRAGMA application_id = " + std::to_string(kApplicationId) + "; PRAGMA user_version = " +
+               std::to_string(kSchemaVersion) + ";");
         exec("COMMIT");
       } catch (...) {
         rollback();
@@ -221,26 +228,34 @@ ResultsDb::ResultsDb(const std::string& path, Mode mode) : file_(path) {
   } catch (...) {  // a constructor that throws runs no destructor: close the connection here
     sqlite3_close(db_);
     db_ = nullptr;
+    if (!had_wal) fs::remove(path + "-wal", ec);
+    if (!had_shm) fs::remove(path + "-shm", ec);
     throw;
   }
 }
 
-void ResultsDb::checkOwnership() {
-  long long application_id = 0, version = 0;
+ResultsDb::Marks ResultsDb::checkOwnership(Mode mode) {
+  Marks marks;
   std::set<std::string> tables;
   try {
     Statement a(db_, "PRAGMA application_id", file_);
-    if (a.step()) application_id = a.columnInt(0);
+    if (a.step()) marks.application_id = a.columnInt(0);
     Statement v(db_, "PRAGMA user_version", file_);
-    if (v.step()) version = v.columnInt(0);
+    if (v.step()) marks.version = v.columnInt(0);
     Statement t(db_, "SELECT name FROM sqlite_master WHERE type = 'table'", file_);
     while (t.step()) tables.insert(t.columnText(0));
   } catch (const InputError& e) {
     throw InputError(file_, "(database)", "is not a CoverBench results database (" + e.problem() + ")");
   }
   // No table and no mark: a database created (journal mode set) by a process killed before its
-  // first transaction committed, or any empty one. It holds nothing to lose: take it as new.
-  if (application_id == 0 && tables.empty()) return;
+  // first transaction committed, or any empty one. It holds nothing to lose: take it as new; but
+  // there is nothing in it to read.
+  if (marks.application_id == 0 && tables.empty()) {
+    if (mode == Mode::ReadOnly)
+      throw InputError(file_, "(database)", "is not a CoverBench results database (an SQLite database with no tables)");
+    return marks;
+  }
+  const long long application_id = marks.application_id, version = marks.version;
   bool legacy = application_id == 0;
   for (const char* table : kCoreTables) legacy = legacy && tables.count(table);
   if (application_id != kApplicationId && !legacy)
@@ -255,6 +270,7 @@ void ResultsDb::checkOwnership() {
                          std::to_string(kSchemaVersion) +
                          "), whose run keys did not include the planners' code: run the experiment into a new output "
                          "folder (or move this one away)");
+  return marks;
 }
 
 void ResultsDb::rollback() noexcept {

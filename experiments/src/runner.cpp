@@ -83,9 +83,8 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
   std::function<bool(const RunSpec&)> mine;
   if (options.shard)
     mine = [shard = *options.shard](const RunSpec& r) { return shardOf(r, shard.count) == shard.index; };
-  const std::vector<RunSpec> runs = expandRuns(config, walls, mine);
+  const std::vector<RunSpec> runs = expandRuns(config, walls, mine, &summary.config_runs);  // walls are distinct
   summary.walls = walls.size();
-  summary.config_runs = walls.size() * config.planners.size() * config.tools.size();  // walls are distinct
   std::optional<ShardRecord> shard;
   if (options.shard) {
     shard = ShardRecord{*options.shard, summary.config_runs, {}};

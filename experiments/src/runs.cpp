@@ -169,36 +169,46 @@ std::string runKey(const RunSpec& spec) {
                    "\ncode=" + spec.code_sha256);
 }
 
+std::size_t runsPerWall(const ExperimentConfig& config) {
+  return config.planners.size() * config.tools.size() * config.transits.size();
+}
+
 std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls,
-                                const std::function<bool(const RunSpec&)>& keep) {
+                                const std::function<bool(const RunSpec&)>& keep, std::size_t* expanded) {
+  // Every axis of a run but the wall, as one index: planner configuration, then tool, then
+  // transit planner. runsPerWall is the only count of them, so a shard's count of the config's
+  // runs is the number this loop expands.
+  const std::size_t per_wall = runsPerWall(config);
+  const std::size_t transits = config.transits.size(), tools = config.tools.size();
   std::vector<RunSpec> runs;
-  if (!keep) runs.reserve(walls.size() * config.planners.size() * config.tools.size() * config.transits.size());
+  if (!keep) runs.reserve(walls.size() * per_wall);
+  std::size_t count = 0;
   for (const WallEntry& wall : walls)
-    for (const PlannerConfig& planner : config.planners)
-      for (const ToolParams& tool : config.tools)
-        for (const TransitSpec& transit : config.transits) {
-          RunSpec spec;
-          spec.wall = &wall;
-          spec.planner = &planner;
-          spec.tool = tool;
-          spec.vehicle = config.vehicle;
-          spec.transit = transit;
-          spec.replanning = config.replanning;
-          spec.repetitions = config.repetitions;
-          spec.seed = config.seed;
-          spec.time_limit_s = config.time_limit_s;
-          spec.memory_limit_bytes = static_cast<std::size_t>(config.memory_limit_mb * 1024.0 * 1024.0);
-          spec.exact_judge = config.exact_judge;
-          const PlannerInfo& info = findPlanner(planner.planner);
-          spec.planner_version = info.version;
-          std::vector<std::string> folders = info.code_folders;
-          if (spec.exact_judge) folders.push_back(kJudgeCodeFolder);  // the judge's code is in what it computes
-          spec.code_sha256 = buildIdentity().plannerCode(folders);
-          spec.base_key = runBaseKey(spec);
-          if (keep && !keep(spec)) continue;  // a shard holds only its own runs, even while expanding
-          spec.key = runKey(spec);
-          runs.push_back(std::move(spec));
-        }
+    for (std::size_t axis = 0; axis < per_wall; ++axis, ++count) {
+      const PlannerConfig& planner = config.planners[axis / (tools * transits)];
+      RunSpec spec;
+      spec.wall = &wall;
+      spec.planner = &planner;
+      spec.tool = config.tools[(axis / transits) % tools];
+      spec.vehicle = config.vehicle;
+      spec.transit = config.transits[axis % transits];
+      spec.replanning = config.replanning;
+      spec.repetitions = config.repetitions;
+      spec.seed = config.seed;
+      spec.time_limit_s = config.time_limit_s;
+      spec.memory_limit_bytes = static_cast<std::size_t>(config.memory_limit_mb * 1024.0 * 1024.0);
+      spec.exact_judge = config.exact_judge;
+      const PlannerInfo& info = findPlanner(planner.planner);
+      spec.planner_version = info.version;
+      std::vector<std::string> folders = info.code_folders;
+      if (spec.exact_judge) folders.push_back(kJudgeCodeFolder);  // the judge's code is in what it computes
+      spec.code_sha256 = buildIdentity().plannerCode(folders);
+      spec.base_key = runBaseKey(spec);
+      if (keep && !keep(spec)) continue;  // a shard holds only its own runs, even while expanding
+      spec.key = runKey(spec);
+      runs.push_back(std::move(spec));
+    }
+  if (expanded) *expanded = count;
   return runs;
 }
 

@@ -16,6 +16,61 @@ std::string shellQuote(const std::string& word) {
   return out + "'";
 }
 
+namespace {
+
+/// Whole-number fields of a Slurm value, at most 12 digits each (a bigger one is no real limit).
+bool fields(const std::smatch& m, std::vector<unsigned long long>& out) {
+  for (std::size_t i = 1; i < m.size(); ++i) {
+    if (!m[i].matched) {
+      out.push_back(0);
+      continue;
+    }
+    const std::string t = m[i].str();
+    if (t.size() > 12) return false;
+    out.push_back(std::stoull(t));
+  }
+  return true;
+}
+
+/// Slurm's time formats (M, M:S, H:M:S, D-H, D-H:M, D-H:M:S, or UNLIMITED), at most a year.
+void checkSlurmTime(const std::string& time) {
+  if (time == "UNLIMITED" || time == "INFINITE") return;
+  static const std::regex minutes(R"(^(\d+)(?::(\d{1,2}))?(?::(\d{1,2}))?$)");
+  static const std::regex days(R"(^(\d+)-(\d+)(?::(\d{1,2}))?(?::(\d{1,2}))?$)");
+  std::smatch m;
+  std::vector<unsigned long long> f;
+  double seconds = -1.0;
+  if (std::regex_match(time, m, days) && fields(m, f))
+    seconds = ((static_cast<double>(f[0]) * 24.0 + static_cast<double>(f[1])) * 60.0 + static_cast<double>(f[2])) * 60.0 +
+              static_cast<double>(f[3]);
+  else if (std::regex_match(time, m, minutes) && fields(m, f))
+    // M; M:S; H:M:S
+    seconds = !m[2].matched   ? static_cast<double>(f[0]) * 60.0
+              : !m[3].matched ? static_cast<double>(f[0]) * 60.0 + static_cast<double>(f[1])
+                              : (static_cast<double>(f[0]) * 60.0 + static_cast<double>(f[1])) * 60.0 + static_cast<double>(f[2]);
+  if (seconds < 0.0)
+    throw InputError("--time", "time", "must be in Slurm's format (minutes, HH:MM:SS or D-HH:MM:SS), got '" + time + "'");
+  if (seconds > 366.0 * 86400.0)
+    throw InputError("--time", "time", "must be at most a year (366-00:00:00; UNLIMITED for none), got '" + time + "'");
+}
+
+/// A whole number with an optional K, M, G or T suffix (Slurm's default unit is M), at most 1 PiB
+/// (0: all of a node's memory, as Slurm reads it).
+void checkSlurmMemory(const std::string& mem) {
+  if (mem.empty()) return;
+  static const std::regex mem_re(R"(^(\d+)([KMGT]?)$)");
+  std::smatch m;
+  if (!std::regex_match(mem, m, mem_re))
+    throw InputError("--mem", "mem", "must be a whole number with an optional K, M, G or T suffix (e.g. 4G), got '" + mem + "'");
+  const std::string digits = m[1].str(), unit = m[2].matched && m[2].length() ? m[2].str() : "M";
+  const double scale = unit == "K" ? 1.0 / 1024.0 : unit == "M" ? 1.0 : unit == "G" ? 1024.0 : 1024.0 * 1024.0;
+  const double mib = digits.size() > 18 ? HUGE_VAL : static_cast<double>(std::stoull(digits)) * scale;
+  if (mib > 1024.0 * 1024.0 * 1024.0)
+    throw InputError("--mem", "mem", "must be at most 1 PiB (1073741824M) per task, got '" + mem + "'");
+}
+
+}  // namespace
+
 SlurmScripts slurmScripts(const ExperimentConfig& config, const SlurmOptions& o) {
   namespace fs = std::filesystem;
   if (o.shards < 1 || o.shards > kMaxShards)
@@ -23,12 +78,8 @@ SlurmScripts slurmScripts(const ExperimentConfig& config, const SlurmOptions& o)
   if (o.cpus_per_task < 1 || o.cpus_per_task > 1024)
     throw InputError("--cpus-per-task", "cpus_per_task", "must be in [1, 1024], got " + std::to_string(o.cpus_per_task));
   // Slurm's time formats: M, M:S, H:M:S, D-H, D-H:M, D-H:M:S; or UNLIMITED.
-  static const std::regex time_re(R"(^(\d+|\d+:\d{1,2}|\d+:\d{1,2}:\d{1,2}|\d+-\d+|\d+-\d+:\d{1,2}|\d+-\d+:\d{1,2}:\d{1,2}|UNLIMITED|INFINITE)$)");
-  if (!std::regex_match(o.time, time_re))
-    throw InputError("--time", "time", "must be in Slurm's format (minutes, HH:MM:SS or D-HH:MM:SS), got '" + o.time + "'");
-  static const std::regex mem_re(R"(^\d+[KMGT]?$)");
-  if (!o.mem.empty() && !std::regex_match(o.mem, mem_re))
-    throw InputError("--mem", "mem", "must be a whole number with an optional K, M, G or T suffix (e.g. 4G), got '" + o.mem + "'");
+  checkSlurmTime(o.time);
+  checkSlurmMemory(o.mem);
   static const std::regex name_re(R"(^[A-Za-z0-9_.,-]+$)");
   if (!o.partition.empty() && !std::regex_match(o.partition, name_re))
     throw InputError("--partition", "partition", "must be a partition name (letters, digits, _ . , -), got '" + o.partition + "'");

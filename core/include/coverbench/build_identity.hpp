@@ -22,7 +22,8 @@ struct BuildIdentity {
   std::map<std::string, std::string> folder_code_sha256;
 
   /// The identity of a planner's code: SHA-256 of the shared code, the given algorithms/
-  /// folders' code, the compiler, build type and flags. Unknown folders count as empty.
+  /// folders' code, the compiler, build type and flags. A folder that is not one throws
+  /// std::logic_error (a misspelt code_folders entry must not hash as empty).
   std::string plannerCode(const std::vector<std::string>& folders) const;
   /// "rev12[-dirty:diff12]": for people.
   std::string describe() const;

@@ -36,7 +36,12 @@ void validateToolForWall(const ToolParams& tool, const Wall& wall, const std::st
 
 /// A gantry's lift and lower times, seconds: an hour bounds any tool change.
 inline constexpr double kMaxLiftTime = 3600.0;
-/// lift_s and lower_s in [0, kMaxLiftTime] s, finite. Throws InputError(source, `field`.lift_s, ...).
+/// A car's smallest turn radius, metres: below 1 mm the car's smoothing works at the scale of
+/// its own rounding (at 1e-8 m every planner's smoothed path failed its own heading check) and
+/// the car turns on the spot for any tool: the holonomic vehicle is that car.
+inline constexpr double kMinTurnRadius = 0.001;
+/// lift_s and lower_s in [0, kMaxLiftTime] s, finite; a car's turn radius in
+/// [kMinTurnRadius, kMaxExtent] m. Throws InputError(source, `field`.lift_s, ...).
 void validateVehicle(const VehicleModel& vehicle, const std::string& source, const std::string& field);
 
 /// A sampling transit planner's iterations per query: 10^7 took minutes per query here.

@@ -23,7 +23,8 @@ class InputError : public std::runtime_error {
   std::string source_, field_, problem_;
 };
 
-/// A number as messages show it: up to 10 significant digits ("0.1", "1e-09").
+/// A number as messages show it: six significant digits, or as many more as read back as it
+/// ("0.1", "1e-09", "3600.0000001").
 std::string shortNumber(double v);
 
 enum class ObstacleType { Rect, Polygon, Circle };

@@ -70,8 +70,9 @@ struct ExperimentConfig {
   bool exact_judge = false;
 };
 
-/// The number of runs a config asks for (walls counted before loading, duplicates included):
-/// known before any wall is generated, so a huge experiment is caught at once.
+/// The number of runs a config asks for (walls counted before loading, duplicates included, times
+/// runsPerWall; a run's repetitions are one run): known before any wall is generated, so a huge
+/// experiment is caught at once.
 std::size_t plannedRuns(const ExperimentConfig& config);
 
 /// Reads and checks a config completely (planner names, parameter values against their
@@ -117,10 +118,15 @@ std::string runBaseKey(const RunSpec& spec);
 /// The run key: SHA-256 of the base key, the planner's version and its code identity, so a
 /// changed planner (or the code every run depends on, or the compiler and flags) is run again.
 std::string runKey(const RunSpec& spec);
-/// Every (wall, planner configuration, tool) of the config, keys filled in, in a fixed order; with
-/// `keep`, only the runs it accepts (it sees the base key; the run key is filled in after).
+/// The runs a config asks for per wall: one per planner configuration, tool and transit planner
+/// (every axis of a run but the wall). expandRuns expands exactly these; plannedRuns counts them.
+std::size_t runsPerWall(const ExperimentConfig& config);
+/// Every (wall, planner configuration, tool, transit planner) of the config, keys filled in, in a
+/// fixed order; with `keep`, only the runs it accepts (it sees the base key; the run key is filled
+/// in after). `expanded`, when given, receives how many runs were expanded before `keep` chose:
+/// the config's count of runs over these walls, whatever the filter.
 std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls,
-                                const std::function<bool(const RunSpec&)>& keep = {});
+                                const std::function<bool(const RunSpec&)>& keep = {}, std::size_t* expanded = nullptr);
 
 /// One repair of a run's path (docs/replanning.md): obstacles appeared at `fraction` of its
 /// length and the rest was repaired by `repair`. The repaired path is scored on the new wall by the

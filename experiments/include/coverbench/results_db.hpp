@@ -92,7 +92,14 @@ class ResultsDb {
  private:
   friend struct ResultsDbAccess;  // merge.cpp: copies rows through the connection, in one transaction
   void exec(const std::string& sql);
-  void checkOwnership();
+  /// The file's application id and schema version, read before anything is written.
+  struct Marks {
+    long long application_id = 0;
+    long long version = 0;
+  };
+  /// Refuses (InputError) a file that is not a CoverBench results database of this schema; read
+  /// only, also one with nothing in it.
+  Marks checkOwnership(Mode mode);
   void rollback() noexcept;
   sqlite3* db_ = nullptr;
   std::string file_;

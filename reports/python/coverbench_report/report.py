@@ -54,7 +54,7 @@ def replanning_text(a):
     fractions = sorted({p["fraction"] for r in a.runs for p in r.get("replans", [])})
     if not fractions:
         return ""
-    return (" Replanning: obstacles appear at " + ", ".join(f"{f:g}" for f in fractions) +
+    return (" Replanning: obstacles appear at " + ", ".join(T.exact_number(f) for f in fractions) +
             " of each path's length (docs/replanning.md).")
 
 
@@ -200,7 +200,7 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
                 f"(vehicle models: docs/vehicles.md). Tables for "
                 f'papers: <a href="report.md">Markdown</a>, <a href="report.csv">CSV</a>, '
                 f'<a href="report.tex">LaTeX</a>; every run: <a href="report_data.json">report_data.json</a>.</p>')
-    replanning = [T.to_html(t) for t in T.replanning_tables(a)]
+    replanning = [T.to_html(t) for t in T.replanning_tables(a) + T.replanning_tables(a, measured=True)]
     sections = [("headline", "Headline", "\n".join(headline)), ("outcomes", "Outcomes", "\n".join(outcomes)),
                 *([("replanning", "Replanning", "\n".join(replanning))] if replanning else []),
                 ("paired", "Paired statistics", "\n".join(paired)), ("plots", "Plots", "\n".join(plots_html)),

@@ -15,6 +15,12 @@ def is_percent(spec):
     return spec["unit"] == "1" and spec["name"].startswith(PERCENT_METRICS)
 
 
+def exact_number(v):
+    """A number in as few digits as read back as it (0.5 and 0.5000000000000001 stay apart)."""
+    short = f"{v:g}"
+    return short if float(short) == v else repr(float(v))
+
+
 def number(v, digits=3):
     """`digits` significant digits without exponent for everyday magnitudes."""
     if v is None or (isinstance(v, float) and math.isnan(v)):
@@ -114,7 +120,7 @@ def to_html(t):
 
 def _md(text):
     text = " ".join(str(text).split())
-    for ch in "\\`*[]<>|&":
+    for ch in "\\`*_[]<>|&":
         text = text.replace(ch, "\\" + ch)
     return text
 
@@ -276,9 +282,11 @@ def transit_table(a):
     return t
 
 
-def replanning_tables(a):
+def replanning_tables(a, measured=False):
     """Per dataset, the repairs after surprise obstacles (docs/replanning.md): one row per planner
-    column, fraction and repair. Empty when the experiment has no replanning."""
+    column, fraction and repair. Empty when the experiment has no replanning. The repairs' times
+    (`measured`) are a table of their own, placed with the other measured tables after everything
+    a rerun reproduces byte for byte."""
     out = []
     for d in a.datasets:
         rows = []
@@ -293,33 +301,40 @@ def replanning_tables(a):
                 rows.append((c, fraction, repair, ps))
         if not rows:
             continue
+        if measured:
+            t = Table(f"{d}: replanning, time per repair (measured)", ["planner", "at", "repair", "n", "ms median", "ms max"],
+                      note="Measured anew by every rerun: the repair's wall-clock time (replan's includes its plan call).",
+                      anchor="replanning-time-" + d)
+            for c, fraction, repair, ps in rows:
+                ms = [p["repair_ms"] for p in ps if p.get("repair_ms") is not None]
+                t.add([c, exact_number(fraction), repair, str(len(ms)),
+                       number(statistics.median(ms)) if ms else "-", number(max(ms)) if ms else "-"])
+            out.append(t)
+            continue
         t = Table(f"{d}: replanning after surprise obstacles",
-                  ["planner", "at", "repair", "n", "ok/partial/failed/invalid", "obstacles", "ms [max]",
+                  ["planner", "at", "repair", "n", "ok/partial/failed/invalid", "obstacles",
                    "+length", "+unpainted", "coverage", "scratch"],
                   note="Medians over the walls (n repairs). At the fraction 'at' of each valid path's length, obstacles drawn from the run's seed appear "
                        "(placed / asked for); the rest of the path is repaired by planning again with the same planner "
                        "(replan: its moves that paint something new, linked from the robot) or by detours around them "
                        "(detour: the free stretches of blocked passes). 'invalid' counts repaired paths the metrics engine "
-                       "rejects (the executed part on the old wall, the rest on the new). ms: the repair's time, "
-                       "measured anew by every rerun (replan's includes its plan call), median and maximum. +length: "
+                       "rejects (the executed part on the old wall, the rest on the new). +length: "
                        "repaired path minus the original; +unpainted: reachable area left unpainted after the repair "
                        "minus what the original left (m², new wall); coverage: coverage_reachable of the repaired path "
-                       "on the new wall; scratch: of the same planner's plan with the obstacles known. "
-                       "docs/replanning.md.",
+                       "on the new wall; scratch: of the same planner's plan with the obstacles known. The repairs' times "
+                       "are measured: their table is at the end. docs/replanning.md.",
                   anchor="replanning-" + d)
         for c, fraction, repair, ps in rows:
             def med(name):
                 vals = [p["figures"][name] for p in ps if p["figures"].get(name) is not None]
                 return statistics.median(vals) if vals else None
             counts = {s: sum(1 for p in ps if p["status"] == s) for s in ("ok", "partial", "failed", "invalid_output")}
-            ms = [p["repair_ms"] for p in ps if p.get("repair_ms") is not None]
             placed = sum(p["obstacles"] for p in ps)
             asked = sum(p["requested"] for p in ps)
             after, scratch = med("coverage_reachable"), med("scratch_coverage_reachable")
-            t.add([c, f"{fraction:g}", repair, str(len(ps)),
+            t.add([c, exact_number(fraction), repair, str(len(ps)),
                    f"{counts['ok']} / {counts['partial']} / {counts['failed']} / {counts['invalid_output']}",
                    f"{placed}/{asked}",
-                   f"{number(statistics.median(ms))} [{number(max(ms))}]" if ms else "-",
                    number(med("added_length_m")) + " m" if med("added_length_m") is not None else "-",
                    number(med("uncovered_added_m2")) + " m²" if med("uncovered_added_m2") is not None else "-",
                    f"{100 * after:.2f} %" if after is not None else "-",
@@ -393,4 +408,5 @@ def paper_tables(a):
         for tool in a.tools:
             if a.headline_measured:
                 tables.append(headline_table(a, d, tool, measured=True))
+    tables += replanning_tables(a, measured=True)
     return tables

@@ -193,16 +193,37 @@ class Replanning(unittest.TestCase):
         self.assertEqual([r[:3] for r in t.rows], [["a", "0.3", "detour"], ["a", "0.3", "replan"]])
         detour, replan_row = t.rows
         # detour: ms 2, 4, 6 -> median 4, max 6; added 5, 7, 9 -> 7; coverage 0.95, 0.96, 0.97 -> 0.96
-        self.assertEqual(detour[3:], ["3", "0 / 2 / 0 / 1", "5/6", "4.00 [6.00]", "7.00 m", "0 m²", "96.00 %", "98.50 %"])
-        # replan: the failed one has no figures: medians of the other two; its time counts
-        self.assertEqual(replan_row[3:], ["3", "1 / 1 / 1 / 0", "5/6", "20.0 [30.0]", "2.00 m", "0 m²", "98.50 %", "98.50 %"])
-        self.assertIn(t.title, [x.title for x in T.paper_tables(a)])
+        self.assertEqual(detour[3:], ["3", "0 / 2 / 0 / 1", "5/6", "7.00 m", "0 m²", "96.00 %", "98.50 %"])
+        # replan: the failed one has no figures: medians of the other two
+        self.assertEqual(replan_row[3:], ["3", "1 / 1 / 1 / 0", "5/6", "2.00 m", "0 m²", "98.50 %", "98.50 %"])
+        # The times, measured anew by every rerun, in a table of their own after every reproduced one;
+        # the failed replan's time counts.
+        [m] = T.replanning_tables(a, measured=True)
+        self.assertEqual(m.rows, [["a", "0.3", "detour", "3", "4.00", "6.00"], ["a", "0.3", "replan", "3", "20.0", "30.0"]])
+        titles = [x.title for x in T.paper_tables(a)]
+        self.assertIn(t.title, titles)
+        self.assertEqual(titles[-1], m.title, "the measured table is not last")
+        measured_first = min(i for i, x in enumerate(T.paper_tables(a)) if "measured" in x.title)
+        self.assertLess(titles.index(t.title), measured_first)
         self.assertIn("obstacles appear at 0.3 of each path", report.replanning_text(a))
+
+    def test_fractions_that_differ_print_apart(self):
+        runs = [run("a", "w1", 0.99, 10)]
+        runs[0]["replans"] = [replan(0.5, "replan", "ok", 1.0, 1.0, 0.99, 0.99),
+                              replan(0.5000000000000001, "replan", "ok", 1.0, 1.0, 0.99, 0.99)]
+        [t] = T.replanning_tables(Analysis(data(runs, ["a"])))
+        self.assertEqual([r[1] for r in t.rows], ["0.5", "0.5000000000000001"])
+        self.assertEqual(T.exact_number(0.3), "0.3")
 
     def test_no_section_without_replanning(self):
         a = Analysis(data(HAND, ["a", "b"]))
         self.assertEqual(T.replanning_tables(a), [])
         self.assertEqual(report.replanning_text(a), "")
+
+
+class Markdown(unittest.TestCase):
+    def test_underscores_and_markup_are_escaped(self):
+        self.assertEqual(T._md("_u_ *b* a|b"), "\\_u\\_ \\*b\\* a\\|b")
 
 
 class Numbers(unittest.TestCase):
