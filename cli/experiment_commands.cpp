@@ -142,15 +142,18 @@ int slurmCommand(const SlurmCommandOptions& o) {
   options.binary = fs::canonical("/proc/self/exe", ec).string();
   options.workdir = fs::current_path().string();
   const SlurmScripts scripts = slurmScripts(config, options);
-  fs::create_directories(fs::path(scripts.folder) / "logs", ec);
-  if (ec) throw InputError(scripts.folder, "output", "cannot be created: " + ec.message());
-  writeFileAtomically(scripts.run_script, scripts.run_text);
-  writeFileAtomically(scripts.merge_script, scripts.merge_text);
+  {  // both scripts and the log folder, or nothing
+    OutputFiles out;
+    out.folder((fs::path(scripts.folder) / "logs").string());
+    out.add(scripts.run_script, scripts.run_text);
+    out.add(scripts.merge_script, scripts.merge_text);
+    out.commit();
+  }
   std::printf("wrote %s (%u array tasks, %zu runs in all) and %s\n", scripts.run_script.c_str(), o.shards, planned,
               scripts.merge_script.c_str());
-  if (!o.submit) {
-    std::printf("submit with:\n  job=$(sbatch --parsable %s)\n  sbatch --dependency=afterany:${job%%%%;*} %s\n",
-                scripts.run_script.c_str(), scripts.merge_script.c_str());
+  if (!o.submit) {  // quoted for the shell: paste it as it is, whatever the folder's name
+    std::printf("submit with:\n  job=$(sbatch --parsable %s)\n  sbatch --dependency=afterany:\"${job%%%%;*}\" %s\n",
+                shellQuote(scripts.run_script).c_str(), shellQuote(scripts.merge_script).c_str());
     return 0;
   }
   auto sbatch = [](const std::string& args) {

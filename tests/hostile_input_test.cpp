@@ -11,11 +11,13 @@
 #include <fstream>
 #include <random>
 
+#include "coverbench/build_identity.hpp"
 #include "coverbench/escape.hpp"
 #include "coverbench/experiment.hpp"
 #include "coverbench/files.hpp"
 #include "coverbench/json_input.hpp"
 #include "coverbench/limits.hpp"
+#include "coverbench/records.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
@@ -599,6 +601,93 @@ TEST_F(Hostile, TablesKeepMeasuredFiguresApartAndNeverCountThemAsWins) {
   EXPECT_EQ(count("SELECT COUNT(*) FROM planner_stats WHERE name LIKE '%\\_ms' ESCAPE '\\'"), 0);
   EXPECT_GT(count("SELECT COUNT(*) FROM planner_timings WHERE name = 'decomposition'"), 0);
   sqlite3_close(db);
+}
+
+// --- 11. The second hostile test (issue 31): values, outputs, names -----------------------------
+
+// Every option reads its value one way: an empty value is refused (it used to keep the default:
+// `--shard ""` ran the whole experiment), a number must fit its option's type and be finite, and a
+// message prints the number it was given, not a rounding of it.
+TEST_F(Hostile, EveryOptionRefusesEmptyValuesAndNumbersItsTypeCannotHold) {
+  const std::string cfg = write("c.yaml", std::string(kHead) + "planners: [zigzag]\n");
+  const std::string plan = "plan --wall " + wall_ + " --planner zigzag --out " + (dir_ / "p.json").string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"run " + cfg + " --shard ''", "--shard: must not be empty"},
+      {plan + " --vehicle car --turn-radius ''", "--turn-radius: must not be empty"},
+      {plan + " --vehicle gantry --lift-s ''", "--lift-s: must not be empty"},
+      {plan + " --vehicle gantry --lower-s ''", "--lower-s: must not be empty"},
+      {plan + " --tool-width ''", "--tool-width: must not be empty"},
+      {plan + " --tool-width nan", "--tool-width: must be a finite number, got 'nan'"},
+      {plan + " --tool-width 1e999", "--tool-width: must be a finite number, got '1e999'"},
+      {plan + " --seed -1", "--seed: must be a whole number of at least 0, got '-1'"},
+      {"report " + cfg + " --experiment 99999999999999999999",
+       "--experiment: must be a whole number of at most 9223372036854775807, got '99999999999999999999'"},
+      {"runs " + cfg + " --experiment 1.5", "--experiment: must be a whole number, got '1.5'"},
+      {plan + " --vehicle gantry --lift-s 3600.0000001", "vehicle.lift_s: must be in [0, 3600] s, got 3600.0000001"},
+      {plan + " --vehicle car --lift-s 1", "a car never lifts its tool"},
+      {plan + " --vehicle car --turn-radius 1e-8", "turn_radius: must be in [0.001, 10000] m, got 1e-08"},
+      {"slurm " + cfg + " --mem 99999999999999999999G", "--mem: mem: must be at most 1 PiB"},
+      {"slurm " + cfg + " --time 999999999999:00:00", "--time: time: must be at most a year"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const CommandRun r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out") || fs::exists(dir_ / "p.json")) << "no output from a refused command";
+  // What Slurm takes is still taken.
+  for (const char* ok : {"--time 30 --mem 0", "--time 1-12:30 --mem 512K", "--time UNLIMITED --mem 1024G", "--time 365-00:00:00"}) {
+    EXPECT_EQ(run("slurm " + cfg + " " + ok).exit_code, 0) << ok;
+    fs::remove_all(dir_ / "out");
+  }
+}
+
+// The slurm command writes both scripts or neither, and its hint is safe to paste into a shell.
+TEST_F(Hostile, SlurmWritesBothScriptsOrNoneAndItsHintIsQuoted) {
+  fs::create_directories(dir_ / "x'$(touch${IFS}pwned)");
+  const std::string cfg =
+      write("c.yaml", "name: t\noutput: \"x'$(touch${IFS}pwned)/out\"\ndatasets:\n  - suite: seed-cases\nplanners: [zigzag]\n");
+  fs::create_directories(dir_ / "x'$(touch${IFS}pwned)" / "out" / "slurm" / "merge.sbatch");  // a folder in the way
+  CommandRun r = run("slurm " + cfg);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("merge.sbatch: (file): cannot be written: it is a folder"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x'$(touch${IFS}pwned)" / "out" / "slurm" / "run.sbatch")) << "half the output written";
+  fs::remove_all(dir_ / "x'$(touch${IFS}pwned)" / "out");
+  std::string out;
+  r = run("slurm " + cfg, &out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Paste the hint's commands with a stand-in sbatch: the folder's name is never run.
+  fs::create_directories(dir_ / "bin");
+  std::ofstream(dir_ / "bin" / "sbatch") << "#!/bin/sh\necho 42\n";
+  fs::permissions(dir_ / "bin" / "sbatch", fs::perms::owner_all);
+  const std::string hint = out.substr(out.find("submit with:\n") + 13);
+  std::ofstream(dir_ / "paste.sh") << hint;
+  const std::string shell = "cd " + dir_.string() + " && PATH=" + (dir_ / "bin").string() + ":$PATH sh paste.sh >/dev/null";
+  EXPECT_EQ(std::system(shell.c_str()), 0) << hint;
+  EXPECT_FALSE(fs::exists(dir_ / "pwned")) << "pasting the hint ran a command from the folder's name:\n" << hint;
+}
+
+// One line per run is one line, whatever a name holds; Markdown escapes underscores.
+TEST(RunList, NamesWithNewlinesAndControlCharactersStayOnTheirLine) {
+  ResultSet rs;
+  ResultRow row;
+  row.key = "abc";
+  row.status = "ok";
+  row.config = "zig\\zag";
+  row.dataset = "d\r";
+  row.wall_name = "two\nlines\x1b[31m";
+  rs.runs = {row, row};
+  const std::string list = listRuns(rs);
+  EXPECT_EQ(std::count(list.begin(), list.end(), '\n'), 2) << list;
+  EXPECT_EQ(list.find('\r'), std::string::npos);
+  EXPECT_EQ(list.find('\x1b'), std::string::npos);
+  EXPECT_NE(list.find("zig\\\\zag  s=0.1 c=0.02  d\\r/two\\nlines\\x1b[31m\n"), std::string::npos) << list;
+}
+
+// A misspelt planner code folder, run through an experiment, is an error, not an empty hash.
+TEST(StaleRuns, AMisspeltCodeFolderIsAnErrorNotAnEmptyHash) {
+  EXPECT_THROW(buildIdentity().plannerCode({"zigzag", "no_such_folder"}), std::logic_error);
 }
 
 }  // namespace

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
 #include <filesystem>
+#include <cstring>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -125,13 +127,14 @@ void OutputFiles::add(const std::string& path, const std::string& text) {
     staged_.push_back({path, temp});
     out << text;
     out.flush();
-    if (!out) throw InputError(path, "(file)", "write failed (disk full?)");
+    if (!out) throw InputError(path, "(file)", std::string("write failed: ") + std::strerror(errno));
   }
 }
 
 void OutputFiles::commit() {
   for (const Staged& s : staged_)
-    if (std::rename(s.temp.c_str(), s.path.c_str()) != 0) throw InputError(s.path, "(file)", "cannot be written");
+    if (std::rename(s.temp.c_str(), s.path.c_str()) != 0)
+      throw InputError(s.path, "(file)", std::string("cannot be written: ") + std::strerror(errno));
   committed_ = true;
 }
 

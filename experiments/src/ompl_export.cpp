@@ -24,6 +24,28 @@ std::string value(const std::string& text) {
   for (char c : text) out += c == ';' ? ',' : c == '\n' || c == '\r' ? ' ' : c;
   return out;
 }
+/// A value on an experiment property line ("name TYPE = value"): OMPL's parser splits the line at
+/// " = ", so one inside the value would cut it short there; it is written "=".
+std::string property(const std::string& text) {
+  std::string out = value(text);
+  for (std::size_t at; (at = out.find(" = ")) != std::string::npos;) out.replace(at, 3, "=");
+  return out;
+}
+/// A text block between "<<<|" and "|>>>": a line of it that starts with "|>>>" would end the
+/// block early in OMPL's parser, so it gets a leading space.
+std::string block(const std::string& text) {
+  std::string out;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    end = end == std::string::npos ? text.size() : end + 1;
+    if (text.compare(start, 4, "|>>>") == 0) out += ' ';
+    out.append(text, start, end - start);
+    start = end;
+  }
+  if (!out.empty() && out.back() != '\n') out += '\n';
+  return out;
+}
 std::string number(double v) {
   if (!std::isfinite(v)) return "nan";  // OMPL's parser reads "nan" as NULL
   char buf[40];
@@ -121,15 +143,15 @@ std::vector<OmplLog> omplBenchmarkLogs(const ResultSet& results, const Experimen
     t += "CoverBench version " COVERBENCH_VERSION "\n";
     t += "Experiment " + safeFileName(names[di]) + "\n";
     t += "6 experiment properties\n";
-    t += "dataset STRING = " + value(dataset) + "\n";
+    t += "dataset STRING = " + property(dataset) + "\n";
     t += "walls INTEGER = " + std::to_string(walls.size()) + "\n";
     t += "tool_widths STRING = " + list(widths) + "\n";
     t += "clearances STRING = " + list(clearances) + "\n";
     t += "config_sha256 STRING = " + record.config_hash + "\n";
-    t += "coverbench_experiment STRING = " + value(record.name) + "\n";
+    t += "coverbench_experiment STRING = " + property(record.name) + "\n";
     t += "Running on " + safeFileName(fact(record, "host")) + "\n";
     t += "Starting at " + value(fact(record, "started (UTC)")) + "\n";
-    t += "<<<|\n" + record.config_text + (record.config_text.empty() || record.config_text.back() == '\n' ? "" : "\n") + "|>>>\n";
+    t += "<<<|\n" + block(record.config_text) + "|>>>\n";
     t += "<<<|\nCPU: " + value(fact(record, "CPU")) + "\ncores: " + value(fact(record, "cores")) + "\nOS: " +
          value(fact(record, "OS")) + "\nmemory: " + value(fact(record, "memory")) + "\n|>>>\n";
     t += std::to_string(settings.seed) + " is the random seed\n";

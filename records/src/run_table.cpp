@@ -88,12 +88,34 @@ std::string renderRuns(const ResultSet& rs, bool json) {
   return text;
 }
 
+namespace {
+/// A name on one line of a terminal: control characters (a newline, a CR, an escape sequence's
+/// ESC) as \n, \r, \t or \xHH, and a backslash doubled, so the line can be read back.
+std::string oneLine(const std::string& name) {
+  std::string out;
+  for (char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\\') out += "\\\\";
+    else if (c == '\n') out += "\\n";
+    else if (c == '\r') out += "\\r";
+    else if (c == '\t') out += "\\t";
+    else if (u < 0x20 || u == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", u);
+      out += hex;
+    } else out += c;
+  }
+  return out;
+}
+}  // namespace
+
 std::string listRuns(const ResultSet& rs) {
   std::string text;
   for (const ResultRow& r : rs.runs) {
     char tool[96];
     std::snprintf(tool, sizeof tool, "s=%g c=%g", r.tool.tool_width, r.tool.clearance);
-    text += r.key + "  " + r.status + "  " + r.config + "  " + tool + "  " + r.dataset + "/" + r.wall_name + "\n";
+    text += r.key + "  " + r.status + "  " + oneLine(r.config) + "  " + tool + "  " + oneLine(r.dataset) + "/" +
+            oneLine(r.wall_name) + "\n";
   }
   return text;
 }

@@ -214,5 +214,49 @@ class OmplExport(unittest.TestCase):
                 self.assertEqual(length, our_length, key)
 
 
+HOSTILE = """name: "hostile
+|>>> name"
+output: out
+datasets:
+  - suite: seed-cases
+    label: a = b
+planners:
+  - zigzag
+seed: 3
+"""
+
+
+class HostileText(unittest.TestCase):
+    """A config line that starts with OMPL's block end and a label with OMPL's ' = ' separator."""
+
+    def test_ompl_reads_the_whole_log(self):
+        coverbench = os.environ["COVERBENCH"]
+        folder = tempfile.mkdtemp(prefix="coverbench-ompl-hostile-")
+        try:
+            with open(os.path.join(folder, "exp.yaml"), "w") as f:
+                f.write(HOSTILE)
+            subprocess.run([coverbench, "run", os.path.join(folder, "exp.yaml"), "--no-report"], check=True,
+                           capture_output=True)
+            logs = os.path.join(folder, "ompl")
+            subprocess.run([coverbench, "export-ompl", os.path.join(folder, "out", "results.sqlite"), "--out", logs],
+                           check=True, capture_output=True)
+            [name] = os.listdir(logs)
+            with open(os.path.join(logs, name)) as f:
+                log = parse_strict(f.read())
+            self.assertIn("\n |>>> name", log["setup"], "the line is kept, a space before it")
+            self.assertEqual(log["seed"], 3)
+            db = os.path.join(folder, "benchmark.db")
+            out = subprocess.run([OMPL_STATISTICS, os.path.join(logs, name), "-d", db], capture_output=True, text=True,
+                                 cwd=folder)
+            self.assertEqual(out.returncode, 0, out.stderr)
+            ompl = sqlite3.connect(db)
+            self.assertEqual(ompl.execute("SELECT dataset, coverbench_experiment, seed FROM experiments").fetchall(),
+                             [("a=b", "hostile |>>> name", "3")])
+            self.assertEqual(ompl.execute("SELECT COUNT(*) FROM runs").fetchone(), (9,))
+            ompl.close()
+        finally:
+            shutil.rmtree(folder)
+
+
 if __name__ == "__main__":
     unittest.main()
