@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <memory>
 #include <random>
 #include <thread>
 
@@ -75,6 +77,21 @@ void registerMisbehavingPlanners() {
   }));
   addPlannerForTesting(misbehaving("throws", [](const Problem&) -> PlanResult { throw std::runtime_error("on purpose"); }));
   addPlannerForTesting(misbehaving("cheats", straightThrough));  // through the obstacle at the bottom
+  // Allocate N MiB, write every page, free it all and plan: the run's peak is N MiB, run after run
+  // in the same worker. The blocks are small (malloc's heap, not mmap), and a block kept past the
+  // run sits above them, so the freed heap stays resident: the next run reuses those pages.
+  for (int mib : {50, 60})
+    addPlannerForTesting(misbehaving("allocates-" + std::to_string(mib) + "-mib", [mib](const Problem& p) {
+      static std::vector<std::unique_ptr<char[]>> pins;
+      std::vector<std::unique_ptr<char[]>> blocks;
+      for (int i = 0; i < mib * 256; ++i) {
+        blocks.emplace_back(new char[4096]);
+        std::fill_n(blocks.back().get(), 4096, static_cast<char>(i));
+      }
+      pins.emplace_back(new char[64]);
+      blocks.clear();
+      return straightThrough(p);
+    }));
   addPlannerForTesting(misbehaving("chatters", [](const Problem& p) {
     for (int i = 0; i < 1000; ++i) std::printf("chatter %d\n", i);
     std::cout << "more chatter" << std::endl;
@@ -200,6 +217,27 @@ TEST_F(Isolation, AToolSweepGivesOneGroupPerTool) {
   // compares or ranks across tools.
   const std::string data = reportDataJson(rs, ResultsDb(s.database, ResultsDb::Mode::ReadOnly).record(), {});
   EXPECT_NE(data.find("\"column\": \"spiral @ s=0.05 m, c=0.02 m\""), std::string::npos);
+}
+
+// A run's memory is its own peak, whatever ran before it in the same worker: one worker runs a
+// planner that allocates 60 MiB and then one that allocates 50 MiB, on two walls; each reads its
+// own amount every time, and a planner that allocates little reads little. (The worker's peak
+// resident set read about 0 for the 50 MiB runs: they reuse the pages the 60 MiB runs left.)
+TEST_F(Isolation, EachRunsMemoryIsItsOwnPeakInAReusedWorker) {
+  RunnerOptions options;
+  options.threads = 1;
+  const RunnerSummary s = runExperiment(config("memory", "[allocates-60-mib, allocates-50-mib, cheats]"), options);
+  const ResultSet rs = ResultsDb(s.database, ResultsDb::Mode::ReadOnly).load();
+  std::map<std::string, int> seen;
+  for (const ResultRow& r : rs.runs) {
+    ASSERT_TRUE(r.metrics.count("peak_memory_bytes")) << r.config;
+    const double mib = r.metrics.at("peak_memory_bytes") / (1024.0 * 1024.0);
+    const double expected = r.config == "allocates-60-mib" ? 60.0 : r.config == "allocates-50-mib" ? 50.0 : 0.0;
+    EXPECT_GE(mib, expected) << r.config << " on " << r.wall_name;
+    EXPECT_LE(mib, expected + 2.0) << r.config << " on " << r.wall_name;
+    ++seen[r.config];
+  }
+  EXPECT_EQ(seen, (std::map<std::string, int>{{"allocates-50-mib", 2}, {"allocates-60-mib", 2}, {"cheats", 2}}));
 }
 
 // --- kill -9 ------------------------------------------------------------------------------------

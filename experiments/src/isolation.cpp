@@ -1,6 +1,8 @@
 // Runs in child processes: fork per run, hard limits, a pipe for the record, wait4 for rusage.
 #include "isolation.hpp"
 
+#include "allocation_meter.hpp"
+
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -147,7 +149,8 @@ void writeAll(int fd, const std::string& bytes) {
 }
 
 /// One run in the worker, measured: CPU from getrusage, peak resident set from VmHWM after the
-/// kernel's peak was reset to the current resident set (clear_refs 5).
+/// kernel's peak was reset to the current resident set (clear_refs 5), and the run's own peak
+/// memory from the allocation meter (a reused worker's resident set hides what a run reuses).
 RunRecord measuredRun(const RunSpec& spec) {
   if (spec.memory_limit_bytes > 0) {  // address space: what the worker has now plus the limit
     const double now = statusBytes("VmSize:");
@@ -161,6 +164,7 @@ RunRecord measuredRun(const RunSpec& spec) {
   const double start_rss = statusBytes("VmRSS:");
   std::set_new_handler(outOfMemory);
   RunRecord rec;
+  startAllocationMeter();
   try {
     rec = executeRun(spec);
   } catch (const std::exception& e) {
@@ -169,6 +173,7 @@ RunRecord measuredRun(const RunSpec& spec) {
     rec.status = "error";
     rec.reason = std::string("the run failed outside the planner: ") + e.what();
   }
+  const double allocated_peak = stopAllocationMeter();
   std::set_new_handler(nullptr);
   if (g_out_of_memory) {
     rec = RunRecord{};
@@ -183,7 +188,8 @@ RunRecord measuredRun(const RunSpec& spec) {
   rec.cpu_time_s = cpuSeconds() - cpu_before;
   rec.start_rss_bytes = start_rss;
   rec.peak_rss_bytes = statusBytes("VmHWM:");
-  if (rec.status != "memory_limit") rec.peak_memory_bytes = std::max(0.0, rec.peak_rss_bytes - start_rss);
+  if (rec.status != "memory_limit")
+    rec.peak_memory_bytes = allocationMeterAvailable() ? allocated_peak : std::max(0.0, rec.peak_rss_bytes - start_rss);
   return rec;
 }
 

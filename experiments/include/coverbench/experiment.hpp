@@ -188,7 +188,10 @@ struct RunRecord {
   double cpu_time_s = NAN;            ///< user + system CPU of the run's process (rusage)
   double peak_rss_bytes = NAN;        ///< the run's process's peak resident set (rusage)
   double start_rss_bytes = NAN;       ///< its resident set when the run started (inherited from the runner)
-  std::optional<double> peak_memory_bytes;  ///< peak_rss_bytes - start_rss_bytes: what the run itself added
+  /// The run's own peak: the highest sum of its live C++ allocations (the worker's allocation
+  /// meter, experiments/src/allocation_meter.cpp); where no meter is built in (AddressSanitizer),
+  /// peak_rss_bytes - start_rss_bytes.
+  std::optional<double> peak_memory_bytes;
 };
 
 /// Executes one run in this process: plan under the time budget (`repetitions` times, each
