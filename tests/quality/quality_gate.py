@@ -14,11 +14,15 @@ import csv
 import io
 import os
 import shutil
+import sqlite3
 import subprocess
 import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, ".."))
+import pinned_build  # noqa: E402  (tests/pinned_build.py)
+
 GOLDEN = os.path.join(HERE, "golden.csv")
 KEY = ["dataset", "wall", "planner"]
 FIELDS = ["planner_version", "status", "valid", "coverage_reachable", "coverage_wall", "overlap", "length_total",
@@ -39,6 +43,15 @@ def measure(coverbench, work):
                          check=True, capture_output=True, text=True).stdout
     rows = [{k: r[k] for k in KEY + FIELDS} for r in csv.DictReader(io.StringIO(out))]
     return sorted(rows, key=lambda r: tuple(r[k] for k in KEY))
+
+
+def build_of(work):
+    """The compiler, build type and flags of the binary that ran the gate's experiment, as the
+    cost probe prints them ("GNU 12.2.0 Release, flags '-O3 -DNDEBUG'")."""
+    with sqlite3.connect(os.path.join(work, "out", "results.sqlite")) as db:
+        compiler, build_type, flags = db.execute(
+            "SELECT compiler, build_type, build_flags FROM experiments ORDER BY id DESC LIMIT 1").fetchone()
+    return f"{compiler} {build_type}, flags '{flags.strip()}'"
 
 
 def write(rows, path):
@@ -96,6 +109,7 @@ def main(argv=None):
         if os.path.exists(os.path.join(work, "out")):
             shutil.rmtree(os.path.join(work, "out"))
         current = measure(args.coverbench, work)
+        this_build = build_of(work)
     finally:
         if not args.work:
             shutil.rmtree(work, ignore_errors=True)
@@ -105,6 +119,8 @@ def main(argv=None):
         return 0
     if args.save:
         write(current, args.save)
+    if this_build != pinned_build.pinned_build():
+        return pinned_build.off_pinned_build("quality gate", this_build, pinned_build.pinned_build())
     lines, unbumped = compare(read(args.golden), current)
     if not lines:
         print(f"quality gate: {len(current)} runs as in {os.path.relpath(args.golden)}")

@@ -6,6 +6,7 @@ import unittest
 sys.path.insert(0, os.path.dirname(__file__))
 
 import quality_gate as gate  # noqa: E402
+import pinned_build  # noqa: E402
 
 
 def row(planner="zigzag", version="1", overlap="0.25", status="ok"):
@@ -31,6 +32,26 @@ class Compare(unittest.TestCase):
     def test_missing_and_new_runs(self):
         lines, _ = gate.compare([row("a")], [row("b")])
         self.assertEqual(lines, ["| d / w / a | (run) | in golden | missing | |", "| d / w / b | (run) | missing | new | |"])
+
+
+class OffThePinnedBuild(unittest.TestCase):
+    """Another compiler skips a gate with its reason; where the gates are required it fails."""
+
+    def setUp(self):
+        self.saved = os.environ.pop("COVERBENCH_GATES_REQUIRED", None)
+
+    def tearDown(self):
+        os.environ.pop("COVERBENCH_GATES_REQUIRED", None)
+        if self.saved is not None:
+            os.environ["COVERBENCH_GATES_REQUIRED"] = self.saved
+
+    def test_the_pinned_build_is_the_cost_baselines(self):
+        self.assertRegex(pinned_build.pinned_build(), r"^\S+ [\d.]+ \w+, flags '.*'$")
+
+    def test_skipped_with_the_reason_or_failed_when_required(self):
+        self.assertEqual(pinned_build.off_pinned_build("quality gate", "Clang 14.0.6 Release, flags '-O3'", "GNU 12.2.0"), 77)
+        os.environ["COVERBENCH_GATES_REQUIRED"] = "1"
+        self.assertEqual(pinned_build.off_pinned_build("quality gate", "Clang 14.0.6 Release, flags '-O3'", "GNU 12.2.0"), 1)
 
 
 if __name__ == "__main__":
