@@ -447,7 +447,7 @@ TEST_F(CarFiles, ExperimentsRunACarAndKeyStoreAndReportIt) {
   EXPECT_NE(a[0].key, b[0].key);
   EXPECT_NE(b[0].key, c[0].key) << "reversing is part of the run";
   auto configError = [&](const std::string& text) { return test::inputError([&] { loadExperimentConfig(write("e.yaml", text)); }); };
-  EXPECT_NE(configError(base + "vehicle:\n  model: car\n  turn_radius: 0\n").find("e.yaml:10: vehicle.turn_radius: must be in [0.001, 10000]"),
+  EXPECT_NE(configError(base + "vehicle:\n  model: car\n  turn_radius: 0\n").find("e.yaml:10: vehicle.turn_radius: must be in [0.001, 100]"),
             std::string::npos);
   EXPECT_NE(configError(base + "vehicle:\n  model: car\n  lift_s: 1\n").find("lift_s and lower_s belong to a gantry; a car never lifts"),
             std::string::npos);

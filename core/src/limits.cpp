@@ -40,9 +40,9 @@ void validateVehicle(const VehicleModel& vehicle, const std::string& source, con
     if (!std::isfinite(value) || value < 0.0 || value > kMaxLiftTime)
       throw InputError(source, field + "." + name,
                        "must be in [0, " + shortNumber(kMaxLiftTime) + "] s, got " + shortNumber(value));
-  if (!std::isfinite(vehicle.turn_radius) || vehicle.turn_radius < kMinTurnRadius || vehicle.turn_radius > kMaxExtent)
+  if (!std::isfinite(vehicle.turn_radius) || vehicle.turn_radius < kMinTurnRadius || vehicle.turn_radius > kMaxTurnRadius)
     throw InputError(source, field + ".turn_radius",
-                     "must be in [" + shortNumber(kMinTurnRadius) + ", " + shortNumber(kMaxExtent) + "] m, got " +
+                     "must be in [" + shortNumber(kMinTurnRadius) + ", " + shortNumber(kMaxTurnRadius) + "] m, got " +
                          shortNumber(vehicle.turn_radius) +
                          (vehicle.turn_radius > 0.0 && vehicle.turn_radius < kMinTurnRadius
                               ? " (a car that turns tighter than 1 mm turns on the spot: use the holonomic vehicle)"

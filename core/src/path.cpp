@@ -11,9 +11,14 @@ void Path::moveTo(Point p, bool tool) {
   waypoints.push_back(p);
 }
 
+double effectiveBulge(Point a, Point b, double bulge) {
+  return std::fabs(bulge) < kMinArcBulge || distance(a, b) < kMinArcChord ? 0.0 : bulge;
+}
+
 void Path::arcTo(Point p, double b, bool tool) {
   if (!waypoints.empty() && waypoints.back() == p) return;
   if (!waypoints.empty()) {
+    b = effectiveBulge(waypoints.back(), p, b);
     // The first arc gives every segment so far its 0; after it every segment has a bulge.
     if (b != 0.0 || !bulge.empty()) {
       bulge.resize(tool_on.size(), 0.0);

@@ -374,7 +374,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     if (const Yaml* t = v->find("lift_s")) c.vehicle.lift_s = r.number(*t, "vehicle.lift_s", 0.0, kMaxLiftTime);
     if (const Yaml* t = v->find("lower_s")) c.vehicle.lower_s = r.number(*t, "vehicle.lower_s", 0.0, kMaxLiftTime);
     if (const Yaml* t = v->find("turn_radius"))
-      c.vehicle.turn_radius = r.number(*t, "vehicle.turn_radius", kMinTurnRadius, kMaxExtent);  // validateVehicle's range
+      c.vehicle.turn_radius = r.number(*t, "vehicle.turn_radius", kMinTurnRadius, kMaxTurnRadius);  // validateVehicle's range
     if (const Yaml* t = v->find("reverse")) c.vehicle.reverse = r.boolean(*t, "vehicle.reverse");
     if (!c.vehicle.liftsTool() && (v->find("lift_s") || v->find("lower_s")))
       r.fail(*v, "vehicle", "lift_s and lower_s belong to a gantry; a " + name + " never lifts its tool");

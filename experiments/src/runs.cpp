@@ -351,7 +351,7 @@ Path decodePath(const std::string& blob) {
     for (std::uint64_t i = 0; i < segments; ++i) {
       const double b = get(4 + 16 * n + segments + 8 * i);
       if (!std::isfinite(b) || std::fabs(b) > 1.0) throw corrupt("bulge " + std::to_string(i) + " is not in [-1, 1]");
-      path.bulge.push_back(b);
+      path.bulge.push_back(effectiveBulge(path.waypoints[i], path.waypoints[i + 1], b));
     }
   return path;
 }

@@ -123,7 +123,7 @@ LoadedPlan loadPlanFile(const std::string& file) {
       if (!bulge[i].is_number() || !std::isfinite(bulge[i].get<double>()) || std::fabs(bulge[i].get<double>()) > 1.0)
         throw InputError(file, "bulge[" + std::to_string(i) + "]",
                          "must be a number in [-1, 1] (tan of a quarter of the arc's angle: at most a half circle)");
-      plan.path.bulge.push_back(bulge[i].get<double>());
+      plan.path.bulge.push_back(effectiveBulge(plan.path.waypoints[i], plan.path.waypoints[i + 1], bulge[i].get<double>()));
     }
     if (!plan.path.hasArcs()) plan.path.bulge.clear();
   }

@@ -40,8 +40,11 @@ inline constexpr double kMaxLiftTime = 3600.0;
 /// its own rounding (at 1e-8 m every planner's smoothed path failed its own heading check) and
 /// the car turns on the spot for any tool: the holonomic vehicle is that car.
 inline constexpr double kMinTurnRadius = 0.001;
+/// A car's largest turn radius, metres: a harvester turns on about 15 m; arcs are checked as
+/// chords of 1e-7 m, and a half circle of 100 m needs 35 000 of them (metrics' kMaxArcChords).
+inline constexpr double kMaxTurnRadius = 100.0;
 /// lift_s and lower_s in [0, kMaxLiftTime] s, finite; a car's turn radius in
-/// [kMinTurnRadius, kMaxExtent] m. Throws InputError(source, `field`.lift_s, ...).
+/// [kMinTurnRadius, kMaxTurnRadius] m. Throws InputError(source, `field`.lift_s, ...).
 void validateVehicle(const VehicleModel& vehicle, const std::string& source, const std::string& field);
 
 /// A sampling transit planner's iterations per query: 10^7 took minutes per query here.

@@ -24,7 +24,8 @@ struct Path {
   /// Appends a waypoint reached by a straight segment with the given tool state (the first
   /// waypoint starts the path). Repeated points are dropped.
   void moveTo(Point p, bool tool);
-  /// Appends a waypoint reached along the arc of bulge `b` (0: straight). Repeated points are dropped.
+  /// Appends a waypoint reached along the arc of bulge `b` (0: straight). Repeated points are
+  /// dropped; a bulge under kMinArcBulge or on a chord under kMinArcChord is a straight segment.
   void arcTo(Point p, double b, bool tool);
   std::size_t segments() const { return tool_on.size(); }
   double bulgeOf(std::size_t i) const { return bulge.empty() ? 0.0 : bulge[i]; }
@@ -39,6 +40,16 @@ struct ArcGeometry {
 };
 /// The arc from a to b with bulge b (nonzero).
 ArcGeometry arcGeometry(Point a, Point b, double bulge);
+
+/// A bulge below this (a heading change of 2e-12 rad, far below a car's 1e-6 rad tolerance) is a
+/// straight segment, and so is any bulge on a segment shorter than kMinArcChord (the arc stays
+/// within half of it of its chord): as arcs, a bulge of 1e-200 puts the circle's centre beyond
+/// any double and a bulge on a zero-length segment has no circle. Readers of paths and
+/// Path::arcTo take such a bulge as 0.
+inline constexpr double kMinArcBulge = 1e-12;
+inline constexpr double kMinArcChord = 1e-9;  ///< m
+/// The bulge as paths hold it: 0 for an arc under kMinArcBulge or kMinArcChord, else `b`.
+double effectiveBulge(Point a, Point b, double bulge);
 /// The length of segment i: the chord, or the arc's radius times |phi|.
 double segmentLength(const Path& path, std::size_t i);
 
