@@ -340,7 +340,7 @@ TEST_P(CarFamilies, EveryPlannersSmoothedPathIsValidAndDrivable) {
   check(wall, family == "residential");
 }
 
-// The range of turn radii is one that works: at its smallest (1 mm; 1e-8 m used to pass the range
+// The range of turn radii is one that works: at its smallest (1 cm; 1e-8 m used to pass the range
 // check and end every planner in `error`) every planner plans a valid, drivable path.
 TEST_P(CarFamilies, AtTheSmallestTurnRadiusEveryPlannerPlans) {
   const std::string family = GetParam();
@@ -447,7 +447,7 @@ TEST_F(CarFiles, ExperimentsRunACarAndKeyStoreAndReportIt) {
   EXPECT_NE(a[0].key, b[0].key);
   EXPECT_NE(b[0].key, c[0].key) << "reversing is part of the run";
   auto configError = [&](const std::string& text) { return test::inputError([&] { loadExperimentConfig(write("e.yaml", text)); }); };
-  EXPECT_NE(configError(base + "vehicle:\n  model: car\n  turn_radius: 0\n").find("e.yaml:10: vehicle.turn_radius: must be in [0.001, 100]"),
+  EXPECT_NE(configError(base + "vehicle:\n  model: car\n  turn_radius: 0\n").find("e.yaml:10: vehicle.turn_radius: must be in [0.01, 100]"),
             std::string::npos);
   EXPECT_NE(configError(base + "vehicle:\n  model: car\n  lift_s: 1\n").find("lift_s and lower_s belong to a gantry; a car never lifts"),
             std::string::npos);

@@ -630,7 +630,7 @@ TEST_F(Hostile, EveryOptionRefusesEmptyValuesAndNumbersItsTypeCannotHold) {
       {"runs " + cfg + " --experiment 1.5", "--experiment: must be a whole number, got '1.5'"},
       {plan + " --vehicle gantry --lift-s 3600.0000001", "vehicle.lift_s: must be in [0, 3600] s, got 3600.0000001"},
       {plan + " --vehicle car --lift-s 1", "a car never lifts its tool"},
-      {plan + " --vehicle car --turn-radius 1e-8", "turn_radius: must be in [0.001, 100] m, got 1e-08"},
+      {plan + " --vehicle car --turn-radius 1e-8", "turn_radius: must be in [0.01, 100] m, got 1e-08"},
       {"slurm " + cfg + " --mem 99999999999999999999G", "--mem: mem: must be at most 1 PiB"},
       {"slurm " + cfg + " --time 999999999999:00:00", "--time: time: must be at most a year"},
   };

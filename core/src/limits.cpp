@@ -45,7 +45,7 @@ void validateVehicle(const VehicleModel& vehicle, const std::string& source, con
                      "must be in [" + shortNumber(kMinTurnRadius) + ", " + shortNumber(kMaxTurnRadius) + "] m, got " +
                          shortNumber(vehicle.turn_radius) +
                          (vehicle.turn_radius > 0.0 && vehicle.turn_radius < kMinTurnRadius
-                              ? " (a car that turns tighter than 1 mm turns on the spot: use the holonomic vehicle)"
+                              ? " (a car that turns tighter than 1 cm turns all but on the spot: use the holonomic vehicle)"
                               : ""));
 }
 
