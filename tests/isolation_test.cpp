@@ -23,6 +23,7 @@
 #include "coverbench/runner.hpp"
 #include "coverbench/records.hpp"
 #include "coverbench/workspace.hpp"
+#include "../experiments/src/allocation_meter.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {
@@ -224,6 +225,7 @@ TEST_F(Isolation, AToolSweepGivesOneGroupPerTool) {
 // own amount every time, and a planner that allocates little reads little. (The worker's peak
 // resident set read about 0 for the 50 MiB runs: they reuse the pages the 60 MiB runs left.)
 TEST_F(Isolation, EachRunsMemoryIsItsOwnPeakInAReusedWorker) {
+  if (!allocationMeterAvailable()) GTEST_SKIP() << "no allocation meter in this build (AddressSanitizer brings its own allocator)";
   RunnerOptions options;
   options.threads = 1;
   const RunnerSummary s = runExperiment(config("memory", "[allocates-60-mib, allocates-50-mib, cheats]"), options);
