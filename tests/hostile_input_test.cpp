@@ -399,6 +399,7 @@ TEST(OutputFilesTest, AnUncommittedSetRemovesItsTemporaryFilesAndFolders) {
     files.folder(root.string());
     files.add((root / "x.txt").string(), "x");
     EXPECT_THROW(files.add((root / "x.txt").string(), "again"), InputError);
+    EXPECT_THROW(files.add((root / "." / "x.txt").string(), "by another spelling"), InputError);
     files.commit();
   }
   EXPECT_EQ(readFile((root / "x.txt").string()), "x");

@@ -114,9 +114,10 @@ void OutputFiles::folder(const std::string& path) {
 }
 
 void OutputFiles::add(const std::string& path, const std::string& text) {
-  for (const Staged& s : staged_)
-    if (fs::path(s.path).lexically_normal() == fs::path(path).lexically_normal())
-      throw InputError(path, "(file)", "is written twice by this command");
+  // A set, not a scan of what is staged: a dataset of 10 000 walls took 46 s comparing each new
+  // file with every earlier one.
+  if (!staged_names_.insert(fs::path(path).lexically_normal().string()).second)
+    throw InputError(path, "(file)", "is written twice by this command");
   const fs::path dest(path);
   if (fs::is_directory(dest)) throw InputError(path, "(file)", "cannot be written: it is a folder");
   const std::string temp =

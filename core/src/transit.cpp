@@ -53,6 +53,7 @@ struct TransitRouter::Graph {
   using G = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
                                   boost::property<boost::edge_weight_t, double>>;
   std::vector<Point> nodes;
+  std::vector<Point> boundary;  ///< every vertex of F's rings, for the last fallback (filled on first use)
   G graph;
   bool linked = false;  ///< whether `graph` holds the edges between all nodes yet
 };
@@ -241,9 +242,37 @@ std::optional<std::vector<Point>> TransitRouter::route(Point a, Point b) {
   // are joined by F's edges, which are free, so a walk along F leaves cusps and thin passages
   // that no corner node can see into.
   const std::vector<std::vector<Point>> chains = boundaryChains(a, b);
-  if (chains.empty()) return std::nullopt;
-  link();
-  return search(a, b, chains);
+  if (!chains.empty()) {
+    link();
+    if (auto near = search(a, b, chains)) return near;
+  }
+  // Last: every vertex of F's boundary as a node. F's edges are free, so a and b in one component
+  // of F are joined through them; what the corner nodes miss (a passage barely wider than the
+  // tool far from both ends, whose nodes fall into a neighbouring obstacle's clearance) is found.
+  return wholeBoundaryRoute(a, b);
+}
+
+std::optional<std::vector<Point>> TransitRouter::wholeBoundaryRoute(Point a, Point b) {
+  if (!free_) return std::nullopt;
+  // Two components of F: no route, and no search of every vertex of a's component to prove it.
+  auto component = [&](Point p) {
+    for (std::size_t i = 0; i < free_->size(); ++i)
+      if (pointInPolygon((*free_)[i], p)) return static_cast<long>(i);
+    return -1L;  // on F's boundary, within its margin: searched
+  };
+  const long ca = component(a), cb = component(b);
+  if (ca >= 0 && cb >= 0 && ca != cb) return std::nullopt;
+  Graph& g = *graph_;
+  if (g.boundary.empty())
+    for (const PolygonWithHoles& poly : *free_) {
+      g.boundary.insert(g.boundary.end(), poly.outer.begin(), poly.outer.end());
+      for (const Ring& h : poly.holes) g.boundary.insert(g.boundary.end(), h.begin(), h.end());
+    }
+  std::vector<Point> pos{a, b};
+  pos.reserve(2 + g.nodes.size() + g.boundary.size());
+  pos.insert(pos.end(), g.nodes.begin(), g.nodes.end());
+  pos.insert(pos.end(), g.boundary.begin(), g.boundary.end());
+  return lazySearch(pos, INFINITY);
 }
 
 std::optional<std::vector<Point>> TransitRouter::search(Point a, Point b, const std::vector<std::vector<Point>>& chains) {

@@ -1,6 +1,7 @@
 #pragma once
 /// Reading and writing whole files, with errors that name the file; names derived from input
 /// made safe to use as file names; outputs staged so a failing command writes nothing.
+#include <set>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,7 @@ class OutputFiles {
     std::string path, temp;
   };
   std::vector<Staged> staged_;
+  std::set<std::string> staged_names_;  ///< their paths, normalised
   std::vector<std::string> created_folders_;  ///< in creation order (parents first)
   bool committed_ = false;
 };

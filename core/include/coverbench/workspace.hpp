@@ -43,7 +43,8 @@ class TransitRouter {
   /// The shortest polyline a, ..., b whose segments are all free; nullopt when b is unreachable.
   /// Searches the visibility graph of nodes around obstacle corners; when that finds nothing
   /// (an endpoint in a cusp of F, a passage barely wider than the tool), it searches again with
-  /// the vertices of F's boundary near a and b added, linked along F's edges.
+  /// the vertices of F's boundary near a and b added, linked along F's edges, and last with every
+  /// vertex of F's boundary.
   std::optional<std::vector<Point>> route(Point a, Point b);
   /// The conservative free region the fallback walks along (set by Workspace; optional).
   void setFreeRegion(const Region* free) { free_ = free; }
@@ -62,6 +63,8 @@ class TransitRouter {
   std::vector<std::vector<Point>> boundaryChains(Point a, Point b) const;
 
   std::optional<std::vector<Point>> search(Point a, Point b, const std::vector<std::vector<Point>>& chains);
+  /// The shortest route through the nodes and every vertex of F's boundary (lazy A*).
+  std::optional<std::vector<Point>> wholeBoundaryRoute(Point a, Point b);
 
   const ClearanceField* field_;
   ToolParams tool_;
