@@ -3,7 +3,11 @@
 // no output), and the classes are closed where they arise (typed config values, one path-safe
 // name function, one escaping function per format, strict readers, staged outputs, read-only
 // databases, measured figures kept apart).
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <sqlite3.h>
 
 #include <algorithm>
@@ -748,6 +752,59 @@ TEST_F(Hostile, PropertyExtremeBulgesEndInAVerdictOrAOneLineError) {
   EXPECT_GT(refused, 0) << "no plan was beyond the limits";
   // Not a timing assertion: what the slowest took, for the record (the acceptance asks for 10 s).
   std::printf("extreme bulges: %d judged, %d refused; slowest %.2f s (%s)\n", judged, refused, slowest, slowest_plan.c_str());
+}
+
+// kill -9 during the report stage: the old report stays whole until the new one is complete, the
+// analysis child dies with its parent, and the next writer removes what the killed one left.
+TEST_F(Hostile, AReportKilledMidWayLeavesTheOldReportAndNoOrphan) {
+  const std::string cfg = write("c.yaml", std::string(kHead) + "planners: [zigzag, spiral]\n");
+  ASSERT_EQ(run("run " + cfg).exit_code, 0);
+  const fs::path report = dir_ / "out" / "report";
+  const std::string old_index = slurp((report / "index.html").string());
+  ASSERT_FALSE(old_index.empty());
+  const std::string db = (dir_ / "out" / "results.sqlite").string();
+  bool caught = false;
+  for (int attempt = 0; attempt < 5 && !caught; ++attempt) {
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      const int null = ::open("/dev/null", O_WRONLY);
+      ::dup2(null, STDOUT_FILENO);
+      ::dup2(null, STDERR_FILENO);
+      ::execl(COVERBENCH_BINARY, COVERBENCH_BINARY, "report", db.c_str(), "--format", "html", "--out", report.c_str(),
+              static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    // Wait for the analysis stage (its data written in the staging folder), then kill -9.
+    const fs::path staging = dir_ / "out" / (".report.staging-" + std::to_string(pid));
+    for (int i = 0; i < 3000 && !fs::exists(staging / "report_data.json"); ++i) ::usleep(2000);
+    if (!fs::exists(staging / "report_data.json")) {
+      ::waitpid(pid, nullptr, 0);
+      continue;
+    }
+    ::usleep(100000);  // the analysis under way
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+    caught = true;
+    EXPECT_EQ(slurp((report / "index.html").string()), old_index) << "the old report was lost or changed";
+    // The analysis child (its command line names the staging folder) dies with its parent.
+    bool orphan = true;
+    for (int i = 0; i < 500 && orphan; ++i) {
+      orphan = false;
+      for (const auto& e : fs::directory_iterator("/proc")) {
+        const std::string cmdline = slurp((e.path() / "cmdline").string());
+        if (cmdline.find(staging.filename().string()) != std::string::npos) orphan = true;
+      }
+      if (orphan) ::usleep(10000);
+    }
+    EXPECT_FALSE(orphan) << "the analysis outlived the killed report";
+  }
+  ASSERT_TRUE(caught) << "never caught the report in its analysis stage";
+  // The next report removes the dead writer's leftovers and replaces the old report.
+  ASSERT_EQ(run("report " + db + " --format html --out " + report.string()).exit_code, 0);
+  for (const auto& e : fs::directory_iterator(dir_ / "out"))
+    EXPECT_EQ(e.path().filename().string().rfind(".report.", 0), std::string::npos) << "left over: " << e.path();
+  EXPECT_TRUE(fs::exists(report / "index.html"));
 }
 
 }  // namespace
