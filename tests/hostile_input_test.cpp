@@ -807,5 +807,23 @@ TEST_F(Hostile, AReportKilledMidWayLeavesTheOldReportAndNoOrphan) {
   EXPECT_TRUE(fs::exists(report / "index.html"));
 }
 
+// A report that cannot be written (a full disk; here a file-size limit, which fails writes the
+// same way) says why, in one line, and leaves no report folder and no staging folder.
+TEST_F(Hostile, AReportThatCannotBeWrittenSaysWhy) {
+  const std::string cfg = write("c.yaml", std::string(kHead) + "planners: [zigzag]\n");
+  ASSERT_EQ(run("run " + cfg + " --no-report").exit_code, 0);
+  const std::string err = (dir_ / "err.txt").string();
+  const std::string cmd = "bash -c 'trap \"\" XFSZ; ulimit -f 50; " + std::string(COVERBENCH_BINARY) + " report " +
+                          (dir_ / "out" / "results.sqlite").string() + " --format html --out " + (dir_ / "out" / "report").string() +
+                          "' 2> " + err;
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  const std::string message = slurp(err);
+  EXPECT_NE(message.find("cannot be written: File too large"), std::string::npos) << message;
+  EXPECT_EQ(lines(message), 1) << message;
+  for (const auto& e : fs::directory_iterator(dir_ / "out"))
+    EXPECT_TRUE(e.path().filename().string().rfind("results.sqlite", 0) == 0) << "left behind: " << e.path();
+}
+
 }  // namespace
 }  // namespace coverbench
