@@ -825,5 +825,23 @@ TEST_F(Hostile, AReportThatCannotBeWrittenSaysWhy) {
     EXPECT_TRUE(e.path().filename().string().rfind("results.sqlite", 0) == 0) << "left behind: " << e.path();
 }
 
+// The analysis never writes __pycache__ into the source tree, whatever the caller's environment:
+// it is started with PYTHONDONTWRITEBYTECODE=1 (a stand-in python records what it was given).
+TEST_F(Hostile, TheAnalysisIsStartedWithoutBytecodeWrites) {
+  const std::string cfg = write("c.yaml", std::string(kHead) + "planners: [zigzag]\n");
+  ASSERT_EQ(run("run " + cfg + " --no-report").exit_code, 0);
+  const std::string python = write("python", "#!/bin/sh\nenv > " + (dir_ / "env.txt").string() + "\nexit 1\n");
+  fs::permissions(python, fs::perms::owner_all);
+  const char* saved = std::getenv("PYTHONDONTWRITEBYTECODE");
+  const std::string keep = saved ? saved : "";
+  ::unsetenv("PYTHONDONTWRITEBYTECODE");
+  ::setenv("COVERBENCH_PYTHON", python.c_str(), 1);
+  const CommandRun r = run("report " + (dir_ / "out" / "results.sqlite").string() + " --format md");
+  ::unsetenv("COVERBENCH_PYTHON");
+  if (saved) ::setenv("PYTHONDONTWRITEBYTECODE", keep.c_str(), 1);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(("\n" + slurp((dir_ / "env.txt").string())).find("\nPYTHONDONTWRITEBYTECODE=1\n"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace coverbench
