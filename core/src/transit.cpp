@@ -254,14 +254,24 @@ std::optional<std::vector<Point>> TransitRouter::route(Point a, Point b) {
 
 std::optional<std::vector<Point>> TransitRouter::wholeBoundaryRoute(Point a, Point b) {
   if (!free_) return std::nullopt;
-  // Two components of F: no route, and no search of every vertex of a's component to prove it.
+  // Only within one component of F: a pair in two (or outside F) has no route, and proving it by
+  // searching every vertex of a's component took seconds per query (replanning asks many).
+  // An end on F's boundary, outside its conservative polygon by the margin, belongs to the
+  // component whose boundary is nearest (within the tool's radius).
   auto component = [&](Point p) {
-    for (std::size_t i = 0; i < free_->size(); ++i)
-      if (pointInPolygon((*free_)[i], p)) return static_cast<long>(i);
-    return -1L;  // on F's boundary, within its margin: searched
+    long nearest = -1;
+    double best = tool_.radius();
+    for (std::size_t i = 0; i < free_->size(); ++i) {
+      const PolygonWithHoles& poly = (*free_)[i];
+      if (pointInPolygon(poly, p)) return static_cast<long>(i);
+      double d = distanceSegmentRingEdges(p, p, poly.outer);
+      for (const Ring& h : poly.holes) d = std::fmin(d, distanceSegmentRingEdges(p, p, h));
+      if (d < best) best = d, nearest = static_cast<long>(i);
+    }
+    return nearest;
   };
-  const long ca = component(a), cb = component(b);
-  if (ca >= 0 && cb >= 0 && ca != cb) return std::nullopt;
+  const long ca = component(a);
+  if (ca < 0 || component(b) != ca) return std::nullopt;
   Graph& g = *graph_;
   if (g.boundary.empty())
     for (const PolygonWithHoles& poly : *free_) {
