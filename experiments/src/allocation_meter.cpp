@@ -29,8 +29,9 @@ std::atomic<bool> g_on{false};
 std::atomic<long long> g_live{0};
 std::atomic<long long> g_peak{0};
 
+#ifndef COVERBENCH_NO_METER
 void added(void* p) {
-  if (!p || !g_on.load(std::memory_order_relaxed)) return;
+  if (!g_on.load(std::memory_order_relaxed)) return;
   const auto size = static_cast<long long>(malloc_usable_size(p));
   const long long now = g_live.fetch_add(size, std::memory_order_relaxed) + size;
   long long peak = g_peak.load(std::memory_order_relaxed);
@@ -38,29 +39,12 @@ void added(void* p) {
   }
 }
 
-void removed(void* p) {
-  if (p && g_on.load(std::memory_order_relaxed))
-    g_live.fetch_sub(static_cast<long long>(malloc_usable_size(p)), std::memory_order_relaxed);
-}
-
-#ifndef COVERBENCH_NO_METER
-void* allocate(std::size_t n) {
+/// `get()` until it returns memory, calling the new-handler (the worker's marks the run and
+/// throws) between tries, as operator new must; counted when metering.
+template <typename Get>
+void* allocate(Get get) {
   for (;;) {
-    if (void* p = std::malloc(n == 0 ? 1 : n)) {
-      added(p);
-      return p;
-    }
-    const std::new_handler handler = std::get_new_handler();
-    if (!handler) throw std::bad_alloc();
-    handler();  // the worker's handler marks the run and throws
-  }
-}
-
-void* allocateAligned(std::size_t n, std::align_val_t align) {
-  const std::size_t a = static_cast<std::size_t>(align);
-  const std::size_t size = ((n == 0 ? 1 : n) + a - 1) / a * a;  // aligned_alloc wants a multiple
-  for (;;) {
-    if (void* p = std::aligned_alloc(a, size)) {
+    if (void* p = get()) {
       added(p);
       return p;
     }
@@ -70,8 +54,29 @@ void* allocateAligned(std::size_t n, std::align_val_t align) {
   }
 }
 
+void* allocate(std::size_t n) {
+  return allocate([n] { return std::malloc(n == 0 ? 1 : n); });
+}
+
+void* allocateAligned(std::size_t n, std::align_val_t align) {
+  const std::size_t a = static_cast<std::size_t>(align);
+  const std::size_t size = ((n == 0 ? 1 : n) + a - 1) / a * a;  // aligned_alloc wants a multiple
+  return allocate([a, size] { return std::aligned_alloc(a, size); });
+}
+
+/// The nothrow forms: nullptr where the throwing form throws.
+template <typename F>
+void* orNull(F f) noexcept {
+  try {
+    return f();
+  } catch (...) {
+    return nullptr;
+  }
+}
+
 void release(void* p) noexcept {
-  removed(p);
+  if (p && g_on.load(std::memory_order_relaxed))
+    g_live.fetch_sub(static_cast<long long>(malloc_usable_size(p)), std::memory_order_relaxed);
   std::free(p);
 }
 #endif
@@ -104,34 +109,18 @@ double stopAllocationMeter() {
 void* operator new(std::size_t n) { return coverbench::allocate(n); }
 void* operator new[](std::size_t n) { return coverbench::allocate(n); }
 void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  try {
-    return coverbench::allocate(n);
-  } catch (...) {
-    return nullptr;
-  }
+  return coverbench::orNull([n] { return coverbench::allocate(n); });
 }
 void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
-  try {
-    return coverbench::allocate(n);
-  } catch (...) {
-    return nullptr;
-  }
+  return coverbench::orNull([n] { return coverbench::allocate(n); });
 }
 void* operator new(std::size_t n, std::align_val_t a) { return coverbench::allocateAligned(n, a); }
 void* operator new[](std::size_t n, std::align_val_t a) { return coverbench::allocateAligned(n, a); }
 void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
-  try {
-    return coverbench::allocateAligned(n, a);
-  } catch (...) {
-    return nullptr;
-  }
+  return coverbench::orNull([n, a] { return coverbench::allocateAligned(n, a); });
 }
 void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
-  try {
-    return coverbench::allocateAligned(n, a);
-  } catch (...) {
-    return nullptr;
-  }
+  return coverbench::orNull([n, a] { return coverbench::allocateAligned(n, a); });
 }
 void operator delete(void* p) noexcept { coverbench::release(p); }
 void operator delete[](void* p) noexcept { coverbench::release(p); }

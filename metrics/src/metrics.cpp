@@ -21,24 +21,20 @@ void checkScorable(const Path& path, const std::string& source) {
   for (std::size_t i = 0; i < path.segments(); ++i) {
     const double bulge = path.bulgeOf(i);
     if (bulge == 0.0) continue;
-    const double chords = arcCheckChords(path.waypoints[i], path.waypoints[i + 1], bulge);
+    const ArcGeometry arc = arcGeometry(path.waypoints[i], path.waypoints[i + 1], bulge);
+    const double chords = arcChords(arc, kArcCheckSagitta);
     if (!(chords <= static_cast<double>(kMaxArcChords))) {
       char problem[256];
       std::snprintf(problem, sizeof problem,
                     "an arc of radius %.6g m needs %.3g chords of %g m to be checked, at most %zu (a half circle of "
                     "about 800 m radius)",
-                    arcGeometry(path.waypoints[i], path.waypoints[i + 1], bulge).radius, chords, kArcCheckSagitta,
+                    arc.radius, chords, kArcCheckSagitta,
                     kMaxArcChords);
       throw InputError(source, "bulge[" + std::to_string(i) + "]", problem);
     }
   }
 }
 
-double arcCheckChords(Point a, Point b, double bulge) {
-  const ArcGeometry g = arcGeometry(a, b, bulge);
-  const double psi_max = 2.0 * std::acos(std::fmax(-1.0, 1.0 - kArcCheckSagitta / g.radius));
-  return std::ceil(std::fabs(g.sweep) / std::fmax(psi_max, 1e-12));
-}
 
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle,
                            const MotionLimits& limits) {

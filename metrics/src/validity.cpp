@@ -46,6 +46,12 @@ void checkDrivable(const Path& path, const VehicleModel& car, Validity& v) {
 
 }  // namespace
 
+double arcChords(const ArcGeometry& arc, double sagitta) {
+  // Sub-arcs of angle psi have sagitta R (1 - cos(psi / 2)) <= sagitta.
+  const double psi_max = 2.0 * std::acos(std::fmax(-1.0, 1.0 - sagitta / arc.radius));
+  return std::ceil(std::fabs(arc.sweep) / std::fmax(psi_max, 1e-12));
+}
+
 Path chordalPath(const Path& path, double sagitta) {
   if (!path.hasArcs()) return path;
   Path out;
@@ -58,9 +64,7 @@ Path chordalPath(const Path& path, double sagitta) {
       continue;
     }
     const ArcGeometry g = arcGeometry(a, b, bulge);
-    // Sub-arcs of angle psi have sagitta R (1 - cos(psi / 2)) <= sagitta.
-    const double psi_max = 2.0 * std::acos(std::fmax(-1.0, 1.0 - sagitta / g.radius));
-    const auto k = static_cast<std::size_t>(std::ceil(std::fabs(g.sweep) / std::fmax(psi_max, 1e-12)));
+    const auto k = static_cast<std::size_t>(arcChords(g, sagitta));
     const double start = std::atan2(a.y - g.centre.y, a.x - g.centre.x);
     for (std::size_t j = 1; j < k; ++j) {
       const double t = start + g.sweep * static_cast<double>(j) / static_cast<double>(k);

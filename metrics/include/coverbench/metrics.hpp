@@ -48,6 +48,8 @@ inline constexpr double kArcCheckSagitta = 1e-7;
 /// `sagitta` (m); a path without arcs is returned as it is. Coverage and passes measure arcs on
 /// these chords with kMetricArcTolerance.
 Path chordalPath(const Path& path, double sagitta);
+/// How many chords of at most `sagitta` (m) chordalPath cuts an arc into.
+double arcChords(const ArcGeometry& arc, double sagitta);
 
 /// Checks every segment of the path with closed-form distances in doubles (no sampling), forgiving
 /// shortfalls up to kValidityTolerance (1e-9 m). The exact judge (judge/) has no tolerance.
@@ -183,8 +185,6 @@ inline constexpr double kMaxPathCoordinate = 100000.0;  ///< m
 /// radius (a car's turn radius is at most kMaxTurnRadius, 100 m: 35 000 chords at most). An arc of
 /// 140 km radius (1.3 million chords) took the fast engine 9-15 s.
 inline constexpr std::size_t kMaxArcChords = 100000;
-/// The chords of kArcCheckSagitta that the arc from a to b with bulge `bulge` (nonzero) is checked as.
-double arcCheckChords(Point a, Point b, double bulge);
 /// Throws InputError(source, field, problem) if `path` is beyond the scoring limits (waypoints,
 /// coordinates, an arc's chords), or its coordinates are not finite.
 void checkScorable(const Path& path, const std::string& source);
