@@ -750,6 +750,18 @@ TEST_F(Hostile, PropertyExtremeBulgesEndInAVerdictOrAOneLineError) {
   }
   EXPECT_GT(judged, 0);
   EXPECT_GT(refused, 0) << "no plan was beyond the limits";
+  // By hand: a half circle of 90 km radius needs pi sqrt(9e4 / 8e-7), about 1.05 million chords of
+  // 1e-7 m (the fast engine took 9-15 s on one like it): refused up front by both judges, naming it.
+  const std::string huge = write("huge.json",
+                                 "{\"waypoints\": [[0.5, 0.5], [-90000, 0.5], [90000, 0.5], [1.0, 0.5]], "
+                                 "\"tool_on\": [true, true, true], \"bulge\": [0, 1, 0]}");
+  for (const char* judge : {"", " --judge exact"}) {
+    const CommandRun r = run("metrics --wall " + wall_ + " --plan " + huge + judge);
+    EXPECT_EQ(r.exit_code, 2) << judge;
+    EXPECT_NE(r.err.find("huge.json: bulge[1]: an arc of radius 90000 m needs 1.05e+06 chords of 1e-07 m to be checked, at most 100000"),
+              std::string::npos)
+        << r.err;
+  }
   // Not a timing assertion: what the slowest took, for the record (the acceptance asks for 10 s).
   std::printf("extreme bulges: %d judged, %d refused; slowest %.2f s (%s)\n", judged, refused, slowest, slowest_plan.c_str());
 }
