@@ -1,5 +1,5 @@
 // Finding a registered planner by name, resolving its parameters, and running it under a budget.
-// (Params and the toString functions of planner.hpp are core's: core/src/planner.cpp.)
+// (Params and the toString functions of planner.hpp are the planning library's: planning/src/planner.cpp.)
 #include "coverbench/registry.hpp"
 
 #include "coverbench/car.hpp"
@@ -115,7 +115,7 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
   try {
     if (problem.vehicle.isCar()) {
       // Planners plan for a tool that turns on the spot; the car drives their path smoothed
-      // (core/car.hpp): corners rounded or turned, what it cannot reach left out and said.
+      // (vehicles/include/coverbench/car.hpp): corners rounded or turned, what it cannot reach left out and said.
       Problem holonomic = problem;
       holonomic.vehicle = VehicleModel{};
       result = planner.make()->plan(holonomic, budget);

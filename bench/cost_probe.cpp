@@ -22,6 +22,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/wall.hpp"
+#include "coverbench/wall_file.hpp"
 
 namespace {
 

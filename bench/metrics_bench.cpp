@@ -7,6 +7,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/wall.hpp"
+#include "coverbench/wall_file.hpp"
 
 namespace {
 

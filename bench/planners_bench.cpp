@@ -4,6 +4,7 @@
 
 #include "coverbench/registry.hpp"
 #include "coverbench/wall.hpp"
+#include "coverbench/wall_file.hpp"
 
 namespace {
 

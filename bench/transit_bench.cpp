@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "coverbench/wall.hpp"
+#include "coverbench/wall_file.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace {

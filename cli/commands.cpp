@@ -23,6 +23,7 @@
 #include "coverbench/registry.hpp"
 #include "coverbench/svg.hpp"
 #include "coverbench/region_ops.hpp"
+#include "coverbench/wall_file.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::cli {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The layering check: every library built shared and linked with -Wl,--no-undefined in
-# build-shared/, so a library that uses what only a library above it defines (a core header
+# build-shared/, so a library that uses what only a library above it defines (a planning header
 # declaring what the algorithms library defines, say) fails to link; each library's links checked
 # against the layers below it; then the command, linked against those shared libraries, plans a
 # wall and scores it with both judges. Static link order hides such a cycle; this does
@@ -16,7 +16,7 @@ if [ ! -f $build/build.ninja ]; then
 fi
 echo "== building every library shared, with -Wl,--no-undefined ($build)"
 cmake --build $build -j 2
-libs="geometry core metrics judge datasets algorithms records reports experiments"
+libs="geometry formats transits planning vehicles metrics judge datasets algorithms records reports experiments"
 for lib in $libs; do
   test -f "$build/libcoverbench_$lib.so" || { echo "layers: libcoverbench_$lib.so was not built" >&2; exit 1; }
 done
@@ -26,10 +26,13 @@ done
 allowed() {
   case $1 in
     geometry|judge) echo "" ;;
-    core|metrics|datasets|records) echo "geometry" ;;
-    algorithms) echo "core geometry" ;;
-    reports) echo "core geometry metrics records" ;;
-    experiments) echo "algorithms core datasets geometry judge metrics records" ;;
+    formats|transits|metrics|records) echo "geometry" ;;
+    planning) echo "geometry transits" ;;
+    vehicles) echo "geometry planning transits" ;;
+    datasets) echo "formats geometry" ;;
+    algorithms) echo "geometry planning transits vehicles" ;;
+    reports) echo "formats geometry metrics planning records transits" ;;
+    experiments) echo "algorithms datasets formats geometry judge metrics planning records transits vehicles" ;;
   esac
 }
 for lib in $libs; do
@@ -43,4 +46,4 @@ trap 'rm -rf "$out"' EXIT
 "$build/coverbench" plan --wall datasets/canonical/living_room_north.json --planner zigzag --out "$out/plan.json"
 "$build/coverbench" metrics --wall datasets/canonical/living_room_north.json --plan "$out/plan.json" --judge exact \
   --arc-vertices 32 > /dev/null
-echo "layers: 9 shared libraries linked with no undefined symbol, each only to the layers below it; the command ran on them"
+echo "layers: 12 shared libraries linked with no undefined symbol, each only to the layers below it; the command ran on them"

@@ -7,6 +7,7 @@
 #include "coverbench/datasets.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/wall_file.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {

@@ -8,6 +8,7 @@
 #include "coverbench/datasets.hpp"
 #include "coverbench/files.hpp"
 #include "coverbench/hash.hpp"
+#include "coverbench/wall_file.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {

@@ -9,6 +9,7 @@
 #include "coverbench/datasets.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/region_ops.hpp"
+#include "coverbench/wall_file.hpp"
 #include "coverbench/workspace.hpp"
 #include "decomposition/cell_decomposition.hpp"
 #include "test_support.hpp"

@@ -4,6 +4,7 @@
 
 #include "../docs/examples/perimeter_planner.cpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/wall_file.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {

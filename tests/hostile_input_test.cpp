@@ -26,6 +26,7 @@
 #include "coverbench/registry.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
+#include "coverbench/wall_file.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {

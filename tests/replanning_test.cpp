@@ -15,6 +15,7 @@
 #include "coverbench/registry.hpp"
 #include "coverbench/replanning.hpp"
 #include "coverbench/results_db.hpp"
+#include "coverbench/wall_file.hpp"
 #include "coverbench/workspace.hpp"
 #include "test_support.hpp"
 

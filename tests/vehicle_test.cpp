@@ -14,6 +14,7 @@
 #include "coverbench/plan_file.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/svg.hpp"
+#include "coverbench/wall_file.hpp"
 #include "coverbench/workspace.hpp"
 #include "test_support.hpp"
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "coverbench/wall.hpp"
+#include "coverbench/wall_file.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {

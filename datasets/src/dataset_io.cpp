@@ -10,6 +10,7 @@
 #include "coverbench/files.hpp"
 #include "coverbench/hash.hpp"
 #include "coverbench/json_input.hpp"
+#include "coverbench/wall_file.hpp"
 
 namespace coverbench {
 namespace {

@@ -15,6 +15,7 @@
 #include "coverbench/build_identity.hpp"
 #include "coverbench/hash.hpp"
 #include "coverbench/metric_spec.hpp"
+#include "coverbench/wall_file.hpp"
 #include "sqlite_statement.hpp"
 #include <stdexcept>
 

@@ -16,6 +16,7 @@
 #include "coverbench/judge.hpp"
 #include "coverbench/metric_spec.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/wall_file.hpp"
 
 namespace coverbench {
 

@@ -1,6 +1,6 @@
-// Exact validity: CGAL's exact kernel, no tolerance. Shares nothing with core's predicates or the
-// fast engine's ClearanceField; the only things read from the rest of CoverBench are the wall, the
-// tool and the path as plain numbers.
+// Exact validity: CGAL's exact kernel, no tolerance. Shares nothing with the geometry layer's
+// predicates or the fast engine's ClearanceField; the only things read from the rest of CoverBench
+// are the wall, the tool and the path as plain numbers.
 #include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/squared_distance_2.h>
 

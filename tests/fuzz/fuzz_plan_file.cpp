@@ -7,6 +7,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/plan_file.hpp"
 #include "coverbench/wall.hpp"
+#include "coverbench/wall_file.hpp"
 #include "fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

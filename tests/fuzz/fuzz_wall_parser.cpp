@@ -5,6 +5,7 @@
 #include <string>
 
 #include "coverbench/wall.hpp"
+#include "coverbench/wall_file.hpp"
 #include "fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

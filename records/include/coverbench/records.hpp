@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "coverbench/path.hpp"
-#include "coverbench/transit_planners.hpp"  // TransitSpec alone (a value type)
 
 namespace coverbench {
 

@@ -2,7 +2,7 @@
 /// The project's seeded random numbers: xoshiro256** seeded by SplitMix64, with our own mapping to
 /// doubles (no std:: distributions, whose output differs between standard libraries), so the same
 /// seed gives the same numbers on every machine. Wall generators (datasets/) and the surprise
-/// obstacles of replanning experiments (core/replanning) draw from it.
+/// obstacles of replanning experiments (experiments/src/replanning.cpp) draw from it.
 #include <cstdint>
 
 namespace coverbench {

@@ -4,7 +4,7 @@
 /// `visibility` is the shortest path on TransitRouter's visibility graph (the default: every result
 /// before transit planners is this); its nodes circumscribe F's round corners, so along an arc it
 /// can be up to 4 / pi longer than the true shortest path (docs/transits.md). The others are OMPL's sampling-based planners over F, in one
-/// translation unit (core/src/ompl_transit.cpp; this header does not include OMPL): their states
+/// translation unit (transits/src/ompl_transit.cpp; this header does not include OMPL): their states
 /// are checked with our exact geometry (a point is valid when the tool disk there keeps the
 /// clearance, a motion when the straight move is free: TransitRouter::isFree, no sampling along
 /// it), so every route they return is valid. A route is a pure function of its query, the
@@ -18,21 +18,11 @@
 #include <vector>
 
 #include "coverbench/geometry.hpp"
+#include "coverbench/path.hpp"  // TransitSpec
 
 namespace coverbench {
 
 class TransitRouter;
-
-/// The transit planner of a problem (config section `transit:`, `--transit` on the command line).
-struct TransitSpec {
-  std::string planner = "visibility";
-  /// Sampling planners: iterations per query (what makes a route repeatable).
-  long long iterations = 2000;
-  /// Sampling planners: wall-clock cap per query, seconds; a query stopped by it may differ on a
-  /// rerun, and the plan says so.
-  double time_cap_s = 10.0;
-  bool isDefault() const { return planner == "visibility"; }
-};
 
 /// What every sampling planner's route stays within, as a multiple of the visibility route, on
 /// the conformance walls at the default iterations (tests/transit_planners_test.cpp; measured

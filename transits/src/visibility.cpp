@@ -7,7 +7,8 @@
 #include <functional>
 #include <queue>
 
-#include "coverbench/workspace.hpp"
+#include "coverbench/transit_planners.hpp"
+#include "coverbench/transit_router.hpp"
 
 namespace coverbench {
 namespace {

@@ -1,6 +1,7 @@
 #pragma once
-/// The wall model: a boundary polygon and obstacles (windows, doors, sockets, pipes), and the
-/// wall-file parser with its one-line errors.
+/// The wall model: a boundary polygon and obstacles (windows, doors, sockets, pipes), the one-line
+/// input error, and the check of a wall's geometric sense. Wall files are read in formats/
+/// (coverbench/wall_file.hpp).
 
 #include <stdexcept>
 #include <string>
@@ -48,18 +49,6 @@ struct Wall {
 
 /// The largest coordinate extent accepted for walls and obstacles (10 km).
 inline constexpr double kMaxExtent = 10000.0;
-
-/// Parses a wall from JSON text. `source` names the file in error messages.
-/// Throws InputError for every malformed or meaningless input (see docs/file_formats.md).
-Wall parseWallJson(const std::string& text, const std::string& source);
-/// Reads and parses a wall file.
-Wall loadWallFile(const std::string& path);
-/// Serialises a wall to JSON text (boundary always written as a polygon).
-std::string wallToJson(const Wall& wall);
-/// Obstacles as a wall file's "obstacles" array, on one line (rects as polygons, as wallToJson).
-std::string obstaclesToJson(const std::vector<Obstacle>& obstacles);
-/// Parses such an array (every obstacle checked as the wall parser checks it; not against a wall).
-std::vector<Obstacle> parseObstaclesJson(const std::string& text, const std::string& source);
 
 /// Checks a parsed wall for geometric sense (simple polygons, obstacles inside, something left
 /// to cover). Called by the parser; exposed for generators and tests.

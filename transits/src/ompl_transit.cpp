@@ -1,13 +1,11 @@
-// OMPL's sampling-based planners as transit planners, and its Dubins and Reeds-Shepp curves for
-// the car: the only translation unit that includes OMPL (3-4 s of compile time; third_party_notes/ompl.md).
+// OMPL's sampling-based planners as transit planners: one of the two translation units that
+// include OMPL (3-4 s of compile time; the other is vehicles/src/ompl_curves.cpp; third_party_notes/ompl.md).
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
-#include <ompl/base/spaces/DubinsStateSpace.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
-#include <ompl/base/spaces/ReedsSheppStateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/planners/informedtrees/BITstar.h>
 #include <ompl/geometric/planners/prm/PRMstar.h>
@@ -19,9 +17,8 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "coverbench/car.hpp"
 #include "coverbench/transit_planners.hpp"
-#include "coverbench/workspace.hpp"
+#include "coverbench/transit_router.hpp"
 
 namespace coverbench {
 namespace {
@@ -181,41 +178,4 @@ std::unique_ptr<SamplingTransit> makeSamplingTransit(const TransitSpec& spec, co
   return std::make_unique<OmplTransit>(spec, router, bounds, seed);
 }
 
-namespace {
-
-/// Calls f(state of `from`, state of `to`) on states of `space`, freed after.
-template <class Space, class F>
-auto withStates(Space& space, Pose from, Pose to, F&& f) {
-  auto* a = space.allocState()->template as<ob::SE2StateSpace::StateType>();
-  auto* b = space.allocState()->template as<ob::SE2StateSpace::StateType>();
-  a->setXY(from.at.x, from.at.y);
-  a->setYaw(from.heading);
-  b->setXY(to.at.x, to.at.y);
-  b->setYaw(to.heading);
-  auto result = f(a, b);
-  space.freeState(a);
-  space.freeState(b);
-  return result;
-}
-
-}  // namespace
-
-std::vector<CurvePrimitive> reedsSheppPrimitives(Pose from, Pose to, double radius) {
-  ob::ReedsSheppStateSpace space(radius);
-  const ob::ReedsSheppStateSpace::ReedsSheppPath p = withStates(space, from, to, [&](auto* a, auto* b) { return space.reedsShepp(a, b); });
-  std::vector<CurvePrimitive> out;
-  for (int i = 0; i < 5; ++i) {
-    const auto t = p.type_[i];
-    if (t == ob::ReedsSheppStateSpace::RS_NOP || p.length_[i] == 0.0) continue;
-    out.push_back({t == ob::ReedsSheppStateSpace::RS_LEFT ? 'L' : t == ob::ReedsSheppStateSpace::RS_RIGHT ? 'R' : 'S', p.length_[i]});
-  }
-  return out;
-}
-
-double omplDubinsLength(Pose from, Pose to, double radius) {
-  ob::DubinsStateSpace space(radius, false);
-  return withStates(space, from, to, [&](auto* a, auto* b) { return space.dubins(a, b).length() * radius; });
-}
-
 }  // namespace coverbench
-

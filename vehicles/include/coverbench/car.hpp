@@ -25,7 +25,7 @@ struct CurvePrimitive {
   char kind = 'S';
   double amount = 0.0;
 };
-/// OMPL's shortest Reeds-Shepp curve (core/src/ompl_transit.cpp).
+/// OMPL's shortest Reeds-Shepp curve (vehicles/src/ompl_curves.cpp).
 std::vector<CurvePrimitive> reedsSheppPrimitives(Pose from, Pose to, double radius);
 /// The length of OMPL's shortest Dubins curve, for cross-checking ours (tests only: OMPL's Dubins
 /// aborts the process on an internal assertion for some pairs of poses tens of radii apart, in

@@ -1,4 +1,4 @@
-// What core/include/coverbench/planner.hpp declares: a planner's resolved parameters and the
+// What planning/include/coverbench/planner.hpp declares: a planner's resolved parameters and the
 // names of parameter values and plan statuses. Here, in the planning toolkit, so that every
 // library that uses them (the sweep search, the planners, the runner) finds them below itself.
 #include "coverbench/planner.hpp"

@@ -100,4 +100,15 @@ std::string toString(VehicleModel::Kind kind);
 /// The kind named `name`; false when there is none.
 bool parseVehicleKind(const std::string& name, VehicleModel::Kind& kind);
 
+/// The transit planner of a problem (config section `transit:`, `--transit` on the command line).
+struct TransitSpec {
+  std::string planner = "visibility";
+  /// Sampling planners: iterations per query (what makes a route repeatable).
+  long long iterations = 2000;
+  /// Sampling planners: wall-clock cap per query, seconds; a query stopped by it may differ on a
+  /// rerun, and the plan says so.
+  double time_cap_s = 10.0;
+  bool isDefault() const { return planner == "visibility"; }
+};
+
 }  // namespace coverbench
