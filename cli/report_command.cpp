@@ -138,7 +138,7 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
       try {
         const ResultsDb::StoredRun& r = runs[i];
         const std::string title = r.wall.name + " / " + pictures[i]->column + "  " + r.status;
-        const bool scorable = !r.path.waypoints.empty() && r.status != "metrics_error";
+        const bool scorable = !r.path.waypoints.empty() && r.status != toString(RunStatus::MetricsError);
         const bool layer = scorable && r.path.waypoints.size() <= kGalleryCoverageWaypoints;
         if (scorable && !layer)
           pictures[i]->note = std::to_string(r.path.waypoints.size()) + " waypoints: coverage layer and failed segments " +

@@ -143,10 +143,9 @@ TEST_F(Experiments, ARunIsAPureFunctionOfItsInputs) {
   const std::vector<RunSpec> runs = expandRuns(c, walls);
   for (std::size_t i : {0ul, 5ul, runs.size() - 1}) {
     const RunRecord a = executeRun(runs[i]), b = executeRun(runs[i]);
-    ASSERT_EQ(a.status, "ok") << a.reason;
+    ASSERT_EQ(a.status, RunStatus::Ok) << a.reason;
     EXPECT_EQ(encodePath(a.path), encodePath(b.path));
-    ASSERT_EQ(a.metrics.size(), b.metrics.size());
-    for (std::size_t k = 0; k < a.metrics.size(); ++k) EXPECT_EQ(a.metrics[k].value, b.metrics[k].value) << a.metrics[k].name;
+    EXPECT_EQ(a.metrics, b.metrics);
   }
 }
 
@@ -169,7 +168,7 @@ TEST_F(Experiments, TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys) {
     const RunRecord rec = executeRun(exact_runs[i]);
     ASSERT_TRUE(rec.valid) << rec.reason;
     std::map<std::string, double> m;
-    for (const NamedMetric& x : rec.metrics) m[x.name] = x.value;
+    for (const auto& [name, value] : rec.metrics) m[name] = value;
     for (const char* name : kExactJudgeMetrics) ASSERT_TRUE(m.count(name)) << name;
     EXPECT_EQ(m["exact_valid"], 1.0);
     EXPECT_EQ(m["exact_violations"], 0.0);
@@ -178,7 +177,7 @@ TEST_F(Experiments, TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys) {
     EXPECT_LE(m["coverage_reachable"], m["exact_coverage_reachable_upper"] + fastErrorBound(0.2));
     EXPECT_GE(m["coverage_wall"], m["exact_coverage_wall_lower"] - fastErrorBound(0.2));
     EXPECT_LE(m["coverage_wall"], m["exact_coverage_wall_upper"] + fastErrorBound(0.2));
-    for (const NamedMetric& x : executeRun(fast_runs[i]).metrics) EXPECT_EQ(std::string(x.name).rfind("exact_", 0), std::string::npos);
+    for (const auto& [name, value] : executeRun(fast_runs[i]).metrics) EXPECT_EQ(name.rfind("exact_", 0), std::string::npos);
   }
   EXPECT_NE(error(small + "judge: strict\n").find(":12: judge: must be fast or exact, not 'strict'"), std::string::npos);
 }
@@ -225,10 +224,10 @@ TEST_F(Experiments, SecondRunDoesNoWorkAndGivesIdenticalRunsAndAGrownConfigOnlyR
   const ResultSet rs = results.load();
   EXPECT_EQ(rs.runs.size(), grown.total);
   for (const ResultRow& r : rs.runs) {
-    EXPECT_TRUE(r.status == "ok" || r.status == "partial") << r.status;
+    EXPECT_TRUE(hasPath(r.status)) << r.status;
     EXPECT_TRUE(r.valid);
     // A partial run says how much reachable area it left, in numbers.
-    if (r.status == "partial") {
+    if (r.status == RunStatus::Partial) {
       EXPECT_GT(r.uncovered_reachable_m2, 0.0);
     }
   }

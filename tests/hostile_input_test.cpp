@@ -684,7 +684,7 @@ TEST(RunList, NamesWithNewlinesAndControlCharactersStayOnTheirLine) {
   ResultSet rs;
   ResultRow row;
   row.key = "abc";
-  row.status = "ok";
+  row.status = RunStatus::Ok;
   row.config = "zig\\zag";
   row.dataset = "d\r";
   row.wall_name = "two\nlines\x1b[31m";

@@ -129,10 +129,10 @@ TEST_F(Isolation, EachMisbehavingPlannerYieldsItsStatusAndTheRestIsUntouched) {
   EXPECT_EQ(s.executed, 14u);
   const ResultSet rs = ResultsDb(s.database, ResultsDb::Mode::ReadOnly).load();
   ASSERT_EQ(rs.runs.size(), 14u);
-  const std::map<std::string, std::string> expected = {
-      {"zigzag", "ok"},           {"segfaults", "crash"},     {"loops-forever", "timeout"},
-      {"allocates-without-bound", "memory_limit"},            {"throws", "error"},
-      {"cheats", "invalid_output"}, {"chatters", "invalid_output"}};
+  const std::map<std::string, RunStatus> expected = {
+      {"zigzag", RunStatus::Ok},       {"segfaults", RunStatus::Crash},          {"loops-forever", RunStatus::Timeout},
+      {"allocates-without-bound", RunStatus::MemoryLimit},                      {"throws", RunStatus::Error},
+      {"cheats", RunStatus::InvalidOutput}, {"chatters", RunStatus::InvalidOutput}};
   for (const ResultRow& r : rs.runs) EXPECT_EQ(r.status, expected.at(r.config)) << r.config << " on " << r.wall_name;
 
   // The crash names its signal; the reasons say what happened.

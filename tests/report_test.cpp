@@ -80,8 +80,8 @@ ResultRow row(const std::string& column, const std::string& wall, const std::str
   r.key = column + "-" + wall;
   r.wall = r.wall_name = r.pairing = wall;
   r.dataset = "d";
-  r.status = status;
-  r.valid = status == "ok" || status == "partial";
+  r.status = parseRunStatus(status).value();
+  r.valid = hasPath(r.status);
   r.metrics = {{"coverage_reachable", coverage}, {"overlap", overlap}, {"length_ratio", ratio}};
   return r;
 }
@@ -147,14 +147,14 @@ TEST(OmplExport, ALogByHandForTwoRunsOneOfThemFailed) {
   ok.tool = ToolParams{0.1, 0.02};
   ok.dataset = "fam";
   ok.wall = "w1";
-  ok.status = "partial";
+  ok.status = RunStatus::Partial;
   ok.valid = true;
   ok.metrics = {{"valid", 1.0}, {"coverage_reachable", 0.75}, {"plan_time_ms", 2.5}, {"peak_memory_bytes", 3145728.0}};
   ResultRow failed = ok;
   failed.key = "k2";
   failed.wall_name = "two";
   failed.wall = "w2";
-  failed.status = "timeout";
+  failed.status = RunStatus::Timeout;
   failed.valid = false;
   failed.metrics = {{"plan_time_ms", 1500.0}};
   ResultRow other = ok;  // another dataset: its own log

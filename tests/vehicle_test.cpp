@@ -268,7 +268,7 @@ TEST_F(VehicleFiles, ConfigsNameAVehicleAndOnlyAGantryChangesTheRunKeys) {
 
   // The gantry's run: covers both parts of the narrow wall, valid by its rules, timed with lifts.
   const RunRecord rec = executeRun(c[0]);
-  EXPECT_EQ(rec.status, "ok") << rec.reason;
+  EXPECT_EQ(rec.status, RunStatus::Ok) << rec.reason;
   EXPECT_TRUE(rec.valid);
   EXPECT_GE(rec.stats.at("lifted_crossings"), 1.0);
 

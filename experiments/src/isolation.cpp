@@ -47,6 +47,12 @@ class Writer {
     u64(m.size());
     for (const auto& [k, v] : m) str(k), f64(v);
   }
+  /// A run field's value (kRunFields).
+  void field(const std::string& v) { str(v); }
+  void field(RunStatus v) { u64(static_cast<std::uint64_t>(v)); }
+  void field(bool v) { u64(v ? 1 : 0); }
+  void field(long long v) { u64(static_cast<std::uint64_t>(v)); }
+  void field(double v) { f64(v); }
   std::string take() { return std::move(out_); }
 
  private:
@@ -90,6 +96,15 @@ class Reader {
     return n;
   }
   bool done() const { return at_ == in_.size(); }
+  void field(std::string& v) { v = str(); }
+  void field(RunStatus& v) {
+    const std::uint64_t n = u64();
+    if (n >= std::size(kRunStatuses)) throw std::runtime_error("run record: status " + std::to_string(n) + " is none");
+    v = static_cast<RunStatus>(n);
+  }
+  void field(bool& v) { v = u64() != 0; }
+  void field(long long& v) { v = static_cast<long long>(u64()); }
+  void field(double& v) { v = f64(); }
 
  private:
   void need(std::uint64_t n) const {
@@ -170,7 +185,7 @@ RunRecord measuredRun(const RunSpec& spec) {
   } catch (const std::exception& e) {
     rec = RunRecord{};
     rec.key = spec.key;
-    rec.status = "error";
+    rec.status = RunStatus::Error;
     rec.reason = std::string("the run failed outside the planner: ") + e.what();
   }
   const double allocated_peak = stopAllocationMeter();
@@ -178,7 +193,7 @@ RunRecord measuredRun(const RunSpec& spec) {
   if (g_out_of_memory) {
     rec = RunRecord{};
     rec.key = spec.key;
-    rec.status = "memory_limit";
+    rec.status = RunStatus::MemoryLimit;
     char limit[64];
     std::snprintf(limit, sizeof limit, "%.4g MiB", static_cast<double>(spec.memory_limit_bytes) / (1024.0 * 1024.0));
     rec.reason = std::string("an allocation failed at the memory limit of ") + limit;
@@ -188,7 +203,7 @@ RunRecord measuredRun(const RunSpec& spec) {
   rec.cpu_time_s = cpuSeconds() - cpu_before;
   rec.start_rss_bytes = start_rss;
   rec.peak_rss_bytes = statusBytes("VmHWM:");
-  if (rec.status != "memory_limit")
+  if (rec.status != RunStatus::MemoryLimit)
     rec.peak_memory_bytes = allocationMeterAvailable() ? allocated_peak : std::max(0.0, rec.peak_rss_bytes - start_rss);
   return rec;
 }
@@ -240,17 +255,17 @@ RunRecord deathRecord(const Worker& w, int wait_status) {
   char limit[64];
   std::snprintf(limit, sizeof limit, "%.4g s", hardDeadlineSeconds(*w.spec));
   if (w.killed_at_deadline) {
-    rec.status = "timeout";
+    rec.status = RunStatus::Timeout;
     rec.reason = std::string("killed at the hard deadline of ") + limit + " (the planner ignored its budget)";
   } else if (WIFSIGNALED(wait_status) && WTERMSIG(wait_status) == SIGXCPU) {
-    rec.status = "timeout";
+    rec.status = RunStatus::Timeout;
     rec.reason = std::string("stopped at the CPU-time limit of ") + limit;
   } else if (WIFSIGNALED(wait_status)) {
-    rec.status = "crash";
+    rec.status = RunStatus::Crash;
     rec.signal = WTERMSIG(wait_status);
     rec.reason = "the run's process died of " + signalName(WTERMSIG(wait_status));
   } else {
-    rec.status = "crash";
+    rec.status = RunStatus::Crash;
     rec.reason = WIFEXITED(wait_status) ? "the run's process exited with code " + std::to_string(WEXITSTATUS(wait_status)) +
                                               " without a result"
                                         : "the run's process ended without a result";
@@ -314,7 +329,7 @@ class Pool {
               if (rec.key != spec.key) throw std::runtime_error("a worker answered for another run");
               // A worker whose run hit the memory limit ends (its heap may be in any state): it is
               // reaped now, so no later run is sent to it, and a fresh one is started when needed.
-              if (rec.status == "memory_limit") stop(w, true);
+              if (rec.status == RunStatus::MemoryLimit) stop(w, true);
               done(spec, std::move(rec));
             }
           } else if (n == 0 || errno != EINTR) {  // died before answering
@@ -382,20 +397,11 @@ double hardDeadlineSeconds(const RunSpec& spec) {
 std::string serializeRecord(const RunRecord& r) {
   Writer w;
   w.u64(kRecordMagic);
-  w.str(r.key);
-  w.str(r.status);
-  w.str(r.reason);
-  w.u64(r.valid ? 1 : 0);
-  w.f64(r.uncovered_reachable_m2);
-  w.f64(r.start_rss_bytes);
-  w.f64(r.peak_rss_bytes);
-  w.f64(r.cpu_time_s);
-  w.f64(r.peak_memory_bytes.value_or(NAN));
-  w.f64(r.plan_time_ms);
+  forEachRunField(r, [&](const RunField&, const auto& value) { w.field(value); });
   w.u64(r.plan_times_ms.size());
   for (double t : r.plan_times_ms) w.f64(t);
   w.u64(r.metrics.size());
-  for (const NamedMetric& m : r.metrics) w.str(m.name), w.f64(m.value);
+  for (const auto& [name, value] : r.metrics) w.str(name), w.f64(value);
   w.map(r.stats);
   w.map(r.timings_ms);
   w.str(r.path.waypoints.empty() ? std::string() : encodePath(r.path));
@@ -421,22 +427,11 @@ RunRecord deserializeRecord(const std::string& bytes) {
   Reader in(bytes);
   if (in.u64() != kRecordMagic) throw std::runtime_error("not a run record");
   RunRecord r;
-  r.key = in.str();
-  r.status = in.str();
-  r.reason = in.str();
-  r.valid = in.u64() != 0;
-  r.uncovered_reachable_m2 = in.f64();
-  r.start_rss_bytes = in.f64();
-  r.peak_rss_bytes = in.f64();
-  r.cpu_time_s = in.f64();
-  if (const double m = in.f64(); std::isfinite(m)) r.peak_memory_bytes = m;
-  r.plan_time_ms = in.f64();
+  forEachRunField(r, [&](const RunField&, auto& value) { in.field(value); });
   for (std::uint64_t n = in.count(); n > 0; --n) r.plan_times_ms.push_back(in.f64());
   for (std::uint64_t n = in.count(); n > 0; --n) {
-    NamedMetric m;
-    m.name = in.str();
-    m.value = in.f64();
-    r.metrics.push_back(std::move(m));
+    std::string name = in.str();
+    r.metrics.emplace_back(std::move(name), in.f64());
   }
   r.stats = in.map();
   r.timings_ms = in.map();

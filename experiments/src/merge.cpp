@@ -9,6 +9,7 @@
 #include "coverbench/hash.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/shards.hpp"
+#include "run_columns.hpp"
 #include "sqlite_statement.hpp"
 
 namespace coverbench {
@@ -132,15 +133,17 @@ ShardFile readShard(const std::string& path) {
   return f;
 }
 
-/// Everything a run's result is (not its measured times): for telling identical duplicates from
-/// conflicting ones.
+/// Everything a run's result is (its fields that are not measured, kRunFields; its metrics,
+/// statistics and path): for telling identical duplicates from conflicting ones.
 std::string runContent(sqlite3* db, const std::string& key, const std::string& file) {
+  const std::string fields = runFieldExpressions(
+      tableColumns(db, "runs", file), "r", [](const RunField& f) { return !f.measured && std::string_view(f.name) != "key"; },
+      "quote(%)", " || '|' || ");
   std::string out;
-  for (const char* sql : {"SELECT status || '|' || reason || '|' || valid || '|' || quote(uncovered_reachable_m2) FROM runs "
-                          "WHERE key = ?",
-                          "SELECT name || '=' || quote(value) FROM metrics WHERE run_key = ? ORDER BY name",
-                          "SELECT name || '=' || quote(value) FROM planner_stats WHERE run_key = ? ORDER BY name",
-                          "SELECT hex(data) FROM paths WHERE run_key = ?"}) {
+  for (const std::string& sql : {"SELECT " + fields + " FROM runs r WHERE key = ?",
+                          std::string("SELECT name || '=' || quote(value) FROM metrics WHERE run_key = ? ORDER BY name"),
+                          std::string("SELECT name || '=' || quote(value) FROM planner_stats WHERE run_key = ? ORDER BY name"),
+                          std::string("SELECT hex(data) FROM paths WHERE run_key = ?")}) {
     Statement s(db, sql, file);
     s.text(1, key);
     while (s.step()) out += s.columnText(0) + "\n";
@@ -401,7 +404,17 @@ MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFil
         return "SELECT t.* FROM " + table + " t JOIN experiment_runs x ON x.run_key = t." + key_column +
                " WHERE x.experiment_id = ?1";
       };
-      copyRows(src, select("runs", "key"), f.experiment, db, "INSERT INTO runs VALUES", file, &to_copy);
+      {
+        // The runs by column name: a database made before a run field was added lacks its column
+        // (NULL here), and the output's added columns come last.
+        std::string values =
+            runFieldExpressions(tableColumns(src.db, "runs", f.path), "t", [](const RunField&) { return true; });
+        for (const char* c : kRunContextColumns) values += std::string(", t.") + c;
+        copyRows(src,
+                 "SELECT " + values + ", t.finished_at FROM runs t JOIN experiment_runs x ON x.run_key = t.key "
+                 "WHERE x.experiment_id = ?1",
+                 f.experiment, db, "INSERT INTO runs (" + runColumnList() + ") VALUES", file, &to_copy);
+      }
       for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options",
                                 "run_car", "replans", "replan_figures"})
         copyRows(src, select(table, "run_key"), f.experiment, db, std::string("INSERT INTO ") + table + " VALUES", file, &to_copy);

@@ -15,8 +15,10 @@ namespace coverbench {
 namespace {
 
 /// The run outcomes, in the order of the log's `run_status` enum.
-const char* const kStatuses[] = {"ok",      "partial",      "no_reachable_area", "invalid_input",  "timeout",
-                                 "memory_limit", "crash", "error",             "invalid_output", "metrics_error"};
+constexpr RunStatus kStatuses[] = {RunStatus::Ok,          RunStatus::Partial,       RunStatus::NoReachableArea,
+                                   RunStatus::InvalidInput, RunStatus::Timeout,     RunStatus::MemoryLimit,
+                                   RunStatus::Crash,       RunStatus::Error,          RunStatus::InvalidOutput,
+                                   RunStatus::MetricsError};
 
 /// A value on a run line, where "; " separates values and a line ends the run.
 std::string value(const std::string& text) {
@@ -96,7 +98,7 @@ std::vector<OmplLog> omplBenchmarkLogs(const ResultSet& results, const Experimen
   properties += "wall STRING\nrun_key STRING\n";
   const std::size_t property_count = 7 + metrics.size();
   std::string status_enum = "run_status";
-  for (const char* s : kStatuses) status_enum += std::string("|") + s;
+  for (RunStatus s : kStatuses) status_enum += std::string("|") + toString(s);
 
   std::map<std::string, std::string> params_of;  // configuration label -> "key=value, ..."
   for (const ExperimentRecord::Config& c : record.planners) params_of[c.label] = "planner=" + c.planner + (c.params.empty() ? "" : ", " + c.params);
@@ -190,11 +192,11 @@ std::vector<OmplLog> omplBenchmarkLogs(const ResultSet& results, const Experimen
           const auto it = r->metrics.find(name);
           return it == r->metrics.end() ? NAN : it->second;
         };
-        const bool has_path = r->status == "ok" || r->status == "partial";
+        const bool has_path = hasPath(r->status);
         std::size_t status_index = 0;
         while (status_index < std::size(kStatuses) && r->status != kStatuses[status_index]) ++status_index;
         t += number(metric("plan_time_ms") / 1000.0) + "; " + number(metric("peak_memory_bytes") / (1024.0 * 1024.0)) + "; ";
-        t += std::string(has_path && r->valid ? "1" : "0") + "; " + (r->status == "partial" && r->valid ? "1" : "0") + "; ";
+        t += std::string(has_path && r->valid ? "1" : "0") + "; " + (r->status == RunStatus::Partial && r->valid ? "1" : "0") + "; ";
         t += (status_index < std::size(kStatuses) ? std::to_string(status_index) : "nan") + "; ";
         for (const std::string& m : metrics) {
           const double v = metric(m);

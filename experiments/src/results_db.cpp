@@ -16,6 +16,7 @@
 #include "coverbench/hash.hpp"
 #include "coverbench/metric_spec.hpp"
 #include "coverbench/wall_file.hpp"
+#include "run_columns.hpp"
 #include "sqlite_statement.hpp"
 #include <stdexcept>
 
@@ -63,9 +64,7 @@ CREATE TABLE IF NOT EXISTS runs (
   key TEXT PRIMARY KEY, base_key TEXT NOT NULL, wall_hash TEXT NOT NULL, config_id TEXT NOT NULL,
   planner_version TEXT NOT NULL, code_sha256 TEXT NOT NULL, build TEXT NOT NULL,
   tool_width REAL NOT NULL, clearance REAL NOT NULL, seed INTEGER NOT NULL, repetitions INTEGER NOT NULL,
-  status TEXT NOT NULL, reason TEXT NOT NULL, valid INTEGER NOT NULL, signal INTEGER,
-  uncovered_reachable_m2 REAL, plan_time_ms REAL NOT NULL, cpu_time_s REAL, peak_rss_bytes REAL,
-  peak_memory_bytes REAL, finished_at TEXT NOT NULL);
+  @RUN_FIELDS@, finished_at TEXT NOT NULL);
 CREATE INDEX IF NOT EXISTS runs_by_base_key ON runs (base_key);
 CREATE TABLE IF NOT EXISTS run_repetitions (
   run_key TEXT NOT NULL, repetition INTEGER NOT NULL, plan_time_ms REAL NOT NULL,
@@ -101,6 +100,16 @@ CREATE TABLE IF NOT EXISTS merged_shards (
   workers INTEGER NOT NULL, started_at TEXT NOT NULL, finished_at TEXT,
   PRIMARY KEY (experiment_id, shard_index, source)) WITHOUT ROWID;
 )sql";
+
+/// The schema: kSchema with the run fields' columns (kRunFields, after the run's context).
+std::string schemaSql() {
+  std::string fields;
+  for (const RunField& f : kRunFields)
+    if (std::string_view(f.name) != "key") fields += (fields.empty() ? "" : ", ") + std::string(f.name) + " " + sqlType(f);
+  std::string s = kSchema;
+  s.replace(s.find("@RUN_FIELDS@"), 12, fields);
+  return s;
+}
 
 /// The tables every CoverBench database has had since the first schema (before application_id
 /// was set): how a database written by an earlier build is recognised.
@@ -216,7 +225,8 @@ ResultsDb::ResultsDb(const std::string& path, Mode mode) : file_(path) {
       exec("PRAGMA journal_mode = WAL; PRAGMA synchronous = NORMAL;");  // not allowed inside a transaction
       exec("BEGIN IMMEDIATE");
       try {
-        exec(kSchema);
+        exec(schemaSql());
+        addMissingRunColumns();
         if (marks.application_id != kApplicationId || marks.version != kSchemaVersion)
           exec("PRAGMA application_id = " + std::to_string(kApplicationId) + "; PRAGMA user_version = " +
                std::to_string(kSchemaVersion) + ";");
@@ -233,6 +243,23 @@ ResultsDb::ResultsDb(const std::string& path, Mode mode) : file_(path) {
     if (!had_shm) fs::remove(path + "-shm", ec);
     throw;
   }
+}
+
+std::set<std::string> ResultsDb::runColumns() { return tableColumns(db_, "runs", file_); }
+
+void ResultsDb::addMissingRunColumns() {
+  // A field added to the run record after this database was made: its runs have no value (NULL).
+  const std::set<std::string> columns = runColumns();
+  for (const RunField& f : kRunFields)
+    if (!columns.count(f.name)) {
+      const bool text = f.type == RunFieldType::Text || f.type == RunFieldType::Status;
+      exec(std::string("ALTER TABLE runs ADD COLUMN ") + f.name +
+           (text ? " TEXT NOT NULL DEFAULT ''" : f.type == RunFieldType::Real ? " REAL" : " INTEGER"));
+    }
+}
+
+std::string ResultsDb::runFieldSelect(const std::string& alias) {
+  return runFieldExpressions(runColumns(), alias, [](const RunField&) { return true; });
 }
 
 ResultsDb::Marks ResultsDb::checkOwnership(Mode mode) {
@@ -364,7 +391,11 @@ long long ResultsDb::beginExperiment(const ExperimentConfig& config, const Prove
 std::vector<ResultsDb::StoredKey> ResultsDb::storedKeys() {
   std::vector<StoredKey> out;
   Statement s(db_, "SELECT key, base_key, planner_version, code_sha256, status FROM runs", file_);
-  while (s.step()) out.push_back({s.columnText(0), s.columnText(1), s.columnText(2), s.columnText(3), s.columnText(4)});
+  while (s.step()) {
+    StoredKey k{s.columnText(0), s.columnText(1), s.columnText(2), s.columnText(3)};
+    readField(s, 4, file_, kRunFields[1], k.status);
+    out.push_back(std::move(k));
+  }
   return out;
 }
 
@@ -377,20 +408,16 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
       Statement d(db_, std::string("DELETE FROM ") + table + " WHERE run_key = ?", file_);
       d.text(1, rec.key).run();
     }
-    Statement r(db_,
-                "INSERT OR REPLACE INTO runs (key, base_key, wall_hash, config_id, planner_version, code_sha256, build, "
-                "tool_width, clearance, seed, repetitions, status, reason, valid, signal, uncovered_reachable_m2, "
-                "plan_time_ms, cpu_time_s, peak_rss_bytes, peak_memory_bytes, finished_at) "
-                "VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)",
-                file_);
-    r.text(1, rec.key).text(2, spec.base_key).text(3, spec.wall->hash).text(4, spec.planner->id);
-    r.text(5, spec.planner_version).text(6, spec.code_sha256).text(7, buildIdentity().describe());
-    r.real(8, spec.tool.tool_width).real(9, spec.tool.clearance).integer(10, static_cast<long long>(spec.seed));
-    r.integer(11, spec.repetitions).text(12, rec.status).text(13, rec.reason).integer(14, rec.valid ? 1 : 0);
-    if (rec.signal) r.integer(15, rec.signal);
-    else r.null(15);
-    r.real(16, rec.uncovered_reachable_m2).real(17, rec.plan_time_ms).real(18, rec.cpu_time_s).real(19, rec.peak_rss_bytes);
-    r.real(20, rec.peak_memory_bytes.value_or(NAN)).text(21, utcNow()).run();
+    // The run's fields (kRunFields, the key first), its context, and when it finished.
+    std::string marks;
+    for (std::size_t n = 0; n < kRunFieldCount + std::size(kRunContextColumns); ++n) marks += "?,";
+    Statement r(db_, "INSERT OR REPLACE INTO runs (" + runColumnList() + ") VALUES (" + marks + "?)", file_);
+    int i = 0;
+    forEachRunField(rec, [&](const RunField&, const auto& value) { bindField(r, ++i, value); });
+    r.text(++i, spec.base_key).text(++i, spec.wall->hash).text(++i, spec.planner->id);
+    r.text(++i, spec.planner_version).text(++i, spec.code_sha256).text(++i, buildIdentity().describe());
+    r.real(++i, spec.tool.tool_width).real(++i, spec.tool.clearance).integer(++i, static_cast<long long>(spec.seed));
+    r.integer(++i, spec.repetitions).text(++i, utcNow()).run();
     if (!spec.vehicle.isDefault() || !spec.transit.isDefault()) {
       Statement v(db_,
                   "INSERT INTO run_options (run_key, vehicle, lift_s, lower_s, transit, transit_iterations) "
@@ -427,8 +454,9 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
     Statement m(db_, "INSERT INTO metrics (run_key, position, name, value) VALUES (?,?,?,?)", file_);
     for (std::size_t i = 0; i < rec.metrics.size(); ++i) {
       // Every stored metric is one the registry describes (unit, direction), so reports can read it.
-      if (!findMetricSpec(rec.metrics[i].name)) throw std::logic_error("metric '" + rec.metrics[i].name + "' is not in the registry");
-      m.text(1, rec.key).integer(2, static_cast<long long>(i)).text(3, rec.metrics[i].name).real(4, rec.metrics[i].value).run();
+      const auto& [name, value] = rec.metrics[i];
+      if (!findMetricSpec(name)) throw std::logic_error("metric '" + name + "' is not in the registry");
+      m.text(1, rec.key).integer(2, static_cast<long long>(i)).text(3, name).real(4, value).run();
     }
     Statement st(db_, "INSERT INTO planner_stats (run_key, name, value) VALUES (?,?,?)", file_);
     for (const auto& [name, value] : rec.stats) st.text(1, rec.key).text(2, name).real(3, value).run();
@@ -494,10 +522,10 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   }
   std::map<std::string, std::size_t> index;
   {
+    // The context (columns 0 .. 7), the options (8 .. 14), then the run's fields (15 ..).
     Statement s(db_,
-                "SELECT r.key, r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.seed, r.status, "
-                "r.valid, r.plan_time_ms, r.peak_memory_bytes, r.uncovered_reachable_m2, ws.name, r.planner_version, " +
-                    std::string(kOptionColumns) + " FROM runs r "
+                "SELECT r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.seed, ws.name, r.planner_version, " +
+                    std::string(kOptionColumns) + ", " + runFieldSelect("r") + " FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
                 "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 "
                 "JOIN walls ws ON ws.hash = r.wall_hash" + std::string(kOptionJoins) + "ORDER BY r.key",
@@ -505,25 +533,24 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
     s.integer(1, id);
     while (s.step()) {
       ResultRow row;
-      row.planner = label_of[s.columnText(1)];
-      row.dataset = s.columnText(2);
-      row.wall = s.columnText(3);
+      row.planner = label_of[s.columnText(0)];
+      row.dataset = s.columnText(1);
+      row.wall = s.columnText(2);
       char pairing[160];
-      std::snprintf(pairing, sizeof pairing, "%s/%.17g/%.17g/%lld", row.wall.c_str(), s.columnReal(4), s.columnReal(5),
-                    s.columnInt(6));
+      std::snprintf(pairing, sizeof pairing, "%s/%.17g/%.17g/%lld", row.wall.c_str(), s.columnReal(3), s.columnReal(4),
+                    s.columnInt(5));
       row.pairing = pairing;
-      row.status = s.columnText(7);
-      row.valid = s.columnInt(8) != 0;
-      row.metrics["plan_time_ms"] = s.columnReal(9);
-      if (!s.columnNull(10)) row.metrics["peak_memory_bytes"] = s.columnReal(10);
-      row.uncovered_reachable_m2 = s.columnReal(11);
       row.config = row.planner;
-      row.key = s.columnText(0);
-      row.wall_name = s.columnText(12);
-      row.planner_version = s.columnText(13);
-      row.tool = ToolParams{s.columnReal(4), s.columnReal(5)};
-      storedOptions(s, 14, row.vehicle, row.transit);
-      index[s.columnText(0)] = rs.runs.size();
+      row.wall_name = s.columnText(6);
+      row.planner_version = s.columnText(7);
+      row.tool = ToolParams{s.columnReal(3), s.columnReal(4)};
+      storedOptions(s, 8, row.vehicle, row.transit);
+      int i = 15;
+      forEachRunField(static_cast<RunFields&>(row), [&](const RunField& f, auto& value) { readField(s, i++, file_, f, value); });
+      // The measured fields the metric registry lists are the tables' metrics too.
+      row.metrics["plan_time_ms"] = row.plan_time_ms;
+      if (std::isfinite(row.peak_memory_bytes)) row.metrics["peak_memory_bytes"] = row.peak_memory_bytes;
+      index[row.key] = rs.runs.size();
       rs.runs.push_back(std::move(row));
     }
   }

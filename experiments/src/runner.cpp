@@ -63,11 +63,6 @@ class Progress {
 
 }  // namespace
 
-bool isRetryableStatus(const std::string& status) {
-  return status == "timeout" || status == "memory_limit" || status == "crash" || status == "error" ||
-         status == "metrics_error";
-}
-
 std::string resultsDatabasePath(const ExperimentConfig& config) { return (fs::path(config.output) / "results.sqlite").string(); }
 
 RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& options) {
@@ -124,9 +119,9 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     const auto same = stored_by_key.find(r.key);
     if (same != stored_by_key.end()) {
       experiment_keys.push_back(r.key);
-      if (options.retry_failed && isRetryableStatus(same->second.status)) {
+      if (options.retry_failed && isRetryable(same->second.status)) {
         todo.push_back(&r);
-        ++reasons["retrying " + same->second.status];
+        ++reasons[std::string("retrying ") + toString(same->second.status)];
       }
       continue;
     }
@@ -179,7 +174,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     std::fprintf(options.progress, "%zu runs on %u worker processes (hard limits per run)\n", todo.size(), threads);
   std::size_t stored = 0;
   executeIsolated(todo, threads, [&](const RunSpec& spec, RunRecord rec) {
-    ++summary.by_status[rec.status];
+    ++summary.by_status[toString(rec.status)];
     db.storeRun(spec, rec);
     ++stored;
     done_cost += cost(&spec);

@@ -51,6 +51,19 @@ std::vector<WallEntry> loadWalls(const ExperimentConfig& config) {
 
 namespace {
 
+/// A planner's status as the run's (the run adds what only an execution can end in).
+RunStatus runStatusOf(PlanStatus status) {
+  switch (status) {
+    case PlanStatus::Ok: return RunStatus::Ok;
+    case PlanStatus::Partial: return RunStatus::Partial;
+    case PlanStatus::NoReachableArea: return RunStatus::NoReachableArea;
+    case PlanStatus::InvalidInput: return RunStatus::InvalidInput;
+    case PlanStatus::Timeout: return RunStatus::Timeout;
+    case PlanStatus::Error: return RunStatus::Error;
+  }
+  return RunStatus::Error;
+}
+
 std::string exact(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -235,7 +248,7 @@ RunRecord executeRun(const RunSpec& spec) {
   rec.plan_time_ms = sorted[sorted.size() / 2];
   rec.stats = result.stats;
   rec.timings_ms = result.timings_ms;
-  rec.status = toString(result.status);
+  rec.status = runStatusOf(result.status);
   rec.reason = result.reason;
   if (result.hasPath()) {
     std::optional<PathMetrics> original;
@@ -243,10 +256,10 @@ RunRecord executeRun(const RunSpec& spec) {
       const PathMetrics m = computeMetrics(spec.wall->wall, spec.tool, result.path, spec.vehicle);
       original = m;
       rec.valid = m.validity.valid;
-      rec.metrics = flatten(m);
+      for (const NamedMetric& metric : flatten(m)) rec.metrics.emplace_back(metric.name, metric.value);
       rec.uncovered_reachable_m2 = m.coverage.reachable_area * (1.0 - m.coverage.coverage_reachable);
       if (!rec.valid) {  // the planner's claim does not survive the check
-        rec.status = "invalid_output";
+        rec.status = RunStatus::InvalidOutput;
         rec.reason = std::to_string(m.validity.violations) + " segments violate the wall or the clearance" +
                      (result.reason.empty() ? "" : "; the planner said: " + result.reason);
       }
@@ -260,14 +273,14 @@ RunRecord executeRun(const RunSpec& spec) {
           rec.metrics.push_back({std::string(kExactJudgeMetrics[i]), exact_figures[i]});
         if (rec.valid && !j.validity.valid) {
           rec.valid = false;
-          rec.status = "invalid_output";
+          rec.status = RunStatus::InvalidOutput;
           rec.reason = "the exact judge finds " + std::to_string(j.validity.violations) +
                        " segments that violate the wall or the clearance (the fast engine, with its 1e-9 m tolerance, "
                        "finds none)" + (result.reason.empty() ? "" : "; the planner said: " + result.reason);
         }
       }
     } catch (const std::exception& e) {  // a path beyond the scoring limits, or a bug in the judge
-      rec.status = "metrics_error";
+      rec.status = RunStatus::MetricsError;
       rec.reason = std::string("the path could not be scored: ") + e.what();
     }
     // Surprises only for a valid, scored path (an invalid one has nothing to repair honestly).
@@ -275,7 +288,7 @@ RunRecord executeRun(const RunSpec& spec) {
       try {
         rec.replans = replanRecords(spec, info, problem, result.path, *original);
       } catch (const std::exception& e) {
-        rec.status = "metrics_error";
+        rec.status = RunStatus::MetricsError;
         rec.reason = std::string("replanning could not be scored: ") + e.what();
         rec.replans.clear();
       }

@@ -14,6 +14,18 @@ namespace {
 /// Shortest text that reads back as the same double; empty for NaN and infinities.
 std::string number(double v) { return std::isfinite(v) ? nlohmann::json(v).dump() : std::string(); }
 
+/// A run field's value in a CSV cell and in JSON (NaN and infinities: empty, null).
+std::string csvCell(const std::string& v) { return escapeCsv(v); }
+std::string csvCell(RunStatus v) { return toString(v); }
+std::string csvCell(bool v) { return v ? "true" : "false"; }
+std::string csvCell(long long v) { return std::to_string(v); }
+std::string csvCell(double v) { return number(v); }
+nlohmann::ordered_json jsonValue(const std::string& v) { return v; }
+nlohmann::ordered_json jsonValue(RunStatus v) { return toString(v); }
+nlohmann::ordered_json jsonValue(bool v) { return v; }
+nlohmann::ordered_json jsonValue(long long v) { return v; }
+nlohmann::ordered_json jsonValue(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nullptr; }
+
 /// The metric columns: every metric but `valid`, which is a fixed column.
 std::vector<std::string> metricColumns(const ResultSet& rs) {
   std::vector<std::string> out;
@@ -37,8 +49,7 @@ struct OptionColumns {
 }  // namespace
 
 std::string renderRuns(const ResultSet& rs, bool json) {
-  const std::vector<std::string> fixed = {"key", "dataset", "wall", "wall_hash", "planner", "planner_version", "tool_width", "clearance",
-                                          "status", "valid", "uncovered_reachable_m2"};
+  // The run's context, then its exported fields (kRunFields), then every metric.
   const OptionColumns options(rs);
   if (json) {
     nlohmann::ordered_json out = nlohmann::ordered_json::array();
@@ -54,10 +65,9 @@ std::string renderRuns(const ResultSet& rs, bool json) {
       row["clearance"] = r.tool.clearance;
       if (options.vehicle) row["vehicle"] = toString(r.vehicle.kind);
       if (options.transit) row["transit"] = r.transit.planner;
-      row["status"] = r.status;
-      row["valid"] = r.valid;
-      row["uncovered_reachable_m2"] =
-          std::isfinite(r.uncovered_reachable_m2) ? nlohmann::ordered_json(r.uncovered_reachable_m2) : nullptr;
+      forEachRunField(r, [&](const RunField& f, const auto& value) {
+        if (f.exported) row[f.name] = jsonValue(value);
+      });
       for (const std::string& m : metricColumns(rs)) {
         const auto it = r.metrics.find(m);
         row[m] = it != r.metrics.end() && std::isfinite(it->second) ? nlohmann::ordered_json(it->second) : nullptr;
@@ -66,19 +76,19 @@ std::string renderRuns(const ResultSet& rs, bool json) {
     }
     return out.dump(1) + "\n";
   }
-  std::string text;
-  for (const std::string& h : fixed) {
-    text += (text.empty() ? "" : ",") + h;
-    if (h == "clearance") text += std::string(options.vehicle ? ",vehicle" : "") + (options.transit ? ",transit" : "");
-  }
+  std::string text = "key,dataset,wall,wall_hash,planner,planner_version,tool_width,clearance";
+  text += std::string(options.vehicle ? ",vehicle" : "") + (options.transit ? ",transit" : "");
+  for (const RunField& f : kRunFields)
+    if (f.exported) text += std::string(",") + f.name;
   for (const std::string& m : metricColumns(rs)) text += "," + escapeCsv(m);
   text += "\n";
   for (const ResultRow& r : rs.runs) {
     text += r.key + "," + escapeCsv(r.dataset) + "," + escapeCsv(r.wall_name) + "," + r.wall + "," + escapeCsv(r.config) +
-            "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) + "," +
-            (options.vehicle ? toString(r.vehicle.kind) + "," : "") + (options.transit ? r.transit.planner + "," : "") +
-            escapeCsv(r.status) + "," +
-            (r.valid ? "true" : "false") + "," + number(r.uncovered_reachable_m2);
+            "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) +
+            (options.vehicle ? "," + toString(r.vehicle.kind) : "") + (options.transit ? "," + r.transit.planner : "");
+    forEachRunField(r, [&](const RunField& f, const auto& value) {
+      if (f.exported) text += "," + csvCell(value);
+    });
     for (const std::string& m : metricColumns(rs)) {
       const auto it = r.metrics.find(m);
       text += "," + (it == r.metrics.end() ? std::string() : number(it->second));
@@ -114,7 +124,7 @@ std::string listRuns(const ResultSet& rs) {
   for (const ResultRow& r : rs.runs) {
     char tool[96];
     std::snprintf(tool, sizeof tool, "s=%g c=%g", r.tool.tool_width, r.tool.clearance);
-    text += r.key + "  " + r.status + "  " + oneLine(r.config) + "  " + tool + "  " + oneLine(r.dataset) + "/" +
+    text += r.key + "  " + toString(r.status) + "  " + oneLine(r.config) + "  " + tool + "  " + oneLine(r.dataset) + "/" +
             oneLine(r.wall_name) + "\n";
   }
   return text;

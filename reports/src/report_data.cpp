@@ -16,6 +16,24 @@ using Json = nlohmann::ordered_json;
 
 Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
+/// A run field's value (NaN and infinities as null).
+Json fieldValue(const std::string& v) { return v; }
+Json fieldValue(RunStatus v) { return toString(v); }
+Json fieldValue(bool v) { return v; }
+Json fieldValue(long long v) { return v; }
+Json fieldValue(double v) { return number(v); }
+
+const char* typeName(RunFieldType t) {
+  switch (t) {
+    case RunFieldType::Text: return "text";
+    case RunFieldType::Status: return "status";
+    case RunFieldType::Bool: return "bool";
+    case RunFieldType::Integer: return "integer";
+    case RunFieldType::Real: return "real";
+  }
+  return "";
+}
+
 double metricOr(const ResultRow& r, const std::string& name, double fallback) {
   const auto it = r.metrics.find(name);
   return it == r.metrics.end() || !std::isfinite(it->second) ? fallback : it->second;
@@ -23,7 +41,7 @@ double metricOr(const ResultRow& r, const std::string& name, double fallback) {
 
 /// Larger is worse: runs without a valid path first, then partial, then low coverage, then overlap.
 std::tuple<int, double, double> badness(const ResultRow& r) {
-  const int outcome = r.status == "ok" && r.valid ? 0 : r.status == "partial" && r.valid ? 1 : 2;
+  const int outcome = r.status == RunStatus::Ok && r.valid ? 0 : r.status == RunStatus::Partial && r.valid ? 1 : 2;
   return {outcome, -metricOr(r, "coverage_reachable", 0.0), metricOr(r, "overlap", 0.0)};
 }
 
@@ -58,7 +76,7 @@ std::vector<GallerySection> selectGallery(const ResultSet& rs, const std::vector
       }
     std::vector<std::pair<double, const ResultRow*>> ratios;
     for (const ResultRow* r : runs)
-      if (r->planner == baseline_column && r->valid && (r->status == "ok" || r->status == "partial"))
+      if (r->planner == baseline_column && r->valid && hasPath(r->status))
         if (const double v = metricOr(*r, "length_ratio", NAN); std::isfinite(v)) ratios.push_back({v, r});
     std::stable_sort(ratios.begin(), ratios.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     if (!ratios.empty())
@@ -81,7 +99,7 @@ std::vector<GallerySection> selectGallery(const ResultSet& rs, const std::vector
         for (const ResultRow* r : runs)
           if (r->wall == wall && r->planner == column) {
             g.wall_name = r->wall_name;
-            g.pictures.push_back({column, r->key, r->status, "", ""});
+            g.pictures.push_back({column, r->key, toString(r->status), "", ""});
           }
       section.walls.push_back(std::move(g));
     }
@@ -111,6 +129,16 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
     e["planners"].push_back({{"label", p.label}, {"planner", p.planner}, {"params", p.params}});
   e["columns"] = rs.planners;
   j["experiment"] = e;
+
+  // The run fields each run object carries (kRunFields' exported ones): the Python reader takes
+  // their names and types from here.
+  j["run_fields"] = Json::array();
+  for (const RunField& f : kRunFields)
+    if (f.exported)
+      j["run_fields"].push_back(
+          {{"name", f.name}, {"type", typeName(f.type)}, {"unit", f.unit}, {"description", f.description}});
+  j["run_statuses"] = Json::array();
+  for (RunStatus s : kRunStatuses) j["run_statuses"].push_back(toString(s));
 
   j["metrics"] = Json::array();
   for (const MetricSpec& s : metricSpecs())
@@ -145,11 +173,11 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
                 {"wall_name", r->wall_name},
                 {"tool_width", r->tool.tool_width},
                 {"clearance", r->tool.clearance},
-                {"pairing", r->pairing},
-                {"status", r->status},
-                {"valid", r->valid},
-                {"uncovered_reachable_m2", number(r->uncovered_reachable_m2)},
-                         {"metrics", m}};
+                {"pairing", r->pairing}};
+    forEachRunField(*r, [&](const RunField& f, const auto& value) {
+      if (f.exported) run[f.name] = fieldValue(value);
+    });
+    run["metrics"] = std::move(m);
     // Only a vehicle other than holonomic is named, so holonomic reports stay as they were.
     if (r->vehicle.isCar())
       run["vehicle"] = {{"model", "car"}, {"turn_radius", r->vehicle.turn_radius}, {"reverse", r->vehicle.reverse}};

@@ -13,6 +13,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/planner.hpp"
 #include "coverbench/replanning.hpp"
+#include "coverbench/run_record.hpp"
 #include "coverbench/wall.hpp"
 
 namespace coverbench {
@@ -128,29 +129,6 @@ std::size_t runsPerWall(const ExperimentConfig& config);
 std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vector<WallEntry>& walls,
                                 const std::function<bool(const RunSpec&)>& keep = {}, std::size_t* expanded = nullptr);
 
-/// One repair of a run's path (docs/replanning.md): obstacles appeared at `fraction` of its
-/// length and the rest was repaired by `repair`. The repaired path is scored on the new wall by the
-/// metrics engine like any path; the figures compare it with the original path and with a plan
-/// made from scratch with the obstacles known.
-struct ReplanRecord {
-  double fraction = 0.0;
-  std::string repair;  ///< replan or detour
-  std::size_t obstacles = 0;   ///< that appeared
-  std::size_t requested = 0;   ///< that were asked for (more than appeared: no place found)
-  std::string obstacles_json;  ///< what appeared, as a wall file's obstacles array
-  /// ok; partial (the repair knowingly left painting out: blocked stretches of passes, moves no
-  /// transit reached, or a new plan that was itself partial); failed (no repaired path: the
-  /// reason says why); invalid_output (the metrics engine, or the exact judge with `judge: exact`,
-  /// finds the repaired path invalid on the new wall).
-  std::string status;
-  std::string reason;
-  bool valid = false;
-  double repair_ms = NAN;  ///< measured: replan includes its plan call; detour its routing
-  /// Named figures (NaN when not measured): see kReplanFigures.
-  std::map<std::string, double> figures;
-  Path path;  ///< the repaired path (executed part and repaired remainder)
-  std::size_t cut_waypoint = 0;  ///< the index in `path` of the robot's position when the obstacles appeared
-};
 /// The figures of a ReplanRecord, in the order tables show them.
 inline constexpr const char* kReplanFigures[] = {
     "executed_m",               // length executed before the obstacles appeared
@@ -162,36 +140,6 @@ inline constexpr const char* kReplanFigures[] = {
     "uncovered_added_m2",       // reachable area left unpainted after the repair, minus what the original path left
     "blocked_m",                // detour: painting length the obstacles block
     "kept_moves", "dropped_moves", "unreachable_moves", "transits",  // Repair's counts
-};
-
-/// What a run produced.
-struct RunRecord {
-  std::string key;
-  /// ok, partial (knowingly left reachable parts out), no_reachable_area, invalid_input, timeout,
-  /// memory_limit, crash (with the signal), error, invalid_output (the path fails the exact
-  /// check), metrics_error (the path could not be scored). docs/run_lifecycle.md.
-  std::string status;
-  std::string reason;
-  bool valid = false;
-  /// The reachable area the path did not sweep (m²), measured by the metrics engine: what a
-  /// partial run left out, in numbers. NaN when not scored.
-  double uncovered_reachable_m2 = NAN;
-  int signal = 0;                    ///< the signal that ended a crashed run's process
-  std::vector<NamedMetric> metrics;  ///< empty unless the run has a scored path
-  std::map<std::string, double> stats;       ///< the planner's deterministic statistics
-  std::map<std::string, double> timings_ms;  ///< the planner's own sub-timings (measured, first repetition)
-  Path path;
-  std::vector<ReplanRecord> replans;  ///< with replanning: one per fraction and repair, in that order
-  // Measured: a rerun measures these anew.
-  std::vector<double> plan_times_ms;  ///< wall-clock of every repetition's plan call
-  double plan_time_ms = 0.0;          ///< their median
-  double cpu_time_s = NAN;            ///< user + system CPU of the run's process (rusage)
-  double peak_rss_bytes = NAN;        ///< the run's process's peak resident set (rusage)
-  double start_rss_bytes = NAN;       ///< its resident set when the run started (inherited from the runner)
-  /// The run's own peak: the highest sum of its live C++ allocations (the worker's allocation
-  /// meter, experiments/src/allocation_meter.cpp); where no meter is built in (AddressSanitizer),
-  /// peak_rss_bytes - start_rss_bytes.
-  std::optional<double> peak_memory_bytes;
 };
 
 /// Executes one run in this process: plan under the time budget (`repetitions` times, each

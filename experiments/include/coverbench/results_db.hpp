@@ -49,7 +49,8 @@ class ResultsDb {
                             const ShardRecord* shard = nullptr);
   /// A stored run's identity: its key, the key without planner version and code, and those two.
   struct StoredKey {
-    std::string key, base_key, planner_version, code_sha256, status;
+    std::string key, base_key, planner_version, code_sha256;
+    RunStatus status = RunStatus::Error;
   };
   std::vector<StoredKey> storedKeys();
   /// Stores one run in one transaction.
@@ -72,7 +73,7 @@ class ResultsDb {
     std::string planner;  ///< planner name and resolved parameters
     ToolParams tool;
     VehicleModel vehicle;
-    std::string status, reason;
+    std::string status, reason;  ///< the run's (RunStatus's name) or the repair's
     Path path;  ///< empty when the run failed
     /// A repair (storedReplan): segments before it were driven before the obstacles appeared.
     std::size_t first_judged_segment = 0;
@@ -100,6 +101,13 @@ class ResultsDb {
   /// Refuses (InputError) a file that is not a CoverBench results database of this schema; read
   /// only, also one with nothing in it.
   Marks checkOwnership(Mode mode);
+  /// The columns of the runs table.
+  std::set<std::string> runColumns();
+  /// Adds the columns of run fields an older database lacks (opened for writing).
+  void addMissingRunColumns();
+  /// The run fields as SELECT expressions on the runs table `alias`, in kRunFields' order (NULL
+  /// for a field the database has no column for).
+  std::string runFieldSelect(const std::string& alias);
   void rollback() noexcept;
   sqlite3* db_ = nullptr;
   std::string file_;

@@ -22,10 +22,6 @@ struct RunnerOptions {
   std::optional<Shard> shard;
 };
 
-/// Statuses `retry_failed` runs again: failures of the environment, not of the planner's result
-/// (timeout, memory_limit, crash, error, metrics_error).
-bool isRetryableStatus(const std::string& status);
-
 struct RunnerSummary {
   std::size_t total = 0;         ///< the runs this invocation is responsible for (a shard's share)
   std::size_t config_runs = 0;   ///< the config's runs (all shards)

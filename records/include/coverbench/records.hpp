@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "coverbench/path.hpp"
+#include "coverbench/run_record.hpp"
 
 namespace coverbench {
 
-/// One finished run as the tables see it.
 /// One repair of a run's path after surprise obstacles (docs/replanning.md; table replans).
 struct ReplanRow {
   double fraction = 0.0;
@@ -25,13 +25,14 @@ struct ReplanRow {
   std::map<std::string, double> figures;  ///< kReplanFigures (experiment.hpp) that were measured
 };
 
-struct ResultRow {
+/// One finished run as the tables see it: its fields (RunFields, run_record.hpp) in the context
+/// of its experiment.
+struct ResultRow : RunFields {
   /// The column it belongs to: the planner configuration's label, and with several tool
   /// configurations in the experiment, "label @ s=... m, c=... m" (never pooled across tools).
   std::string planner;
   std::string config;   ///< the planner configuration's label alone
   std::string planner_version;  ///< the planner's declared version when the run was executed
-  std::string key;      ///< run key
   std::string wall_name;
   ToolParams tool;
   VehicleModel vehicle;
@@ -39,10 +40,9 @@ struct ResultRow {
   std::string dataset;
   std::string wall;     ///< wall content hash
   std::string pairing;  ///< what makes two runs comparable: wall, tool and repetition
-  std::string status;
-  bool valid = false;
-  double uncovered_reachable_m2 = 0.0;  ///< NaN when not scored
-  std::map<std::string, double> metrics;  ///< includes plan_time_ms and peak_memory_bytes if measured
+  /// The metrics engine's values by name, and the measured fields the metric registry lists
+  /// (plan_time_ms, and peak_memory_bytes when measured), for tables that show every metric.
+  std::map<std::string, double> metrics;
   /// A sampling transit planner's statistics (transit_queries, transit_failures, transit_length_m,
   /// transit_shortest_m, transit_length_ratio) and its measured time (transit_ms); empty otherwise.
   std::map<std::string, double> transit_figures;

@@ -8,9 +8,6 @@ import numpy as np
 
 from . import stats
 
-# The statuses in the order tables list them (with a path first); others follow alphabetically.
-STATUS_ORDER = ["ok", "partial", "invalid_output", "metrics_error", "no_reachable_area", "invalid_input",
-                "timeout", "memory_limit", "crash", "error"]
 COMPARED_KINDS = ("quality",)  # measured figures (one noisy sample per run) are never tested
 
 
@@ -20,6 +17,39 @@ def load(path):
     if data.get("format") != "coverbench-report-data" or data.get("version") != 1:
         raise ValueError(f"{path}: format: not CoverBench report data of version 1")
     return data
+
+
+# The JSON types of each run field type the report data's run_fields name (kRunFields in C++).
+FIELD_TYPES = {"text": (str,), "status": (str,), "bool": (bool,), "integer": (int,), "real": (int, float)}
+
+
+def read_runs(data):
+    """The runs of report data, each checked against the run fields the data declares (its
+    run_fields: names and types; its run_statuses), with real fields that were not measured (null)
+    as NaN. Raises ValueError naming the run and the field."""
+    fields, statuses = data.get("run_fields"), data.get("run_statuses")
+    if not isinstance(fields, list) or not isinstance(statuses, list):
+        raise ValueError("run_fields, run_statuses: missing (report data from another CoverBench?)")
+    runs = []
+    for i, run in enumerate(data["runs"]):
+        out = dict(run)
+        for f in fields:
+            name, kind = f["name"], f["type"]
+            if kind not in FIELD_TYPES:
+                raise ValueError(f"run_fields: {name}: unknown type '{kind}'")
+            if name not in run:
+                raise ValueError(f"runs[{i}].{name}: missing")
+            v = run[name]
+            if kind == "real" and v is None:
+                out[name] = math.nan
+            elif isinstance(v, bool) != (kind == "bool") or not isinstance(v, FIELD_TYPES[kind]):
+                raise ValueError(f"runs[{i}].{name}: must be {kind}, not {v!r}")
+            elif kind == "status" and v not in statuses:
+                raise ValueError(f"runs[{i}].{name}: unknown status '{v}'")
+            elif kind == "real":
+                out[name] = float(v)
+        runs.append(out)
+    return runs
 
 
 def usable(run):
@@ -40,7 +70,9 @@ class Analysis:
         self.data = data
         self.experiment = data["experiment"]
         self.specs = OrderedDict((m["name"], m) for m in data["metrics"])
-        self.runs = data["runs"]
+        self.runs = read_runs(data)
+        # The statuses in the order tables list them (with a path first), as the data declares.
+        self.status_order = list(data["run_statuses"])
         self.columns = list(self.experiment["columns"])
         seen = []
         for d in self.experiment["datasets"]:
@@ -93,7 +125,7 @@ class Analysis:
     # --- outcomes -----------------------------------------------------------------------------
     def statuses(self):
         present = {r["status"] for r in self.runs}
-        return [s for s in STATUS_ORDER if s == "ok" or s in present] + sorted(present - set(STATUS_ORDER))
+        return [s for s in self.status_order if s == "ok" or s in present]
 
     def outcomes(self, column, dataset=None):
         rs = [r for r in self.by_column[column] if dataset is None or r["dataset"] == dataset]
@@ -103,7 +135,7 @@ class Analysis:
         ok = sum(1 for r in rs if r["status"] == "ok" and r["valid"])
         low, high = stats.wilson(ok, len(rs))
         uncovered = [r["uncovered_reachable_m2"] for r in rs
-                     if r["status"] == "partial" and r["uncovered_reachable_m2"] is not None]
+                     if r["status"] == "partial" and math.isfinite(r["uncovered_reachable_m2"])]
         return {"runs": len(rs), "counts": counts, "ok": ok, "rate": ok / len(rs) if rs else math.nan,
                 "low": low, "high": high,
                 "partial_uncovered_median": float(np.median(uncovered)) if uncovered else math.nan}

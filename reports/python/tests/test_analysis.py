@@ -32,6 +32,14 @@ SPECS = [
 ]
 
 
+# As the C++ report data declares them (kRunFields' exported fields, kRunStatuses).
+RUN_FIELDS = [{"name": "status", "type": "status", "unit": "", "description": "s"},
+              {"name": "valid", "type": "bool", "unit": "", "description": "v"},
+              {"name": "uncovered_reachable_m2", "type": "real", "unit": "m2", "description": "u"}]
+RUN_STATUSES = ["ok", "partial", "invalid_output", "metrics_error", "no_reachable_area", "invalid_input",
+                "timeout", "memory_limit", "crash", "error"]
+
+
 def read(path):
     with open(path, encoding="utf-8") as f:
         return f.read()
@@ -53,7 +61,8 @@ def data(runs, columns, name="hand", dataset_label="d"):
                            "datasets": [{"label": dataset_label, "source": "s", "walls": 4, "sha256": "x"}],
                            "planners": [{"label": c, "planner": c, "params": ""} for c in ("a", "b", "c")],
                            "columns": columns},
-            "metrics": SPECS, "walls": {}, "runs": runs, "gallery": []}
+            "metrics": SPECS, "walls": {}, "runs": runs, "gallery": [],
+            "run_fields": RUN_FIELDS, "run_statuses": RUN_STATUSES}
 
 
 # b against a: w1 better coverage, shorter (win, win); w2 equal coverage, longer (tie, loss);
