@@ -56,7 +56,9 @@ class Hostile : public test::CommandTest {
     sqlite3_stmt* s = nullptr;
     sqlite3_prepare_v2(db, "SELECT params FROM planner_configs ORDER BY params", -1, &s, nullptr);
     std::vector<std::string> out;
-    while (sqlite3_step(s) == SQLITE_ROW) out.emplace_back(reinterpret_cast<const char*>(sqlite3_column_text(s, 0)));
+    // Stored as a JSON object (full precision); compared as "name=value, ..." lines.
+    while (sqlite3_step(s) == SQLITE_ROW) out.push_back(paramsLine(reinterpret_cast<const char*>(sqlite3_column_text(s, 0))));
+    std::sort(out.begin(), out.end());
     sqlite3_finalize(s);
     sqlite3_close(db);
     return out;
@@ -85,8 +87,8 @@ TEST_F(Hostile, ParametersInAnyOrderKeepTheirValues) {
   const ExperimentConfig c = loadExperimentConfig(
       write("c.yaml", std::string(kHead) + "planners:\n  - name: zigzag\n    params: {sweep_angle: 0.5, overlap: 0.2}\n"));
   ASSERT_EQ(c.planners.size(), 1u);
-  EXPECT_EQ(c.planners[0].params.number("sweep_angle"), 0.5);
-  EXPECT_EQ(c.planners[0].params.number("overlap"), 0.2);
+  EXPECT_EQ(test::param<double>(c.planners[0].params, "sweep_angle"), 0.5);
+  EXPECT_EQ(test::param<double>(c.planners[0].params, "overlap"), 0.2);
   EXPECT_EQ(c.planners[0].label, "zigzag(overlap=0.2, sweep_angle=0.5)");
 }
 
@@ -96,8 +98,8 @@ TEST_F(Hostile, TheReadmesSweepExampleLoads) {
                     "planners:\n  - name: zigzag\n    params:\n      sweep_angle: [0, 45, 90]\n      boundary_passes: 1\n"));
   ASSERT_EQ(c.planners.size(), 3u);
   for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_EQ(c.planners[i].params.integer("boundary_passes"), 1);
-    EXPECT_EQ(c.planners[i].params.number("sweep_angle"), 45.0 * static_cast<double>(i));
+    EXPECT_EQ(test::param<long long>(c.planners[i].params, "boundary_passes"), 1);
+    EXPECT_EQ(test::param<double>(c.planners[i].params, "sweep_angle"), 45.0 * static_cast<double>(i));
   }
 }
 
@@ -178,6 +180,7 @@ TEST_F(Hostile, PropertyEveryPlannerStoresExactlyTheParameterValuesWrittenInAnyO
       RunnerOptions options;
       options.threads = 2;
       const RunnerSummary s = runExperiment(c, options);
+      std::sort(expected_rows.begin(), expected_rows.end());
       std::sort(expected_rows.begin(), expected_rows.end());
       EXPECT_EQ(storedParams(s.database), expected_rows);
     }

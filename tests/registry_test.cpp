@@ -1,9 +1,16 @@
 // The registry and parameter resolution.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
 #include "coverbench/build_identity.hpp"
+#include "coverbench/param_table.hpp"
 #include "coverbench/limits.hpp"
 #include "coverbench/registry.hpp"
+#include "test_support.hpp"
 
 namespace coverbench {
 namespace {
@@ -58,11 +65,76 @@ TEST(Registry, UnknownPlannerListsKnownOnes) {
 TEST(Registry, ResolvesDefaultsAndOverrides) {
   const PlannerInfo& z = findPlanner("zigzag");
   const Params defaults = resolveParams(z, {});
-  EXPECT_DOUBLE_EQ(defaults.number("sweep_angle"), 0.0);
-  EXPECT_EQ(defaults.integer("boundary_passes"), 1);
+  EXPECT_DOUBLE_EQ(test::param<double>(defaults, "sweep_angle"), 0.0);
+  EXPECT_EQ(test::param<long long>(defaults, "boundary_passes"), 1);
   const Params p = resolveParams(z, {{"sweep_angle", "45"}, {"boundary_passes", "0"}});
-  EXPECT_DOUBLE_EQ(p.number("sweep_angle"), 45.0);
-  EXPECT_EQ(p.integer("boundary_passes"), 0);
+  EXPECT_DOUBLE_EQ(test::param<double>(p, "sweep_angle"), 45.0);
+  EXPECT_EQ(test::param<long long>(p, "boundary_passes"), 0);
+}
+
+// Planners receive their parameters as a struct (param_table.hpp): no planner code looks a value
+// up by a name in quotes. Checked over every source of algorithms/, planning/ and the guide's
+// example (a typo there used to compile and turn every run into `error`).
+TEST(Registry, NoPlannerLooksAParameterUpByName) {
+  const std::regex lookup(R"((params|all\(\))\s*\.\s*(at|find|count|number|integer|flag|choice)\s*\(\s*")");
+  std::size_t files = 0;
+  for (const char* dir : {"algorithms", "planning", "docs/examples"})
+    for (const auto& e : std::filesystem::recursive_directory_iterator(test::sourcePath(dir))) {
+      const std::string ext = e.path().extension().string();
+      if (ext != ".cpp" && ext != ".hpp") continue;
+      ++files;
+      std::ifstream in(e.path());
+      std::stringstream text;
+      text << in.rdbuf();
+      std::smatch m;
+      const std::string src = text.str();
+      EXPECT_FALSE(std::regex_search(src, m, lookup)) << e.path() << ": " << m.str(0);
+    }
+  EXPECT_GT(files, 20u);
+  // The pattern finds what it is for.
+  EXPECT_TRUE(std::regex_search(std::string(R"(problem.params.all().at("overlap"))"), lookup));
+  EXPECT_TRUE(std::regex_search(std::string(R"(params.number("overlap"))"), lookup));
+}
+
+enum class Colour { Red, Blue };
+struct Typed {
+  double width = 0.0;
+  long long count = 0;
+  bool on = false;
+  Colour colour = Colour::Red;
+};
+
+TEST(ParamTable, FillsEachMemberFromItsSpecAndRefusesAMismatchedDeclaration) {
+  const ParamTable<Typed> table =
+      ParamTable<Typed>()
+          .add({"width", ParamType::Number, 0.5, 0.0, 1.0, {}, "m", "w"}, &Typed::width)
+          .add({"count", ParamType::Integer, 3LL, 0, 9, {}, "", "c"}, &Typed::count)
+          .add({"on", ParamType::Bool, true, 0, 0, {}, "", "o"}, &Typed::on)
+          .add({"colour", ParamType::Choice, std::string("blue"), 0, 0, {}, "", "k"}, &Typed::colour,
+               {{"red", Colour::Red}, {"blue", Colour::Blue}});
+  ASSERT_EQ(table.specs().size(), 4u);
+  EXPECT_EQ(table.specs()[3].choices, (std::vector<std::string>{"red", "blue"}));
+  PlannerInfo info;
+  info.name = "typed";
+  info.params = table.specs();
+  const Typed t = table.fill(resolveParams(info, {{"width", "0.25"}, {"colour", "red"}}));
+  EXPECT_EQ(t.width, 0.25);
+  EXPECT_EQ(t.count, 3);
+  EXPECT_TRUE(t.on);
+  EXPECT_EQ(t.colour, Colour::Red);
+  EXPECT_EQ(table.fill(resolveParams(info, {})).colour, Colour::Blue);
+  // Declared with another type than its member's, twice, or with a default that is no choice.
+  EXPECT_THROW(ParamTable<Typed>().add({"width", ParamType::Integer, 1LL, 0, 9, {}, "", "w"}, &Typed::width),
+               std::logic_error);
+  EXPECT_THROW(ParamTable<Typed>()
+                   .add({"width", ParamType::Number, 0.5, 0.0, 1.0, {}, "m", "w"}, &Typed::width)
+                   .add({"width", ParamType::Bool, true, 0, 0, {}, "", "o"}, &Typed::on),
+               std::logic_error);
+  EXPECT_THROW(ParamTable<Typed>().add({"colour", ParamType::Choice, std::string("green"), 0, 0, {}, "", "k"},
+                                       &Typed::colour, {{"red", Colour::Red}}),
+               std::logic_error);
+  // A value the experiments did not resolve is a bug, not a default.
+  EXPECT_THROW(table.fill(Params{}), std::logic_error);
 }
 
 TEST(Registry, RejectsBadParameters) {

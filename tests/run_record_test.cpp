@@ -190,6 +190,32 @@ TEST_F(RunRecordStorage, ADatabaseWithoutAFieldsColumnIsReadAndUpgraded) {
   ASSERT_EQ(run("run " + cfg + " --no-report --retry-failed").exit_code, 0);
 }
 
+// A configuration's parameters are stored as a JSON object with full precision (two overlaps that
+// differ in the fifteenth digit stay two), and text stored by older builds still reads.
+TEST_F(RunRecordStorage, ParametersAreStoredAsAJsonObjectWithFullPrecision) {
+  const std::string cfg = write("c.yaml", "name: p\noutput: out\ndatasets:\n  - suite: seed-cases\nplanners:\n"
+                                          "  - name: zigzag\n    params: {overlap: [0.123456789012345, 0.123456789012346]}\n"
+                                          "tool:\n  width: 0.1\n  clearance: 0.02\n");
+  ASSERT_EQ(run("run " + cfg + " --no-report").exit_code, 0);
+  const ExperimentRecord record = ResultsDb((dir_ / "out/results.sqlite").string(), ResultsDb::Mode::ReadOnly).record();
+  ASSERT_EQ(record.planners.size(), 2u);
+  const nlohmann::json a = nlohmann::json::parse(paramsJson(record.planners[0].params));
+  const nlohmann::json b = nlohmann::json::parse(paramsJson(record.planners[1].params));
+  EXPECT_EQ(a["overlap"].get<double>(), 0.123456789012345);
+  EXPECT_EQ(b["overlap"].get<double>(), 0.123456789012346);
+  EXPECT_EQ(a["boundary_passes"], 1);
+  EXPECT_EQ(a["direction_search"], false);
+  EXPECT_NE(record.planners[0].label, record.planners[1].label);
+  EXPECT_NE(paramsLine(record.planners[0].params).find("overlap=0.123456789012345"), std::string::npos);
+}
+
+TEST(RunFields, ParametersStoredAsTextByOlderBuildsReadAsTypedValues) {
+  EXPECT_EQ(nlohmann::json::parse(paramsJson("boundary_passes=1, direction_search=false, order=tsp, overlap=0.2")),
+            nlohmann::json::parse(R"({"boundary_passes":1,"direction_search":false,"order":"tsp","overlap":0.2})"));
+  EXPECT_EQ(paramsLine(R"({"order":"tsp","overlap":0.1,"loop":true})"), "order=tsp, overlap=0.1, loop=true");
+  EXPECT_EQ(paramsJson(""), "{}");
+}
+
 TEST(RunFields, TheReportDataDeclaresTheExportedFieldsForItsReader) {
   ResultSet rs;
   ResultRow row;

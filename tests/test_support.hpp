@@ -72,6 +72,12 @@ class CommandTest : public TempDirTest {
 /// The rows a SQL statement yields on a database file, one line each ("a|b|NULL"); the
 /// statement may also write (opened read-write).
 std::string sqlRows(const std::string& database, const std::string& sql);
+
+/// A resolved parameter's value, by name (tests read values; planners receive their struct).
+template <class T>
+T param(const Params& params, const std::string& name) {
+  return std::get<T>(params.all().at(name));
+}
 /// Every run of a results database as comparable text: integrity, key counts, and per key its
 /// status, validity, reason, metrics, planner statistics and path; nothing measured.
 std::string dumpRuns(const std::string& database);

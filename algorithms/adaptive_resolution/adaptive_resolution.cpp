@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "coverbench/edge_index.hpp"
+#include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
 
@@ -15,9 +16,40 @@ struct Piece {
   double x0, x1;
 };
 
-class AdaptivePlanner final : public Planner {
+/// The planner's parameters (paramTable declares them).
+struct AdaptiveParams {
+  bool dense_waypoints = false;
+  double near_spacing = 0.005, mid_spacing = 0.01, far_spacing = 0.02;  ///< m
+  double near_distance = 0.1, mid_distance = 0.5;                        ///< m
+  bool corner_spurs = false;
+};
+
+const ParamTable<AdaptiveParams>& paramTable() {
+  static const ParamTable<AdaptiveParams> table =
+      ParamTable<AdaptiveParams>()
+          .add({"dense_waypoints", ParamType::Bool, false, 0, 0, {}, "",
+                "resample the path by distance to obstacles (controllers that need dense waypoints)"},
+               &AdaptiveParams::dense_waypoints)
+          .add({"near_spacing", ParamType::Number, 0.005, 0.0005, 1.0, {}, "m", "waypoint spacing near obstacles and edges"},
+               &AdaptiveParams::near_spacing)
+          .add({"mid_spacing", ParamType::Number, 0.01, 0.0005, 1.0, {}, "m", "waypoint spacing within mid_distance"},
+               &AdaptiveParams::mid_spacing)
+          .add({"far_spacing", ParamType::Number, 0.02, 0.0005, 1.0, {}, "m", "waypoint spacing elsewhere"},
+               &AdaptiveParams::far_spacing)
+          .add({"near_distance", ParamType::Number, 0.1, 0.0, 100.0, {}, "m", "gap (from the tool's edge) that counts as near"},
+               &AdaptiveParams::near_distance)
+          .add({"mid_distance", ParamType::Number, 0.5, 0.0, 100.0, {}, "m", "gap that counts as mid"},
+               &AdaptiveParams::mid_distance)
+          .add(cornerSpursParam(), &AdaptiveParams::corner_spurs);
+  return table;
+}
+
+class AdaptivePlanner final : public TypedPlanner<AdaptiveParams> {
  public:
-  PlanResult plan(const Problem& problem, const Budget& budget) override {
+  AdaptivePlanner() : TypedPlanner(paramTable()) {}
+
+ protected:
+  PlanResult planWith(const Problem& problem, const AdaptiveParams& params, const Budget& budget) override {
     const double s = problem.tool.tool_width;
     Workspace ws(*problem.wall, problem);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
@@ -165,8 +197,8 @@ class AdaptivePlanner final : public Planner {
       return PlanResult::failure(PlanStatus::NoReachableArea, "no cell centre of the quadtree lies in F");
 
     std::size_t spurs = 0;
-    if (problem.params.flag("corner_spurs")) path = withCornerSpurs(path, problem.tool.radius(), ws.router(), spurs);
-    if (problem.params.flag("dense_waypoints")) path = densify(path, ws, problem.params);
+    if (params.corner_spurs) path = withCornerSpurs(path, problem.tool.radius(), ws.router(), spurs);
+    if (params.dense_waypoints) path = densify(path, ws, params);
 
     PlanResult result;
     result.status = PlanStatus::Ok;
@@ -176,7 +208,7 @@ class AdaptivePlanner final : public Planner {
     result.stats["fine_leaves"] = static_cast<double>(fine_leaves);
     result.stats["largest_leaf_cells"] = static_cast<double>(largest);
     result.stats["rows"] = static_cast<double>(passes);
-    if (problem.params.flag("corner_spurs")) result.stats["corner_spurs"] = static_cast<double>(spurs);
+    if (params.corner_spurs) result.stats["corner_spurs"] = static_cast<double>(spurs);
     recordOutcome(result, builder, components.size(), unreachable);
     return result;
   }
@@ -185,18 +217,16 @@ class AdaptivePlanner final : public Planner {
   /// Waypoints every `near_spacing` on segments within `near_distance` of an obstacle or the wall
   /// edge (measured from the tool's edge), every `mid_spacing` within `mid_distance`, every
   /// `far_spacing` elsewhere. Intermediate points lie on the segments, so validity is unchanged.
-  static Path densify(const Path& in, const Workspace& ws, const Params& params) {
+  static Path densify(const Path& in, const Workspace& ws, const AdaptiveParams& params) {
     const double r = ws.tool().radius();
-    const double near_d = params.number("near_distance"), mid_d = params.number("mid_distance");
+    const double near_d = params.near_distance, mid_d = params.mid_distance;
     Path out;
     out.waypoints.push_back(in.waypoints.front());
     for (std::size_t i = 0; i < in.tool_on.size(); ++i) {
       const Point a = in.waypoints[i], b = in.waypoints[i + 1];
       const SegmentClearance m = ws.field().measure(a, b);
       const double gap = std::fmin(m.boundary_distance, m.obstacle_distance) - r;
-      const double step = gap <= near_d   ? params.number("near_spacing")
-                          : gap <= mid_d ? params.number("mid_spacing")
-                                         : params.number("far_spacing");
+      const double step = gap <= near_d ? params.near_spacing : gap <= mid_d ? params.mid_spacing : params.far_spacing;
       const auto pieces = static_cast<std::size_t>(std::ceil(distance(a, b) / step - 1e-9));
       for (std::size_t k = 1; k < pieces; ++k) out.moveTo(a + (b - a) * (static_cast<double>(k) / static_cast<double>(pieces)), in.tool_on[i]);
       out.waypoints.push_back(b);
@@ -215,15 +245,7 @@ PlannerInfo info() {
   info.code_folders = {"adaptive_resolution"};
   info.summary = "Quadtree over F: rows across open leaves, single cells where obstacles cut in, a loop along every edge; optional waypoint density by distance";
   info.reference = "Seed 000 (adaptive resolution); quadtree coverage as in Choset, Coverage for robotics, AMAI 31, 2001";
-  info.params = {
-      {"dense_waypoints", ParamType::Bool, false, 0, 0, {}, "", "resample the path by distance to obstacles (controllers that need dense waypoints)"},
-      {"near_spacing", ParamType::Number, 0.005, 0.0005, 1.0, {}, "m", "waypoint spacing near obstacles and edges"},
-      {"mid_spacing", ParamType::Number, 0.01, 0.0005, 1.0, {}, "m", "waypoint spacing within mid_distance"},
-      {"far_spacing", ParamType::Number, 0.02, 0.0005, 1.0, {}, "m", "waypoint spacing elsewhere"},
-      {"near_distance", ParamType::Number, 0.1, 0.0, 100.0, {}, "m", "gap (from the tool's edge) that counts as near"},
-      {"mid_distance", ParamType::Number, 0.5, 0.0, 100.0, {}, "m", "gap that counts as mid"},
-      cornerSpursParam(),
-  };
+  info.params = paramTable().specs();
   info.min_coverage_reachable = 0.99;
   info.make = [] { return std::make_unique<AdaptivePlanner>(); };
   return info;

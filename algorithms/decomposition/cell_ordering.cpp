@@ -358,13 +358,6 @@ Ordering greedyOrder(const std::vector<CellEnds>& cells) {
 
 }  // namespace
 
-Order parseOrder(const std::string& name) {
-  if (name == "dfs") return Order::Dfs;
-  if (name == "greedy") return Order::Greedy;
-  if (name == "tsp") return Order::Tsp;
-  throw std::invalid_argument("unknown cell order '" + name + "' (expected dfs, greedy or tsp)");
-}
-
 Ordering orderCells(const std::vector<CellEnds>& cells, const std::vector<CellLink>& links, Order order,
                     const std::function<bool()>& keep_going) {
   if (cells.empty()) return {};

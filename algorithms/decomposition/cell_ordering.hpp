@@ -26,8 +26,6 @@ enum class Order {
            ///< moves over exact entry and exit corners; the cheapest is kept
 };
 
-Order parseOrder(const std::string& name);
-
 /// How a cell can be covered: entry and exit points for orientation o in 0..3 (bit 0: start at
 /// the right end and move left; bit 1: the first pass goes down).
 struct CellEnds {

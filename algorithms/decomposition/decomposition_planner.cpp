@@ -8,6 +8,7 @@
 
 #include "cell_ordering.hpp"
 #include "coverbench/headland.hpp"
+#include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/sweep_search.hpp"
 #include "coverbench/workspace.hpp"
@@ -115,21 +116,50 @@ std::vector<Point> throughContact(const Cell& from, Point p, const Cell& to, Poi
   return walk;
 }
 
-class DecompositionPlanner final : public Planner {
- public:
-  explicit DecompositionPlanner(Kind kind) : kind_(kind) {}
+/// The planners' parameters (paramTable declares them).
+struct DecompositionParams {
+  SweepDirection sweep;
+  Order order = Order::Tsp;
+  double overlap = 0.0;
+  bool boundary_loop = true;
+  double row_end_inset = 0.5;
+  bool fill_leftovers = false;
+};
 
-  PlanResult plan(const Problem& problem, const Budget& budget) override {
-    return planSweep(problem, budget, [&](double angle_deg) { return planAt(problem, budget, angle_deg); });
+const ParamTable<DecompositionParams>& paramTable() {
+  static const ParamTable<DecompositionParams> table =
+      ParamTable<DecompositionParams>()
+          .include(&DecompositionParams::sweep, sweepDirectionParams())
+          .add({"order", ParamType::Choice, std::string("tsp"), 0, 0, {}, "",
+                "cell order: 2-opt-improved TSP tour, depth-first over the cell graph, or greedy nearest entry"},
+               &DecompositionParams::order, {{"tsp", Order::Tsp}, {"dfs", Order::Dfs}, {"greedy", Order::Greedy}})
+          .add({"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent passes overlap"},
+               &DecompositionParams::overlap)
+          .add({"boundary_loop", ParamType::Bool, true, 0, 0, {}, "",
+                "one loop around the wall and each obstacle after the cells (covers corners the passes miss)"},
+               &DecompositionParams::boundary_loop)
+          .add(rowEndInsetParam(), &DecompositionParams::row_end_inset)
+          .add(fillLeftoversParam(), &DecompositionParams::fill_leftovers);
+  return table;
+}
+
+class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
+ public:
+  explicit DecompositionPlanner(Kind kind) : TypedPlanner(paramTable()), kind_(kind) {}
+
+ protected:
+  PlanResult planWith(const Problem& problem, const DecompositionParams& params, const Budget& budget) override {
+    return planSweep(problem, params.sweep, budget,
+                     [&](double angle_deg) { return planAt(problem, params, budget, angle_deg); });
   }
 
  private:
-  PlanResult planAt(const Problem& problem, const Budget& budget, double angle_deg) {
+  PlanResult planAt(const Problem& problem, const DecompositionParams& params, const Budget& budget, double angle_deg) {
     using Clock = std::chrono::steady_clock;
     const auto t_start = Clock::now();
-    const double spacing = problem.tool.tool_width * (1.0 - problem.params.number("overlap"));
-    const Order order = parseOrder(problem.params.choice("order"));
-    const bool boundary_loop = problem.params.flag("boundary_loop");
+    const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
+    const Order order = params.order;
+    const bool boundary_loop = params.boundary_loop;
     // Passes run along `angle_deg`; in the working frame they are vertical (along +y), so the
     // working frame is the world turned by 90 - angle degrees.
     const double turn = (angle_deg - 90.0) * M_PI / 180.0;
@@ -147,10 +177,10 @@ class DecompositionPlanner final : public Planner {
     HeadlandOptions layout;
     layout.spacing = spacing;
     layout.radius = problem.tool.tool_width / 2.0;
-    layout.end_inset = problem.params.number("row_end_inset");
+    layout.end_inset = params.row_end_inset;
     layout.arc_tolerance = kCellArcTolerance;
     layout.along_x = false;
-    layout.with_unpainted = problem.params.flag("fill_leftovers");
+    layout.with_unpainted = params.fill_leftovers;
     const Headland h = boundary_loop ? headland(ws, main, layout) : Headland{};
     const Region cell_region =
         boundary_loop ? h.ends : freeRegion(wall, problem.tool, kCellArcTolerance + kFreeSpaceMargin, kCellArcTolerance);
@@ -290,7 +320,7 @@ class DecompositionPlanner final : public Planner {
     }
     // What the passes and loops left inside the loops (when asked: see fillLeftoversParam).
     Leftovers left;
-    const bool fill = boundary_loop && problem.params.flag("fill_leftovers");
+    const bool fill = boundary_loop && params.fill_leftovers;
     if (fill) {
       left = coverLeftovers(ws, builder, h.unpainted, 0, spacing, problem.tool.tool_width / 2.0, false);
       unreachable += left.unreachable;
@@ -329,21 +359,7 @@ class DecompositionPlanner final : public Planner {
 
 PlannerInfo plannerInfo(Kind kind) {
   PlannerInfo info;
-  info.params = {
-      {"sweep_angle", ParamType::Number, 0.0, 0.0, 180.0, {}, "deg", "direction of the passes, counter-clockwise from +x"},
-      {"order", ParamType::Choice, std::string("tsp"), 0, 0, {"tsp", "dfs", "greedy"}, "",
-       "cell order: 2-opt-improved TSP tour, depth-first over the cell graph, or greedy nearest entry"},
-      {"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent passes overlap"},
-      {"boundary_loop", ParamType::Bool, true, 0, 0, {}, "",
-       "one loop around the wall and each obstacle after the cells (covers corners the passes miss)"},
-      {"direction_search", ParamType::Bool, false, 0, 0, {}, "",
-       "search the sweep direction (5-degree steps and the longest edges, then 1-degree steps); overrides sweep_angle"},
-      {"turn_penalty", ParamType::Number, 1.0, 0.0, 1000.0, {}, "m", "cost of a turn over 30 degrees in the direction search"},
-      rowEndInsetParam(),
-      fillLeftoversParam(),
-  };
-  info.capabilities.polygon_boundary = true;
-  info.capabilities.circle_obstacles = true;
+  info.params = paramTable().specs();
   info.min_coverage_reachable = 0.99;
   info.make = [kind] { return std::make_unique<DecompositionPlanner>(kind); };
   return info;

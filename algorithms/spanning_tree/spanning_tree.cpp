@@ -10,6 +10,7 @@
 #include <iterator>
 
 #include "coverbench/clearance.hpp"
+#include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
 
@@ -405,19 +406,61 @@ std::vector<std::string> allOrders() {
   return out;
 }
 
-class SpanningTreePlanner final : public Planner {
+enum class Tree { Dfs, Mst };
+
+/// The planner's parameters (paramTable declares them).
+struct SpanningTreeParams {
+  Variant variant = Variant::ShortBranchesFirst;
+  Tree tree = Tree::Dfs;
+  std::array<int, 4> neighbour_order{};  ///< indices into URDL
+  bool boundary_loop = true;
+  bool waypoint_per_cell = false;
+  bool corner_spurs = false;
+};
+
+const ParamTable<SpanningTreeParams>& paramTable() {
+  static const ParamTable<SpanningTreeParams> table = [] {
+    std::vector<std::pair<std::string, std::array<int, 4>>> orders;
+    for (const std::string& o : allOrders()) orders.emplace_back(o, parseOrder(o));
+    return ParamTable<SpanningTreeParams>()
+        .add({"variant", ParamType::Choice, std::string("short-branches-first"), 0, 0, {}, "",
+              "how the tree is walked (see README)"},
+             &SpanningTreeParams::variant,
+             {{"return", Variant::Return},
+              {"stop", Variant::Stop},
+              {"short-branches-first", Variant::ShortBranchesFirst},
+              {"spiral-stc", Variant::SpiralStc}})
+        .add({"tree", ParamType::Choice, std::string("dfs"), 0, 0, {}, "",
+              "depth-first in neighbour order, or a minimum spanning tree preferring straight runs"},
+             &SpanningTreeParams::tree, {{"dfs", Tree::Dfs}, {"mst", Tree::Mst}})
+        .add({"neighbour_order", ParamType::Choice, std::string("URDL"), 0, 0, {}, "",
+              "order neighbours are tried in: U up, R right, D down, L left"},
+             &SpanningTreeParams::neighbour_order, orders)
+        .add({"boundary_loop", ParamType::Bool, true, 0, 0, {}, "",
+              "one pass along F's boundary before the trees (paints what the grid's cells leave along edges and "
+              "obstacles); false gives the classic grid-only method"},
+             &SpanningTreeParams::boundary_loop)
+        .add({"waypoint_per_cell", ParamType::Bool, false, 0, 0, {}, "",
+              "a waypoint at every cell visited (the classic STC output) instead of only where the walk turns; "
+              "the same path"},
+             &SpanningTreeParams::waypoint_per_cell)
+        .add(cornerSpursParam(), &SpanningTreeParams::corner_spurs);
+  }();
+  return table;
+}
+
+class SpanningTreePlanner final : public TypedPlanner<SpanningTreeParams> {
  public:
-  PlanResult plan(const Problem& problem, const Budget& budget) override {
-    const std::string variant_name = problem.params.choice("variant");
-    const Variant variant = variant_name == "return" ? Variant::Return
-                            : variant_name == "stop" ? Variant::Stop
-                            : variant_name == "spiral-stc" ? Variant::SpiralStc
-                                                           : Variant::ShortBranchesFirst;
-    const bool mst = problem.params.choice("tree") == "mst";
-    const bool every_cell = problem.params.flag("waypoint_per_cell");
-    const std::array<int, 4> order = parseOrder(problem.params.choice("neighbour_order"));
+  SpanningTreePlanner() : TypedPlanner(paramTable()) {}
+
+ protected:
+  PlanResult planWith(const Problem& problem, const SpanningTreeParams& params, const Budget& budget) override {
+    const Variant variant = params.variant;
+    const bool mst = params.tree == Tree::Mst;
+    const bool every_cell = params.waypoint_per_cell;
+    const std::array<int, 4> order = params.neighbour_order;
     const double s = problem.tool.tool_width;
-    const bool loop = problem.params.flag("boundary_loop");
+    const bool loop = params.boundary_loop;
 
     Workspace ws(*problem.wall, problem);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
@@ -562,7 +605,7 @@ class SpanningTreePlanner final : public Planner {
     PlanResult result;
     result.status = PlanStatus::Ok;
     result.path = builder.take();
-    if (problem.params.flag("corner_spurs")) {
+    if (params.corner_spurs) {
       std::size_t spurs = 0;
       result.path = withCornerSpurs(result.path, problem.tool.radius(), ws.router(), spurs);
       result.stats["corner_spurs"] = static_cast<double>(spurs);
@@ -591,21 +634,7 @@ PlannerInfo info() {
   info.code_folders = {"spanning_tree"};
   info.summary = "A loop along F's boundary, then spanning-tree coverage of a grid of tool-sized cells; return, stop, short-branches-first or Spiral-STC";
   info.reference = "Gabriely & Rimon, Spanning-tree based coverage of continuous areas by a mobile robot, AMAI 31, 2001";
-  info.params = {
-      {"variant", ParamType::Choice, std::string("short-branches-first"), 0, 0,
-       {"return", "stop", "short-branches-first", "spiral-stc"}, "", "how the tree is walked (see README)"},
-      {"tree", ParamType::Choice, std::string("dfs"), 0, 0, {"dfs", "mst"}, "",
-       "depth-first in neighbour order, or a minimum spanning tree preferring straight runs"},
-      {"neighbour_order", ParamType::Choice, std::string("URDL"), 0, 0, allOrders(), "",
-       "order neighbours are tried in: U up, R right, D down, L left"},
-      {"boundary_loop", ParamType::Bool, true, 0, 0, {}, "",
-       "one pass along F's boundary before the trees (paints what the grid's cells leave along edges and "
-       "obstacles); false gives the classic grid-only method"},
-      {"waypoint_per_cell", ParamType::Bool, false, 0, 0, {}, "",
-       "a waypoint at every cell visited (the classic STC output) instead of only where the walk turns; "
-       "the same path"},
-      cornerSpursParam(),
-  };
+  info.params = paramTable().specs();
   // The loop paints what the cells leave along F's edge; a round tool still leaves the outer corner
   // of each turn of the walk (lowest on the conformance walls: 0.988, gable walls at s = 0.1 m).
   info.min_coverage_reachable = 0.98;

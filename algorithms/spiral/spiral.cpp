@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "coverbench/edge_index.hpp"
+#include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
 
@@ -72,12 +73,27 @@ Ring withCornerSpurs(const Ring& ring, double r, const TransitRouter& router, st
   return out;
 }
 
-class SpiralPlanner final : public Planner {
+/// The planner's parameters (paramTable declares them).
+struct SpiralParams {
+  double overlap = 0.0;
+};
+
+const ParamTable<SpiralParams>& paramTable() {
+  static const ParamTable<SpiralParams> table = ParamTable<SpiralParams>().add(
+      {"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent rings overlap"},
+      &SpiralParams::overlap);
+  return table;
+}
+
+class SpiralPlanner final : public TypedPlanner<SpiralParams> {
  public:
-  PlanResult plan(const Problem& problem, const Budget& budget) override {
+  SpiralPlanner() : TypedPlanner(paramTable()) {}
+
+ protected:
+  PlanResult planWith(const Problem& problem, const SpiralParams& params, const Budget& budget) override {
     const double s = problem.tool.tool_width;
     const double r = problem.tool.radius();
-    const double spacing = s * (1.0 - problem.params.number("overlap"));
+    const double spacing = s * (1.0 - params.overlap);
     // Inner rings only affect coverage, not validity, so they use a coarser arc tolerance. Round
     // offsets err only toward the previous ring (chords cut arcs short), so successive bands
     // overlap by the chord error instead of leaving a gap, even when each level is eroded from the
@@ -153,9 +169,7 @@ PlannerInfo info() {
   info.code_folders = {"spiral"};
   info.summary = "Concentric passes offset inward from the free region's boundary, around obstacles, centre covered";
   info.reference = "Held, On the Computational Geometry of Pocket Machining, LNCS 500, 1991";
-  info.params = {
-      {"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent rings overlap"},
-  };
+  info.params = paramTable().specs();
   info.min_coverage_reachable = 0.995;
   info.make = [] { return std::make_unique<SpiralPlanner>(); };
   return info;

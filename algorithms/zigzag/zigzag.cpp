@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "coverbench/headland.hpp"
+#include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/sweep_search.hpp"
 #include "coverbench/workspace.hpp"
@@ -63,17 +64,44 @@ std::vector<Point> ringWalk(const Ring& ring, Point from, std::size_t e1, Point 
   return polylineLength(forward) <= polylineLength(backward) ? forward : backward;
 }
 
-class ZigzagPlanner final : public Planner {
+/// The planner's parameters (paramTable declares them).
+struct ZigzagParams {
+  SweepDirection sweep;
+  double overlap = 0.0;
+  long long boundary_passes = 1;
+  double row_end_inset = 0.5;
+  bool fill_leftovers = false;
+};
+
+const ParamTable<ZigzagParams>& paramTable() {
+  static const ParamTable<ZigzagParams> table =
+      ParamTable<ZigzagParams>()
+          .include(&ZigzagParams::sweep, sweepDirectionParams())
+          .add({"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent rows overlap"},
+               &ZigzagParams::overlap)
+          .add({"boundary_passes", ParamType::Integer, 1LL, 0, 10, {}, "",
+                "boundary-following loops around the wall and each obstacle before the rows"},
+               &ZigzagParams::boundary_passes)
+          .add(rowEndInsetParam(), &ZigzagParams::row_end_inset)
+          .add(fillLeftoversParam(), &ZigzagParams::fill_leftovers);
+  return table;
+}
+
+class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
  public:
-  PlanResult plan(const Problem& problem, const Budget& budget) override {
-    return planSweep(problem, budget, [&](double angle_deg) { return planAt(problem, budget, angle_deg); });
+  ZigzagPlanner() : TypedPlanner(paramTable()) {}
+
+ protected:
+  PlanResult planWith(const Problem& problem, const ZigzagParams& params, const Budget& budget) override {
+    return planSweep(problem, params.sweep, budget,
+                     [&](double angle_deg) { return planAt(problem, params, budget, angle_deg); });
   }
 
  private:
-  PlanResult planAt(const Problem& problem, const Budget& budget, double angle_deg) {
+  PlanResult planAt(const Problem& problem, const ZigzagParams& params, const Budget& budget, double angle_deg) {
     const double angle = angle_deg * M_PI / 180.0;
-    const double spacing = problem.tool.tool_width * (1.0 - problem.params.number("overlap"));
-    const auto passes = static_cast<std::size_t>(problem.params.integer("boundary_passes"));
+    const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
+    const auto passes = static_cast<std::size_t>(params.boundary_passes);
 
     // Work in a frame where rows are horizontal; rotate the result back at the end.
     Workspace ws(rotateWall(*problem.wall, -angle), problem);
@@ -89,9 +117,9 @@ class ZigzagPlanner final : public Planner {
     layout.spacing = spacing;
     layout.radius = problem.tool.tool_width / 2.0;
     layout.loops = passes;
-    layout.end_inset = problem.params.number("row_end_inset");
+    layout.end_inset = params.row_end_inset;
     layout.arc_tolerance = kRowArcTolerance;
-    layout.with_unpainted = problem.params.flag("fill_leftovers");
+    layout.with_unpainted = params.fill_leftovers;
     const Headland h = headland(ws, main, layout);
     PathBuilder builder(ws);
     std::size_t unreachable = coverRings(builder, h.loops, 1.01 * spacing);
@@ -177,7 +205,7 @@ class ZigzagPlanner final : public Planner {
     }
     // What the loops and rows left, when asked (see fillLeftoversParam).
     if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in rows");
-    const bool fill = problem.params.flag("fill_leftovers");
+    const bool fill = params.fill_leftovers;
     const Leftovers left =
         fill ? coverLeftovers(ws, builder, h.unpainted, rows_from, spacing, problem.tool.tool_width / 2.0, true)
              : Leftovers{};
@@ -207,19 +235,7 @@ PlannerInfo info() {
   info.code_folders = {"zigzag"};
   info.summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes";
   info.reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013";
-  info.params = {
-      {"sweep_angle", ParamType::Number, 0.0, 0.0, 180.0, {}, "deg", "direction of the rows, counter-clockwise from +x"},
-      {"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent rows overlap"},
-      {"boundary_passes", ParamType::Integer, 1LL, 0, 10, {}, "",
-       "boundary-following loops around the wall and each obstacle before the rows"},
-      {"direction_search", ParamType::Bool, false, 0, 0, {}, "",
-       "search the sweep direction (5-degree steps and the longest edges, then 1-degree steps); overrides sweep_angle"},
-      {"turn_penalty", ParamType::Number, 1.0, 0.0, 1000.0, {}, "m", "cost of a turn over 30 degrees in the direction search"},
-      rowEndInsetParam(),
-      fillLeftoversParam(),
-  };
-  info.capabilities.polygon_boundary = true;
-  info.capabilities.circle_obstacles = true;
+  info.params = paramTable().specs();
   info.min_coverage_reachable = 0.995;
   info.make = [] { return std::make_unique<ZigzagPlanner>(); };
   return info;

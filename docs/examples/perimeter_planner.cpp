@@ -1,22 +1,37 @@
 // A complete, tiny planner: one loop around every ring of the free region (wall edge and each
 // obstacle). It is the example of docs/ADDING_A_PLANNER.md and is compiled and tested by
 // tests/example_planner_test.cpp, so the guide cannot drift from the real interface.
+#include "coverbench/param_table.hpp"
 #include "coverbench/planner.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::perimeter {
 
-class PerimeterPlanner final : public Planner {
+/// The planner's parameters: a struct, each member declared once below with its spec.
+struct PerimeterParams {
+  double inset = 0.0;  ///< m
+};
+
+const ParamTable<PerimeterParams>& paramTable() {
+  static const ParamTable<PerimeterParams> table = ParamTable<PerimeterParams>().add(
+      {"inset", ParamType::Number, 0.0, 0.0, 1.0, {}, "m", "how far inside F the loops run"}, &PerimeterParams::inset);
+  return table;
+}
+
+class PerimeterPlanner final : public TypedPlanner<PerimeterParams> {
  public:
-  PlanResult plan(const Problem& problem, const Budget& /*budget*/) override {
+  PerimeterPlanner() : TypedPlanner(paramTable()) {}
+
+ protected:
+  PlanResult planWith(const Problem& problem, const PerimeterParams& params, const Budget& /*budget*/) override {
     Workspace ws(*problem.wall, problem);  // F, exact checks, transits
     if (ws.free().empty())
       return PlanResult::failure(PlanStatus::NoReachableArea, "the tool fits nowhere on this wall");
     // The largest free component, or every one for a vehicle that lifts its tool (docs/vehicles.md).
     const Region part = coveredPart(componentsByArea(ws.free()), problem.vehicle);
     PathBuilder builder(ws);                          // never writes an unchecked move
-    const double inset = problem.params.number("inset");
+    const double inset = params.inset;
     const Region rings = inset > 0 ? offsetRegion(part, -inset, 1e-4) : part;
     coverRings(builder, allRings(rings), problem.tool.tool_width);
     PlanResult result;
@@ -33,7 +48,7 @@ PlannerInfo info() {
   info.code_folders = {"perimeter"};  // algorithms/perimeter/: its code's hash is in every run key
   info.summary = "One loop around the wall edge and around each obstacle";
   info.reference = "docs/ADDING_A_PLANNER.md";
-  info.params = {{"inset", ParamType::Number, 0.0, 0.0, 1.0, {}, "m", "how far inside F the loops run"}};
+  info.params = paramTable().specs();
   info.make = [] { return std::make_unique<PerimeterPlanner>(); };
   return info;
 }

@@ -1,5 +1,6 @@
 #include "coverbench/results_db.hpp"
 
+#include <nlohmann/json.hpp>
 #include <sqlite3.h>
 #include <sys/utsname.h>
 #include <unistd.h>
@@ -152,10 +153,11 @@ std::string gibibytes(double bytes) {
   return buf;
 }
 
+/// The resolved parameters as a JSON object, numbers with full precision (paramsJson reads it).
 std::string paramsText(const PlannerConfig& pc) {
-  std::string out;
-  for (const auto& [k, v] : pc.params.all()) out += (out.empty() ? "" : ", ") + k + "=" + toString(v);
-  return out;
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : pc.params.all()) std::visit([&, name = k](const auto& x) { out[name] = x; }, v);
+  return out.dump();
 }
 
 }  // namespace
@@ -741,7 +743,8 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
   StoredRun run;
   run.key = s.columnText(0);
   run.wall = parseWallJson(s.columnText(1), file_ + " (wall " + s.columnText(2) + ")");
-  run.planner = s.columnText(3) + (s.columnText(4).empty() ? "" : " (" + s.columnText(4) + ")");
+  const std::string params = paramsLine(s.columnText(4));
+  run.planner = s.columnText(3) + (params.empty() ? "" : " (" + params + ")");
   run.tool = ToolParams{s.columnReal(5), s.columnReal(6)};
   run.status = s.columnText(7);
   run.reason = s.columnText(8);

@@ -1,28 +1,24 @@
-// What planning/include/coverbench/planner.hpp declares: a planner's resolved parameters and the
-// names of parameter values and plan statuses. Here, in the planning toolkit, so that every
+// What planning/include/coverbench/planner.hpp declares: the names of parameter values and plan
+// statuses. Here, in the planning toolkit, so that every
 // library that uses them (the sweep search, the planners, the runner) finds them below itself.
 #include "coverbench/planner.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace coverbench {
 
-const ParamValue& Params::get(const std::string& name) const {
-  const auto it = values_.find(name);
-  if (it == values_.end()) throw std::logic_error("parameter '" + name + "' is not declared");
-  return it->second;
-}
-double Params::number(const std::string& name) const { return std::get<double>(get(name)); }
-long long Params::integer(const std::string& name) const { return std::get<long long>(get(name)); }
-bool Params::flag(const std::string& name) const { return std::get<bool>(get(name)); }
-const std::string& Params::choice(const std::string& name) const { return std::get<std::string>(get(name)); }
-
 std::string toString(const ParamValue& value) {
   struct Visitor {
     std::string operator()(double d) const {
+      // Ten significant digits as before (so keys of such values stay), more when ten do not read
+      // back: two values that differ in the eleventh digit are two configurations.
       char buf[64];
-      std::snprintf(buf, sizeof buf, "%.10g", d);
+      for (int digits = 10; digits <= 17; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, d);
+        if (std::strtod(buf, nullptr) == d) break;
+      }
       return buf;
     }
     std::string operator()(long long i) const { return std::to_string(i); }

@@ -68,9 +68,26 @@ double sweepCost(const Path& path, double turn_penalty_m) {
   return length + turn_penalty_m * static_cast<double>(turns);
 }
 
-PlanResult planSweep(const Problem& problem, const Budget& budget, const std::function<PlanResult(double)>& plan_at) {
-  if (!problem.params.flag("direction_search")) return plan_at(problem.params.number("sweep_angle"));
-  const double penalty = problem.params.number("turn_penalty");
+const ParamTable<SweepDirection>& sweepDirectionParams() {
+  static const ParamTable<SweepDirection> table =
+      ParamTable<SweepDirection>()
+          .add({"sweep_angle", ParamType::Number, 0.0, 0.0, 180.0, {}, "deg",
+                "direction of the passes (rows), counter-clockwise from +x"},
+               &SweepDirection::angle_deg)
+          .add({"direction_search", ParamType::Bool, false, 0, 0, {}, "",
+                "search the sweep direction (5-degree steps and the longest edges, then 1-degree steps); overrides "
+                "sweep_angle"},
+               &SweepDirection::search)
+          .add({"turn_penalty", ParamType::Number, 1.0, 0.0, 1000.0, {}, "m",
+                "cost of a turn over 30 degrees in the direction search"},
+               &SweepDirection::turn_penalty_m);
+  return table;
+}
+
+PlanResult planSweep(const Problem& problem, const SweepDirection& sweep, const Budget& budget,
+                     const std::function<PlanResult(double)>& plan_at) {
+  if (!sweep.search) return plan_at(sweep.angle_deg);
+  const double penalty = sweep.turn_penalty_m;
   const auto search = searchSweepDirection(
       *problem.wall,
       [&](double deg) -> std::optional<double> {
@@ -80,7 +97,7 @@ PlanResult planSweep(const Problem& problem, const Budget& budget, const std::fu
       },
       [&] { return !budget.expired(); });
   if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the direction search");
-  if (!search) return plan_at(problem.params.number("sweep_angle"));  // reports why
+  if (!search) return plan_at(sweep.angle_deg);  // reports why
   PlanResult result = plan_at(search->angle_deg);
   result.stats["direction_evaluations"] = static_cast<double>(search->evaluations);
   result.stats["direction_cost"] = search->cost;

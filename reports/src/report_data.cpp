@@ -126,7 +126,7 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
     e["datasets"].push_back({{"label", d.label}, {"source", d.source}, {"walls", d.walls}, {"sha256", d.sha256}});
   e["planners"] = Json::array();
   for (const auto& p : record.planners)
-    e["planners"].push_back({{"label", p.label}, {"planner", p.planner}, {"params", p.params}});
+    e["planners"].push_back({{"label", p.label}, {"planner", p.planner}, {"params", Json::parse(paramsJson(p.params))}});
   e["columns"] = rs.planners;
   j["experiment"] = e;
 

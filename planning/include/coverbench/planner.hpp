@@ -2,7 +2,7 @@
 /// The planner plug-in interface: a problem goes in, a result value comes out.
 ///
 /// A planner implements exactly one method, `plan(problem, budget)`. Everything else a benchmark
-/// needs to know about it (name, parameters with units and ranges, capabilities) is declared in
+/// needs to know about it (name, parameters with units and ranges, promise) is declared in
 /// its `PlannerInfo`, registered in algorithms/registry.cpp. See docs/ADDING_A_PLANNER.md.
 
 #include <algorithm>
@@ -40,31 +40,21 @@ struct ParamSpec {
   std::string description;
 };
 
-/// Resolved parameter values (every declared parameter present).
+/// Resolved parameter values (every declared parameter present), by name: what experiments
+/// resolve, key, store and sweep. A planner does not read them: it declares a parameter struct
+/// (param_table.hpp) and receives it filled.
 class Params {
  public:
   void set(const std::string& name, ParamValue value) { values_[name] = std::move(value); }
-  double number(const std::string& name) const;
-  long long integer(const std::string& name) const;
-  bool flag(const std::string& name) const;
-  const std::string& choice(const std::string& name) const;
   const std::map<std::string, ParamValue>& all() const { return values_; }
 
  private:
-  const ParamValue& get(const std::string& name) const;
   std::map<std::string, ParamValue> values_;
 };
 
-/// Formats a value as text (for plan files, tables and messages).
+/// Formats a value as text (for plan files, tables, messages and run keys): numbers in the fewest
+/// digits (at least ten) that read back as the same double.
 std::string toString(const ParamValue& value);
-
-/// What a planner supports; experiments use these to skip inputs a planner declares it cannot do.
-struct Capabilities {
-  bool polygon_boundary = true;   ///< walls given as arbitrary polygons
-  bool circle_obstacles = true;   ///< circles handled exactly (not as coarse polygons)
-  bool disconnected_free_space = false;  ///< can cover several free components in one path
-  bool deterministic = true;
-};
 
 /// One planning problem: a wall, the tool, the vehicle, and the planner's resolved parameters.
 struct Problem {
@@ -154,7 +144,6 @@ struct PlannerInfo {
   std::string summary;
   std::string reference;  ///< the paper or document the algorithm comes from
   std::vector<ParamSpec> params;
-  Capabilities capabilities;
   /// The planner's promise, checked by the conformance suite: with default parameters, the
   /// coverage_reachable it reaches on every conformance wall whose free region is connected.
   double min_coverage_reachable = 0.0;

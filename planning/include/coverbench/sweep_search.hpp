@@ -6,6 +6,7 @@
 #include <functional>
 #include <optional>
 
+#include "coverbench/param_table.hpp"
 #include "coverbench/planner.hpp"
 #include "coverbench/wall.hpp"
 
@@ -24,11 +25,21 @@ std::optional<SweepSearch> searchSweepDirection(const Wall& wall, const std::fun
                                                 const std::function<bool()>& keep_going, double coarse_step_deg = 5.0,
                                                 double fine_step_deg = 1.0, std::size_t longest_edges = 4);
 
-/// The sweep-direction protocol of a sweep-based planner whose parameters include the Number
-/// `sweep_angle` (degrees), the Bool `direction_search` and the Number `turn_penalty` (metres):
-/// plans at `sweep_angle`, or, with the search on, at the cheapest direction found (its statistics
-/// gain `direction_evaluations` and `direction_cost`). `plan_at(angle_deg)` plans at one direction.
-PlanResult planSweep(const Problem& problem, const Budget& budget, const std::function<PlanResult(double)>& plan_at);
+/// The sweep direction of a sweep-based planner: the parameter group every sweep planner includes
+/// (sweepDirectionParams).
+struct SweepDirection {
+  double angle_deg = 0.0;       ///< `sweep_angle`: the passes' direction, counter-clockwise from +x
+  bool search = false;          ///< `direction_search`: search it instead
+  double turn_penalty_m = 1.0;  ///< `turn_penalty`: what a turn over 30 degrees costs in the search
+};
+/// The group's parameters: sweep_angle, direction_search, turn_penalty.
+const ParamTable<SweepDirection>& sweepDirectionParams();
+
+/// The sweep-direction protocol of a sweep-based planner: plans at `sweep.angle_deg`, or, with the
+/// search on, at the cheapest direction found (its statistics gain `direction_evaluations` and
+/// `direction_cost`). `plan_at(angle_deg)` plans at one direction.
+PlanResult planSweep(const Problem& problem, const SweepDirection& sweep, const Budget& budget,
+                     const std::function<PlanResult(double)>& plan_at);
 
 /// Path length plus `turn_penalty_m` metres for every heading change over 30 degrees (a stop on
 /// the machine): the cost the search minimises.

@@ -71,7 +71,8 @@ struct ExperimentRecord {
   };
   std::vector<Dataset> datasets;
   struct Config {
-    std::string label, planner, params;  ///< params: "key=value, ..." (resolved, defaults included)
+    std::string label, planner;
+    std::string params;  ///< resolved, defaults included, as stored (paramsJson reads it)
   };
   std::vector<Config> planners;
   struct WallInfo {
@@ -86,6 +87,13 @@ struct ExperimentRecord {
 /// reachable area and every metric as a column (what pandas or R load). `json`: an array of
 /// objects (NaN and infinities as null); otherwise CSV. Rows in key order.
 std::string renderRuns(const ResultSet& results, bool json);
+/// A planner configuration's resolved parameters as stored, as a JSON object's text: stored so,
+/// with full precision; databases before that stored "key=value, ..." text at ten significant
+/// digits, read here as numbers, true/false or text.
+std::string paramsJson(const std::string& stored);
+/// The same as one line for people: "key=value, ..." (numbers in the fewest digits that read back).
+std::string paramsLine(const std::string& stored);
+
 /// One line per run: key, planner configuration, wall, status (for picking a run to redraw).
 std::string listRuns(const ResultSet& results);
 

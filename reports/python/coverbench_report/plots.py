@@ -242,22 +242,13 @@ def median_bars(ax, points, label, min_points=1):
                 capsize=2, label=label)
 
 
-def parse_params(text):
-    out = {}
-    for part in text.split(", "):
-        if "=" in part:
-            k, v = part.split("=", 1)
-            out[k] = v
-    return out
-
-
 def swept_parameters(a):
     """(planner, parameter, [(value, config label)]) for every numeric parameter that takes
     several values among one planner's configurations, plus the tool width when it does."""
     sweeps = []
     by_planner = {}
     for p in a.experiment["planners"]:
-        by_planner.setdefault(p["planner"], []).append((parse_params(p["params"]), p["label"]))
+        by_planner.setdefault(p["planner"], []).append((p["params"], p["label"]))
     for planner, configs in by_planner.items():
         if len(configs) < 2:
             continue
@@ -266,10 +257,10 @@ def swept_parameters(a):
             vals = {params.get(k) for params, _ in configs}
             if len(vals) < 2:
                 continue
-            try:
-                points = sorted((float(params[k]), label) for params, label in configs if k in params)
-            except ValueError:
+            if not all(isinstance(params[k], (int, float)) and not isinstance(params[k], bool)
+                       for params, _ in configs if k in params):
                 continue
+            points = sorted((float(params[k]), label) for params, label in configs if k in params)
             sweeps.append((planner, k, points))
     return sweeps
 

@@ -1,5 +1,6 @@
 """An experiment's report: index.html with its figures, and the same tables as Markdown, CSV and
 LaTeX for papers."""
+import json
 import multiprocessing
 import os
 import shlex
@@ -8,6 +9,12 @@ from . import plots
 from . import tables as T
 from .analysis import Analysis
 from .page import esc, figure, gallery_html, page
+
+
+def params_line(params):
+    """A configuration's parameters (a JSON object) as "key=value, ..." (numbers as JSON writes
+    them: the fewest digits that read back)."""
+    return ", ".join(f"{k}={v if isinstance(v, str) else json.dumps(v)}" for k, v in params.items())
 
 
 def tool_suffix(a, i):
@@ -181,7 +188,7 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
         dt.add([d["label"], d["source"], str(d["walls"]), d["sha256"]])
     pt = T.Table("Planner configurations (resolved parameters, defaults included)", ["label", "planner", "parameters"])
     for p in e["planners"]:
-        pt.add([p["label"], p["planner"], p["params"] or "-"])
+        pt.add([p["label"], p["planner"], params_line(p["params"]) or "-"])
     record += [T.to_html(dt), T.to_html(pt), f"<h3>Config ({esc(e['config_path'])})</h3><pre>{esc(e['config_text'])}</pre>",
                "<h3>How to reproduce</h3><pre>" + esc(
                    "git checkout <the git revision above>\nbash scripts/setup.sh\n"

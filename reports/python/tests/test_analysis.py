@@ -59,7 +59,7 @@ def data(runs, columns, name="hand", dataset_label="d"):
             "experiment": {"id": 1, "name": name, "config_path": "c.yaml", "config_hash": "0123456789abcdef",
                            "config_text": "name: hand\n", "baseline": "a", "facts": [["host", "h"]],
                            "datasets": [{"label": dataset_label, "source": "s", "walls": 4, "sha256": "x"}],
-                           "planners": [{"label": c, "planner": c, "params": ""} for c in ("a", "b", "c")],
+                           "planners": [{"label": c, "planner": c, "params": {}} for c in ("a", "b", "c")],
                            "columns": columns},
             "metrics": SPECS, "walls": {}, "runs": runs, "gallery": [],
             "run_fields": RUN_FIELDS, "run_statuses": RUN_STATUSES}
