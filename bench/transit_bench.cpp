@@ -23,7 +23,7 @@ struct Query {
 
 std::vector<Wall> conformanceWalls() {
   std::vector<std::string> files;
-  for (const char* dir : {"datasets/canonical", "tests/data/conformance"})
+  for (const char* dir : {"datasets/canonical", "datasets/conformance"})
     for (const auto& e : std::filesystem::directory_iterator(std::string(COVERBENCH_SOURCE_DIR) + "/" + dir))
       if (e.path().extension() == ".json") files.push_back(e.path().string());
   std::sort(files.begin(), files.end());

@@ -250,7 +250,7 @@ TEST_F(Cli, BadToolWidthAndUnknownPlanner) {
 
 TEST_F(Cli, PlannerFailureIsWrittenWithStatusAndNonZeroExit) {
   const std::string out = (dir_ / "plan.json").string();
-  const CommandRun r = run("plan --wall " + test::sourcePath("tests/data/conformance/exactly_tool_height.json") +
+  const CommandRun r = run("plan --wall " + test::sourcePath("datasets/conformance/exactly_tool_height.json") +
                     " --planner zigzag --out " + out);
   EXPECT_EQ(r.exit_code, 3);
   std::ifstream plan(out);

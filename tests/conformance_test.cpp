@@ -93,14 +93,14 @@ std::vector<Case> allCases() {
   // Variants as parameters.
   for (const char* angle : {"30", "90", "137.5"})
     cases.push_back({"zigzag", test::sourcePath("datasets/canonical/living_room_north.json"), {}, {{"sweep_angle", angle}}});
-  for (const char* wall : {"datasets/canonical/living_room_north.json", "tests/data/conformance/rotated_polygons.json"})
+  for (const char* wall : {"datasets/canonical/living_room_north.json", "datasets/conformance/rotated_polygons.json"})
     cases.push_back({"zigzag", test::sourcePath(wall), {}, {{"direction_search", "true"}}});
   for (const char* passes : {"0", "3"})
-    cases.push_back({"zigzag", test::sourcePath("tests/data/conformance/garden_circles.json"), {}, {{"boundary_passes", passes}}});
-  cases.push_back({"zigzag", test::sourcePath("tests/data/conformance/stairwell.json"), {}, {{"overlap", "0.3"}}});
-  cases.push_back({"spiral", test::sourcePath("tests/data/conformance/stairwell.json"), {}, {{"overlap", "0.3"}}});
-  for (const char* wall : {"tests/data/conformance/garden_circles.json", "tests/data/conformance/stairwell.json",
-                           "tests/data/conformance/overlapping_cluster.json", "tests/data/conformance/rotated_polygons.json",
+    cases.push_back({"zigzag", test::sourcePath("datasets/conformance/garden_circles.json"), {}, {{"boundary_passes", passes}}});
+  cases.push_back({"zigzag", test::sourcePath("datasets/conformance/stairwell.json"), {}, {{"overlap", "0.3"}}});
+  cases.push_back({"spiral", test::sourcePath("datasets/conformance/stairwell.json"), {}, {{"overlap", "0.3"}}});
+  for (const char* wall : {"datasets/conformance/garden_circles.json", "datasets/conformance/stairwell.json",
+                           "datasets/conformance/overlapping_cluster.json", "datasets/conformance/rotated_polygons.json",
                            "datasets/canonical/living_room_north.json", "datasets/canonical/gable_round_window.json"}) {
     for (const char* variant : {"return", "stop", "spiral-stc"})
       cases.push_back({"spanning-tree", test::sourcePath(wall), {}, {{"variant", variant}}});
@@ -112,8 +112,8 @@ std::vector<Case> allCases() {
       cases.push_back({planner, test::sourcePath(wall), {}, {{"corner_spurs", "true"}}});
   }
   for (const char* planner : {"trapezoidal", "boustrophedon"})
-    for (const char* wall : {"tests/data/conformance/garden_circles.json", "tests/data/conformance/stairwell.json",
-                             "tests/data/conformance/rotated_polygons.json", "datasets/canonical/living_room_north.json"}) {
+    for (const char* wall : {"datasets/conformance/garden_circles.json", "datasets/conformance/stairwell.json",
+                             "datasets/conformance/rotated_polygons.json", "datasets/canonical/living_room_north.json"}) {
       for (const char* order : {"dfs", "greedy"}) cases.push_back({planner, test::sourcePath(wall), {}, {{"order", order}}});
       cases.push_back({planner, test::sourcePath(wall), {}, {{"boundary_loop", "false"}}});
       cases.push_back({planner, test::sourcePath(wall), {}, {{"sweep_angle", "37"}}});
@@ -131,22 +131,22 @@ TEST(ConformanceWalls, ExpectedOutcomes) {
   for (const PlannerInfo& p : registeredPlanners()) {
     const Params params = resolveParams(p, {});
     PlanResult r;
-    const Wall exact = loadWallFile(test::sourcePath("tests/data/conformance/exactly_tool_height.json"));
+    const Wall exact = loadWallFile(test::sourcePath("datasets/conformance/exactly_tool_height.json"));
     ASSERT_TRUE(honours(p, exact, {0.1, 0.02}, params, &r));
     EXPECT_EQ(r.status, PlanStatus::NoReachableArea) << p.name;
 
-    const Wall thin = loadWallFile(test::sourcePath("tests/data/conformance/barely_wider_than_tool.json"));
+    const Wall thin = loadWallFile(test::sourcePath("datasets/conformance/barely_wider_than_tool.json"));
     ASSERT_TRUE(honours(p, thin, {0.1, 0.02}, params, &r));
     EXPECT_EQ(r.status, PlanStatus::Ok) << p.name << ": " << r.reason;
 
-    const Wall split = loadWallFile(test::sourcePath("tests/data/conformance/narrow_gap_disconnected.json"));
+    const Wall split = loadWallFile(test::sourcePath("datasets/conformance/narrow_gap_disconnected.json"));
     ASSERT_TRUE(honours(p, split, {0.1, 0.02}, params, &r));
     EXPECT_EQ(r.status, PlanStatus::Partial) << p.name;
     EXPECT_EQ(r.free_components, 2u) << p.name;
     EXPECT_EQ(r.covered_components, 1u) << p.name;
     EXPECT_NE(r.reason.find("disconnected"), std::string::npos) << p.name << " must say what it left out";
 
-    const Wall open = loadWallFile(test::sourcePath("tests/data/conformance/narrow_passage_open.json"));
+    const Wall open = loadWallFile(test::sourcePath("datasets/conformance/narrow_passage_open.json"));
     ASSERT_TRUE(honours(p, open, {0.1, 0.02}, params, &r));
     EXPECT_EQ(r.free_components, 1u) << p.name;
     EXPECT_EQ(r.status, PlanStatus::Ok) << p.name;

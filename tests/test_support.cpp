@@ -89,7 +89,7 @@ std::string dumpRuns(const std::string& database) {
 
 std::vector<std::string> conformanceWallFiles() {
   std::vector<std::string> files;
-  for (const char* dir : {"datasets/canonical", "tests/data/conformance"})
+  for (const char* dir : {"datasets/canonical", "datasets/conformance"})
     for (const auto& e : std::filesystem::directory_iterator(sourcePath(dir)))
       if (e.path().extension() == ".json") files.push_back(e.path().string());
   std::sort(files.begin(), files.end());

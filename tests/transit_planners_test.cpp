@@ -106,7 +106,7 @@ TEST(SamplingTransits, AnotherSeedMayTakeAnotherRouteStillValid) {
 
 // A coverage planner with a sampling transit planner: valid, and the plan reports the transits.
 TEST(SamplingTransits, ACoveragePlannerUsesThemAndReportsTheirLength) {
-  const Wall wall = loadWallFile(test::sourcePath("tests/data/conformance/garden_circles.json"));
+  const Wall wall = loadWallFile(test::sourcePath("datasets/conformance/garden_circles.json"));
   for (const char* name : {"zigzag", "boustrophedon"}) {
     const PlannerInfo& info = findPlanner(name);
     Problem problem;
@@ -134,7 +134,7 @@ TEST(SamplingTransits, ACoveragePlannerUsesThemAndReportsTheirLength) {
 class TransitCommands : public test::CommandTest {};
 
 TEST_F(TransitCommands, EveryTransitPlannerGivesTheSamePlanFileTwice) {
-  const std::string wall = test::sourcePath("tests/data/conformance/garden_circles.json");
+  const std::string wall = test::sourcePath("datasets/conformance/garden_circles.json");
   for (const TransitPlannerInfo& t : transitPlanners()) {
     std::string files[2];
     for (std::string& text : files) {

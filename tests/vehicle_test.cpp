@@ -139,7 +139,7 @@ TEST(Gantry, ThePathBuilderCrossesStraightWithTheToolLifted) {
 }
 
 TEST(Gantry, EveryPlannerCoversBothSidesOfAGapNarrowerThanTheTool) {
-  const Wall split = loadWallFile(test::sourcePath("tests/data/conformance/narrow_gap_disconnected.json"));
+  const Wall split = loadWallFile(test::sourcePath("datasets/conformance/narrow_gap_disconnected.json"));
   const ToolParams tool{0.1, 0.02};
   for (const PlannerInfo& info : registeredPlanners()) {
     Problem problem;
@@ -284,7 +284,7 @@ TEST_F(VehicleFiles, ConfigsNameAVehicleAndOnlyAGantryChangesTheRunKeys) {
 class VehicleCommands : public test::CommandTest {};
 
 TEST_F(VehicleCommands, PlanAndScoreForAGantry) {
-  const std::string wall = test::sourcePath("tests/data/conformance/narrow_gap_disconnected.json");
+  const std::string wall = test::sourcePath("datasets/conformance/narrow_gap_disconnected.json");
   const std::string plan = (dir_ / "plan.json").string(), svg = (dir_ / "plan.svg").string();
   CommandRun r = run("plan --wall " + wall + " --planner zigzag --vehicle gantry --lift-s 2 --out " + plan + " --svg " + svg);
   ASSERT_EQ(r.exit_code, 0) << r.err;
