@@ -41,6 +41,15 @@ void addPlannerForTesting(PlannerInfo info) {
   testPlanners().push_back(std::move(info));
 }
 
+const PlannerInfo& addPlanner(PlannerInfo info, const std::string& source) {
+  for (const PlannerInfo& p : registeredPlanners())
+    if (p.name == info.name) throw InputError(source, "name", "'" + info.name + "' is a registered planner's name");
+  for (PlannerInfo& p : testPlanners())
+    if (p.name == info.name) return p = std::move(info);
+  testPlanners().push_back(std::move(info));
+  return testPlanners().back();
+}
+
 const PlannerInfo& findPlanner(const std::string& name, const std::string& source) {
   if (const PlannerInfo* p = lookupPlanner(name)) return *p;
   std::string known;

@@ -1,4 +1,5 @@
 #include "commands.hpp"
+#include "coverbench/external_planner.hpp"
 #include "coverbench/results_db.hpp"
 
 #include <algorithm>
@@ -30,6 +31,12 @@ namespace coverbench::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+/// A registered planner by name, or a planner outside the tree by its manifest (a .json file).
+const PlannerInfo& plannerNamed(const std::string& name) {
+  if (name.size() > 5 && name.compare(name.size() - 5, 5, ".json") == 0) return external::addFromManifest(name);
+  return findPlanner(name);
+}
 
 /// The command line's vehicle over `base` (the default, or the plan file's), checked.
 VehicleModel resolveVehicle(const VehicleOptions& given, VehicleModel base) {
@@ -171,7 +178,7 @@ int planCommand(const PlanOptions& options) {
   validateTimeLimit(options.time_limit_s, "--time-limit", "time_limit");
   const Wall wall = loadWallFile(options.wall);
   validateToolForWall(options.tool, wall, "command line");
-  const PlannerInfo& planner = findPlanner(options.planner);
+  const PlannerInfo& planner = plannerNamed(options.planner);
   Params params = resolveParams(planner, splitSettings(options.params));
   const VehicleModel vehicle = resolveVehicle(options.vehicle, VehicleModel{});
   const TransitPlannerInfo* transit = findTransitPlanner(options.transit.planner);

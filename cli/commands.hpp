@@ -35,6 +35,19 @@ struct PlanOptions {
 /// invalid (the plan file is still written and says which). Bad input throws InputError.
 int planCommand(const PlanOptions& options);
 
+struct ConformanceOptions {
+  std::string planner;               ///< a registered planner's name or an external planner's manifest
+  std::vector<std::string> params;   ///< key=value
+  std::vector<std::string> walls;    ///< folders of wall files; default: datasets/canonical and datasets/conformance
+  std::string format = "md";         ///< md or json
+  std::string out;                   ///< file to write; default: stdout
+  double time_limit_s = 60.0;
+  std::string source_dir;            ///< where datasets/ is
+};
+/// The conformance checks for one planner on every conformance wall at two tools, as a report
+/// card (Markdown or JSON). Returns 0 when every row passes, 1 otherwise.
+int conformanceCommand(const ConformanceOptions& options);
+
 struct MetricsOptions {
   std::string wall, plan, svg;
   std::optional<double> tool_width, clearance;  ///< default: the plan file's, else 0.1 / 0.02

@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   coverbench::cli::PlanOptions plan;
   CLI::App* plan_cmd = app.add_subcommand("plan", "Plan one wall with one planner and write a plan file");
   plan_cmd->add_option("--wall", plan.wall, "wall file (JSON)")->required();
-  plan_cmd->add_option("--planner", plan.planner, "planner name (see `coverbench planners`)")->required();
+  plan_cmd->add_option("--planner", plan.planner, "planner name (see `coverbench planners`), or an external planner's manifest (FILE.json)")->required();
   plan_cmd->add_option("--tool-width", plan.tool.tool_width, "tool diameter s in metres")->capture_default_str();
   plan_cmd->add_option("--clearance", plan.tool.clearance, "gap c between tool and obstacles, metres")
       ->capture_default_str();
@@ -95,6 +95,20 @@ int main(int argc, char** argv) {
     plan.transit_options_given = transit_iterations->count() > 0 || transit_cap->count() > 0;
     plan_exit = coverbench::cli::planCommand(plan);
   });
+
+  coverbench::cli::ConformanceOptions conformance;
+  conformance.source_dir = COVERBENCH_SOURCE_DIR;
+  CLI::App* conformance_cmd = app.add_subcommand(
+      "conformance", "The conformance checks for one planner (in-tree or external) on every conformance wall, as a report card");
+  conformance_cmd->add_option("planner", conformance.planner, "planner name, or an external planner's manifest (FILE.json)")
+      ->required();
+  conformance_cmd->add_option("--param", conformance.params, "planner parameter key=value (repeatable)");
+  conformance_cmd->add_option("--walls", conformance.walls,
+                              "folder of wall files (repeatable; default: datasets/canonical and datasets/conformance)");
+  conformance_cmd->add_option("--format", conformance.format, "md or json")->capture_default_str()->check(CLI::IsMember({"md", "json"}));
+  conformance_cmd->add_option("--out", conformance.out, "file to write (default: standard output)");
+  conformance_cmd->add_option("--time-limit", conformance.time_limit_s, "seconds per plan")->capture_default_str();
+  conformance_cmd->callback([&] { plan_exit = coverbench::cli::conformanceCommand(conformance); });
 
   coverbench::cli::MetricsOptions metrics;
   CLI::App* metrics_cmd =

@@ -30,7 +30,7 @@ allowed() {
     planning) echo "geometry transits" ;;
     vehicles) echo "geometry planning transits" ;;
     datasets) echo "formats geometry" ;;
-    algorithms) echo "geometry planning transits vehicles" ;;
+    algorithms) echo "formats geometry planning transits vehicles" ;;
     reports) echo "formats geometry metrics planning records transits" ;;
     experiments) echo "algorithms datasets formats geometry judge metrics planning records transits vehicles" ;;
   esac

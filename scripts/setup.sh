@@ -10,6 +10,8 @@ PACKAGES=(g++ cmake ninja-build pkg-config ccache
           libcgal-dev libgmp-dev libmpfr-dev                       # the exact judge
           libgtest-dev libbenchmark-dev
           python3 python3-numpy python3-scipy python3-matplotlib   # the report's statistics and plots
+          python3-jsonschema                                       # the planner protocol's schema test
+          pybind11-dev python3-dev                                 # the Python package (import coverbench)
           chromium python3-websocket                               # the browser test of the report
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
@@ -38,3 +40,9 @@ if [ ! -f "$build/build.ninja" ]; then
 fi
 echo "== building $build (first build takes two to three minutes on 2 cores)"
 cmake --build "$build" -j 2
+
+# `import coverbench` for Debian's python3 (and any python3 of the same version): the package's
+# folder on the user's site path (python/coverbench finds its compiled part in $build/python).
+site=$(/usr/bin/python3 -m site --user-site)
+mkdir -p "$site"
+echo "$(pwd)/python" > "$site/coverbench.pth"

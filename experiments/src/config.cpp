@@ -9,6 +9,7 @@
 
 #include "coverbench/datasets.hpp"
 #include "coverbench/experiment.hpp"
+#include "coverbench/external_planner.hpp"
 #include "coverbench/files.hpp"
 #include "coverbench/hash.hpp"
 #include "coverbench/limits.hpp"
@@ -292,17 +293,28 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
       for (const PlannerInfo& info : registeredPlanners()) add(makeConfig(info, {}, where), p, where);
       continue;
     }
-    // "- zigzag" is short for "- name: zigzag".
+    // "- zigzag" is short for "- name: zigzag"; "- external: FILE" names a planner outside the
+    // tree by its manifest (docs/external_planners.md), relative to the config's folder.
     const Yaml* name_node = &p;
     const Yaml* params = nullptr;
+    const PlannerInfo* info = nullptr;
     if (!p.isScalar()) {
-      r.onlyKeys(p, where, {"name", "params"});
-      name_node = p.find("name");
-      if (!name_node) r.fail(p, where + ".name", "missing");
+      if (const Yaml* ext = p.find("external")) {
+        r.onlyKeys(p, where, {"external", "params"});
+        const std::string file = r.text(*ext, where + ".external");
+        const fs::path manifest = fs::path(file).is_absolute() ? fs::path(file) : fs::path(path).parent_path() / file;
+        if (!fs::is_regular_file(manifest)) r.fail(*ext, where + ".external", "no manifest at " + manifest.string());
+        info = &external::addFromManifest(manifest.lexically_normal().string());
+        name_node = ext;
+      } else {
+        r.onlyKeys(p, where, {"name", "params"});
+        name_node = p.find("name");
+        if (!name_node) r.fail(p, where + ".name", "missing");
+      }
       params = p.find("params");
     }
-    const std::string name = r.text(*name_node, where + ".name");
-    const PlannerInfo* info = lookupPlanner(name);
+    const std::string name = info ? info->name : r.text(*name_node, where + ".name");
+    if (!info) info = lookupPlanner(name);
     if (!info) {
       std::string known;
       for (const PlannerInfo& candidate : registeredPlanners()) known += (known.empty() ? "" : ", ") + candidate.name;

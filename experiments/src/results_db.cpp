@@ -416,10 +416,11 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
     Statement r(db_, "INSERT OR REPLACE INTO runs (" + runColumnList() + ") VALUES (" + marks + "?)", file_);
     int i = 0;
     forEachRunField(rec, [&](const RunField&, const auto& value) { bindField(r, ++i, value); });
-    r.text(++i, spec.base_key).text(++i, spec.wall->hash).text(++i, spec.planner->id);
-    r.text(++i, spec.planner_version).text(++i, spec.code_sha256).text(++i, buildIdentity().describe());
-    r.real(++i, spec.tool.tool_width).real(++i, spec.tool.clearance).integer(++i, static_cast<long long>(spec.seed));
-    r.integer(++i, spec.repetitions).text(++i, utcNow()).run();
+    const int c = i;  // the context's columns follow, in kRunContextColumns' order
+    r.text(c + 1, spec.base_key).text(c + 2, spec.wall->hash).text(c + 3, spec.planner->id);
+    r.text(c + 4, spec.planner_version).text(c + 5, spec.code_sha256).text(c + 6, buildIdentity().describe());
+    r.real(c + 7, spec.tool.tool_width).real(c + 8, spec.tool.clearance).integer(c + 9, static_cast<long long>(spec.seed));
+    r.integer(c + 10, spec.repetitions).text(c + 11, utcNow()).run();
     if (!spec.vehicle.isDefault() || !spec.transit.isDefault()) {
       Statement v(db_,
                   "INSERT INTO run_options (run_key, vehicle, lift_s, lower_s, transit, transit_iterations) "

@@ -60,6 +60,9 @@ RunStatus runStatusOf(PlanStatus status) {
     case PlanStatus::InvalidInput: return RunStatus::InvalidInput;
     case PlanStatus::Timeout: return RunStatus::Timeout;
     case PlanStatus::Error: return RunStatus::Error;
+    case PlanStatus::Crash: return RunStatus::Crash;
+    case PlanStatus::MemoryLimit: return RunStatus::MemoryLimit;
+    case PlanStatus::InvalidOutput: return RunStatus::InvalidOutput;
   }
   return RunStatus::Error;
 }
@@ -217,6 +220,8 @@ std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vecto
       std::vector<std::string> folders = info.code_folders;
       if (spec.exact_judge) folders.push_back(kJudgeCodeFolder);  // the judge's code is in what it computes
       spec.code_sha256 = buildIdentity().plannerCode(folders);
+      if (!info.code_sha256.empty())  // a planner outside the tree: its manifest and files too
+        spec.code_sha256 = sha256Hex(spec.code_sha256 + "\nexternal=" + info.code_sha256);
       spec.base_key = runBaseKey(spec);
       if (keep && !keep(spec)) continue;  // a shard holds only its own runs, even while expanding
       spec.key = runKey(spec);
@@ -237,6 +242,7 @@ RunRecord executeRun(const RunSpec& spec) {
   problem.transit = spec.transit;
   problem.params = spec.planner->params;
   problem.seed = spec.seed;
+  problem.memory_limit_bytes = spec.memory_limit_bytes;
   PlanResult result;
   for (int rep = 0; rep < std::max(1, spec.repetitions); ++rep) {
     PlanResult again = runPlanner(info, problem, Budget(std::chrono::duration<double>(spec.time_limit_s)));

@@ -36,6 +36,9 @@ std::string toString(PlanStatus status) {
     case PlanStatus::InvalidInput: return "invalid_input";
     case PlanStatus::Timeout: return "timeout";
     case PlanStatus::Error: return "error";
+    case PlanStatus::Crash: return "crash";
+    case PlanStatus::MemoryLimit: return "memory_limit";
+    case PlanStatus::InvalidOutput: return "invalid_output";
   }
   return "error";
 }

@@ -21,6 +21,11 @@ const PlannerInfo* lookupPlanner(const std::string& name);
 /// run by `planners: [all]`; it never shadows a registered planner.
 void addPlannerForTesting(PlannerInfo info);
 
+/// Adds a planner from outside the tree (an external planner's manifest, `source`), found by name
+/// like a registered one but not run by `planners: [all]`. The same name again replaces it (a
+/// manifest loaded twice); a registered planner's name is refused (InputError naming `source`).
+const PlannerInfo& addPlanner(PlannerInfo info, const std::string& source);
+
 /// The planner called `name`; throws InputError (naming `source`) if there is none.
 const PlannerInfo& findPlanner(const std::string& name, const std::string& source = "--planner");
 

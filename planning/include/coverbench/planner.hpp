@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -70,6 +71,9 @@ struct Problem {
   /// For planners that randomise: all randomness must come from this seed (experiments set it
   /// from the config's seed), so a run is a pure function of its inputs.
   std::uint64_t seed = 0;
+  /// The run's memory limit in bytes (0: none), for planners that run in a process of their own
+  /// (external planners); in-tree planners are held to it by their worker.
+  std::size_t memory_limit_bytes = 0;
 };
 
 /// Limits for one plan call. Planners poll `expired()` in their loops.
@@ -85,6 +89,11 @@ class Budget {
     limited_ = true;
   }
   bool expired() const { return limited_ && Clock::now() > deadline_; }
+  /// Seconds left (infinite without a deadline; 0 when expired).
+  double remainingSeconds() const {
+    if (!limited_) return INFINITY;
+    return std::max(0.0, std::chrono::duration<double>(deadline_ - Clock::now()).count());
+  }
 
  private:
   Clock::time_point deadline_{};
@@ -93,8 +102,10 @@ class Budget {
 
 /// Ok: everything reachable covered. Partial: a path was returned but the planner knowingly left
 /// reachable parts out (other free components, parts no transit reached): see the typed fields
-/// of PlanResult. The rest return no path.
-enum class PlanStatus { Ok, Partial, NoReachableArea, InvalidInput, Timeout, Error };
+/// of PlanResult. The rest return no path. Crash, MemoryLimit and InvalidOutput are what a planner
+/// in a process of its own (an external planner) can end in: its process died, grew past the
+/// memory limit, or answered what the protocol does not allow; in-tree planners never return them.
+enum class PlanStatus { Ok, Partial, NoReachableArea, InvalidInput, Timeout, Error, Crash, MemoryLimit, InvalidOutput };
 std::string toString(PlanStatus status);
 
 /// What a planner returns. A planner that cannot handle an input says so here, with a reason;
@@ -141,6 +152,11 @@ struct PlannerInfo {
   /// Its folders under algorithms/ (its own, and shared ones it uses): their code's content hash
   /// is part of every run key (docs/run_lifecycle.md).
   std::vector<std::string> code_folders;
+  /// A planner outside the tree (external): the SHA-256 of its manifest and declared files, part
+  /// of every run key beside the code folders; empty for in-tree planners.
+  std::string code_sha256;
+  /// A planner outside the tree: its manifest's absolute path; empty for in-tree planners.
+  std::string external_manifest;
   std::string summary;
   std::string reference;  ///< the paper or document the algorithm comes from
   std::vector<ParamSpec> params;

@@ -1,0 +1,513 @@
+// Planners outside the tree: the manifest, protocol 1 (a problem per JSON line in, a plan per JSON
+// line out), and the planner's process, started once and kept for the next run.
+#include "coverbench/external_planner.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+
+#include "coverbench/files.hpp"
+#include "coverbench/hash.hpp"
+#include "coverbench/json_input.hpp"
+#include "coverbench/registry.hpp"
+#include "coverbench/wall_file.hpp"
+
+namespace coverbench::external {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+/// What a manifest declares beyond PlannerInfo: how to start the planner.
+struct Launch {
+  std::vector<std::string> command;  ///< argv; relative programs and files resolve in `folder`
+  std::string folder;                ///< the manifest's folder: the process's working directory
+  std::string manifest;              ///< the manifest's absolute path (names the process)
+};
+
+std::string slurp(const std::string& path, const std::string& source, const std::string& field) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(source, field, "cannot read " + path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// --- the manifest -------------------------------------------------------------------------------
+
+class ManifestReader {
+ public:
+  explicit ManifestReader(std::string source) : source_(std::move(source)) {}
+  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+    throw InputError(source_, field, problem);
+  }
+  void onlyKeys(const json& obj, const std::string& where, const std::set<std::string>& allowed) const {
+    for (const auto& [key, value] : obj.items())
+      if (!allowed.count(key)) fail(where.empty() ? key : where + "." + key, "unknown key");
+  }
+  std::string text(const json& obj, const std::string& key, const std::string& field, bool required = true) const {
+    if (!obj.contains(key)) {
+      if (required) fail(field, "missing");
+      return "";
+    }
+    if (!obj[key].is_string()) fail(field, "must be a string");
+    return obj[key].get<std::string>();
+  }
+  double number(const json& v, const std::string& field) const {
+    if (!v.is_number()) fail(field, "must be a number");
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(field, "must be finite");
+    return d;
+  }
+
+ private:
+  std::string source_;
+};
+
+ParamSpec readParam(const ManifestReader& r, const json& p, const std::string& where) {
+  if (!p.is_object()) r.fail(where, "must be an object");
+  r.onlyKeys(p, where, {"name", "type", "default", "min", "max", "choices", "unit", "description"});
+  ParamSpec s;
+  s.name = r.text(p, "name", where + ".name");
+  if (s.name.empty() || s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos)
+    r.fail(where + ".name", "must be lower-case letters, digits and _");
+  const std::string type = r.text(p, "type", where + ".type");
+  s.unit = r.text(p, "unit", where + ".unit", false);
+  s.description = r.text(p, "description", where + ".description");
+  if (!p.contains("default")) r.fail(where + ".default", "missing");
+  const json& d = p["default"];
+  auto range = [&] {
+    for (const char* k : {"min", "max"})
+      if (!p.contains(k)) r.fail(where + "." + k, "missing (a number needs its range)");
+    s.min = r.number(p["min"], where + ".min");
+    s.max = r.number(p["max"], where + ".max");
+    if (s.min > s.max) r.fail(where + ".max", "is below min");
+  };
+  if (type == "number") {
+    s.type = ParamType::Number;
+    range();
+    const double v = r.number(d, where + ".default");
+    if (v < s.min || v > s.max) r.fail(where + ".default", "is outside [min, max]");
+    s.default_value = v;
+  } else if (type == "integer") {
+    s.type = ParamType::Integer;
+    range();
+    if (!d.is_number_integer()) r.fail(where + ".default", "must be an integer");
+    const auto v = d.get<long long>();
+    if (static_cast<double>(v) < s.min || static_cast<double>(v) > s.max) r.fail(where + ".default", "is outside [min, max]");
+    s.default_value = v;
+  } else if (type == "bool") {
+    s.type = ParamType::Bool;
+    if (!d.is_boolean()) r.fail(where + ".default", "must be true or false");
+    s.default_value = d.get<bool>();
+  } else if (type == "choice") {
+    s.type = ParamType::Choice;
+    if (!p.contains("choices") || !p["choices"].is_array() || p["choices"].empty())
+      r.fail(where + ".choices", "must be a non-empty list of strings");
+    for (const json& c : p["choices"]) {
+      if (!c.is_string()) r.fail(where + ".choices", "must be a non-empty list of strings");
+      s.choices.push_back(c.get<std::string>());
+    }
+    if (!d.is_string() || std::find(s.choices.begin(), s.choices.end(), d.get<std::string>()) == s.choices.end())
+      r.fail(where + ".default", "must be one of the choices");
+    s.default_value = d.get<std::string>();
+  } else {
+    r.fail(where + ".type", "must be number, integer, bool or choice, not '" + type + "'");
+  }
+  return s;
+}
+
+// --- the process --------------------------------------------------------------------------------
+
+/// Resident set of a process in bytes (NaN when it is gone).
+double residentBytes(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmRSS:", 0) == 0) return std::atof(line.c_str() + 6) * 1024.0;
+  return NAN;
+}
+
+std::string describeExit(int status) {
+  if (WIFSIGNALED(status)) {
+    const char* name = ::strsignal(WTERMSIG(status));
+    return "died of signal " + std::to_string(WTERMSIG(status)) + (name ? std::string(" (") + name + ")" : "");
+  }
+  return "exited with code " + std::to_string(WEXITSTATUS(status));
+}
+
+/// One planner process: started on the first question, asked one line at a time.
+class PlannerProcess {
+ public:
+  explicit PlannerProcess(Launch launch) : launch_(std::move(launch)) {}
+  ~PlannerProcess() { stop(); }
+  PlannerProcess(const PlannerProcess&) = delete;
+  PlannerProcess& operator=(const PlannerProcess&) = delete;
+
+  struct Answer {
+    bool ok = false;
+    std::string line;                        ///< the answer, without its newline
+    PlanStatus failure = PlanStatus::Error;  ///< when not ok
+    std::string reason;
+  };
+
+  /// Sends `request` and reads one line back, within `timeout_s` and `memory_limit` bytes of
+  /// resident set (0: none). Any failure stops the process.
+  Answer ask(const std::string& request, double timeout_s, std::size_t memory_limit) {
+    Answer a;
+    if (pid_ < 0 && !start(a)) return a;
+    const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                             std::chrono::duration<double>(std::min(timeout_s, 1e9)));
+    std::size_t sent = 0;
+    std::string got;
+    for (;;) {
+      const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+      if (left <= 0.0) return fail(a, PlanStatus::Timeout, "the planner's process did not answer within the time limit (killed)");
+      if (memory_limit > 0) {
+        const double rss = residentBytes(pid_);
+        if (rss > static_cast<double>(memory_limit))
+          return fail(a, PlanStatus::MemoryLimit,
+                      "the planner's process grew to " + std::to_string(static_cast<long long>(rss / 1048576.0)) +
+                          " MiB, past the memory limit of " +
+                          std::to_string(static_cast<long long>(static_cast<double>(memory_limit) / 1048576.0)) +
+                          " MiB (killed)");
+      }
+      pollfd fds[2] = {{out_, POLLIN, 0}, {in_, POLLOUT, 0}};
+      const int n = ::poll(fds, sent < request.size() ? 2 : 1, static_cast<int>(std::clamp(left * 1000.0, 1.0, 10.0)));
+      if (n < 0 && errno != EINTR) return fail(a, PlanStatus::Crash, std::string("poll: ") + std::strerror(errno));
+      if (sent < request.size() && (fds[1].revents & (POLLOUT | POLLERR | POLLHUP))) {
+        const ssize_t w = ::write(in_, request.data() + sent, request.size() - sent);
+        if (w < 0 && errno != EAGAIN && errno != EINTR) return died(a, "stopped reading its input");
+        if (w > 0) sent += static_cast<std::size_t>(w);
+      }
+      if (fds[0].revents & (POLLIN | POLLHUP | POLLERR)) {
+        static thread_local std::vector<char> buf(std::size_t{1} << 20);
+        const ssize_t r = ::read(out_, buf.data(), buf.size());
+        if (r == 0) return died(a, "closed its output before answering");
+        if (r < 0) {
+          if (errno == EAGAIN || errno == EINTR) continue;
+          return died(a, std::string("read: ") + std::strerror(errno));
+        }
+        const std::size_t scanned = got.size();  // only the new bytes are searched for the newline
+        got.append(buf.data(), static_cast<std::size_t>(r));
+        const std::size_t nl = got.find('\n', scanned);
+        if (nl != std::string::npos) {
+          if (nl + 1 != got.size())
+            return fail(a, PlanStatus::InvalidOutput, "the planner printed more than one line for one problem");
+          a.ok = true;
+          a.line = got.substr(0, nl);
+          return a;
+        }
+        if (got.size() > kMaxAnswerBytes)
+          return fail(a, PlanStatus::InvalidOutput,
+                      "the planner's answer is over " + std::to_string(kMaxAnswerBytes >> 20) + " MiB (killed)");
+      }
+    }
+  }
+
+ private:
+  bool start(Answer& a) {
+    int to_child[2], from_child[2];
+    if (::pipe2(to_child, O_CLOEXEC) != 0 || ::pipe2(from_child, O_CLOEXEC) != 0) {
+      fail(a, PlanStatus::Error, std::string("pipe: ") + std::strerror(errno));
+      return false;
+    }
+    std::vector<char*> argv;
+    for (std::string& s : launch_.command) argv.push_back(s.data());
+    argv.push_back(nullptr);
+    const pid_t pid = ::fork();
+    if (pid < 0) {
+      fail(a, PlanStatus::Error, std::string("fork: ") + std::strerror(errno));
+      return false;
+    }
+    if (pid == 0) {
+      ::setpgid(0, 0);  // its own group: killed whole, children included
+      ::dup2(to_child[0], STDIN_FILENO);
+      ::dup2(from_child[1], STDOUT_FILENO);
+      // The worker's limits were set for its own run: the planner's process is held to the run's
+      // limits here, by the host (time, resident set), not by the worker's address space.
+      const rlimit none{RLIM_INFINITY, RLIM_INFINITY};
+      ::setrlimit(RLIMIT_AS, &none);
+      ::setrlimit(RLIMIT_CPU, &none);
+      ::signal(SIGPIPE, SIG_DFL);
+      if (::chdir(launch_.folder.c_str()) != 0) ::_exit(126);
+#ifdef COVERBENCH_PYTHON_PACKAGE_DIR
+      // The coverbench Python package (coverbench.serve) for planners written in Python.
+      const char* old = std::getenv("PYTHONPATH");
+      const std::string path = std::string(COVERBENCH_PYTHON_PACKAGE_DIR) + (old && *old ? std::string(":") + old : "");
+      ::setenv("PYTHONPATH", path.c_str(), 1);
+#endif
+      ::execvp(argv[0], argv.data());
+      ::_exit(127);
+    }
+    ::close(to_child[0]);
+    ::close(from_child[1]);
+    in_ = to_child[1];
+    out_ = from_child[0];
+    ::fcntl(in_, F_SETFL, ::fcntl(in_, F_GETFL) | O_NONBLOCK);
+    ::fcntl(out_, F_SETFL, ::fcntl(out_, F_GETFL) | O_NONBLOCK);
+    pid_ = pid;
+    return true;
+  }
+
+  Answer& fail(Answer& a, PlanStatus status, std::string reason) {
+    stop();
+    a.ok = false;
+    a.failure = status;
+    a.reason = std::move(reason);
+    return a;
+  }
+
+  /// The process ended (or will): crash, with how it ended.
+  Answer& died(Answer& a, const std::string& what) {
+    int status = 0;
+    pid_t r = 0;
+    for (int i = 0; i < 50 && (r = ::waitpid(pid_, &status, WNOHANG)) == 0; ++i) ::usleep(2000);
+    const std::string how = r == pid_ ? describeExit(status) : what;
+    if (r == pid_) pid_ = -1;  // reaped
+    std::string reason = "the planner's process " + how;
+    if (r == pid_ || how != what) reason += " (" + what + ")";
+    if (r == pid_ && WIFEXITED(status) && WEXITSTATUS(status) == 127)
+      reason = "the planner's command could not be started: " + launch_.command.front();
+    return fail(a, PlanStatus::Crash, reason);
+  }
+
+  void stop() {
+    if (in_ >= 0) ::close(in_);
+    if (out_ >= 0) ::close(out_);
+    in_ = out_ = -1;
+    if (pid_ > 0) {
+      ::kill(-pid_, SIGKILL);
+      ::kill(pid_, SIGKILL);
+      int status = 0;
+      while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+      }
+    }
+    pid_ = -1;
+  }
+
+  Launch launch_;
+  pid_t pid_ = -1;
+  int in_ = -1, out_ = -1;
+};
+
+/// The processes of this process (a worker keeps its planners' processes across runs), by manifest.
+std::map<std::string, std::unique_ptr<PlannerProcess>>& processes() {
+  static std::map<std::string, std::unique_ptr<PlannerProcess>> all;
+  return all;
+}
+
+class ExternalPlanner final : public Planner {
+ public:
+  explicit ExternalPlanner(Launch launch) : launch_(std::move(launch)) {}
+  PlanResult plan(const Problem& problem, const Budget& budget) override {
+    ::signal(SIGPIPE, SIG_IGN);  // a planner that died shows as a failed write
+    auto& proc = processes()[launch_.manifest];
+    if (!proc) proc = std::make_unique<PlannerProcess>(launch_);
+    static long long next_id = 0;
+    const long long id = ++next_id;
+    const double limit = budget.remainingSeconds();
+    const PlannerProcess::Answer a =
+        proc->ask(requestJson(problem, limit, id) + "\n", limit, problem.memory_limit_bytes);
+    if (!a.ok) return PlanResult::failure(a.failure, a.reason);
+    PlanResult result;
+    std::string why;
+    if (!readAnswer(a.line, id, result, why)) {
+      proc.reset();  // a process that breaks the protocol is not asked again
+      return PlanResult::failure(PlanStatus::InvalidOutput, "the planner's answer: " + why);
+    }
+    return result;
+  }
+
+ private:
+  Launch launch_;
+};
+
+json paramJson(const ParamValue& v) {
+  return std::visit([](const auto& x) { return json(x); }, v);
+}
+
+PlanStatus answerStatus(const std::string& s, bool& known) {
+  known = true;
+  for (PlanStatus p : {PlanStatus::Ok, PlanStatus::Partial, PlanStatus::NoReachableArea, PlanStatus::InvalidInput,
+                       PlanStatus::Timeout, PlanStatus::Error})
+    if (s == toString(p)) return p;
+  known = false;
+  return PlanStatus::Error;
+}
+
+}  // namespace
+
+std::string requestJson(const Problem& problem, double time_limit_s, long long id) {
+  json p;
+  p["wall"] = json::parse(wallToJson(*problem.wall));
+  p["tool"] = {{"width", problem.tool.tool_width}, {"clearance", problem.tool.clearance}};
+  json vehicle = {{"model", toString(problem.vehicle.kind)}};
+  if (problem.vehicle.isCar()) {
+    vehicle["turn_radius"] = problem.vehicle.turn_radius;
+    vehicle["reverse"] = problem.vehicle.reverse;
+  } else if (!problem.vehicle.isDefault()) {
+    vehicle["lift_s"] = problem.vehicle.lift_s;
+    vehicle["lower_s"] = problem.vehicle.lower_s;
+  }
+  p["vehicle"] = vehicle;
+  json params = json::object();
+  for (const auto& [name, value] : problem.params.all()) params[name] = paramJson(value);
+  p["params"] = params;
+  p["seed"] = problem.seed;
+  if (std::isfinite(time_limit_s)) p["time_limit_s"] = time_limit_s;
+  return json{{"protocol", kProtocolVersion}, {"id", id}, {"problem", p}}.dump();
+}
+
+bool readAnswer(const std::string& line, long long id, PlanResult& result, std::string& why) {
+  const json a = json::parse(line, nullptr, false);
+  auto bad = [&](const std::string& text) {
+    why = text;
+    return false;
+  };
+  if (a.is_discarded()) return bad("not JSON (" + std::to_string(line.size()) + " bytes: " + line.substr(0, 60) + ")");
+  if (!a.is_object()) return bad("must be a JSON object");
+  for (const auto& [key, value] : a.items())
+    if (key != "protocol" && key != "id" && key != "status" && key != "reason" && key != "waypoints" &&
+        key != "tool_on" && key != "bulge" && key != "stats")
+      return bad(key + ": unknown key");
+  if (!a.contains("protocol") || a["protocol"] != kProtocolVersion)
+    return bad("protocol: must be " + std::to_string(kProtocolVersion));
+  if (!a.contains("id") || !a["id"].is_number_integer() || a["id"].get<long long>() != id)
+    return bad("id: must be the request's (" + std::to_string(id) + ")");
+  if (!a.contains("status") || !a["status"].is_string()) return bad("status: missing");
+  bool known = false;
+  result.status = answerStatus(a["status"].get<std::string>(), known);
+  if (!known)
+    return bad("status: '" + a["status"].get<std::string>() +
+               "' is none of ok, partial, no_reachable_area, invalid_input, timeout, error");
+  if (a.contains("reason")) {
+    if (!a["reason"].is_string()) return bad("reason: must be a string");
+    result.reason = a["reason"].get<std::string>();
+  }
+  if (a.contains("stats")) {
+    if (!a["stats"].is_object()) return bad("stats: must be an object of numbers");
+    for (const auto& [name, v] : a["stats"].items()) {
+      if (!v.is_number() || !std::isfinite(v.get<double>())) return bad("stats." + name + ": must be a finite number");
+      result.stats[name] = v.get<double>();
+    }
+  }
+  if (!result.hasPath()) {
+    if (a.contains("waypoints") && !a["waypoints"].empty()) return bad("waypoints: a failed plan has no path");
+    if (result.reason.empty()) return bad("reason: a failed plan says why");
+    return true;
+  }
+  if (!a.contains("waypoints") || !a["waypoints"].is_array() || a["waypoints"].empty())
+    return bad("waypoints: a plan with status " + toString(result.status) + " needs a non-empty list of [x, y]");
+  const json& w = a["waypoints"];
+  Path& path = result.path;
+  path.waypoints.reserve(w.size());
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const json& p = w[i];
+    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+      return bad("waypoints[" + std::to_string(i) + "]: must be [x, y]");
+    const Point pt{p[0].get<double>(), p[1].get<double>()};
+    if (!std::isfinite(pt.x) || !std::isfinite(pt.y)) return bad("waypoints[" + std::to_string(i) + "]: must be finite");
+    path.waypoints.push_back(pt);
+  }
+  const std::size_t segments = w.size() - 1;
+  if (!a.contains("tool_on") || !a["tool_on"].is_array() || a["tool_on"].size() != segments)
+    return bad("tool_on: must be a list of " + std::to_string(segments) + " booleans (one per segment)");
+  for (std::size_t i = 0; i < segments; ++i) {
+    if (!a["tool_on"][i].is_boolean()) return bad("tool_on[" + std::to_string(i) + "]: must be true or false");
+    path.tool_on.push_back(a["tool_on"][i].get<bool>());
+  }
+  if (a.contains("bulge")) {
+    const json& b = a["bulge"];
+    if (!b.is_array() || b.size() != segments)
+      return bad("bulge: must be a list of " + std::to_string(segments) + " numbers (one per segment)");
+    for (std::size_t i = 0; i < segments; ++i) {
+      if (!b[i].is_number() || !std::isfinite(b[i].get<double>()) || std::fabs(b[i].get<double>()) > 1.0)
+        return bad("bulge[" + std::to_string(i) + "]: must be a number in [-1, 1]");
+    }
+    std::vector<double> bulge;
+    for (std::size_t i = 0; i < segments; ++i) bulge.push_back(b[i].get<double>());
+    bool arcs = false;
+    for (double v : bulge) arcs = arcs || v != 0.0;
+    if (arcs) path.bulge = std::move(bulge);
+  }
+  return true;
+}
+
+PlannerInfo loadManifest(const std::string& path) {
+  const std::string text = slurp(path, path, "(file)");
+  const json doc = parseJsonStrict(text, path);
+  const ManifestReader r(path);
+  if (!doc.is_object()) r.fail("(document)", "must be a JSON object");
+  r.onlyKeys(doc, "", {"coverbench_planner", "name", "version", "summary", "reference", "command", "files", "params",
+                       "min_coverage_reachable"});
+  if (!doc.contains("coverbench_planner") || doc["coverbench_planner"] != kProtocolVersion)
+    r.fail("coverbench_planner", "must be " + std::to_string(kProtocolVersion) + " (the protocol version)");
+  PlannerInfo info;
+  info.name = r.text(doc, "name", "name");
+  if (info.name.empty() || info.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_") != std::string::npos)
+    r.fail("name", "must be lower-case letters, digits, - and _");
+  info.version = r.text(doc, "version", "version");
+  if (info.version.empty()) r.fail("version", "must not be empty");
+  info.summary = r.text(doc, "summary", "summary");
+  info.reference = r.text(doc, "reference", "reference");
+  Launch launch;
+  launch.manifest = fs::absolute(path).lexically_normal().string();
+  launch.folder = fs::path(launch.manifest).parent_path().string();
+  if (!doc.contains("command") || !doc["command"].is_array() || doc["command"].empty())
+    r.fail("command", "must be a non-empty list of strings (the program and its arguments)");
+  for (const json& c : doc["command"]) {
+    if (!c.is_string() || c.get<std::string>().empty()) r.fail("command", "must be a non-empty list of strings");
+    launch.command.push_back(c.get<std::string>());
+  }
+  // Code identity: the manifest and every declared file, by content.
+  std::string identity = "manifest " + sha256Hex(text) + "\n";
+  if (!doc.contains("files") || !doc["files"].is_array() || doc["files"].empty())
+    r.fail("files", "must list the files whose content is the planner's code (a changed file runs it again)");
+  for (std::size_t i = 0; i < doc["files"].size(); ++i) {
+    const json& f = doc["files"][i];
+    const std::string field = "files[" + std::to_string(i) + "]";
+    if (!f.is_string()) r.fail(field, "must be a path (relative to the manifest)");
+    const fs::path p = fs::path(launch.folder) / f.get<std::string>();
+    if (!fs::is_regular_file(p)) r.fail(field, "is not a file: " + p.string());
+    identity += f.get<std::string>() + " " + sha256Hex(slurp(p.string(), path, field)) + "\n";
+  }
+  info.code_sha256 = sha256Hex(identity);
+  info.code_folders = {"external"};  // the host's code too: a changed protocol runs it again
+  if (doc.contains("params")) {
+    if (!doc["params"].is_array()) r.fail("params", "must be a list");
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < doc["params"].size(); ++i) {
+      ParamSpec s = readParam(r, doc["params"][i], "params[" + std::to_string(i) + "]");
+      if (!names.insert(s.name).second) r.fail("params[" + std::to_string(i) + "].name", "'" + s.name + "' is declared twice");
+      info.params.push_back(std::move(s));
+    }
+  }
+  if (doc.contains("min_coverage_reachable")) {
+    const double m = r.number(doc["min_coverage_reachable"], "min_coverage_reachable");
+    if (m < 0.0 || m > 1.0) r.fail("min_coverage_reachable", "must be in [0, 1]");
+    info.min_coverage_reachable = m;
+  }
+  info.external_manifest = launch.manifest;
+  info.make = [launch] { return std::make_unique<ExternalPlanner>(launch); };
+  return info;
+}
+
+const PlannerInfo& addFromManifest(const std::string& path) { return addPlanner(loadManifest(path), path); }
+
+}  // namespace coverbench::external

@@ -1,0 +1,87 @@
+"""Serves a planner written in Python over CoverBench's planner protocol 1
+(docs/external_planners.md): one problem per line of JSON on stdin, one plan per line on stdout.
+
+    python3 -m coverbench.serve my_module:MyPlanner
+
+or, at the end of a planner's own file, ``serve(MyPlanner())``. The planner is any object with a
+method ``plan(problem)`` that returns a dict: ``status`` ("ok", "partial", "no_reachable_area",
+"invalid_input", "timeout" or "error"), ``reason``, and for ok and partial ``waypoints`` ([x, y]
+pairs), ``tool_on`` (one bool per segment), optionally ``bulge`` and ``stats`` (numbers). The
+process is started once and serves many problems; what the planner prints goes to stderr, so it
+cannot break the protocol; an exception becomes status error with its message.
+"""
+import importlib
+import json
+import math
+import os
+import sys
+import traceback
+
+PROTOCOL = 1
+
+
+class Problem:
+    """One problem: the wall (as a wall file's JSON), the tool, the vehicle, the parameters."""
+
+    def __init__(self, data):
+        self.data = data
+        self.wall = data["wall"]
+        self.tool_width = float(data["tool"]["width"])
+        self.clearance = float(data["tool"]["clearance"])
+        self.vehicle = data["vehicle"]
+        self.params = data["params"]
+        self.seed = data["seed"]
+        self.time_limit_s = data.get("time_limit_s", math.inf)
+
+    @property
+    def radius(self):
+        return self.tool_width / 2.0
+
+
+def _answer(request_id, plan):
+    if not isinstance(plan, dict):
+        return {"protocol": PROTOCOL, "id": request_id, "status": "error",
+                "reason": f"plan() returned {type(plan).__name__}, not a dict"}
+    out = {"protocol": PROTOCOL, "id": request_id}
+    out.update(plan)
+    return out
+
+
+def serve(planner, stdin=None, stdout=None):
+    """Answers every problem on stdin until it closes."""
+    stdin = stdin or sys.stdin
+    out = stdout or sys.stdout
+    sys.stdout = sys.stderr  # a print() in the planner must not break the protocol
+    for line in stdin:
+        if not line.strip():
+            continue
+        request = json.loads(line)
+        request_id = request.get("id")
+        if request.get("protocol") != PROTOCOL:
+            answer = {"protocol": PROTOCOL, "id": request_id, "status": "error",
+                      "reason": f"this planner speaks protocol {PROTOCOL}, not {request.get('protocol')}"}
+        else:
+            try:
+                answer = _answer(request_id, planner.plan(Problem(request["problem"])))
+            except Exception as e:  # noqa: BLE001 - the run says what went wrong
+                traceback.print_exc(file=sys.stderr)
+                answer = {"protocol": PROTOCOL, "id": request_id, "status": "error",
+                          "reason": f"{type(e).__name__}: {e}"}
+        out.write(json.dumps(answer, allow_nan=False, separators=(",", ":")) + "\n")
+        out.flush()
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    if len(argv) != 1 or ":" not in argv[0]:
+        print("usage: python3 -m coverbench.serve MODULE:CLASS", file=sys.stderr)
+        return 2
+    module_name, class_name = argv[0].split(":", 1)
+    sys.path.insert(0, os.getcwd())
+    planner = getattr(importlib.import_module(module_name), class_name)()
+    serve(planner)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

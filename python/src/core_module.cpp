@@ -1,0 +1,138 @@
+// coverbench._core: CoverBench's C++ from Python (pybind11, one translation unit). Walls are
+// passed as wall-file JSON text and results come back as JSON text: the Python package
+// (python/coverbench/__init__.py) turns them into dicts, so this module holds no Python types of
+// its own and every input is checked by the same parsers as the command line.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <nlohmann/json.hpp>
+
+#include "coverbench/external_planner.hpp"
+#include "coverbench/judge.hpp"
+#include "coverbench/limits.hpp"
+#include "coverbench/metrics.hpp"
+#include "coverbench/records.hpp"
+#include "coverbench/registry.hpp"
+#include "coverbench/results_db.hpp"
+#include "coverbench/wall_file.hpp"
+
+namespace py = pybind11;
+using nlohmann::ordered_json;
+
+namespace coverbench {
+namespace {
+
+ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
+
+ordered_json paramValue(const ParamValue& v) {
+  return std::visit([](const auto& x) { return ordered_json(x); }, v);
+}
+
+/// A wall from wall-file text, checked as the command line checks it.
+Wall wallOf(const std::string& text, const std::string& source) { return parseWallJson(text, source); }
+
+std::string planners() {
+  ordered_json out = ordered_json::array();
+  for (const PlannerInfo& p : registeredPlanners()) {
+    ordered_json params = ordered_json::array();
+    for (const ParamSpec& s : p.params) {
+      ordered_json spec = {{"name", s.name}, {"default", paramValue(s.default_value)}, {"unit", s.unit},
+                           {"description", s.description}};
+      const char* types[] = {"number", "integer", "bool", "choice"};
+      spec["type"] = types[static_cast<int>(s.type)];
+      if (s.type == ParamType::Number || s.type == ParamType::Integer) spec["min"] = s.min, spec["max"] = s.max;
+      if (s.type == ParamType::Choice) spec["choices"] = s.choices;
+      params.push_back(spec);
+    }
+    out.push_back({{"name", p.name}, {"version", p.version}, {"summary", p.summary}, {"reference", p.reference},
+                   {"params", params}, {"min_coverage_reachable", p.min_coverage_reachable}});
+  }
+  return out.dump();
+}
+
+Path pathOf(const std::vector<std::pair<double, double>>& waypoints, const std::vector<bool>& tool_on,
+            const std::vector<double>& bulge) {
+  if (waypoints.empty()) throw InputError("waypoints", "waypoints", "must hold at least one point");
+  if (tool_on.size() + 1 != waypoints.size())
+    throw InputError("tool_on", "tool_on", "must hold one value per segment (" + std::to_string(waypoints.size() - 1) + ")");
+  if (!bulge.empty() && bulge.size() != tool_on.size())
+    throw InputError("bulge", "bulge", "must be empty or hold one value per segment");
+  Path p;
+  for (const auto& [x, y] : waypoints) p.waypoints.push_back({x, y});
+  p.tool_on = tool_on;
+  bool arcs = false;
+  for (double b : bulge) arcs = arcs || b != 0.0;
+  if (arcs) p.bulge = bulge;
+  return p;
+}
+
+std::string plan(const std::string& wall_text, const std::string& planner,
+                 const std::vector<std::pair<std::string, std::string>>& settings, double tool_width, double clearance,
+                 std::uint64_t seed, double time_limit_s) {
+  const Wall wall = wallOf(wall_text, "wall");
+  const PlannerInfo& info = planner.size() > 5 && planner.compare(planner.size() - 5, 5, ".json") == 0
+                                ? external::addFromManifest(planner)
+                                : findPlanner(planner, "planner");
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = ToolParams{tool_width, clearance};
+  validateToolForWall(problem.tool, wall, "tool");
+  validateTimeLimit(time_limit_s, "time_limit_s", "time_limit_s");
+  problem.params = resolveParams(info, settings, "params");
+  problem.seed = seed;
+  const PlanResult r = runPlanner(info, problem, Budget(std::chrono::duration<double>(time_limit_s)));
+  ordered_json out = {{"planner", info.name}, {"status", toString(r.status)}, {"reason", r.reason}};
+  ordered_json w = ordered_json::array();
+  for (const Point& p : r.path.waypoints) w.push_back({p.x, p.y});
+  out["waypoints"] = w;
+  out["tool_on"] = r.path.tool_on;
+  if (r.path.hasArcs()) out["bulge"] = r.path.bulge;
+  out["stats"] = r.stats;
+  out["plan_time_ms"] = r.plan_time_ms;
+  return out.dump();
+}
+
+std::string score(const std::string& wall_text, const std::vector<std::pair<double, double>>& waypoints,
+                  const std::vector<bool>& tool_on, const std::vector<double>& bulge, double tool_width, double clearance,
+                  const std::string& judge) {
+  const Wall wall = wallOf(wall_text, "wall");
+  const ToolParams tool{tool_width, clearance};
+  validateTool(tool, "tool");
+  const Path path = pathOf(waypoints, tool_on, bulge);
+  ordered_json out = ordered_json::object();
+  for (const NamedMetric& m : flatten(computeMetrics(wall, tool, path))) out[m.name] = number(m.value);
+  if (judge == "exact") {
+    const judge::Judgement j = judge::judgePath(wall, tool, path);
+    out["exact"] = {{"valid", j.validity.valid},
+                    {"violations", j.validity.violations},
+                    {"coverage_reachable", {j.coverage.coverage_reachable.lower, j.coverage.coverage_reachable.upper}},
+                    {"coverage_wall", {j.coverage.coverage_wall.lower, j.coverage.coverage_wall.upper}}};
+  } else if (judge != "fast") {
+    throw InputError("judge", "judge", "must be fast or exact, not '" + judge + "'");
+  }
+  return out.dump();
+}
+
+std::string runs(const std::string& database, long long experiment) {
+  ResultsDb db(database, ResultsDb::Mode::ReadOnly);
+  return renderRuns(db.load(experiment > 0 ? std::optional<long long>(experiment) : std::nullopt), true);
+}
+
+}  // namespace
+}  // namespace coverbench
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "CoverBench's C++ (walls, planners, the fast engine, the exact judge, results), JSON in and out";
+  // Bad input is a ValueError with the command line's one-line message.
+  py::register_exception<coverbench::InputError>(m, "InputError", PyExc_ValueError);
+  m.def("check_wall", [](const std::string& text, const std::string& source) { coverbench::wallOf(text, source); },
+        py::arg("text"), py::arg("source") = "wall");
+  m.def("wall_file", [](const std::string& path) { return coverbench::wallToJson(coverbench::loadWallFile(path)); },
+        py::arg("path"));
+  m.def("planners", &coverbench::planners);
+  m.def("plan", &coverbench::plan, py::arg("wall"), py::arg("planner"), py::arg("params"), py::arg("tool_width"),
+        py::arg("clearance"), py::arg("seed"), py::arg("time_limit_s"), py::call_guard<py::gil_scoped_release>());
+  m.def("score", &coverbench::score, py::arg("wall"), py::arg("waypoints"), py::arg("tool_on"), py::arg("bulge"),
+        py::arg("tool_width"), py::arg("clearance"), py::arg("judge"), py::call_guard<py::gil_scoped_release>());
+  m.def("runs", &coverbench::runs, py::arg("database"), py::arg("experiment") = 0);
+}

@@ -1,0 +1,259 @@
+// Planners outside the tree (docs/external_planners.md): the manifest, protocol 1, and a planner
+// process under the same limits and statuses as in-tree planners. Misbehaving planners (written in
+// Python here: any language speaks the protocol) each get their named status, and the other
+// planners' runs equal a run without them; the Python example planner runs in an experiment,
+// is scored, stored and reported like any other, and editing its file runs it again.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sqlite3.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "coverbench/external_planner.hpp"
+#include "coverbench/registry.hpp"
+#include "coverbench/results_db.hpp"
+#include "coverbench/runner.hpp"
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// One script, one misbehaviour per argument; "fine" answers a valid straight path.
+const char* const kMisbehave = R"(import json, os, signal, sys, time
+mode = sys.argv[1]
+for line in sys.stdin:
+    req = json.loads(line)
+    if mode == "sleeps":
+        time.sleep(3600)
+    if mode == "garbage":
+        print("this is not json", flush=True)
+        continue
+    if mode == "exits":
+        sys.exit(3)
+    if mode == "signal":
+        os.kill(os.getpid(), signal.SIGSEGV)
+    if mode == "allocates":
+        hog = b"x" * (4 * 1024 ** 3)
+    if mode == "floods":
+        chunk = b"x" * (8 << 20)
+        for _ in range(128):
+            os.write(1, chunk)
+        time.sleep(3600)
+    if mode == "wrong-id":
+        print(json.dumps({"protocol": 1, "id": req["id"] + 1, "status": "error", "reason": "x"}), flush=True)
+        continue
+    p = req["problem"]
+    r = p["tool"]["width"] / 2 + p["tool"]["clearance"] + 0.01
+    print(json.dumps({"protocol": 1, "id": req["id"], "status": "ok",
+                      "waypoints": [[r, r], [r + 0.05, r]], "tool_on": [True]}), flush=True)
+)";
+
+class External : public test::CommandTest {
+ protected:
+  void SetUp() override {
+    CommandTest::SetUp();
+    fs::create_directories(dir_ / "planners");
+    std::ofstream(dir_ / "planners" / "misbehave.py") << kMisbehave;
+    for (const char* mode : {"fine", "sleeps", "garbage", "exits", "signal", "allocates", "floods", "wrong-id"})
+      std::ofstream(dir_ / "planners" / (std::string(mode) + ".json"))
+          << R"({"coverbench_planner": 1, "name": ")" << mode << R"(", "version": "1", "summary": "s", "reference": "r",
+  "command": ["python3", "misbehave.py", ")" << mode << R"("], "files": ["misbehave.py"]})";
+    fs::create_directories(dir_ / "walls");
+    std::ofstream(dir_ / "walls" / "a.json") << R"({"name": "a", "width": 2, "height": 1})";
+    std::ofstream(dir_ / "walls" / "b.json") << R"({"name": "b", "width": 1.5, "height": 1.2})";
+  }
+  std::string config(const std::string& name, const std::string& planners) {
+    return write(name + ".yaml", "name: " + name + "\noutput: " + name + "\ndatasets:\n  - folder: walls\nplanners:\n" +
+                                     planners + "limits:\n  time_s: 1\n  memory_mb: 300\nthreads: 2\n");
+  }
+};
+
+TEST_F(External, EachMisbehavingPlannerGetsItsStatusAndTheOthersRunsAreUntouched) {
+  std::string planners = "  - zigzag\n";
+  for (const char* mode : {"fine", "sleeps", "garbage", "exits", "signal", "allocates", "floods", "wrong-id"})
+    planners += std::string("  - external: planners/") + mode + ".json\n";
+  const test::CommandRun bad = run("run " + config("bad", planners) + " --no-report");
+  ASSERT_EQ(bad.exit_code, 0) << bad.err;
+  const ResultSet rs = ResultsDb((dir_ / "bad/results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(rs.runs.size(), 18u);
+  const std::map<std::string, RunStatus> expected = {
+      {"zigzag", RunStatus::Ok},          {"fine", RunStatus::Ok},          {"sleeps", RunStatus::Timeout},
+      {"garbage", RunStatus::InvalidOutput}, {"exits", RunStatus::Crash},   {"signal", RunStatus::Crash},
+      {"allocates", RunStatus::MemoryLimit}, {"floods", RunStatus::InvalidOutput}, {"wrong-id", RunStatus::InvalidOutput}};
+  const std::map<std::string, std::string> says = {
+      {"sleeps", "did not answer within the time limit"}, {"garbage", "not JSON"},
+      {"exits", "exited with code 3"},                    {"signal", "died of signal 11"},
+      {"allocates", "past the memory limit of 300 MiB"},   {"floods", "over 64 MiB"},
+      {"wrong-id", "id: must be the request's"}};
+  for (const ResultRow& r : rs.runs) {
+    EXPECT_EQ(r.status, expected.at(r.config)) << r.config << ": " << r.reason;
+    if (says.count(r.config)) EXPECT_NE(r.reason.find(says.at(r.config)), std::string::npos) << r.config << ": " << r.reason;
+  }
+  // "fine" returned a valid path: judged like any other (valid; coverage far below 1).
+  for (const ResultRow& r : rs.runs)
+    if (r.config == "fine") {
+      EXPECT_TRUE(r.valid);
+      EXPECT_LT(r.metrics.at("coverage_reachable"), 0.2);
+    }
+
+  // zigzag's runs are the same as in an experiment without the misbehaving planners.
+  ASSERT_EQ(run("run " + config("good", "  - zigzag\n") + " --no-report").exit_code, 0);
+  auto zigzag = [&](const std::string& db) {
+    return test::sqlRows(db,
+                         "SELECT r.key, r.status, r.valid, r.reason, m.name, quote(m.value) FROM runs r JOIN planner_configs p "
+                         "ON p.id = r.config_id LEFT JOIN metrics m ON m.run_key = r.key WHERE p.planner = 'zigzag' "
+                         "ORDER BY r.key, m.name");
+  };
+  EXPECT_EQ(zigzag((dir_ / "bad/results.sqlite").string()), zigzag((dir_ / "good/results.sqlite").string()));
+  EXPECT_NE(zigzag((dir_ / "good/results.sqlite").string()).find("coverage_reachable"), std::string::npos);
+}
+
+TEST_F(External, TheExamplePythonPlannerRunsBesideInTreePlannersAndAChangedFileRunsItAgain) {
+  fs::copy(test::sourcePath("examples/python_planner"), dir_ / "example", fs::copy_options::recursive);
+  const std::string planners = "  - zigzag\n  - external: example/grid_sweep.json\n    params: {overlap: [0, 0.2]}\n";
+  std::string out;
+  const test::CommandRun first = run("run " + config("mixed", planners), &out);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const ResultSet rs = ResultsDb((dir_ / "mixed/results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(rs.runs.size(), 6u);
+  std::size_t python_runs = 0;
+  for (const ResultRow& r : rs.runs)
+    if (r.config.rfind("py-grid-sweep", 0) == 0) {
+      ++python_runs;
+      EXPECT_TRUE(hasPath(r.status)) << r.reason;
+      EXPECT_TRUE(r.valid) << r.wall_name;
+      EXPECT_GT(r.metrics.at("coverage_reachable"), 0.8) << r.wall_name;
+    }
+  EXPECT_EQ(python_runs, 4u);
+  EXPECT_TRUE(fs::exists(dir_ / "mixed/report/index.html"));
+  EXPECT_NE(slurp((dir_ / "mixed/report/index.html").string()).find("py-grid-sweep"), std::string::npos);
+
+  // Nothing changed: nothing runs. The planner's file changed: its runs (only) run again.
+  ASSERT_EQ(run("run " + config("mixed", planners) + " --no-report", &out).exit_code, 0);
+  EXPECT_NE(out.find("(0 executed, 6 already stored)"), std::string::npos) << out;
+  std::ofstream(dir_ / "example" / "grid_sweep.py", std::ios::app) << "\n# a comment changes the code's identity\n";
+  ASSERT_EQ(run("run " + config("mixed", planners) + " --no-report", &out).exit_code, 0);
+  EXPECT_NE(out.find("(4 executed, 2 already stored)"), std::string::npos) << out;
+  EXPECT_NE(out.find("run again: 4 py-grid-sweep"), std::string::npos) << out;
+}
+
+// The C++ planner outside the tree (examples/cpp_planner, built with CoverBench) and the Python
+// one beside two in-tree planners: the shipped experiments/external.yaml on the seed cases.
+TEST_F(External, PlannersInPythonAndCppRunBesideInTreeOnesAndPassConformance) {
+  fs::copy(test::sourcePath("examples"), dir_ / "examples", fs::copy_options::recursive);
+  fs::remove_all(dir_ / "examples" / "cpp_planner" / "build");
+  const std::string planners = "  - zigzag\n  - external: examples/python_planner/grid_sweep.json\n"
+                               "  - external: examples/cpp_planner/column_sweep.json\n";
+  const std::string cfg = write("mix.yaml", "name: mix\noutput: mix\ndatasets:\n  - suite: seed-cases\nplanners:\n" +
+                                                planners + "tool:\n  width: 0.1\n  clearance: 0.02\n");
+  std::string out;
+  // run.sh finds the program CoverBench's build made (the copy here has no build of its own).
+  ::setenv("COVERBENCH_BUILD_DIR", fs::path(COVERBENCH_BINARY).parent_path().string().c_str(), 1);
+  const test::CommandRun r = run("run " + cfg + " --no-report", &out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const ResultSet rs = ResultsDb((dir_ / "mix/results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
+  std::map<std::string, std::size_t> with_path;
+  for (const ResultRow& x : rs.runs) {
+    EXPECT_NE(x.status, RunStatus::InvalidOutput) << x.config << " on " << x.wall_name << ": " << x.reason;
+    EXPECT_NE(x.status, RunStatus::Crash) << x.config << ": " << x.reason;
+    if (hasPath(x.status)) {
+      EXPECT_TRUE(x.valid) << x.config << " on " << x.wall_name;
+      ++with_path[x.config];
+    }
+  }
+  EXPECT_EQ(with_path["cpp-column-sweep"], with_path["zigzag"]);
+  EXPECT_EQ(with_path["py-grid-sweep"], with_path["zigzag"]);
+  const test::CommandRun card =
+      run("conformance " + (dir_ / "examples/cpp_planner/column_sweep.json").string() + " --walls " +
+              test::sourcePath("datasets/conformance"),
+          &out);
+  EXPECT_EQ(card.exit_code, 0) << out;
+  EXPECT_NE(out.find("20 of 20 passed"), std::string::npos) << out;
+}
+
+TEST_F(External, ManifestsAndAnswersAreCheckedWithOneLineErrors) {
+  auto manifestError = [&](const std::string& text) {
+    const std::string file = write("planners/m.json", text);
+    try {
+      external::loadManifest(file);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string head = R"({"coverbench_planner": 1, "name": "m", "version": "1", "summary": "s", "reference": "r", )";
+  EXPECT_NE(manifestError(head + R"("command": ["python3"], "files": ["misbehave.py"], "extra": 1})").find("m.json: extra: unknown key"),
+            std::string::npos);
+  EXPECT_NE(manifestError(head + R"("command": [], "files": ["misbehave.py"]})").find("m.json: command: must be a non-empty list"),
+            std::string::npos);
+  EXPECT_NE(manifestError(head + R"("command": ["x"], "files": ["nope.py"]})").find("m.json: files[0]: is not a file"),
+            std::string::npos);
+  EXPECT_NE(manifestError(head + R"("command": ["x"], "files": ["misbehave.py"], "params": [{"name": "k", "type": "number",
+      "default": 2, "min": 0, "max": 1, "description": "d"}]})")
+                .find("m.json: params[0].default: is outside [min, max]"),
+            std::string::npos);
+  try {
+    external::addFromManifest(write("planners/z.json", R"({"coverbench_planner": 1, "name": "zigzag", "version": "1",
+      "summary": "s", "reference": "r", "command": ["x"], "files": ["misbehave.py"]})"));
+    ADD_FAILURE() << "a registered planner's name was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("z.json: name: 'zigzag' is a registered planner's name"), std::string::npos) << e.what();
+  }
+
+  // Answers: by hand, each a protocol error with its reason.
+  PlanResult r;
+  std::string why;
+  EXPECT_TRUE(external::readAnswer(R"({"protocol":1,"id":7,"status":"ok","waypoints":[[0,0],[1,0]],"tool_on":[true],"stats":{"rows":1}})", 7, r, why)) << why;
+  EXPECT_EQ(r.path.waypoints.size(), 2u);
+  EXPECT_EQ(r.stats.at("rows"), 1.0);
+  const std::map<std::string, std::string> bad = {
+      {R"({"protocol":1,"id":7,"status":"ok","waypoints":[[0,0],[1,0]],"tool_on":[]})", "tool_on: must be a list of 1"},
+      {R"({"protocol":1,"id":7,"status":"ok","waypoints":[[0,0],[1]],"tool_on":[true]})", "waypoints[1]: must be [x, y]"},
+      {R"({"protocol":1,"id":7,"status":"fine"})", "status: 'fine' is none of"},
+      {R"({"protocol":2,"id":7,"status":"ok"})", "protocol: must be 1"},
+      {R"({"protocol":1,"id":7,"status":"error"})", "reason: a failed plan says why"},
+      {R"({"protocol":1,"id":7,"status":"ok","waypoints":[[0,0],[1,0]],"tool_on":[true],"bulge":[2]})", "bulge[0]: must be a number in [-1, 1]"},
+      {R"([1,2])", "must be a JSON object"}};
+  for (const auto& [answer, reason] : bad) {
+    PlanResult x;
+    EXPECT_FALSE(external::readAnswer(answer, 7, x, why)) << answer;
+    EXPECT_NE(why.find(reason), std::string::npos) << answer << " gave " << why;
+  }
+}
+
+// The report card: every row passes for an in-tree planner and for the Python example; a planner
+// that breaks its promise gets a failing card (exit 1) that says where.
+TEST_F(External, ConformancePrintsAReportCardForAnyPlanner) {
+  std::string out;
+  const std::string walls = " --walls " + test::sourcePath("datasets/conformance") + " --format json";
+  for (const std::string& planner : {std::string("zigzag"), test::sourcePath("examples/python_planner/grid_sweep.json")}) {
+    const test::CommandRun r = run("conformance " + planner + walls, &out);
+    ASSERT_EQ(r.exit_code, 0) << r.err << out;
+    const nlohmann::json card = nlohmann::json::parse(out);
+    EXPECT_EQ(card["checked"], 20);  // 10 walls at two tools
+    EXPECT_EQ(card["passed"], 20);
+    for (const auto& row : card["walls"]) {
+      EXPECT_TRUE(row["contract"].get<bool>()) << row.dump();
+      EXPECT_TRUE(row["deterministic"].get<bool>()) << row.dump();
+      if (row["status"] == "ok" || row["status"] == "partial") EXPECT_TRUE(row["valid"].get<bool>()) << row.dump();
+    }
+  }
+  // "fine" paints 5 cm of a wall and promises 90 %: every row where the promise applies breaks it.
+  std::ofstream(dir_ / "planners" / "boastful.json")
+      << R"({"coverbench_planner": 1, "name": "boastful", "version": "1", "summary": "s", "reference": "r",
+  "command": ["python3", "misbehave.py", "fine"], "files": ["misbehave.py"], "min_coverage_reachable": 0.9})";
+  const test::CommandRun r = run("conformance " + (dir_ / "planners" / "boastful.json").string() + " --walls " +
+                                     test::sourcePath("datasets/conformance"),
+                                 &out);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(out.find("| **broken** |"), std::string::npos) << out;
+  EXPECT_NE(r.err.find("boastful: "), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace coverbench
