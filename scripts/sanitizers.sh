@@ -21,7 +21,8 @@ sanitize="-fsanitize=address,undefined -fno-sanitize-recover=all"
 if [ ! -f $build/build.ninja ]; then
   CC=clang CXX=clang++ cmake -S . -B $build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
     -DCMAKE_CXX_FLAGS="$sanitize -fsanitize=fuzzer-no-link -fno-omit-frame-pointer -gline-tables-only" \
-    -DCMAKE_EXE_LINKER_FLAGS="$sanitize" -DCOVERBENCH_BUILD_BENCHMARKS=OFF -DCOVERBENCH_BUILD_FUZZERS=ON > /dev/null
+    -DCMAKE_EXE_LINKER_FLAGS="$sanitize" -DCOVERBENCH_BUILD_BENCHMARKS=OFF -DCOVERBENCH_BUILD_FUZZERS=ON \
+    -DCOVERBENCH_BUILD_PYTHON=OFF > /dev/null  # a sanitized module cannot load into an unsanitized python
 fi
 echo "== building the sanitizer build ($build)"
 cmake --build $build -j 2
