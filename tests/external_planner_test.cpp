@@ -176,6 +176,30 @@ TEST_F(External, PlannersInPythonAndCppRunBesideInTreeOnesAndPassConformance) {
   EXPECT_NE(out.find("20 of 20 passed"), std::string::npos) << out;
 }
 
+// Sharded and merged, an experiment with the Python planner equals one process, run key by run key.
+TEST_F(External, AnExperimentWithThePythonPlannerShardsAndMergesLikeAnyOther) {
+  fs::copy(test::sourcePath("examples/python_planner"), dir_ / "example", fs::copy_options::recursive);
+  const std::string planners = "  - zigzag\n  - external: ../example/grid_sweep.json\n";
+  fs::create_directories(dir_ / "single");
+  fs::create_directories(dir_ / "sharded");
+  const std::string text = "name: s\noutput: out\ndatasets:\n  - folder: ../walls\nplanners:\n" + planners;
+  const std::string single = write("single/c.yaml", text), sharded = write("sharded/c.yaml", text);
+  ASSERT_EQ(run("run " + single + " --no-report").exit_code, 0);
+  std::string shards;
+  for (int i = 0; i < 2; ++i) {
+    const test::CommandRun r = run("run " + sharded + " --shard " + std::to_string(i) + "/2");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    shards += " " + (dir_ / ("sharded/out/shards/shard-" + std::to_string(i) + "-of-2.sqlite")).string();
+  }
+  const test::CommandRun merged = run("merge " + (dir_ / "sharded/out/results.sqlite").string() + shards);
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  const std::string a = test::dumpRuns((dir_ / "single/out/results.sqlite").string());
+  EXPECT_EQ(test::dumpRuns((dir_ / "sharded/out/results.sqlite").string()), a);
+  EXPECT_NE(a.find("ok"), std::string::npos);
+  const ResultSet rs = ResultsDb((dir_ / "sharded/out/results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
+  EXPECT_EQ(rs.runs.size(), 4u);
+}
+
 TEST_F(External, ManifestsAndAnswersAreCheckedWithOneLineErrors) {
   auto manifestError = [&](const std::string& text) {
     const std::string file = write("planners/m.json", text);

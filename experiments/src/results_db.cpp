@@ -414,9 +414,9 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
     std::string marks;
     for (std::size_t n = 0; n < kRunFieldCount + std::size(kRunContextColumns); ++n) marks += "?,";
     Statement r(db_, "INSERT OR REPLACE INTO runs (" + runColumnList() + ") VALUES (" + marks + "?)", file_);
-    int i = 0;
-    forEachRunField(rec, [&](const RunField&, const auto& value) { bindField(r, ++i, value); });
-    const int c = i;  // the context's columns follow, in kRunContextColumns' order
+    int column = 0;
+    forEachRunField(rec, [&](const RunField&, const auto& value) { bindField(r, ++column, value); });
+    const int c = column;  // the context's columns follow, in kRunContextColumns' order
     r.text(c + 1, spec.base_key).text(c + 2, spec.wall->hash).text(c + 3, spec.planner->id);
     r.text(c + 4, spec.planner_version).text(c + 5, spec.code_sha256).text(c + 6, buildIdentity().describe());
     r.real(c + 7, spec.tool.tool_width).real(c + 8, spec.tool.clearance).integer(c + 9, static_cast<long long>(spec.seed));

@@ -6,8 +6,7 @@
 /// The field table drives every place a run's values travel: the worker pipe
 /// (experiments/src/isolation.cpp), the SQLite `runs` columns, the merge's comparison of runs
 /// stored in several shards, the CSV/JSON exports, the report's data and its Python reader (which
-/// reads the table from the report data). Adding a field is one member of RunFields plus one entry
-/// of kRunFields (and of forEachRunField).
+/// reads the table from the report data). Adding a field is one line of COVERBENCH_RUN_FIELDS.
 #include <cmath>
 #include <cstddef>
 #include <map>
@@ -70,58 +69,53 @@ struct RunField {
   const char* description;
 };
 
-/// The field table (forEachRunField visits the members in this order).
+/// The field table, the one place a run's fields are listed: each line gives the field's name
+/// (its member, column and key everywhere), type, C++ type, default, unit, whether it is measured,
+/// whether it is exported, and what it means. RunFields, kRunFields and forEachRunField are all
+/// generated from it, so adding a field is one line here.
+#define COVERBENCH_RUN_FIELDS(X)                                                                                  \
+  X(key, Text, std::string, {}, "", false, false,                                                                \
+    "the run key: what is computed and by what code (docs/run_lifecycle.md)")                                   \
+  X(status, Status, RunStatus, RunStatus::Error, "", false, true, "how the run ended")                          \
+  X(reason, Text, std::string, {}, "", false, false, "why a run failed or left parts out; empty otherwise")      \
+  X(valid, Bool, bool, false, "", false, true, "the path passes the validity check")                            \
+  X(signal, Integer, long long, 0, "", false, false, "the signal that ended a crashed run's process; 0 otherwise") \
+  X(uncovered_reachable_m2, Real, double, NAN, "m2", false, true,                                                \
+    "the reachable area the path did not sweep (metrics engine); NaN when not scored")                          \
+  X(plan_time_ms, Real, double, 0.0, "ms", true, false,                                                          \
+    "median wall-clock time of the repetitions' plan calls; 0 when no plan call finished")                      \
+  X(cpu_time_s, Real, double, NAN, "s", true, false, "user + system CPU time of the run's process")              \
+  X(peak_rss_bytes, Real, double, NAN, "bytes", true, false, "the run's process's peak resident set")            \
+  X(peak_memory_bytes, Real, double, NAN, "bytes", true, false,                                                  \
+    "the run's own allocation peak (the worker's allocation meter; without one, peak_rss_bytes - start_rss_bytes)") \
+  X(start_rss_bytes, Real, double, NAN, "bytes", true, false,                                                    \
+    "the process's resident set when the run started (inherited from the runner)")
+
+/// The table's fields, in its order (forEachRunField visits the members in this order).
 inline constexpr RunField kRunFields[] = {
-    {"key", RunFieldType::Text, "", false, false, "the run key: what is computed and by what code (docs/run_lifecycle.md)"},
-    {"status", RunFieldType::Status, "", false, true, "how the run ended"},
-    {"reason", RunFieldType::Text, "", false, false, "why a run failed or left parts out; empty otherwise"},
-    {"valid", RunFieldType::Bool, "", false, true, "the path passes the validity check"},
-    {"signal", RunFieldType::Integer, "", false, false, "the signal that ended a crashed run's process; 0 otherwise"},
-    {"uncovered_reachable_m2", RunFieldType::Real, "m2", false, true,
-     "the reachable area the path did not sweep (metrics engine); NaN when not scored"},
-    {"plan_time_ms", RunFieldType::Real, "ms", true, false,
-     "median wall-clock time of the repetitions' plan calls; 0 when no plan call finished"},
-    {"cpu_time_s", RunFieldType::Real, "s", true, false, "user + system CPU time of the run's process"},
-    {"peak_rss_bytes", RunFieldType::Real, "bytes", true, false, "the run's process's peak resident set"},
-    {"peak_memory_bytes", RunFieldType::Real, "bytes", true, false,
-     "the run's own allocation peak (the worker's allocation meter; without one, peak_rss_bytes - start_rss_bytes)"},
-    {"start_rss_bytes", RunFieldType::Real, "bytes", true, false,
-     "the process's resident set when the run started (inherited from the runner)"},
+#define COVERBENCH_RUN_FIELD_ENTRY(name, type, cpp, init, unit, measured, exported, description) \
+  {#name, RunFieldType::type, unit, measured, exported, description},
+    COVERBENCH_RUN_FIELDS(COVERBENCH_RUN_FIELD_ENTRY)
+#undef COVERBENCH_RUN_FIELD_ENTRY
 };
 inline constexpr std::size_t kRunFieldCount = sizeof kRunFields / sizeof kRunFields[0];
 
-/// A run's scalar values: one member per kRunFields entry. RunRecord (what a worker returns) and
-/// ResultRow (a run as the tables see it) are both RunFields, so a run's values and their
-/// defaults are defined here alone.
+/// A run's scalar values: one member per field of the table. RunRecord (what a worker returns)
+/// and ResultRow (a run as the tables see it) are both RunFields, so a run's values and their
+/// defaults are defined by the table alone.
 struct RunFields {
-  std::string key;
-  RunStatus status = RunStatus::Error;
-  std::string reason;
-  bool valid = false;
-  long long signal = 0;
-  double uncovered_reachable_m2 = NAN;
-  double plan_time_ms = 0.0;  ///< 0 when no plan call finished (a database column older builds require)
-  double cpu_time_s = NAN;
-  double peak_rss_bytes = NAN;
-  double peak_memory_bytes = NAN;
-  double start_rss_bytes = NAN;
+#define COVERBENCH_RUN_FIELD_MEMBER(name, type, cpp, init, unit, measured, exported, description) cpp name = init;
+  COVERBENCH_RUN_FIELDS(COVERBENCH_RUN_FIELD_MEMBER)
+#undef COVERBENCH_RUN_FIELD_MEMBER
 };
 
 /// Calls f(kRunFields[i], member) for every field of `r` in the table's order (`r` const or not).
 template <class Fields, class F>
 void forEachRunField(Fields& r, F&& f) {
-  static_assert(kRunFieldCount == 11, "a field added to kRunFields is visited here too");
-  f(kRunFields[0], r.key);
-  f(kRunFields[1], r.status);
-  f(kRunFields[2], r.reason);
-  f(kRunFields[3], r.valid);
-  f(kRunFields[4], r.signal);
-  f(kRunFields[5], r.uncovered_reachable_m2);
-  f(kRunFields[6], r.plan_time_ms);
-  f(kRunFields[7], r.cpu_time_s);
-  f(kRunFields[8], r.peak_rss_bytes);
-  f(kRunFields[9], r.peak_memory_bytes);
-  f(kRunFields[10], r.start_rss_bytes);
+  std::size_t i = 0;
+#define COVERBENCH_RUN_FIELD_VISIT(name, type, cpp, init, unit, measured, exported, description) f(kRunFields[i++], r.name);
+  COVERBENCH_RUN_FIELDS(COVERBENCH_RUN_FIELD_VISIT)
+#undef COVERBENCH_RUN_FIELD_VISIT
 }
 
 /// One repair of a run's path (docs/replanning.md): obstacles appeared at `fraction` of its
