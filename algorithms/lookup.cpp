@@ -15,7 +15,8 @@ namespace coverbench {
 
 namespace {
 
-std::deque<PlannerInfo>& testPlanners() {  // a deque: references stay valid as it grows
+/// Planners added by name beside the registered ones: planners outside the tree and test planners.
+std::deque<PlannerInfo>& addedPlanners() {  // a deque: references stay valid as it grows
   static std::deque<PlannerInfo> planners;
   return planners;
 }
@@ -25,7 +26,7 @@ std::deque<PlannerInfo>& testPlanners() {  // a deque: references stay valid as 
 const PlannerInfo* lookupPlanner(const std::string& name) {
   for (const PlannerInfo& p : registeredPlanners())
     if (p.name == name) return &p;
-  for (const PlannerInfo& p : testPlanners())
+  for (const PlannerInfo& p : addedPlanners())
     if (p.name == name) return &p;
   return nullptr;
 }
@@ -33,21 +34,21 @@ const PlannerInfo* lookupPlanner(const std::string& name) {
 void addPlannerForTesting(PlannerInfo info) {
   for (const PlannerInfo& p : registeredPlanners())
     if (p.name == info.name) return;  // never shadows a registered planner
-  for (PlannerInfo& p : testPlanners())
+  for (PlannerInfo& p : addedPlanners())
     if (p.name == info.name) {
       p = std::move(info);
       return;
     }
-  testPlanners().push_back(std::move(info));
+  addedPlanners().push_back(std::move(info));
 }
 
 const PlannerInfo& addPlanner(PlannerInfo info, const std::string& source) {
   for (const PlannerInfo& p : registeredPlanners())
     if (p.name == info.name) throw InputError(source, "name", "'" + info.name + "' is a registered planner's name");
-  for (PlannerInfo& p : testPlanners())
+  for (PlannerInfo& p : addedPlanners())
     if (p.name == info.name) return p = std::move(info);
-  testPlanners().push_back(std::move(info));
-  return testPlanners().back();
+  addedPlanners().push_back(std::move(info));
+  return addedPlanners().back();
 }
 
 const PlannerInfo& findPlanner(const std::string& name, const std::string& source) {

@@ -28,15 +28,20 @@
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::cli {
+
+std::vector<std::pair<std::string, std::string>> splitSettings(const std::vector<std::string>& items) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const std::string& item : items) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError("--param", item, "expected key=value");
+    out.emplace_back(item.substr(0, eq), item.substr(eq + 1));
+  }
+  return out;
+}
+
 namespace {
 
 namespace fs = std::filesystem;
-
-/// A registered planner by name, or a planner outside the tree by its manifest (a .json file).
-const PlannerInfo& plannerNamed(const std::string& name) {
-  if (name.size() > 5 && name.compare(name.size() - 5, 5, ".json") == 0) return external::addFromManifest(name);
-  return findPlanner(name);
-}
 
 /// The command line's vehicle over `base` (the default, or the plan file's), checked.
 VehicleModel resolveVehicle(const VehicleOptions& given, VehicleModel base) {
@@ -65,16 +70,6 @@ std::string typeName(ParamType t) {
     case ParamType::Choice: return "choice";
   }
   return "?";
-}
-
-std::vector<std::pair<std::string, std::string>> splitSettings(const std::vector<std::string>& items) {
-  std::vector<std::pair<std::string, std::string>> out;
-  for (const std::string& item : items) {
-    const auto eq = item.find('=');
-    if (eq == std::string::npos || eq == 0) throw InputError("--param", item, "expected key=value");
-    out.emplace_back(item.substr(0, eq), item.substr(eq + 1));
-  }
-  return out;
 }
 
 struct Outcome {
@@ -178,7 +173,7 @@ int planCommand(const PlanOptions& options) {
   validateTimeLimit(options.time_limit_s, "--time-limit", "time_limit");
   const Wall wall = loadWallFile(options.wall);
   validateToolForWall(options.tool, wall, "command line");
-  const PlannerInfo& planner = plannerNamed(options.planner);
+  const PlannerInfo& planner = external::plannerNamed(options.planner, "--planner");
   Params params = resolveParams(planner, splitSettings(options.params));
   const VehicleModel vehicle = resolveVehicle(options.vehicle, VehicleModel{});
   const TransitPlannerInfo* transit = findTransitPlanner(options.transit.planner);

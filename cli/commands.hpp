@@ -35,6 +35,9 @@ struct PlanOptions {
 /// invalid (the plan file is still written and says which). Bad input throws InputError.
 int planCommand(const PlanOptions& options);
 
+/// `key=value` items (--param) as pairs; InputError ("--param") for an item without a key or `=`.
+std::vector<std::pair<std::string, std::string>> splitSettings(const std::vector<std::string>& items);
+
 struct ConformanceOptions {
   std::string planner;               ///< a registered planner's name or an external planner's manifest
   std::vector<std::string> params;   ///< key=value

@@ -5,17 +5,15 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "commands.hpp"
 #include "coverbench/external_planner.hpp"
 #include "coverbench/files.hpp"
-#include "coverbench/metrics.hpp"
 #include "coverbench/free_region.hpp"
+#include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
-#include "coverbench/workspace.hpp"
 #include "coverbench/wall_file.hpp"
+#include "coverbench/workspace.hpp"
 
 namespace coverbench::cli {
 namespace {
@@ -34,7 +32,7 @@ struct CardRow {
   bool promise_applies = false;  ///< ok, one free component, default parameters
   bool promise_kept = true;
   double plan_ms = 0.0;        ///< the first plan's wall-clock time (measured)
-  bool passed() const { return contract && deterministic && promise_kept && (valid || status.empty() || !hasPathStatus()); }
+  bool passed() const { return contract && deterministic && promise_kept; }  // contract holds `valid` for a path
   bool hasPathStatus() const { return status == "ok" || status == "partial"; }
 };
 
@@ -68,15 +66,8 @@ std::vector<std::string> wallFiles(const std::vector<std::string>& folders) {
 }  // namespace
 
 int conformanceCommand(const ConformanceOptions& o) {
-  const PlannerInfo& info = o.planner.size() > 5 && o.planner.compare(o.planner.size() - 5, 5, ".json") == 0
-                                ? external::addFromManifest(o.planner)
-                                : findPlanner(o.planner, "PLANNER");
-  std::vector<std::pair<std::string, std::string>> settings;
-  for (const std::string& p : o.params) {
-    const auto eq = p.find('=');
-    if (eq == std::string::npos) throw InputError("--param", p, "must be key=value");
-    settings.emplace_back(p.substr(0, eq), p.substr(eq + 1));
-  }
+  const PlannerInfo& info = external::plannerNamed(o.planner, "PLANNER");
+  const std::vector<std::pair<std::string, std::string>> settings = splitSettings(o.params);
   const Params params = resolveParams(info, settings);
   std::vector<std::string> folders = o.walls;
   if (folders.empty()) folders = {o.source_dir + "/datasets/canonical", o.source_dir + "/datasets/conformance"};

@@ -510,4 +510,9 @@ PlannerInfo loadManifest(const std::string& path) {
 
 const PlannerInfo& addFromManifest(const std::string& path) { return addPlanner(loadManifest(path), path); }
 
+const PlannerInfo& plannerNamed(const std::string& name, const std::string& source) {
+  if (name.size() > 5 && name.compare(name.size() - 5, 5, ".json") == 0) return addFromManifest(name);
+  return findPlanner(name, source);
+}
+
 }  // namespace coverbench::external

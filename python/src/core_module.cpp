@@ -70,9 +70,7 @@ std::string plan(const std::string& wall_text, const std::string& planner,
                  const std::vector<std::pair<std::string, std::string>>& settings, double tool_width, double clearance,
                  std::uint64_t seed, double time_limit_s) {
   const Wall wall = wallOf(wall_text, "wall");
-  const PlannerInfo& info = planner.size() > 5 && planner.compare(planner.size() - 5, 5, ".json") == 0
-                                ? external::addFromManifest(planner)
-                                : findPlanner(planner, "planner");
+  const PlannerInfo& info = external::plannerNamed(planner, "planner");
   Problem problem;
   problem.wall = &wall;
   problem.tool = ToolParams{tool_width, clearance};

@@ -30,6 +30,10 @@ PlannerInfo loadManifest(const std::string& path);
 /// InputError, when a registered planner has its name.
 const PlannerInfo& addFromManifest(const std::string& path);
 
+/// A registered planner by name, or a planner outside the tree by its manifest's path (a name
+/// ending in .json, loaded and added by addFromManifest); InputError naming `source` otherwise.
+const PlannerInfo& plannerNamed(const std::string& name, const std::string& source);
+
 /// The request line for one problem (protocol 1; tests and benchmarks).
 std::string requestJson(const Problem& problem, double time_limit_s, long long id);
 /// Reads an answer line into `result` (status, reason, path, stats); false with the reason in
