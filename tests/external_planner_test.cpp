@@ -16,6 +16,7 @@
 #include "coverbench/registry.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
+#include "coverbench/wall_file.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {
@@ -228,6 +229,17 @@ TEST_F(External, ManifestsAndAnswersAreCheckedWithOneLineErrors) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("z.json: name: 'zigzag' is a registered planner's name"), std::string::npos) << e.what();
   }
+
+  // A command that does not exist: crash, naming it.
+  const PlannerInfo& missing = external::addFromManifest(write("planners/missing.json",
+      R"({"coverbench_planner": 1, "name": "missing", "version": "1", "summary": "s", "reference": "r",
+      "command": ["no-such-program-here"], "files": ["misbehave.py"]})"));
+  const Wall wall = loadWallFile((dir_ / "walls" / "a.json").string());
+  Problem problem;
+  problem.wall = &wall;
+  const PlanResult crashed = runPlanner(missing, problem, Budget(std::chrono::seconds(10)));
+  EXPECT_EQ(crashed.status, PlanStatus::Crash);
+  EXPECT_NE(crashed.reason.find("could not be started: no-such-program-here"), std::string::npos) << crashed.reason;
 
   // Answers: by hand, each a protocol error with its reason.
   PlanResult r;

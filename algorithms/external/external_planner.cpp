@@ -278,11 +278,10 @@ class PlannerProcess {
     int status = 0;
     pid_t r = 0;
     for (int i = 0; i < 50 && (r = ::waitpid(pid_, &status, WNOHANG)) == 0; ++i) ::usleep(2000);
-    const std::string how = r == pid_ ? describeExit(status) : what;
-    if (r == pid_) pid_ = -1;  // reaped
-    std::string reason = "the planner's process " + how;
-    if (r == pid_ || how != what) reason += " (" + what + ")";
-    if (r == pid_ && WIFEXITED(status) && WEXITSTATUS(status) == 127)
+    const bool reaped = r == pid_;
+    if (reaped) pid_ = -1;
+    std::string reason = "the planner's process " + (reaped ? describeExit(status) + " (" + what + ")" : what);
+    if (reaped && WIFEXITED(status) && WEXITSTATUS(status) == 127)
       reason = "the planner's command could not be started: " + launch_.command.front();
     return fail(a, PlanStatus::Crash, reason);
   }
