@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "coverbench/planner.hpp"
+#include "coverbench/wall_import.hpp"
 
 namespace coverbench::cli {
 
@@ -82,6 +83,16 @@ struct DatasetGenerateOptions {
 };
 /// Writes the walls and manifest.json; prints where and a summary.
 int datasetGenerateCommand(const DatasetGenerateOptions& options);
+struct DatasetImportOptions {
+  std::vector<std::string> sources;
+  std::string out;
+  std::string transform;  ///< as typed; parsed into options.transform
+  bool refuse_multipolygons = false;
+  ImportOptions options;
+};
+/// Imports maps and polygons into a dataset folder (walls plus a manifest with the sources' hashes
+/// and the options); prints where and a summary.
+int datasetImportCommand(DatasetImportOptions options);
 /// Prints a summary of a dataset folder (checking the manifest's hashes).
 int datasetShowCommand(const std::string& dir);
 /// Prints the generator families and suites.

@@ -50,6 +50,25 @@ int datasetGenerateCommand(const DatasetGenerateOptions& o) {
   return 0;
 }
 
+int datasetImportCommand(DatasetImportOptions o) {
+  o.options.transform = parseTransform(o.transform, "--transform", "(value)");
+  o.options.split_multipolygons = !o.refuse_multipolygons;
+  const ImportResult result = importWalls(o.sources, o.options);
+  std::vector<Wall> walls;
+  std::size_t dropped = 0;
+  double dropped_area = 0.0;
+  for (const ImportedWall& w : result.walls) {
+    walls.push_back(w.wall);
+    dropped += w.dropped_holes;
+    dropped_area += w.dropped_hole_area;
+  }
+  const Dataset d = writeDataset(o.out, "import", 0, walls, importRecordJson(result, o.options));
+  std::cout << "imported " << d.entries.size() << " walls from " << result.sources.size() << " files into " << o.out;
+  if (dropped) std::cout << " (" << dropped << " holes under --min-hole-area dropped, " << shortNumber(dropped_area) << " m^2)";
+  std::cout << "\n" << describeDataset(d);
+  return 0;
+}
+
 int datasetShowCommand(const std::string& dir) {
   std::cout << describeDataset(readDataset(dir));
   return 0;

@@ -155,6 +155,28 @@ int main(int argc, char** argv) {
   gen_cmd->add_option("--seed", gen.seed, "seed: same family, count and seed give the same bytes")->capture_default_str();
   gen_cmd->add_option("--out", gen.out, "output folder (new or empty)")->required();
   gen_cmd->callback([&] { plan_exit = coverbench::cli::datasetGenerateCommand(gen); });
+  coverbench::cli::DatasetImportOptions imp;
+  CLI::App* imp_cmd = dataset_cmd->add_subcommand(
+      "import", "Import maps and polygons (GeoJSON, GML, KML, Shapefile, GeoPackage, DXF, WKT, polygon text, YAML, "
+                "map_server maps) into a dataset folder");
+  imp_cmd->add_option("sources", imp.sources, "files or folders to import")->required();
+  imp_cmd->add_option("--out", imp.out, "output folder (new or empty)")->required();
+  std::string formats;
+  for (const std::string& f : coverbench::importFormats()) formats += (formats.empty() ? "" : ", ") + f;
+  imp_cmd->add_option("--format", imp.options.format, "one of " + formats)->capture_default_str();
+  imp_cmd->add_option("--crs", imp.options.crs, "CRS in metres for geographic input (default: the local UTM zone)");
+  imp_cmd->add_option("--source-crs", imp.options.source_crs, "CRS of input that names none (default: metres)");
+  imp_cmd->add_option("--name-field", imp.options.name_field, "attribute that names each wall (default: name)");
+  imp_cmd->add_flag("--refuse-multipolygons", imp.refuse_multipolygons, "refuse a multipolygon instead of one wall per part");
+  imp_cmd->add_option("--boundary-layer", imp.options.dxf_boundary_layer, "DXF layer of the boundaries")->capture_default_str();
+  imp_cmd->add_option("--obstacle-layer", imp.options.dxf_obstacle_layers, "DXF layer of obstacles (repeatable; default: every other layer)");
+  imp_cmd->add_flag("--all-components", imp.options.all_components, "maps: every free component as a wall (default: the largest)");
+  imp_cmd->add_option("--min-hole-area", imp.options.min_hole_area, "drop holes smaller than this (m^2), and count them")->capture_default_str();
+  imp_cmd->add_option("--simplify", imp.options.simplify, "maps: simplification tolerance in metres (default: half a pixel)");
+  imp_cmd->add_option("--transform", imp.transform, "placement, in order: translate=X,Y rotate=DEG scale=S");
+  imp_cmd->add_option("--origin", imp.options.origin, "keep, corner (each wall's lower-left at 0,0) or auto (corner beyond 10 km)")
+      ->capture_default_str();
+  imp_cmd->callback([&] { plan_exit = coverbench::cli::datasetImportCommand(imp); });
   std::string show_dir;
   CLI::App* dshow_cmd = dataset_cmd->add_subcommand("show", "Summarise a dataset folder (checks the manifest's hashes)");
   dshow_cmd->add_option("dir", show_dir, "dataset folder")->required();

@@ -15,7 +15,8 @@ PACKAGES=(g++ cmake ninja-build pkg-config ccache
           chromium python3-websocket                               # the browser test of the report
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
-          libompl-dev libeigen3-dev                                # the sampling transit planners
+          libompl-dev libeigen3-dev                                # the sampling transit planners (Eigen: import placements)
+          libgdal-dev                                              # dataset import (GeoJSON, GML, KML, Shapefile, DXF, maps)
           ompl-demos                                               # OMPL's log parser, for the export-ompl test
           valgrind                                                 # the cost gate (callgrind)
           clang libclang-rt-14-dev)                                # the sanitizer build and the fuzz targets

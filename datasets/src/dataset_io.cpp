@@ -31,16 +31,19 @@ std::string manifestText(const Dataset& d) {
     out += (i ? ",\n    " : "\n    ") + std::string("{\"file\": ") + json(e.file).dump() + ", \"name\": " + json(e.name).dump() +
            ", \"sha256\": \"" + e.sha256 + "\"}";
   }
-  out += d.entries.empty() ? "]\n}\n" : "\n  ]\n}\n";
-  return out;
+  out += d.entries.empty() ? "]" : "\n  ]";
+  if (!d.import_record.empty()) out += ",\n  \"import\": " + d.import_record;
+  return out + "\n}\n";
 }
 
 }  // namespace
 
-Dataset writeDataset(const std::string& dir, const std::string& family, std::uint64_t seed, const std::vector<Wall>& walls) {
+Dataset writeDataset(const std::string& dir, const std::string& family, std::uint64_t seed, const std::vector<Wall>& walls,
+                     const std::string& import_record) {
   Dataset d;
   d.family = family;
   d.seed = seed;
+  d.import_record = import_record;
   std::vector<std::string> texts, names;
   for (const Wall& w : walls) names.push_back(w.name);
   const std::vector<std::string> files = uniqueFileNames(names);  // path-safe, one file per wall
@@ -84,6 +87,10 @@ Dataset readDataset(const std::string& dir) {
       throw InputError(source, "seed", "must be a whole number, 0 or more");
     d.family = doc.value("family", "");
     d.seed = doc.value("seed", std::uint64_t{0});
+    if (doc.contains("import")) {
+      if (!doc["import"].is_object()) throw InputError(source, "import", "must be an object");
+      d.import_record = doc["import"].dump();
+    }
     for (std::size_t i = 0; i < doc["walls"].size(); ++i) {
       const json& w = doc["walls"][i];
       const std::string field = "walls[" + std::to_string(i) + "]";

@@ -221,7 +221,9 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   for (std::size_t i = 0; i < datasets.items.size(); ++i) {
     const Yaml& d = datasets.items[i];
     const std::string where = "datasets[" + std::to_string(i) + "]";
-    r.onlyKeys(d, where, {"family", "count", "seed", "suite", "folder", "label"});
+    r.onlyKeys(d, where, {"family", "count", "seed", "suite", "folder", "label", "import", "format", "crs", "source_crs",
+                          "name_field", "split_multipolygons", "boundary_layer", "obstacle_layers", "all_components",
+                          "min_hole_area", "simplify", "transform", "origin"});
     DatasetSpec spec;
     spec.line = d.line;
     const Yaml* family = d.find("family");
@@ -229,9 +231,40 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     const Yaml* folder = d.find("folder");
     const Yaml* count = d.find("count");
     const Yaml* seed = d.find("seed");
-    const int kinds = (family ? 1 : 0) + (suite ? 1 : 0) + (folder ? 1 : 0);
-    if (kinds != 1) r.fail(d, where, "needs exactly one of family (with count and seed), suite, or folder");
-    if (family) {
+    const Yaml* import = d.find("import");
+    const int kinds = (family ? 1 : 0) + (suite ? 1 : 0) + (folder ? 1 : 0) + (import ? 1 : 0);
+    if (kinds != 1) r.fail(d, where, "needs exactly one of family (with count and seed), suite, folder, or import");
+    if (!import)
+      for (const YamlEntry& e : d.entries)
+        if (e.key != "family" && e.key != "count" && e.key != "seed" && e.key != "suite" && e.key != "folder" && e.key != "label")
+          r.fail(e.key_line, where + "." + e.key, "is an import option: it needs import: FILE_OR_FOLDER");
+    if (import) {
+      spec.kind = DatasetSpec::Kind::Import;
+      spec.folder = resolve(r.text(*import, where + ".import"));
+      if (count || seed) r.fail(d, where, "an import has a fixed set of walls: no count or seed");
+      ImportOptions& o = spec.import_options;
+      auto text_of = [&](const char* key, std::string& into) {
+        if (const Yaml* n = d.find(key)) into = r.text(*n, where + "." + key);
+      };
+      text_of("format", o.format);
+      text_of("crs", o.crs);
+      text_of("source_crs", o.source_crs);
+      text_of("name_field", o.name_field);
+      text_of("boundary_layer", o.dxf_boundary_layer);
+      text_of("origin", o.origin);
+      if (const Yaml* n = d.find("split_multipolygons")) o.split_multipolygons = r.boolean(*n, where + ".split_multipolygons");
+      if (const Yaml* n = d.find("all_components")) o.all_components = r.boolean(*n, where + ".all_components");
+      if (const Yaml* n = d.find("min_hole_area")) o.min_hole_area = r.number(*n, where + ".min_hole_area", 0, 1e8);
+      if (const Yaml* n = d.find("simplify")) o.simplify = r.number(*n, where + ".simplify", 0, 1e4);
+      if (const Yaml* n = d.find("transform")) o.transform = parseTransform(r.text(*n, where + ".transform"), path + ":" + std::to_string(n->line), where + ".transform");
+      if (const Yaml* n = d.find("obstacle_layers")) {
+        if (n->isScalar()) o.dxf_obstacle_layers = {n->scalar};
+        else if (n->isList()) for (const Yaml& item : n->items) o.dxf_obstacle_layers.push_back(r.text(item, where + ".obstacle_layers"));
+        else r.fail(*n, where + ".obstacle_layers", "must be a layer name or a list of them");
+      }
+      // Imported now, so a bad source stops the config here, before any run.
+      spec.count = importWalls({spec.folder}, o).walls.size();
+    } else if (family) {
       spec.kind = DatasetSpec::Kind::Family;
       spec.family = r.text(*family, where + ".family");
       try {
@@ -264,7 +297,10 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     }
     const Yaml* label = d.find("label");
     spec.label = label ? r.text(*label, where + ".label")
-                 : spec.kind == DatasetSpec::Kind::Folder ? fs::path(spec.folder).filename().string()
+                 : spec.kind == DatasetSpec::Kind::Folder || spec.kind == DatasetSpec::Kind::Import
+                     ? fs::path(spec.folder).lexically_normal().filename().string().empty()
+                           ? fs::path(spec.folder).lexically_normal().parent_path().filename().string()
+                           : fs::path(spec.folder).lexically_normal().filename().string()
                                                           : spec.family;
     if (spec.label.empty()) r.fail(label ? *label : d, where + ".label", "must not be empty");
     c.datasets.push_back(spec);

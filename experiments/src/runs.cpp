@@ -35,6 +35,9 @@ std::vector<WallEntry> loadWalls(const ExperimentConfig& config) {
       case DatasetSpec::Kind::Folder:
         walls = readDataset(spec.folder).walls;
         break;
+      case DatasetSpec::Kind::Import:
+        for (ImportedWall& w : importWalls({spec.folder}, spec.import_options).walls) walls.push_back(std::move(w.wall));
+        break;
     }
     for (Wall& w : walls) {
       WallEntry e;

@@ -41,12 +41,15 @@ struct Dataset {
   std::uint64_t seed = 0;
   std::vector<DatasetEntry> entries;
   std::vector<Wall> walls;  ///< same order as entries
+  /// For imported walls (family "import"): the manifest's "import" object as JSON text (sources
+  /// with their hashes, the options, each wall's source and origin); empty otherwise.
+  std::string import_record;
 };
 
 /// Writes the walls and `manifest.json` into `dir` (created if missing). Refuses a folder that
 /// already holds a different dataset. Returns the manifest as written.
 Dataset writeDataset(const std::string& dir, const std::string& family, std::uint64_t seed,
-                     const std::vector<Wall>& walls);
+                     const std::vector<Wall>& walls, const std::string& import_record = "");
 /// Reads a dataset folder: with a manifest, the files it lists (hashes checked); without one,
 /// every *.json wall file in name order. Throws InputError naming the file and the problem.
 Dataset readDataset(const std::string& dir);

@@ -15,16 +15,18 @@
 #include "coverbench/replanning.hpp"
 #include "coverbench/run_record.hpp"
 #include "coverbench/wall.hpp"
+#include "coverbench/wall_import.hpp"
 
 namespace coverbench {
 
 /// Where walls come from: a generator family (count, seed), a fixed suite, or a folder.
 struct DatasetSpec {
-  enum class Kind { Family, Suite, Folder } kind = Kind::Family;
+  enum class Kind { Family, Suite, Folder, Import } kind = Kind::Family;
   std::string family;  ///< family or suite name
   std::size_t count = 0;  ///< walls: as given for a family; the suite's size; a folder's .json files
   std::uint64_t seed = 0;
-  std::string folder;  ///< resolved against the config file's folder
+  std::string folder;  ///< resolved against the config file's folder (a folder, or what `import` names)
+  ImportOptions import_options;  ///< for `import:` (docs/datasets.md)
   std::string label;   ///< the name tables group by (family, suite, or folder name)
   int line = 0;        ///< 1-based line in the config, for messages
 };

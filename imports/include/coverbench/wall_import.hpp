@@ -1,0 +1,85 @@
+#pragma once
+/// Walls from the maps and polygons the field already has (docs/datasets.md): vector geodata and
+/// CAD through GDAL/OGR (GeoJSON, GML, KML, Shapefile, GeoPackage, DXF, WKT), the plain
+/// polygon-text folders, YAML hull/holes, and map_server occupancy grids (YAML + PGM/PNG).
+/// Every imported wall passes validateWall; bad input throws InputError (`FILE: FIELD: PROBLEM`)
+/// before anything is written.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "coverbench/wall.hpp"
+
+namespace coverbench {
+
+/// The formats `--format` names; "auto" picks one by the file's extension (or a folder's files).
+const std::vector<std::string>& importFormats();
+
+/// One step of a placement transform, applied in the order given (`--transform`).
+struct TransformStep {
+  enum class Kind { Translate, Rotate, Scale } kind = Kind::Translate;
+  double x = 0.0, y = 0.0;  ///< translate: offset; scale: factors (x, y); rotate: x is degrees
+};
+
+struct ImportOptions {
+  std::string format = "auto";
+  /// Target CRS of geographic input ("EPSG:32632", any string PROJ reads); empty: the local UTM
+  /// zone of each file's centre.
+  std::string crs;
+  /// CRS of input that names none (a Shapefile without .prj, DXF, WKT): empty means metres.
+  std::string source_crs;
+  /// The attribute that names each wall (vector formats); empty: "name" when present, else the
+  /// file's stem and the feature's number.
+  std::string name_field;
+  bool split_multipolygons = true;  ///< false: a multipolygon with more than one part is refused
+  /// DXF: the layer whose closed polylines are boundaries; obstacles come from `dxf_obstacle_layers`
+  /// (empty: every other layer).
+  std::string dxf_boundary_layer = "boundary";
+  std::vector<std::string> dxf_obstacle_layers;
+  /// Occupancy grids: every free component as its own wall (default: the largest only).
+  bool all_components = false;
+  /// Holes (obstacles) smaller than this many m^2 are dropped and counted (every format).
+  double min_hole_area = 0.0;
+  /// Occupancy grids: simplification tolerance in metres; negative: half a pixel.
+  double simplify = -1.0;
+  /// Placement of every imported wall, after projection and the map's own origin.
+  std::vector<TransformStep> transform;
+  /// Where the coordinates end up: "keep" them, move each wall's lower-left corner to the
+  /// "corner" (0, 0), or "auto": the corner when a coordinate lies beyond 10 km (UTM metres do).
+  std::string origin = "auto";
+};
+
+/// Parses `--transform` text: steps separated by spaces, each `translate=X,Y`, `rotate=DEG` or
+/// `scale=S` / `scale=SX,SY`. Throws InputError(source, field, ...).
+std::vector<TransformStep> parseTransform(const std::string& text, const std::string& source, const std::string& field);
+
+struct ImportedWall {
+  Wall wall;
+  std::string source;        ///< the file it came from
+  std::string feature;       ///< which feature or component ("feature 3", "component 1 of 2")
+  double origin_x = 0.0, origin_y = 0.0;  ///< subtracted from every coordinate (origin "corner")
+  std::string crs;           ///< the CRS of its coordinates before that shift ("" for local metres)
+  std::size_t dropped_holes = 0;
+  double dropped_hole_area = 0.0;
+};
+
+struct ImportedSource {
+  std::string path;
+  std::string sha256;  ///< of the file's bytes (a map: of the YAML; its image is listed too)
+};
+
+struct ImportResult {
+  std::vector<ImportedWall> walls;
+  std::vector<ImportedSource> sources;
+};
+
+/// Imports every source (files or folders) in order; walls keep the order of their sources and
+/// features. Throws InputError on the first problem: nothing is half imported.
+ImportResult importWalls(const std::vector<std::string>& sources, const ImportOptions& options);
+
+/// The manifest's "import" object: the sources with their hashes, the options, and each wall's
+/// source, feature, CRS and origin (one wall per line; same input, same bytes).
+std::string importRecordJson(const ImportResult& result, const ImportOptions& options);
+
+}  // namespace coverbench
