@@ -3,8 +3,10 @@
 #include "coverbench/registry.hpp"
 
 #include "coverbench/car.hpp"
+#include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +21,83 @@ namespace {
 std::deque<PlannerInfo>& addedPlanners() {  // a deque: references stay valid as it grows
   static std::deque<PlannerInfo> planners;
   return planners;
+}
+
+bool inFree(const Region& free, Point p) {
+  for (const PolygonWithHoles& poly : free)
+    if (pointInPolygon(poly, p)) return true;
+  return false;
+}
+
+/// The point of F nearest to `p` (on its edges), for messages.
+Point nearestFreePoint(const Region& free, Point p) {
+  Point best = p;
+  double best_d = INFINITY;
+  for (const PolygonWithHoles& poly : free)
+    for (const Ring& ring : allRings(Region{poly}))
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Point a = ring[i], b = ring[(i + 1) % ring.size()], d = b - a;
+        const double len2 = dot(d, d);
+        const double t = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+        const Point q = a + d * t;
+        if (distance(p, q) < best_d) best_d = distance(p, q), best = q;
+      }
+  return best;
+}
+
+std::string pointText(Point p) { return "(" + shortNumber(p.x) + ", " + shortNumber(p.y) + ")"; }
+
+std::string threeDigits(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+/// Begins the path at the wall's start and ends it at its end, each reached with the tool off
+/// (straight when free, lifted for a gantry, else along the problem's transit planner's route).
+/// A start or end where the tool's centre may not be (outside F), or one no move reaches, makes
+/// the result a failure that says which and where F is nearest.
+void attachEnds(const Problem& problem, PlanResult& result) {
+  const Wall& wall = *problem.wall;
+  if ((!wall.start && !wall.end) || !result.hasPath() || result.path.waypoints.empty()) return;
+  Workspace ws(wall, problem);
+  for (const auto& [point, name] : {std::pair{wall.start, "start"}, std::pair{wall.end, "end"}})
+    if (point && !inFree(ws.free(), *point)) {
+      const Point near = nearestFreePoint(ws.free(), *point);
+      result = PlanResult::failure(PlanStatus::InvalidInput,
+                                   std::string(name) + " " + pointText(*point) + " is where the tool's centre may not be (" +
+                                       threeDigits(distance(*point, near)) + " m outside F); the nearest point of F is " +
+                                       pointText(near));
+      return;
+    }
+  const Path planned = std::move(result.path);
+  Path out;
+  auto append = [&](const Path& part) {
+    for (std::size_t i = 0; i + 1 < part.waypoints.size(); ++i) {
+      if (out.waypoints.empty()) out.moveTo(part.waypoints[i], false);
+      out.arcTo(part.waypoints[i + 1], part.bulgeOf(i), part.tool_on[i]);
+    }
+    if (out.waypoints.empty() && !part.waypoints.empty()) out.moveTo(part.waypoints.front(), false);
+  };
+  double legs_m = 0.0;
+  auto leg = [&](Point from, Point to, const char* what) {
+    PathBuilder b(ws);
+    b.start(from);
+    if (!b.moveTo(to, false)) {
+      result = PlanResult::failure(PlanStatus::InvalidInput, std::string("no tool-off move reaches ") + what + " " +
+                                                                 pointText(what == std::string("the end") ? to : from) +
+                                                                 " from the path (it lies in another part of F)");
+      return false;
+    }
+    for (std::size_t i = 0; i < b.path().segments(); ++i) legs_m += segmentLength(b.path(), i);
+    append(b.path());
+    return true;
+  };
+  if (wall.start && !leg(*wall.start, planned.waypoints.front(), "the start")) return;
+  append(planned);
+  if (wall.end && !leg(planned.waypoints.back(), *wall.end, "the end")) return;
+  result.path = std::move(out);
+  result.stats["start_end_legs_m"] = legs_m;  // the tool-off moves from the start and to the end
 }
 
 }  // namespace
@@ -129,6 +208,7 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
       Problem holonomic = problem;
       holonomic.vehicle = VehicleModel{};
       result = planner.make()->plan(holonomic, budget);
+      attachEnds(holonomic, result);
       if (result.hasPath()) {
         const Workspace ws(*problem.wall, problem);
         const CarSmoothing car = smoothForCar(ws, result.path);
@@ -143,6 +223,7 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
       }
     } else {
       result = planner.make()->plan(problem, budget);
+      attachEnds(problem, result);
     }
   } catch (const std::exception& e) {
     result = PlanResult::failure(PlanStatus::Error, std::string("planner threw: ") + e.what());

@@ -13,8 +13,8 @@ using namespace coverbench;
 const char* const kCases[] = {"seed_1x1_empty", "seed_5x5_1obs", "seed_5x5_3obs", "seed_10x8_3obs",
                               "seed_10x10_5obs"};
 
-void planCase(benchmark::State& state, const std::string& planner_name, const std::string& case_name,
-              const std::vector<std::pair<std::string, std::string>>& settings) {
+void planCaseWith(benchmark::State& state, const std::string& planner_name, const std::string& case_name,
+                  const std::vector<std::pair<std::string, std::string>>& settings, double tool_width, double clearance) {
   // Names with a slash are relative to bench/walls (walls for one benchmark only).
   const std::string path = case_name.find('/') == std::string::npos
                                ? std::string(COVERBENCH_WALLS_DIR) + "/" + case_name + ".json"
@@ -23,8 +23,8 @@ void planCase(benchmark::State& state, const std::string& planner_name, const st
   const PlannerInfo& info = findPlanner(planner_name);
   Problem problem;
   problem.wall = &wall;
-  problem.tool.tool_width = 0.05;
-  problem.tool.clearance = 0.02;
+  problem.tool.tool_width = tool_width;
+  problem.tool.clearance = clearance;
   problem.params = resolveParams(info, settings);
   auto planner = info.make();
   std::size_t waypoints = 0;
@@ -38,6 +38,12 @@ void planCase(benchmark::State& state, const std::string& planner_name, const st
     benchmark::DoNotOptimize(result);
   }
   state.counters["waypoints"] = static_cast<double>(waypoints);
+}
+
+/// At s = 0.05 m, c = 0.02 m.
+void planCase(benchmark::State& state, const std::string& planner_name, const std::string& case_name,
+              const std::vector<std::pair<std::string, std::string>>& settings) {
+  planCaseWith(state, planner_name, case_name, settings, 0.05, 0.02);
 }
 
 const bool kRegistered = [] {
@@ -65,6 +71,17 @@ const bool kRegistered = [] {
                                  std::string("bench/bench_50x20_200rect"),
                                  std::vector<std::pair<std::string, std::string>>{{"order", order}})
         ->Unit(benchmark::kMillisecond);
+  // Field scale (docs/datasets.md): a 100 m polygon with 15 buildings at s = 3 m, no clearance,
+  // every planner, and boustrophedon with the direction search (targets: 20 ms and 50 ms).
+  using Settings = std::vector<std::pair<std::string, std::string>>;
+  for (const PlannerInfo& p : registeredPlanners())
+    benchmark::RegisterBenchmark((p.name + "/field_100m_15_buildings").c_str(), planCaseWith, p.name,
+                                 std::string("bench/field_100m_15_buildings"), Settings{}, 3.0, 0.0)
+        ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("boustrophedon[direction_search]/field_100m_15_buildings", planCaseWith,
+                               std::string("boustrophedon"), std::string("bench/field_100m_15_buildings"),
+                               Settings{{"direction_search", "true"}}, 3.0, 0.0)
+      ->Unit(benchmark::kMillisecond);
   return true;
 }();
 

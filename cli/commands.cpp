@@ -168,10 +168,35 @@ void listPlanners(std::ostream& out) {
     out << t.name << ": " << t.summary << "\n  reference: " << t.reference << "\n";
 }
 
+namespace {
+
+/// `X,Y` as a point; InputError naming `flag`.
+Point pointOption(const std::string& text, const std::string& flag) {
+  const std::size_t comma = text.find(',');
+  char* end = nullptr;
+  const std::string xs = text.substr(0, comma), ys = comma == std::string::npos ? "" : text.substr(comma + 1);
+  const double x = std::strtod(xs.c_str(), &end);
+  const bool x_ok = !xs.empty() && *end == '\0';
+  const double y = std::strtod(ys.c_str(), &end);
+  if (comma == std::string::npos || !x_ok || ys.empty() || *end != '\0' || !std::isfinite(x) || !std::isfinite(y))
+    throw InputError(flag, "(value)", "must be X,Y in metres, got '" + text + "'");
+  return {x, y};
+}
+
+}  // namespace
+
 int planCommand(const PlanOptions& options) {
   validateTool(options.tool, "command line");
   validateTimeLimit(options.time_limit_s, "--time-limit", "time_limit");
-  const Wall wall = loadWallFile(options.wall);
+  Wall wall = loadWallFile(options.wall);
+  if (!options.start.empty()) wall.start = pointOption(options.start, "--start");
+  if (options.end == "start") {
+    if (!wall.start) throw InputError("--end", "(value)", "is start, but neither --start nor the wall file gives one");
+    wall.end = wall.start;
+  } else if (!options.end.empty()) {
+    wall.end = pointOption(options.end, "--end");
+  }
+  if (!options.start.empty() || !options.end.empty()) validateWall(wall, "--start/--end");
   validateToolForWall(options.tool, wall, "command line");
   const PlannerInfo& planner = external::plannerNamed(options.planner, "--planner");
   Params params = resolveParams(planner, splitSettings(options.params));
@@ -277,6 +302,15 @@ int metricsCommand(const MetricsOptions& options) {
   if (!(limits.speed > 0.0) || !std::isfinite(limits.speed)) throw InputError("--speed", "speed", "must be positive and finite");
   if (!(limits.acceleration > 0.0) || !std::isfinite(limits.acceleration))
     throw InputError("--acceleration", "acceleration", "must be positive and finite");
+  if (options.stops != "turns" && options.stops != "waypoints")
+    throw InputError("--stops", "stops", "must be turns or waypoints, got '" + options.stops + "'");
+  limits.stops = options.stops == "waypoints" ? MotionLimits::Stops::Waypoints : MotionLimits::Stops::Turns;
+  limits.stop_angle_deg = options.stop_angle;
+  if (!(limits.stop_angle_deg > 0.0 && limits.stop_angle_deg < 180.0))
+    throw InputError("--stop-angle", "stop_angle", "must be in (0, 180) degrees, got " + shortNumber(options.stop_angle));
+  limits.turn_cost_s = options.turn_cost;
+  if (!(limits.turn_cost_s >= 0.0 && limits.turn_cost_s <= 3600.0))
+    throw InputError("--turn-cost", "turn_cost_s", "must be in [0, 3600] s, got " + shortNumber(options.turn_cost));
   limitScoringTime(options.plan, options.time_limit_s);
   const VehicleModel vehicle = resolveVehicle(options.vehicle, plan.vehicle.value_or(VehicleModel{}));
   const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits);

@@ -31,6 +31,7 @@ struct PlanOptions {
   unsigned long long seed = 0;  ///< --seed: what planners and sampling transit planners draw from
   std::vector<std::string> params;  ///< key=value
   double time_limit_s = 60.0;
+  std::string start, end;  ///< --start X,Y and --end X,Y (or --end start): over the wall file's own
 };
 /// Returns 0 when the plan is ok and valid, 3 when the planner reported a failure or its path is
 /// invalid (the plan file is still written and says which). Bad input throws InputError.
@@ -57,6 +58,8 @@ struct MetricsOptions {
   std::optional<double> tool_width, clearance;  ///< default: the plan file's, else 0.1 / 0.02
   VehicleOptions vehicle;  ///< default: the plan file's, else holonomic
   double speed = 0.3, acceleration = 0.5;
+  std::string stops = "turns";  ///< the time model's stops: turns or waypoints
+  double stop_angle = 30.0, turn_cost = 0.0;
   double time_limit_s = 600.0;  ///< scoring (and picture) past it: a one-line error, exit 2
   std::string judge = "fast";   ///< "fast", or "exact": also the exact judge, side by side
   int arc_vertices = 128;       ///< the exact judge's disk polygons

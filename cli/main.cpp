@@ -68,6 +68,8 @@ int main(int argc, char** argv) {
   coverbench::cli::PlanOptions plan;
   CLI::App* plan_cmd = app.add_subcommand("plan", "Plan one wall with one planner and write a plan file");
   plan_cmd->add_option("--wall", plan.wall, "wall file (JSON)")->required();
+  plan_cmd->add_option("--start", plan.start, "X,Y where the path begins (over the wall file's start)");
+  plan_cmd->add_option("--end", plan.end, "X,Y where the path ends, or 'start' (over the wall file's end)");
   plan_cmd->add_option("--planner", plan.planner, "planner name (see `coverbench planners`), or an external planner's manifest (FILE.json)")->required();
   plan_cmd->add_option("--tool-width", plan.tool.tool_width, "tool diameter s in metres")->capture_default_str();
   plan_cmd->add_option("--clearance", plan.tool.clearance, "gap c between tool and obstacles, metres")
@@ -124,6 +126,12 @@ int main(int argc, char** argv) {
   metrics_cmd->add_option("--lower-s", metrics.vehicle.lower_s, "gantry: seconds to lower the tool (default: the plan's, else 1)");
   metrics_cmd->add_option("--speed", metrics.speed, "tool speed v for duration_s, m/s")->capture_default_str();
   metrics_cmd->add_option("--acceleration", metrics.acceleration, "acceleration a for duration_s, m/s^2")
+      ->capture_default_str();
+  metrics_cmd->add_option("--stops", metrics.stops, "where duration_s stops: turns (over --stop-angle) or waypoints (every one)")
+      ->capture_default_str();
+  metrics_cmd->add_option("--stop-angle", metrics.stop_angle, "with --stops turns: stop at heading changes over this, degrees")
+      ->capture_default_str();
+  metrics_cmd->add_option("--turn-cost", metrics.turn_cost, "seconds per turn over 1 degree, reported as turn_cost_s (0: none)")
       ->capture_default_str();
   metrics_cmd->add_option("--svg", metrics.svg, "picture with the coverage layer (SVG)");
   metrics_cmd->add_option("--time-limit", metrics.time_limit_s, "seconds scoring may take before it is abandoned")

@@ -114,6 +114,50 @@ TEST_F(Cli, MetricsScoresAHandWrittenPlan) {
   EXPECT_NE(e.err.find("tool_on"), std::string::npos) << e.err;
 }
 
+// A config's time model (`motion:`): the durations it stores are the metrics command's under the
+// same model, the cost per turn is its own metric, the run keys change, and the report's first
+// line names the model.
+TEST_F(Cli, ATimeModelChangesDurationsTheRunKeysAndTheReportsFirstLine) {
+  fs::create_directories(dir_ / "walls");
+  const std::string wall = write("walls/w.json", R"({"name": "w", "width": 3, "height": 1.5, "obstacles": [
+    {"type": "rect", "x": 1.2, "y": 0.5, "width": 0.4, "height": 0.4}]})");
+  const std::string base = "output: OUT\ndatasets:\n  - folder: walls\nplanners: [zigzag]\ntool: {width: 0.2, clearance: 0.02}\n";
+  auto config = [&](const std::string& name, const std::string& extra) {
+    std::string text = "name: " + name + "\n" + base + extra;
+    text.replace(text.find("OUT"), 3, name);
+    return write(name + ".yaml", text);
+  };
+  ASSERT_EQ(run("run " + config("plain", "") + " --no-report").exit_code, 0);
+  ASSERT_EQ(run("run " + config("eth", "motion: {speed: 3, acceleration: 1, stops: waypoints, turn_cost_s: 5}\n") +
+                " --no-report").exit_code, 0);
+  const std::string plain_db = (dir_ / "plain" / "results.sqlite").string(), eth_db = (dir_ / "eth" / "results.sqlite").string();
+  const std::string duration = "SELECT value FROM metrics WHERE name = 'duration_s'";
+  EXPECT_NE(test::sqlRows(plain_db, "SELECT key FROM runs"), test::sqlRows(eth_db, "SELECT key FROM runs"));
+  EXPECT_NE(test::sqlRows(plain_db, duration), test::sqlRows(eth_db, duration));
+  EXPECT_EQ(test::sqlRows(plain_db, "SELECT COUNT(*) FROM metrics WHERE name = 'turn_cost_s'"), "0\n");
+  EXPECT_EQ(test::sqlRows(eth_db, "SELECT m.value = 5 * t.value FROM metrics m JOIN metrics t ON t.run_key = m.run_key "
+                                  "WHERE m.name = 'turn_cost_s' AND t.name = 'turns'"),
+            "1\n");
+  // The same path scored by the metrics command under the same model gives the stored duration.
+  std::string out;
+  ASSERT_EQ(run("plan --wall " + wall + " --planner zigzag --tool-width 0.2 --clearance 0.02 --out " +
+                (dir_ / "p.json").string()).exit_code, 0);
+  ASSERT_EQ(run("metrics --wall " + wall + " --plan " + (dir_ / "p.json").string() +
+                " --speed 3 --acceleration 1 --stops waypoints --turn-cost 5", &out).exit_code, 0) << out;
+  EXPECT_NEAR(std::stod(test::sqlRows(eth_db, duration)), jsonNumber(out, "duration_s"), 1e-9);
+  EXPECT_NEAR(std::stod(test::sqlRows(eth_db, "SELECT value FROM metrics WHERE name = 'turn_cost_s'")),
+              jsonNumber(out, "turn_cost_s"), 1e-9);
+  ASSERT_EQ(run("report " + eth_db + " --format md", &out).exit_code, 0);
+  EXPECT_NE(out.find("Time model of duration\\_s: v 3 m/s, a 1 m/s2, stops at every waypoint, 5 s per turn (turn\\_cost\\_s)."),
+            std::string::npos) << out.substr(0, 600);
+  ASSERT_EQ(run("report " + plain_db + " --format md", &out).exit_code, 0);
+  EXPECT_NE(out.find("Time model of duration\\_s: v 0.3 m/s, a 0.5 m/s2, stops at turns over 30 degrees."), std::string::npos)
+      << out.substr(0, 600);
+  const CommandRun bad = run("run " + config("bad", "motion: {stops: everywhere}\n"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("bad.yaml:7: motion.stops: must be turns or waypoints, got 'everywhere'"), std::string::npos) << bad.err;
+}
+
 TEST_F(Cli, DatasetGenerateIsByteIdenticalAcrossInvocations) {
   std::string out;
   ASSERT_EQ(run("dataset generate --family stairwell --count 3 --seed 11 --out " + (dir_ / "a").string(), &out).exit_code, 0);

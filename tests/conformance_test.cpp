@@ -8,6 +8,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/wall_file.hpp"
+#include "coverbench/workspace.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {
@@ -163,7 +164,8 @@ TEST(FamilyWalls, EveryPlannerAndVariantValidOnEveryGeneratedFamily) {
   configs.push_back({"adaptive-resolution", {{"dense_waypoints", "true"}}});
   for (const char* planner : {"spanning-tree", "adaptive-resolution"}) configs.push_back({planner, {{"corner_spurs", "true"}}});
   for (const FamilyInfo& family : wallFamilies()) {
-    if (family.fixed_suite || family.name == "stress") continue;
+    // The field family is planned at its own scale (FieldWalls below).
+    if (family.fixed_suite || family.name == "stress" || family.name == "field") continue;
     for (std::size_t i = 0; i < 2; ++i) {
       const Wall wall = generateWall(family.name, 42, i);
       for (const auto& [planner, settings] : configs) {
@@ -193,6 +195,75 @@ TEST_P(GeneratedWalls, ValidOnManyRandomWalls) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllPlanners, GeneratedWalls, testing::ValuesIn(test::plannerNames()), test::plannerTestName);
+
+/// The first point of a 5 cm grid, scanned from `from` towards the opposite corner, where the
+/// tool's centre may be (in F).
+std::optional<Point> freePointNear(const Wall& wall, const ToolParams& tool, bool from_lower_left) {
+  const Workspace ws(wall, tool);
+  const Box b = boundingBox(wall.boundary);
+  for (double y = 0; y <= b.height(); y += 0.05)
+    for (double x = 0; x <= b.width(); x += 0.05) {
+      const Point p = from_lower_left ? Point{b.min_x + x, b.min_y + y} : Point{b.max_x - x, b.max_y - y};
+      for (const PolygonWithHoles& poly : ws.free())
+        if (pointInPolygon(poly, p)) return p;
+    }
+  return std::nullopt;
+}
+
+// Field scale: a 100 m polygon with 15 buildings at s = 3 m (the published polygon sets' sweep
+// width), and walls of the field family at 1-6 m: every planner plans them validly.
+TEST(FieldScale, EveryPlannerPlansAHundredMetrePolygonWithFifteenBuildingsAndFieldWalls) {
+  std::vector<std::pair<Wall, ToolParams>> cases = {
+      {loadWallFile(test::sourcePath("bench/walls/field_100m_15_buildings.json")), ToolParams{3.0, 0.0}}};
+  ASSERT_EQ(cases[0].first.obstacles.size(), 15u);
+  for (std::size_t i = 0; i < 3; ++i) cases.push_back({generateWall("field", 3, i), ToolParams{1.0 + 2.5 * i, 0.0}});
+  for (const PlannerInfo& info : registeredPlanners())
+    for (const auto& [wall, tool] : cases) {
+      PlanResult r;
+      ASSERT_TRUE(honours(info, wall, tool, resolveParams(info, {}), &r)) << wall.name << " " << info.name;
+      EXPECT_EQ(r.status, PlanStatus::Ok) << wall.name << " " << info.name << ": " << r.reason;
+    }
+}
+
+class StartAndEnd : public testing::TestWithParam<std::string> {};
+
+// Every planner begins at the given start and ends at the given end (reached with the tool off),
+// validly, on the canonical walls, the conformance walls and random walls; a start where the
+// tool's centre may not be is refused with the nearest point of F.
+TEST_P(StartAndEnd, EveryPathBeginsAtTheStartAndEndsAtTheEnd) {
+  const ToolParams tool{0.1, 0.02};
+  std::vector<Wall> walls;
+  for (const std::string& file : test::conformanceWallFiles()) walls.push_back(loadWallFile(file));
+  for (unsigned seed = 1; seed <= 10; ++seed) walls.push_back(test::randomWall(seed));
+  int planned = 0;
+  for (Wall wall : walls) {
+    wall.start = freePointNear(wall, tool, true);
+    wall.end = freePointNear(wall, tool, false);
+    if (!wall.start || !wall.end) continue;  // no room for the tool
+    const PlanResult r = test::planWith(GetParam(), wall, tool);
+    if (!r.hasPath()) {
+      // Only where the start and the end lie in parts of F the path cannot reach (narrow walls).
+      EXPECT_NE(r.reason.find("no tool-off move reaches"), std::string::npos) << wall.name << ": " << r.reason;
+      continue;
+    }
+    ++planned;
+    ASSERT_FALSE(r.path.waypoints.empty()) << wall.name;
+    EXPECT_TRUE(r.path.waypoints.front() == *wall.start) << wall.name;
+    EXPECT_TRUE(r.path.waypoints.back() == *wall.end) << wall.name;
+    EXPECT_TRUE(test::isValidPath(wall, tool, r.path)) << wall.name;
+  }
+  EXPECT_GE(planned, static_cast<int>(walls.size()) - 4);
+  // A start on the wall's edge, where the tool would overhang it: refused, saying where F is.
+  Wall wall = test::rectWall(2, 1);
+  wall.start = Point{0.0, 0.5};
+  const PlanResult r = test::planWith(GetParam(), wall, tool);
+  EXPECT_EQ(r.status, PlanStatus::InvalidInput);
+  // F is the free region as planners compute it: eroded by r = 0.05 m and a margin of 5.5e-5 m.
+  const std::string expected = "start (0, 0.5) is where the tool's centre may not be (0.0501 m outside F); the nearest point of F is (0.05";
+  EXPECT_EQ(r.reason.substr(0, expected.size()), expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllPlanners, StartAndEnd, testing::ValuesIn(test::plannerNames()), test::plannerTestName);
 
 }  // namespace
 }  // namespace coverbench

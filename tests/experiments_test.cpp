@@ -126,6 +126,9 @@ TEST_F(Experiments, RunKeysChangeWithEveryInputAndNothingElse) {
   r = runs[0];
   r.seed = 7;
   EXPECT_NE(runKey(r), key);
+  r = runs[0];
+  r.motion.stops = MotionLimits::Stops::Waypoints;  // another clock: other durations
+  EXPECT_NE(runKey(r), key);
   // The planner's version and code identity change the key, not the base key.
   r = runs[0];
   r.planner_version += "-next";

@@ -376,3 +376,50 @@ TEST(MetricsProperties, ReversingAPathChangesNoMetric) {
 
 }  // namespace
 }  // namespace coverbench
+
+namespace coverbench {
+namespace {
+
+// The published clock of the 100 m polygon benchmarks: v = 3 m/s, a = 1 m/s^2, a stop at every
+// waypoint. A segment of d metres takes 2 sqrt(d / a) when d < v^2 / a = 9 m, else d / v + v / a.
+// Three collinear segments of 4, 9 and 16 m: 2 sqrt(4) = 4 s, 9 / 3 + 3 = 6 s, 16 / 3 + 3 s.
+TEST(TimeModels, TheVelocityRampByHandOnThreeSegments) {
+  const Path p = makePath({0, 0}, {{{4, 0}, true}, {{13, 0}, true}, {{29, 0}, true}});
+  MotionLimits eth;
+  eth.speed = 3.0;
+  eth.acceleration = 1.0;
+  eth.stops = MotionLimits::Stops::Waypoints;
+  EXPECT_NEAR(motion(p, eth).duration_s, 4.0 + 6.0 + (16.0 / 3.0 + 3.0), 1e-12);
+  // Stopping only at turns, the three are one straight run of 29 m.
+  eth.stops = MotionLimits::Stops::Turns;
+  EXPECT_NEAR(motion(p, eth).duration_s, 29.0 / 3.0 + 3.0, 1e-12);
+  EXPECT_FALSE(motion(p, eth).turn_cost_s.has_value());  // no cost per turn set: no such metric
+}
+
+TEST(TimeModels, StopAngleAndTurnCost) {
+  // Heading changes of 20 and 90 degrees: at a stop angle of 30 only the second stops; at 10 both.
+  const Point bend{4 + 5 * std::cos(20 * M_PI / 180), 5 * std::sin(20 * M_PI / 180)};
+  const Point end{bend.x - 3 * std::sin(20 * M_PI / 180), bend.y + 3 * std::cos(20 * M_PI / 180)};
+  const Path p = makePath({0, 0}, {{{4, 0}, true}, {bend, true}, {end, true}});
+  MotionLimits m;
+  m.speed = 1.0;
+  m.acceleration = 1.0;  // v^2 / a = 1 m: every run reaches v; a run of d takes d + 1 s
+  EXPECT_NEAR(motion(p, m).duration_s, (9.0 + 1.0) + (3.0 + 1.0), 1e-9);
+  m.stop_angle_deg = 10.0;
+  EXPECT_NEAR(motion(p, m).duration_s, (4.0 + 1.0) + (5.0 + 1.0) + (3.0 + 1.0), 1e-9);
+  m.turn_cost_s = 5.0;
+  const Motion mo = motion(p, m);
+  ASSERT_TRUE(mo.turn_cost_s.has_value());
+  EXPECT_EQ(mo.turns, 2u);
+  EXPECT_DOUBLE_EQ(*mo.turn_cost_s, 10.0);
+  EXPECT_NEAR(mo.duration_s, 15.0, 1e-9);  // the cost per turn is its own metric, not in duration_s
+  bool listed = false;
+  for (const NamedMetric& metric : flatten(computeMetrics(rectWall(30, 10), kTool, p, {}, m)))
+    listed = listed || (metric.name == "turn_cost_s" && metric.value == 10.0);
+  EXPECT_TRUE(listed);
+  EXPECT_EQ(m.describe(), "v 1 m/s, a 1 m/s2, stops at turns over 10 degrees, 5 s per turn (turn_cost_s)");
+  EXPECT_EQ(MotionLimits{}.describe(), "v 0.3 m/s, a 0.5 m/s2, stops at turns over 30 degrees");
+}
+
+}  // namespace
+}  // namespace coverbench

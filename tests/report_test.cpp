@@ -25,7 +25,10 @@ TEST(MetricRegistry, ListsExactlyTheEngineMetricsInOrderThenTheExactJudgesThenTh
   path.waypoints = {{0.2, 0.5}, {1.8, 0.5}};
   path.tool_on = {true};
   std::vector<std::string> engine;
-  for (const NamedMetric& m : flatten(computeMetrics(wall, ToolParams{0.1, 0.02}, path))) engine.push_back(m.name);
+  MotionLimits with_turn_cost;  // the cost per turn is listed only when set
+  with_turn_cost.turn_cost_s = 1.0;
+  for (const NamedMetric& m : flatten(computeMetrics(wall, ToolParams{0.1, 0.02}, path, {}, with_turn_cost)))
+    engine.push_back(m.name);
   for (const char* name : kExactJudgeMetrics) engine.push_back(name);  // an experiment with `judge: exact`
   std::vector<std::string> registry, measured;
   for (const MetricSpec& s : metricSpecs()) (s.kind == MetricKind::Measured ? measured : registry).push_back(s.name);

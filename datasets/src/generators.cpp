@@ -344,6 +344,42 @@ Wall stress(Rng& rng) {
   return d.wall;
 }
 
+Wall field(Rng& rng) {
+  // Outdoor polygons in the spirit of the published 100 m polygon sets and agricultural fields:
+  // a star-shaped boundary 50-500 m across (5-10 corners at sorted angles), 1-15 holes that are
+  // buildings (rotated rectangles) or trees (circles), kept 2 % of the size from the edge and
+  // from each other. Planned at tool widths of 1-6 m (experiments/field.yaml).
+  Draft d;
+  const double size = rng.uniform(50.0, 500.0), R = size / 2.0;
+  const int corners = rng.integer(5, 10);
+  std::vector<double> angles;
+  for (int k = 0; k < corners; ++k) angles.push_back((k + rng.uniform(0.1, 0.9)) * 2.0 * M_PI / corners);
+  for (double a : angles) {
+    const double r = R * rng.uniform(0.7, 1.0);
+    d.wall.boundary.push_back({mm(R + r * std::cos(a)), mm(R + r * std::sin(a))});
+  }
+  const double margin = 0.02 * size;
+  const int holes = rng.integer(1, 15);
+  for (int k = 0; k < holes; ++k)
+    for (int t = 0; t < kTries; ++t) {
+      const Point c{rng.uniform(0.2 * size, 0.8 * size), rng.uniform(0.2 * size, 0.8 * size)};
+      if (rng.chance(0.3)) {
+        if (d.add(circleObstacle(c.x, c.y, rng.uniform(0.005, 0.02) * size, "tree"), margin, margin)) break;
+        continue;
+      }
+      const double a = rng.uniform(0.02, 0.08) * size, b = rng.uniform(0.02, 0.06) * size, angle = rng.uniform(0.0, M_PI);
+      Obstacle o;
+      o.type = ObstacleType::Polygon;
+      o.label = "building";
+      for (const Point& p : {Point{-a, -b}, Point{a, -b}, Point{a, b}, Point{-a, b}}) {
+        const Point q = rotate(p, angle) + c;
+        o.polygon.push_back({mm(q.x), mm(q.y)});
+      }
+      if (d.add(std::move(o), margin, margin)) break;
+    }
+  return d.wall;
+}
+
 // --- the seeds' cases, as a fixed suite -------------------------------------------------------
 
 Wall withRects(const std::string& name, double W, double H, std::vector<Obstacle> obstacles) {
@@ -391,7 +427,7 @@ const std::map<std::string, Generator>& generators() {
   static const std::map<std::string, Generator> g = {
       {"residential", residential}, {"facade", facade}, {"gable", gable},   {"stairwell", stairwell},
       {"industrial", industrial},   {"random", randomWall}, {"narrow", narrow}, {"stress", stress},
-      {"open", openWall}};
+      {"open", openWall},           {"field", field}};
   return g;
 }
 
@@ -414,6 +450,7 @@ const std::vector<FamilyInfo>& wallFamilies() {
       {"narrow", "gaps of 0.7-1.4 times s + 2c (0.14 m for the default tool) between obstacles and the boundary"},
       {"stress", "40-60 m x 15-25 m walls with 150-400 rectangular openings"},
       {"open", "obstacle-free rectangles 5-12 m x 5-12 m: rows, turns and boundary passes alone"},
+      {"field", "outdoor polygons 50-500 m across with 1-15 buildings and trees, for tools of 1-6 m"},
       {"seed-cases", "the seeds' cases: 1x1 empty, 5x5 with 1 and 3, 10x8 with 3, 10x10 with 5, 20x10 empty, L-shape, garden trees, narrow passages", true},
   };
   return families;

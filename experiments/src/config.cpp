@@ -186,7 +186,37 @@ PlannerConfig makeConfig(const PlannerInfo& info, std::vector<std::pair<std::str
   return pc;
 }
 
+/// The `motion:` section: the time model of duration_s (docs/metrics.md#time-models).
+MotionLimits readMotion(Reader& r, const Yaml& m) {
+  r.onlyKeys(m, "motion", {"speed", "acceleration", "stops", "stop_angle", "turn_cost_s"});
+  MotionLimits limits;
+  if (const Yaml* v = m.find("speed")) limits.speed = r.number(*v, "motion.speed", 0, 1000, true);
+  if (const Yaml* v = m.find("acceleration")) limits.acceleration = r.number(*v, "motion.acceleration", 0, 1000, true);
+  if (const Yaml* v = m.find("stops")) {
+    const std::string stops = r.text(*v, "motion.stops");
+    if (stops == "waypoints") limits.stops = MotionLimits::Stops::Waypoints;
+    else if (stops != "turns") r.fail(*v, "motion.stops", "must be turns or waypoints, got '" + stops + "'");
+  }
+  if (const Yaml* v = m.find("stop_angle")) {
+    if (limits.stops == MotionLimits::Stops::Waypoints) r.fail(*v, "motion.stop_angle", "applies to stops: turns only");
+    limits.stop_angle_deg = r.number(*v, "motion.stop_angle", 0, 180, true, true);
+  }
+  if (const Yaml* v = m.find("turn_cost_s")) limits.turn_cost_s = r.number(*v, "motion.turn_cost_s", 0, 3600);
+  return limits;
+}
+
 }  // namespace
+
+MotionLimits configMotion(const std::string& config_text, const std::string& source) {
+  Reader r(source);
+  try {
+    const Yaml doc = r.copy(YAML::Load(config_text), "", 0);
+    if (const Yaml* m = doc.isMap() ? doc.find("motion") : nullptr) return readMotion(r, *m);
+  } catch (const YAML::Exception& e) {
+    throw InputError(source + ":" + std::to_string(e.mark.line + 1), "(document)", "YAML syntax: " + e.msg);
+  }
+  return {};
+}
 
 ExperimentConfig loadExperimentConfig(const std::string& path) {
   ExperimentConfig c;
@@ -203,7 +233,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   }
   if (!doc.isMap()) r.fail(doc, "(document)", "must be a mapping (name, datasets, planners, ...)");
   r.onlyKeys(doc, "", {"name", "output", "datasets", "planners", "tool", "repetitions", "limits", "baseline", "threads",
-                       "seed", "allow_large", "judge", "vehicle", "transit", "replanning"});
+                       "seed", "allow_large", "judge", "vehicle", "transit", "replanning", "motion"});
   const fs::path base = fs::path(path).parent_path();
   auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).lexically_normal().string(); };
 
@@ -221,7 +251,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   for (std::size_t i = 0; i < datasets.items.size(); ++i) {
     const Yaml& d = datasets.items[i];
     const std::string where = "datasets[" + std::to_string(i) + "]";
-    r.onlyKeys(d, where, {"family", "count", "seed", "suite", "folder", "label", "import", "format", "crs", "source_crs",
+    r.onlyKeys(d, where, {"family", "count", "seed", "suite", "folder", "label", "start", "end", "import", "format", "crs", "source_crs",
                           "name_field", "split_multipolygons", "boundary_layer", "obstacle_layers", "all_components",
                           "min_hole_area", "simplify", "transform", "origin"});
     DatasetSpec spec;
@@ -236,7 +266,8 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     if (kinds != 1) r.fail(d, where, "needs exactly one of family (with count and seed), suite, folder, or import");
     if (!import)
       for (const YamlEntry& e : d.entries)
-        if (e.key != "family" && e.key != "count" && e.key != "seed" && e.key != "suite" && e.key != "folder" && e.key != "label")
+        if (e.key != "family" && e.key != "count" && e.key != "seed" && e.key != "suite" && e.key != "folder" && e.key != "label" &&
+            e.key != "start" && e.key != "end")
           r.fail(e.key_line, where + "." + e.key, "is an import option: it needs import: FILE_OR_FOLDER");
     if (import) {
       spec.kind = DatasetSpec::Kind::Import;
@@ -294,6 +325,16 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
       if (!fs::is_directory(spec.folder)) r.fail(*folder, where + ".folder", "'" + spec.folder + "' is not a folder");
       for (const auto& entry : fs::directory_iterator(spec.folder))
         spec.count += entry.path().extension() == ".json" && entry.path().filename() != "manifest.json";
+    }
+    auto point = [&](const Yaml& n, const std::string& field) {
+      if (!n.isList() || n.items.size() != 2) r.fail(n, field, "must be [x, y]");
+      return Point{r.number(n.items[0], field + "[0]", -kMaxExtent, kMaxExtent),
+                   r.number(n.items[1], field + "[1]", -kMaxExtent, kMaxExtent)};
+    };
+    if (const Yaml* n = d.find("start")) spec.start = point(*n, where + ".start");
+    if (const Yaml* n = d.find("end")) {
+      if (n->isScalar() && n->scalar == "start") spec.end_at_start = true;
+      else spec.end = point(*n, where + ".end");
     }
     const Yaml* label = d.find("label");
     spec.label = label ? r.text(*label, where + ".label")
@@ -410,6 +451,9 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   }
   for (double w : widths)
     for (double cl : clearances) c.tools.push_back(ToolParams{w, cl});
+
+  // The time model of duration_s: one per experiment, like the vehicle.
+  if (const Yaml* m = doc.find("motion")) c.motion = readMotion(r, *m);
 
   // Vehicle: one model per experiment (docs/vehicles.md).
   if (const Yaml* v = doc.find("vehicle")) {

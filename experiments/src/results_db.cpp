@@ -654,6 +654,7 @@ ExperimentRecord ResultsDb::record(std::optional<long long> experiment) {
     r.config_text = s.columnText(3);
     r.config_hash = s.columnText(4);
     r.baseline = s.columnText(5);
+    r.motion = configMotion(r.config_text, file_ + ": experiments.config_text").describe();
     auto count = [&](int column) { return s.columnNull(column) ? std::string("-") : std::to_string(s.columnInt(column)); };
     const std::string revision = s.columnText(7), diff = s.columnText(8);
     r.facts = {{"command line", s.columnText(6)},

@@ -40,6 +40,15 @@ std::vector<WallEntry> loadWalls(const ExperimentConfig& config) {
         break;
     }
     for (Wall& w : walls) {
+      // The dataset's start and end, for walls that name none of their own.
+      if (!w.start && spec.start) w.start = spec.start;
+      if (!w.end && (spec.end || spec.end_at_start)) w.end = spec.end_at_start ? w.start : spec.end;
+      if (spec.start || spec.end || spec.end_at_start) {
+        if (spec.end_at_start && !w.start)
+          throw InputError(config.path + ":" + std::to_string(spec.line), "datasets.end",
+                           "is start, but wall '" + w.name + "' has no start (give start: [x, y])");
+        validateWall(w, config.path + ":" + std::to_string(spec.line) + ": wall '" + w.name + "'");
+      }
       WallEntry e;
       e.json = wallToJson(w);
       e.hash = sha256Hex(e.json);
@@ -94,7 +103,7 @@ std::vector<ReplanRecord> replanRecords(const RunSpec& spec, const PlannerInfo& 
     const PlanResult scratch = runPlanner(info, changed, Budget(std::chrono::duration<double>(spec.time_limit_s)));
     const double plan_ms = ms(plan_start);
     std::optional<PathMetrics> scratch_metrics;
-    if (scratch.hasPath()) scratch_metrics = computeMetrics(surprise.wall, spec.tool, scratch.path, spec.vehicle);
+    if (scratch.hasPath()) scratch_metrics = computeMetrics(surprise.wall, spec.tool, scratch.path, spec.vehicle, spec.motion);
     for (RepairMethod method : spec.replanning.repairs) {
       ReplanRecord rec;
       rec.fraction = fraction;
@@ -140,7 +149,7 @@ std::vector<ReplanRecord> replanRecords(const RunSpec& spec, const PlannerInfo& 
       }
       // The executed part was driven before the obstacles appeared: it is judged on the old wall,
       // the repaired part on the new one; coverage and lengths are of the whole path on the new wall.
-      const PathMetrics m = computeMetrics(surprise.wall, spec.tool, repair.path, spec.vehicle);
+      const PathMetrics m = computeMetrics(surprise.wall, spec.tool, repair.path, spec.vehicle, spec.motion);
       const Path repaired = repair.repairedPart();
       const Validity before = checkValidity(spec.wall->wall, spec.tool, surprise.cut.executed, spec.vehicle);
       const Validity after = checkValidity(surprise.wall, spec.tool, repaired, spec.vehicle);
@@ -181,6 +190,10 @@ std::string runBaseKey(const RunSpec& spec) {
   if (!spec.transit.isDefault())
     text += "\ntransit=" + spec.transit.planner + "\ntransit_iterations=" + std::to_string(spec.transit.iterations);
   if (spec.replanning.enabled()) text += "\nreplanning=" + spec.replanning.describe();
+  if (!spec.motion.isDefault())
+    text += "\nmotion.speed=" + exact(spec.motion.speed) + "\nmotion.acceleration=" + exact(spec.motion.acceleration) +
+            "\nmotion.stops=" + (spec.motion.stops == MotionLimits::Stops::Waypoints ? "waypoints" : "turns") +
+            "\nmotion.stop_angle=" + exact(spec.motion.stop_angle_deg) + "\nmotion.turn_cost_s=" + exact(spec.motion.turn_cost_s);
   return sha256Hex(text);
 }
 
@@ -211,6 +224,7 @@ std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vecto
       spec.planner = &planner;
       spec.tool = config.tools[(axis / transits) % tools];
       spec.vehicle = config.vehicle;
+      spec.motion = config.motion;
       spec.transit = config.transits[axis % transits];
       spec.replanning = config.replanning;
       spec.repetitions = config.repetitions;
@@ -262,7 +276,7 @@ RunRecord executeRun(const RunSpec& spec) {
   if (result.hasPath()) {
     std::optional<PathMetrics> original;
     try {
-      const PathMetrics m = computeMetrics(spec.wall->wall, spec.tool, result.path, spec.vehicle);
+      const PathMetrics m = computeMetrics(spec.wall->wall, spec.tool, result.path, spec.vehicle, spec.motion);
       original = m;
       rec.valid = m.validity.valid;
       for (const NamedMetric& metric : flatten(m)) rec.metrics.emplace_back(metric.name, metric.value);

@@ -120,7 +120,7 @@ Wall parseWallJson(const std::string& text, const std::string& source) {
   Reader r(source);
   const json doc = parseJsonStrict(text, source);
   if (!doc.is_object()) r.fail("(document)", "must be a JSON object");
-  r.onlyKeys(doc, "", {"name", "width", "height", "boundary", "obstacles", "description", "metadata"});
+  r.onlyKeys(doc, "", {"name", "width", "height", "boundary", "obstacles", "description", "metadata", "start", "end"});
 
   Wall wall;
   if (doc.contains("name")) {
@@ -143,6 +143,20 @@ Wall parseWallJson(const std::string& text, const std::string& source) {
     if (!obs.is_array()) r.fail("obstacles", "must be an array");
     for (std::size_t i = 0; i < obs.size(); ++i)
       wall.obstacles.push_back(parseObstacle(r, obs[i], "obstacles[" + std::to_string(i) + "]"));
+  }
+  auto point = [&](const char* key) -> std::optional<Point> {
+    if (!doc.contains(key)) return std::nullopt;
+    const json& p = doc[key];
+    if (!p.is_array() || p.size() != 2) r.fail(key, "must be an [x, y] point");
+    return Point{r.numberValue(p[0], std::string(key) + "[0]"), r.numberValue(p[1], std::string(key) + "[1]")};
+  };
+  wall.start = point("start");
+  if (doc.contains("end") && doc["end"].is_string()) {
+    if (doc["end"].get<std::string>() != "start") r.fail("end", "must be an [x, y] point or \"start\"");
+    if (!wall.start) r.fail("end", "is \"start\", but the wall has no start");
+    wall.end = wall.start;
+  } else {
+    wall.end = point("end");
   }
   validateWall(wall, source);
   return wall;
@@ -189,8 +203,11 @@ std::string wallToJson(const Wall& wall) {
   std::string out = "{\n  \"name\": " + json(wall.name).dump() + ",\n  \"boundary\": " + pointsToJson(wall.boundary) +
                     ",\n  \"obstacles\": [";
   for (std::size_t i = 0; i < wall.obstacles.size(); ++i) out += (i ? ",\n    " : "\n    ") + obstacleToJson(wall.obstacles[i]);
-  out += wall.obstacles.empty() ? "]\n}\n" : "\n  ]\n}\n";
-  return out;
+  out += wall.obstacles.empty() ? "]" : "\n  ]";
+  // Only when given, so walls without them keep their bytes (and their hashes).
+  if (wall.start) out += ",\n  \"start\": [" + jsonNumber(wall.start->x) + ", " + jsonNumber(wall.start->y) + "]";
+  if (wall.end) out += ",\n  \"end\": [" + jsonNumber(wall.end->x) + ", " + jsonNumber(wall.end->y) + "]";
+  return out + "\n}\n";
 }
 
 std::string obstaclesToJson(const std::vector<Obstacle>& obstacles) {

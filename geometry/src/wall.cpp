@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 #include "coverbench/region_ops.hpp"
 #include "coverbench/wall.hpp"
@@ -56,6 +57,9 @@ bool reachesIntoWall(const Obstacle& o, const Wall& wall, const Region& boundary
 
 void validateWall(const Wall& wall, const std::string& source) {
   const Region boundary = regionFromRings({wall.boundary});
+  for (const auto& [point, field] : {std::pair{wall.start, "start"}, std::pair{wall.end, "end"}})
+    if (point && !pointInRing(*point, wall.boundary))
+      throw InputError(source, field, "(" + shortNumber(point->x) + ", " + shortNumber(point->y) + ") lies outside the wall");
   std::vector<Ring> obstacle_rings;
   for (std::size_t i = 0; i < wall.obstacles.size(); ++i) {
     if (!reachesIntoWall(wall.obstacles[i], wall, boundary))

@@ -37,8 +37,11 @@ const std::vector<MetricSpec>& metricSpecs() {
       {"turns", "1", -1, K::Quality, false, 0.5, 0, "heading changes over 1 degree"},
       {"turns_30", "1", -1, K::Quality, true, 0.5, 0, "heading changes over 30 degrees (the robot stops)"},
       {"turning_angle", "rad", -1, K::Quality, false, 0, 1e-3, "sum of absolute heading changes"},
-      {"duration_s", "s", -1, K::Quality, true, 0, 1e-3, "time to drive the path (0.3 m/s, 0.5 m/s2, stop at turns over 30 degrees)"},
+      {"duration_s", "s", -1, K::Quality, true, 0, 1e-3,
+       "time to drive the path under the experiment's time model (default 0.3 m/s, 0.5 m/s2, stop at turns over 30 degrees)"},
       {"waypoints", "1", -1, K::Quality, false, 0.5, 0, "waypoints of the path"},
+      // Only with a cost per turn in the time model (motion.turn_cost_s).
+      {"turn_cost_s", "s", -1, K::Quality, false, 0, 1e-3, "turns over 1 degree times the time model's cost per turn"},
       // Only with `judge: exact` in an experiment: the exact judge's verdict and certified bounds.
       {"exact_valid", "1", +1, K::Validity, false, 0, 0, "1 when the exact judge (CGAL, no tolerance) finds no violating segment"},
       {"exact_violations", "segments", -1, K::Validity, false, 0.5, 0, "segments the exact judge finds leaving F"},

@@ -86,6 +86,7 @@ std::vector<NamedMetric> flatten(const PathMetrics& m) {
       {"waypoints", static_cast<double>(m.waypoints)},
   };
   out.insert(out.end(), rest.begin(), rest.end());
+  if (m.motion.turn_cost_s) out.push_back({"turn_cost_s", *m.motion.turn_cost_s});
   return out;
 }
 

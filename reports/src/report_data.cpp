@@ -119,6 +119,7 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
   e["config_hash"] = record.config_hash;
   e["config_text"] = record.config_text;
   e["baseline"] = rs.baseline;
+  e["motion"] = record.motion;
   e["facts"] = Json::array();
   for (const auto& [k, v] : record.facts) e["facts"].push_back({k, v});
   e["datasets"] = Json::array();

@@ -27,6 +27,9 @@ struct DatasetSpec {
   std::uint64_t seed = 0;
   std::string folder;  ///< resolved against the config file's folder (a folder, or what `import` names)
   ImportOptions import_options;  ///< for `import:` (docs/datasets.md)
+  /// Where the paths on these walls begin and end (`start:`, `end:`), for walls that name none.
+  std::optional<Point> start, end;
+  bool end_at_start = false;  ///< `end: start`: each wall's own start, or the dataset's
   std::string label;   ///< the name tables group by (family, suite, or folder name)
   int line = 0;        ///< 1-based line in the config, for messages
 };
@@ -52,6 +55,9 @@ struct ExperimentConfig {
   /// How the robot carries the tool (config section `vehicle:`; holonomic when absent). One per
   /// experiment, so no table pools two models: compare them with two experiments.
   VehicleModel vehicle;
+  /// The time model of duration_s (config section `motion:`; the default when absent). One per
+  /// experiment: a report's durations all mean the same clock.
+  MotionLimits motion;
   /// How planners find their tool-off detours (config section `transit:`; visibility when absent):
   /// one run per transit planner listed, compared side by side like tool widths (never pooled).
   /// Sampling planners are seeded from `seed`.
@@ -82,6 +88,9 @@ std::size_t plannedRuns(const ExperimentConfig& config);
 /// declarations, families, folders) before anything runs. Errors throw InputError whose source
 /// is `FILE:LINE` and whose field is the key path, e.g. `planners[1].params.sweep_angle`.
 ExperimentConfig loadExperimentConfig(const std::string& path);
+/// The time model a config's text sets (its `motion:` section; the default without one), for
+/// readers of a stored experiment. `source` names it in errors.
+MotionLimits configMotion(const std::string& config_text, const std::string& source);
 
 /// A wall as a run sees it: its content (canonical JSON) and hash, and the dataset it came from.
 struct WallEntry {
@@ -100,6 +109,7 @@ struct RunSpec {
   const PlannerConfig* planner = nullptr;
   ToolParams tool;
   VehicleModel vehicle;
+  MotionLimits motion;  ///< the time model of its duration_s (in the base key when not the default)
   TransitSpec transit;
   ReplanningSpec replanning;  ///< off unless the config has a `replanning:` section
   int repetitions = 1;  ///< the plan is executed this many times in the run's process, each timed
@@ -114,8 +124,9 @@ struct RunSpec {
 };
 /// The base key: SHA-256 of the wall's content hash, the planner, every resolved parameter
 /// (defaults included), the tool parameters, the seed, and (only when set) the exact judge, a
-/// vehicle other than holonomic, a transit planner other than visibility with its iterations, and
-/// replanning (so keys from before vehicle models, transit planners and replanning are unchanged).
+/// vehicle other than holonomic, a transit planner other than visibility with its iterations,
+/// replanning, and a time model other than the default (so keys from before vehicle models,
+/// transit planners, replanning and time models are unchanged).
 /// Limits and repetitions are not in it.
 std::string runBaseKey(const RunSpec& spec);
 /// The run key: SHA-256 of the base key, the planner's version and its code identity, so a

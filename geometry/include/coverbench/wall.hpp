@@ -3,6 +3,7 @@
 /// input error, and the check of a wall's geometric sense. Wall files are read in formats/
 /// (coverbench/wall_file.hpp).
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -45,6 +46,9 @@ struct Wall {
   std::string name;
   Ring boundary;
   std::vector<Obstacle> obstacles;
+  /// Where every path must begin and end (a dock, a charger, a field's gate), when given: planners
+  /// reach the start and leave for the end with the tool off. Each must lie inside the boundary.
+  std::optional<Point> start, end;
 };
 
 /// The largest coordinate extent accepted for walls and obstacles (10 km).

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "coverbench/geometry.hpp"
+#include "coverbench/motion.hpp"
 #include "coverbench/path.hpp"
 #include "coverbench/wall.hpp"
 
@@ -139,23 +140,6 @@ Region overlapRegion(const Path& path, double radius, double resolution);
 /// Number of passes over one point (the definition, point by point).
 int passCount(const Path& path, double radius, Point q);
 
-/// Turns and the time to drive the path.
-struct Motion {
-  std::size_t turns = 0;     ///< heading changes > 1 degree at interior waypoints (arcs turn smoothly: not counted)
-  std::size_t turns_30 = 0;  ///< heading changes > 30 degrees
-  double turning_angle = 0.0;  ///< sum of |heading change|, radians (at waypoints and along arcs)
-  /// Trapezoidal speed profile, stopping at every turn > 30 degrees (a reversing car's cusp is
-  /// one); for a gantry also at every change of tool state, plus lower_s + lift_s for every run of
-  /// tool-on segments. On an arc of radius R the speed is at most sqrt(a R) (the lateral
-  /// acceleration a), and the profile accelerates and brakes at a between such limits.
-  double duration_s = 0.0;
-  std::size_t lifts = 0;  ///< runs of tool-on segments of a gantry (each lowered, then lifted); 0 otherwise
-};
-struct MotionLimits {
-  double speed = 0.3;         ///< v, m/s
-  double acceleration = 0.5;  ///< a, m/s^2
-};
-Motion motion(const Path& path, const MotionLimits& limits = {}, const VehicleModel& vehicle = {});
 
 /// Every metric of one path.
 struct PathMetrics {

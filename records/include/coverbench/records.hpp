@@ -63,6 +63,7 @@ struct ResultSet {
 struct ExperimentRecord {
   long long id = 0;
   std::string name, config_path, config_text, config_hash, baseline;
+  std::string motion;  ///< the time model of every duration_s, described (MotionLimits::describe)
   /// Provenance and run counts as (label, value), in display order.
   std::vector<std::pair<std::string, std::string>> facts;
   struct Dataset {

@@ -65,11 +65,18 @@ def replanning_text(a):
             " of each path's length (docs/replanning.md).")
 
 
+def motion_text(a):
+    """' Time model of duration_s: v 0.3 m/s, a 0.5 m/s2, stops at turns over 30 degrees.'"""
+    m = a.experiment.get("motion")
+    return f" Time model of duration_s: {m}." if m else ""
+
+
 def preamble(a, fmt):
     e = a.experiment
     runs = len(a.runs)
     line = (f"Experiment {e['name']}: {runs} runs, {len(a.datasets)} datasets, {len(a.columns)} planner "
-            f"configurations, baseline {e['baseline']}, config sha256 {e['config_hash'][:12]}.{vehicle_text(a)}{transit_text(a)}{replanning_text(a)}")
+            f"configurations, baseline {e['baseline']}, config sha256 {e['config_hash'][:12]}.{motion_text(a)}{vehicle_text(a)}"
+            f"{transit_text(a)}{replanning_text(a)}")
     if fmt == "md":
         return f"# {T._md('Experiment ' + e['name'])}\n\n{T._md(line)}\n\n"
     if fmt == "latex":
@@ -203,7 +210,7 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
     if transit:
         outcomes.append(T.to_html(transit))
     subtitle = (f"<p>{len(a.runs)} runs: {len(a.datasets)} datasets, {len(a.columns)} planner configurations, "
-                f"baseline <b>{esc(e['baseline'])}</b>.{esc(vehicle_text(a) + transit_text(a) + replanning_text(a))} Definitions of every metric: docs/metrics.md "
+                f"baseline <b>{esc(e['baseline'])}</b>.{esc(motion_text(a) + vehicle_text(a) + transit_text(a) + replanning_text(a))} Definitions of every metric: docs/metrics.md "
                 f"(vehicle models: docs/vehicles.md). Tables for "
                 f'papers: <a href="report.md">Markdown</a>, <a href="report.csv">CSV</a>, '
                 f'<a href="report.tex">LaTeX</a>; every run: <a href="report_data.json">report_data.json</a>.</p>')

@@ -1,9 +1,11 @@
-// Turns and duration.
+// Turns and duration under a time model.
 #include <cmath>
+#include <cstdio>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
-#include "coverbench/metrics.hpp"
+#include "coverbench/motion.hpp"
 
 namespace coverbench {
 namespace {
@@ -12,7 +14,13 @@ namespace {
 // rounding) does not count, so translating or reversing a path cannot flip the verdict.
 constexpr double kAngleTie = 1e-9;
 constexpr double kTurnThreshold = M_PI / 180.0 + kAngleTie;  // 1 degree
-constexpr double kStopThreshold = M_PI / 6.0 + kAngleTie;    // 30 degrees
+constexpr double kThirtyDegrees = M_PI / 6.0 + kAngleTie;
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
 
 /// Time to drive a straight run of `length` from standstill to standstill with a trapezoidal
 /// (or, when too short to reach v, triangular) speed profile.
@@ -48,6 +56,23 @@ double profileTime(const std::vector<std::pair<double, double>>& pieces, const M
 
 }  // namespace
 
+std::string MotionLimits::describe() const {
+  std::string out = "v " + number(speed) + " m/s, a " + number(acceleration) + " m/s2, " +
+                    (stops == Stops::Waypoints ? std::string("stops at every waypoint")
+                                               : "stops at turns over " + number(stop_angle_deg) + " degrees");
+  if (turn_cost_s > 0.0) out += ", " + number(turn_cost_s) + " s per turn (turn_cost_s)";
+  return out;
+}
+
+void MotionLimits::check() const {
+  if (!(speed > 0.0) || !std::isfinite(speed) || speed > 1000.0) throw std::invalid_argument("speed: must be in (0, 1000] m/s");
+  if (!(acceleration > 0.0) || !std::isfinite(acceleration) || acceleration > 1000.0)
+    throw std::invalid_argument("acceleration: must be in (0, 1000] m/s2");
+  if (!(stop_angle_deg > 0.0) || !(stop_angle_deg < 180.0)) throw std::invalid_argument("stop_angle: must be in (0, 180) degrees");
+  if (!(turn_cost_s >= 0.0) || !std::isfinite(turn_cost_s) || turn_cost_s > 3600.0)
+    throw std::invalid_argument("turn_cost_s: must be in [0, 3600] s");
+}
+
 Motion motion(const Path& path, const MotionLimits& limits, const VehicleModel& vehicle) {
   Motion m;
   double run = 0.0;
@@ -63,6 +88,8 @@ Motion motion(const Path& path, const MotionLimits& limits, const VehicleModel& 
   bool have_heading = false;
   double heading = 0.0;
   const bool lifts = vehicle.liftsTool();
+  const bool stop_everywhere = limits.stops == MotionLimits::Stops::Waypoints;
+  const double stop_threshold = limits.stop_angle_deg * M_PI / 180.0 + kAngleTie;
   for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
     // A gantry stops to lower its tool before each run of tool-on segments and to lift it after.
     if (lifts && path.tool_on[i] && (i == 0 || !path.tool_on[i - 1])) {
@@ -81,10 +108,8 @@ Motion motion(const Path& path, const MotionLimits& limits, const VehicleModel& 
       const double change = std::fabs(std::remainder(h - half - heading, 2.0 * M_PI));
       m.turning_angle += change;
       if (change > kTurnThreshold) ++m.turns;
-      if (change > kStopThreshold) {
-        ++m.turns_30;
-        endRun();
-      }
+      if (change > kThirtyDegrees) ++m.turns_30;
+      if (stop_everywhere || change > stop_threshold) endRun();
     }
     heading = h + half;
     have_heading = true;
@@ -98,6 +123,7 @@ Motion motion(const Path& path, const MotionLimits& limits, const VehicleModel& 
     }
   }
   endRun();
+  if (limits.turn_cost_s > 0.0) m.turn_cost_s = static_cast<double>(m.turns) * limits.turn_cost_s;
   return m;
 }
 

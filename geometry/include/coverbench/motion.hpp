@@ -1,0 +1,51 @@
+#pragma once
+/// Turns and the time to drive a path under a time model (docs/metrics.md#time-models). In the
+/// geometry layer because a time model is a definition, like the free region's: the metrics
+/// engine reports it, and planners that plan for the clock minimise it.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "coverbench/path.hpp"
+
+namespace coverbench {
+
+/// The time model of duration_s: a trapezoidal speed profile (accelerate at a up to v, brake at a)
+/// that comes to a stop at every waypoint, or only at heading changes over `stop_angle_deg`. On
+/// an arc of radius R the speed is at most sqrt(a R) (the lateral acceleration a) in either
+/// model. A fixed cost per turn is reported apart, as turn_cost_s.
+struct MotionLimits {
+  enum class Stops { Turns, Waypoints };
+  double speed = 0.3;         ///< v, m/s
+  double acceleration = 0.5;  ///< a, m/s^2
+  Stops stops = Stops::Turns;
+  double stop_angle_deg = 30.0;  ///< with Stops::Turns: stop where the heading changes by more
+  double turn_cost_s = 0.0;      ///< seconds per turn (heading change over 1 degree); 0: not reported
+
+  bool isDefault() const {
+    return speed == 0.3 && acceleration == 0.5 && stops == Stops::Turns && stop_angle_deg == 30.0 && turn_cost_s == 0.0;
+  }
+  /// "v 0.3 m/s, a 0.5 m/s2, stops at turns over 30 degrees" (", 2 s per turn" when set).
+  std::string describe() const;
+  /// Throws std::invalid_argument naming the first value out of range (field names as in configs).
+  void check() const;
+};
+
+/// Turns and the time to drive the path.
+struct Motion {
+  std::size_t turns = 0;     ///< heading changes > 1 degree at interior waypoints (arcs turn smoothly: not counted)
+  std::size_t turns_30 = 0;  ///< heading changes > 30 degrees
+  double turning_angle = 0.0;  ///< sum of |heading change|, radians (at waypoints and along arcs)
+  /// The time model's time (MotionLimits); a reversing car's cusp is always a stop. For a gantry
+  /// also a stop at every change of tool state, plus lower_s + lift_s for every run of tool-on
+  /// segments.
+  double duration_s = 0.0;
+  std::size_t lifts = 0;  ///< runs of tool-on segments of a gantry (each lowered, then lifted); 0 otherwise
+  /// turns * MotionLimits::turn_cost_s, when that cost is set.
+  std::optional<double> turn_cost_s;
+};
+
+Motion motion(const Path& path, const MotionLimits& limits = {}, const VehicleModel& vehicle = {});
+
+}  // namespace coverbench
