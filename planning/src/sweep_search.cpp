@@ -14,6 +14,71 @@ double normalise(double deg) {
   return a >= 180.0 ? 0.0 : a;
 }
 
+/// Free intervals of one scanline: inside the boundary and outside every obstacle.
+void scanline(double y, const std::vector<Ring>& boundary, const std::vector<Ring>& obstacles, std::vector<double>& xs,
+              std::vector<std::pair<double, double>>& blocked, double& length, std::size_t& intervals) {
+  auto crossings = [&](const Ring& ring) {
+    xs.clear();
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point a = ring[i], b = ring[(i + 1) % ring.size()];
+      if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
+    }
+    std::sort(xs.begin(), xs.end());
+  };
+  blocked.clear();
+  for (const Ring& o : obstacles) {
+    crossings(o);
+    for (std::size_t k = 0; k + 1 < xs.size(); k += 2) blocked.push_back({xs[k], xs[k + 1]});
+  }
+  std::sort(blocked.begin(), blocked.end());
+  for (const Ring& b : boundary) {
+    crossings(b);
+    for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+      double from = xs[k];
+      const double to = xs[k + 1];
+      for (const auto& [lo, hi] : blocked) {  // in order: what lies between blocked spans is free
+        if (hi <= from || lo >= to) continue;
+        if (lo > from) {
+          length += lo - from;
+          ++intervals;
+        }
+        from = std::max(from, hi);
+      }
+      if (to > from) {
+        length += to - from;
+        ++intervals;
+      }
+    }
+  }
+}
+
+/// What the rows of a sweep at `angle_deg` cost, estimated without planning: rows `spacing` apart
+/// over the wall minus its obstacles (circles as 16-gons), each row its length plus a connection
+/// of `spacing` and two turns. Ranks directions for the search; only the best are planned.
+double estimatedSweepCost(const Wall& wall, double spacing, double angle_deg, double turn_penalty_m) {
+  const double t = -angle_deg * M_PI / 180.0;
+  std::vector<Ring> boundary{wall.boundary}, obstacles;
+  for (const Obstacle& o : wall.obstacles) {
+    if (o.type != ObstacleType::Circle) {
+      obstacles.push_back(o.polygon);
+      continue;
+    }
+    Ring circle;
+    for (int k = 0; k < 16; ++k)
+      circle.push_back({o.center.x + o.radius * std::cos(k * M_PI / 8), o.center.y + o.radius * std::sin(k * M_PI / 8)});
+    obstacles.push_back(std::move(circle));
+  }
+  for (Ring& r : boundary) rotatePoints(r, t);
+  for (Ring& r : obstacles) rotatePoints(r, t);
+  const Box box = boundingBox(boundary.front());
+  double length = 0.0;
+  std::size_t intervals = 0;
+  std::vector<double> xs;
+  std::vector<std::pair<double, double>> blocked;
+  for (double y = box.min_y + spacing / 2; y < box.max_y; y += spacing) scanline(y, boundary, obstacles, xs, blocked, length, intervals);
+  return length + static_cast<double>(intervals) * (spacing + 2.0 * turn_penalty_m);
+}
+
 }  // namespace
 
 std::optional<SweepSearch> searchSweepDirection(const Wall& wall, const std::function<std::optional<double>(double)>& cost,
@@ -75,7 +140,8 @@ const ParamTable<SweepDirection>& sweepDirectionParams() {
                 "direction of the passes (rows), counter-clockwise from +x"},
                &SweepDirection::angle_deg)
           .add({"direction_search", ParamType::Bool, false, 0, 0, {}, "",
-                "search the sweep direction (5-degree steps and the longest edges, then 1-degree steps); overrides "
+                "search the sweep direction (5-degree steps and the longest edges, then 1-degree steps, each estimated; "
+                "the two best planned); overrides "
                 "sweep_angle"},
                &SweepDirection::search)
           .add({"turn_penalty", ParamType::Number, 1.0, 0.0, 1000.0, {}, "m",
@@ -88,20 +154,44 @@ PlanResult planSweep(const Problem& problem, const SweepDirection& sweep, const 
                      const std::function<PlanResult(double)>& plan_at) {
   if (!sweep.search) return plan_at(sweep.angle_deg);
   const double penalty = sweep.turn_penalty_m;
-  const auto search = searchSweepDirection(
+  // Two stages: every direction of the search is ranked by its estimated cost (rows over the wall,
+  // no planning), and only the best few are planned; the cheapest plan by sweepCost wins. Planning
+  // every direction cost ~50 plans (570 ms on a 100 m field with 15 buildings at s = 3 m).
+  std::vector<std::pair<double, double>> estimates;  // (estimate, angle)
+  const auto screened = searchSweepDirection(
       *problem.wall,
       [&](double deg) -> std::optional<double> {
-        const PlanResult r = plan_at(deg);
-        if (r.status != PlanStatus::Ok) return std::nullopt;
-        return sweepCost(r.path, penalty);
+        const double e = estimatedSweepCost(*problem.wall, problem.tool.tool_width, deg, penalty);
+        estimates.push_back({e, deg});
+        return e;
       },
       [&] { return !budget.expired(); });
   if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the direction search");
-  if (!search) return plan_at(sweep.angle_deg);  // reports why
-  PlanResult result = plan_at(search->angle_deg);
-  result.stats["direction_evaluations"] = static_cast<double>(search->evaluations);
-  result.stats["direction_cost"] = search->cost;
-  return result;
+  if (!screened) return plan_at(sweep.angle_deg);
+  std::stable_sort(estimates.begin(), estimates.end());
+  std::optional<PlanResult> best;
+  double best_cost = 0.0, best_angle = 0.0;
+  std::size_t plans = 0;
+  for (std::size_t k = 0; k < estimates.size() && plans < kPlannedDirections; ++k) {
+    if (budget.expired()) break;
+    PlanResult r = plan_at(estimates[k].second);
+    ++plans;
+    if (r.status != PlanStatus::Ok) continue;
+    const double c = sweepCost(r.path, penalty);
+    if (!best || c < best_cost || (c == best_cost && estimates[k].second < best_angle)) {
+      best = std::move(r);
+      best_cost = c;
+      best_angle = estimates[k].second;
+    }
+  }
+  if (!best) {
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the direction search");
+    return plan_at(sweep.angle_deg);  // reports why
+  }
+  best->stats["direction_evaluations"] = static_cast<double>(screened->evaluations);
+  best->stats["direction_plans"] = static_cast<double>(plans);
+  best->stats["direction_cost"] = best_cost;
+  return std::move(*best);
 }
 
 }  // namespace coverbench

@@ -1,7 +1,7 @@
 #pragma once
 /// Sweep-direction search for any sweep-based planner (seed 003): coarse steps over [0, 180)
 /// degrees plus the directions of the longest edges, then fine steps around the best, minimising
-/// path length plus a penalty per turn.
+/// path length plus a penalty per turn (estimated for every direction, planned for the best).
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -35,8 +35,14 @@ struct SweepDirection {
 /// The group's parameters: sweep_angle, direction_search, turn_penalty.
 const ParamTable<SweepDirection>& sweepDirectionParams();
 
+/// How many of the search's directions are planned: the ones with the lowest estimated cost.
+inline constexpr std::size_t kPlannedDirections = 2;
+
 /// The sweep-direction protocol of a sweep-based planner: plans at `sweep.angle_deg`, or, with the
-/// search on, at the cheapest direction found (its statistics gain `direction_evaluations` and
+/// search on, ranks every direction of searchSweepDirection by an estimate of its rows' cost
+/// (the wall minus its obstacles cut into rows a tool width apart, each row its length, a
+/// connection and two turns), plans the kPlannedDirections best, and returns the plan of lower
+/// sweepCost (its statistics gain `direction_evaluations`, `direction_plans` and
 /// `direction_cost`). `plan_at(angle_deg)` plans at one direction.
 PlanResult planSweep(const Problem& problem, const SweepDirection& sweep, const Budget& budget,
                      const std::function<PlanResult(double)>& plan_at);
