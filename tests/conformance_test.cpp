@@ -196,19 +196,6 @@ TEST_P(GeneratedWalls, ValidOnManyRandomWalls) {
 
 INSTANTIATE_TEST_SUITE_P(AllPlanners, GeneratedWalls, testing::ValuesIn(test::plannerNames()), test::plannerTestName);
 
-/// The first point of a 5 cm grid, scanned from `from` towards the opposite corner, where the
-/// tool's centre may be (in F).
-std::optional<Point> freePointNear(const Wall& wall, const ToolParams& tool, bool from_lower_left) {
-  const Workspace ws(wall, tool);
-  const Box b = boundingBox(wall.boundary);
-  for (double y = 0; y <= b.height(); y += 0.05)
-    for (double x = 0; x <= b.width(); x += 0.05) {
-      const Point p = from_lower_left ? Point{b.min_x + x, b.min_y + y} : Point{b.max_x - x, b.max_y - y};
-      for (const PolygonWithHoles& poly : ws.free())
-        if (pointInPolygon(poly, p)) return p;
-    }
-  return std::nullopt;
-}
 
 // Field scale: a 100 m polygon with 15 buildings at s = 3 m (the published polygon sets' sweep
 // width), and walls of the field family at 1-6 m: every planner plans them validly.
@@ -237,8 +224,8 @@ TEST_P(StartAndEnd, EveryPathBeginsAtTheStartAndEndsAtTheEnd) {
   for (unsigned seed = 1; seed <= 10; ++seed) walls.push_back(test::randomWall(seed));
   int planned = 0;
   for (Wall wall : walls) {
-    wall.start = freePointNear(wall, tool, true);
-    wall.end = freePointNear(wall, tool, false);
+    wall.start = test::freePointNear(wall, tool, true);
+    wall.end = test::freePointNear(wall, tool, false);
     if (!wall.start || !wall.end) continue;  // no room for the tool
     const PlanResult r = test::planWith(GetParam(), wall, tool);
     if (!r.hasPath()) {

@@ -353,7 +353,7 @@ TEST_F(Import, AConfigImportsAsADatasetKind) {
 
 class ImportedWallsPlan : public test::TempDirTest, public testing::WithParamInterface<std::string> {};
 
-TEST_P(ImportedWallsPlan, EveryImportedTestWallValidly) {
+TEST_P(ImportedWallsPlan, EveryImportedTestWallValidlyFromTheStartToTheEnd) {
   auto put = [&](const std::string& name, const std::string& bytes) {
     std::ofstream(dir_ / name, std::ios::binary) << bytes;
     return (dir_ / name).string();
@@ -379,11 +379,17 @@ TEST_P(ImportedWallsPlan, EveryImportedTestWallValidly) {
   const ToolParams tool{0.2, 0.02};
   const std::vector<ImportedWall> walls = importWalls(sources, {}).walls;
   ASSERT_EQ(walls.size(), 6u);
-  for (const ImportedWall& w : walls) {
-    const PlanResult result = test::planWith(GetParam(), w.wall, tool);
-    ASSERT_TRUE(result.status == PlanStatus::Ok || result.status == PlanStatus::Partial)
-        << w.wall.name << ": " << result.reason;
-    EXPECT_TRUE(test::isValidPath(w.wall, tool, result.path)) << w.wall.name;
+  for (const ImportedWall& imported : walls) {
+    // From a start near the lower-left corner to an end near the upper-right one.
+    Wall wall = imported.wall;
+    wall.start = test::freePointNear(wall, tool, true);
+    wall.end = test::freePointNear(wall, tool, false);
+    ASSERT_TRUE(wall.start && wall.end) << wall.name;
+    const PlanResult result = test::planWith(GetParam(), wall, tool);
+    ASSERT_TRUE(result.status == PlanStatus::Ok || result.status == PlanStatus::Partial) << wall.name << ": " << result.reason;
+    EXPECT_TRUE(result.path.waypoints.front() == *wall.start) << wall.name;
+    EXPECT_TRUE(result.path.waypoints.back() == *wall.end) << wall.name;
+    EXPECT_TRUE(test::isValidPath(wall, tool, result.path)) << wall.name;
   }
 }
 

@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include "coverbench/workspace.hpp"
+
 #include <sqlite3.h>
 
 #include <unistd.h>
@@ -241,6 +243,18 @@ std::string inputError(const std::function<void()>& action) {
     return e.what();
   }
   return "";
+}
+
+std::optional<Point> freePointNear(const Wall& wall, const ToolParams& tool, bool from_lower_left) {
+  const Workspace ws(wall, tool);
+  const Box b = boundingBox(wall.boundary);
+  for (double y = 0; y <= b.height(); y += 0.05)
+    for (double x = 0; x <= b.width(); x += 0.05) {
+      const Point p = from_lower_left ? Point{b.min_x + x, b.min_y + y} : Point{b.max_x - x, b.max_y - y};
+      for (const PolygonWithHoles& poly : ws.free())
+        if (pointInPolygon(poly, p)) return p;
+    }
+  return std::nullopt;
 }
 
 }  // namespace coverbench::test

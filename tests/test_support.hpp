@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ PlanResult planWith(const std::string& planner, const Wall& wall, const ToolPara
 /// message naming the first offending segment.
 testing::AssertionResult isValidPath(const Wall& wall, const ToolParams& tool, const Path& path,
                                      const VehicleModel& vehicle = {});
+
+/// The first point of a 5 cm grid over the wall's bounding box, scanned from its lower-left (or
+/// upper-right) corner, where the tool's centre may be (in F); nothing when there is none.
+std::optional<Point> freePointNear(const Wall& wall, const ToolParams& tool, bool from_lower_left);
 
 /// Every registered planner's name, for suites parameterised by planner, and the test name of one
 /// (letters, digits and _ only).
