@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "coverbench/limits.hpp"
 #include "coverbench/edge_index.hpp"
 #include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
@@ -51,6 +52,8 @@ class AdaptivePlanner final : public TypedPlanner<AdaptiveParams> {
  protected:
   PlanResult planWith(const Problem& problem, const AdaptiveParams& params, const Budget& budget) override {
     const double s = problem.tool.tool_width;
+    if (const std::string why = gridCellsProblem(problem.tool, *problem.wall); !why.empty())
+      return PlanResult::failure(PlanStatus::InvalidInput, why);
     Workspace ws(*problem.wall, problem);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <iterator>
 
+#include "coverbench/limits.hpp"
 #include "coverbench/clearance.hpp"
 #include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
@@ -462,6 +463,8 @@ class SpanningTreePlanner final : public TypedPlanner<SpanningTreeParams> {
     const double s = problem.tool.tool_width;
     const bool loop = params.boundary_loop;
 
+    if (const std::string why = gridCellsProblem(problem.tool, *problem.wall); !why.empty())
+      return PlanResult::failure(PlanStatus::InvalidInput, why);
     Workspace ws(*problem.wall, problem);
     const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
     if (components.empty())

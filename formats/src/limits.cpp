@@ -16,18 +16,38 @@ void validateTool(const ToolParams& tool, const std::string& source) {
     throw InputError(source, "clearance", "must be in [0, " + shortNumber(kMaxClearance) + "] m, got " + shortNumber(tool.clearance));
 }
 
+namespace {
+
+double toolCells(const ToolParams& tool, const Wall& wall) {
+  const Box b = boundingBox(wall.boundary);
+  return b.width() * b.height() / (tool.tool_width * tool.tool_width);
+}
+
+}  // namespace
+
 void validateToolForWall(const ToolParams& tool, const Wall& wall, const std::string& source) {
   validateTool(tool, source);
-  const Box b = boundingBox(wall.boundary);
-  const double cells = b.width() * b.height() / (tool.tool_width * tool.tool_width);
-  if (cells > kMaxGridCells) {
+  const double cells = toolCells(tool, wall);
+  if (cells > kMaxToolCells) {
+    const Box b = boundingBox(wall.boundary);
     char buf[256];
     std::snprintf(buf, sizeof buf,
-                  "%g m is too fine for wall '%s' (%.3g m x %.3g m): %.3g tool-sized cells, at most %.0e (grid planners "
-                  "would need gigabytes)",
-                  tool.tool_width, wall.name.c_str(), b.width(), b.height(), cells, kMaxGridCells);
+                  "%g m is too fine for wall '%s' (%.3g m x %.3g m): %.3g tool-sized cells, at most %.0e (no path of "
+                  "that many rows could be scored)",
+                  tool.tool_width, wall.name.c_str(), b.width(), b.height(), cells, kMaxToolCells);
     throw InputError(source, "tool_width", buf);
   }
+}
+
+std::string gridCellsProblem(const ToolParams& tool, const Wall& wall) {
+  const double cells = toolCells(tool, wall);
+  if (cells <= kMaxGridCells) return "";
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "a grid of %.3g tool-sized cells (%g m on this wall's bounding box) is more than a grid planner's %.0e "
+                "(it allocates per cell: 1.2 GB at 1e7); the sweep planners need no grid",
+                cells, tool.tool_width, kMaxGridCells);
+  return buf;
 }
 
 void validateTimeLimit(double seconds, const std::string& source, const std::string& field) {

@@ -19,7 +19,12 @@ inline constexpr double kMaxClearance = 10.0;
 /// Tool-sized cells in a wall's bounding box (area / s^2): grid planners allocate per cell and
 /// make about a waypoint per cell. Measured here: spanning-tree on 10^7 cells took 9 s and 1.2 GB
 /// (a 10^7-waypoint path, beyond the scoring limit); on 10^8 cells, 84 s and 9.9 GB. So 10^7.
+/// The limit of the grid planners (spanning-tree, adaptive-resolution): they end with
+/// `invalid_input` and gridCellsProblem's reason past it; the other planners need no grid.
 inline constexpr double kMaxGridCells = 1e7;
+/// Tool-sized cells of any problem (every planner): 10^9 is a 3 km field at a 10 cm tool, or a
+/// 200 m one at 6 mm. Past it no path could be scored (a row per tool width, millions of rows).
+inline constexpr double kMaxToolCells = 1e9;
 /// A planner's time budget, seconds (one day).
 inline constexpr double kMaxTimeLimitSeconds = 86400.0;
 /// Experiments with more runs than this need an explicit confirmation (`--yes` or
@@ -30,9 +35,12 @@ inline constexpr std::size_t kLargeExperimentRuns = 100000;
 /// Throws InputError naming `source` and the field.
 void validateTool(const ToolParams& tool, const std::string& source);
 
-/// validateTool, and the wall's bounding box holds at most kMaxGridCells tool-sized cells.
+/// validateTool, and the wall's bounding box holds at most kMaxToolCells tool-sized cells.
 /// `source` names where the tool came from, `wall_source` the wall.
 void validateToolForWall(const ToolParams& tool, const Wall& wall, const std::string& source);
+/// Why a grid planner refuses the problem (its bounding box holds more than kMaxGridCells
+/// tool-sized cells), or "" when it fits.
+std::string gridCellsProblem(const ToolParams& tool, const Wall& wall);
 
 /// A gantry's lift and lower times, seconds: an hour bounds any tool change.
 inline constexpr double kMaxLiftTime = 3600.0;
