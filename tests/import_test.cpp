@@ -179,6 +179,10 @@ TEST_F(Import, OccupancyGridFreeCellsBecomeAWallAtTheMapsOrigin) {
   EXPECT_NEAR(box.min_y, -2.0 + 0.05, 1e-9);
   EXPECT_NEAR(box.width(), 18 * 0.05, 1e-9);
   EXPECT_NEAR(box.height(), 8 * 0.05, 1e-9);
+  // A folder with --format map imports its map YAMLs (and not their images on their own).
+  ImportOptions as_maps;
+  as_maps.format = "map";
+  EXPECT_EQ(importWalls({dir_.string()}, as_maps).walls.size(), 1u);
 }
 
 TEST_F(Import, OccupancyGridYawNegateComponentsAndSmallHoles) {

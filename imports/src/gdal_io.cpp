@@ -174,6 +174,10 @@ RawSet readPolygons(GDALDataset& ds, const std::string& path, const ImportOption
   }
   if (!have_extent) throw InputError(path, "(features)", "holds no geometry");
   const OGRSpatialReference* srs = layers.front().second;
+  for (const auto& [layer, layer_srs] : layers)
+    if ((layer_srs == nullptr) != (srs == nullptr) || (srs && !srs->IsSame(layer_srs)))
+      throw InputError(path, std::string("layer ") + layer->GetName(),
+                       "is in another CRS than the first layer: import the layers one at a time");
   refuseBareDegrees(all, srs, options, path);
   Projection projection = projectionFor(srs, (all.MinX + all.MaxX) / 2, (all.MinY + all.MaxY) / 2, options, path);
   set.crs = projection.crs;
@@ -254,8 +258,8 @@ RawSet readDxfFile(const std::string& path, const ImportOptions& options) {
   if (!layer) throw InputError(path, "(entities)", "holds no entities");
   OGREnvelope env;
   if (layer->GetExtent(&env, TRUE) != OGRERR_NONE) throw InputError(path, "(entities)", "holds no geometry");
-  Projection projection = projectionFor(nullptr, 0, 0, options, path);
   refuseBareDegrees(env, nullptr, options, path);
+  Projection projection = projectionFor(nullptr, (env.MinX + env.MaxX) / 2, (env.MinY + env.MaxY) / 2, options, path);
   const std::set<std::string> obstacle_layers(options.dxf_obstacle_layers.begin(), options.dxf_obstacle_layers.end());
   const int layer_field = layer->GetLayerDefn()->GetFieldIndex("Layer");
   std::vector<RawPolygon> boundaries;

@@ -328,7 +328,9 @@ void importSource(const std::string& source, const std::string& forced_format, c
     for (const fs::path& e : entries) {
       const std::string f = formatOf(e);
       if (f.empty() || f == "folder") continue;
-      if (forced_format != "auto" && f != forced_format && !(fs::is_directory(e) && forced_format == "polygon-text")) continue;
+      const bool matches = forced_format == "auto" || f == forced_format ||
+                           (f == "yaml" && (forced_format == "map" || forced_format == "yaml-polygon"));
+      if (!matches) continue;
       importSource(e.string(), forced_format == "auto" ? "auto" : forced_format, options, result, false);
     }
     if (result.walls.size() == before)
