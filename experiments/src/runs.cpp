@@ -256,6 +256,7 @@ RunRecord executeRun(const RunSpec& spec) {
   problem.wall = &spec.wall->wall;
   problem.tool = spec.tool;
   problem.vehicle = spec.vehicle;
+  problem.motion = spec.motion;
   problem.transit = spec.transit;
   problem.params = spec.planner->params;
   problem.seed = spec.seed;

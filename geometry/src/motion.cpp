@@ -56,6 +56,8 @@ double profileTime(const std::vector<std::pair<double, double>>& pieces, const M
 
 }  // namespace
 
+double straightRunTime(double length, const MotionLimits& limits) { return runTime(length, limits); }
+
 std::string MotionLimits::describe() const {
   std::string out = "v " + number(speed) + " m/s, a " + number(acceleration) + " m/s2, " +
                     (stops == Stops::Waypoints ? std::string("stops at every waypoint")

@@ -54,8 +54,11 @@ void scanline(double y, const std::vector<Ring>& boundary, const std::vector<Rin
 
 /// What the rows of a sweep at `angle_deg` cost, estimated without planning: rows `spacing` apart
 /// over the wall minus its obstacles (circles as 16-gons), each row its length plus a connection
-/// of `spacing` and two turns. Ranks directions for the search; only the best are planned.
-double estimatedSweepCost(const Wall& wall, double spacing, double angle_deg, double turn_penalty_m) {
+/// of `spacing` and two turns, in the search's objective. Ranks directions for the search; only
+/// the best are planned.
+double estimatedSweepCost(const Problem& problem, const SweepDirection& sweep, double angle_deg) {
+  const Wall& wall = *problem.wall;
+  const double spacing = problem.tool.tool_width;
   const double t = -angle_deg * M_PI / 180.0;
   std::vector<Ring> boundary{wall.boundary}, obstacles;
   for (const Obstacle& o : wall.obstacles) {
@@ -71,12 +74,30 @@ double estimatedSweepCost(const Wall& wall, double spacing, double angle_deg, do
   for (Ring& r : boundary) rotatePoints(r, t);
   for (Ring& r : obstacles) rotatePoints(r, t);
   const Box box = boundingBox(boundary.front());
-  double length = 0.0;
+  double length = 0.0, time = 0.0;
   std::size_t intervals = 0;
   std::vector<double> xs;
   std::vector<std::pair<double, double>> blocked;
-  for (double y = box.min_y + spacing / 2; y < box.max_y; y += spacing) scanline(y, boundary, obstacles, xs, blocked, length, intervals);
-  return length + static_cast<double>(intervals) * (spacing + 2.0 * turn_penalty_m);
+  for (double y = box.min_y + spacing / 2; y < box.max_y; y += spacing) {
+    const double before = length;
+    const std::size_t rows_before = intervals;
+    scanline(y, boundary, obstacles, xs, blocked, length, intervals);
+    // Rows of one scanline, timed as one run each (their split is not known here: share alike).
+    if (intervals > rows_before) {
+      const double rows = static_cast<double>(intervals - rows_before);
+      time += rows * straightRunTime((length - before) / rows, problem.motion);
+    }
+  }
+  const double rows = static_cast<double>(intervals);
+  switch (sweep.objective) {
+    case SweepDirection::Objective::Time:
+      return time + rows * (straightRunTime(spacing, problem.motion) + 2.0 * problem.motion.turn_cost_s);
+    case SweepDirection::Objective::Turns:
+      return 2.0 * rows + 1e-9 * length;
+    case SweepDirection::Objective::Length:
+      break;
+  }
+  return length + rows * (spacing + 2.0 * sweep.turn_penalty_m);
 }
 
 }  // namespace
@@ -118,6 +139,20 @@ std::optional<SweepSearch> searchSweepDirection(const Wall& wall, const std::fun
   return best;
 }
 
+double objectiveCost(const Path& path, const Problem& problem, const SweepDirection& sweep) {
+  switch (sweep.objective) {
+    case SweepDirection::Objective::Time: {
+      const Motion m = motion(path, problem.motion, problem.vehicle);
+      return m.duration_s + m.turn_cost_s.value_or(0.0);
+    }
+    case SweepDirection::Objective::Turns:
+      return static_cast<double>(motion(path).turns_30) + 1e-9 * sweepCost(path, 0.0);
+    case SweepDirection::Objective::Length:
+      break;
+  }
+  return sweepCost(path, sweep.turn_penalty_m);
+}
+
 double sweepCost(const Path& path, double turn_penalty_m) {
   double length = 0.0;
   std::size_t turns = 0;
@@ -146,14 +181,19 @@ const ParamTable<SweepDirection>& sweepDirectionParams() {
                &SweepDirection::search)
           .add({"turn_penalty", ParamType::Number, 1.0, 0.0, 1000.0, {}, "m",
                 "cost of a turn over 30 degrees in the direction search"},
-               &SweepDirection::turn_penalty_m);
+               &SweepDirection::turn_penalty_m)
+          .add({"objective", ParamType::Choice, std::string("length"), 0, 0, {}, "",
+                "what the direction search minimises: length plus turn_penalty per turn, the time under the "
+                "experiment's time model (motion:), or the turns"},
+               &SweepDirection::objective,
+               {{"length", SweepDirection::Objective::Length}, {"time", SweepDirection::Objective::Time},
+                {"turns", SweepDirection::Objective::Turns}});
   return table;
 }
 
 PlanResult planSweep(const Problem& problem, const SweepDirection& sweep, const Budget& budget,
                      const std::function<PlanResult(double)>& plan_at) {
   if (!sweep.search) return plan_at(sweep.angle_deg);
-  const double penalty = sweep.turn_penalty_m;
   // Two stages: every direction of the search is ranked by its estimated cost (rows over the wall,
   // no planning), and only the best few are planned; the cheapest plan by sweepCost wins. Planning
   // every direction cost ~50 plans (570 ms on a 100 m field with 15 buildings at s = 3 m).
@@ -161,7 +201,7 @@ PlanResult planSweep(const Problem& problem, const SweepDirection& sweep, const 
   const auto screened = searchSweepDirection(
       *problem.wall,
       [&](double deg) -> std::optional<double> {
-        const double e = estimatedSweepCost(*problem.wall, problem.tool.tool_width, deg, penalty);
+        const double e = estimatedSweepCost(problem, sweep, deg);
         estimates.push_back({e, deg});
         return e;
       },
@@ -177,7 +217,7 @@ PlanResult planSweep(const Problem& problem, const SweepDirection& sweep, const 
     PlanResult r = plan_at(estimates[k].second);
     ++plans;
     if (r.status != PlanStatus::Ok) continue;
-    const double c = sweepCost(r.path, penalty);
+    const double c = objectiveCost(r.path, problem, sweep);
     if (!best || c < best_cost || (c == best_cost && estimates[k].second < best_angle)) {
       best = std::move(r);
       best_cost = c;

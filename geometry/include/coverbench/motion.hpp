@@ -48,4 +48,8 @@ struct Motion {
 
 Motion motion(const Path& path, const MotionLimits& limits = {}, const VehicleModel& vehicle = {});
 
+/// The time to drive a straight run of `length` from standstill to standstill: length / v + v / a,
+/// or 2 sqrt(length / a) when length < v^2 / a.
+double straightRunTime(double length, const MotionLimits& limits);
+
 }  // namespace coverbench

@@ -16,6 +16,7 @@
 #include <variant>
 #include <vector>
 
+#include "coverbench/motion.hpp"
 #include "coverbench/geometry.hpp"
 #include "coverbench/path.hpp"
 #include "coverbench/transit_planners.hpp"
@@ -71,6 +72,9 @@ struct Problem {
   /// For planners that randomise: all randomness must come from this seed (experiments set it
   /// from the config's seed), so a run is a pure function of its inputs.
   std::uint64_t seed = 0;
+  /// The time model the path will be timed by (the experiment's `motion:`), for planners that
+  /// plan for the clock (`objective: time`).
+  MotionLimits motion;
   /// The run's memory limit in bytes (0: none), for planners that run in a process of their own
   /// (external planners); in-tree planners are held to it by their worker.
   std::size_t memory_limit_bytes = 0;

@@ -28,11 +28,15 @@ std::optional<SweepSearch> searchSweepDirection(const Wall& wall, const std::fun
 /// The sweep direction of a sweep-based planner: the parameter group every sweep planner includes
 /// (sweepDirectionParams).
 struct SweepDirection {
+  /// What the search minimises (`objective`): length plus turn_penalty per turn over 30 degrees,
+  /// the time under the problem's time model (its stops and cost per turn included), or the turns.
+  enum class Objective { Length, Time, Turns };
   double angle_deg = 0.0;       ///< `sweep_angle`: the passes' direction, counter-clockwise from +x
   bool search = false;          ///< `direction_search`: search it instead
   double turn_penalty_m = 1.0;  ///< `turn_penalty`: what a turn over 30 degrees costs in the search
+  Objective objective = Objective::Length;
 };
-/// The group's parameters: sweep_angle, direction_search, turn_penalty.
+/// The group's parameters: sweep_angle, direction_search, turn_penalty, objective.
 const ParamTable<SweepDirection>& sweepDirectionParams();
 
 /// How many of the search's directions are planned: the ones with the lowest estimated cost.
@@ -48,7 +52,11 @@ PlanResult planSweep(const Problem& problem, const SweepDirection& sweep, const 
                      const std::function<PlanResult(double)>& plan_at);
 
 /// Path length plus `turn_penalty_m` metres for every heading change over 30 degrees (a stop on
-/// the machine): the cost the search minimises.
+/// the machine): the cost the search minimises with the objective `length`.
 double sweepCost(const Path& path, double turn_penalty_m);
+/// The cost the search minimises: sweepCost for `length`; for `time` the path's duration under
+/// the problem's time model plus its cost per turn; for `turns` the turns over 30 degrees (length
+/// breaking ties).
+double objectiveCost(const Path& path, const Problem& problem, const SweepDirection& sweep);
 
 }  // namespace coverbench
