@@ -84,9 +84,9 @@ void attachEnds(const Problem& problem, PlanResult& result) {
     PathBuilder b(ws);
     b.start(from);
     if (!b.moveTo(to, false)) {
-      result = PlanResult::failure(PlanStatus::InvalidInput, std::string("no tool-off move reaches ") + what + " " +
+      result = PlanResult::failure(PlanStatus::InvalidInput, std::string("no tool-off move connects ") + what + " " +
                                                                  pointText(what == std::string("the end") ? to : from) +
-                                                                 " from the path (it lies in another part of F)");
+                                                                 " with the path (they lie in different parts of F)");
       return false;
     }
     for (std::size_t i = 0; i < b.path().segments(); ++i) legs_m += segmentLength(b.path(), i);
