@@ -348,6 +348,9 @@ TEST_F(Import, AConfigImportsAsADatasetKind) {
   const std::vector<WallEntry> walls = loadWalls(c);
   ASSERT_EQ(walls.size(), 2u);
   EXPECT_DOUBLE_EQ(signedArea(walls[0].wall.boundary), 3.0);  // 4 x 3 scaled by a half
+  write("crs.yaml", "name: x\noutput: out\ndatasets:\n  - import: fields/\n    source_crs: EPSG:99999999\nplanners: [zigzag]\n");
+  EXPECT_EQ(test::inputError([&] { loadExperimentConfig((dir_ / "crs.yaml").string()); }),
+            (dir_ / "crs.yaml").string() + ":5: datasets[0].source_crs: 'EPSG:99999999' is not a CRS PROJ knows");
   write("bad.yaml", "name: x\noutput: out\ndatasets:\n  - folder: fields/\n    format: wkt\nplanners: [zigzag]\n");
   EXPECT_EQ(test::inputError([&] { loadExperimentConfig((dir_ / "bad.yaml").string()); }),
             (dir_ / "bad.yaml").string() + ":5: datasets[0].format: is an import option: it needs import: FILE_OR_FOLDER");

@@ -293,8 +293,17 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
         else if (n->isList()) for (const Yaml& item : n->items) o.dxf_obstacle_layers.push_back(r.text(item, where + ".obstacle_layers"));
         else r.fail(*n, where + ".obstacle_layers", "must be a layer name or a list of them");
       }
-      // Imported now, so a bad source stops the config here, before any run.
-      spec.count = importWalls({spec.folder}, o).walls.size();
+      // Imported now, so a bad source stops the config here, before any run. A bad option is
+      // named as the config's key ("--source-crs" is `source_crs` here).
+      try {
+        spec.count = importWalls({spec.folder}, o).walls.size();
+      } catch (const InputError& e) {
+        if (e.source().rfind("--", 0) != 0) throw;
+        std::string key = e.source().substr(2);
+        std::replace(key.begin(), key.end(), '-', '_');
+        const Yaml* at = d.find(key);
+        r.fail(at ? *at : d, where + "." + key, e.problem());
+      }
     } else if (family) {
       spec.kind = DatasetSpec::Kind::Family;
       spec.family = r.text(*family, where + ".family");
