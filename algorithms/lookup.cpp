@@ -64,6 +64,7 @@ void attachEnds(const Problem& problem, PlanResult& result) {
   for (const auto& [point, name] : {std::pair{wall.start, "start"}, std::pair{wall.end, "end"}})
     if (point && !inFree(ws.free(), *point)) {
       const Point near = nearestFreePoint(ws.free(), *point);
+      if (distance(*point, near) <= 1e-9) continue;  // on F's edge, where paths run too
       result = PlanResult::failure(PlanStatus::InvalidInput,
                                    std::string(name) + " " + pointText(*point) + " is where the tool's centre may not be (" +
                                        threeDigits(distance(*point, near)) + " m outside F); the nearest point of F is " +

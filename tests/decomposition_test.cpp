@@ -270,5 +270,31 @@ TEST(DecompositionPlanners, DirectionSearchFindsTheLongSideOfARotatedWall) {
   }
 }
 
+// The decomposition planners run their tour the way round that begins near the start and ends
+// near the end: given the unconstrained path's last point as the start and its first as the end,
+// they reverse the tour, and the tool-off legs stay short.
+TEST(DecompositionPlanners, TheTourRunsFromNearTheStartToNearTheEnd) {
+  const ToolParams tool{0.1, 0.02};
+  for (const char* planner : {"trapezoidal", "boustrophedon"})
+    for (const Wall& base : {test::rectWall(6, 3, {test::rect(2, 1, 1, 1)}), loadWallFile(test::sourcePath("datasets/canonical/living_room_north.json"))}) {
+      const PlanResult free_run = planWith(planner, base, tool);
+      ASSERT_EQ(free_run.status, PlanStatus::Ok);
+      // The path's ends, 1 mm towards the next and the previous waypoint: strictly inside F (the
+      // ends themselves may lie on its edge).
+      const auto& w = free_run.path.waypoints;
+      const Point first = w[0] + (w[1] - w[0]) * (1e-3 / distance(w[0], w[1]));
+      const Point last = w[w.size() - 1] + (w[w.size() - 2] - w[w.size() - 1]) * (1e-3 / distance(w[w.size() - 2], w[w.size() - 1]));
+      ASSERT_GT(distance(first, last), 0.5) << planner << " " << base.name;
+      Wall wall = base;
+      wall.start = last;
+      wall.end = first;
+      const PlanResult r = planWith(planner, wall, tool);
+      ASSERT_EQ(r.status, PlanStatus::Ok) << r.reason;
+      EXPECT_EQ(r.stats.at("order_reversed_for_start_end"), 1.0) << planner << " " << base.name;
+      EXPECT_LT(r.stats.at("start_end_legs_m"), 0.5 * distance(first, last)) << planner << " " << base.name;
+      EXPECT_TRUE(test::isValidPath(wall, tool, r.path)) << planner << " " << base.name;
+    }
+}
+
 }  // namespace
 }  // namespace coverbench

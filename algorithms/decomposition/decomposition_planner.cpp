@@ -253,7 +253,25 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
       ends.push_back(e);
       loop_starts.push_back(at);
     }
-    const Ordering ordering = orderCells(ends, links, order, [&] { return !budget.expired(); });
+    Ordering ordering = orderCells(ends, links, order, [&] { return !budget.expired(); });
+    // With a start or an end, the tour runs the way round that begins nearer the start and ends
+    // nearer the end (backwards, every cell is covered backwards: the steps between cells keep
+    // their lengths).
+    bool reversed_for_ends = false;
+    if ((wall.start || wall.end) && ordering.visits.size() > 1) {
+      auto endsCost = [&](const std::vector<Visit>& v) {
+        double c = 0.0;
+        if (wall.start) c += distance(*wall.start, ends[v.front().cell].entry[v.front().orientation]);
+        if (wall.end) c += distance(ends[v.back().cell].exit[v.back().orientation], *wall.end);
+        return c;
+      };
+      std::vector<Visit> backwards(ordering.visits.rbegin(), ordering.visits.rend());
+      for (Visit& v : backwards) v.orientation = ends[v.cell].reverse[v.orientation];
+      if (endsCost(backwards) < endsCost(ordering.visits) - 1e-9) {
+        ordering.visits = std::move(backwards);
+        reversed_for_ends = true;
+      }
+    }
     std::map<std::pair<std::size_t, std::size_t>, std::vector<const Contact*>> contacts_between;
     for (const Contact& c : cells.contacts) contacts_between[std::minmax(c.left, c.right)].push_back(&c);
     const double ordering_ms = msSince(t_order);
@@ -342,6 +360,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
     result.stats["slabs"] = static_cast<double>(cells.slabs);
     result.stats["passes"] = static_cast<double>(pass_count);
     result.stats["sweep_angle_deg"] = angle_deg;
+    if (wall.start || wall.end) result.stats["order_reversed_for_start_end"] = reversed_for_ends ? 1.0 : 0.0;
     result.stats["order_estimate_m"] = ordering.estimated_cost;
     if (fill) recordLeftovers(result, left);
     result.timings_ms["decomposition"] = decomposition_ms;

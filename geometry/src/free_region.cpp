@@ -13,6 +13,8 @@ Wall rotateWall(const Wall& wall, double radians) {
     for (Point& p : o.polygon) p = rotate(p, radians);
     o.center = rotate(o.center, radians);
   }
+  if (out.start) out.start = rotate(*out.start, radians);
+  if (out.end) out.end = rotate(*out.end, radians);
   return out;
 }
 
