@@ -296,7 +296,10 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
       // Imported now, so a bad source stops the config here, before any run. A bad option is
       // named as the config's key ("--source-crs" is `source_crs` here).
       try {
-        spec.count = importWalls({spec.folder}, o).walls.size();
+        auto walls = std::make_shared<std::vector<Wall>>();
+        for (ImportedWall& w : importWalls({spec.folder}, o).walls) walls->push_back(std::move(w.wall));
+        spec.count = walls->size();
+        spec.imported = std::move(walls);  // loadWalls uses these: the sources are read once
       } catch (const InputError& e) {
         if (e.source().rfind("--", 0) != 0) throw;
         std::string key = e.source().substr(2);
@@ -348,10 +351,8 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     const Yaml* label = d.find("label");
     spec.label = label ? r.text(*label, where + ".label")
                  : spec.kind == DatasetSpec::Kind::Folder || spec.kind == DatasetSpec::Kind::Import
-                     ? fs::path(spec.folder).lexically_normal().filename().string().empty()
-                           ? fs::path(spec.folder).lexically_normal().parent_path().filename().string()
-                           : fs::path(spec.folder).lexically_normal().filename().string()
-                                                          : spec.family;
+                     ? (fs::path(spec.folder) / "").lexically_normal().parent_path().filename().string()  // "a/fields/" as "a/fields"
+                     : spec.family;
     if (spec.label.empty()) r.fail(label ? *label : d, where + ".label", "must not be empty");
     c.datasets.push_back(spec);
   }

@@ -36,7 +36,7 @@ std::vector<WallEntry> loadWalls(const ExperimentConfig& config) {
         walls = readDataset(spec.folder).walls;
         break;
       case DatasetSpec::Kind::Import:
-        for (ImportedWall& w : importWalls({spec.folder}, spec.import_options).walls) walls.push_back(std::move(w.wall));
+        walls = *spec.imported;
         break;
     }
     for (Wall& w : walls) {

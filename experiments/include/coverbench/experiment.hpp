@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,8 @@ struct DatasetSpec {
   std::uint64_t seed = 0;
   std::string folder;  ///< resolved against the config file's folder (a folder, or what `import` names)
   ImportOptions import_options;  ///< for `import:` (docs/datasets.md)
+  /// For `import:`: the walls, imported once when the config is loaded.
+  std::shared_ptr<const std::vector<Wall>> imported;
   /// Where the paths on these walls begin and end (`start:`, `end:`), for walls that name none.
   std::optional<Point> start, end;
   bool end_at_start = false;  ///< `end: start`: each wall's own start, or the dataset's
