@@ -250,6 +250,19 @@ void forEachPlannedPath(const ToolParams& tool, unsigned seeds, Check check) {
   }
 }
 
+/// Distance from q to segment k of the path, straight or an arc (q's angle about the centre within
+/// the arc's sweep: |q - centre| - radius; else the nearer end).
+double distanceToSegment(const Path& path, std::size_t k, Point q) {
+  const Point a = path.waypoints[k], b = path.waypoints[k + 1];
+  if (path.bulgeOf(k) == 0.0) return distancePointSegment(q, a, b);
+  const ArcGeometry g = arcGeometry(a, b, path.bulgeOf(k));
+  const double t0 = std::atan2(a.y - g.centre.y, a.x - g.centre.x), t = std::atan2(q.y - g.centre.y, q.x - g.centre.x);
+  const double along = std::remainder(t - t0, 2.0 * M_PI) * (g.sweep < 0.0 ? -1.0 : 1.0);
+  const double into = along < 0.0 ? along + 2.0 * M_PI : along;
+  if (into <= std::fabs(g.sweep)) return std::fabs(distance(q, g.centre) - g.radius);
+  return std::fmin(distance(q, a), distance(q, b));
+}
+
 /// Share of the wall's paintable area swept, estimated on a grid of points with brute force.
 double rasterCoverageWall(const Wall& wall, const ToolParams& tool, const Path& path, int n) {
   const Box box = boundingBox(wall.boundary);
@@ -265,7 +278,7 @@ double rasterCoverageWall(const Wall& wall, const ToolParams& tool, const Path& 
       if (blocked) continue;
       ++inside;
       for (std::size_t k = 0; k < path.tool_on.size(); ++k)
-        if (path.tool_on[k] && distancePointSegment(q, path.waypoints[k], path.waypoints[k + 1]) <= tool.radius()) {
+        if (path.tool_on[k] && distanceToSegment(path, k, q) <= tool.radius()) {
           ++swept;
           break;
         }
@@ -363,6 +376,7 @@ TEST(MetricsProperties, ReversingAPathChangesNoMetric) {
       Path reversed;
       reversed.waypoints.assign(path.waypoints.rbegin(), path.waypoints.rend());
       reversed.tool_on.assign(path.tool_on.rbegin(), path.tool_on.rend());
+      for (auto b = path.bulge.rbegin(); b != path.bulge.rend(); ++b) reversed.bulge.push_back(-*b);  // arcs turn the other way
       const std::vector<NamedMetric> a = flatten(computeMetrics(wall, tool, path));
       const std::vector<NamedMetric> b = flatten(computeMetrics(wall, tool, reversed));
       for (std::size_t i = 0; i < a.size(); ++i) {

@@ -2,7 +2,73 @@
 
 #include <algorithm>
 
+#include "coverbench/path.hpp"
+
 namespace coverbench {
+namespace {
+
+/// An arc as the distance functions take it: centre, radius, start radial and signed sweep.
+struct Arc {
+  Point a, b, centre;
+  double radius = 0.0;
+  Point start;         ///< a - centre
+  double sweep = 0.0;  ///< signed, radians
+  Box box;             ///< a box holding the arc (its ends and the extreme points it passes)
+};
+
+Arc makeArc(Point a, Point b, double bulge) {
+  const ArcGeometry g = arcGeometry(a, b, bulge);
+  Arc arc{a, b, g.centre, g.radius, a - g.centre, g.sweep, {}};
+  arc.box.add(a);
+  arc.box.add(b);
+  return arc;
+}
+
+/// Whether the direction v from the centre lies within the arc's sweep.
+bool withinSweep(const Arc& arc, Point v) {
+  double angle = std::atan2(arc.start.x * v.y - arc.start.y * v.x, dot(arc.start, v));  // (-pi, pi]
+  if (arc.sweep < 0.0) angle = -angle;
+  if (angle < 0.0) angle += 2.0 * M_PI;
+  return angle <= std::fabs(arc.sweep);
+}
+
+double distancePointArc(Point p, const Arc& arc) {
+  const Point v = p - arc.centre;
+  const double d = norm(v);
+  if (d > 0.0 && withinSweep(arc, v)) return std::fabs(d - arc.radius);
+  return std::fmin(distance(p, arc.a), distance(p, arc.b));
+}
+
+double distanceSegmentArc(Point p, Point q, const Arc& arc) {
+  double best = std::fmin(std::fmin(distancePointArc(p, arc), distancePointArc(q, arc)),
+                          std::fmin(distancePointSegment(arc.a, p, q), distancePointSegment(arc.b, p, q)));
+  const Point d = q - p;
+  const double len2 = dot(d, d);
+  if (len2 == 0.0 || best == 0.0) return best;
+  // The foot of the centre on the segment's line: the radial pair there, when it is on the segment.
+  const double t = dot(arc.centre - p, d) / len2;
+  const Point foot = p + d * t, v = foot - arc.centre;
+  const double dist = norm(v);
+  if (t > 0.0 && t < 1.0 && dist > 0.0 && withinSweep(arc, v)) best = std::fmin(best, std::fabs(dist - arc.radius));
+  // Where the line meets the circle, on the segment and within the sweep: they cross.
+  if (dist < arc.radius) {
+    const double half = std::sqrt((arc.radius * arc.radius - dist * dist) / len2);
+    for (const double s : {t - half, t + half})
+      if (s >= 0.0 && s <= 1.0 && withinSweep(arc, p + d * s - arc.centre)) return 0.0;
+  }
+  return best;
+}
+
+/// Distance from the arc to the filled polygon `ring` (0 when they meet or the arc is inside).
+double distanceArcFilledRing(const Arc& arc, const Ring& ring) {
+  if (pointInRing(arc.a, ring)) return 0.0;
+  double best = INFINITY;
+  for (std::size_t k = 0, n = ring.size(); k < n && best > 0.0; ++k)
+    best = std::fmin(best, distanceSegmentArc(ring[k], ring[(k + 1) % n], arc));
+  return best;
+}
+
+}  // namespace
 
 ClearanceField::ClearanceField(const Wall& wall) : wall_(&wall) {
   obstacle_boxes_.reserve(wall.obstacles.size());
@@ -137,6 +203,48 @@ bool ClearanceField::segmentFree(Point a, Point b, double radius, double clearan
     if (squaredDistanceSegmentSegment(a, b, p, q) < need_boundary2) return false;
   }
   return pointInRing(a, ring);
+}
+
+SegmentClearance ClearanceField::measureArc(Point a, Point b, double bulge, double obstacle_cutoff) const {
+  if (bulge == 0.0) return measure(a, b, obstacle_cutoff);
+  Arc arc = makeArc(a, b, bulge);
+  // The arc's box: its ends, and each axis extreme of the circle it sweeps over.
+  for (const Point dir : {Point{1, 0}, Point{0, 1}, Point{-1, 0}, Point{0, -1}})
+    if (withinSweep(arc, dir)) arc.box.add(arc.centre + dir * arc.radius);
+  SegmentClearance c;
+  const Ring& ring = wall_->boundary;
+  double best = INFINITY;
+  for (std::size_t i = 0, n = ring.size(); i < n && best > 0.0; ++i) {
+    const Point p = ring[i], q = ring[(i + 1) % n];
+    const Box edge{std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)};
+    if (squaredBoxDistance(arc.box, edge) > best * best * (1.0 + 1e-12)) continue;
+    best = std::fmin(best, distanceSegmentArc(p, q, arc));
+  }
+  c.boundary_distance = best;
+  // An arc that does not touch the boundary is entirely inside or entirely outside it.
+  c.inside = c.boundary_distance > 0.0 && pointInRing(a, ring);
+  double nearest = obstacle_cutoff;
+  auto visit = [&](std::size_t i) {
+    if (squaredBoxDistance(arc.box, obstacle_boxes_[i]) >= nearest * nearest * (1.0 + 1e-12)) return true;
+    const Obstacle& o = wall_->obstacles[i];
+    const double d = o.type == ObstacleType::Circle ? std::fmax(0.0, distancePointArc(o.center, arc) - o.radius)
+                                                    : distanceArcFilledRing(arc, o.polygon);
+    nearest = std::fmin(nearest, d);
+    return true;
+  };
+  if (!grid_.empty() && std::isinf(nearest)) {
+    for (std::size_t i = 0; i < obstacle_boxes_.size(); ++i) visit(i);
+  } else {
+    forObstaclesNear(arc.box, nearest, visit);
+  }
+  c.obstacle_distance = nearest;
+  return c;
+}
+
+bool ClearanceField::arcFree(Point a, Point b, double bulge, double radius, double clearance, double margin) const {
+  if (bulge == 0.0) return segmentFree(a, b, radius, clearance, margin);
+  const SegmentClearance c = measureArc(a, b, bulge, radius + clearance + margin);
+  return c.inside && c.boundary_distance >= radius + margin && c.obstacle_distance >= radius + clearance + margin;
 }
 
 }  // namespace coverbench

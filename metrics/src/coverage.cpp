@@ -254,7 +254,8 @@ CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const 
   CoverageRegions g;
   g.reachable = reachableRegion(grownFreeRegion(wall, tool));
   g.paintable = paintableRegion(wall);
-  g.swept = sweptRegion(toolOnRuns(path), tool.radius(), kMetricArcTolerance);
+  Path chords;
+  g.swept = sweptRegion(toolOnRuns(measuredPath(path, chords)), tool.radius(), kMetricArcTolerance);
   return g;
 }
 
@@ -288,7 +289,9 @@ Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path) {
   return coverage(wall, tool, path, checkValidity(wall, tool, path), passLevelAreas(path, tool.radius(), 1)[0]);
 }
 
-int passCount(const Path& path, double radius, Point q) {
+int passCount(const Path& in, double radius, Point q) {
+  Path chords;
+  const Path& path = measuredPath(in, chords);
   int count = 0;
   for (std::size_t i = 0; i < path.tool_on.size(); ++i) {
     if (!path.tool_on[i]) continue;
@@ -304,7 +307,9 @@ namespace {
 /// Walks horizontal scanlines `h` apart over the path's tool-on capsules and reports, for every
 /// maximal x-interval of constant pass count > 0, (y, x0, x1, count).
 template <class Visit>
-void scanPasses(const Path& path, double radius, double h, Visit visit) {
+void scanPasses(const Path& in, double radius, double h, Visit visit) {
+  Path chords;
+  const Path& path = measuredPath(in, chords);
   // passes(q) = #(tool-on capsules containing q) - #(continuation disks containing q), where a
   // continuation disk sits at each waypoint joining two tool-on segments.
   struct Shape {

@@ -513,7 +513,8 @@ class LevelAreas {
 }  // namespace
 
 std::vector<double> passLevelAreas(const Path& path, double radius, std::size_t levels) {
-  std::vector<double> areas = LevelAreas(path, radius, levels).compute();
+  Path chords;
+  std::vector<double> areas = LevelAreas(measuredPath(path, chords), radius, levels).compute();
   // An empty level sums its pieces to a rounding residue of either sign (about 1e-16 m^2), and
   // two equal levels may come out in either order: the sets are nested, so their areas are not.
   for (std::size_t k = 0; k < areas.size(); ++k)

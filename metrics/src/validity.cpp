@@ -75,6 +75,12 @@ Path chordalPath(const Path& path, double sagitta) {
   return out;
 }
 
+const Path& measuredPath(const Path& path, Path& storage) {
+  if (!path.hasArcs()) return path;
+  storage = chordalPath(path, kMetricArcTolerance);
+  return storage;
+}
+
 Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle) {
   Validity v;
   const ClearanceField field(wall);
@@ -93,29 +99,16 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
     v.violations += outside;
     if (outside && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
   };
-  // The gaps of [a, b] for a disk of radius rr (r, or r grown by an arc chord's sagitta).
-  auto gaps = [&](Point a, Point b, double rr, bool& outside, bool& close) {
-    const SegmentClearance c = field.measure(a, b, std::fmax(v.min_clearance, tool.clearance) + rr);
-    const double boundary_gap = c.inside ? c.boundary_distance - rr : -c.boundary_distance - rr;
-    const double obstacle_gap = c.obstacle_distance - rr;
+  // The gaps of segment or arc i (distances in closed form, ClearanceField::measureArc).
+  auto check = [&](std::size_t segment, Point a, Point b) {
+    const double bulge = n > 1 ? path.bulgeOf(segment) : 0.0;
+    const SegmentClearance c = field.measureArc(a, b, bulge, std::fmax(v.min_clearance, tool.clearance) + r);
+    const double boundary_gap = c.inside ? c.boundary_distance - r : -c.boundary_distance - r;
+    const double obstacle_gap = c.obstacle_distance - r;
     v.min_boundary_gap = std::fmin(v.min_boundary_gap, boundary_gap);
     v.min_clearance = std::fmin(v.min_clearance, obstacle_gap);
-    outside = outside || boundary_gap < -kValidityTolerance;
-    close = close || obstacle_gap < tool.clearance - kValidityTolerance;
-  };
-  const bool arcs = path.hasArcs();
-  auto check = [&](std::size_t segment, Point a, Point b) {
-    bool outside = false, close = false;
-    if (arcs && n > 1 && path.bulge[segment] != 0.0) {
-      Path arc;
-      arc.moveTo(a, true);
-      arc.arcTo(b, path.bulge[segment], true);
-      const Path chords = chordalPath(arc, kArcCheckSagitta);
-      for (std::size_t k = 0; k + 1 < chords.waypoints.size(); ++k)
-        gaps(chords.waypoints[k], chords.waypoints[k + 1], r + kArcCheckSagitta + 1e-9, outside, close);
-    } else {
-      gaps(a, b, r, outside, close);
-    }
+    const bool outside = boundary_gap < -kValidityTolerance;
+    const bool close = obstacle_gap < tool.clearance - kValidityTolerance;
     v.outside_boundary += outside;
     v.too_close += close;
     if ((outside || close) && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);

@@ -39,6 +39,14 @@ class ClearanceField {
   /// `margin` to spare and keeps at least `clearance + margin` from every obstacle.
   bool segmentFree(Point a, Point b, double radius, double clearance, double margin) const;
 
+  /// measure() for the circular arc from a to b of bulge `bulge` (Path::bulge; 0: the segment),
+  /// in closed form: the distance between an arc and a point, a segment or a circle is the least
+  /// of the ends' distances and of the one interior pair whose join is radial to the arc and
+  /// square to the segment (0 where they cross).
+  SegmentClearance measureArc(Point a, Point b, double bulge, double obstacle_cutoff = INFINITY) const;
+  /// segmentFree() for that arc.
+  bool arcFree(Point a, Point b, double bulge, double radius, double clearance, double margin) const;
+
   const Wall& wall() const { return *wall_; }
 
  private:

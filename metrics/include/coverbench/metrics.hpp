@@ -40,21 +40,25 @@ struct Validity {
   std::size_t not_drivable = 0;
 };
 inline constexpr std::size_t kMaxListedViolations = 10000;
-/// An arc segment is checked as chords whose sagitta is at most this (m), each with the tool's
-/// radius grown by the sagitta (and 1e-9 m for rounding): every point of the arc lies within that
-/// of a chord, so a valid answer holds for the arc; an arc closer than this to its limit may be
-/// refused (planners keep kPlanningMargin to spare).
+/// The exact judge checks an arc segment as chords whose sagitta is at most this (m), each with the
+/// tool grown by a certified bound of it: an arc closer than this to its limit may be refused
+/// (planners keep kPlanningMargin to spare). The fast engine measures an arc's distances in closed
+/// form (ClearanceField::measureArc); kMaxArcChords bounds the judge's work with this.
 inline constexpr double kArcCheckSagitta = 1e-7;
 /// The path with every arc replaced by chords whose points lie on it and whose sagitta is at most
 /// `sagitta` (m); a path without arcs is returned as it is. Coverage and passes measure arcs on
 /// these chords with kMetricArcTolerance.
 Path chordalPath(const Path& path, double sagitta);
+/// The path as coverage, passes and the pictures' regions measure it: the path itself when it has
+/// no arcs, else chordalPath(path, kMetricArcTolerance), made in `storage`. Every function of this
+/// header that takes a path measures this one, so none reads an arc as its chord.
+const Path& measuredPath(const Path& path, Path& storage);
 /// How many chords of at most `sagitta` (m) chordalPath cuts an arc into.
 double arcChords(const ArcGeometry& arc, double sagitta);
 
 /// Checks every segment of the path with closed-form distances in doubles (no sampling), forgiving
 /// shortfalls up to kValidityTolerance (1e-9 m). The exact judge (judge/) has no tolerance.
-/// A single waypoint is checked as a point. Arcs: see kArcCheckSagitta; a car's path also has to
+/// A single waypoint is checked as a point. Arcs: in closed form (ClearanceField::measureArc); a car's path also has to
 /// be drivable (Validity::not_drivable).
 Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path,
                        const VehicleModel& vehicle = {});
@@ -163,7 +167,7 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
 /// within 10 km of the origin) and would overflow the exact area grid.
 inline constexpr std::size_t kMaxScoredWaypoints = 2000000;
 inline constexpr double kMaxPathCoordinate = 100000.0;  ///< m
-/// Both judges check an arc as chords of kArcCheckSagitta (the exact judge's are as fine), about
+/// The exact judge checks an arc as chords of kArcCheckSagitta, about
 /// |phi| sqrt(R / 8e-7) of them: work that grows with the arc's radius, not with the path's
 /// waypoints. An arc is scored when it needs at most this many: a half circle of about 800 m
 /// radius (a car's turn radius is at most kMaxTurnRadius, 100 m: 35 000 chords at most). An arc of
