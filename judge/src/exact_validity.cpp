@@ -193,10 +193,17 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
     if (bulge == 0.0) {
       piece(points[ia], points[ib], FT(0), outside, close);
     } else {
-      const ExactArc arc = exactArc(path.waypoints[ia], path.waypoints[ib], bulge, kArcChordSagitta);
-      if (!arc.ordered) outside = true;  // no certified bound: refused
-      for (std::size_t k = 0; k + 1 < arc.points.size() && !(outside && close); ++k)
-        piece(arc.points[k], arc.points[k + 1], arc.stray, outside, close);
+      // Chords of 1e-3 m first, then 16 times finer down to kArcChordSagitta: each try is a
+      // certified verdict when it passes (the disk grown by the chords' stray holds the arc's), so
+      // only an arc near its limit is cut finely, and only a failing one as finely as ever.
+      for (double sagitta = std::fmax(1e-3, kArcChordSagitta);; sagitta = std::fmax(sagitta / 16.0, kArcChordSagitta)) {
+        outside = close = false;
+        const ExactArc arc = exactArc(path.waypoints[ia], path.waypoints[ib], bulge, sagitta);
+        if (!arc.ordered) outside = true;  // no certified bound: refused
+        for (std::size_t k = 0; k + 1 < arc.points.size() && !(outside && close); ++k)
+          piece(arc.points[k], arc.points[k + 1], arc.stray, outside, close);
+        if ((!outside && !close) || sagitta <= kArcChordSagitta) break;
+      }
     }
     v.outside_boundary += outside;
     v.too_close += close;
