@@ -208,6 +208,7 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
       // (vehicles/include/coverbench/car.hpp): corners rounded or turned, what it cannot reach left out and said.
       Problem holonomic = problem;
       holonomic.vehicle = VehicleModel{};
+      holonomic.straight_segments_only = true;
       result = planner.make()->plan(holonomic, budget);
       attachEnds(holonomic, result);
       if (result.hasPath()) {

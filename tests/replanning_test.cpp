@@ -184,7 +184,8 @@ TEST(Detour, AnUnchangedWallRepairsToTheSamePath) {
   const Repair r = repairByDetour(s, problemOn(s));
   EXPECT_FALSE(r.leftOut());
   EXPECT_EQ(r.transits, 0u);
-  EXPECT_NEAR(length(r.path), length(p.path), 1e-9);
+  // The plan's arcs are repaired as their chords (straightenedForReplanning).
+  EXPECT_NEAR(length(r.path), length(straightenedForReplanning(p.path)), 1e-9);
   EXPECT_EQ(r.path.tool_on, [&] {  // the cut adds one waypoint inside a segment, or none
     Path joined = s.cut.executed;
     for (std::size_t i = 0; i < s.cut.remainder.segments(); ++i) joined.moveTo(s.cut.remainder.waypoints[i + 1], s.cut.remainder.tool_on[i]);
@@ -201,13 +202,15 @@ TEST(Replan, KeepsOnlyMovesThatPaintSomethingNew) {
   const Repair r = repairFromPlan(s, problem, p.path);
   ASSERT_TRUE(r.ok);
   EXPECT_FALSE(r.leftOut());
+  const Path plan = straightenedForReplanning(p.path);  // the moves it repairs from: F's arcs as chords
+  EXPECT_GT(plan.waypoints.size(), p.path.waypoints.size());
   std::size_t executed_on = 0, all_on = 0;
   for (bool on : s.cut.executed.tool_on) executed_on += on;
-  for (bool on : p.path.tool_on) all_on += on;
+  for (bool on : plan.tool_on) all_on += on;
   EXPECT_GE(r.dropped_moves + 1, executed_on) << "every move of the executed half is painted already (the cut one may not be)";
   EXPECT_LE(r.dropped_moves, executed_on + 1);
   EXPECT_EQ(r.kept_moves + r.dropped_moves, all_on);
-  const PathMetrics before = computeMetrics(p.wall, kTool, p.path), after = computeMetrics(s.wall, kTool, r.path);
+  const PathMetrics before = computeMetrics(p.wall, kTool, plan), after = computeMetrics(s.wall, kTool, r.path);
   EXPECT_GE(after.coverage.coverage_reachable, before.coverage.coverage_reachable - 1e-9);
   EXPECT_TRUE(test::isValidPath(s.wall, kTool, r.repairedPart()));
 

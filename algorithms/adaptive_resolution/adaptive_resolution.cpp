@@ -7,6 +7,7 @@
 #include "coverbench/edge_index.hpp"
 #include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
+#include "coverbench/boundary_arcs.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::adaptive_resolution {
@@ -29,7 +30,7 @@ const ParamTable<AdaptiveParams>& paramTable() {
   static const ParamTable<AdaptiveParams> table =
       ParamTable<AdaptiveParams>()
           .add({"dense_waypoints", ParamType::Bool, false, 0, 0, {}, "",
-                "resample the path by distance to obstacles (controllers that need dense waypoints)"},
+                "resample the path by distance to obstacles (controllers that need dense waypoints; no arcs)"},
                &AdaptiveParams::dense_waypoints)
           .add({"near_spacing", ParamType::Number, 0.005, 0.0005, 1.0, {}, "m", "waypoint spacing near obstacles and edges"},
                &AdaptiveParams::near_spacing)
@@ -206,6 +207,8 @@ class AdaptivePlanner final : public TypedPlanner<AdaptiveParams> {
     PlanResult result;
     result.status = PlanStatus::Ok;
     result.path = std::move(path);
+    // Dense waypoints are asked for by the spacing: F's round boundary stays a chain of them.
+    if (!params.dense_waypoints) fitBoundaryArcs(result, ws, problem);
     result.stats["quadtree_nodes"] = static_cast<double>(nodes);
     result.stats["open_leaves"] = static_cast<double>(open_leaves);
     result.stats["fine_leaves"] = static_cast<double>(fine_leaves);
@@ -244,7 +247,7 @@ class AdaptivePlanner final : public TypedPlanner<AdaptiveParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "adaptive-resolution";
-  info.version = "1";
+  info.version = "2";
   info.code_folders = {"adaptive_resolution"};
   info.summary = "Quadtree over F: rows across open leaves, single cells where obstacles cut in, a loop along every edge; optional waypoint density by distance";
   info.reference = "Seed 000 (adaptive resolution); quadtree coverage as in Choset, Coverage for robotics, AMAI 31, 2001";

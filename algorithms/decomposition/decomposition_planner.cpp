@@ -11,6 +11,7 @@
 #include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/sweep_search.hpp"
+#include "coverbench/boundary_arcs.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::decomposition {
@@ -352,6 +353,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
                                  "no cell: F drawn 1 mm inside itself is empty (F is thinner than 2 mm); enable "
                                  "boundary_loop to cover F's boundary instead");
     result.path = builder.take();
+    fitBoundaryArcs(result, ws, problem);
     rotatePoints(result.path.waypoints, turn);
     result.stats["cells"] = static_cast<double>(cells.cells.size());
     result.stats["cells_without_pass"] = static_cast<double>(passless_cells);

@@ -13,6 +13,7 @@
 #include "coverbench/clearance.hpp"
 #include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
+#include "coverbench/boundary_arcs.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::spanning_tree {
@@ -613,6 +614,7 @@ class SpanningTreePlanner final : public TypedPlanner<SpanningTreeParams> {
       result.path = withCornerSpurs(result.path, problem.tool.radius(), ws.router(), spurs);
       result.stats["corner_spurs"] = static_cast<double>(spurs);
     }
+    fitBoundaryArcs(result, ws, problem);
     result.stats["grid_cells"] = static_cast<double>(grid.size());
     result.stats["free_cells"] = static_cast<double>(free_cells);
     result.stats["grid_spacing_x"] = grid.dx;
@@ -633,7 +635,7 @@ class SpanningTreePlanner final : public TypedPlanner<SpanningTreeParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "spanning-tree";
-  info.version = std::string("3");  // not = "3": GCC 12 warns falsely (-Wrestrict) on that assignment here
+  info.version = std::string("4");  // not = "4": GCC 12 warns falsely (-Wrestrict) on that assignment here
   info.code_folders = {"spanning_tree"};
   info.summary = "A loop along F's boundary, then spanning-tree coverage of a grid of tool-sized cells; return, stop, short-branches-first or Spiral-STC";
   info.reference = "Gabriely & Rimon, Spanning-tree based coverage of continuous areas by a mobile robot, AMAI 31, 2001";

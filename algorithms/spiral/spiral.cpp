@@ -6,6 +6,7 @@
 #include "coverbench/edge_index.hpp"
 #include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
+#include "coverbench/boundary_arcs.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::spiral {
@@ -151,6 +152,7 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
     PlanResult result;
     result.status = PlanStatus::Ok;
     result.path = builder.take();
+    fitBoundaryArcs(result, ws, problem);
     result.stats["levels"] = static_cast<double>(levels);
     result.stats["centre_loops"] = static_cast<double>(centres);
     result.stats["leftover_checks"] = static_cast<double>(leftover_checks);
@@ -165,7 +167,7 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "spiral";
-  info.version = "1";
+  info.version = "2";
   info.code_folders = {"spiral"};
   info.summary = "Concentric passes offset inward from the free region's boundary, around obstacles, centre covered";
   info.reference = "Held, On the Computational Geometry of Pocket Machining, LNCS 500, 1991";

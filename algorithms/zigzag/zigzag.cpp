@@ -7,6 +7,7 @@
 #include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/sweep_search.hpp"
+#include "coverbench/boundary_arcs.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::zigzag {
@@ -214,6 +215,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
     PlanResult result;
     result.status = PlanStatus::Ok;
     result.path = builder.take();
+    fitBoundaryArcs(result, ws, problem);
     rotatePoints(result.path.waypoints, angle);
     result.stats["rows"] = static_cast<double>(rows.size());
     result.stats["row_spacing"] = row_gap;
@@ -231,7 +233,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "zigzag";
-  info.version = std::string("3");  // not = "3": GCC 12 warns falsely (-Wrestrict) on that assignment here
+  info.version = std::string("4");  // not = "4": GCC 12 warns falsely (-Wrestrict) on that assignment here
   info.code_folders = {"zigzag"};
   info.summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes";
   info.reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013";

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "coverbench/metrics.hpp"
 #include "coverbench/rng.hpp"
 #include "coverbench/workspace.hpp"
 
@@ -272,7 +273,10 @@ std::string ReplanningSpec::describe() const {
          " repairs=" + joinNames(repair_names);
 }
 
-PathCut cutPath(const Path& path, double fraction) {
+Path straightenedForReplanning(const Path& path) { return chordalPath(path, kReplanChordSagitta); }
+
+PathCut cutPath(const Path& in, double fraction) {
+  const Path path = straightenedForReplanning(in);
   PathCut cut;
   if (path.waypoints.empty()) return cut;
   const double target = std::clamp(fraction, 0.0, 1.0) * lengthOf(path, false);
@@ -299,8 +303,9 @@ PathCut cutPath(const Path& path, double fraction) {
   return cut;
 }
 
-Surprise makeSurprise(const Wall& wall, const ToolParams& tool, const Path& path, double fraction,
+Surprise makeSurprise(const Wall& wall, const ToolParams& tool, const Path& in, double fraction,
                       const ReplanningSpec& spec, std::uint64_t seed) {
+  const Path path = straightenedForReplanning(in);
   Surprise s;
   s.fraction = fraction;
   s.cut = cutPath(path, fraction);
@@ -387,7 +392,8 @@ Repair repairByDetour(const Surprise& surprise, const Problem& problem) {
   return repair;
 }
 
-Repair repairFromPlan(const Surprise& surprise, const Problem& problem, const Path& plan) {
+Repair repairFromPlan(const Surprise& surprise, const Problem& problem, const Path& in) {
+  const Path plan = straightenedForReplanning(in);
   Workspace ws(surprise.wall, problem);
   Repair repair;
   if (surprise.cut.remainder.waypoints.empty()) return repair;

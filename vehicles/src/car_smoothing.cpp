@@ -14,9 +14,6 @@
 namespace coverbench {
 namespace {
 
-/// Arcs are checked as chords at most this far from the arc first (the tool grown by it), finer
-/// where that fails.
-constexpr double kCheckSagitta = 1e-3;
 /// Turns are planned on a radius this much above the car's (relative), so that ending a curve
 /// exactly on its target (moving the last arc's end by rounding) never makes an arc tighter.
 constexpr double kRadiusSlack = 1e-4;
@@ -170,44 +167,6 @@ Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool) {
     return clean;
   }
   return Path{};
-}
-
-bool arcFree(const Workspace& ws, Point a, Point b, double bulge) {
-  const ToolParams& tool = ws.tool();
-  if (bulge == 0.0) return ws.field().segmentFree(a, b, tool.radius(), tool.clearance, kPlanningMargin);
-  const ArcGeometry g = arcGeometry(a, b, bulge);
-  const double start = std::atan2(a.y - g.centre.y, a.x - g.centre.x);
-  auto at = [&](double t) { return g.centre + Point{std::cos(t), std::sin(t)} * g.radius; };
-  // The sub-arc [t0, t1] (ends p, q) is free when its chord is, with the tool grown by the chord's
-  // sagitta (every point of the sub-arc lies within it of the chord); where that fails, the halves
-  // are checked, down to a sagitta of kMinSagitta (planners keep their moves 1e-6 m inside F's
-  // limit, so finer chords would not pass either).
-  constexpr double kMinSagitta = 1e-7;
-  auto free = [&](auto&& self, double t0, double t1, Point p, Point q) -> bool {
-    const double sagitta = g.radius * (1.0 - std::cos(std::fabs(t1 - t0) / 2.0)) * (1.0 + 1e-9) + 1e-12;
-    if (ws.field().segmentFree(p, q, tool.radius() + sagitta, tool.clearance, kPlanningMargin)) return true;
-    if (sagitta <= kMinSagitta) return false;
-    const double tm = 0.5 * (t0 + t1);
-    const Point mid = at(tm);
-    return self(self, t0, tm, p, mid) && self(self, tm, t1, mid, q);
-  };
-  // Start from chords of at most kCheckSagitta.
-  const double step = 2.0 * std::acos(std::fmax(-1.0, 1.0 - kCheckSagitta / g.radius));
-  const int pieces = std::max(1, static_cast<int>(std::ceil(std::fabs(g.sweep) / std::fmax(step, 1e-9))));
-  Point prev = a;
-  for (int k = 1; k <= pieces; ++k) {
-    const double t0 = start + g.sweep * (k - 1) / pieces, t1 = start + g.sweep * k / pieces;
-    const Point next = k == pieces ? b : at(t1);
-    if (!free(free, t0, t1, prev, next)) return false;
-    prev = next;
-  }
-  return true;
-}
-
-bool pathFree(const Workspace& ws, const Path& path) {
-  for (std::size_t i = 0; i < path.segments(); ++i)
-    if (!arcFree(ws, path.waypoints[i], path.waypoints[i + 1], path.bulgeOf(i))) return false;
-  return true;
 }
 
 CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {

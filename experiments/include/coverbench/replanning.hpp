@@ -61,7 +61,14 @@ struct PathCut {
   Point position;  ///< the cut point
   double length = 0.0;  ///< the executed length, m
 };
-/// Cuts `path` at `fraction` (0..1) of its length; a segment cut in two keeps its tool state.
+/// Replanning cuts, paints and re-routes straight segments: a path's arcs (F's round boundary, a
+/// car's turns) are taken as chords within this of them (m), which keeps a planner's margin.
+inline constexpr double kReplanChordSagitta = 1e-6;
+/// The path as replanning takes it: its arcs as chords (kReplanChordSagitta).
+Path straightenedForReplanning(const Path& path);
+
+/// Cuts `path` at `fraction` (0..1) of its length; a segment cut in two keeps its tool state. Here
+/// and below a path is taken straightenedForReplanning: both parts are straight.
 PathCut cutPath(const Path& path, double fraction);
 
 /// Obstacles that appeared at one fraction of a path.

@@ -78,6 +78,9 @@ struct Problem {
   /// The run's memory limit in bytes (0: none), for planners that run in a process of their own
   /// (external planners); in-tree planners are held to it by their worker.
   std::size_t memory_limit_bytes = 0;
+  /// The path will be smoothed for a car (runPlanner), whose smoothing reads straight segments:
+  /// planners leave F's round boundary as chords (fitBoundaryArcs does nothing).
+  bool straight_segments_only = false;
 };
 
 /// Limits for one plan call. Planners poll `expired()` in their loops.

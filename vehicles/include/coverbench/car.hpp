@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "coverbench/boundary_arcs.hpp"  // arcFree, pathFree
 #include "coverbench/path.hpp"
 
 namespace coverbench {
@@ -40,11 +41,6 @@ double omplDubinsLength(Pose from, Pose to, double radius);
 /// when no curve arrives within 1e-9 m and rad.
 Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool);
 
-/// Whether the arc (or line, bulge 0) from a to b keeps the tool valid with kPlanningMargin to
-/// spare: checked as chords whose sagitta is added to the tool's radius, so the arc itself is.
-bool arcFree(const Workspace& ws, Point a, Point b, double bulge);
-/// Every segment of the path is free (arcFree).
-bool pathFree(const Workspace& ws, const Path& path);
 
 /// A planner's path made drivable by the workspace's car.
 struct CarSmoothing {
