@@ -11,7 +11,6 @@
 namespace coverbench {
 namespace {
 
-
 /// The way a -> b -> c turns at b when it turns by a small step (more than 1e-12 rad, at most
 /// kArcFitMaxTurn): +1 left, -1 right; 0 otherwise. (By the tangent of the turn: no atan2 per
 /// waypoint of a path.)
@@ -65,8 +64,8 @@ double chainBulge(const std::vector<Point>& p, std::size_t i, std::size_t j, dou
   return bulge;
 }
 
-/// Appends the straight chain p[first..last] (p[first] is the path's current end) as arcs where
-/// it fits them and they are free.
+/// Appends the straight chain p (p[0] is the path's current end), its segments of tool state
+/// `tool`, as arcs where it fits them and they are free.
 void appendChain(const std::vector<Point>& p, bool tool, const Workspace& ws, Path& out, ArcFit& fit) {
   const std::size_t n = p.size();
   std::size_t i = 0;
