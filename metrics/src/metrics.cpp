@@ -42,10 +42,9 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
   PathMetrics m;
   m.validity = checkValidity(wall, tool, path, vehicle);
   m.lengths = pathLengths(path);
-  // Arcs (a car's path) are swept as chords within the coverage engine's arc tolerance.
-  const bool arcs = path.hasArcs();
-  const Path chords = arcs ? chordalPath(path, kMetricArcTolerance) : Path{};
-  const Path& swept = arcs ? chords : path;
+  // Arcs are swept as chords within the coverage engine's arc tolerance, made once for both.
+  Path chords;
+  const Path& swept = measuredPath(path, chords);
   m.passes = passes(swept, tool.radius());
   m.coverage = coverage(wall, tool, swept, m.validity, m.passes.swept_area);
   m.motion = motion(path, limits, vehicle);
