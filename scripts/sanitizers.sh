@@ -12,6 +12,9 @@
 #   sanitizers. (Run once here in this build, it matched the gcc Release golden file exactly.)
 # - the car on a stress wall, for time (tens of seconds here, minutes under the sanitizers): the
 #   same code runs under them on every other family (CarFamilies).
+# The heaviest property tests take every 4th case of their sample here
+# (COVERBENCH_TEST_SAMPLE_STRIDE=4, tests/test_support.hpp): the same code paths run under the
+# sanitizers, and the main job (scripts/test.sh) runs every case.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-30}"
@@ -28,6 +31,7 @@ echo "== building the sanitizer build ($build)"
 cmake --build $build -j 2
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:allocator_may_return_null=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export COVERBENCH_TEST_SAMPLE_STRIDE=4
 echo "== the tests under AddressSanitizer and UndefinedBehaviorSanitizer"
 ctest --test-dir $build --output-on-failure -j 2 \
   -E "RunLimitsBecomeStatusesInTheTables|EachMisbehavingPlannerYieldsItsStatusAndTheRestIsUntouched|^quality_gate$|CarStressWalls"

@@ -737,6 +737,10 @@ TEST_F(Hostile, PropertyExtremeBulgesEndInAVerdictOrAOneLineError) {
     }
     const std::string plan = write("p" + std::to_string(k) + ".json", "{\"waypoints\": [" + wp + "], \"tool_on\": [" + on +
                                                                           "], \"bulge\": [" + bulge + "]}");
+    // With a sample stride (the sanitizer job), a diagonal of the plans: every kind of span still
+    // comes up, the huge ones (k % 4 == 3) among them.
+    const int stride = static_cast<int>(test::sampleStride());
+    if (k % stride != (k / stride) % stride) continue;
     for (const char* judge : {"", " --judge exact"}) {
       const auto start = std::chrono::steady_clock::now();
       const CommandRun r = run("metrics --wall " + wall_ + " --plan " + plan + " --tool-width 0.1 --clearance 0.02" + judge);

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <cmath>
@@ -234,6 +235,21 @@ std::string plannerTestName(const testing::TestParamInfo<std::string>& param_inf
   std::string name = param_info.param;
   std::replace(name.begin(), name.end(), '-', '_');
   return name;
+}
+
+std::size_t sampleStride() {
+  static const std::size_t stride = [] {
+    const char* text = std::getenv("COVERBENCH_TEST_SAMPLE_STRIDE");
+    if (text == nullptr || *text == '\0') return std::size_t{1};
+    char* end = nullptr;
+    const unsigned long value = std::strtoul(text, &end, 10);
+    if (*end != '\0' || value < 1 || value > 100) {
+      std::fprintf(stderr, "COVERBENCH_TEST_SAMPLE_STRIDE: expected a whole number from 1 to 100, got '%s'\n", text);
+      std::abort();
+    }
+    return static_cast<std::size_t>(value);
+  }();
+  return stride;
 }
 
 std::string inputError(const std::function<void()>& action) {

@@ -48,6 +48,19 @@ std::optional<Point> freePointNear(const Wall& wall, const ToolParams& tool, boo
 std::vector<std::string> plannerNames();
 std::string plannerTestName(const testing::TestParamInfo<std::string>& param_info);
 
+/// The stride through the sample of the heaviest property tests: 1 (every case) unless
+/// COVERBENCH_TEST_SAMPLE_STRIDE names a larger one. The sanitizer job sets 4
+/// (scripts/sanitizers.sh): there the memory and undefined-behaviour checks are the point, and the
+/// main job runs the whole sample. A malformed value fails loudly rather than thinning silently.
+std::size_t sampleStride();
+/// Every sampleStride()-th element of `all`, from the first.
+template <class T>
+std::vector<T> sampled(const std::vector<T>& all) {
+  std::vector<T> kept;
+  for (std::size_t i = 0; i < all.size(); i += sampleStride()) kept.push_back(all[i]);
+  return kept;
+}
+
 /// The message of the InputError `action` throws ("" if it throws none).
 std::string inputError(const std::function<void()>& action);
 
