@@ -32,9 +32,28 @@ inline double length(Point a, Point b) {
   return std::sqrt(dx * dx + dy * dy);
 }
 
-/// The straight move from one visit's exit to the next visit's entry.
-double step(const std::vector<CellEnds>& cells, const Visit& a, const Visit& b) {
-  return length(cells[a.cell].exit[a.orientation], cells[b.cell].entry[b.orientation]);
+/// The cost of the straight move from one visit's exit to the next visit's entry.
+double step(const std::vector<CellEnds>& cells, const TourCost& cost, const Visit& a, const Visit& b) {
+  return cost.move(length(cells[a.cell].exit[a.orientation], cells[b.cell].entry[b.orientation]));
+}
+
+/// The move from the start to a first visit's entry (0 without a start).
+double head(const std::vector<CellEnds>& cells, const TourCost& cost, const Visit& v) {
+  return cost.start ? cost.move(length(*cost.start, cells[v.cell].entry[v.orientation])) : 0.0;
+}
+
+/// The move from a last visit's exit to the end (0 without an end).
+double tail(const std::vector<CellEnds>& cells, const TourCost& cost, const Visit& v) {
+  return cost.end ? cost.move(length(cells[v.cell].exit[v.orientation], *cost.end)) : 0.0;
+}
+
+/// The visit whose entry is nearest to `p` (the first such, in cell and orientation order).
+Visit nearestEntry(const std::vector<CellEnds>& cells, Point p) {
+  Visit best{0, 0};
+  for (std::size_t c = 0; c < cells.size(); ++c)
+    for (int o = 0; o < 4; ++o)
+      if (length(p, cells[c].entry[o]) < length(p, cells[best.cell].entry[best.orientation])) best = {c, o};
+  return best;
 }
 
 Visit reversed(const std::vector<CellEnds>& cells, const Visit& v) {
@@ -72,12 +91,13 @@ Graph cellGraph(const std::vector<CellEnds>& cells, const std::vector<CellLink>&
 }
 
 /// Picks every cell's orientation for a fixed sequence (dynamic programming over 4 states).
-Ordering orient(const std::vector<std::size_t>& sequence, const std::vector<CellEnds>& cells) {
+Ordering orient(const std::vector<std::size_t>& sequence, const std::vector<CellEnds>& cells, const TourCost& cost) {
   Ordering out;
   const std::size_t n = sequence.size();
   if (n == 0) return out;
   std::vector<std::array<int, 4>> from(n);
-  std::array<double, 4> cost{0.0, 0.0, 0.0, 0.0};
+  std::array<double, 4> total{};
+  for (int o = 0; o < 4; ++o) total[o] = head(cells, cost, {sequence[0], o});
   for (std::size_t k = 1; k < n; ++k) {
     const CellEnds& p = cells[sequence[k - 1]];
     const CellEnds& c = cells[sequence[k]];
@@ -85,14 +105,15 @@ Ordering orient(const std::vector<std::size_t>& sequence, const std::vector<Cell
     for (int o = 0; o < 4; ++o) {
       next[o] = INFINITY;
       for (int q = 0; q < 4; ++q) {
-        const double v = cost[q] + length(p.exit[q], c.entry[o]);
+        const double v = total[q] + cost.move(length(p.exit[q], c.entry[o]));
         if (v < next[o]) next[o] = v, from[k][o] = q;
       }
     }
-    cost = next;
+    total = next;
   }
-  int o = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
-  out.estimated_cost = cost[o];
+  for (int o = 0; o < 4; ++o) total[o] += tail(cells, cost, {sequence[n - 1], o});
+  int o = static_cast<int>(std::min_element(total.begin(), total.end()) - total.begin());
+  out.estimated_cost = total[o];
   out.visits.resize(n);
   for (std::size_t k = n; k-- > 0;) {
     out.visits[k] = {sequence[k], o};
@@ -101,7 +122,7 @@ Ordering orient(const std::vector<std::size_t>& sequence, const std::vector<Cell
   return out;
 }
 
-std::vector<std::size_t> depthFirstOrder(const Graph& g) {
+std::vector<std::size_t> depthFirstOrder(const Graph& g, std::size_t root) {
   struct Recorder : boost::default_dfs_visitor {
     std::vector<std::size_t>* order;
     void discover_vertex(Graph::vertex_descriptor v, const Graph&) const { order->push_back(v); }
@@ -110,7 +131,7 @@ std::vector<std::size_t> depthFirstOrder(const Graph& g) {
   if (boost::num_vertices(g) == 0) return order;
   Recorder recorder;
   recorder.order = &order;
-  boost::depth_first_search(g, boost::visitor(recorder).root_vertex(0));
+  boost::depth_first_search(g, boost::visitor(recorder).root_vertex(root));
   return order;
 }
 
@@ -164,7 +185,7 @@ std::vector<std::vector<std::size_t>> nearestCells(const std::vector<CellEnds>& 
 /// 2-opt over a sequence of visits: reversing a stretch covers each of its cells backwards, so
 /// the moves inside the stretch keep their lengths and only the two joins change. Moves join a
 /// cell to one of its nearest cells; a stretch of one cell may take any orientation.
-bool twoOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
+bool twoOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells, const TourCost& cost,
             const std::vector<std::vector<std::size_t>>& nearest, const std::function<bool()>& keep_going) {
   const std::size_t n = t.size();
   if (n < 2) return false;
@@ -181,14 +202,16 @@ bool twoOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
   auto gain = [&](std::size_t i, std::size_t j) {
     const Visit first = reversed(cells, t[j]), last = reversed(cells, t[i]);
     double before = 0.0, after = 0.0;
-    if (i > 0) before += step(cells, t[i - 1], t[i]), after += step(cells, t[i - 1], first);
-    if (j + 1 < n) before += step(cells, t[j], t[j + 1]), after += step(cells, last, t[j + 1]);
+    if (i > 0) before += step(cells, cost, t[i - 1], t[i]), after += step(cells, cost, t[i - 1], first);
+    else before += head(cells, cost, t[i]), after += head(cells, cost, first);
+    if (j + 1 < n) before += step(cells, cost, t[j], t[j + 1]), after += step(cells, cost, last, t[j + 1]);
+    else before += tail(cells, cost, t[j]), after += tail(cells, cost, last);
     return before - after;
   };
   auto around = [&](std::size_t k, const Visit& v) {
     double c = 0.0;
-    if (k > 0) c += step(cells, t[k - 1], v);
-    if (k + 1 < n) c += step(cells, v, t[k + 1]);
+    c += k > 0 ? step(cells, cost, t[k - 1], v) : head(cells, cost, v);
+    c += k + 1 < n ? step(cells, cost, v, t[k + 1]) : tail(cells, cost, v);
     return c;
   };
   // Don't-look bits: a cell is tried again only after a move changed one of its joins.
@@ -199,9 +222,34 @@ bool twoOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
   auto touchAround = [&](std::size_t i, std::size_t j) {  // the joins of t[i..j] with the rest changed
     touch(static_cast<long>(i) - 1), touch(static_cast<long>(i)), touch(static_cast<long>(j)), touch(static_cast<long>(j) + 1);
   };
+  // With a start (an end), the cells whose entries (exits) are nearest to it: reversing the
+  // stretch from the first visit to one of them (from one of them to the last) makes it the first
+  // (the last).
+  auto nearestTo = [&](const std::optional<Point>& point, bool entries) {
+    std::vector<std::pair<double, std::size_t>> by;
+    if (!point) return by;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      double d = INFINITY;
+      for (int o = 0; o < 4; ++o) d = std::min(d, length(*point, entries ? cells[c].entry[o] : cells[c].exit[o]));
+      by.emplace_back(d, c);
+    }
+    const std::size_t keep = std::min(kCandidates, by.size());
+    std::partial_sort(by.begin(), by.begin() + static_cast<long>(keep), by.end());
+    by.resize(keep);
+    return by;
+  };
+  const auto near_start = nearestTo(cost.start, true), near_end = nearestTo(cost.end, false);
   bool any = false;
   for (int sweep = 0; sweep < kMaxSweeps && keep_going(); ++sweep) {
     bool improved = false;
+    for (const auto& [d, c] : near_start) {
+      const std::size_t j = pos[c];
+      if (j > 0 && gain(0, j) > 1e-9) reverse(0, j), improved = true, touchAround(0, j);
+    }
+    for (const auto& [d, c] : near_end) {
+      const std::size_t j = pos[c];
+      if (j + 1 < n && gain(j, n - 1) > 1e-9) reverse(j, n - 1), improved = true, touchAround(j, n - 1);
+    }
     for (std::size_t k = 0; k < n; ++k) {
       if (!look[t[k].cell]) continue;
       look[t[k].cell] = 0;
@@ -229,7 +277,7 @@ bool twoOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
 
 /// Or-opt for single cells: take a cell out and put it back (in any orientation) between two
 /// consecutive cells one of which is among its nearest, where that shortens the sequence.
-bool orOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
+bool orOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells, const TourCost& cost,
            const std::vector<std::vector<std::size_t>>& nearest) {
   const std::size_t n = t.size();
   if (n < 3) return false;
@@ -241,9 +289,10 @@ bool orOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
     // u is t without t[k]; gap g puts the cell before u[g] (g == n - 1: at the end).
     auto u = [&](std::size_t i) -> const Visit& { return t[i < k ? i : i + 1]; };
     double saved = 0.0;
-    if (k > 0) saved += step(cells, t[k - 1], t[k]);
-    if (k + 1 < n) saved += step(cells, t[k], t[k + 1]);
-    if (k > 0 && k + 1 < n) saved -= step(cells, t[k - 1], t[k + 1]);
+    saved += k > 0 ? step(cells, cost, t[k - 1], t[k]) : head(cells, cost, t[k]);
+    saved += k + 1 < n ? step(cells, cost, t[k], t[k + 1]) : tail(cells, cost, t[k]);
+    if (k > 0 && k + 1 < n) saved -= step(cells, cost, t[k - 1], t[k + 1]);
+    else saved -= k == 0 ? head(cells, cost, t[1]) : tail(cells, cost, t[n - 2]);
     double best = saved - 1e-9;
     std::size_t best_gap = n;
     int best_orientation = 0;
@@ -255,9 +304,10 @@ bool orOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
         for (int o = 0; o < 4; ++o) {
           const Visit v{cell, o};
           double added = 0.0;
-          if (g > 0) added += step(cells, u(g - 1), v);
-          if (g < n - 1) added += step(cells, v, u(g));
-          if (g > 0 && g < n - 1) added -= step(cells, u(g - 1), u(g));
+          added += g > 0 ? step(cells, cost, u(g - 1), v) : head(cells, cost, v);
+          added += g < n - 1 ? step(cells, cost, v, u(g)) : tail(cells, cost, v);
+          if (g > 0 && g < n - 1) added -= step(cells, cost, u(g - 1), u(g));
+          else added -= g == 0 ? head(cells, cost, u(0)) : tail(cells, cost, u(n - 2));
           if (added < best) best = added, best_gap = g, best_orientation = o;
         }
       }
@@ -271,22 +321,22 @@ bool orOpt(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
   return improved;
 }
 
-void improve(std::vector<Visit>& t, const std::vector<CellEnds>& cells,
+void improve(std::vector<Visit>& t, const std::vector<CellEnds>& cells, const TourCost& cost,
              const std::vector<std::vector<std::size_t>>& nearest, const std::function<bool()>& keep_going) {
   for (int round = 0; round < kMaxRounds && keep_going(); ++round) {
-    twoOpt(t, cells, nearest, keep_going);
-    if (!orOpt(t, cells, nearest)) break;
+    twoOpt(t, cells, cost, nearest, keep_going);
+    if (!orOpt(t, cells, cost, nearest)) break;
   }
 }
 
 /// Orientations for a sequence: each cell entered at the corner nearest the previous one's exit.
-std::vector<Visit> oriented(const std::vector<std::size_t>& sequence, const std::vector<CellEnds>& cells) {
+std::vector<Visit> oriented(const std::vector<std::size_t>& sequence, const std::vector<CellEnds>& cells, const TourCost& cost) {
   std::vector<Visit> visits;
   for (std::size_t cell : sequence) {
     Visit v{cell, 0};
-    if (!visits.empty())
-      for (int o = 1; o < 4; ++o)
-        if (step(cells, visits.back(), {cell, o}) < step(cells, visits.back(), v)) v.orientation = o;
+    auto enter = [&](const Visit& w) { return visits.empty() ? head(cells, cost, w) : step(cells, cost, visits.back(), w); };
+    for (int o = 1; o < 4; ++o)
+      if (enter({cell, o}) < enter(v)) v.orientation = o;
     visits.push_back(v);
   }
   return visits;
@@ -298,8 +348,9 @@ std::vector<std::size_t> cellsOf(const std::vector<Visit>& visits) {
   return out;
 }
 
-Ordering greedyOrder(const std::vector<CellEnds>& cells) {
-  // From each exit, the nearest entry of an unvisited cell. The cells' entries are bucketed in a
+Ordering greedyOrder(const std::vector<CellEnds>& cells, const TourCost& cost) {
+  // From each exit, the nearest entry of an unvisited cell (also the cheapest: every MoveCost
+  // grows with the length). The cells' entries are bucketed in a
   // grid; rings of buckets are searched outward until no nearer entry can remain.
   Ordering out;
   const std::size_t n = cells.size();
@@ -318,9 +369,10 @@ Ordering greedyOrder(const std::vector<CellEnds>& cells) {
       if (bucket.empty() || bucket.back() != c) bucket.push_back(c);
     }
   std::vector<bool> done(n, false);
-  Visit cur{0, 0};
-  done[0] = true;
+  Visit cur = cost.start ? nearestEntry(cells, *cost.start) : Visit{0, 0};
+  done[cur.cell] = true;
   out.visits.push_back(cur);
+  out.estimated_cost += head(cells, cost, cur);
   for (std::size_t k = 1; k < n; ++k) {
     const Point here = cells[cur.cell].exit[cur.orientation];
     double best = INFINITY;  // squared
@@ -348,31 +400,35 @@ Ordering greedyOrder(const std::vector<CellEnds>& cells) {
         }
       }
     }
-    out.estimated_cost += std::sqrt(best);
+    out.estimated_cost += cost.move(std::sqrt(best));
     done[next.cell] = true;
     out.visits.push_back(next);
     cur = next;
   }
+  out.estimated_cost += tail(cells, cost, cur);
   return out;
 }
 
 }  // namespace
 
+double MoveCost::timed(double length) const { return straightRunTime(length, *clock) + 2.0 * clock->turn_cost_s; }
+
 Ordering orderCells(const std::vector<CellEnds>& cells, const std::vector<CellLink>& links, Order order,
-                    const std::function<bool()>& keep_going) {
+                    const std::function<bool()>& keep_going, const TourCost& cost) {
   if (cells.empty()) return {};
-  if (order == Order::Greedy) return greedyOrder(cells);
+  if (order == Order::Greedy) return greedyOrder(cells, cost);
   const Graph g = cellGraph(cells, links);
-  std::vector<std::size_t> dfs = depthFirstOrder(g);
-  if (order == Order::Dfs) return orient(dfs, cells);
+  // Depth-first from the cell entered nearest the start (cell 0 without one).
+  std::vector<std::size_t> dfs = depthFirstOrder(g, cost.start ? nearestEntry(cells, *cost.start).cell : 0);
+  if (order == Order::Dfs) return orient(dfs, cells, cost);
   // Local search from two starts: the MST-preorder tour and the greedy order.
   const auto nearest = nearestCells(cells);
-  std::vector<std::vector<Visit>> starts{oriented(approximateTour(g, cells), cells), greedyOrder(cells).visits};
+  std::vector<std::vector<Visit>> starts{oriented(approximateTour(g, cells), cells, cost), greedyOrder(cells, cost).visits};
   Ordering best;
   best.estimated_cost = INFINITY;
   for (std::vector<Visit>& visits : starts) {
-    improve(visits, cells, nearest, keep_going);
-    Ordering o = orient(cellsOf(visits), cells);
+    improve(visits, cells, cost, nearest, keep_going);
+    Ordering o = orient(cellsOf(visits), cells, cost);
     if (o.estimated_cost < best.estimated_cost) best = std::move(o);
   }
   return best;

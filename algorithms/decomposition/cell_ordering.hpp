@@ -6,15 +6,17 @@
 /// Boost.Graph graph: an edge per pair of touching cells, weighted by the distance between their
 /// nearest corners; separate parts are joined by edges between their nearest cells, so every
 /// strategy sees one graph. Once a strategy has fixed the sequence, every cell's orientation is
-/// chosen by dynamic programming over the straight distances from each cell's exit to the next
-/// cell's entry.
+/// chosen by dynamic programming over the straight moves from each cell's exit to the next
+/// cell's entry (and from the start and to the end, when the path has them).
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "coverbench/geometry.hpp"
+#include "coverbench/motion.hpp"
 
 namespace coverbench::decomposition {
 
@@ -48,12 +50,33 @@ struct Visit {
 
 struct Ordering {
   std::vector<Visit> visits;  ///< every cell exactly once
-  double estimated_cost = 0.0;  ///< the transitions' estimated length (metres)
+  double estimated_cost = 0.0;  ///< the TourCost's estimate (metres or seconds)
 };
 
-/// Orders the cells. `keep_going` is polled by the 2-opt loops; when it says stop, the best order
-/// so far is returned (still a permutation of all cells).
+/// What the move from one visit's exit to the next visit's entry costs, from its straight length:
+/// the length itself (the objectives `length` and `turns`: the moves between cells add the same
+/// turns whatever the order), or, for the objective `time`, the time to drive it from standstill
+/// to standstill under the time model (a cell's last pass ends in a turn and the next cell's first
+/// pass begins with one) plus two turns' fixed cost. The time is concave in the length, so the
+/// cheapest order under it is not always the shortest.
+struct MoveCost {
+  std::optional<MotionLimits> clock;  ///< nothing: the length
+  double operator()(double length) const { return clock && length != 0.0 ? timed(length) : length; }
+  double timed(double length) const;  ///< the clock's cost of a move of that length
+  const char* unit() const { return clock ? "s" : "m"; }
+};
+
+/// What an order costs: its moves between visits and, where the path must begin or end at a
+/// point (the wall's start and end), the move from the start to the first visit's entry and from
+/// the last visit's exit to the end, each by `move`.
+struct TourCost {
+  MoveCost move;
+  std::optional<Point> start, end;
+};
+
+/// Orders the cells, minimising the TourCost. `keep_going` is polled by the 2-opt loops; when it
+/// says stop, the best order so far is returned (still a permutation of all cells).
 Ordering orderCells(const std::vector<CellEnds>& cells, const std::vector<CellLink>& links, Order order,
-                    const std::function<bool()>& keep_going);
+                    const std::function<bool()>& keep_going, const TourCost& cost = {});
 
 }  // namespace coverbench::decomposition

@@ -254,123 +254,129 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
       ends.push_back(e);
       loop_starts.push_back(at);
     }
-    Ordering ordering = orderCells(ends, links, order, [&] { return !budget.expired(); });
-    // With a start or an end, the tour runs the way round that begins nearer the start and ends
-    // nearer the end (backwards, every cell is covered backwards: the steps between cells keep
-    // their lengths).
-    bool reversed_for_ends = false;
-    if ((wall.start || wall.end) && ordering.visits.size() > 1) {
-      auto endsCost = [&](const std::vector<Visit>& v) {
-        double c = 0.0;
-        if (wall.start) c += distance(*wall.start, ends[v.front().cell].entry[v.front().orientation]);
-        if (wall.end) c += distance(ends[v.back().cell].exit[v.back().orientation], *wall.end);
-        return c;
-      };
-      std::vector<Visit> backwards(ordering.visits.rbegin(), ordering.visits.rend());
-      for (Visit& v : backwards) v.orientation = ends[v.cell].reverse[v.orientation];
-      if (endsCost(backwards) < endsCost(ordering.visits) - 1e-9) {
-        ordering.visits = std::move(backwards);
-        reversed_for_ends = true;
-      }
-    }
     std::map<std::pair<std::size_t, std::size_t>, std::vector<const Contact*>> contacts_between;
     for (const Contact& c : cells.contacts) contacts_between[std::minmax(c.left, c.right)].push_back(&c);
-    const double ordering_ms = msSince(t_order);
-    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the cell ordering");
+    const double preparation_ms = msSince(t_order);
 
-    const auto t_synthesis = Clock::now();
-    PathBuilder builder(ws);
-    std::size_t unreachable = 0, contact_moves = 0, routed_between_cells = 0;
-    std::size_t previous = cells.cells.size();
-    for (const Visit& visit : ordering.visits) {
-      if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the passes");
-      if (visit.cell >= cell_count) {  // a boundary loop
-        const Ring& ring = h.loops[visit.cell - cell_count];
-        const std::size_t start = loop_starts[visit.cell - cell_count][static_cast<std::size_t>(visit.orientation)];
-        if (!builder.moveTo(ring[start], !builder.empty() && distance(builder.current(), ring[start]) <= 1.01 * spacing)) {
+    // The plan for one cell order, found under `move_cost`.
+    auto planOrder = [&](const MoveCost& move_cost) {
+      const auto t_ordering = Clock::now();
+      // With a start or an end, the order knows them: its cost includes the moves from the start
+      // to the first cell and from the last cell to the end.
+      Ordering ordering = orderCells(ends, links, order, [&] { return !budget.expired(); }, TourCost{move_cost, wall.start, wall.end});
+      const double ordering_ms = preparation_ms + msSince(t_ordering);
+      if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the cell ordering");
+
+      const auto t_synthesis = Clock::now();
+      PathBuilder builder(ws);
+      std::size_t unreachable = 0, contact_moves = 0, routed_between_cells = 0;
+      std::size_t previous = cells.cells.size();
+      for (const Visit& visit : ordering.visits) {
+        if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the passes");
+        if (visit.cell >= cell_count) {  // a boundary loop
+          const Ring& ring = h.loops[visit.cell - cell_count];
+          const std::size_t start = loop_starts[visit.cell - cell_count][static_cast<std::size_t>(visit.orientation)];
+          if (!builder.moveTo(ring[start], !builder.empty() && distance(builder.current(), ring[start]) <= 1.01 * spacing)) {
+            ++unreachable;
+            continue;
+          }
+          std::vector<Point> loop;
+          for (std::size_t k = 1; k <= ring.size(); ++k) loop.push_back(ring[(start + k) % ring.size()]);
+          builder.follow(loop, true);
+          previous = cell_count;
+          continue;
+        }
+        const Cell& cell = cells.cells[visit.cell];
+        std::vector<double> xs = passes[visit.cell];
+        const bool leftward = (visit.orientation & 1) != 0;
+        bool up = (visit.orientation & 2) == 0;
+        if (leftward) std::reverse(xs.begin(), xs.end());
+        const Point entry = ends[visit.cell].entry[visit.orientation];
+        // Into a touching cell through the shared segment when a straight move is not free.
+        const auto touching = previous < cells.cells.size()
+                                  ? contacts_between.find(std::minmax(previous, visit.cell))
+                                  : contacts_between.end();
+        // (A vehicle that lifts its tool crosses straight instead: PathBuilder::moveTo.)
+        if (touching != contacts_between.end() && !ws.vehicle().liftsTool() &&
+            !ws.router().isFree(builder.current(), entry)) {
+          std::vector<Point> best;
+          for (const Contact* c : touching->second) {
+            std::vector<Point> walk = throughContact(cells.cells[previous], builder.current(), cell, entry, *c);
+            if (best.empty() || polylineLength(walk) < polylineLength(best)) best = std::move(walk);
+          }
+          // The shortest collision-free route when it is shorter than the walk through the cells.
+          const auto route = ws.route(builder.current(), entry);
+          if (route && polylineLength(*route) < polylineLength(best)) {
+            builder.follow(*route, false);
+            ++routed_between_cells;
+          } else {
+            builder.follow(best, false);
+            ++contact_moves;
+          }
+        } else if (!builder.moveTo(entry, !builder.empty() && distance(builder.current(), entry) <= 1.01 * spacing)) {
           ++unreachable;
           continue;
         }
-        std::vector<Point> loop;
-        for (std::size_t k = 1; k <= ring.size(); ++k) loop.push_back(ring[(start + k) % ring.size()]);
-        builder.follow(loop, true);
-        previous = cell_count;
-        continue;
-      }
-      const Cell& cell = cells.cells[visit.cell];
-      std::vector<double> xs = passes[visit.cell];
-      const bool leftward = (visit.orientation & 1) != 0;
-      bool up = (visit.orientation & 2) == 0;
-      if (leftward) std::reverse(xs.begin(), xs.end());
-      const Point entry = ends[visit.cell].entry[visit.orientation];
-      // Into a touching cell through the shared segment when a straight move is not free.
-      const auto touching = previous < cells.cells.size()
-                                ? contacts_between.find(std::minmax(previous, visit.cell))
-                                : contacts_between.end();
-      // (A vehicle that lifts its tool crosses straight instead: PathBuilder::moveTo.)
-      if (touching != contacts_between.end() && !ws.vehicle().liftsTool() &&
-          !ws.router().isFree(builder.current(), entry)) {
-        std::vector<Point> best;
-        for (const Contact* c : touching->second) {
-          std::vector<Point> walk = throughContact(cells.cells[previous], builder.current(), cell, entry, *c);
-          if (best.empty() || polylineLength(walk) < polylineLength(best)) best = std::move(walk);
+        previous = visit.cell;
+        for (std::size_t k = 0; k < xs.size(); ++k) {
+          // Step over along the side the last pass ended on, then run the pass.
+          if (k > 0) builder.follow(cell.boundaryWalk(xs[k - 1], xs[k], !up), true);
+          const Span span = cell.spanAt(xs[k]);
+          builder.follow({{xs[k], up ? span.bottom : span.top}, {xs[k], up ? span.top : span.bottom}}, true);
+          up = !up;
         }
-        // The shortest collision-free route when it is shorter than the walk through the cells.
-        const auto route = ws.route(builder.current(), entry);
-        if (route && polylineLength(*route) < polylineLength(best)) {
-          builder.follow(*route, false);
-          ++routed_between_cells;
-        } else {
-          builder.follow(best, false);
-          ++contact_moves;
-        }
-      } else if (!builder.moveTo(entry, !builder.empty() && distance(builder.current(), entry) <= 1.01 * spacing)) {
-        ++unreachable;
-        continue;
       }
-      previous = visit.cell;
-      for (std::size_t k = 0; k < xs.size(); ++k) {
-        // Step over along the side the last pass ended on, then run the pass.
-        if (k > 0) builder.follow(cell.boundaryWalk(xs[k - 1], xs[k], !up), true);
-        const Span span = cell.spanAt(xs[k]);
-        builder.follow({{xs[k], up ? span.bottom : span.top}, {xs[k], up ? span.top : span.bottom}}, true);
-        up = !up;
+      // What the passes and loops left inside the loops (when asked: see fillLeftoversParam).
+      Leftovers left;
+      const bool fill = boundary_loop && params.fill_leftovers;
+      if (fill) {
+        left = coverLeftovers(ws, builder, h.unpainted, 0, spacing, problem.tool.tool_width / 2.0, false);
+        unreachable += left.unreachable;
       }
-    }
-    // What the passes and loops left inside the loops (when asked: see fillLeftoversParam).
-    Leftovers left;
-    const bool fill = boundary_loop && params.fill_leftovers;
-    if (fill) {
-      left = coverLeftovers(ws, builder, h.unpainted, 0, spacing, problem.tool.tool_width / 2.0, false);
-      unreachable += left.unreachable;
-    }
-    const double synthesis_ms = msSince(t_synthesis);
+      const double synthesis_ms = msSince(t_synthesis);
 
-    PlanResult result;
-    result.status = PlanStatus::Ok;
-    if (builder.empty())
-      return PlanResult::failure(PlanStatus::NoReachableArea,
-                                 "no cell: F drawn 1 mm inside itself is empty (F is thinner than 2 mm); enable "
-                                 "boundary_loop to cover F's boundary instead");
-    result.path = builder.take();
-    fitBoundaryArcs(result, ws, problem);
-    rotatePoints(result.path.waypoints, turn);
-    result.stats["cells"] = static_cast<double>(cells.cells.size());
-    result.stats["cells_without_pass"] = static_cast<double>(passless_cells);
-    result.stats["cell_contacts"] = static_cast<double>(cells.contacts.size());
-    result.stats["contact_transits"] = static_cast<double>(contact_moves);
-    result.stats["slabs"] = static_cast<double>(cells.slabs);
-    result.stats["passes"] = static_cast<double>(pass_count);
-    result.stats["sweep_angle_deg"] = angle_deg;
-    if (wall.start || wall.end) result.stats["order_reversed_for_start_end"] = reversed_for_ends ? 1.0 : 0.0;
-    result.stats["order_estimate_m"] = ordering.estimated_cost;
-    if (fill) recordLeftovers(result, left);
-    result.timings_ms["decomposition"] = decomposition_ms;
-    result.timings_ms["ordering"] = ordering_ms;
-    result.timings_ms["synthesis"] = synthesis_ms;
-    recordOutcome(result, builder, components.size(), unreachable);
-    result.stats["routed_transits"] += static_cast<double>(routed_between_cells);  // followed, not built by moveTo
-    return result;
+      PlanResult result;
+      result.status = PlanStatus::Ok;
+      if (builder.empty())
+        return PlanResult::failure(PlanStatus::NoReachableArea,
+                                   "no cell: F drawn 1 mm inside itself is empty (F is thinner than 2 mm); enable "
+                                   "boundary_loop to cover F's boundary instead");
+      result.path = builder.take();
+      fitBoundaryArcs(result, ws, problem);
+      rotatePoints(result.path.waypoints, turn);
+      result.stats["cells"] = static_cast<double>(cells.cells.size());
+      result.stats["cells_without_pass"] = static_cast<double>(passless_cells);
+      result.stats["cell_contacts"] = static_cast<double>(cells.contacts.size());
+      result.stats["contact_transits"] = static_cast<double>(contact_moves);
+      result.stats["slabs"] = static_cast<double>(cells.slabs);
+      result.stats["passes"] = static_cast<double>(pass_count);
+      result.stats["sweep_angle_deg"] = angle_deg;
+      result.stats[std::string("order_estimate_") + move_cost.unit()] = ordering.estimated_cost;
+      if (fill) recordLeftovers(result, left);
+      result.timings_ms["decomposition"] = decomposition_ms;
+      result.timings_ms["ordering"] = ordering_ms;
+      result.timings_ms["synthesis"] = synthesis_ms;
+      recordOutcome(result, builder, components.size(), unreachable);
+      result.stats["routed_transits"] += static_cast<double>(routed_between_cells);  // followed, not built by moveTo
+      return result;
+    };
+    PlanResult result = planOrder(MoveCost{});
+    if (params.sweep.objective != SweepDirection::Objective::Time || !result.hasPath()) return result;
+    // For the clock: the order found under the time model's move costs is planned too, and the
+    // plan the clock rates faster kept, provided it paints the same parts (the moves' straight
+    // estimates miss their routes' stops, so the clock, not the estimate, decides).
+    MoveCost by_time;
+    by_time.clock = problem.motion;
+    PlanResult timed = planOrder(by_time);
+    const bool take_timed = timed.hasPath() && timed.status == result.status &&
+                            timed.unreachable_parts == result.unreachable_parts &&
+                            objectiveCost(timed.path, problem, params.sweep) < objectiveCost(result.path, problem, params.sweep);
+    PlanResult& other = take_timed ? result : timed;
+    PlanResult& kept = take_timed ? timed : result;
+    for (const auto& [name, ms] : other.timings_ms) kept.timings_ms[name] += ms;  // both were planned
+    kept.stats["order_plans"] = 2.0;
+    kept.stats["order_by_time"] = take_timed ? 1.0 : 0.0;
+    return std::move(kept);
   }
 
   Kind kind_;

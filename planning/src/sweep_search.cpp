@@ -183,7 +183,8 @@ const ParamTable<SweepDirection>& sweepDirectionParams() {
                 "cost of a turn over 30 degrees in the direction search"},
                &SweepDirection::turn_penalty_m)
           .add({"objective", ParamType::Choice, std::string("length"), 0, 0, {}, "",
-                "what the direction search minimises: length plus turn_penalty per turn, the time under the "
+                "what the direction search (and a decomposition planner's cell order) minimises: length plus "
+                "turn_penalty per turn, the time under the "
                 "experiment's time model (motion:), or the turns"},
                &SweepDirection::objective,
                {{"length", SweepDirection::Objective::Length}, {"time", SweepDirection::Objective::Time},

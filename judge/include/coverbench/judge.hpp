@@ -56,8 +56,9 @@ struct ExactValidity {
 };
 /// An arc segment is judged as chords whose ends lie exactly on its circle; each is checked with
 /// the tool disk grown by a certified bound of how far the arc strays from its chords, so a valid
-/// verdict holds for the arc itself. Chords about 1e-3 m from the arc are tried first, then 16
-/// times finer until a try passes or chords about this far (m) fail: the arc is then invalid.
+/// verdict holds for the arc itself. Chords about 1e-3 m from the arc are tried first, then 1e-5 m,
+/// then chords about this far (m): a try that passes settles it; when the last fails, the arc is
+/// invalid.
 inline constexpr double kArcChordSagitta = 1e-7;
 /// For areas, arcs are swept as coarser chords (about this far from the arc, m; exact Boolean
 /// operations cost by the polygon), with the disk shrunk and grown by the certified stray: the
