@@ -3,6 +3,7 @@
 #include "coverbench/registry.hpp"
 
 #include "coverbench/car.hpp"
+#include "coverbench/clearance.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
 
@@ -12,6 +13,8 @@
 #include <cstdio>
 #include <deque>
 #include <exception>
+#include <optional>
+#include <tuple>
 
 namespace coverbench {
 
@@ -55,21 +58,40 @@ std::string threeDigits(double v) {
 
 /// Begins the path at the wall's start and ends it at its end, each reached with the tool off
 /// (straight when free, lifted for a gantry, else along the problem's transit planner's route).
-/// A start or end where the tool's centre may not be (outside F), or one no move reaches, makes
-/// the result a failure that says which and where F is nearest.
-void attachEnds(const Problem& problem, PlanResult& result) {
+/// A start or end outside F is joined to the nearest point of F by an approach leg (path.hpp:
+/// kApproachLegSlack), when `approach_legs` allows it; one no such leg or move reaches makes the
+/// result a failure that says which and where F is nearest.
+void attachEnds(const Problem& problem, PlanResult& result, bool approach_legs) {
   const Wall& wall = *problem.wall;
   if ((!wall.start && !wall.end) || !result.hasPath() || result.path.waypoints.empty()) return;
   Workspace ws(wall, problem);
-  for (const auto& [point, name] : {std::pair{wall.start, "start"}, std::pair{wall.end, "end"}})
+  // Where the path proper begins and ends: the start and the end, or the points of F nearest them.
+  std::optional<Point> first = wall.start, last = wall.end;
+  const double reach = problem.tool.radius() + problem.tool.clearance + kApproachLegSlack;
+  for (const auto& [point, name, inner] : {std::tuple{wall.start, "start", &first}, std::tuple{wall.end, "end", &last}})
     if (point && !inFree(ws.free(), *point)) {
       const Point near = nearestFreePoint(ws.free(), *point);
-      if (distance(*point, near) <= 1e-9) continue;  // on F's edge, where paths run too
-      result = PlanResult::failure(PlanStatus::InvalidInput,
-                                   std::string(name) + " " + pointText(*point) + " is where the tool's centre may not be (" +
-                                       threeDigits(distance(*point, near)) + " m outside F); the nearest point of F is " +
-                                       pointText(near));
-      return;
+      const double d = distance(*point, near);
+      if (d <= 1e-9) continue;  // on F's edge, where paths run too
+      const std::string where = std::string(name) + " " + pointText(*point) + " is where the tool's centre may not be (" +
+                                threeDigits(d) + " m outside F); the nearest point of F is " + pointText(near);
+      if (!approach_legs) {
+        result = PlanResult::failure(PlanStatus::InvalidInput, where + ", and a car is not given an approach leg to it");
+        return;
+      }
+      if (d > reach) {
+        result = PlanResult::failure(PlanStatus::InvalidInput, where + ", farther than an approach leg reaches (r + c + " +
+                                                                   threeDigits(kApproachLegSlack) + " m = " + threeDigits(reach) + " m)");
+        return;
+      }
+      // The leg's centre line must stay in the wall and off every obstacle (the judges' rule).
+      const ClearanceField field(wall);
+      const Point nudged = *point + (near - *point) * (std::fmin(kValidityTolerance, d / 2.0) / d);
+      if (!field.measure(nudged, near).inside || field.measure(*point, near).obstacle_distance <= 0.0) {
+        result = PlanResult::failure(PlanStatus::InvalidInput, where + ", and the straight approach leg to it crosses an obstacle or the wall's edge");
+        return;
+      }
+      *inner = near;
     }
   const Path planned = std::move(result.path);
   Path out;
@@ -81,12 +103,12 @@ void attachEnds(const Problem& problem, PlanResult& result) {
     if (out.waypoints.empty() && !part.waypoints.empty()) out.moveTo(part.waypoints.front(), false);
   };
   double legs_m = 0.0;
-  auto leg = [&](Point from, Point to, const char* what) {
+  auto leg = [&](Point from, Point to, const char* what, Point shown) {
     PathBuilder b(ws);
     b.start(from);
     if (!b.moveTo(to, false)) {
       result = PlanResult::failure(PlanStatus::InvalidInput, std::string("no tool-off move connects ") + what + " " +
-                                                                 pointText(what == std::string("the end") ? to : from) +
+                                                                 pointText(shown) +
                                                                  " with the path (they lie in different parts of F)");
       return false;
     }
@@ -94,11 +116,24 @@ void attachEnds(const Problem& problem, PlanResult& result) {
     append(b.path());
     return true;
   };
-  if (wall.start && !leg(*wall.start, planned.waypoints.front(), "the start")) return;
+  std::size_t approaches = 0;
+  if (wall.start && !(*first == *wall.start)) {  // the approach leg into F
+    out.moveTo(*wall.start, false);
+    out.moveTo(*first, false);
+    legs_m += distance(*wall.start, *first);
+    ++approaches;
+  }
+  if (first && !leg(*first, planned.waypoints.front(), "the start", *wall.start)) return;
   append(planned);
-  if (wall.end && !leg(planned.waypoints.back(), *wall.end, "the end")) return;
+  if (last && !leg(planned.waypoints.back(), *last, "the end", *wall.end)) return;
+  if (wall.end && !(*last == *wall.end)) {  // the approach leg out of F
+    out.moveTo(*wall.end, false);
+    legs_m += distance(*last, *wall.end);
+    ++approaches;
+  }
   result.path = std::move(out);
   result.stats["start_end_legs_m"] = legs_m;  // the tool-off moves from the start and to the end
+  if (approaches > 0) result.stats["approach_legs"] = static_cast<double>(approaches);
 }
 
 }  // namespace
@@ -210,7 +245,7 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
       holonomic.vehicle = VehicleModel{};
       holonomic.straight_segments_only = true;
       result = planner.make()->plan(holonomic, budget);
-      attachEnds(holonomic, result);
+      attachEnds(holonomic, result, false);  // smoothing reads only moves inside F
       if (result.hasPath()) {
         const Workspace ws(*problem.wall, problem);
         const CarSmoothing car = smoothForCar(ws, result.path);
@@ -225,7 +260,7 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
       }
     } else {
       result = planner.make()->plan(problem, budget);
-      attachEnds(problem, result);
+      attachEnds(problem, result, true);
     }
   } catch (const std::exception& e) {
     result = PlanResult::failure(PlanStatus::Error, std::string("planner threw: ") + e.what());

@@ -239,8 +239,8 @@ TEST(FieldScale, AFieldTooFineForAGridIsPlannedBySweepsAndRefusedByGridPlanners)
 class StartAndEnd : public testing::TestWithParam<std::string> {};
 
 // Every planner begins at the given start and ends at the given end (reached with the tool off),
-// validly, on the canonical walls, the conformance walls and random walls; a start where the
-// tool's centre may not be is refused with the nearest point of F.
+// validly, on the canonical walls, the conformance walls and random walls; a start outside F is
+// joined to F by an approach leg, or refused with the nearest point of F where no leg reaches.
 TEST_P(StartAndEnd, EveryPathBeginsAtTheStartAndEndsAtTheEnd) {
   const ToolParams tool{0.1, 0.02};
   std::vector<Wall> walls;
@@ -264,14 +264,37 @@ TEST_P(StartAndEnd, EveryPathBeginsAtTheStartAndEndsAtTheEnd) {
     EXPECT_TRUE(test::isValidPath(wall, tool, r.path)) << wall.name;
   }
   EXPECT_GE(planned, static_cast<int>(walls.size()) - 4);
-  // A start on the wall's edge, where the tool would overhang it: refused, saying where F is.
+  // A start and an end on the wall's edge, where the tool overhangs it (a dock): joined to the
+  // nearest points of F by approach legs. F is the free region as planners compute it: eroded by
+  // r = 0.05 m and a margin of 5.5e-5 m, so the legs are 0.050055 m long.
   Wall wall = test::rectWall(2, 1);
   wall.start = Point{0.0, 0.5};
+  wall.end = Point{2.0, 0.5};
   const PlanResult r = test::planWith(GetParam(), wall, tool);
-  EXPECT_EQ(r.status, PlanStatus::InvalidInput);
-  // F is the free region as planners compute it: eroded by r = 0.05 m and a margin of 5.5e-5 m.
-  const std::string expected = "start (0, 0.5) is where the tool's centre may not be (0.0501 m outside F); the nearest point of F is (0.05";
-  EXPECT_EQ(r.reason.substr(0, expected.size()), expected);
+  ASSERT_TRUE(r.hasPath()) << r.reason;
+  const auto& w = r.path.waypoints;
+  EXPECT_TRUE(w.front() == *wall.start);
+  EXPECT_TRUE(w.back() == *wall.end);
+  EXPECT_NEAR(w[1].x, 0.050055, 1e-6);
+  EXPECT_NEAR(w[1].y, 0.5, 1e-9);
+  EXPECT_FALSE(r.path.tool_on.front());
+  EXPECT_FALSE(r.path.tool_on.back());
+  EXPECT_EQ(r.stats.at("approach_legs"), 2.0);
+  EXPECT_TRUE(test::isValidPath(wall, tool, r.path));
+  EXPECT_EQ(checkValidity(wall, tool, r.path).approach_legs, 2u);
+  // A start farther from F than a leg reaches: the middle of a window (0.1 m + r + c from F).
+  Wall window = test::rectWall(2, 1, {test::rect(1.0, 0.4, 0.2, 0.2)});
+  window.start = Point{1.1, 0.5};
+  PlanResult refused = test::planWith(GetParam(), window, tool);
+  EXPECT_EQ(refused.status, PlanStatus::InvalidInput);
+  const std::string too_far = "start (1.1, 0.5) is where the tool's centre may not be (0.17 m outside F); the nearest point of F is (";
+  EXPECT_EQ(refused.reason.substr(0, too_far.size()), too_far) << refused.reason;
+  EXPECT_NE(refused.reason.find("farther than an approach leg reaches (r + c + 0.001 m = 0.071 m)"), std::string::npos) << refused.reason;
+  // 0.5 mm inside the window: within reach of F (0.0706 m), but the leg crosses the window's edge.
+  window.start = Point{1.0005, 0.5};
+  refused = test::planWith(GetParam(), window, tool);
+  EXPECT_EQ(refused.status, PlanStatus::InvalidInput);
+  EXPECT_NE(refused.reason.find("the straight approach leg to it crosses an obstacle or the wall's edge"), std::string::npos) << refused.reason;
 }
 
 INSTANTIATE_TEST_SUITE_P(AllPlanners, StartAndEnd, testing::ValuesIn(test::plannerNames()), test::plannerTestName);

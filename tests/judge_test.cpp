@@ -31,6 +31,77 @@ const double kPi = std::acos(-1.0);
 double inscribed(double rho, int n) { return n / 2.0 * rho * rho * std::sin(2 * kPi / n); }
 double circumscribed(double rho, int n) { return n * rho * rho * std::tan(kPi / n); }
 
+// ---- approach legs (path.hpp: kApproachLegSlack) --------------------------------------------
+
+// Both judges' verdicts, which must agree: valid, and the approach legs each accepted.
+struct Verdicts {
+  bool valid;
+  std::size_t legs;
+};
+Verdicts judged(const Wall& wall, const ToolParams& tool, const Path& path) {
+  SCOPED_TRACE(wall.name + " from (" + std::to_string(path.waypoints[0].x) + ", " + std::to_string(path.waypoints[0].y) + ")");
+  const Validity fast = checkValidity(wall, tool, path);
+  const judge::ExactValidity exact = judge::judgeValidity(wall, tool, path);
+  EXPECT_EQ(fast.valid, exact.valid);
+  EXPECT_EQ(fast.violations, exact.violations);
+  EXPECT_EQ(fast.approach_legs, exact.approach_legs);
+  return {exact.valid, exact.approach_legs};
+}
+
+// On a 2 m x 1 m wall (s = 0.1 m, c = 0.02 m: F is 0.05 m inside its edge and 0.07 m clear of
+// obstacles) a start on the left edge at (0, 0.5) lies 0.05 m outside F. The leg reaches at most
+// r + c + 1 mm = 0.071 m.
+TEST(ApproachLegs, BothJudgesAcceptTheStraightToolOffMoveFromAStartOutsideFAndNothingMore) {
+  const ToolParams tool{0.1, 0.02};
+  Wall wall = rectWall(2, 1);
+  wall.start = Point{0.0, 0.5};
+  wall.end = Point{2.0, 0.5};
+  auto path = [](std::vector<Point> points, std::vector<bool> on) {
+    Path p = pathOf(std::move(points));
+    p.tool_on = std::move(on);
+    return p;
+  };
+  // From the start into F, paint, and out to the end: two legs.
+  const Path both = path({{0.0, 0.5}, {0.06, 0.5}, {1.94, 0.5}, {2.0, 0.5}}, {false, true, false});
+  Verdicts v = judged(wall, tool, both);
+  EXPECT_TRUE(v.valid);
+  EXPECT_EQ(v.legs, 2u);
+  // The fast engine's gaps leave the legs out: the tool then keeps 0.01 m from the edge.
+  EXPECT_NEAR(checkValidity(wall, tool, both).min_boundary_gap, 0.01, 1e-12);
+  // The leg painting: checked as any segment, and its disk leaves the wall.
+  v = judged(wall, tool, path({{0.0, 0.5}, {0.06, 0.5}, {1.0, 0.5}}, {true, true}));
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.legs, 0u);
+  // Longer than 0.071 m (to x = 0.08 m): not a leg.
+  v = judged(wall, tool, path({{0.0, 0.5}, {0.08, 0.5}, {1.0, 0.5}}, {false, true}));
+  EXPECT_FALSE(v.valid);
+  // A path that does not begin at the start, or a wall without one: no leg.
+  v = judged(wall, tool, path({{0.0, 0.4}, {0.06, 0.4}, {1.0, 0.4}}, {false, true}));
+  EXPECT_FALSE(v.valid);
+  Wall no_start = wall;
+  no_start.start.reset();
+  v = judged(no_start, tool, path({{0.0, 0.5}, {0.06, 0.5}, {1.0, 0.5}}, {false, true}));
+  EXPECT_FALSE(v.valid);
+  // A start inside F gets no leg: its first segment out of F is invalid.
+  Wall inside = wall;
+  inside.start = Point{0.5, 0.5};
+  v = judged(inside, tool, path({{0.5, 0.5}, {0.03, 0.5}, {0.5, 0.5}}, {false, true}));
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.legs, 0u);
+  // Through an obstacle: a window from x = 1 to 1.2; a start 0.2 mm inside it and a leg to
+  // x = 0.9295 (0.5 mm inside F): 0.0707 m, within the reach, but it crosses the window's edge.
+  Wall window = rectWall(2, 1, {rect(1.0, 0.4, 0.2, 0.2)});
+  window.start = Point{1.0002, 0.5};
+  v = judged(window, tool, path({{1.0002, 0.5}, {0.9295, 0.5}, {0.5, 0.5}}, {false, true}));
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.legs, 0u);
+  // Beside the window, 0.03 m from it: the same leg's end, 0.0405 m away, is accepted.
+  window.start = Point{0.97, 0.5};
+  v = judged(window, tool, path({{0.97, 0.5}, {0.9295, 0.5}, {0.5, 0.5}}, {false, true}));
+  EXPECT_TRUE(v.valid);
+  EXPECT_EQ(v.legs, 1u);
+}
+
 // ---- hand-computed areas -------------------------------------------------------------------
 
 TEST(ExactJudge, OneStrokeOnASquareHasItsClosedFormAreas) {

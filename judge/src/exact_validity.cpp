@@ -3,6 +3,7 @@
 // are the wall, the tool and the path as plain numbers.
 #include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/squared_distance_2.h>
+#include <CGAL/intersections.h>
 
 #include <algorithm>
 #include <cmath>
@@ -232,9 +233,48 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
     ++v.violations;
     if (v.violating.size() < ExactValidity::kMaxListed) v.violating.push_back(segment);
   };
+  // Approach legs (path.hpp: kApproachLegSlack), exactly: the first segment from a start outside
+  // F, the last to an end outside F. A leg that breaks the rule is checked like any segment.
+  auto outsideF = [&](const P2& p) {
+    bool outside = false, close = false;
+    piece(p, p, FT(0), outside, close);
+    return outside || close;
+  };
+  auto approachLeg = [&](std::size_t i, const P2& out, const P2& in) {
+    if (path.tool_on[i] || (!path.bulge.empty() && path.bulge[i] != 0.0) || out == in) return false;
+    const FT reach = rc + FT(kApproachLegSlack);
+    if (CGAL::squared_distance(out, in) > reach * reach) return false;
+    // The centre line in the wall: its ends inside or on the boundary, no edge crossed properly and
+    // no vertex of the boundary inside it (so it cannot leave through a corner).
+    if (!inside(boundary, out) || !inside(boundary, in)) return false;
+    for (const Edge& e : boundary.edges) {
+      const P2 &p = e.segment.source(), &q = e.segment.target();
+      const int o1 = CGAL::orientation(out, in, p), o2 = CGAL::orientation(out, in, q);
+      const int o3 = CGAL::orientation(p, q, out), o4 = CGAL::orientation(p, q, in);
+      if (o1 * o2 < 0 && o3 * o4 < 0) return false;
+      if (o1 == 0 && CGAL::collinear_are_strictly_ordered_along_line(out, p, in)) return false;
+    }
+    // Off every obstacle: no point in common with any.
+    const S2 leg(out, in);
+    for (const PolygonShape& o : polygons) {
+      if (strictlyInside(o, out)) return false;
+      for (const Edge& e : o.edges)
+        if (CGAL::do_intersect(leg, e.segment)) return false;
+    }
+    for (const Round& o : rounds)
+      if (CGAL::squared_distance(leg, o.centre) <= o.radius * o.radius) return false;
+    return true;
+  };
+  auto at = [&](const std::optional<Point>& p, std::size_t k) { return p && path.waypoints[k] == *p; };
+  const bool lead_in = n >= 2 && at(wall.start, 0) && outsideF(points[0]) && approachLeg(0, points[0], points[1]);
+  const bool lead_out = n >= 2 && at(wall.end, n - 1) && !(lead_in && n == 2) && outsideF(points[n - 1]) &&
+                        approachLeg(n - 2, points[n - 1], points[n - 2]);
+  v.approach_legs = static_cast<std::size_t>(lead_in) + static_cast<std::size_t>(lead_out);
   if (n == 1) check(0, 0, 0);
   for (std::size_t i = 0; i + 1 < n; ++i)
-    if (vehicle.liftsTool() && !path.tool_on[i])
+    if ((i == 0 && lead_in) || (i + 2 == n && lead_out))
+      continue;
+    else if (vehicle.liftsTool() && !path.tool_on[i])
       lifted(i);
     else
       check(i, i, i + 1);

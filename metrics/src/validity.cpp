@@ -114,10 +114,35 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
     if ((outside || close) && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
     v.violations += outside || close;
   };
+  // Approach legs (path.hpp: kApproachLegSlack): the first segment from a start outside F, the
+  // last to an end outside F. A leg that breaks the rule is checked like any segment instead.
+  auto outsideF = [&](Point p) {
+    const SegmentClearance c = field.measure(p, p, r + tool.clearance);
+    const double boundary_gap = c.inside ? c.boundary_distance - r : -c.boundary_distance - r;
+    return boundary_gap < -kValidityTolerance || c.obstacle_distance - r < tool.clearance - kValidityTolerance;
+  };
+  auto approachLeg = [&](std::size_t i, Point outside, Point in) {
+    const double length = distance(outside, in);
+    if (path.tool_on[i] || path.bulgeOf(i) != 0.0 || length == 0.0 ||
+        length > r + tool.clearance + kApproachLegSlack + kValidityTolerance)
+      return false;
+    // The centre line less its first nanometre strictly inside the wall (the point outside F may
+    // lie on the wall's edge) and off every obstacle.
+    const Point nudged = outside + (in - outside) * (std::fmin(kValidityTolerance, length / 2.0) / length);
+    const SegmentClearance c = field.measure(nudged, in);
+    return c.inside && field.measure(outside, in).obstacle_distance > 0.0;
+  };
+  const bool lead_in = n >= 2 && wall.start && path.waypoints.front() == *wall.start && outsideF(*wall.start) &&
+                       approachLeg(0, path.waypoints[0], path.waypoints[1]);
+  const bool lead_out = n >= 2 && wall.end && path.waypoints.back() == *wall.end && !(lead_in && n == 2) &&
+                        outsideF(*wall.end) && approachLeg(n - 2, path.waypoints[n - 1], path.waypoints[n - 2]);
+  v.approach_legs = static_cast<std::size_t>(lead_in) + static_cast<std::size_t>(lead_out);
   if (n == 1) check(0, path.waypoints[0], path.waypoints[0]);
   const bool lifts = vehicle.liftsTool();
   for (std::size_t i = 0; i + 1 < n; ++i)
-    if (lifts && !path.tool_on[i])
+    if ((i == 0 && lead_in) || (i + 2 == n && lead_out))
+      continue;
+    else if (lifts && !path.tool_on[i])
       lifted(i, path.waypoints[i], path.waypoints[i + 1]);
     else
       check(i, path.waypoints[i], path.waypoints[i + 1]);

@@ -60,6 +60,15 @@ struct ToolParams {
   double radius() const { return tool_width / 2.0; }
 };
 
+/// An approach leg: where the wall's start lies outside F (the tool there overlaps the wall's edge
+/// or an obstacle's clearance, as at a dock), the path's first segment may be the straight
+/// tool-off move from the start into F; likewise its last segment to an end outside F. Both
+/// judges then check that segment only for this: it is straight and tool-off, at most r + c +
+/// kApproachLegSlack long, and its centre line stays in the wall (touching the edge allowed) and
+/// off every obstacle. Its end in F is the next segment's start, checked as usual. The slack
+/// covers the margin planners keep inside F (under 0.1 mm); a start farther from F is refused.
+inline constexpr double kApproachLegSlack = 1e-3;  ///< m
+
 /// How the robot carries its tool between passes (docs/vehicles.md). Part of a problem like the
 /// tool: planners plan for it, the metrics engine validates and times a path by its rules.
 struct VehicleModel {

@@ -48,6 +48,7 @@ struct Wall {
   std::vector<Obstacle> obstacles;
   /// Where every path must begin and end (a dock, a charger, a field's gate), when given: planners
   /// reach the start and leave for the end with the tool off. Each must lie inside the boundary.
+  /// One outside F is joined to F by an approach leg (kApproachLegSlack).
   std::optional<Point> start, end;
 };
 

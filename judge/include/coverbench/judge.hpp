@@ -52,6 +52,7 @@ struct ExactValidity {
   /// A car's segments it cannot drive (in `violations`): an arc of radius below the turn radius,
   /// or a heading that jumps at the segment's start (exact comparisons; docs/vehicles.md).
   std::size_t not_drivable = 0;
+  std::size_t approach_legs = 0;  ///< accepted by their own rule (path.hpp: kApproachLegSlack), exactly
   static constexpr std::size_t kMaxListed = 10000;
 };
 /// An arc segment is judged as chords whose ends lie exactly on its circle; each is checked with

@@ -38,6 +38,9 @@ struct Validity {
   /// radius, or a segment starting with another heading than the one before it ended with (for a
   /// reversing car, other than the opposite one at a cusp). Not one of the flattened metrics.
   std::size_t not_drivable = 0;
+  /// Approach legs accepted (0-2; path.hpp: kApproachLegSlack): checked by their own rule and
+  /// left out of min_clearance and min_boundary_gap.
+  std::size_t approach_legs = 0;
 };
 inline constexpr std::size_t kMaxListedViolations = 10000;
 /// The exact judge checks an arc segment as chords whose sagitta is at most this (m), each with the
