@@ -58,8 +58,8 @@ double chainBulge(const std::vector<Point>& p, std::size_t i, std::size_t j, dou
       const double d2 = dot(v, v);
       if (d2 < lo2 || d2 > hi2) return 0.0;
     }
-    const Point c = p[k + 1] - p[k];
-    if (dot(c, c) > chord2) return 0.0;
+    const Point chord = p[k + 1] - p[k];
+    if (dot(chord, chord) > chord2) return 0.0;
   }
   return bulge;
 }
