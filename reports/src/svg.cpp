@@ -17,6 +17,10 @@ constexpr double kMaxWidthPx = 1000.0;
 constexpr double kMaxHeightPx = 700.0;
 constexpr double kPadPx = 24.0;
 constexpr double kLegendPx = 82.0;
+/// The filled regions (F, the unpainted and the overlapped parts) are drawn simplified within this
+/// many pixels: far below what a screen shows, and it drops the thousands of sub-pixel chords of
+/// their arcs that made most of a gallery picture's bytes.
+constexpr double kRegionDrawTolerancePx = 0.1;
 
 std::string fmt(double v) {
   char buf[32];
@@ -70,16 +74,17 @@ std::string renderSvg(const SvgContent& c) {
   const double tool_px = c.tool.tool_width * v.k;
 
   std::ostringstream s;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fmt(w_px) << "\" height=\"" << fmt(h_px)
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"" << fmt(w_px) << "\" height=\"" << fmt(h_px)
     << "\" viewBox=\"0 0 " << fmt(w_px) << " " << fmt(h_px) << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   s << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
   s << "<text x=\"" << fmt(kPadPx) << "\" y=\"" << fmt(kPadPx + 6) << "\" font-size=\"14\" font-weight=\"bold\">"
     << escapeHtml(c.title) << "</text>\n";
   s << "<path d=\"" << v.ringPath(wall.boundary)
     << "\" fill=\"#f3efe6\" stroke=\"#333333\" stroke-width=\"1.5\"/>\n";
+  const double draw_tolerance = kRegionDrawTolerancePx / v.k;  // metres
   if (c.free) {
     std::string d;
-    for (const PolygonWithHoles& poly : *c.free) {
+    for (const PolygonWithHoles& poly : simplifyRegion(*c.free, draw_tolerance)) {
       d += v.ringPath(poly.outer);
       for (const Ring& hole : poly.holes) d += v.ringPath(hole);
     }
@@ -88,7 +93,7 @@ std::string renderSvg(const SvgContent& c) {
   auto region = [&](const Region* r, const char* fill, const char* opacity) {
     if (!r || r->empty()) return;
     std::string d;
-    for (const PolygonWithHoles& poly : *r) {
+    for (const PolygonWithHoles& poly : simplifyRegion(*r, draw_tolerance)) {
       d += v.ringPath(poly.outer);
       for (const Ring& hole : poly.holes) d += v.ringPath(hole);
     }
@@ -140,12 +145,14 @@ std::string renderSvg(const SvgContent& c) {
       (path.tool_on[i] ? on_runs : off_runs) += "<polyline points=\"" + pts + "\"/>\n";
       i = j;
     }
-    s << "<g fill=\"none\" stroke=\"#2f6fd0\" stroke-opacity=\"0.18\" stroke-width=\"" << fmt(tool_px)
-      << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n" << on_runs << "</g>\n";
+    // The painted runs are written once and drawn twice (the tool's swath, then its centre line).
+    s << "<defs><g id=\"paint\">\n" << on_runs << "</g></defs>\n";
+    s << "<use xlink:href=\"#paint\" fill=\"none\" stroke=\"#2f6fd0\" stroke-opacity=\"0.18\" stroke-width=\"" << fmt(tool_px)
+      << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>\n";
     region(c.uncovered, "#e8383d", "0.75");
     region(c.overlap, "#9b3fd1", "0.45");
-    s << "<g fill=\"none\" stroke=\"#1f4f9f\" stroke-width=\"" << fmt(std::clamp(tool_px * 0.12, 0.5, 2.0))
-      << "\" stroke-linejoin=\"round\">\n" << on_runs << "</g>\n";
+    s << "<use xlink:href=\"#paint\" fill=\"none\" stroke=\"#1f4f9f\" stroke-width=\"" << fmt(std::clamp(tool_px * 0.12, 0.5, 2.0))
+      << "\" stroke-linejoin=\"round\"/>\n";
     if (c.vehicle.liftsTool())
       s << "<g class=\"lifted\" fill=\"none\" stroke=\"#8e44ad\" stroke-width=\"1.6\" stroke-dasharray=\"1.5,3\" "
            "stroke-linecap=\"round\">\n" << off_runs << "</g>\n";
