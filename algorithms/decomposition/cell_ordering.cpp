@@ -350,8 +350,8 @@ std::vector<std::size_t> cellsOf(const std::vector<Visit>& visits) {
 
 Ordering greedyOrder(const std::vector<CellEnds>& cells, const TourCost& cost) {
   // From each exit, the nearest entry of an unvisited cell (also the cheapest: every MoveCost
-  // grows with the length). The cells' entries are bucketed in a
-  // grid; rings of buckets are searched outward until no nearer entry can remain.
+  // grows with the length). The cells' entries are bucketed in a grid; rings of buckets are
+  // searched outward until no nearer entry can remain.
   Ordering out;
   const std::size_t n = cells.size();
   Box extent;

@@ -100,11 +100,13 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
     if (outside && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
   };
   // The gaps of segment or arc i (distances in closed form, ClearanceField::measureArc).
+  // The tool disk's gaps to the boundary and to the obstacles, from its centre's distances.
+  auto gaps = [&](const SegmentClearance& c) {
+    return std::pair{c.inside ? c.boundary_distance - r : -c.boundary_distance - r, c.obstacle_distance - r};
+  };
   auto check = [&](std::size_t segment, Point a, Point b) {
     const double bulge = n > 1 ? path.bulgeOf(segment) : 0.0;
-    const SegmentClearance c = field.measureArc(a, b, bulge, std::fmax(v.min_clearance, tool.clearance) + r);
-    const double boundary_gap = c.inside ? c.boundary_distance - r : -c.boundary_distance - r;
-    const double obstacle_gap = c.obstacle_distance - r;
+    const auto [boundary_gap, obstacle_gap] = gaps(field.measureArc(a, b, bulge, std::fmax(v.min_clearance, tool.clearance) + r));
     v.min_boundary_gap = std::fmin(v.min_boundary_gap, boundary_gap);
     v.min_clearance = std::fmin(v.min_clearance, obstacle_gap);
     const bool outside = boundary_gap < -kValidityTolerance;
@@ -117,9 +119,8 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
   // Approach legs (path.hpp: kApproachLegSlack): the first segment from a start outside F, the
   // last to an end outside F. A leg that breaks the rule is checked like any segment instead.
   auto outsideF = [&](Point p) {
-    const SegmentClearance c = field.measure(p, p, r + tool.clearance);
-    const double boundary_gap = c.inside ? c.boundary_distance - r : -c.boundary_distance - r;
-    return boundary_gap < -kValidityTolerance || c.obstacle_distance - r < tool.clearance - kValidityTolerance;
+    const auto [boundary_gap, obstacle_gap] = gaps(field.measure(p, p, r + tool.clearance));
+    return boundary_gap < -kValidityTolerance || obstacle_gap < tool.clearance - kValidityTolerance;
   };
   auto approachLeg = [&](std::size_t i, Point outside, Point in) {
     const double length = distance(outside, in);
