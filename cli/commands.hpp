@@ -1,6 +1,7 @@
 #pragma once
 /// The sub-commands of `coverbench`, kept apart from argument parsing (which only main.cpp does).
 
+#include <exception>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -163,8 +164,14 @@ int reportCommand(const ReportOptions& options);
 /// Writes the HTML report of `options` into the folder options.out (all or nothing; an earlier
 /// report there is replaced, any other folder refused). Returns the page's path.
 std::string writeReport(const ReportOptions& options);
+/// An error whose one-line message has already been printed (by the analysis, which names the
+/// file it could not write): the command exits with 2 and prints nothing more.
+struct AlreadyReported : std::exception {
+  const char* what() const noexcept override { return "already reported"; }
+};
 /// Runs the analysis (python3 -m coverbench_report, reports/python) on a report data or
 /// showcase file, writing `formats` (comma-separated: html, md, csv, latex) into `folder`.
+/// Throws AlreadyReported when it could not write a file (its message is on stderr).
 void runAnalysis(const std::string& data, const std::string& folder, const std::string& formats);
 /// The showcase page (the report machinery's layout) for showcase data (format
 /// "coverbench-showcase"), as text; nothing is written.

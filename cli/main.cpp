@@ -280,6 +280,8 @@ int main(int argc, char** argv) {
   } catch (const coverbench::InputError& e) {
     std::cerr << "coverbench: " << e.what() << "\n";
     return 2;
+  } catch (const coverbench::cli::AlreadyReported&) {
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "coverbench: internal error: " << e.what() << "\n";
     return 70;

@@ -219,6 +219,7 @@ void runAnalysis(const std::string& data, const std::string& folder, const std::
     throw InputError(python, "report", "cannot start the analysis (" + std::string(std::strerror(errno)) +
                                            "): it needs python3 with matplotlib and scipy (Debian: python3-matplotlib "
                                            "python3-scipy; scripts/setup.sh installs them)");
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 3) throw AlreadyReported();  // a file it could not write
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw std::runtime_error("the analysis (" + python + " -m coverbench_report, reports/python) failed with " +
                              (WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))

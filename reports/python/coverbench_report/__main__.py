@@ -4,9 +4,14 @@ Writes an experiment's report (or, for showcase data, the showcase page) into FO
 `coverbench report` and `coverbench showcase`; usable alone on any report_data.json."""
 import argparse
 import json
+import logging
 import sys
 
-from . import report
+# matplotlib's font cache is a cache: failing to save it (a full disk) is not the report's error.
+# Set before matplotlib is imported, which builds the cache.
+logging.getLogger("matplotlib.font_manager").setLevel(logging.ERROR)
+
+from . import report  # noqa: E402
 
 
 def main(argv=None):
@@ -22,6 +27,18 @@ def main(argv=None):
             return 2
     with open(args.data, encoding="utf-8") as f:
         data = json.load(f)
+    try:
+        return write(data, args)
+    except OSError as e:
+        if e.filename is None:
+            raise
+        # One line in the command line's form; exit code 3 tells `coverbench` it has been said.
+        print(f"coverbench: {e.filename}: report: cannot be written: {e.strerror}", file=sys.stderr)
+        return 3
+
+
+def write(data, args):
+    formats = [f for f in args.formats.split(",") if f]
     kind = data.get("format")
     if kind == "coverbench-showcase":
         print(report.showcase(data, args.out))

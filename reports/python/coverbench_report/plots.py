@@ -20,8 +20,12 @@ PARAMETER_METRICS = ["coverage_reachable", "overlap", "length_ratio", "plan_time
 
 
 def save(fig, path):
-    fig.savefig(path, format="svg", metadata={"Date": None, "Creator": None})
-    plt.close(fig)
+    try:
+        fig.savefig(path, format="svg", metadata={"Date": None, "Creator": None})
+    except OSError as e:  # a failed flush names no file: name it
+        raise OSError(e.errno, e.strerror, path) from e
+    finally:
+        plt.close(fig)
 
 
 def legend(ax, **options):

@@ -22,8 +22,11 @@ def tool_suffix(a, i):
 
 
 def write(path, text):
-    with open(path, "w", encoding="utf-8", newline="\n") as f:
-        f.write(text)
+    try:
+        with open(path, "w", encoding="utf-8", newline="\n") as f:
+            f.write(text)
+    except OSError as e:  # a failed write names no file: name it
+        raise OSError(e.errno, e.strerror, path) from e
 
 
 def vehicle_text(a):
