@@ -132,6 +132,31 @@ TEST(Pictures, FailedSegmentsAreMarkedAndAPathLeavingTheWallStaysInThePicture) {
   EXPECT_EQ(clean.find("class=\"violation\""), std::string::npos);
 }
 
+TEST(Pictures, PathDataIsTheFirstPointAbsoluteThenStepsInHundredthsOfAPixel) {
+  Wall wall;
+  wall.name = "w";
+  wall.boundary = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  // k = min(1000 / 2, 700 / 1) = 500 px/m, x -> 24 + 500 x, y -> 44 + 500 (1 - y).
+  Path path;
+  path.waypoints = {{0.2, 0.5}, {1.8, 0.5}, {1.8, 0.7}, {1.20002, 0.61}, {0.2, 0.5}};
+  path.tool_on = {true, true, true, false};
+  const std::string svg = pathPicture(wall, ToolParams{0.1, 0.02}, VehicleModel{}, path, "t", false);
+  // The wall: (24, 544) then level, plumb, level steps and a close.
+  EXPECT_NE(svg.find("<path d=\"M24,544h1000v-500h-1000z\""), std::string::npos) << svg;
+  // Painted: (124, 294), 800 px right, 100 px up, then to (624.01, 239) as -299.99, +45.
+  EXPECT_NE(svg.find("<g id=\"paint\">\n<path d=\"M124,294h800v-100l-299.99,45\"/>"), std::string::npos) << svg;
+  // The tool-off run starts where painting ended and steps -500.01 px, +55 px.
+  EXPECT_NE(svg.find("<path d=\"M624.01,239l-500.01,55\"/>"), std::string::npos) << svg;
+
+  // Every 64th point is absolute: 70 points 1 cm apart, i.e. 5 px steps from (124, 294).
+  Path row;
+  for (int i = 0; i < 70; ++i) row.moveTo({0.2 + 0.01 * i, 0.5}, true);
+  const std::string long_run = pathPicture(wall, ToolParams{0.1, 0.02}, VehicleModel{}, row, "t", false);
+  std::string expected = "<path d=\"M124,294";
+  for (int i = 1; i < 70; ++i) expected += i == 64 ? "L444,294" : "h5";
+  EXPECT_NE(long_run.find(expected + "\"/>"), std::string::npos) << long_run;
+}
+
 }  // namespace
 }  // namespace coverbench
 

@@ -28,6 +28,67 @@ std::string fmt(double v) {
   return buf;
 }
 
+/// SVG path data written compactly and without loss against absolute coordinates at 0.01 px: the
+/// first point and every 64th absolute, every other one as the step from the point before in
+/// hundredths of a pixel, `h`/`v` where a step is level or plumb (the overlap layer's strips are
+/// all such steps).
+class PathData {
+ public:
+  void moveTo(double px, double py) { step(px, py, 'M'); start_x_ = x_; start_y_ = y_; }
+  void lineTo(double px, double py) { step(px, py, 'L'); }
+  void close() {
+    d_ += 'z';
+    x_ = start_x_;  // after a close the current point is the subpath's start
+    y_ = start_y_;
+  }
+  const std::string& str() const { return d_; }
+
+ private:
+  /// n hundredths as the shortest decimal: 147 -> "1.47", -20 -> "-.2", 300 -> "3".
+  static std::string hundredths(long long n) {
+    const long long a = std::llabs(n), whole = a / 100, frac = a % 100;
+    char buf[32];
+    int len = std::snprintf(buf, sizeof buf, "%s%lld", n < 0 ? "-" : "", whole);
+    if (frac != 0) {
+      if (whole == 0) --len;  // "-.2", not "-0.2"
+      len += std::snprintf(buf + len, sizeof buf - static_cast<std::size_t>(len), frac % 10 == 0 ? ".%lld" : ".%02lld",
+                           frac % 10 == 0 ? frac / 10 : frac);
+    }
+    return std::string(buf, static_cast<std::size_t>(len));
+  }
+  /// Appends a command and its numbers; a number follows the one before directly when its minus
+  /// sign separates them.
+  void emit(char cmd, long long a) {
+    d_ += cmd;
+    d_ += hundredths(a);
+  }
+  void emit(char cmd, long long a, long long b) {
+    emit(cmd, a);
+    const std::string sb = hundredths(b);
+    if (sb[0] != '-') d_ += ',';
+    d_ += sb;
+  }
+  void step(double px, double py, char cmd) {
+    const long long x = std::llround(px * 100.0), y = std::llround(py * 100.0);
+    // Absolute now and then, so that a renderer's float sums of the steps never drift far.
+    if (d_.empty() || ++steps_ % kAbsoluteEvery == 0)
+      emit(cmd, x, y);
+    else if (cmd == 'M')
+      emit('m', x - x_, y - y_);
+    else if (y == y_)
+      emit('h', x - x_);
+    else if (x == x_)
+      emit('v', y - y_);
+    else
+      emit('l', x - x_, y - y_);
+    x_ = x;
+    y_ = y;
+  }
+  static constexpr long long kAbsoluteEvery = 64;
+  std::string d_;
+  long long x_ = 0, y_ = 0, start_x_ = 0, start_y_ = 0, steps_ = 0;
+};
+
 /// Maps wall metres to picture pixels (y up in the wall, down in SVG).
 struct View {
   Box box;
@@ -36,10 +97,24 @@ struct View {
   double px(double x) const { return kPadPx + (x - box.min_x) * k; }
   double py(double y) const { return top + (box.max_y - y) * k; }
   std::string pt(Point p) const { return fmt(px(p.x)) + "," + fmt(py(p.y)); }
-  std::string ringPath(const Ring& ring) const {
-    std::string d;
-    for (std::size_t i = 0; i < ring.size(); ++i) d += (i == 0 ? "M" : "L") + pt(ring[i]);
-    return d + "Z";
+  void moveTo(PathData& d, Point p) const { d.moveTo(px(p.x), py(p.y)); }
+  void lineTo(PathData& d, Point p) const { d.lineTo(px(p.x), py(p.y)); }
+  void ring(PathData& d, const Ring& r) const {
+    for (std::size_t i = 0; i < r.size(); ++i) (i == 0 ? moveTo(d, r[i]) : lineTo(d, r[i]));
+    if (!r.empty()) d.close();
+  }
+  std::string ringPath(const Ring& r) const {
+    PathData d;
+    ring(d, r);
+    return d.str();
+  }
+  std::string regionPath(const std::vector<PolygonWithHoles>& polys) const {
+    PathData d;
+    for (const PolygonWithHoles& poly : polys) {
+      ring(d, poly.outer);
+      for (const Ring& hole : poly.holes) ring(d, hole);
+    }
+    return d.str();
   }
 };
 
@@ -83,21 +158,11 @@ std::string renderSvg(const SvgContent& c) {
     << "\" fill=\"#f3efe6\" stroke=\"#333333\" stroke-width=\"1.5\"/>\n";
   const double draw_tolerance = kRegionDrawTolerancePx / v.k;  // metres
   if (c.free) {
-    std::string d;
-    for (const PolygonWithHoles& poly : simplifyRegion(*c.free, draw_tolerance)) {
-      d += v.ringPath(poly.outer);
-      for (const Ring& hole : poly.holes) d += v.ringPath(hole);
-    }
-    s << "<path d=\"" << d << "\" fill=\"#cfe8cf\" fill-rule=\"evenodd\" stroke=\"#7fb27f\" stroke-width=\"0.8\"/>\n";
+    s << "<path d=\"" << v.regionPath(simplifyRegion(*c.free, draw_tolerance)) << "\" fill=\"#cfe8cf\" fill-rule=\"evenodd\" stroke=\"#7fb27f\" stroke-width=\"0.8\"/>\n";
   }
   auto region = [&](const Region* r, const char* fill, const char* opacity) {
     if (!r || r->empty()) return;
-    std::string d;
-    for (const PolygonWithHoles& poly : simplifyRegion(*r, draw_tolerance)) {
-      d += v.ringPath(poly.outer);
-      for (const Ring& hole : poly.holes) d += v.ringPath(hole);
-    }
-    s << "<path d=\"" << d << "\" fill=\"" << fill << "\" fill-opacity=\"" << opacity
+    s << "<path d=\"" << v.regionPath(simplifyRegion(*r, draw_tolerance)) << "\" fill=\"" << fill << "\" fill-opacity=\"" << opacity
       << "\" fill-rule=\"evenodd\" stroke=\"none\"/>\n";
   };
   // Obstacles may reach beyond the wall: draw them clipped to the wall's bounding box.
@@ -124,25 +189,29 @@ std::string renderSvg(const SvgContent& c) {
   s << "</g>\n";
   if (c.path && !c.path->waypoints.empty()) {
     const Path& path = *c.path;
-    // Runs of consecutive segments with the same tool state become one polyline each.
+    // Runs of consecutive segments with the same tool state become one path element each (each
+    // run's translucent swath is its own, so where runs cross the swaths darken).
     std::string on_runs, off_runs;
-    // The points that draw segment j after its first: its end, and along an arc (a car's) chords
-    // within 1 mm of it.
-    auto segmentPoints = [&](std::size_t j) {
-      std::string out;
-      if (path.bulgeOf(j) == 0.0) return " " + v.pt(path.waypoints[j + 1]);
-      Path arc;
-      arc.moveTo(path.waypoints[j], true);
-      arc.arcTo(path.waypoints[j + 1], path.bulgeOf(j), true);
-      const Path chords = chordalPath(arc, 1e-3);
-      for (std::size_t k = 1; k < chords.waypoints.size(); ++k) out += " " + v.pt(chords.waypoints[k]);
-      return out;
-    };
     for (std::size_t i = 0; i < path.tool_on.size();) {
+      PathData d;
+      v.moveTo(d, path.waypoints[i]);
       std::size_t j = i;
-      std::string pts = v.pt(path.waypoints[i]);
-      while (j < path.tool_on.size() && path.tool_on[j] == path.tool_on[i]) pts += segmentPoints(j++);
-      (path.tool_on[i] ? on_runs : off_runs) += "<polyline points=\"" + pts + "\"/>\n";
+      for (; j < path.tool_on.size() && path.tool_on[j] == path.tool_on[i]; ++j) {
+        if (path.bulgeOf(j) == 0.0) {
+          v.lineTo(d, path.waypoints[j + 1]);
+          continue;
+        }
+        // An arc (a car's, a boundary's) is drawn as chords within 1 mm of it.
+        Path arc;
+        arc.moveTo(path.waypoints[j], true);
+        arc.arcTo(path.waypoints[j + 1], path.bulgeOf(j), true);
+        const Path chords = chordalPath(arc, 1e-3);
+        for (std::size_t k = 1; k < chords.waypoints.size(); ++k) v.lineTo(d, chords.waypoints[k]);
+      }
+      std::string& runs = path.tool_on[i] ? on_runs : off_runs;
+      runs += "<path d=\"";
+      runs += d.str();
+      runs += "\"/>\n";
       i = j;
     }
     // The painted runs are written once and drawn twice (the tool's swath, then its centre line).
