@@ -188,6 +188,18 @@ TEST(Car, DurationSlowsOnTightArcsAndStopsAtCusps) {
   EXPECT_NEAR(motion(cusp, limits, car(0.5, true)).duration_s, run(1.0) + run(0.5), 1e-12);
 }
 
+TEST(Car, TheTimelineSlowsOnTheArcAndEndsAtTheDuration) {
+  const MotionLimits limits;
+  const Path p = leftTurn(0.1);
+  const Timeline t = timeline(p, limits, car(0.1));
+  EXPECT_NEAR(t.end_s, motion(p, limits, car(0.1)).duration_s, 1e-12);
+  for (std::size_t i = 0; i + 1 < t.arrive_s.size(); ++i) EXPECT_LT(t.arrive_s[i], t.arrive_s[i + 1]);
+  // Along the arc at most sqrt(a R): it takes at least its length over that speed.
+  for (std::size_t i = 0; i < p.segments(); ++i)
+    if (p.bulgeOf(i) != 0.0)
+      EXPECT_GE(t.arrive_s[i + 1] - t.arrive_s[i], segmentLength(p, i) / std::sqrt(limits.acceleration * 0.1) - 1e-12);
+}
+
 TEST(Arcs, CoverageMeasuresTheBandAlongTheArc) {
   // A half circle of radius 1 painted with s = 0.1: the band is half an annulus, pi (1.05^2 - 0.95^2) / 2,
   // plus two half disks at the ends, pi 0.05^2.

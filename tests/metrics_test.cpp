@@ -410,6 +410,30 @@ TEST(TimeModels, TheVelocityRampByHandOnThreeSegments) {
   EXPECT_FALSE(motion(p, eth).turn_cost_s.has_value());  // no cost per turn set: no such metric
 }
 
+// The same three segments, scheduled: when the tool reaches each waypoint.
+TEST(TimeModels, TheTimelineByHandOnThreeSegments) {
+  const Path p = makePath({0, 0}, {{{4, 0}, true}, {{13, 0}, true}, {{29, 0}, true}});
+  MotionLimits eth;
+  eth.speed = 3.0;
+  eth.acceleration = 1.0;
+  eth.stops = MotionLimits::Stops::Waypoints;
+  Timeline t = timeline(p, eth);
+  ASSERT_EQ(t.arrive_s.size(), 4u);
+  EXPECT_NEAR(t.arrive_s[1], 4.0, 1e-12);
+  EXPECT_NEAR(t.arrive_s[2], 4.0 + 6.0, 1e-12);
+  EXPECT_NEAR(t.arrive_s[3], 10.0 + 16.0 / 3.0 + 3.0, 1e-12);
+  EXPECT_EQ(t.end_s, t.arrive_s[3]);
+  EXPECT_EQ(t.wait_s, (std::vector<double>{0, 0, 0}));
+  // One run of 29 m: 4 m accelerating from rest (sqrt(2 * 4 / a) = 2 sqrt 2 s, reaching 2 sqrt 2
+  // m/s); on to v = 3 m/s in 3 - 2 sqrt 2 s over 0.5 m and 8.5 m at v; 11.5 m at v and 3 s braking.
+  eth.stops = MotionLimits::Stops::Turns;
+  t = timeline(p, eth);
+  EXPECT_NEAR(t.arrive_s[1], 2.0 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(t.arrive_s[2], 3.0 + 8.5 / 3.0, 1e-12);
+  EXPECT_NEAR(t.arrive_s[3], 3.0 + 8.5 / 3.0 + 11.5 / 3.0 + 3.0, 1e-12);
+  EXPECT_NEAR(t.end_s, motion(p, eth).duration_s, 1e-12);
+}
+
 TEST(TimeModels, StopAngleAndTurnCost) {
   // Heading changes of 20 and 90 degrees: at a stop angle of 30 only the second stops; at 10 both.
   const Point bend{4 + 5 * std::cos(20 * M_PI / 180), 5 * std::sin(20 * M_PI / 180)};

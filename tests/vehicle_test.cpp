@@ -114,6 +114,21 @@ TEST(Gantry, DurationStopsAtEveryLiftAndAddsItsTimes) {
   EXPECT_NEAR(motion(p, MotionLimits{}, gantry(0.0, 0.0)).duration_s, 11.8, 1e-12);
 }
 
+TEST(Gantry, TheTimelineWaitsWhereTheToolIsLoweredAndLifted) {
+  const Path p = path({0, 0}, {{{1, 0}, true}, {{2, 0}, false}, {{3, 0}, true}});
+  const Timeline t = timeline(p, MotionLimits{}, gantry(2.0, 1.0));  // lift 2 s, lower 1 s
+  // Lowered before each painted run, lifted before the move after it and at the end; every 1 m
+  // run takes 1 / 0.3 + 0.6 s.
+  const double run = 1.0 / 0.3 + 0.6;
+  EXPECT_EQ(t.wait_s, (std::vector<double>{1.0, 2.0, 1.0}));
+  ASSERT_EQ(t.arrive_s.size(), 4u);
+  EXPECT_NEAR(t.arrive_s[1], 1.0 + run, 1e-12);
+  EXPECT_NEAR(t.arrive_s[2], 1.0 + run + 2.0 + run, 1e-12);
+  EXPECT_NEAR(t.arrive_s[3], 1.0 + run + 2.0 + run + 1.0 + run, 1e-12);
+  EXPECT_NEAR(t.end_s, t.arrive_s[3] + 2.0, 1e-12);
+  EXPECT_NEAR(t.end_s, motion(p, MotionLimits{}, gantry(2.0, 1.0)).duration_s, 1e-12);
+}
+
 TEST(Gantry, ThePathBuilderCrossesStraightWithTheToolLifted) {
   const Point a{1.0, 1.0}, b{3.0, 1.0};  // either side of the window
   Workspace dragged_ws(kWindowWall, kTool);

@@ -1,5 +1,6 @@
 // Turns and duration under a time model.
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 #include <utility>
@@ -35,23 +36,108 @@ double runTime(double length, const MotionLimits& m) {
 /// braking at a, never faster than a piece's cap (the time-optimal profile: the speed at each
 /// junction is the largest both neighbours allow and braking distance permits, found forward
 /// then backward; within a piece it rises to min(cap, what the two ends allow) and falls).
-double profileTime(const std::vector<std::pair<double, double>>& pieces, const MotionLimits& m) {
+std::vector<double> profileTimes(const std::vector<std::pair<double, double>>& pieces, const MotionLimits& m) {
   const double a = m.acceleration;
   const std::size_t n = pieces.size();
-  if (n == 0) return 0.0;
+  std::vector<double> times(n, 0.0);
+  if (n == 0) return times;
   std::vector<double> u(n + 1, 0.0);  // speed at junction k (before piece k)
   for (std::size_t k = 1; k < n; ++k)
     u[k] = std::fmin(std::fmin(pieces[k - 1].second, pieces[k].second), std::sqrt(u[k - 1] * u[k - 1] + 2.0 * a * pieces[k - 1].first));
   for (std::size_t k = n - 1; k >= 1; --k) u[k] = std::fmin(u[k], std::sqrt(u[k + 1] * u[k + 1] + 2.0 * a * pieces[k].first));
-  double t = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     const double len = pieces[k].first, cap = pieces[k].second, v0 = u[k], v1 = u[k + 1];
     if (len <= 0.0) continue;
     const double peak = std::fmin(cap, std::sqrt((2.0 * a * len + v0 * v0 + v1 * v1) / 2.0));
     const double accel = (peak * peak - v0 * v0) / (2.0 * a), brake = (peak * peak - v1 * v1) / (2.0 * a);
-    t += (peak - v0) / a + (peak - v1) / a + std::fmax(0.0, len - accel - brake) / peak;
+    times[k] = (peak - v0) / a + (peak - v1) / a + std::fmax(0.0, len - accel - brake) / peak;
   }
+  return times;
+}
+
+double profileTime(const std::vector<std::pair<double, double>>& pieces, const MotionLimits& m) {
+  double t = 0.0;
+  for (double piece : profileTimes(pieces, m)) t += piece;
   return t;
+}
+
+/// What the time model makes of each segment, for the timeline: the run it is driven in (runs go
+/// from standstill to standstill), its piece (length, speed cap) and the wait before it.
+struct Trace {
+  std::vector<std::size_t> run;
+  std::vector<std::pair<double, double>> piece;
+  std::vector<double> wait_s;
+  double final_wait_s = 0.0;
+};
+
+Motion analyse(const Path& path, const MotionLimits& limits, const VehicleModel& vehicle, Trace* trace) {
+  Motion m;
+  double run = 0.0;
+  // With arcs (a car's path), a run is pieces of (length, speed cap): sqrt(a R) on an arc of
+  // radius R. Paths without arcs keep the single-number run (and their durations to the bit).
+  const bool arcs = path.hasArcs();
+  std::vector<std::pair<double, double>> pieces;
+  std::size_t run_index = 0;
+  auto endRun = [&] {
+    m.duration_s += arcs ? profileTime(pieces, limits) : runTime(run, limits);
+    run = 0.0;
+    pieces.clear();
+    ++run_index;
+  };
+  if (trace) {
+    trace->run.assign(path.segments(), 0);
+    trace->piece.assign(path.segments(), {0.0, limits.speed});
+    trace->wait_s.assign(path.segments(), 0.0);
+  }
+  bool have_heading = false;
+  double heading = 0.0;
+  const bool lifts = vehicle.liftsTool();
+  const bool stop_everywhere = limits.stops == MotionLimits::Stops::Waypoints;
+  const double stop_threshold = limits.stop_angle_deg * M_PI / 180.0 + kAngleTie;
+  for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
+    // A gantry stops to lower its tool before each run of tool-on segments and to lift it after.
+    if (lifts && path.tool_on[i] && (i == 0 || !path.tool_on[i - 1])) {
+      ++m.lifts;
+      m.duration_s += vehicle.lower_s + vehicle.lift_s;
+      if (trace) trace->wait_s[i] += vehicle.lower_s;
+    }
+    if (lifts && trace && !path.tool_on[i] && i > 0 && path.tool_on[i - 1]) trace->wait_s[i] += vehicle.lift_s;
+    if (lifts && i > 0 && path.tool_on[i] != path.tool_on[i - 1]) endRun();
+    if (trace) trace->run[i] = run_index;
+    const Point d = path.waypoints[i + 1] - path.waypoints[i];
+    const double len = norm(d);
+    if (len == 0.0) continue;  // zero-length segments have no heading
+    const double h = std::atan2(d.y, d.x);
+    // An arc starts turned back by half its sweep from its chord and ends turned on by as much.
+    const double bulge = arcs ? path.bulge[i] : 0.0;
+    const double half = bulge == 0.0 ? 0.0 : 2.0 * std::atan(bulge);
+    if (have_heading) {
+      const double change = std::fabs(std::remainder(h - half - heading, 2.0 * M_PI));
+      m.turning_angle += change;
+      if (change > kTurnThreshold) ++m.turns;
+      if (change > kThirtyDegrees) ++m.turns_30;
+      if (stop_everywhere || change > stop_threshold) {
+        endRun();
+        if (trace) trace->run[i] = run_index;
+      }
+    }
+    heading = h + half;
+    have_heading = true;
+    if (bulge == 0.0) {
+      run += len;
+      if (arcs) pieces.emplace_back(len, limits.speed);
+      if (trace) trace->piece[i] = {len, limits.speed};
+    } else {
+      const ArcGeometry g = arcGeometry(path.waypoints[i], path.waypoints[i + 1], bulge);
+      m.turning_angle += std::fabs(g.sweep);
+      pieces.emplace_back(g.radius * std::fabs(g.sweep), std::fmin(limits.speed, std::sqrt(limits.acceleration * g.radius)));
+      if (trace) trace->piece[i] = pieces.back();
+    }
+  }
+  endRun();
+  if (trace && lifts && !path.tool_on.empty() && path.tool_on.back()) trace->final_wait_s = vehicle.lift_s;
+  if (limits.turn_cost_s > 0.0) m.turn_cost_s = static_cast<double>(m.turns) * limits.turn_cost_s;
+  return m;
 }
 
 }  // namespace
@@ -76,57 +162,28 @@ void MotionLimits::check() const {
 }
 
 Motion motion(const Path& path, const MotionLimits& limits, const VehicleModel& vehicle) {
-  Motion m;
-  double run = 0.0;
-  // With arcs (a car's path), a run is pieces of (length, speed cap): sqrt(a R) on an arc of
-  // radius R. Paths without arcs keep the single-number run (and their durations to the bit).
-  const bool arcs = path.hasArcs();
-  std::vector<std::pair<double, double>> pieces;
-  auto endRun = [&] {
-    m.duration_s += arcs ? profileTime(pieces, limits) : runTime(run, limits);
-    run = 0.0;
-    pieces.clear();
-  };
-  bool have_heading = false;
-  double heading = 0.0;
-  const bool lifts = vehicle.liftsTool();
-  const bool stop_everywhere = limits.stops == MotionLimits::Stops::Waypoints;
-  const double stop_threshold = limits.stop_angle_deg * M_PI / 180.0 + kAngleTie;
-  for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
-    // A gantry stops to lower its tool before each run of tool-on segments and to lift it after.
-    if (lifts && path.tool_on[i] && (i == 0 || !path.tool_on[i - 1])) {
-      ++m.lifts;
-      m.duration_s += vehicle.lower_s + vehicle.lift_s;
-    }
-    if (lifts && i > 0 && path.tool_on[i] != path.tool_on[i - 1]) endRun();
-    const Point d = path.waypoints[i + 1] - path.waypoints[i];
-    const double len = norm(d);
-    if (len == 0.0) continue;  // zero-length segments have no heading
-    const double h = std::atan2(d.y, d.x);
-    // An arc starts turned back by half its sweep from its chord and ends turned on by as much.
-    const double bulge = arcs ? path.bulge[i] : 0.0;
-    const double half = bulge == 0.0 ? 0.0 : 2.0 * std::atan(bulge);
-    if (have_heading) {
-      const double change = std::fabs(std::remainder(h - half - heading, 2.0 * M_PI));
-      m.turning_angle += change;
-      if (change > kTurnThreshold) ++m.turns;
-      if (change > kThirtyDegrees) ++m.turns_30;
-      if (stop_everywhere || change > stop_threshold) endRun();
-    }
-    heading = h + half;
-    have_heading = true;
-    if (bulge == 0.0) {
-      run += len;
-      if (arcs) pieces.emplace_back(len, limits.speed);
-    } else {
-      const ArcGeometry g = arcGeometry(path.waypoints[i], path.waypoints[i + 1], bulge);
-      m.turning_angle += std::fabs(g.sweep);
-      pieces.emplace_back(g.radius * std::fabs(g.sweep), std::fmin(limits.speed, std::sqrt(limits.acceleration * g.radius)));
-    }
+  return analyse(path, limits, vehicle, nullptr);
+}
+
+Timeline timeline(const Path& path, const MotionLimits& limits, const VehicleModel& vehicle) {
+  Trace trace;
+  analyse(path, limits, vehicle, &trace);
+  Timeline t;
+  t.wait_s = trace.wait_s;
+  t.arrive_s.assign(path.waypoints.size(), 0.0);
+  std::vector<double> segment_s(path.segments(), 0.0);
+  for (std::size_t first = 0; first < path.segments();) {  // each run's pieces, profiled together
+    std::size_t last = first;
+    while (last < path.segments() && trace.run[last] == trace.run[first]) ++last;
+    const std::vector<std::pair<double, double>> pieces(trace.piece.begin() + static_cast<std::ptrdiff_t>(first),
+                                                        trace.piece.begin() + static_cast<std::ptrdiff_t>(last));
+    const std::vector<double> times = profileTimes(pieces, limits);
+    std::copy(times.begin(), times.end(), segment_s.begin() + static_cast<std::ptrdiff_t>(first));
+    first = last;
   }
-  endRun();
-  if (limits.turn_cost_s > 0.0) m.turn_cost_s = static_cast<double>(m.turns) * limits.turn_cost_s;
-  return m;
+  for (std::size_t i = 0; i < path.segments(); ++i) t.arrive_s[i + 1] = t.arrive_s[i] + t.wait_s[i] + segment_s[i];
+  t.end_s = (path.waypoints.empty() ? 0.0 : t.arrive_s.back()) + trace.final_wait_s;
+  return t;
 }
 
 }  // namespace coverbench

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "coverbench/path.hpp"
 
@@ -47,6 +48,16 @@ struct Motion {
 };
 
 Motion motion(const Path& path, const MotionLimits& limits = {}, const VehicleModel& vehicle = {});
+
+/// When the time model has the tool where: the schedule a playback follows. Every run (standstill
+/// to standstill) is profiled as pieces, one per segment, so the time of a run of straight
+/// segments agrees with duration_s to rounding, not to the bit.
+struct Timeline {
+  std::vector<double> arrive_s;  ///< per waypoint: when the tool reaches it (the first: 0)
+  std::vector<double> wait_s;    ///< per segment: the wait at its start (a gantry lowering or lifting its tool)
+  double end_s = 0.0;            ///< when the path is done (after a gantry's last lift): duration_s
+};
+Timeline timeline(const Path& path, const MotionLimits& limits = {}, const VehicleModel& vehicle = {});
 
 /// The time to drive a straight run of `length` from standstill to standstill: length / v + v / a,
 /// or 2 sqrt(length / a) when length < v^2 / a.
