@@ -217,7 +217,7 @@ TEST_F(Isolation, AToolSweepGivesOneGroupPerTool) {
   // The report data keeps the columns apart; reports/python/tests checks that the analysis never
   // compares or ranks across tools.
   const std::string data = reportDataJson(rs, ResultsDb(s.database, ResultsDb::Mode::ReadOnly).record(), {});
-  EXPECT_NE(data.find("\"column\": \"spiral @ s=0.05 m, c=0.02 m\""), std::string::npos);
+  EXPECT_NE(data.find("\"column\":\"spiral @ s=0.05 m, c=0.02 m\""), std::string::npos);
 }
 
 // A run's memory is its own peak, whatever ran before it in the same worker: one worker runs a

@@ -213,7 +213,7 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
     }
     j["gallery"].push_back(section);
   }
-  return j.dump(1) + "\n";
+  return j.dump() + "\n";  // compact: it is most of a report folder's text
 }
 
 }  // namespace coverbench
