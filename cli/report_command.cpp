@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "coverbench/experiment.hpp"
 #include "coverbench/files.hpp"
 #include "coverbench/report_data.hpp"
 #include "coverbench/results_db.hpp"
@@ -114,8 +115,9 @@ void checkReportTarget(const fs::path& target) {
   throw InputError(target.string(), "--out", "is a folder that is not a CoverBench report: choose a new or empty folder");
 }
 
-/// Draws every gallery picture into `folder`/gallery, two at a time, and sets their file names.
-void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::path& folder) {
+/// Draws every gallery picture into `folder`/gallery, two at a time, with the data that plays its
+/// path back under the experiment's time model, and sets their file names.
+void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::path& folder, const MotionLimits& motion) {
   std::vector<GalleryPicture*> pictures;
   std::vector<std::string> names;
   for (GallerySection& s : gallery)
@@ -129,7 +131,7 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
   runs.reserve(pictures.size());
   for (GalleryPicture* p : pictures) runs.push_back(db.storedRun(p->key));
   fs::create_directories(folder / "gallery");
-  std::vector<std::string> svgs(pictures.size());
+  std::vector<std::string> svgs(pictures.size()), scripts(pictures.size());
   std::atomic<std::size_t> next{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
@@ -144,6 +146,8 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
           pictures[i]->note = std::to_string(r.path.waypoints.size()) + " waypoints: coverage layer and failed segments " +
                               "left out (over " + std::to_string(kGalleryCoverageWaypoints) + "; `coverbench redraw` draws them)";
         svgs[i] = pathPicture(r.wall, r.tool, r.vehicle, r.path, title, layer, kGalleryOverlapStrips);
+        if (r.path.segments() > 0)
+          scripts[i] = playbackScript("gallery/" + stems[i] + ".js", r.wall, r.tool, r.vehicle, r.path, motion);
       } catch (...) {
         std::lock_guard<std::mutex> lock(failure_mutex);
         failure = std::current_exception();
@@ -155,12 +159,18 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
   for (unsigned t = 0; t < n; ++t) threads.emplace_back(work);
   for (std::thread& t : threads) t.join();
   if (failure) std::rethrow_exception(failure);
+  auto write = [&](const std::string& file, const std::string& text) {
+    std::ofstream out(folder / file, std::ios::binary);
+    out << text;
+    out.flush();  // a full disk shows here, with its reason in errno
+    if (!out) throw InputError((folder / file).string(), "gallery", std::string("cannot be written: ") + std::strerror(errno));
+  };
   for (std::size_t i = 0; i < pictures.size(); ++i) {
     pictures[i]->file = "gallery/" + stems[i] + ".svg";
-    std::ofstream out(folder / pictures[i]->file, std::ios::binary);
-    out << svgs[i];
-    out.flush();  // a full disk shows here, with its reason in errno
-    if (!out) throw InputError((folder / pictures[i]->file).string(), "gallery", std::string("cannot be written: ") + std::strerror(errno));
+    write(pictures[i]->file, svgs[i]);
+    if (scripts[i].empty()) continue;
+    pictures[i]->playback = "gallery/" + stems[i] + ".js";
+    write(pictures[i]->playback, scripts[i]);
   }
 }
 
@@ -238,7 +248,7 @@ std::string writeReport(const ReportOptions& o) {
     if (std::find(datasets.begin(), datasets.end(), d.label) == datasets.end()) datasets.push_back(d.label);
   std::vector<GallerySection> gallery = selectGallery(results, datasets);
   Staging staging(target);
-  drawGallery(db, gallery, staging.path());
+  drawGallery(db, gallery, staging.path(), configMotion(record.config_text, record.config_path));
   const fs::path data = staging.path() / "report_data.json";
   {
     std::ofstream out(data, std::ios::binary);

@@ -2,6 +2,7 @@
 // engine, the docs and the database; the gallery's choice of walls; pictures that show a path's
 // failures.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 #include <set>
@@ -155,6 +156,66 @@ TEST(Pictures, PathDataIsTheFirstPointAbsoluteThenStepsInHundredthsOfAPixel) {
   std::string expected = "<path d=\"M124,294";
   for (int i = 1; i < 70; ++i) expected += i == 64 ? "L444,294" : "h5";
   EXPECT_NE(long_run.find(expected + "\"/>"), std::string::npos) << long_run;
+}
+
+/// The player's varints read back (zigzag, 5 bits a character, lowest first, 32 added: more follow).
+std::vector<long long> readVarints(const std::string& text) {
+  static const std::string digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_";
+  std::vector<long long> out;
+  unsigned long long z = 0;
+  int shift = 0;
+  for (char ch : text) {
+    const auto c = static_cast<unsigned long long>(digits.find(ch));
+    z |= (c & 31u) << shift;
+    shift += 5;
+    if (c & 32u) continue;
+    out.push_back(z % 2 ? -static_cast<long long>((z + 1) / 2) : static_cast<long long>(z / 2));
+    z = 0;
+    shift = 0;
+  }
+  return out;
+}
+
+TEST(Pictures, PlaybackDataByHand) {
+  Wall wall;
+  wall.name = "w";
+  wall.boundary = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  // x -> 24 + 500 x, y -> 44 + 500 (1 - y) px, as in the picture; 1 m at v = 1 m/s, a = 1 m/s^2
+  // takes 2 s (1 / v + v / a), stopping at the right-angle turn.
+  Path path;
+  path.waypoints = {{0.2, 0.5}, {1.2, 0.5}, {1.2, 0.3}, {0.2, 0.3}};
+  path.tool_on = {true, false, true};
+  MotionLimits limits;
+  limits.speed = 1.0;
+  limits.acceleration = 1.0;
+  const std::string js = playbackScript("gallery/a.js", wall, ToolParams{0.1, 0.02}, VehicleModel{}, path, limits);
+  ASSERT_EQ(js.rfind("coverbenchPlayback(", 0), 0u);
+  const auto d = nlohmann::json::parse(js.substr(19, js.size() - 19 - 3));
+  EXPECT_EQ(d["id"], "gallery/a.js");
+  EXPECT_EQ(d["size"], nlohmann::json::array({1048.0, 44 + 500 + 24 + 82}));
+  EXPECT_DOUBLE_EQ(d["tool_px"].get<double>(), 50.0);
+  EXPECT_EQ(d["on"], "101");
+  // Tenths of a pixel: (124, 294), (624, 294), (624, 394), (124, 394), as steps.
+  EXPECT_EQ(readVarints(d["x"]), (std::vector<long long>{1240, 5000, 0, -5000}));
+  EXPECT_EQ(readVarints(d["y"]), (std::vector<long long>{2940, 0, 1000, 0}));
+  // Hundredths of a second: 1 m in 2 s; 0.2 m (under v^2 / a) in 2 sqrt(0.2) = 0.894 s; 1 m in 2 s.
+  EXPECT_EQ(readVarints(d["t"]), (std::vector<long long>{0, 200, 89, 200}));
+  EXPECT_EQ(d["end_cs"], 489);
+  EXPECT_EQ(d["waits"], nlohmann::json::array());
+  EXPECT_EQ(d["model"], limits.describe());
+  // Negative steps of every size read back.
+  Path zig;
+  for (int i = 0; i < 40; ++i) zig.moveTo({0.1 + 0.045 * i, i % 2 ? 0.1 : 0.9 - 0.02 * i}, true);
+  const auto z = nlohmann::json::parse(
+      [&] { const std::string s = playbackScript("z", wall, ToolParams{0.1, 0.02}, VehicleModel{}, zig, limits); return s.substr(19, s.size() - 22); }());
+  long long y = 0;
+  std::size_t i = 0;
+  for (long long step : readVarints(z["y"])) {
+    y += step;
+    EXPECT_EQ(y, std::llround((44 + 500 * (1 - zig.waypoints[i].y)) * 10)) << i;
+    ++i;
+  }
+  EXPECT_EQ(i, zig.waypoints.size());
 }
 
 }  // namespace

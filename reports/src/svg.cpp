@@ -4,6 +4,9 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/free_region.hpp"
+#include "coverbench/motion.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -127,15 +130,13 @@ double niceLength(double span) {
   return p;
 }
 
-}  // namespace
-
-std::string renderSvg(const SvgContent& c) {
-  const Wall& wall = *c.wall;
+/// The picture's frame: the wall's box, grown to hold every waypoint (a path that leaves the wall
+/// stays in the picture), scaled to the picture's size.
+View pictureView(const Wall& wall, const Path* path) {
   View v;
   v.box = boundingBox(wall.boundary);
-  const Box wall_box = v.box;
-  if (c.path)  // a path that leaves the wall stays in the picture
-    for (const Point& p : c.path->waypoints) {
+  if (path)
+    for (const Point& p : path->waypoints) {
       if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
       v.box.min_x = std::min(v.box.min_x, p.x);
       v.box.max_x = std::max(v.box.max_x, p.x);
@@ -144,8 +145,38 @@ std::string renderSvg(const SvgContent& c) {
     }
   v.k = std::min(kMaxWidthPx / v.box.width(), kMaxHeightPx / v.box.height());
   v.top = kPadPx + 20.0;
-  const double w_px = std::max(v.box.width() * v.k + 2 * kPadPx, 740.0);  // room for the legend
-  const double h_px = v.top + v.box.height() * v.k + kPadPx + kLegendPx;
+  return v;
+}
+
+/// Integers as text, each zigzag-mapped (0, -1, 1, -2, ... to 0, 1, 2, 3, ...) and written in
+/// groups of 5 bits, lowest first, one character each from A-Z a-z 0-9 - _: a group's character
+/// has 32 added when more groups follow. About half the size of decimal JSON.
+std::string varints(const std::vector<long long>& values) {
+  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_";
+  std::string out;
+  for (const long long value : values) {
+    unsigned long long z = value >= 0 ? static_cast<unsigned long long>(value) << 1
+                                      : (static_cast<unsigned long long>(-(value + 1)) << 1) | 1u;
+    do {
+      const unsigned group = static_cast<unsigned>(z & 31u);
+      z >>= 5;
+      out += kDigits[z != 0 ? group | 32u : group];
+    } while (z != 0);
+  }
+  return out;
+}
+
+double pictureWidth(const View& v) { return std::max(v.box.width() * v.k + 2 * kPadPx, 740.0); }  // room for the legend
+double pictureHeight(const View& v) { return v.top + v.box.height() * v.k + kPadPx + kLegendPx; }
+
+}  // namespace
+
+std::string renderSvg(const SvgContent& c) {
+  const Wall& wall = *c.wall;
+  const View v = pictureView(wall, c.path);
+  const Box wall_box = boundingBox(wall.boundary);
+  const double w_px = pictureWidth(v);
+  const double h_px = pictureHeight(v);
   const double tool_px = c.tool.tool_width * v.k;
 
   std::ostringstream s;
@@ -301,6 +332,46 @@ std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleM
   content.uncovered = &uncovered;
   content.overlap = &overlap;
   return renderSvg(content);
+}
+
+std::string playbackScript(const std::string& id, const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle,
+                           const Path& path, const MotionLimits& limits) {
+  const View v = pictureView(wall, &path);
+  const Timeline timeline = coverbench::timeline(path, limits, vehicle);
+  nlohmann::ordered_json d;
+  d["id"] = id;
+  d["size"] = {pictureWidth(v), pictureHeight(v)};
+  d["tool_px"] = tool.tool_width * v.k;
+  d["lifts"] = vehicle.liftsTool();
+  d["model"] = limits.describe();
+  // Integers, each the step from the one before: tenths of a pixel (a tenth of what a screen
+  // shows), hundredths of a second.
+  std::vector<long long> x, y, t;
+  long long px = 0, py = 0, pt = 0;
+  for (std::size_t i = 0; i < path.waypoints.size(); ++i) {
+    const long long qx = std::llround(v.px(path.waypoints[i].x) * 10.0), qy = std::llround(v.py(path.waypoints[i].y) * 10.0);
+    const long long qt = std::llround(timeline.arrive_s[i] * 100.0);
+    x.push_back(qx - px);
+    y.push_back(qy - py);
+    t.push_back(qt - pt);
+    px = qx, py = qy, pt = qt;
+  }
+  d["x"] = varints(x);
+  d["y"] = varints(y);
+  d["t"] = varints(t);
+  d["end_cs"] = std::llround(timeline.end_s * 100.0);
+  std::string on(path.segments(), '0');
+  nlohmann::json waits = nlohmann::json::array(), arcs = nlohmann::json::array();
+  for (std::size_t i = 0; i < path.segments(); ++i) {
+    if (path.tool_on[i]) on[i] = '1';
+    if (timeline.wait_s[i] > 0.0) waits.push_back({i, std::llround(timeline.wait_s[i] * 100.0)});
+    // The picture's y points down: a counter-clockwise arc on the wall turns clockwise in it.
+    if (path.bulgeOf(i) != 0.0) arcs.push_back({i, -std::llround(path.bulgeOf(i) * 1e6)});
+  }
+  d["on"] = on;
+  d["waits"] = waits;
+  d["arcs"] = arcs;
+  return "coverbenchPlayback(" + d.dump() + ");\n";
 }
 
 }  // namespace coverbench

@@ -2,8 +2,15 @@
 waits for it to load, fails on any console error or uncaught exception, checks that every image
 loaded and that the expected parts are there, and saves screenshots.
 
+With --play it also plays a gallery picture's path back (the report's player): at 0.25x and at
+20x for a second each, the playhead's progress must differ by 80x within 10 %, frames must be
+drawn, and a screenshot is taken half-way through the path.
+
+The page may load scripts only from its own files (player.js, gallery/*.js): no inline script,
+no script from data.
+
 usage: check_page.py PAGE.html SCREENSHOT_PREFIX [--expect-text TEXT]... [--min-images N]
-       [--min-tables N] [--section ID]...
+       [--min-tables N] [--section ID]... [--play]
 """
 import argparse
 import base64
@@ -81,6 +88,58 @@ def errors(events):
     return out
 
 
+PLAY = """(async () => {
+    const sleep = ms => new Promise(r => setTimeout(r, ms));
+    const tried = [];
+    for (const fig of document.querySelectorAll('figure[data-playback]')) {
+        fig.scrollIntoView();
+        fig.querySelector('.player-start').click();
+        for (let k = 0; k < 200 && !fig.coverbenchPlayer; ++k) await sleep(25);
+        const p = fig.coverbenchPlayer;
+        if (!p) return {error: 'the player did not start for ' + fig.dataset.playback};
+        tried.push([fig.dataset.playback, p.duration()]);
+        if (p.duration() < 30) { p.pause(); continue; }  // 20x for a second must not reach the end
+        const measure = async speed => {
+            p.pause(); p.setSpeed(speed); p.seek(0);
+            const f0 = p.frames(); p.play();
+            const c0 = performance.now();
+            await sleep(1000);
+            const progress = p.time(), seconds = (performance.now() - c0) / 1000;
+            p.pause();
+            return {speed, progress, seconds, frames: p.frames() - f0};
+        };
+        const slow = await measure(0.25), fast = await measure(20);
+        p.seek(p.duration() / 2);
+        fig.scrollIntoView({block: 'center'});
+        return {file: fig.dataset.playback, slow, fast, duration: p.duration(), waypoints: p.waypoints(),
+                shown: fig.dataset.playhead, canvas: !!fig.querySelector('canvas.player-canvas')};
+    }
+    return {error: 'no picture plays for 30 s or more: ' + JSON.stringify(tried)};
+})()"""
+
+
+def play(page, shots):
+    """Plays a gallery path at 0.25x and 20x; returns the problems found."""
+    r = page.evaluate(PLAY)
+    if "error" in r:
+        return [r["error"]]
+    problems = []
+    ratio = r["fast"]["progress"] / r["slow"]["progress"] if r["slow"]["progress"] > 0 else float("inf")
+    print(f"playback {r['file']} ({r['waypoints']} waypoints, {r['duration']:.1f} s): after about one second "
+          f"{r['slow']['progress']:.3f} s at 0.25x ({r['slow']['frames']} frames), {r['fast']['progress']:.3f} s at 20x "
+          f"({r['fast']['frames']} frames): {ratio:.1f}x")
+    if not 72.0 <= ratio <= 88.0:
+        problems.append(f"playhead at 20x moved {ratio:.1f}x as far as at 0.25x, expected 80x within 10 %")
+    for m in (r["slow"], r["fast"]):
+        if m["frames"] < 10:
+            problems.append(f"{m['frames']} frames drawn in a second at {m['speed']}x")
+    if not r["canvas"] or abs(float(r["shown"]) - r["duration"] / 2) > 0.01:
+        problems.append(f"the player did not show the middle of the path (playhead {r['shown']})")
+    time.sleep(0.2)
+    page.screenshot(shots + "-playback.png")
+    return problems
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("page")
@@ -89,6 +148,7 @@ def main():
     ap.add_argument("--min-images", type=int, default=1)
     ap.add_argument("--min-tables", type=int, default=1)
     ap.add_argument("--section", action="append", default=[])
+    ap.add_argument("--play", action="store_true")
     args = ap.parse_args()
     chromium = shutil.which("chromium") or "/usr/bin/chromium"
     profile = tempfile.mkdtemp(prefix="coverbench-chromium-")
@@ -118,7 +178,7 @@ def main():
             return {images: imgs.length,
                     broken: imgs.filter(i => !i.complete || i.naturalWidth === 0).map(i => i.getAttribute('src')),
                     tables: document.querySelectorAll('table').length,
-                    scripts: document.querySelectorAll('script').length,
+                    scripts: [...document.querySelectorAll('script')].map(s => s.getAttribute('src') || '(inline)'),
                     sections: [...document.querySelectorAll('section')].map(s => s.id),
                     text: document.body.innerText};
         })()""")
@@ -129,8 +189,9 @@ def main():
             problems.append(f"{report['images']} images, expected at least {args.min_images}")
         if report["tables"] < args.min_tables:
             problems.append(f"{report['tables']} tables, expected at least {args.min_tables}")
-        if report["scripts"]:
-            problems.append(f"{report['scripts']} script elements: the page should have none")
+        for src in report["scripts"]:
+            if not re.fullmatch(r"player\.js|gallery/[A-Za-z0-9._-]+\.js", src):
+                problems.append(f"script {src!r}: the page may load only its own player and playback data")
         for s in args.section:
             if s not in report["sections"]:
                 problems.append(f"section #{s} missing (have {report['sections']})")
@@ -143,6 +204,9 @@ def main():
             page.evaluate(f"document.getElementById({json.dumps(s)}).scrollIntoView()")
             time.sleep(0.2)
             page.screenshot(f"{args.shots}-{s}.png")
+        if args.play:
+            problems += play(page, args.shots)
+        problems += [p for p in errors(page.events) if p not in problems]
         if problems:
             for p in problems:
                 print("FAIL:", p, file=sys.stderr)

@@ -37,7 +37,7 @@ YAML
 python=${COVERBENCH_PYTHON:-/usr/bin/python3}
 "$python" "$src/tests/browser/check_page.py" "$work/out/report/index.html" "$shots/report" \
   --section headline --section outcomes --section paired --section plots --section galleries --section record \
-  --min-images 20 --min-tables 10 \
+  --min-images 20 --min-tables 10 --play \
   --expect-text '<script>alert("wall")</script> '"'q'" --expect-text '<img src=x onerror=alert(1)> "quoted"'
 "$bin" showcase --walls "$src/datasets/canonical" --out "$work/showcase" > /dev/null
 "$python" "$src/tests/browser/check_page.py" "$work/showcase/index.html" "$shots/showcase" --section walls --min-images 30

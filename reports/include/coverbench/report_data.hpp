@@ -17,6 +17,7 @@ struct GalleryPicture {
   std::string column, key, status;
   std::string file;  ///< relative to the report folder, set when drawn
   std::string note;  ///< what the picture leaves out, if anything
+  std::string playback;  ///< its path's playback data (a script), relative to the report folder; empty: none
 };
 /// One pictured wall: why it was chosen and every column's run on it.
 struct GalleryWall {

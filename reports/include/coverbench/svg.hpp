@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "coverbench/geometry.hpp"
+#include "coverbench/motion.hpp"
 #include "coverbench/planner.hpp"
 #include "coverbench/wall.hpp"
 
@@ -39,5 +40,15 @@ std::string renderSvg(const SvgContent& content);
 std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle, const Path& path,
                         const std::string& title, bool coverage_layer = true, double overlap_strips = 1500.0,
                         std::size_t first_judged_segment = 0);
+
+/// The data that plays a picture's path back in place (reports/python/coverbench_report/player.js):
+/// a script calling coverbenchPlayback({...}) with the path in the picture's pixels (the frame
+/// of pathPicture), the tool's width, and when the time model has the tool at each waypoint.
+/// x, y and t are integers, each the step from the one before (x and y in tenths of a pixel, t
+/// in hundredths of a second), as base-64 varints (svg.cpp's varints); `waits` lists [segment,
+/// hundredths of a second] a gantry waits before a segment, `arcs` [segment, bulge in millionths,
+/// signed as the picture turns], `on` one digit per segment.
+std::string playbackScript(const std::string& id, const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle,
+                           const Path& path, const MotionLimits& limits);
 
 }  // namespace coverbench

@@ -21,6 +21,14 @@ img.figure{max-width:100%;border:1px solid #eee;margin:.4em 0}
 .gallery figure{margin:0;border:1px solid #ddd;padding:4px;background:#fafafa}
 .gallery img{width:100%;height:auto}
 .gallery figcaption{font-size:12px}
+.player-stage{position:relative}
+.player-stage a,.player-stage img{display:block}
+.player-canvas{position:absolute;left:0;top:0;width:100%;height:100%;pointer-events:none}
+.player-bar{display:flex;gap:6px;align-items:center;font-size:12px;margin:3px 0}
+.player-bar input[type=range]{flex:1;min-width:60px}
+.player-clock{font-variant-numeric:tabular-nums;white-space:nowrap}
+.player-model{display:block;color:#555;font-size:11px}
+.player-start{font-size:12px;margin:3px 0}
 .status-bad{color:#b00020;font-weight:600}
 pre{background:#f6f6f6;padding:.6em;overflow-x:auto;font-size:12px}
 """
@@ -42,7 +50,8 @@ def gallery_html(section):
         out.append('<div class="gallery">')
         for p in wall["pictures"]:
             bad = p["status"] not in ("ok",)
-            out.append(f'<figure><a href="{esc(p["file"])}"><img src="{esc(p["file"])}" '
+            play = f' data-playback="{esc(p["playback"])}"' if p.get("playback") else ""
+            out.append(f'<figure{play}><a href="{esc(p["file"])}"><img src="{esc(p["file"])}" '
                        f'alt="{esc(wall["wall_name"] + " / " + p["column"])}"></a>'
                        f'<figcaption>{esc(p["column"])}: <span class="{"status-bad" if bad else ""}">'
                        f'{esc(p["status"])}</span>'
@@ -51,12 +60,14 @@ def gallery_html(section):
     return "\n".join(out)
 
 
-def page(title, subtitle_html, sections):
-    """sections: (anchor, heading, body html) in order; the table of contents lists them."""
+def page(title, subtitle_html, sections, scripts=()):
+    """sections: (anchor, heading, body html) in order; the table of contents lists them.
+    scripts: our own script files beside the page (never data), loaded at its end."""
     nav = " ".join(f'<a href="#{esc(a)}">{esc(h)}</a>' for a, h, _ in sections)
     body = "\n".join(f'<section id="{esc(a)}"><h2>{esc(h)}</h2>\n{b}\n</section>' for a, h, b in sections)
     return (f'<!doctype html>\n<html lang="en"><head><meta charset="utf-8">'
             f'<meta name="viewport" content="width=device-width, initial-scale=1">'
             f"<title>{esc(title)}</title><style>{STYLE}</style></head><body>\n"
             f"<header><h1>{esc(title)}</h1>{subtitle_html}</header>\n<nav>{nav}</nav>\n<main>\n{body}\n</main>\n"
-            f"</body></html>\n")
+            + "".join(f'<script src="{esc(s)}"></script>\n' for s in scripts)
+            + "</body></html>\n")

@@ -10,6 +10,9 @@ from . import tables as T
 from .analysis import Analysis
 from .page import esc, figure, gallery_html, page
 
+# Plays the gallery's paths back in place (copied into the report folder, so it works from disk).
+PLAYER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "player.js")
+
 
 def params_line(params):
     """A configuration's parameters (a JSON object) as "key=value, ..." (numbers as JSON writes
@@ -223,8 +226,13 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
                 ("paired", "Paired statistics", "\n".join(paired)), ("plots", "Plots", "\n".join(plots_html)),
                 ("galleries", "Galleries", "\n".join(gallery)), ("appendix", "Appendix", "\n".join(appendix)),
                 ("record", "Reproducibility record", "\n".join(record))]
+    scripts = []
+    if any(p.get("playback") for section in data["gallery"] for w in section["walls"] for p in w["pictures"]):
+        with open(PLAYER, encoding="utf-8") as f:
+            write(os.path.join(folder, "player.js"), f.read())
+        scripts.append("player.js")
     index = os.path.join(folder, "index.html")
-    write(index, page(f"CoverBench: experiment {e['name']}", subtitle, sections))
+    write(index, page(f"CoverBench: experiment {e['name']}", subtitle, sections, scripts))
     return index
 
 

@@ -248,3 +248,26 @@ class Numbers(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class Playback(unittest.TestCase):
+    """A gallery picture with playback data gets a figure the player attaches to; the page loads
+    the player only then, as a file of its own (never inline, never from data)."""
+
+    def section(self, playback):
+        pic = {"column": "z", "key": "k", "status": "ok", "file": "gallery/a.svg", "note": "", "playback": playback}
+        return {"title": "d", "walls": [{"wall": "h", "wall_name": "w", "why": "median", "pictures": [pic]}]}
+
+    def test_figure_names_its_data_escaped(self):
+        from coverbench_report.page import gallery_html
+        self.assertIn('<figure data-playback="gallery/a&quot;b.js">', gallery_html(self.section('gallery/a"b.js')))
+        self.assertIn("<figure><a", gallery_html(self.section("")))
+
+    def test_page_loads_only_the_scripts_it_is_given(self):
+        from coverbench_report.page import page
+        self.assertNotIn("<script", page("t", "", [("a", "A", "x")]))
+        self.assertIn('<script src="player.js"></script>\n</body>', page("t", "", [("a", "A", "x")], ["player.js"]))
+
+    def test_the_player_ships_with_the_package(self):
+        with open(report.PLAYER, encoding="utf-8") as f:
+            self.assertIn("window.coverbenchPlayback", f.read())

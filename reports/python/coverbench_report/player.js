@@ -1,0 +1,294 @@
+// CoverBench's path player: plays a gallery picture's path back in place, from disk, with no
+// server. A figure with data-playback="gallery/NAME.js" gets a play button; its data (written
+// by `coverbench report`, see playbackScript in reports/src/svg.cpp) is loaded on the first
+// click, and a canvas over the picture shows the paint accumulate under the run's own time
+// model, the tool-off moves apart from it, and the tool where it is. Between two waypoints the
+// tool moves at the mean speed the time model gives that segment.
+//
+// Each player is reachable as figure.coverbenchPlayer (play, pause, seek, setSpeed, time,
+// duration, frames, drawMs) for the browser tests and bench/playback_fps.py.
+"use strict";
+(function () {
+  const SPEEDS = [0.25, 0.5, 1, 2, 5, 10, 20];
+  const DEFAULT_SPEED = 5;
+  const ARC_STEPS = 24;  // chords per arc on the canvas (the picture beneath has them within 1 mm)
+  const loaded = new Map();  // data file -> decoded data
+  const waiting = new Map();  // data file -> callbacks
+
+  // The data file calls this.
+  window.coverbenchPlayback = function (raw) {
+    loaded.set(raw.id, decode(raw));
+    for (const done of waiting.get(raw.id) || []) done();
+    waiting.delete(raw.id);
+  };
+
+  function load(src, done, failed) {
+    if (loaded.has(src)) return done();
+    if (waiting.has(src)) return void waiting.get(src).push(done);
+    waiting.set(src, [done]);
+    const script = document.createElement("script");
+    script.src = src;
+    script.onerror = () => { waiting.delete(src); failed(); };
+    document.head.appendChild(script);
+  }
+
+  // Base-64 varints (zigzag, 5 bits a character, lowest first; 32 added: more follow) to the
+  // running sums of the steps they hold, divided by `unit`.
+  const DIGITS = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_";
+  function sums(text, unit) {
+    const out = [];
+    let sum = 0, z = 0, shift = 0;
+    for (let k = 0; k < text.length; ++k) {
+      const c = DIGITS.indexOf(text[k]);
+      z += (c & 31) * 2 ** shift;
+      shift += 5;
+      if (c & 32) continue;
+      sum += z % 2 ? -(z + 1) / 2 : z / 2;
+      out.push(sum / unit);
+      z = 0;
+      shift = 0;
+    }
+    return Float64Array.from(out);
+  }
+
+  // Positions in pixels, the time model's arrival times in seconds.
+  function decode(raw) {
+    const x = sums(raw.x, 10), y = sums(raw.y, 10), t = sums(raw.t, 100);
+    const n = t.length;
+    const wait = new Float64Array(Math.max(n - 1, 0)), bulge = new Float64Array(Math.max(n - 1, 0));
+    for (const [i, cs] of raw.waits) wait[i] = cs / 100;
+    for (const [i, b] of raw.arcs) bulge[i] = b / 1e6;
+    return {x, y, t, wait, bulge, on: raw.on, end: raw.end_cs / 100, size: raw.size,
+            toolPx: raw.tool_px, lifts: raw.lifts, model: raw.model};
+  }
+
+  // The point a fraction f along segment i (an arc by its bulge: tan of a quarter of its angle).
+  function pointOn(d, i, f) {
+    const ax = d.x[i], ay = d.y[i], bx = d.x[i + 1], by = d.y[i + 1], b = d.bulge[i];
+    if (b === 0) return [ax + (bx - ax) * f, ay + (by - ay) * f];
+    const cx = (bx - ax), cy = (by - ay), c = Math.hypot(cx, cy);
+    const phi = 4 * Math.atan(b);
+    // The centre lies off the chord's midpoint along its normal; in the picture's y-down frame a
+    // positive bulge turns clockwise on screen, whose centre is on the chord's right-hand side.
+    const off = c * (1 - b * b) / (4 * b);
+    const nx = cy / c, ny = -cx / c;  // left-hand normal in a y-up frame, drawn y-down
+    const ox = (ax + bx) / 2 - nx * off, oy = (ay + by) / 2 - ny * off;
+    const r = Math.hypot(ax - ox, ay - oy);
+    const a0 = Math.atan2(ay - oy, ax - ox);
+    const a = a0 + phi * f;
+    return [ox + r * Math.cos(a), oy + r * Math.sin(a)];
+  }
+
+  function traceSegment(ctx, d, i, f) {
+    if (d.bulge[i] === 0) {
+      ctx.lineTo(d.x[i] + (d.x[i + 1] - d.x[i]) * f, d.y[i] + (d.y[i + 1] - d.y[i]) * f);
+      return;
+    }
+    const steps = Math.max(1, Math.ceil(ARC_STEPS * f));
+    for (let k = 1; k <= steps; ++k) ctx.lineTo(...pointOn(d, i, f * k / steps));
+  }
+
+  // The segment the tool is on at time s (the last one whose start is at or before s).
+  function segmentAt(d, s) {
+    let lo = 0, hi = d.t.length - 1;
+    while (hi - lo > 1) {
+      const mid = (lo + hi) >> 1;
+      if (d.t[mid] <= s) lo = mid; else hi = mid;
+    }
+    return lo;
+  }
+
+  function fmt(s) {
+    return s < 60 ? s.toFixed(1) + " s" : Math.floor(s / 60) + " min " + (s % 60).toFixed(0).padStart(2, "0") + " s";
+  }
+
+  function makePlayer(figure, d) {
+    const link = figure.querySelector("a") || figure.querySelector("img");
+    const holder = document.createElement("div");
+    holder.className = "player-stage";
+    link.replaceWith(holder);
+    holder.appendChild(link);
+    const canvas = document.createElement("canvas");
+    canvas.className = "player-canvas";
+    canvas.width = Math.round(d.size[0]);
+    canvas.height = Math.round(d.size[1]);
+    holder.appendChild(canvas);
+    const paint = document.createElement("canvas");  // what has been driven so far, at full opacity
+    paint.width = canvas.width;
+    paint.height = canvas.height;
+    const ctx = canvas.getContext("2d"), pctx = paint.getContext("2d");
+
+    const bar = document.createElement("div");
+    bar.className = "player-bar";
+    const button = document.createElement("button");
+    button.type = "button";
+    const speed = document.createElement("select");
+    speed.title = "speed, times the time model's";
+    for (const s of SPEEDS) speed.add(new Option(s + "x", String(s), s === DEFAULT_SPEED, s === DEFAULT_SPEED));
+    const scrub = document.createElement("input");
+    scrub.type = "range";
+    scrub.min = "0";
+    scrub.max = String(d.end);
+    scrub.step = "any";
+    scrub.value = "0";
+    scrub.title = "time";
+    const clock = document.createElement("span");
+    clock.className = "player-clock";
+    bar.append(button, speed, scrub, clock);
+    holder.after(bar);
+    const model = document.createElement("small");
+    model.className = "player-model";
+    model.textContent = "time model: " + d.model;
+    bar.after(model);
+
+    let time = 0, rate = DEFAULT_SPEED, playing = false, anchorTime = 0, anchorClock = 0;
+    let drawn = 0;  // segments painted onto `paint`
+    let frames = 0;
+
+    function styleFor(i, c) {
+      if (d.on[i] === "1") {
+        c.strokeStyle = "#2f6fd0";
+        c.lineWidth = Math.max(d.toolPx, 1);
+        c.lineCap = "round";
+        c.lineJoin = "round";
+        c.setLineDash([]);
+      } else {
+        c.strokeStyle = d.lifts ? "#8e44ad" : "#e07b00";
+        c.lineWidth = 2;
+        c.lineCap = "butt";
+        c.setLineDash(d.lifts ? [2, 3] : [5, 3]);
+      }
+    }
+    // Paints segments [from, to) in runs of one tool state.
+    function paintSegments(from, to) {
+      for (let i = from; i < to;) {
+        let j = i;
+        styleFor(i, pctx);
+        pctx.beginPath();
+        pctx.moveTo(d.x[i], d.y[i]);
+        while (j < to && d.on[j] === d.on[i]) traceSegment(pctx, d, j++, 1);
+        pctx.stroke();
+        i = j;
+      }
+    }
+    let drawMs = 0;  // time spent drawing, for the frame-rate benchmark (bench/playback_fps.py)
+    function draw() {
+      const started = performance.now();
+      drawFrame();
+      drawMs += performance.now() - started;
+    }
+    function drawFrame() {
+      ++frames;
+      const i = segmentAt(d, time);
+      const last = d.t.length - 1;
+      const done = i >= last;
+      if (i < drawn) {
+        pctx.clearRect(0, 0, paint.width, paint.height);
+        drawn = 0;
+      }
+      const full = done ? last : i;
+      if (full > drawn) {
+        paintSegments(drawn, full);
+        drawn = full;
+      }
+      // Where on segment i the tool is: waiting at its start, then along it.
+      let tx = d.x[Math.min(i, last)], ty = d.y[Math.min(i, last)];
+      ctx.clearRect(0, 0, canvas.width, canvas.height);
+      ctx.fillStyle = "rgba(255,255,255,0.72)";  // the whole path beneath, faded
+      ctx.fillRect(0, 0, canvas.width, canvas.height);
+      ctx.globalAlpha = 0.5;
+      ctx.drawImage(paint, 0, 0);
+      if (!done) {
+        const depart = d.t[i] + d.wait[i], span = d.t[i + 1] - depart;
+        const f = time <= depart || span <= 0 ? 0 : Math.min(1, (time - depart) / span);
+        if (f > 0) {
+          styleFor(i, ctx);
+          ctx.beginPath();
+          ctx.moveTo(d.x[i], d.y[i]);
+          traceSegment(ctx, d, i, f);
+          ctx.stroke();
+          [tx, ty] = pointOn(d, i, f);
+        }
+      }
+      ctx.globalAlpha = 1;
+      ctx.setLineDash([]);
+      ctx.beginPath();
+      ctx.arc(tx, ty, Math.max(d.toolPx / 2, 3), 0, 2 * Math.PI);
+      ctx.fillStyle = "rgba(208,47,47,0.35)";
+      ctx.fill();
+      ctx.lineWidth = 1.5;
+      ctx.strokeStyle = "#d02f2f";
+      ctx.stroke();
+      scrub.value = String(time);
+      clock.textContent = fmt(time) + " / " + fmt(d.end);
+      button.textContent = playing ? "\u275a\u275a pause" : "\u25b6 play";
+      figure.dataset.playhead = time.toFixed(3);
+    }
+    function tick(now) {
+      if (!playing) return;
+      time = Math.min(d.end, anchorTime + (now - anchorClock) / 1000 * rate);
+      if (time >= d.end) playing = false;
+      draw();
+      if (playing) requestAnimationFrame(tick);
+    }
+    const api = {
+      play() {
+        if (time >= d.end) time = 0;
+        playing = true;
+        anchorTime = time;
+        anchorClock = performance.now();
+        draw();
+        requestAnimationFrame(tick);
+      },
+      pause() { playing = false; draw(); },
+      seek(s) {
+        time = Math.max(0, Math.min(d.end, s));
+        anchorTime = time;
+        anchorClock = performance.now();
+        draw();
+      },
+      setSpeed(s) {
+        anchorTime = time;
+        anchorClock = performance.now();
+        rate = s;
+        speed.value = String(s);
+      },
+      time: () => time,
+      speed: () => rate,
+      duration: () => d.end,
+      frames: () => frames,
+      drawMs: () => drawMs,
+      waypoints: () => d.t.length,
+    };
+    button.addEventListener("click", () => (playing ? api.pause() : api.play()));
+    speed.addEventListener("change", () => api.setSpeed(Number(speed.value)));
+    scrub.addEventListener("input", () => api.seek(Number(scrub.value)));
+    figure.coverbenchPlayer = api;
+    draw();
+    return api;
+  }
+
+  function attach(figure) {
+    const start = document.createElement("button");
+    start.type = "button";
+    start.className = "player-start";
+    start.textContent = "\u25b6 play the path";
+    figure.appendChild(start);
+    start.addEventListener("click", () => {
+      start.disabled = true;
+      const src = figure.dataset.playback;
+      load(src, () => {
+        start.remove();
+        makePlayer(figure, loaded.get(src)).play();
+      }, () => {
+        start.textContent = "playback data missing: " + src;
+      });
+    });
+  }
+
+  function init() {
+    for (const figure of document.querySelectorAll("figure[data-playback]")) attach(figure);
+  }
+  if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", init);
+  else init();
+})();
