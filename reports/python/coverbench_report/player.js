@@ -224,12 +224,13 @@
       button.textContent = playing ? "\u275a\u275a pause" : "\u25b6 play";
       figure.dataset.playhead = time.toFixed(3);
     }
+    let raf = 0;  // the one pending animation frame, so that a pause and a play never leave two
     function tick(now) {
       if (!playing) return;
       time = Math.min(d.end, anchorTime + (now - anchorClock) / 1000 * rate);
       if (time >= d.end) playing = false;
       draw();
-      if (playing) requestAnimationFrame(tick);
+      if (playing) raf = requestAnimationFrame(tick);
     }
     const api = {
       play() {
@@ -238,9 +239,14 @@
         anchorTime = time;
         anchorClock = performance.now();
         draw();
-        requestAnimationFrame(tick);
+        cancelAnimationFrame(raf);
+        raf = requestAnimationFrame(tick);
       },
-      pause() { playing = false; draw(); },
+      pause() {
+        playing = false;
+        cancelAnimationFrame(raf);
+        draw();
+      },
       seek(s) {
         time = Math.max(0, Math.min(d.end, s));
         anchorTime = time;
