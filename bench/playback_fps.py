@@ -11,19 +11,15 @@ usage: python3 bench/playback_fps.py --coverbench build/coverbench [--wall FILE]
        [--tool-width S] [--seconds N] [--work DIR]
 """
 import argparse
-import json
 import os
-import re
 import shutil
 import subprocess
 import sys
 import tempfile
-import time
-import urllib.request
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "browser"))
-from check_page import FLAGS, Page, errors  # noqa: E402
+from check_page import errors, opened  # noqa: E402
 
 MEASURE = """(async () => {
     const fig = document.querySelector('figure[data-playback]');
@@ -70,27 +66,9 @@ def main():
                 f"tool:\n  width: {args.tool_width}\n  clearance: 0\nlimits:\n  time_s: 600\n")
     subprocess.run([args.coverbench, "run", os.path.join(work, "c.yaml")], check=True, stdout=subprocess.DEVNULL)
     page_file = os.path.join(work, "out", "report", "index.html")
-    chromium = shutil.which("chromium") or "/usr/bin/chromium"
-    profile = tempfile.mkdtemp(prefix="coverbench-chromium-")
-    proc = subprocess.Popen([chromium, *FLAGS, f"--user-data-dir={profile}", "about:blank"],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    try:
-        port = None
-        while port is None:
-            m = re.search(r"DevTools listening on ws://[^:]+:(\d+)/", proc.stderr.readline())
-            port = int(m.group(1)) if m else None
-        targets = json.load(urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list", timeout=30))
-        page = Page(next(t for t in targets if t["type"] == "page")["webSocketDebuggerUrl"])
-        for domain in ("Runtime", "Log", "Page"):
-            page.call(domain + ".enable")
-        page.call("Page.navigate", url="file://" + os.path.abspath(page_file))
-        page.wait_for("Page.loadEventFired")
+    with opened(page_file) as page:
         r = page.evaluate(MEASURE.replace("SECONDS", str(args.seconds)))
         problems = errors(page.events)
-    finally:
-        proc.kill()
-        proc.wait()
-        shutil.rmtree(profile, ignore_errors=True)
     print(f"{args.planner} on {os.path.basename(args.wall)}, tool {args.tool_width} m: {r['waypoints']} waypoints, "
           f"{r['duration']:.0f} s under the time model")
     for run in r["runs"]:

@@ -14,6 +14,7 @@ usage: check_page.py PAGE.html SCREENSHOT_PREFIX [--expect-text TEXT]... [--min-
 """
 import argparse
 import base64
+import contextlib
 import json
 import os
 import re
@@ -71,6 +72,36 @@ class Page:
         data = self.call("Page.captureScreenshot", format="png")["data"]
         with open(path, "wb") as f:
             f.write(base64.b64decode(data))
+
+
+@contextlib.contextmanager
+def opened(page_file, width=1400, height=1400):
+    """Debian's headless Chromium with `page_file` loaded from disk: the Page, its events recorded
+    from the start. Chromium is stopped and its profile removed on leaving."""
+    chromium = shutil.which("chromium") or "/usr/bin/chromium"
+    profile = tempfile.mkdtemp(prefix="coverbench-chromium-")
+    proc = subprocess.Popen([chromium, *FLAGS, f"--user-data-dir={profile}", "about:blank"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        port = None
+        end = time.time() + 60
+        while time.time() < end and port is None:
+            m = re.search(r"DevTools listening on ws://[^:]+:(\d+)/", proc.stderr.readline())
+            port = int(m.group(1)) if m else None
+        if port is None:
+            raise RuntimeError("chromium did not start its DevTools endpoint")
+        targets = json.load(urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list", timeout=30))
+        page = Page(next(t for t in targets if t["type"] == "page")["webSocketDebuggerUrl"])
+        for domain in ("Runtime", "Log", "Page"):
+            page.call(domain + ".enable")
+        page.call("Emulation.setDeviceMetricsOverride", width=width, height=height, deviceScaleFactor=1, mobile=False)
+        page.call("Page.navigate", url="file://" + os.path.abspath(page_file))
+        page.wait_for("Page.loadEventFired")
+        yield page
+    finally:
+        proc.kill()
+        proc.wait()
+        shutil.rmtree(profile, ignore_errors=True)
 
 
 def errors(events):
@@ -150,29 +181,7 @@ def main():
     ap.add_argument("--section", action="append", default=[])
     ap.add_argument("--play", action="store_true")
     args = ap.parse_args()
-    chromium = shutil.which("chromium") or "/usr/bin/chromium"
-    profile = tempfile.mkdtemp(prefix="coverbench-chromium-")
-    proc = subprocess.Popen([chromium, *FLAGS, f"--user-data-dir={profile}", "about:blank"],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    try:
-        port = None
-        end = time.time() + 60
-        while time.time() < end and port is None:
-            line = proc.stderr.readline()
-            m = re.search(r"DevTools listening on ws://[^:]+:(\d+)/", line)
-            if m:
-                port = int(m.group(1))
-        if port is None:
-            print("FAIL: chromium did not start its DevTools endpoint", file=sys.stderr)
-            return 1
-        targets = json.load(urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list", timeout=30))
-        page = Page(next(t for t in targets if t["type"] == "page")["webSocketDebuggerUrl"])
-        for domain in ("Runtime", "Log", "Page"):
-            page.call(domain + ".enable")
-        page.call("Emulation.setDeviceMetricsOverride", width=1400, height=1400, deviceScaleFactor=1, mobile=False)
-        url = "file://" + os.path.abspath(args.page)
-        page.call("Page.navigate", url=url)
-        page.wait_for("Page.loadEventFired")
+    with opened(args.page) as page:
         report = page.evaluate("""(() => {
             const imgs = [...document.images];
             return {images: imgs.length,
@@ -214,10 +223,6 @@ def main():
         print(f"ok: {report['images']} images, {report['tables']} tables, sections {report['sections']}; "
               f"screenshots {args.shots}-*.png")
         return 0
-    finally:
-        proc.kill()
-        proc.wait()
-        shutil.rmtree(profile, ignore_errors=True)
 
 
 if __name__ == "__main__":
