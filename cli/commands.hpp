@@ -1,6 +1,7 @@
 #pragma once
 /// The sub-commands of `coverbench`, kept apart from argument parsing (which only main.cpp does).
 
+#include <cstddef>
 #include <exception>
 #include <optional>
 #include <ostream>
@@ -164,6 +165,21 @@ int reportCommand(const ReportOptions& options);
 /// Writes the HTML report of `options` into the folder options.out (all or nothing; an earlier
 /// report there is replaced, any other folder refused). Returns the page's path.
 std::string writeReport(const ReportOptions& options);
+/// Gallery pictures are shown about 400 pixels wide: 350 overlap strips over a wall's height are
+/// about one per pixel there, and keep a stress wall's picture near 2 MB instead of 18 MB.
+inline constexpr double kGalleryOverlapStrips = 350.0;
+/// The coverage layer of a path costs about 20 s at 80 000 waypoints (a stress wall's spiral);
+/// gallery pictures of longer paths than this leave it out and say so (`redraw` draws it).
+inline constexpr std::size_t kGalleryCoverageWaypoints = 20000;
+
+struct ServeOptions {
+  std::vector<std::string> databases;
+  std::string host = "127.0.0.1";
+  int port = 8080;
+};
+/// Serves the explorer (docs/explorer.md) over the named databases until stopped.
+int serveCommand(const ServeOptions& options);
+
 /// An error whose one-line message has already been printed (by the analysis, which names the
 /// file it could not write): the command exits with 2 and prints nothing more.
 struct AlreadyReported : std::exception {

@@ -265,6 +265,13 @@ int main(int argc, char** argv) {
                          "draw the run's repair number N after surprise obstacles (0-based; docs/replanning.md)");
   redraw_cmd->callback([&] { plan_exit = coverbench::cli::redrawCommand(redraw); });
 
+  coverbench::cli::ServeOptions serve;
+  CLI::App* serve_cmd = app.add_subcommand("serve", "Explore experiments in a browser: runs table, path playback (docs/explorer.md)");
+  serve_cmd->add_option("database", serve.databases, "results.sqlite files to serve (nothing else is served)")->required();
+  serve_cmd->add_option("--host", serve.host, "address to listen on")->capture_default_str();
+  serve_cmd->add_option("--port", serve.port, "port (0: any free one, printed)")->capture_default_str();
+  serve_cmd->callback([&] { plan_exit = coverbench::cli::serveCommand(serve); });
+
   readValuesOneWay(app);
   try {
     app.parse(argc, argv);

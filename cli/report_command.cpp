@@ -37,12 +37,6 @@ namespace fs = std::filesystem;
 
 /// Marks a folder as a CoverBench report, so writing a report again may replace it.
 constexpr const char* kReportMarker = ".coverbench-report";
-/// Gallery pictures are shown about 400 pixels wide: 350 overlap strips over a wall's height are
-/// about one per pixel there, and keep a stress wall's picture near 2 MB instead of 18 MB.
-constexpr double kGalleryOverlapStrips = 350.0;
-/// The coverage layer of a path costs about 20 s at 80 000 waypoints (a stress wall's spiral);
-/// gallery pictures of longer paths than this leave it out and say so (`redraw` draws it).
-constexpr std::size_t kGalleryCoverageWaypoints = 20000;
 
 std::string envOr(const char* name, const std::string& fallback) {
   const char* v = std::getenv(name);

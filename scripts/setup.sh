@@ -13,6 +13,7 @@ PACKAGES=(g++ cmake ninja-build pkg-config ccache
           python3-jsonschema                                       # the planner protocol's schema test
           pybind11-dev python3-dev                                 # the Python package (import coverbench)
           chromium python3-websocket                               # the browser test of the report
+          libcpp-httplib-dev                                       # coverbench serve
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
           libompl-dev libeigen3-dev                                # the sampling transit planners (Eigen: import placements)

@@ -635,6 +635,13 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   return rs;
 }
 
+std::vector<std::pair<long long, std::string>> ResultsDb::experiments() {
+  std::vector<std::pair<long long, std::string>> out;
+  Statement s(db_, "SELECT id, name FROM experiments ORDER BY id", file_);
+  while (s.step()) out.emplace_back(s.columnInt(0), s.columnText(1));
+  return out;
+}
+
 ExperimentRecord ResultsDb::record(std::optional<long long> experiment) {
   ExperimentRecord r;
   {

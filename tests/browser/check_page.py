@@ -76,8 +76,9 @@ class Page:
 
 @contextlib.contextmanager
 def opened(page_file, width=1400, height=1400):
-    """Debian's headless Chromium with `page_file` loaded from disk: the Page, its events recorded
-    from the start. Chromium is stopped and its profile removed on leaving."""
+    """Debian's headless Chromium with `page_file` loaded from disk (or an http:// address): the
+    Page, its events recorded from the start. Chromium is stopped and its profile removed on
+    leaving."""
     chromium = shutil.which("chromium") or "/usr/bin/chromium"
     profile = tempfile.mkdtemp(prefix="coverbench-chromium-")
     proc = subprocess.Popen([chromium, *FLAGS, f"--user-data-dir={profile}", "about:blank"],
@@ -95,12 +96,14 @@ def opened(page_file, width=1400, height=1400):
         for domain in ("Runtime", "Log", "Page"):
             page.call(domain + ".enable")
         page.call("Emulation.setDeviceMetricsOverride", width=width, height=height, deviceScaleFactor=1, mobile=False)
-        page.call("Page.navigate", url="file://" + os.path.abspath(page_file))
+        url = page_file if page_file.startswith("http://") else "file://" + os.path.abspath(page_file)
+        page.call("Page.navigate", url=url)
         page.wait_for("Page.loadEventFired")
         yield page
     finally:
         proc.kill()
         proc.wait()
+        proc.stderr.close()
         shutil.rmtree(profile, ignore_errors=True)
 
 

@@ -58,6 +58,8 @@ class ResultsDb {
   void finishExperiment(long long id, std::size_t executed, std::size_t skipped, std::size_t reused,
                         const std::string& rerun_reasons);
 
+  /// Every experiment in the file: id and name, oldest first.
+  std::vector<std::pair<long long, std::string>> experiments();
   /// The runs of one experiment (default: the latest) as the tables see them.
   ResultSet load(std::optional<long long> experiment = std::nullopt);
   /// The experiment's record (config, provenance, datasets, planner configurations, walls) for

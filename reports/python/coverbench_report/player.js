@@ -295,6 +295,8 @@
   function init() {
     for (const figure of document.querySelectorAll("figure[data-playback]")) attach(figure);
   }
+  // For pages that add figures later (the explorer, `coverbench serve`).
+  window.coverbenchAttachPlayer = attach;
   if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", init);
   else init();
 })();

@@ -1,0 +1,121 @@
+// The explorer's page (`coverbench serve`): experiments, their runs in a table with filters and
+// sorting by any metric, and a run's picture that plays back (player.js). Everything shown from
+// data is set as text, never as markup.
+"use strict";
+(function () {
+  const COLUMNS = ["coverage_reachable", "overlap", "length_ratio", "duration_s", "turns", "plan_time_ms"];
+  const state = {db: 0, id: 0, sort: "", order: "asc", chosen: ""};
+  const $ = id => document.getElementById(id);
+
+  async function api(url) {
+    const res = await fetch(url);
+    const body = await res.json();
+    if (!res.ok) throw new Error(body.error || res.statusText);
+    return body;
+  }
+  function showError(e) {
+    $("status").className = "error";
+    $("status").textContent = String(e.message || e);
+  }
+  function fill(select, values, keep) {
+    const current = select.value;
+    select.length = 1;
+    for (const v of values) select.add(new Option(v, v));
+    if (keep && values.includes(current)) select.value = current;
+  }
+  function cell(row, text, cls) {
+    const td = row.insertCell();
+    td.textContent = text;
+    if (cls) td.className = cls;
+  }
+  function number(v) {
+    if (v === undefined) return "-";
+    return Math.abs(v) >= 1000 || Number.isInteger(v) ? String(Math.round(v * 100) / 100) : v.toPrecision(4);
+  }
+
+  async function loadRuns() {
+    const q = new URLSearchParams({limit: "500"});
+    for (const [k, id] of [["planner", "planner"], ["dataset", "dataset"], ["status", "status-filter"]])
+      if ($(id).value) q.set(k, $(id).value);
+    if (state.sort) { q.set("sort", state.sort); q.set("order", state.order); }
+    const r = await api(`/api/experiments/${state.db}/${state.id}/runs?${q}`);
+    fill($("planner"), r.facets.planner, true);
+    fill($("dataset"), r.facets.dataset, true);
+    fill($("status-filter"), r.facets.status, true);
+    $("count").textContent = `${r.total} runs` + (r.total > r.runs.length ? ` (first ${r.runs.length} shown)` : "");
+    const head = $("runs").tHead;
+    head.textContent = "";
+    const hr = head.insertRow();
+    for (const c of ["wall_name", "planner", "dataset", "status", ...COLUMNS]) {
+      const th = document.createElement("th");
+      th.textContent = c + (state.sort === c ? (state.order === "asc" ? " \u25b2" : " \u25bc") : "");
+      th.dataset.column = c;
+      if (!COLUMNS.includes(c)) th.className = "text";
+      th.addEventListener("click", () => {
+        state.order = state.sort === c && state.order === "asc" ? "desc" : "asc";
+        state.sort = c;
+        loadRuns().catch(showError);
+      });
+      hr.appendChild(th);
+    }
+    const body = $("runs").tBodies[0];
+    body.textContent = "";
+    for (const run of r.runs) {
+      const row = body.insertRow();
+      row.dataset.key = run.key;
+      if (run.key === state.chosen) row.className = "chosen";
+      cell(row, run.wall_name, "text");
+      cell(row, run.planner, "text");
+      cell(row, run.dataset, "text");
+      cell(row, run.status, "text");
+      for (const c of COLUMNS) cell(row, number(run.metrics[c]));
+      row.addEventListener("click", () => view(run, row));
+    }
+  }
+
+  function view(run, row) {
+    state.chosen = run.key;
+    for (const r of $("runs").tBodies[0].rows) r.className = r === row ? "chosen" : "";
+    const base = `/api/experiments/${state.db}/${state.id}/runs/${run.key}`;
+    const viewer = $("viewer");
+    viewer.textContent = "";
+    const figure = document.createElement("figure");
+    const img = document.createElement("img");
+    img.src = base + "/picture.svg";
+    img.alt = run.wall_name + " / " + run.planner;
+    figure.appendChild(img);
+    const caption = document.createElement("figcaption");
+    caption.textContent = `${run.wall_name} / ${run.planner}: ${run.status}`;
+    figure.appendChild(caption);
+    viewer.appendChild(figure);
+    if (run.status !== "error" && run.metrics.waypoints > 1) {
+      figure.dataset.playback = base + "/playback.js";
+      window.coverbenchAttachPlayer(figure);
+    }
+    const dl = document.createElement("dl");
+    dl.className = "metrics";
+    for (const [k, v] of Object.entries(run.metrics)) {
+      const dt = document.createElement("dt"), dd = document.createElement("dd");
+      dt.textContent = k;
+      dd.textContent = number(v);
+      dl.append(dt, dd);
+    }
+    viewer.appendChild(dl);
+  }
+
+  async function start() {
+    const r = await api("/api/experiments");
+    const select = $("experiment");
+    for (const e of r.experiments)
+      select.add(new Option(`${e.name} (${e.runs} runs; ${e.file}, id ${e.id})`, `${e.db}/${e.id}`));
+    if (!r.experiments.length) throw new Error("no experiments in the served databases");
+    select.value = `${r.experiments.at(-1).db}/${r.experiments.at(-1).id}`;
+    const pick = () => { [state.db, state.id] = select.value.split("/").map(Number); return loadRuns(); };
+    select.addEventListener("change", () => pick().catch(showError));
+    for (const id of ["planner", "dataset", "status-filter"])
+      $(id).addEventListener("change", () => loadRuns().catch(showError));
+    await pick();
+    document.body.dataset.ready = "1";
+  }
+  start().catch(showError);
+})();
