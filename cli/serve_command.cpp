@@ -107,7 +107,7 @@ class Explorer {
       json metrics = json::object();
       for (const auto& [k, v] : r.metrics)
         if (std::isfinite(v)) metrics[k] = v;
-      out.push_back({{"key", r.key}, {"planner", r.planner}, {"dataset", r.dataset}, {"wall_name", r.wall_name},
+      out.push_back({{"key", r.key}, {"planner", r.planner}, {"dataset", r.dataset}, {"wall", r.wall}, {"wall_name", r.wall_name},
                      {"status", toString(r.status)}, {"tool_width", r.tool.tool_width}, {"metrics", metrics}});
     }
     return {{"total", rows.size()}, {"offset", offset}, {"metrics", m}, {"facets", facets}, {"runs", out}};

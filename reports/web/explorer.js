@@ -1,10 +1,11 @@
 // The explorer's page (`coverbench serve`): experiments, their runs in a table with filters and
-// sorting by any metric, and a run's picture that plays back (player.js). Everything shown from
+// sorting by any metric, a run's picture that plays back (player.js), and two to four runs on
+// one wall side by side, played in step. Everything shown from
 // data is set as text, never as markup.
 "use strict";
 (function () {
   const COLUMNS = ["coverage_reachable", "overlap", "length_ratio", "duration_s", "turns", "plan_time_ms"];
-  const state = {db: 0, id: 0, sort: "", order: "asc", chosen: ""};
+  const state = {db: 0, id: 0, sort: "", order: "asc", chosen: "", picked: new Map()};  // picked: key -> run
   const $ = id => document.getElementById(id);
 
   async function api(url) {
@@ -46,6 +47,10 @@
     const head = $("runs").tHead;
     head.textContent = "";
     const hr = head.insertRow();
+    const pickHead = document.createElement("th");
+    pickHead.textContent = "compare";
+    pickHead.className = "text";
+    hr.appendChild(pickHead);
     for (const c of ["wall_name", "planner", "dataset", "status", ...COLUMNS]) {
       const th = document.createElement("th");
       th.textContent = c + (state.sort === c ? (state.order === "asc" ? " \u25b2" : " \u25bc") : "");
@@ -64,6 +69,16 @@
       const row = body.insertRow();
       row.dataset.key = run.key;
       if (run.key === state.chosen) row.className = "chosen";
+      const pick = document.createElement("input");
+      pick.type = "checkbox";
+      pick.className = "pick";
+      pick.checked = state.picked.has(run.key);
+      pick.addEventListener("click", e => e.stopPropagation());
+      pick.addEventListener("change", () => {
+        if (pick.checked) state.picked.set(run.key, run); else state.picked.delete(run.key);
+        updateCompare();
+      });
+      row.insertCell().appendChild(pick);
       cell(row, run.wall_name, "text");
       cell(row, run.planner, "text");
       cell(row, run.dataset, "text");
@@ -73,12 +88,17 @@
     }
   }
 
-  function view(run, row) {
-    state.chosen = run.key;
-    for (const r of $("runs").tBodies[0].rows) r.className = r === row ? "chosen" : "";
+  // Two to four runs on one wall can be compared.
+  function updateCompare() {
+    const runs = [...state.picked.values()];
+    const walls = new Set(runs.map(r => r.wall));
+    const button = $("compare");
+    button.disabled = !(runs.length >= 2 && runs.length <= 4 && walls.size === 1);
+    button.title = walls.size > 1 ? "the runs must be on one wall" : "pick two to four runs on one wall";
+  }
+
+  function figureFor(run) {
     const base = `/api/experiments/${state.db}/${state.id}/runs/${run.key}`;
-    const viewer = $("viewer");
-    viewer.textContent = "";
     const figure = document.createElement("figure");
     const img = document.createElement("img");
     img.src = base + "/picture.svg";
@@ -87,11 +107,72 @@
     const caption = document.createElement("figcaption");
     caption.textContent = `${run.wall_name} / ${run.planner}: ${run.status}`;
     figure.appendChild(caption);
-    viewer.appendChild(figure);
-    if (run.status !== "error" && run.metrics.waypoints > 1) {
-      figure.dataset.playback = base + "/playback.js";
-      window.coverbenchAttachPlayer(figure);
+    if (run.status !== "error" && run.metrics.waypoints > 1) figure.dataset.playback = base + "/playback.js";
+    return figure;
+  }
+
+  // The picked runs side by side, played in step: one clock (the time models' seconds) for all.
+  async function compare() {
+    const runs = [...state.picked.values()];
+    const viewer = $("viewer");
+    viewer.textContent = "";
+    const grid = document.createElement("div");
+    grid.className = "compare";
+    const figures = runs.map(figureFor);
+    grid.append(...figures);
+    const bar = document.createElement("div");
+    bar.className = "player-bar";
+    const button = document.createElement("button");
+    button.type = "button";
+    button.textContent = "\u25b6 play all";
+    const speed = document.createElement("select");
+    for (const s of [0.25, 0.5, 1, 2, 5, 10, 20]) speed.add(new Option(s + "x", String(s), s === 5, s === 5));
+    const scrub = document.createElement("input");
+    scrub.type = "range";
+    scrub.min = "0";
+    scrub.step = "any";
+    scrub.value = "0";
+    bar.append(button, speed, scrub);
+    viewer.append(bar, grid);
+    const players = [];
+    for (const f of figures) {
+      if (!f.dataset.playback) continue;
+      window.coverbenchAttachPlayer(f);
+      f.querySelector(".player-start").click();
     }
+    for (let k = 0; k < 400 && figures.some(f => f.dataset.playback && !f.coverbenchPlayer); ++k)
+      await new Promise(r => setTimeout(r, 25));
+    for (const f of figures) if (f.coverbenchPlayer) { f.coverbenchPlayer.pause(); players.push(f.coverbenchPlayer); }
+    scrub.max = String(Math.max(0, ...players.map(p => p.duration())));
+    let playing = false;
+    const all = {
+      players,
+      play() { playing = true; const t = Number(scrub.value); for (const p of players) { p.setSpeed(Number(speed.value)); p.seek(t); p.play(); } button.textContent = "\u275a\u275a pause all"; },
+      pause() { playing = false; for (const p of players) p.pause(); button.textContent = "\u25b6 play all"; },
+      seek(t) { scrub.value = String(t); for (const p of players) p.seek(t); },
+      setSpeed(s) { speed.value = String(s); for (const p of players) p.setSpeed(s); },
+      times: () => players.map(p => p.time()),
+    };
+    button.addEventListener("click", () => (playing ? all.pause() : all.play()));
+    speed.addEventListener("change", () => all.setSpeed(Number(speed.value)));
+    scrub.addEventListener("input", () => all.seek(Number(scrub.value)));
+    const follow = () => {
+      if (playing) scrub.value = String(Math.max(...players.map(p => p.time())));
+      if (viewer.contains(bar)) requestAnimationFrame(follow);
+    };
+    requestAnimationFrame(follow);
+    viewer.coverbenchCompare = all;
+    return all;
+  }
+
+  function view(run, row) {
+    state.chosen = run.key;
+    for (const r of $("runs").tBodies[0].rows) r.className = r === row ? "chosen" : "";
+    const viewer = $("viewer");
+    viewer.textContent = "";
+    const figure = figureFor(run);
+    viewer.appendChild(figure);
+    if (figure.dataset.playback) window.coverbenchAttachPlayer(figure);
     const dl = document.createElement("dl");
     dl.className = "metrics";
     for (const [k, v] of Object.entries(run.metrics)) {
@@ -114,6 +195,8 @@
     select.addEventListener("change", () => pick().catch(showError));
     for (const id of ["planner", "dataset", "status-filter"])
       $(id).addEventListener("change", () => loadRuns().catch(showError));
+    $("compare").addEventListener("click", () => compare().catch(showError));
+    updateCompare();
     await pick();
     document.body.dataset.ready = "1";
   }

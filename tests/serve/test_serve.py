@@ -1,8 +1,9 @@
 """`coverbench serve` as a client and a user see it: the JSON API on a small experiment (filters
 and sorting against the runs themselves, the run's picture and playback data, and every refusal
 as a one-line JSON error), then the page in headless Chromium: filter to one planner, open a
-run, play it at 0.25x and 20x (progress 80x apart within 10 %), no console error. Screenshots in
-ARTIFACTS (env COVERBENCH_ARTIFACTS)."""
+run, play it at 0.25x and 20x (progress 80x apart within 10 %); pick two planners' runs on one
+wall and play them in step; no console error. Screenshots in ARTIFACTS (env
+COVERBENCH_ARTIFACTS)."""
 import http.client
 import json
 import os
@@ -132,8 +133,8 @@ class Serve(unittest.TestCase):
                 planner.value = 'zigzag';
                 planner.dispatchEvent(new Event('change'));
                 const rows = () => [...document.querySelectorAll('#runs tbody tr')];
-                for (let k = 0; k < 400 && rows().some(r => r.cells[1].textContent !== 'zigzag'); ++k) await sleep(25);
-                const planners = rows().map(r => r.cells[1].textContent);
+                for (let k = 0; k < 400 && rows().some(r => r.cells[2].textContent !== 'zigzag'); ++k) await sleep(25);
+                const planners = rows().map(r => r.cells[2].textContent);
                 rows()[0].click();
                 return {ready: document.body.dataset.ready, planners};
             })()""")
@@ -142,6 +143,42 @@ class Serve(unittest.TestCase):
             problems = play(page, os.path.join(SHOTS, "serve"))
             problems += errors(page.events)
             self.assertEqual(problems, [])
+
+    def test_two_planners_on_one_wall_play_in_step(self):
+        with opened(self.base + "/") as page:
+            r = page.evaluate("""(async () => {
+                const sleep = ms => new Promise(r => setTimeout(r, ms));
+                for (let k = 0; k < 400 && !document.body.dataset.ready; ++k) await sleep(25);
+                const rows = [...document.querySelectorAll('#runs tbody tr')];
+                const wall = rows[0].cells[1].textContent;
+                const same = rows.filter(r => r.cells[1].textContent === wall);
+                const button = document.getElementById('compare');
+                const before = button.disabled;
+                for (const row of same.slice(0, 2)) row.querySelector('input.pick').click();
+                const enabled = !button.disabled;
+                button.click();
+                const viewer = document.getElementById('viewer');
+                for (let k = 0; k < 400 && !viewer.coverbenchCompare; ++k) await sleep(25);
+                const all = viewer.coverbenchCompare;
+                all.setSpeed(20); all.seek(0); all.play();
+                await sleep(1000);
+                const times = all.times();
+                all.pause();
+                all.seek(Math.min(...all.players.map(p => p.duration())) / 2);
+                viewer.scrollIntoView();
+                return {before, enabled, planners: same.slice(0, 2).map(r => r.cells[2].textContent),
+                        figures: viewer.querySelectorAll('figure canvas.player-canvas').length, times};
+            })()""")
+            self.assertTrue(r["before"], "compare is off until two runs on one wall are picked")
+            self.assertTrue(r["enabled"])
+            self.assertEqual(len(set(r["planners"])), 2)
+            self.assertEqual(r["figures"], 2)
+            # One clock: after a second at 20x both are about 20 s in, within a frame of each other.
+            self.assertGreater(min(r["times"]), 15.0)
+            self.assertLess(max(r["times"]) - min(r["times"]), 0.5)
+            time.sleep(0.3)
+            page.screenshot(os.path.join(SHOTS, "serve-compare.png"))
+            self.assertEqual(errors(page.events), [])
 
 
 if __name__ == "__main__":
