@@ -61,8 +61,8 @@ class Explorer {
     std::lock_guard<std::mutex> lock(mutex_);
     json out = json::array();
     for (std::size_t i = 0; i < dbs_.size(); ++i)
-      for (const auto& [id, name] : dbs_[i].db->experiments())
-        out.push_back({{"db", i}, {"file", dbs_[i].file}, {"id", id}, {"name", name}, {"runs", loaded(i, id).results.runs.size()}});
+      for (const ResultsDb::ExperimentEntry& e : dbs_[i].db->experiments())
+        out.push_back({{"db", i}, {"file", dbs_[i].file}, {"id", e.id}, {"name", e.name}, {"runs", e.runs}});
     return {{"experiments", out}};
   }
 
@@ -160,7 +160,7 @@ class Explorer {
     auto it = cache_.find(k);
     if (it != cache_.end()) return it->second;
     const auto ids = dbs_[db].db->experiments();
-    if (std::none_of(ids.begin(), ids.end(), [&](const auto& e) { return e.first == id; }))
+    if (std::none_of(ids.begin(), ids.end(), [&](const ResultsDb::ExperimentEntry& e) { return e.id == id; }))
       throw HttpError(404, dbs_[db].file + ": no experiment " + std::to_string(id));
     Loaded l;
     l.results = dbs_[db].db->load(id);

@@ -635,10 +635,13 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   return rs;
 }
 
-std::vector<std::pair<long long, std::string>> ResultsDb::experiments() {
-  std::vector<std::pair<long long, std::string>> out;
-  Statement s(db_, "SELECT id, name FROM experiments ORDER BY id", file_);
-  while (s.step()) out.emplace_back(s.columnInt(0), s.columnText(1));
+std::vector<ResultsDb::ExperimentEntry> ResultsDb::experiments() {
+  std::vector<ExperimentEntry> out;
+  Statement s(db_,
+              "SELECT e.id, e.name, (SELECT COUNT(*) FROM experiment_runs r WHERE r.experiment_id = e.id) "
+              "FROM experiments e ORDER BY e.id",
+              file_);
+  while (s.step()) out.push_back({s.columnInt(0), s.columnText(1), s.columnInt(2)});
   return out;
 }
 

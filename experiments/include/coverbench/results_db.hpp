@@ -58,8 +58,13 @@ class ResultsDb {
   void finishExperiment(long long id, std::size_t executed, std::size_t skipped, std::size_t reused,
                         const std::string& rerun_reasons);
 
-  /// Every experiment in the file: id and name, oldest first.
-  std::vector<std::pair<long long, std::string>> experiments();
+  /// Every experiment in the file, oldest first: id, name and how many runs belong to it.
+  struct ExperimentEntry {
+    long long id = 0;
+    std::string name;
+    long long runs = 0;
+  };
+  std::vector<ExperimentEntry> experiments();
   /// The runs of one experiment (default: the latest) as the tables see them.
   ResultSet load(std::optional<long long> experiment = std::nullopt);
   /// The experiment's record (config, provenance, datasets, planner configurations, walls) for
