@@ -21,14 +21,6 @@ img.figure{max-width:100%;border:1px solid #eee;margin:.4em 0}
 .gallery figure{margin:0;border:1px solid #ddd;padding:4px;background:#fafafa}
 .gallery img{width:100%;height:auto}
 .gallery figcaption{font-size:12px}
-.player-stage{position:relative}
-.player-stage a,.player-stage img{display:block}
-.player-canvas{position:absolute;left:0;top:0;width:100%;height:100%;pointer-events:none}
-.player-bar{display:flex;gap:6px;align-items:center;font-size:12px;margin:3px 0}
-.player-bar input[type=range]{flex:1;min-width:60px}
-.player-clock{font-variant-numeric:tabular-nums;white-space:nowrap}
-.player-model{display:block;color:#555;font-size:11px}
-.player-start{font-size:12px;margin:3px 0}
 .status-bad{color:#b00020;font-weight:600}
 pre{background:#f6f6f6;padding:.6em;overflow-x:auto;font-size:12px}
 """

@@ -292,7 +292,21 @@
     });
   }
 
+  // The player's own look, added once to whichever page loads it.
+  const STYLE = `
+.player-stage{position:relative}
+.player-stage a,.player-stage img{display:block}
+.player-canvas{position:absolute;left:0;top:0;width:100%;height:100%;pointer-events:none}
+.player-bar{display:flex;gap:6px;align-items:center;font-size:12px;margin:3px 0}
+.player-bar input[type=range]{flex:1;min-width:60px}
+.player-clock{font-variant-numeric:tabular-nums;white-space:nowrap}
+.player-model{display:block;color:#555;font-size:11px}
+.player-start{font-size:12px;margin:3px 0}`;
+
   function init() {
+    const style = document.createElement("style");
+    style.textContent = STYLE;
+    document.head.appendChild(style);
     for (const figure of document.querySelectorAll("figure[data-playback]")) attach(figure);
   }
   // For pages that add figures later (the explorer, `coverbench serve`).
