@@ -99,7 +99,7 @@
   }
 
   function fmt(s) {
-    return s < 60 ? s.toFixed(1) + " s" : Math.floor(s / 60) + " min " + (s % 60).toFixed(0).padStart(2, "0") + " s";
+    return s < 60 ? s.toFixed(1) + " s" : Math.floor(s / 60) + " min " + String(Math.floor(s % 60)).padStart(2, "0") + " s";
   }
 
   function makePlayer(figure, d) {
