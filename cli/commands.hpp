@@ -171,6 +171,13 @@ inline constexpr double kGalleryOverlapStrips = 350.0;
 /// The coverage layer of a path costs about 20 s at 80 000 waypoints (a stress wall's spiral);
 /// gallery pictures of longer paths than this leave it out and say so (`redraw` draws it).
 inline constexpr std::size_t kGalleryCoverageWaypoints = 20000;
+/// How a stored run is pictured: `scorable` when it has a path the metrics engine could score,
+/// `layer` when its picture also gets the coverage layer (scorable, at most
+/// kGalleryCoverageWaypoints waypoints). The report's gallery and the explorer both use it.
+struct PictureLayers {
+  bool scorable = false, layer = false;
+};
+PictureLayers pictureLayers(const Path& path, const std::string& status);
 
 struct ServeOptions {
   std::vector<std::string> databases;

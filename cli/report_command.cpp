@@ -109,6 +109,15 @@ void checkReportTarget(const fs::path& target) {
   throw InputError(target.string(), "--out", "is a folder that is not a CoverBench report: choose a new or empty folder");
 }
 
+}  // namespace
+
+PictureLayers pictureLayers(const Path& path, const std::string& status) {
+  const bool scorable = !path.waypoints.empty() && status != toString(RunStatus::MetricsError);
+  return {scorable, scorable && path.waypoints.size() <= kGalleryCoverageWaypoints};
+}
+
+namespace {
+
 /// Draws every gallery picture into `folder`/gallery, two at a time, with the data that plays its
 /// path back under the experiment's time model, and sets their file names.
 void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::path& folder, const MotionLimits& motion) {
@@ -134,8 +143,7 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
       try {
         const ResultsDb::StoredRun& r = runs[i];
         const std::string title = r.wall.name + " / " + pictures[i]->column + "  " + r.status;
-        const bool scorable = !r.path.waypoints.empty() && r.status != toString(RunStatus::MetricsError);
-        const bool layer = scorable && r.path.waypoints.size() <= kGalleryCoverageWaypoints;
+        const auto [scorable, layer] = pictureLayers(r.path, r.status);
         if (scorable && !layer)
           pictures[i]->note = std::to_string(r.path.waypoints.size()) + " waypoints: coverage layer and failed segments " +
                               "left out (over " + std::to_string(kGalleryCoverageWaypoints) + "; `coverbench redraw` draws them)";

@@ -125,9 +125,8 @@ class Explorer {
       return playbackScript("/api/experiments/" + std::to_string(db) + "/" + std::to_string(id) + "/runs/" + key + "/playback.js",
                             r.wall, r.tool, r.vehicle, r.path, l.motion);
     }
-    const bool scorable = !r.path.waypoints.empty() && r.status != toString(RunStatus::MetricsError);
     return pathPicture(r.wall, r.tool, r.vehicle, r.path, r.wall.name + " / " + r.planner + "  " + r.status,
-                       scorable && r.path.waypoints.size() <= kGalleryCoverageWaypoints, kGalleryOverlapStrips);
+                       pictureLayers(r.path, r.status).layer, kGalleryOverlapStrips);
   }
 
  private:
