@@ -4,6 +4,8 @@
 #include <httplib.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -68,62 +70,66 @@ class Explorer {
 
   json runs(std::size_t db, long long id, const httplib::Request& req) {
     std::lock_guard<std::mutex> lock(mutex_);
-    const Loaded& l = loaded(db, id);
+    Index& x = index(db, id);
     auto param = [&](const char* name) { return req.has_param(name) ? req.get_param_value(name) : std::string(); };
-    const std::string planner = param("planner"), dataset = param("dataset"), status = param("status"), sort = param("sort");
+    const std::string sort = param("sort");
     const std::string order = param("order").empty() ? "asc" : param("order");
     if (order != "asc" && order != "desc") throw HttpError(400, "order: must be asc or desc, got '" + order + "'");
     const std::size_t offset = number(param("offset"), "offset", 0, 1u << 30);
     const std::size_t limit = number(param("limit"), "limit", 100, kMaxRunsPerPage);
-    const auto& m = l.results.metric_order;
-    const bool by_metric = std::find(m.begin(), m.end(), sort) != m.end();
-    if (!sort.empty() && !by_metric && sort != "wall_name" && sort != "planner" && sort != "dataset" && sort != "status")
-      throw HttpError(400, "sort: unknown column '" + sort + "' (a metric, wall_name, planner, dataset or status)");
-    std::vector<const ResultRow*> rows;
-    json facets = {{"planner", json::array()}, {"dataset", json::array()}, {"status", json::array()}};
-    std::map<std::string, std::set<std::string>> seen;
-    for (const ResultRow& r : l.results.runs) {
-      const std::string st = toString(r.status);
-      for (const auto& [k, v] : {std::pair<std::string, std::string>{"planner", r.planner}, {"dataset", r.dataset}, {"status", st}})
-        if (seen[k].insert(v).second) facets[k].push_back(v);
-      if ((planner.empty() || r.planner == planner) && (dataset.empty() || r.dataset == dataset) && (status.empty() || st == status))
-        rows.push_back(&r);
+    // A filter names a value of its facet; one that names none matches no run.
+    std::array<int, kFacets> wanted;
+    for (std::size_t f = 0; f < kFacets; ++f) {
+      const std::string v = param(kFacetNames[f]);
+      const auto& values = x.facet_values[f];
+      const auto it = std::find(values.begin(), values.end(), v);
+      wanted[f] = v.empty() ? -1 : it == values.end() ? -2 : static_cast<int>(it - values.begin());
     }
-    auto text = [&](const ResultRow* r) -> std::string {
-      return sort == "planner" ? r->planner : sort == "dataset" ? r->dataset : sort == "status" ? toString(r->status) : r->wall_name;
-    };
-    if (!sort.empty())
-      std::stable_sort(rows.begin(), rows.end(), [&](const ResultRow* a, const ResultRow* b) {
-        if (!by_metric) return order == "asc" ? text(a) < text(b) : text(b) < text(a);
-        const auto va = a->metrics.find(sort), vb = b->metrics.find(sort);
-        const bool ha = va != a->metrics.end() && std::isfinite(va->second), hb = vb != b->metrics.end() && std::isfinite(vb->second);
-        if (ha != hb) return ha;  // runs without the metric last, in either order
-        if (!ha) return false;
-        return order == "asc" ? va->second < vb->second : vb->second < va->second;
-      });
+    const std::vector<std::uint32_t>& order_of = sorted(x, db, id, sort, order == "desc");
+    std::size_t total = 0;
+    std::vector<std::uint32_t> page;
+    for (const std::uint32_t i : order_of) {
+      bool match = true;
+      for (std::size_t f = 0; f < kFacets && match; ++f) match = wanted[f] == -1 || wanted[f] == x.facet_of[f][i];
+      if (!match) continue;
+      if (total >= offset && page.size() < limit) page.push_back(i);
+      ++total;
+    }
+    std::vector<std::string> keys;
+    for (const std::uint32_t i : page) keys.push_back(x.runs[i].key);
+    const auto metrics = dbs_[db].db->metricsOf(keys);
     json out = json::array();
-    for (std::size_t i = offset; i < rows.size() && i < offset + limit; ++i) {
-      const ResultRow& r = *rows[i];
-      json metrics = json::object();
-      for (const auto& [k, v] : r.metrics)
-        if (std::isfinite(v)) metrics[k] = v;
+    for (const std::uint32_t i : page) {
+      const ResultsDb::RunSummary& r = x.runs[i];
+      json m = json::object();
+      for (const auto& [k, v] : metrics.at(r.key))
+        if (std::isfinite(v)) m[k] = v;
       out.push_back({{"key", r.key}, {"planner", r.planner}, {"dataset", r.dataset}, {"wall", r.wall}, {"wall_name", r.wall_name},
-                     {"status", toString(r.status)}, {"tool_width", r.tool.tool_width}, {"metrics", metrics}});
+                     {"status", toString(r.status)}, {"tool", x.facet_values[3][x.facet_of[3][i]]}, {"tool_width", r.tool.tool_width},
+                     {"clearance", r.tool.clearance}, {"metrics", m}});
     }
-    return {{"total", rows.size()}, {"offset", offset}, {"metrics", m}, {"facets", facets}, {"runs", out}};
+    json facets = json::object();
+    for (std::size_t f = 0; f < kFacets; ++f) facets[kFacetNames[f]] = x.facet_values[f];
+    return {{"total", total}, {"offset", offset}, {"metrics", x.metric_names}, {"facets", facets}, {"runs", out}};
   }
 
-  /// The run's picture, or the script that plays it back under the experiment's time model.
+  /// The run's picture, or the script that plays it back under the experiment's time model. The
+  /// run is read under the lock; it is drawn outside it, so other requests do not wait for it.
   std::string drawing(std::size_t db, long long id, const std::string& key, bool playback) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const Loaded& l = loaded(db, id);
-    if (std::none_of(l.results.runs.begin(), l.results.runs.end(), [&](const ResultRow& r) { return r.key == key; }))
-      throw HttpError(404, "experiment " + std::to_string(id) + " of database " + std::to_string(db) + " has no run " + key);
-    const ResultsDb::StoredRun r = dbs_[db].db->storedRun(key);
+    ResultsDb::StoredRun r;
+    MotionLimits motion;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const Index& x = index(db, id);
+      if (!x.position.count(key))
+        throw HttpError(404, "experiment " + std::to_string(id) + " of database " + std::to_string(db) + " has no run " + key);
+      r = dbs_[db].db->storedRun(key);
+      motion = x.motion;
+    }
     if (playback) {
       if (r.path.segments() == 0) throw HttpError(404, "run " + key + " has no path to play");
       return playbackScript("/api/experiments/" + std::to_string(db) + "/" + std::to_string(id) + "/runs/" + key + "/playback.js",
-                            r.wall, r.tool, r.vehicle, r.path, l.motion);
+                            r.wall, r.tool, r.vehicle, r.path, motion);
     }
     return pathPicture(r.wall, r.tool, r.vehicle, r.path, r.wall.name + " / " + r.planner + "  " + r.status,
                        pictureLayers(r.path, r.status).layer, kGalleryOverlapStrips);
@@ -134,10 +140,58 @@ class Explorer {
     std::string file;
     std::unique_ptr<ResultsDb> db;
   };
-  struct Loaded {
-    ResultSet results;
+  static constexpr std::size_t kFacets = 4;
+  static constexpr const char* kFacetNames[kFacets] = {"planner", "dataset", "status", "tool"};
+  /// An experiment's runs as the table browses them: summaries in key order, each run's facet
+  /// values as indices, metric columns read when first sorted by, and sort orders kept.
+  struct Index {
+    std::vector<ResultsDb::RunSummary> runs;
+    std::map<std::string, std::uint32_t> position;
+    std::vector<std::string> metric_names;
+    std::array<std::vector<std::string>, kFacets> facet_values;
+    std::array<std::vector<std::uint32_t>, kFacets> facet_of;
+    std::map<std::pair<std::string, bool>, std::vector<std::uint32_t>> orders;
     MotionLimits motion;
   };
+
+  static std::string toolText(const ToolParams& t) {
+    return "s=" + shortNumber(t.tool_width) + " m, c=" + shortNumber(t.clearance) + " m";
+  }
+
+  /// The runs in the order of `column` (none: key order), runs without a value last either way.
+  const std::vector<std::uint32_t>& sorted(Index& x, std::size_t db, long long id, const std::string& column, bool desc) {
+    const auto k = std::make_pair(column, desc);
+    if (const auto it = x.orders.find(k); it != x.orders.end()) return it->second;
+    std::vector<std::uint32_t> order(x.runs.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    const auto& names = x.metric_names;
+    if (std::find(names.begin(), names.end(), column) != names.end()) {
+      std::vector<double> v;
+      if (column == "plan_time_ms" || column == "peak_memory_bytes")
+        for (const auto& r : x.runs) v.push_back(column == "plan_time_ms" ? r.plan_time_ms : r.peak_memory_bytes);
+      else
+        v = dbs_[db].db->metricColumn(id, column);
+      if (v.size() != x.runs.size()) throw HttpError(500, "the runs of experiment " + std::to_string(id) + " changed while served");
+      std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+        const bool ha = std::isfinite(v[a]), hb = std::isfinite(v[b]);
+        if (ha != hb) return ha;
+        return ha && (desc ? v[b] < v[a] : v[a] < v[b]);
+      });
+    } else if (!column.empty()) {
+      const auto f = std::find_if(std::begin(kFacetNames), std::end(kFacetNames), [&](const char* n) { return column == n; });
+      if (column != "wall_name" && f == std::end(kFacetNames))
+        throw HttpError(400, "sort: unknown column '" + column + "' (a metric, wall_name, planner, dataset, status or tool)");
+      auto text = [&](std::uint32_t i) -> const std::string& {
+        if (f == std::end(kFacetNames)) return x.runs[i].wall_name;
+        const std::size_t facet = static_cast<std::size_t>(f - std::begin(kFacetNames));
+        return x.facet_values[facet][x.facet_of[facet][i]];
+      };
+      std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return desc ? text(b) < text(a) : text(a) < text(b);
+      });
+    }
+    return x.orders.emplace(k, std::move(order)).first->second;
+  }
 
   static std::size_t number(const std::string& text, const char* name, std::size_t fallback, std::size_t most) {
     if (text.empty()) return fallback;
@@ -153,23 +207,34 @@ class Explorer {
     return static_cast<std::size_t>(v);
   }
 
-  const Loaded& loaded(std::size_t db, long long id) {
+  Index& index(std::size_t db, long long id) {
     if (db >= dbs_.size()) throw HttpError(404, "no database " + std::to_string(db) + " (serving " + std::to_string(dbs_.size()) + ")");
     const auto k = std::make_pair(db, id);
-    auto it = cache_.find(k);
-    if (it != cache_.end()) return it->second;
+    if (const auto it = cache_.find(k); it != cache_.end()) return it->second;
     const auto ids = dbs_[db].db->experiments();
     if (std::none_of(ids.begin(), ids.end(), [&](const ResultsDb::ExperimentEntry& e) { return e.id == id; }))
       throw HttpError(404, dbs_[db].file + ": no experiment " + std::to_string(id));
-    Loaded l;
-    l.results = dbs_[db].db->load(id);
+    Index x;
+    x.runs = dbs_[db].db->runSummaries(id);
+    x.metric_names = dbs_[db].db->metricNames(id);
+    std::array<std::map<std::string, std::uint32_t>, kFacets> seen;
+    for (std::uint32_t i = 0; i < x.runs.size(); ++i) {
+      const ResultsDb::RunSummary& r = x.runs[i];
+      x.position.emplace(r.key, i);
+      const std::string values[kFacets] = {r.planner, r.dataset, toString(r.status), toolText(r.tool)};
+      for (std::size_t f = 0; f < kFacets; ++f) {
+        const auto [it, added] = seen[f].emplace(values[f], static_cast<std::uint32_t>(x.facet_values[f].size()));
+        if (added) x.facet_values[f].push_back(values[f]);
+        x.facet_of[f].push_back(it->second);
+      }
+    }
     const ExperimentRecord record = dbs_[db].db->record(id);
-    l.motion = configMotion(record.config_text, dbs_[db].file + ": experiments.config_text");
-    return cache_.emplace(k, std::move(l)).first->second;
+    x.motion = configMotion(record.config_text, dbs_[db].file + ": experiments.config_text");
+    return cache_.emplace(k, std::move(x)).first->second;
   }
 
   std::vector<Db> dbs_;
-  std::map<std::pair<std::size_t, long long>, Loaded> cache_;
+  std::map<std::pair<std::size_t, long long>, Index> cache_;
   std::mutex mutex_;
 };
 

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "coverbench/build_identity.hpp"
 #include "coverbench/files.hpp"
@@ -233,6 +234,42 @@ TEST_F(Experiments, SecondRunDoesNoWorkAndGivesIdenticalRunsAndAGrownConfigOnlyR
     if (r.status == RunStatus::Partial) {
       EXPECT_GT(r.uncovered_reachable_m2, 0.0);
     }
+  }
+
+  // The explorer's reads (summaries, metric names, a metric by column, metrics by run) say what
+  // load() says, run by run.
+  const long long id = results.experiments().back().id;
+  const auto summaries = results.runSummaries(id);
+  EXPECT_EQ(results.metricNames(id), rs.metric_order);
+  ASSERT_EQ(summaries.size(), rs.runs.size());
+  std::map<std::string, const ResultRow*> by_key;
+  for (const ResultRow& r : rs.runs) by_key[r.key] = &r;
+  std::vector<std::string> keys;
+  for (const auto& s : summaries) keys.push_back(s.key);
+  const auto metrics = results.metricsOf(keys);
+  for (const std::string& name : {std::string("coverage_reachable"), std::string("overlap"), std::string("min_clearance")}) {
+    const std::vector<double> column = results.metricColumn(id, name);
+    ASSERT_EQ(column.size(), summaries.size()) << name;
+    for (std::size_t i = 0; i < summaries.size(); ++i) {
+      const ResultRow& r = *by_key.at(summaries[i].key);
+      const auto it = r.metrics.find(name);
+      if (it == r.metrics.end()) EXPECT_TRUE(std::isnan(column[i])) << name << " " << r.key;
+      else EXPECT_EQ(column[i], it->second) << name << " " << r.key;
+    }
+  }
+  for (std::size_t i = 0; i < summaries.size(); ++i) {
+    const auto& s = summaries[i];
+    ASSERT_TRUE(by_key.count(s.key));
+    const ResultRow& r = *by_key.at(s.key);
+    if (i > 0) EXPECT_LT(summaries[i - 1].key, s.key);
+    EXPECT_EQ(s.planner, r.planner);
+    EXPECT_EQ(s.dataset, r.dataset);
+    EXPECT_EQ(s.wall, r.wall);
+    EXPECT_EQ(s.wall_name, r.wall_name);
+    EXPECT_EQ(s.status, r.status);
+    EXPECT_EQ(s.tool.tool_width, r.tool.tool_width);
+    EXPECT_EQ(s.plan_time_ms, r.plan_time_ms);
+    EXPECT_EQ(metrics.at(s.key), r.metrics) << s.key;
   }
 }
 

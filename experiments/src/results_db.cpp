@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <thread>
 
 #include "coverbench/build_identity.hpp"
@@ -642,6 +643,103 @@ std::vector<ResultsDb::ExperimentEntry> ResultsDb::experiments() {
               "FROM experiments e ORDER BY e.id",
               file_);
   while (s.step()) out.push_back({s.columnInt(0), s.columnText(1), s.columnInt(2)});
+  return out;
+}
+
+std::vector<ResultsDb::RunSummary> ResultsDb::runSummaries(long long experiment) {
+  {
+    Statement s(db_, "SELECT 1 FROM experiments WHERE id = ?", file_);
+    s.integer(1, experiment);
+    if (!s.step()) throw InputError(file_, "experiments", "has no experiment " + std::to_string(experiment));
+  }
+  std::map<std::string, std::string> label_of;
+  {
+    Statement s(db_, "SELECT config_id, label FROM experiment_planners WHERE experiment_id = ? ORDER BY position", file_);
+    s.integer(1, experiment);
+    while (s.step()) label_of.emplace(s.columnText(0), s.columnText(1));
+  }
+  const std::set<std::string> columns = runColumns();
+  auto column = [&](const char* name) { return columns.count(name) ? std::string("r.") + name : std::string("NULL"); };
+  Statement s(db_,
+              "SELECT e.run_key, r.config_id, w.dataset, r.wall_hash, ws.name, r.status, r.tool_width, r.clearance, " +
+                  column("plan_time_ms") + ", " + column("peak_memory_bytes") +
+                  ", COALESCE(o.transit, '') FROM experiment_runs e JOIN runs r ON r.key = e.run_key "
+                  "JOIN experiment_walls w ON w.experiment_id = ?1 AND w.wall_hash = r.wall_hash "
+                  "JOIN walls ws ON ws.hash = r.wall_hash LEFT JOIN run_options o ON o.run_key = e.run_key "
+                  "WHERE e.experiment_id = ?1 ORDER BY e.run_key",
+              file_);
+  s.integer(1, experiment);
+  std::vector<RunSummary> out;
+  std::vector<std::string> transits;
+  std::set<std::string> used;
+  while (s.step()) {
+    RunSummary r;
+    r.key = s.columnText(0);
+    r.planner = label_of[s.columnText(1)];
+    r.dataset = s.columnText(2);
+    r.wall = s.columnText(3);
+    r.wall_name = s.columnText(4);
+    readField(s, 5, file_, kRunFields[1], r.status);
+    r.tool = ToolParams{s.columnReal(6), s.columnReal(7)};
+    r.plan_time_ms = s.columnReal(8);
+    r.peak_memory_bytes = s.columnReal(9);
+    transits.push_back(s.columnText(10).empty() ? TransitSpec{}.planner : s.columnText(10));
+    used.insert(transits.back());
+    out.push_back(std::move(r));
+  }
+  // Runs that differ only in their transit planner are different configurations (as in load()).
+  if (used.size() > 1)
+    for (std::size_t i = 0; i < out.size(); ++i) out[i].planner += " @ transit=" + transits[i];
+  return out;
+}
+
+std::vector<std::string> ResultsDb::metricNames(long long experiment) {
+  std::vector<std::string> names;
+  // The metrics a run has are the engine's (and the exact judge's, the same for every run of an
+  // experiment): one build stores the same names for every scored run. So the names of one scored
+  // run per build are all of them, read without scanning every metric of 10^5 runs.
+  Statement s(db_,
+              "SELECT name FROM metrics WHERE run_key IN (SELECT MIN(r.key) FROM experiment_runs e JOIN runs r ON r.key = e.run_key "
+              "WHERE e.experiment_id = ?1 AND EXISTS (SELECT 1 FROM metrics x WHERE x.run_key = r.key) GROUP BY r.build) "
+              "GROUP BY name ORDER BY MIN(position), name",
+              file_);
+  s.integer(1, experiment);
+  while (s.step()) names.push_back(s.columnText(0));
+  names.push_back("plan_time_ms");
+  names.push_back("peak_memory_bytes");
+  return names;
+}
+
+std::vector<double> ResultsDb::metricColumn(long long experiment, const std::string& metric) {
+  std::vector<double> out;
+  Statement s(db_,
+              "SELECT m.value FROM experiment_runs e LEFT JOIN metrics m ON m.run_key = e.run_key AND m.name = ?2 "
+              "WHERE e.experiment_id = ?1 ORDER BY e.run_key",
+              file_);
+  s.integer(1, experiment).text(2, metric);
+  while (s.step()) out.push_back(s.columnReal(0));
+  return out;
+}
+
+std::map<std::string, std::map<std::string, double>> ResultsDb::metricsOf(const std::vector<std::string>& run_keys) {
+  std::map<std::string, std::map<std::string, double>> out;
+  const std::set<std::string> columns = runColumns();
+  const std::string peak = columns.count("peak_memory_bytes") ? "peak_memory_bytes" : "NULL";
+  Statement m(db_, "SELECT name, value FROM metrics WHERE run_key = ?", file_);
+  Statement r(db_, "SELECT plan_time_ms, " + peak + " FROM runs WHERE key = ?", file_);
+  for (const std::string& key : run_keys) {
+    auto& into = out[key];
+    m.text(1, key);
+    while (m.step())
+      if (!m.columnNull(1)) into[m.columnText(0)] = m.columnReal(1);
+    m.reset();
+    r.text(1, key);
+    if (r.step()) {
+      into["plan_time_ms"] = r.columnReal(0);
+      if (!r.columnNull(1)) into["peak_memory_bytes"] = r.columnReal(1);
+    }
+    r.reset();
+  }
   return out;
 }
 

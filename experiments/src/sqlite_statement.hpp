@@ -50,6 +50,11 @@ class Statement {
     if (rc != SQLITE_DONE) fail("step");
     return false;
   }
+  /// Makes the statement ready to bind and step again.
+  void reset() {
+    sqlite3_reset(stmt_);
+    sqlite3_clear_bindings(stmt_);
+  }
   void run() {
     step();
     sqlite3_reset(stmt_);

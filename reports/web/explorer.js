@@ -36,13 +36,14 @@
 
   async function loadRuns() {
     const q = new URLSearchParams({limit: "500"});
-    for (const [k, id] of [["planner", "planner"], ["dataset", "dataset"], ["status", "status-filter"]])
+    for (const [k, id] of [["planner", "planner"], ["dataset", "dataset"], ["status", "status-filter"], ["tool", "tool"]])
       if ($(id).value) q.set(k, $(id).value);
     if (state.sort) { q.set("sort", state.sort); q.set("order", state.order); }
     const r = await api(`/api/experiments/${state.db}/${state.id}/runs?${q}`);
     fill($("planner"), r.facets.planner, true);
     fill($("dataset"), r.facets.dataset, true);
     fill($("status-filter"), r.facets.status, true);
+    fill($("tool"), r.facets.tool, true);
     $("count").textContent = `${r.total} runs` + (r.total > r.runs.length ? ` (first ${r.runs.length} shown)` : "");
     const head = $("runs").tHead;
     head.textContent = "";
@@ -193,7 +194,7 @@
     select.value = `${r.experiments.at(-1).db}/${r.experiments.at(-1).id}`;
     const pick = () => { [state.db, state.id] = select.value.split("/").map(Number); return loadRuns(); };
     select.addEventListener("change", () => pick().catch(showError));
-    for (const id of ["planner", "dataset", "status-filter"])
+    for (const id of ["planner", "dataset", "status-filter", "tool"])
       $(id).addEventListener("change", () => loadRuns().catch(showError));
     $("compare").addEventListener("click", () => compare().catch(showError));
     updateCompare();

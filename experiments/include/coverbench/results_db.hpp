@@ -3,6 +3,7 @@
 /// metric, planner statistics and the compressed path of each run. One transaction per run, so a
 /// killed experiment loses at most the runs in flight. Schema: docs/file_formats.md.
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -65,6 +66,27 @@ class ResultsDb {
     long long runs = 0;
   };
   std::vector<ExperimentEntry> experiments();
+  /// One run of an experiment as a browser of 10^5 runs lists it: its context, status and the
+  /// two measured figures the runs table holds; metrics come by column (metricColumn) or by run
+  /// (metricsOf), so listing an experiment does not read every metric of every run.
+  struct RunSummary {
+    std::string key, planner, dataset, wall, wall_name;  ///< planner: the experiment's label
+    RunStatus status = RunStatus::Error;
+    ToolParams tool;
+    double plan_time_ms = NAN, peak_memory_bytes = NAN;
+  };
+  /// The experiment's runs in key order. Throws InputError when there is no such experiment.
+  std::vector<RunSummary> runSummaries(long long experiment);
+  /// The names of the metrics stored for the experiment's runs, in the engine's order, then
+  /// plan_time_ms and peak_memory_bytes (as load()'s metric_order): those of one scored run per
+  /// build, which stores the same names for every scored run.
+  std::vector<std::string> metricNames(long long experiment);
+  /// One metric of every run of the experiment, in runSummaries' order; NaN where a run has none
+  /// (failed runs; NULL, as infinities are stored).
+  std::vector<double> metricColumn(long long experiment, const std::string& metric);
+  /// Every stored metric of each run named (finite values only), with plan_time_ms and
+  /// peak_memory_bytes.
+  std::map<std::string, std::map<std::string, double>> metricsOf(const std::vector<std::string>& run_keys);
   /// The runs of one experiment (default: the latest) as the tables see them.
   ResultSet load(std::optional<long long> experiment = std::nullopt);
   /// The experiment's record (config, provenance, datasets, planner configurations, walls) for
