@@ -855,6 +855,8 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
   run.wall = parseWallJson(s.columnText(1), file_ + " (wall " + s.columnText(2) + ")");
   const std::string params = paramsLine(s.columnText(4));
   run.planner = s.columnText(3) + (params.empty() ? "" : " (" + params + ")");
+  run.planner_name = s.columnText(3);
+  run.params_json = s.columnText(4);
   run.tool = ToolParams{s.columnReal(5), s.columnReal(6)};
   run.status = s.columnText(7);
   run.reason = s.columnText(8);

@@ -186,4 +186,10 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
   return summary;
 }
 
+RunRecord executeInWorker(const RunSpec& spec) {
+  RunRecord out;
+  executeIsolated({&spec}, 1, [&](const RunSpec&, RunRecord r) { out = std::move(r); });
+  return out;
+}
+
 }  // namespace coverbench

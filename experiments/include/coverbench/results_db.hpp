@@ -100,6 +100,8 @@ class ResultsDb {
     std::string key;
     Wall wall;
     std::string planner;  ///< planner name and resolved parameters
+    std::string planner_name;  ///< the registered planner
+    std::string params_json;   ///< its resolved parameters as stored: a JSON object
     ToolParams tool;
     VehicleModel vehicle;
     std::string status, reason;  ///< the run's (RunStatus's name) or the repair's

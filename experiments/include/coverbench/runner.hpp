@@ -42,4 +42,10 @@ std::string resultsDatabasePath(const ExperimentConfig& config);
 
 RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& options);
 
+/// Executes one run as the runner does: in a worker process of its own, under the run's limits
+/// (time limit, hard deadline, memory), and returns its record (a timeout, crash or memory_limit
+/// when the worker did not answer in time or died). For callers that must not run planners in
+/// their own process (the explorer's workbench).
+RunRecord executeInWorker(const RunSpec& spec);
+
 }  // namespace coverbench
