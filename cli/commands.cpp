@@ -39,6 +39,16 @@ std::vector<std::pair<std::string, std::string>> splitSettings(const std::vector
   return out;
 }
 
+std::string typeName(ParamType t) {
+  switch (t) {
+    case ParamType::Number: return "number";
+    case ParamType::Integer: return "integer";
+    case ParamType::Bool: return "bool";
+    case ParamType::Choice: return "choice";
+  }
+  return "?";
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -60,16 +70,6 @@ VehicleModel resolveVehicle(const VehicleOptions& given, VehicleModel base) {
   if (given.reverse) base.reverse = true;
   validateVehicle(base, "command line", "vehicle");
   return base;
-}
-
-std::string typeName(ParamType t) {
-  switch (t) {
-    case ParamType::Number: return "number";
-    case ParamType::Integer: return "integer";
-    case ParamType::Bool: return "bool";
-    case ParamType::Choice: return "choice";
-  }
-  return "?";
 }
 
 struct Outcome {

@@ -14,6 +14,8 @@
 namespace coverbench::cli {
 
 void listPlanners(std::ostream& out);
+/// A parameter type as `coverbench planners` and the workbench name it: number, integer, bool, choice.
+std::string typeName(ParamType t);
 
 /// A vehicle as the command line gives it (--vehicle, --lift-s, --lower-s); unset: the default's
 /// (or, for `metrics`, the plan file's).
@@ -181,6 +183,9 @@ PictureLayers pictureLayers(const Path& path, const std::string& status);
 
 struct ServeOptions {
   std::vector<std::string> databases;
+  std::vector<std::string> wall_folders;  ///< --walls: folders whose wall files the workbench opens
+  std::string walls_db;                   ///< --walls-db: where the workbench saves walls (created if absent)
+  double plan_time_limit_s = 60.0;        ///< --plan-time-limit: the most a workbench plan may ask for
   std::string host = "127.0.0.1";
   int port = 8080;
 };

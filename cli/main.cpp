@@ -267,7 +267,11 @@ int main(int argc, char** argv) {
 
   coverbench::cli::ServeOptions serve;
   CLI::App* serve_cmd = app.add_subcommand("serve", "Explore experiments in a browser: runs table, path playback (docs/explorer.md)");
-  serve_cmd->add_option("database", serve.databases, "results.sqlite files to serve (nothing else is served)")->required();
+  serve_cmd->add_option("database", serve.databases, "results.sqlite files to serve (nothing else is served)");
+  serve_cmd->add_option("--walls", serve.wall_folders, "folders of wall files the workbench can open");
+  serve_cmd->add_option("--walls-db", serve.walls_db, "walls database (SQLite) the workbench saves walls to; created if absent");
+  serve_cmd->add_option("--plan-time-limit", serve.plan_time_limit_s, "the longest time limit a workbench plan may ask for, s")
+      ->capture_default_str();
   serve_cmd->add_option("--host", serve.host, "address to listen on")->capture_default_str();
   serve_cmd->add_option("--port", serve.port, "port (0: any free one, printed)")->capture_default_str();
   serve_cmd->callback([&] { plan_exit = coverbench::cli::serveCommand(serve); });

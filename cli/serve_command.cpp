@@ -4,6 +4,7 @@
 #include <httplib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <cstdint>
 #include <cmath>
@@ -24,6 +25,10 @@
 #include "coverbench/report_data.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/svg.hpp"
+#include "coverbench/walls_db.hpp"
+#include "coverbench/wall_file.hpp"
+#include "coverbench/limits.hpp"
+#include "workbench.hpp"
 
 namespace coverbench::cli {
 namespace {
@@ -45,6 +50,7 @@ const std::map<std::string, std::pair<std::string, std::string>>& pageFiles() {
   static const std::map<std::string, std::pair<std::string, std::string>> files = {
       {"/", {COVERBENCH_WEB_DIR "/index.html", "text/html; charset=utf-8"}},
       {"/explorer.js", {COVERBENCH_WEB_DIR "/explorer.js", "text/javascript; charset=utf-8"}},
+      {"/workbench.js", {COVERBENCH_WEB_DIR "/workbench.js", "text/javascript; charset=utf-8"}},
       {"/player.js", {COVERBENCH_REPORT_PYTHONPATH "/coverbench_report/player.js", "text/javascript; charset=utf-8"}},
   };
   return files;
@@ -133,6 +139,20 @@ class Explorer {
     }
     return pathPicture(r.wall, r.tool, r.vehicle, r.path, r.wall.name + " / " + r.planner + "  " + r.status,
                        pictureLayers(r.path, r.status).layer, kGalleryOverlapStrips);
+  }
+
+  /// What the run planned, as a workbench request: its wall file, planner, parameters and tool.
+  json problem(std::size_t db, long long id, const std::string& key) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const Index& x = index(db, id);
+    if (!x.position.count(key))
+      throw HttpError(404, "experiment " + std::to_string(id) + " of database " + std::to_string(db) + " has no run " + key);
+    const ResultsDb::StoredRun r = dbs_[db].db->storedRun(key);
+    json params = json::object();
+    const json stored = json::parse(r.params_json);
+    for (const auto& [k, v] : stored.items()) params[k] = v.is_string() ? v.get<std::string>() : v.dump();
+    return {{"wall", wallToJson(r.wall)}, {"planner", r.planner_name}, {"params", params},
+            {"tool_width", r.tool.tool_width}, {"clearance", r.tool.clearance}};
   }
 
  private:
@@ -238,6 +258,145 @@ class Explorer {
   std::mutex mutex_;
 };
 
+/// The workbench's side of the server: walls from the named folders and walls database, checks
+/// and plans (docs/explorer.md#workbench). Plans run in worker processes, at most two at once; the
+/// last 32 are kept to draw and play.
+class WorkbenchServer {
+ public:
+  explicit WorkbenchServer(const ServeOptions& o) : max_time_limit_s_(o.plan_time_limit_s) {
+    validateTimeLimit(o.plan_time_limit_s, "--plan-time-limit", "plan_time_limit");
+    for (const std::string& folder : o.wall_folders) {
+      std::error_code ec;
+      if (!fs::is_directory(folder, ec)) throw InputError(folder, "--walls", "is not a folder");
+      std::vector<std::string> names;
+      for (const auto& e : fs::directory_iterator(folder))
+        if (e.is_regular_file() && e.path().extension() == ".json") names.push_back(e.path().filename().string());
+      std::sort(names.begin(), names.end());
+      for (const std::string& n : names) folder_walls_.push_back({folder, n});
+    }
+    if (!o.walls_db.empty()) walls_db_ = std::make_unique<WallsDb>(o.walls_db);
+  }
+
+  json walls() {
+    json out = json::array();
+    for (std::size_t i = 0; i < folder_walls_.size(); ++i)
+      out.push_back({{"source", "folder"}, {"folder", folder_walls_[i].first}, {"name", folder_walls_[i].second},
+                     {"url", "/api/walls/folder/" + std::to_string(i)}});
+    if (walls_db_) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (const WallsDb::Entry& e : walls_db_->list())
+        out.push_back({{"source", "database"}, {"file", walls_db_->file()}, {"name", e.name}, {"sha256", e.sha256},
+                       {"saved_at", e.saved_at}});
+    }
+    return {{"walls", out}, {"walls_db", walls_db_ ? walls_db_->file() : ""}};
+  }
+
+  /// A listed wall file's text (by its position in the listing: no request names a file).
+  std::string folderWall(std::size_t i) {
+    if (i >= folder_walls_.size()) throw HttpError(404, "no wall file " + std::to_string(i) + " (serving " + std::to_string(folder_walls_.size()) + ")");
+    return readFile((fs::path(folder_walls_[i].first) / folder_walls_[i].second).string());
+  }
+  std::string databaseWall(const std::string& name) {
+    if (!walls_db_) throw HttpError(404, "no walls database is served (serve --walls-db FILE)");
+    std::lock_guard<std::mutex> lock(mutex_);
+    try {
+      return walls_db_->content(name);
+    } catch (const InputError& e) {
+      throw HttpError(404, e.what());
+    }
+  }
+
+  /// The request checked as a plan request is: {"ok": true, ...} or {"ok": false, "error": the
+  /// command line's one line}. A verdict, not a failure: answered 200 either way.
+  json check(const std::string& body) {
+    try {
+      const WorkbenchRequest r = readWorkbenchRequest(body, max_time_limit_s_);
+      return {{"ok", true}, {"name", r.wall.wall.name}, {"wall", r.wall.json}, {"obstacles", r.wall.wall.obstacles.size()}};
+    } catch (const InputError& e) {
+      return {{"ok", false}, {"error", e.what()}};
+    }
+  }
+
+  json save(const std::string& body) {
+    if (!walls_db_) throw HttpError(400, "walls database: none is served (start coverbench serve with --walls-db FILE)");
+    const WorkbenchRequest r = readWorkbenchRequest(body, max_time_limit_s_);
+    std::lock_guard<std::mutex> lock(mutex_);
+    const WallsDb::Entry e = walls_db_->save(r.wall.wall);
+    return {{"name", e.name}, {"sha256", e.sha256}, {"saved_at", e.saved_at}, {"file", walls_db_->file()}};
+  }
+
+  json plan(const std::string& body) {
+    const WorkbenchRequest r = readWorkbenchRequest(body, max_time_limit_s_);
+    if (!r.planner) throw InputError("request body", "planner", "name a planner to plan with (see GET /api/planners)");
+    struct Slot {
+      std::atomic<int>& n;
+      ~Slot() { --n; }
+    };
+    if (++running_ > kMaxPlansAtOnce) {
+      --running_;
+      throw HttpError(503, "plan: " + std::to_string(kMaxPlansAtOnce) + " plans are running; ask again when one has ended");
+    }
+    const Slot slot{running_};
+    RunRecord rec = planInWorker(r);
+    if (rec.status == RunStatus::Timeout)
+      throw HttpError(504, "time_limit_s: the plan did not finish within its time limit of " + shortNumber(r.time_limit_s) + " s (" +
+                               rec.reason + ")");
+    json metrics = json::object();
+    for (const auto& [k, v] : rec.metrics)
+      if (std::isfinite(v)) metrics[k] = v;
+    json stats = json::object();
+    for (const auto& [k, v] : rec.stats)
+      if (std::isfinite(v)) stats[k] = v;
+    std::lock_guard<std::mutex> lock(mutex_);
+    const long long id = ++last_plan_;
+    Planned& p = plans_[id];
+    p.wall = r.wall.wall;
+    p.tool = r.tool;
+    p.path = rec.path;
+    p.status = toString(rec.status);
+    p.title = r.wall.wall.name + " / " + r.config.label + "  " + p.status;
+    if (plans_.size() > kPlansKept) plans_.erase(plans_.begin());
+    const std::string base = "/api/plans/" + std::to_string(id);
+    json out = {{"id", id}, {"planner", r.config.label}, {"status", p.status}, {"reason", rec.reason}, {"valid", rec.valid},
+                {"waypoints", rec.path.waypoints.size()}, {"plan_time_ms", rec.plan_time_ms}, {"metrics", metrics},
+                {"stats", stats}, {"picture", base + "/picture.svg"}};
+    if (rec.path.segments() > 0) out["playback"] = base + "/playback.js";
+    return out;
+  }
+
+  std::string drawing(long long id, bool playback) {
+    Planned p;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const auto it = plans_.find(id);
+      if (it == plans_.end()) throw HttpError(404, "no plan " + std::to_string(id) + " (the last " + std::to_string(kPlansKept) + " are kept)");
+      p = it->second;
+    }
+    if (playback) {
+      if (p.path.segments() == 0) throw HttpError(404, "plan " + std::to_string(id) + " has no path to play");
+      return playbackScript("/api/plans/" + std::to_string(id) + "/playback.js", p.wall, p.tool, VehicleModel{}, p.path, MotionLimits{});
+    }
+    return pathPicture(p.wall, p.tool, VehicleModel{}, p.path, p.title, pictureLayers(p.path, p.status).layer, kGalleryOverlapStrips);
+  }
+
+ private:
+  static constexpr int kMaxPlansAtOnce = 2;
+  static constexpr std::size_t kPlansKept = 32;
+  struct Planned {
+    Wall wall;
+    ToolParams tool;
+    Path path;
+    std::string status, title;
+  };
+  double max_time_limit_s_;
+  std::vector<std::pair<std::string, std::string>> folder_walls_;  // folder, file name
+  std::unique_ptr<WallsDb> walls_db_;
+  std::map<long long, Planned> plans_;
+  long long last_plan_ = 0;
+  std::atomic<int> running_{0};
+  std::mutex mutex_;
+};
+
 void answerError(httplib::Response& res, int status, const std::string& message) {
   res.status = status;
   res.set_content(json{{"error", message}}.dump() + "\n", "application/json");
@@ -262,9 +421,9 @@ httplib::Server::Handler guarded(F handler) {
 }  // namespace
 
 int serveCommand(const ServeOptions& o) {
-  if (o.databases.empty()) throw InputError("serve", "database", "name at least one results.sqlite to serve");
   if (o.port < 0 || o.port > 65535) throw InputError("--port", "port", "must be from 0 to 65535, got " + std::to_string(o.port));
   Explorer explorer(o.databases);
+  WorkbenchServer workbench(o);
   for (const auto& [route, file] : pageFiles())
     if (!fs::exists(file.first)) throw InputError(file.first, "serve", "the explorer's page file is missing");
   httplib::Server server;
@@ -285,6 +444,35 @@ int serveCommand(const ServeOptions& o) {
                res.set_content(explorer.drawing(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.matches[3], playback),
                                playback ? "text/javascript; charset=utf-8" : "image/svg+xml");
              }));
+  server.Get("/api/experiments/(\\d{1,6})/(\\d{1,12})/runs/([0-9a-f]{64})/problem", guarded([&](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(explorer.problem(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.matches[3]).dump() + "\n",
+                    "application/json");
+  }));
+  server.Get("/api/planners", guarded([&](const httplib::Request&, httplib::Response& res) {
+    res.set_content(plannersJson().dump() + "\n", "application/json");
+  }));
+  server.Get("/api/walls", guarded([&](const httplib::Request&, httplib::Response& res) {
+    res.set_content(workbench.walls().dump() + "\n", "application/json");
+  }));
+  server.Get(R"(/api/walls/folder/(\d{1,9}))", guarded([&](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(workbench.folderWall(std::stoul(req.matches[1])), "application/json");
+  }));
+  server.Get(R"(/api/walls/db/(.{1,1000}))", guarded([&](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(workbench.databaseWall(req.matches[1]), "application/json");
+  }));
+  server.Post("/api/check", guarded([&](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(workbench.check(req.body).dump() + "\n", "application/json");
+  }));
+  server.Post("/api/walls", guarded([&](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(workbench.save(req.body).dump() + "\n", "application/json");
+  }));
+  server.Post("/api/plan", guarded([&](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(workbench.plan(req.body).dump() + "\n", "application/json");
+  }));
+  server.Get(R"(/api/plans/(\d{1,12})/(picture\.svg|playback\.js))", guarded([&](const httplib::Request& req, httplib::Response& res) {
+    const bool playback = req.matches[2] == "playback.js";
+    res.set_content(workbench.drawing(std::stoll(req.matches[1]), playback), playback ? "text/javascript; charset=utf-8" : "image/svg+xml");
+  }));
   // Anything else, and bodies over the limit: a JSON error (httplib calls this for every status
   // >= 400 left without a body).
   server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {

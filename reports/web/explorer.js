@@ -183,6 +183,25 @@
       dl.append(dt, dd);
     }
     viewer.appendChild(dl);
+    const edit = document.createElement("button");
+    edit.type = "button";
+    edit.id = "open-in-workbench";
+    edit.textContent = "open this wall and planner in the workbench";
+    edit.addEventListener("click", async () => {
+      try {
+        const p = await api(`/api/experiments/${state.db}/${state.id}/runs/${run.key}/problem`);
+        showTab("workbench");
+        window.coverbenchWorkbench.setProblem(p);
+      } catch (e) { showError(e); }
+    });
+    viewer.insertBefore(edit, figure);
+  }
+
+  function showTab(name) {
+    for (const t of ["experiments", "workbench"]) {
+      $(t).hidden = t !== name;
+      $("tab-" + t).setAttribute("aria-selected", String(t === name));
+    }
   }
 
   async function start() {
@@ -190,7 +209,13 @@
     const select = $("experiment");
     for (const e of r.experiments)
       select.add(new Option(`${e.name} (${e.runs} runs; ${e.file}, id ${e.id})`, `${e.db}/${e.id}`));
-    if (!r.experiments.length) throw new Error("no experiments in the served databases");
+    for (const t of ["experiments", "workbench"]) $("tab-" + t).addEventListener("click", () => showTab(t));
+    if (!r.experiments.length) {
+      $("count").textContent = "no experiment databases are served: the workbench is open";
+      showTab("workbench");
+      document.body.dataset.ready = "1";
+      return;
+    }
     select.value = `${r.experiments.at(-1).db}/${r.experiments.at(-1).id}`;
     const pick = () => { [state.db, state.id] = select.value.split("/").map(Number); return loadRuns(); };
     select.addEventListener("change", () => pick().catch(showError));

@@ -1,0 +1,107 @@
+#include "workbench.hpp"
+
+#include <cmath>
+
+#include "commands.hpp"
+#include "coverbench/external_planner.hpp"
+#include "coverbench/hash.hpp"
+#include "coverbench/limits.hpp"
+#include "coverbench/registry.hpp"
+#include "coverbench/runner.hpp"
+#include "coverbench/wall_file.hpp"
+
+namespace coverbench::cli {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr const char* kBody = "request body";
+
+json paramValue(const ParamValue& v) {
+  return std::visit([](const auto& x) { return json(x); }, v);
+}
+
+/// A number field of the body: absent gives `fallback`.
+double numberField(const json& body, const char* name, double fallback) {
+  if (!body.contains(name)) return fallback;
+  const json& v = body[name];
+  if (!v.is_number()) throw InputError(kBody, name, "must be a number, got " + v.dump());
+  return v.get<double>();
+}
+
+}  // namespace
+
+json plannersJson() {
+  json out = json::array();
+  for (const PlannerInfo& p : registeredPlanners()) {
+    json params = json::array();
+    for (const ParamSpec& s : p.params) {
+      json spec = {{"name", s.name}, {"type", typeName(s.type)}, {"default", paramValue(s.default_value)},
+                   {"unit", s.unit}, {"description", s.description}};
+      if (s.type == ParamType::Number || s.type == ParamType::Integer) spec["min"] = s.min, spec["max"] = s.max;
+      if (s.type == ParamType::Choice) spec["choices"] = s.choices;
+      params.push_back(spec);
+    }
+    out.push_back({{"name", p.name}, {"version", p.version}, {"summary", p.summary}, {"reference", p.reference}, {"params", params}});
+  }
+  return {{"planners", out}};
+}
+
+WorkbenchRequest readWorkbenchRequest(const std::string& text, double max_time_limit_s) {
+  json body;
+  try {
+    body = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw InputError(kBody, "(json)", std::string("is not JSON: ") + e.what());
+  }
+  if (!body.is_object()) throw InputError(kBody, "(json)", "must be an object");
+  for (const auto& [key, value] : body.items())
+    if (key != "wall" && key != "planner" && key != "params" && key != "tool_width" && key != "clearance" && key != "time_limit_s")
+      throw InputError(kBody, key, "unknown key (wall, planner, params, tool_width, clearance, time_limit_s)");
+  if (!body.contains("wall") || !body["wall"].is_string()) throw InputError(kBody, "wall", "must be the wall file's text");
+  WorkbenchRequest r;
+  r.wall.wall = parseWallJson(body["wall"].get<std::string>(), "wall");
+  r.wall.json = wallToJson(r.wall.wall);
+  r.wall.hash = sha256Hex(r.wall.json);
+  r.wall.dataset = "workbench";
+  r.tool.tool_width = numberField(body, "tool_width", r.tool.tool_width);
+  r.tool.clearance = numberField(body, "clearance", r.tool.clearance);
+  validateTool(r.tool, "tool");
+  validateToolForWall(r.tool, r.wall.wall, "tool");
+  r.time_limit_s = numberField(body, "time_limit_s", r.time_limit_s);
+  validateTimeLimit(r.time_limit_s, kBody, "time_limit_s");
+  if (r.time_limit_s > max_time_limit_s)
+    throw InputError(kBody, "time_limit_s",
+                     "must be at most " + shortNumber(max_time_limit_s) + " s (serve --plan-time-limit), got " + shortNumber(r.time_limit_s));
+  if (body.contains("params") && !body.contains("planner")) throw InputError(kBody, "params", "given without a planner");
+  if (!body.contains("planner")) return r;
+  if (!body["planner"].is_string()) throw InputError(kBody, "planner", "must be a planner's name");
+  r.planner = &findPlanner(body["planner"].get<std::string>(), "planner");
+  std::vector<std::pair<std::string, std::string>> settings;
+  if (body.contains("params")) {
+    if (!body["params"].is_object()) throw InputError(kBody, "params", "must be an object of name: value");
+    for (const auto& [key, value] : body["params"].items())
+      settings.emplace_back(key, value.is_string() ? value.get<std::string>() : value.dump());
+  }
+  r.config.planner = r.planner->name;
+  r.config.settings = settings;
+  r.config.params = resolveParams(*r.planner, settings, "params");
+  r.config.label = r.planner->name;
+  return r;
+}
+
+RunRecord planInWorker(const WorkbenchRequest& request) {
+  RunSpec spec;
+  spec.wall = &request.wall;
+  spec.planner = &request.config;
+  spec.tool = request.tool;
+  spec.time_limit_s = request.time_limit_s;
+  spec.memory_limit_bytes = std::size_t{4} << 30;
+  spec.planner_version = request.planner->version;
+  spec.base_key = runBaseKey(spec);
+  spec.key = runKey(spec);
+  return executeInWorker(spec);
+}
+
+}  // namespace coverbench::cli
