@@ -138,7 +138,7 @@ class Explorer {
                             r.wall, r.tool, r.vehicle, r.path, motion);
     }
     return pathPicture(r.wall, r.tool, r.vehicle, r.path, r.wall.name + " / " + r.planner + "  " + r.status,
-                       pictureLayers(r.path, r.status).layer, kGalleryOverlapStrips);
+                       pictureLayers(r.path, r.status).layer, kGalleryOverlapStrips, 0, true);
   }
 
   /// What the run planned, as a workbench request: its wall file, planner, parameters and tool.
@@ -376,7 +376,8 @@ class WorkbenchServer {
       if (p.path.segments() == 0) throw HttpError(404, "plan " + std::to_string(id) + " has no path to play");
       return playbackScript("/api/plans/" + std::to_string(id) + "/playback.js", p.wall, p.tool, VehicleModel{}, p.path, MotionLimits{});
     }
-    return pathPicture(p.wall, p.tool, VehicleModel{}, p.path, p.title, pictureLayers(p.path, p.status).layer, kGalleryOverlapStrips);
+    return pathPicture(p.wall, p.tool, VehicleModel{}, p.path, p.title, pictureLayers(p.path, p.status).layer, kGalleryOverlapStrips, 0,
+                       true);
   }
 
  private:

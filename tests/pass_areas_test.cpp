@@ -17,6 +17,7 @@ namespace {
 const double kR = 0.1;
 
 void add(Path& p, Point to, bool on);
+Path randomPath(std::mt19937& rng);
 /// A path through the points with the tool on (repeated points kept, unlike Path::moveTo).
 Path onPath(std::vector<Point> points) {
   Path p;
@@ -76,6 +77,44 @@ TEST(PassAreas, ThreeTimesAlongOneSegment) {
   EXPECT_NEAR(a[1], capsule(1.0), kExact);  // every point at least twice
   EXPECT_NEAR(a[2], capsule(1.0) - 2 * M_PI * kR * kR, kExact);  // three times outside the two disks
   EXPECT_NEAR(a[3], 0.0, kExact);
+}
+
+TEST(PassAreas, ThePassCountPicturesHoldEachLevel) {
+  // The pictures' layers of A -> B -> A -> B: at least 2 passes everywhere in the capsule, at
+  // least 3 outside the two continuation disks, never 4; each within the scanlines' error (h per
+  // metre of horizontal boundary: the capsule's two sides, the disks' outlines).
+  const Path p = onPath({{1, 1}, {2, 1}, {1, 1}, {2, 1}});
+  const double h = kR / 200;
+  auto areaOf = [&](int k) {
+    double sum = 0.0;
+    for (const PolygonWithHoles& poly : passRegion(p, kR, h, k)) sum += std::fabs(signedArea(poly.outer));
+    return sum;
+  };
+  const double error = h * (2.0 + 2 * 2 * M_PI * kR);
+  EXPECT_NEAR(areaOf(2), capsule(1.0), error);
+  EXPECT_NEAR(areaOf(3), capsule(1.0) - 2 * M_PI * kR * kR, error);
+  EXPECT_EQ(areaOf(4), 0.0);
+  EXPECT_EQ(areaOf(2), [&] {
+    double sum = 0.0;
+    for (const PolygonWithHoles& poly : overlapRegion(p, kR, h)) sum += std::fabs(signedArea(poly.outer));
+    return sum;
+  }());
+}
+
+TEST(PassAreasProperties, ThePassCountPicturesHaveTheScanlinesLevels) {
+  // On random paths, each level's picture has the area the same scanlines measure for it.
+  std::mt19937 rng(20261127);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Path p = randomPath(rng);
+    const double h = kR / 8;
+    const Passes s = passesOnScanlines(p, kR, h, 4);
+    for (int k = 2; k <= 4; ++k) {
+      double share = 0.0, sum = 0.0;
+      for (int j = k - 1; j < 4; ++j) share += s.histogram[static_cast<std::size_t>(j)];
+      for (const PolygonWithHoles& poly : passRegion(p, kR, h, k)) sum += std::fabs(signedArea(poly.outer));
+      EXPECT_NEAR(sum, share * s.swept_area, 1e-9) << "trial " << trial << ", at least " << k << " passes";
+    }
+  }
 }
 
 TEST(PassAreas, SameSegmentInTwoRunsCountsTwice) {

@@ -203,6 +203,12 @@ TEST(Pictures, PlaybackDataByHand) {
   EXPECT_EQ(d["end_cs"], 489);
   EXPECT_EQ(d["waits"], nlohmann::json::array());
   EXPECT_EQ(d["model"], limits.describe());
+  EXPECT_EQ(d["bad"], nlohmann::json::array());  // a valid path: nothing marked
+  // A window under the second painted pass (y = 0.3): that segment (2) is marked, and only it.
+  Wall windowed = wall;
+  windowed.obstacles.push_back(Obstacle{ObstacleType::Rect, {{0.5, 0.25}, {0.7, 0.25}, {0.7, 0.35}, {0.5, 0.35}}, {}, 0.0, "window"});
+  const std::string marked = playbackScript("gallery/b.js", windowed, ToolParams{0.1, 0.02}, VehicleModel{}, path, limits);
+  EXPECT_EQ(nlohmann::json::parse(marked.substr(19, marked.size() - 19 - 3))["bad"], nlohmann::json::array({2}));
   // Negative steps of every size read back.
   Path zig;
   for (int i = 0; i < 40; ++i) zig.moveTo({0.1 + 0.045 * i, i % 2 ? 0.1 : 0.9 - 0.02 * i}, true);

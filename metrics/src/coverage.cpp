@@ -385,8 +385,10 @@ Passes passes(const Path& path, double radius, std::size_t bins) {
   return out;
 }
 
-Region overlapRegion(const Path& path, double radius, double resolution) {
-  // Strips one scanline high where passes >= 2, stacked into staircase polygons: a stack grows
+Region overlapRegion(const Path& path, double radius, double resolution) { return passRegion(path, radius, resolution, 2); }
+
+Region passRegion(const Path& path, double radius, double resolution, int min_passes) {
+  // Strips one scanline high where passes >= min_passes, stacked into staircase polygons: a stack grows
   // while its strip in the previous row overlaps exactly one strip in this row and vice versa.
   // The polygons do not overlap, so no union (which is quadratic in Clipper for many strips).
   struct Strip {
@@ -460,7 +462,7 @@ Region overlapRegion(const Path& path, double radius, double resolution) {
     row.clear();
   };
   scanPasses(path, radius, resolution, [&](double y, double x0, double x1, int count) {
-    if (count < 2 || x1 - x0 < 1e-9) return;  // rounding slivers are not drawn
+    if (count < min_passes || x1 - x0 < 1e-9) return;  // rounding slivers are not drawn
     if (y != row_y) {
       if (!std::isnan(row_y)) finishRow();
       row_y = y;

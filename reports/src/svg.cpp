@@ -251,6 +251,8 @@ std::string renderSvg(const SvgContent& c) {
       << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>\n";
     region(c.uncovered, "#e8383d", "0.75");
     region(c.overlap, "#9b3fd1", "0.45");
+    region(c.three_passes, "#6a1b9a", "0.55");
+    region(c.four_passes, "#2e0854", "0.65");
     s << "<use xlink:href=\"#paint\" fill=\"none\" stroke=\"#1f4f9f\" stroke-width=\"" << fmt(std::clamp(tool_px * 0.12, 0.5, 2.0))
       << "\" stroke-linejoin=\"round\"/>\n";
     if (c.vehicle.liftsTool())
@@ -295,11 +297,20 @@ std::string renderSvg(const SvgContent& c) {
     s << "<g transform=\"translate(0,52)\">"
       << "<rect width=\"14\" height=\"10\" fill=\"#e8383d\" fill-opacity=\"0.75\"/>"
       << "<text x=\"20\" y=\"10\">reachable, not covered</text>"
-      << "<rect x=\"180\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>"
-      << "<text x=\"200\" y=\"10\">covered twice or more</text>";
+      << "<rect x=\"180\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>";
+    const double x = 360;
+    if (c.three_passes)  // the shades stack: 3 passes is the first and second drawn over each other
+      s << "<text x=\"200\" y=\"10\">2 passes</text>"
+        << "<rect x=\"262\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>"
+        << "<rect x=\"262\" width=\"14\" height=\"10\" fill=\"#6a1b9a\" fill-opacity=\"0.55\"/><text x=\"282\" y=\"10\">3</text>"
+        << "<rect x=\"300\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>"
+        << "<rect x=\"300\" width=\"14\" height=\"10\" fill=\"#6a1b9a\" fill-opacity=\"0.55\"/>"
+        << "<rect x=\"300\" width=\"14\" height=\"10\" fill=\"#2e0854\" fill-opacity=\"0.65\"/><text x=\"320\" y=\"10\">4+</text>";
+    else
+      s << "<text x=\"200\" y=\"10\">covered twice or more</text>";
     if (c.violating && !c.violating->empty())
-      s << "<line x1=\"360\" y1=\"5\" x2=\"390\" y2=\"5\" stroke=\"#ff0000\" stroke-width=\"4\"/>"
-        << "<text x=\"396\" y=\"10\">fails the exact check (" << c.violating->size() << " segments"
+      s << "<line x1=\"" << fmt(x) << "\" y1=\"5\" x2=\"" << fmt(x + 30) << "\" y2=\"5\" stroke=\"#ff0000\" stroke-width=\"4\"/>"
+        << "<text x=\"" << fmt(x + 36) << "\" y=\"10\">fails the exact check (" << c.violating->size() << " segments"
         << (c.violating->size() >= kMaxListedViolations ? " or more" : "") << ")</text>";
     s << "</g>\n";
   }
@@ -311,7 +322,7 @@ std::string renderSvg(const SvgContent& c) {
 /// The picture of a path; with its coverage layer when it can be scored.
 std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle, const Path& path,
                         const std::string& title, bool coverage_layer, double overlap_strips,
-                        std::size_t first_judged_segment) {
+                        std::size_t first_judged_segment, bool pass_counts) {
   const Region free = freeRegion(wall, tool);
   SvgContent content;
   content.wall = &wall;
@@ -328,9 +339,17 @@ std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleM
   const Region uncovered = subtract(regions.reachable, regions.swept);
   // Draw the overlap with strips no finer than the measure's and at most `overlap_strips` over the wall.
   const Box box = boundingBox(wall.boundary);
-  const Region overlap = overlapRegion(path, tool.radius(), std::max(tool.radius() / 10.0, box.height() / overlap_strips));
+  const double strip = std::max(tool.radius() / 10.0, box.height() / overlap_strips);
+  const Region overlap = overlapRegion(path, tool.radius(), strip);
   content.uncovered = &uncovered;
   content.overlap = &overlap;
+  Region three, four;
+  if (pass_counts) {
+    three = passRegion(path, tool.radius(), strip, 3);
+    four = passRegion(path, tool.radius(), strip, 4);
+    content.three_passes = &three;
+    content.four_passes = &four;
+  }
   return renderSvg(content);
 }
 
@@ -371,6 +390,11 @@ std::string playbackScript(const std::string& id, const Wall& wall, const ToolPa
   d["on"] = on;
   d["waits"] = waits;
   d["arcs"] = arcs;
+  // Segments that fail the validity check (a tool-on move across a window, a move off the wall):
+  // the player marks them over its paint at every moment.
+  nlohmann::json bad = nlohmann::json::array();
+  for (const std::size_t i : checkValidity(wall, tool, path, vehicle).violating) bad.push_back(i);
+  d["bad"] = bad;
   return "coverbenchPlayback(" + d.dump() + ");\n";
 }
 

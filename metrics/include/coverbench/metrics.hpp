@@ -142,7 +142,9 @@ std::vector<double> passLevelAreas(const Path& path, double radius, std::size_t 
 /// midpoint rule across lines): the method behind the overlap pictures, whose strips are one
 /// scanline high. Its error is of the order of the spacing; the metrics use passes().
 Passes passesOnScanlines(const Path& path, double radius, double resolution, std::size_t bins = 4);
-/// The points passed over twice or more, as strips one scanline high (for pictures).
+/// The points passed over `min_passes` times or more, as strips one scanline high (for pictures).
+Region passRegion(const Path& path, double radius, double resolution, int min_passes);
+/// The points passed over twice or more: passRegion(path, radius, resolution, 2).
 Region overlapRegion(const Path& path, double radius, double resolution);
 /// Number of passes over one point (the definition, point by point).
 int passCount(const Path& path, double radius, Point q);

@@ -23,6 +23,9 @@ struct SvgContent {
   const Path* path = nullptr;    ///< optional
   const Region* uncovered = nullptr;  ///< optional coverage layer: reachable but not swept
   const Region* overlap = nullptr;    ///< optional coverage layer: passed over twice or more
+  /// optional pass-count layers over `overlap`: passed over three times or more, four or more
+  const Region* three_passes = nullptr;
+  const Region* four_passes = nullptr;
   /// optional: indices of segments that fail the exact validity check, drawn in red over the
   /// path; the picture's frame grows to hold every waypoint, so a path that leaves the wall is seen.
   const std::vector<std::size_t>* violating = nullptr;
@@ -37,9 +40,10 @@ std::string renderSvg(const SvgContent& content);
 /// height (1500: finer than the picture's pixels; galleries of thumbnails use fewer). Segments
 /// before `first_judged_segment` are not marked (a repaired path's executed part, driven before
 /// the obstacles appeared, is judged on the wall it had then).
+/// With `pass_counts`, the overlap is drawn by pass count (2, 3, 4 or more) in three shades.
 std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle, const Path& path,
                         const std::string& title, bool coverage_layer = true, double overlap_strips = 1500.0,
-                        std::size_t first_judged_segment = 0);
+                        std::size_t first_judged_segment = 0, bool pass_counts = false);
 
 /// The data that plays a picture's path back in place (reports/python/coverbench_report/player.js):
 /// a script calling coverbenchPlayback({...}) with the path in the picture's pixels (the frame

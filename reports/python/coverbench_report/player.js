@@ -59,7 +59,7 @@
     for (const [i, cs] of raw.waits) wait[i] = cs / 100;
     for (const [i, b] of raw.arcs) bulge[i] = b / 1e6;
     return {x, y, t, wait, bulge, on: raw.on, end: raw.end_cs / 100, size: raw.size,
-            toolPx: raw.tool_px, lifts: raw.lifts, model: raw.model};
+            toolPx: raw.tool_px, lifts: raw.lifts, model: raw.model, bad: raw.bad || []};
   }
 
   // The point a fraction f along segment i (an arc by its bulge: tan of a quarter of its angle).
@@ -212,6 +212,17 @@
       }
       ctx.globalAlpha = 1;
       ctx.setLineDash([]);
+      if (d.bad.length) {  // segments that fail the validity check, marked at every moment
+        ctx.strokeStyle = "#ff0000";
+        ctx.lineWidth = 4;
+        ctx.lineCap = "round";
+        ctx.beginPath();
+        for (const b of d.bad) {
+          ctx.moveTo(d.x[b], d.y[b]);
+          traceSegment(ctx, d, b, 1);
+        }
+        ctx.stroke();
+      }
       ctx.beginPath();
       ctx.arc(tx, ty, Math.max(d.toolPx / 2, 3), 0, 2 * Math.PI);
       ctx.fillStyle = "rgba(208,47,47,0.35)";
@@ -265,6 +276,7 @@
       frames: () => frames,
       drawMs: () => drawMs,
       waypoints: () => d.t.length,
+      marked: () => d.bad.length,
     };
     button.addEventListener("click", () => (playing ? api.pause() : api.play()));
     speed.addEventListener("change", () => api.setSpeed(Number(speed.value)));
