@@ -30,6 +30,9 @@ WallsDb::WallsDb(const std::string& path) : file_(path) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw InputError(path, "(database)", "is a folder, not a walls database file");
   const bool empty = !fs::exists(path, ec) || fs::file_size(path, ec) == 0;
+  // SQLite makes -wal and -shm files beside a WAL database it reads: a refused file keeps only
+  // what it had beside it.
+  const bool had_wal = fs::exists(path + "-wal", ec), had_shm = fs::exists(path + "-shm", ec);
   if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
     const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
@@ -61,6 +64,8 @@ WallsDb::WallsDb(const std::string& path) : file_(path) {
   } catch (...) {
     sqlite3_close(db_);
     db_ = nullptr;
+    if (!had_wal) fs::remove(path + "-wal", ec);
+    if (!had_shm) fs::remove(path + "-shm", ec);
     throw;
   }
 }

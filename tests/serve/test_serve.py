@@ -281,9 +281,16 @@ class Serve(unittest.TestCase):
 
     def test_what_it_cannot_serve_is_one_line_and_exit_2(self):
         for args, message in ((["/nonexistent.sqlite"], "coverbench: /nonexistent.sqlite: (file): does not exist\n"),
-                              ([self.db, "--port", "70000"], "coverbench: --port: port: must be from 0 to 65535, got 70000\n")):
+                              ([self.db, "--port", "70000"], "coverbench: --port: port: must be from 0 to 65535, got 70000\n"),
+                              ([self.db, "--walls", "/nonexistent"], "coverbench: /nonexistent: --walls: is not a folder\n"),
+                              ([self.db, "--walls-db", self.db],
+                               f"coverbench: {self.db}: (database): is not a CoverBench walls database (its application_id)\n"),
+                              ([self.db, "--plan-time-limit", "0"],
+                               "coverbench: --plan-time-limit: plan_time_limit: must be in (0, 86400] s, got 0\n")):
+            beside = sorted(os.listdir(os.path.dirname(os.path.abspath(self.db))))
             r = subprocess.run([BIN, "serve", *args], capture_output=True, text=True, timeout=60)
             self.assertEqual((r.returncode, r.stderr, r.stdout), (2, message, ""))
+            self.assertEqual(sorted(os.listdir(os.path.dirname(os.path.abspath(self.db)))), beside, "nothing left beside it")
 
     def test_the_page_filters_opens_and_plays_a_run(self):
         with opened(self.base + "/") as page:
