@@ -463,4 +463,10 @@ class Serve(unittest.TestCase):
 
 
 if __name__ == "__main__":
+    # ctest serve_main_job: the main job's database when it has been made (README's first
+    # command), else skipped with the reason (exit 77).
+    if os.environ.get("COVERBENCH_SERVE_DB_IF_PRESENT"):
+        if not os.path.isfile(os.environ.get("COVERBENCH_SERVE_DB", "")):
+            print(f"skipped: {os.environ.get('COVERBENCH_SERVE_DB')} does not exist (run the main job: bash scripts/run_main.sh)")
+            sys.exit(77)
     unittest.main()
