@@ -139,15 +139,6 @@ void storedOptions(const Statement& s, int i, VehicleModel& vehicle, TransitSpec
   }
 }
 
-std::string utcNow() {
-  const std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 std::string gibibytes(double bytes) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f GiB", bytes / (1024.0 * 1024 * 1024));
@@ -162,6 +153,15 @@ std::string paramsText(const PlannerConfig& pc) {
 }
 
 }  // namespace
+
+std::string utcNow() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
 
 Provenance currentProvenance(unsigned workers, const std::string& command_line) {
   Provenance p;

@@ -2,10 +2,10 @@
 
 #include <sqlite3.h>
 
-#include <ctime>
 #include <filesystem>
 
 #include "coverbench/hash.hpp"
+#include "coverbench/results_db.hpp"
 #include "coverbench/wall_file.hpp"
 #include "sqlite_statement.hpp"
 
@@ -13,15 +13,6 @@ namespace coverbench {
 namespace {
 
 constexpr long long kWallsApplicationId = 0x4376574c;  // "CvWL"
-
-std::string utcNow() {
-  const std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
 
 }  // namespace
 

@@ -28,6 +28,8 @@ struct Provenance {
   unsigned workers = 0;    ///< runs executed at once
 };
 Provenance currentProvenance(unsigned workers, const std::string& command_line);
+/// Now, UTC, ISO 8601 ("2026-11-26T23:55:15Z"): how the databases store when something happened.
+std::string utcNow();
 
 class ResultsDb {
  public:
