@@ -1,6 +1,6 @@
 """`coverbench serve` as a client and a user see it: the JSON API (filters and sorting against
 the runs themselves, the run's picture and playback data, every refusal as a one-line JSON
-error), the workbench's API (planners from the registry, walls checked with the command line's
+error), the viewer's pan and zoom, the workbench's API (planners from the registry, walls checked with the command line's
 messages, plans in a worker process under the time limit, walls saved and opened), then the page
 in headless Chromium: filter to one planner, open a run, play it at 0.25x and 20x (progress 80x
 apart within 10 %); pick two planners' runs on one wall and play them in step; open a run's wall in
@@ -311,6 +311,36 @@ class Serve(unittest.TestCase):
             if self.small:
                 self.assertEqual(len(ready["planners"]), 3)
             problems = play(page, os.path.join(SHOTS, "serve"))
+            # Pan and zoom: the picture fits its view; two clicks on + lay it out 4x as wide as the
+            # view (inside its scroll bars), which keeps its height; a drag pans by as much as the
+            # mouse moved.
+            z = page.evaluate("""(async () => {
+                const sleep = ms => new Promise(r => setTimeout(r, ms));
+                const fig = document.querySelector('#viewer figure');
+                const img = fig.querySelector('img'), view = fig.coverbenchZoom.view;
+                const w0 = img.getBoundingClientRect().width, h0 = view.getBoundingClientRect().height;
+                fig.querySelector('.zoom-in').click();
+                fig.querySelector('.zoom-in').click();
+                await sleep(200);
+                view.scrollIntoView({block: 'center'});
+                await sleep(100);
+                const r = view.getBoundingClientRect();
+                return {ratio: img.getBoundingClientRect().width / view.clientWidth, fit: w0 / r.width, height: r.height / h0,
+                        at: [r.left + r.width / 2, r.top + r.height / 2], scroll: [view.scrollLeft, view.scrollTop],
+                        canvas: fig.querySelector('canvas.player-canvas').width / fig.coverbenchPlayer.waypoints() > 0};
+            })()""")
+            x, y = z["at"]
+            page.call("Input.dispatchMouseEvent", type="mousePressed", x=x, y=y, button="left", clickCount=1)
+            for k in range(1, 5):
+                page.call("Input.dispatchMouseEvent", type="mouseMoved", x=x - 20 * k, y=y - 10 * k, button="left", buttons=1)
+            page.call("Input.dispatchMouseEvent", type="mouseReleased", x=x - 80, y=y - 40, button="left", clickCount=1)
+            after = page.evaluate("(() => { const v = document.querySelector('#viewer .zoom-view'); return [v.scrollLeft, v.scrollTop]; })()")
+            self.assertAlmostEqual(z["fit"], 1.0, delta=0.01)
+            self.assertAlmostEqual(z["ratio"], 4.0, delta=0.01)
+            self.assertAlmostEqual(z["height"], 1.0, delta=0.01)
+            self.assertEqual([round(after[0] - z["scroll"][0]), round(after[1] - z["scroll"][1])], [80, 40])
+            time.sleep(0.3)
+            page.screenshot(os.path.join(SHOTS, "serve-zoom.png"))
             problems += errors(page.events)
             self.assertEqual(problems, [])
 

@@ -6,7 +6,8 @@
 // tool moves at the mean speed the time model gives that segment.
 //
 // Each player is reachable as figure.coverbenchPlayer (play, pause, seek, setSpeed, time,
-// duration, frames, drawMs) for the browser tests and bench/playback_fps.py.
+// duration, frames, drawMs) for the browser tests and bench/playback_fps.py, and each picture's
+// pan and zoom as figure.coverbenchZoom (set, zoom, view).
 "use strict";
 (function () {
   const SPEEDS = [0.25, 0.5, 1, 2, 5, 10, 20];
@@ -135,12 +136,24 @@
     const clock = document.createElement("span");
     clock.className = "player-clock";
     bar.append(button, speed, scrub, clock);
-    holder.after(bar);
+    (holder.closest(".zoom-view") || holder).after(bar);  // the controls stay out of the zoomed view
     const model = document.createElement("small");
     model.className = "player-model";
     model.textContent = "time model: " + d.model;
     bar.after(model);
 
+    // The canvases' resolution follows the zoom (up to 8x, and 16,000 pixels a side), so a
+    // zoomed picture's paint is as sharp as the picture beneath.
+    function rescale(zoom) {
+      const k = Math.max(1, Math.min(zoom, 8, 16000 / Math.max(d.size[0], d.size[1])));
+      for (const c of [canvas, paint]) {
+        c.width = Math.round(d.size[0] * k);
+        c.height = Math.round(d.size[1] * k);
+      }
+      ctx.setTransform(k, 0, 0, k, 0, 0);
+      pctx.setTransform(k, 0, 0, k, 0, 0);
+      drawn = 0;
+    }
     let time = 0, rate = DEFAULT_SPEED, playing = false, anchorTime = 0, anchorClock = 0;
     let drawn = 0;  // segments painted onto `paint`
     let frames = 0;
@@ -183,7 +196,7 @@
       const last = d.t.length - 1;
       const done = i >= last;
       if (i < drawn) {
-        pctx.clearRect(0, 0, paint.width, paint.height);
+        pctx.clearRect(0, 0, d.size[0], d.size[1]);
         drawn = 0;
       }
       const full = done ? last : i;
@@ -193,11 +206,14 @@
       }
       // Where on segment i the tool is: waiting at its start, then along it.
       let tx = d.x[Math.min(i, last)], ty = d.y[Math.min(i, last)];
-      ctx.clearRect(0, 0, canvas.width, canvas.height);
+      ctx.clearRect(0, 0, d.size[0], d.size[1]);
       ctx.fillStyle = "rgba(255,255,255,0.72)";  // the whole path beneath, faded
-      ctx.fillRect(0, 0, canvas.width, canvas.height);
+      ctx.fillRect(0, 0, d.size[0], d.size[1]);
       ctx.globalAlpha = 0.5;
+      ctx.save();
+      ctx.setTransform(1, 0, 0, 1, 0, 0);  // both canvases are at the same resolution
       ctx.drawImage(paint, 0, 0);
+      ctx.restore();
       if (!done) {
         const depart = d.t[i] + d.wait[i], span = d.t[i + 1] - depart;
         const f = time <= depart || span <= 0 ? 0 : Math.min(1, (time - depart) / span);
@@ -277,16 +293,91 @@
       drawMs: () => drawMs,
       waypoints: () => d.t.length,
       marked: () => d.bad.length,
+      rescale(zoom) { rescale(zoom); draw(); },
     };
     button.addEventListener("click", () => (playing ? api.pause() : api.play()));
     speed.addEventListener("change", () => api.setSpeed(Number(speed.value)));
     scrub.addEventListener("input", () => api.seek(Number(scrub.value)));
     figure.coverbenchPlayer = api;
+    rescale(Number(figure.dataset.zoom || 1));
     draw();
     return api;
   }
 
+  // Pan and zoom: the picture (and the player's canvas over it) in a view that zooms from 1x to
+  // 32x with the buttons or Ctrl + wheel (about the pointer), and pans by dragging or scrolling.
+  // The picture is laid out larger, not scaled, so the SVG is drawn again at each zoom.
+  function zoomable(figure) {
+    if (figure.querySelector(".zoom-view")) return;
+    const pic = figure.querySelector("a") || figure.querySelector("img");
+    if (!pic) return;
+    const view = document.createElement("div"), inner = document.createElement("div");
+    view.className = "zoom-view";
+    inner.className = "zoom-inner";
+    pic.replaceWith(view);
+    view.appendChild(inner);
+    inner.appendChild(pic);
+    for (const img of figure.querySelectorAll("img")) img.draggable = false;
+    const tools = document.createElement("div");
+    tools.className = "zoom-tools";
+    let zoom = 1;
+    function setZoom(z, cx, cy) {
+      z = Math.max(1, Math.min(32, z));
+      if (zoom === 1 && z > 1) view.style.height = view.clientHeight + "px";  // the view keeps its size
+      const w = view.clientWidth, h = view.clientHeight;
+      if (cx === undefined) { cx = w / 2; cy = h / 2; }
+      const fx = (view.scrollLeft + cx) / inner.offsetWidth, fy = (view.scrollTop + cy) / inner.offsetHeight;
+      zoom = z;
+      inner.style.width = 100 * z + "%";
+      if (z === 1) view.style.height = "";
+      view.scrollLeft = fx * inner.offsetWidth - cx;
+      view.scrollTop = fy * inner.offsetHeight - cy;
+      figure.dataset.zoom = String(z);
+      if (figure.coverbenchPlayer) figure.coverbenchPlayer.rescale(z);
+      label.textContent = z === 1 ? "" : z.toFixed(z < 10 ? 1 : 0) + "x";
+    }
+    const button = (text, title, f) => {
+      const b = document.createElement("button");
+      b.type = "button";
+      b.textContent = text;
+      b.title = title;
+      b.addEventListener("click", f);
+      tools.appendChild(b);
+      return b;
+    };
+    button("+", "zoom in (or Ctrl + wheel)", () => setZoom(zoom * 2)).className = "zoom-in";
+    button("\u2212", "zoom out", () => setZoom(zoom / 2)).className = "zoom-out";
+    button("fit", "the whole picture", () => setZoom(1)).className = "zoom-fit";
+    const label = document.createElement("span");
+    tools.appendChild(label);
+    view.before(tools);
+    view.addEventListener("wheel", e => {
+      if (!e.ctrlKey) return;
+      e.preventDefault();
+      const r = view.getBoundingClientRect();
+      setZoom(zoom * Math.pow(2, -e.deltaY / 300), e.clientX - r.left, e.clientY - r.top);
+    }, {passive: false});
+    let drag = null, moved = false;
+    view.addEventListener("pointerdown", e => {
+      if (zoom === 1 || e.button !== 0) return;
+      drag = {x: e.clientX, y: e.clientY, left: view.scrollLeft, top: view.scrollTop};
+      moved = false;
+      view.setPointerCapture(e.pointerId);
+      e.preventDefault();
+    });
+    view.addEventListener("pointermove", e => {
+      if (!drag) return;
+      if (Math.abs(e.clientX - drag.x) + Math.abs(e.clientY - drag.y) > 3) moved = true;
+      view.scrollLeft = drag.left - (e.clientX - drag.x);
+      view.scrollTop = drag.top - (e.clientY - drag.y);
+    });
+    view.addEventListener("pointerup", () => { drag = null; });
+    view.addEventListener("click", e => { if (moved) { e.preventDefault(); moved = false; } }, true);  // a drag is not a click
+    figure.coverbenchZoom = {set: setZoom, zoom: () => zoom, view};
+  }
+
   function attach(figure) {
+    zoomable(figure);
     const start = document.createElement("button");
     start.type = "button";
     start.className = "player-start";
@@ -313,7 +404,13 @@
 .player-bar input[type=range]{flex:1;min-width:60px}
 .player-clock{font-variant-numeric:tabular-nums;white-space:nowrap}
 .player-model{display:block;color:#555;font-size:11px}
-.player-start{font-size:12px;margin:3px 0}`;
+.player-start{font-size:12px;margin:3px 0}
+.zoom-view{overflow:auto;position:relative;cursor:default}
+.zoom-view[style*=height]{cursor:grab}
+.zoom-inner{width:100%}
+.zoom-inner img{width:100%;height:auto}
+.zoom-tools{display:flex;gap:4px;align-items:center;font-size:12px;margin:2px 0}
+.zoom-tools button{font-size:12px;min-width:2em;padding:0 6px}`;
 
   function init() {
     const style = document.createElement("style");
