@@ -14,6 +14,7 @@ PACKAGES=(g++ cmake ninja-build pkg-config ccache
           pybind11-dev python3-dev                                 # the Python package (import coverbench)
           chromium python3-websocket                               # the browser test of the report
           libcpp-httplib-dev                                       # coverbench serve
+          node-typescript                                          # type-checks the explorer's JavaScript (ctest web_types)
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
           libompl-dev libeigen3-dev                                # the sampling transit planners (Eigen: import placements)

@@ -6,6 +6,11 @@
 (function () {
   const COLUMNS = ["coverage_reachable", "overlap", "length_ratio", "duration_s", "turns", "plan_time_ms"];
   const state = {db: 0, id: 0, sort: "", order: "asc", chosen: "", picked: new Map()};  // picked: key -> run
+  /**
+   * An element of the page by id (any: each is used as the element it is).
+   * @param {string} id
+   * @returns {any}
+   */
   const $ = id => document.getElementById(id);
 
   async function api(url) {
@@ -139,7 +144,7 @@
     for (const f of figures) {
       if (!f.dataset.playback) continue;
       window.coverbenchAttachPlayer(f);
-      f.querySelector(".player-start").click();
+      /** @type {HTMLButtonElement} */ (f.querySelector(".player-start")).click();
     }
     for (let k = 0; k < 400 && figures.some(f => f.dataset.playback && !f.coverbenchPlayer); ++k)
       await new Promise(r => setTimeout(r, 25));

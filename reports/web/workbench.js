@@ -6,6 +6,11 @@
 // as text, never as markup.
 "use strict";
 (function () {
+  /**
+   * An element of the page by id (any: each is used as the element it is).
+   * @param {string} id
+   * @returns {any}
+   */
   const $ = id => document.getElementById(id);
   const SVG = "http://www.w3.org/2000/svg";
   const state = {wall: null, planners: [], checkTimer: 0, checkSeq: 0, drag: null};

@@ -1,0 +1,20 @@
+// What the page's scripts add to the browser's objects, for `tsc --checkJs` (ctest web_types):
+// the player (player.js), the explorer's comparison (explorer.js) and the workbench (workbench.js).
+interface CoverbenchPlayer {
+  play(): void; pause(): void; seek(s: number): void; setSpeed(s: number): void; rescale(zoom: number): void;
+  time(): number; speed(): number; duration(): number; frames(): number; drawMs(): number; waypoints(): number; marked(): number;
+}
+interface CoverbenchZoom { set(zoom: number, cx?: number, cy?: number): void; zoom(): number; view: HTMLDivElement }
+interface CoverbenchCompare {
+  players: CoverbenchPlayer[]; play(): void; pause(): void; seek(t: number): void; setSpeed(s: number): void; times(): number[];
+}
+interface HTMLElement {
+  coverbenchPlayer?: CoverbenchPlayer;
+  coverbenchZoom?: CoverbenchZoom;
+  coverbenchCompare?: CoverbenchCompare;
+}
+interface Window {
+  coverbenchPlayback(raw: any): void;
+  coverbenchAttachPlayer(figure: HTMLElement): void;
+  coverbenchWorkbench: { setProblem(problem: object): void; plan(): Promise<void>; check(): Promise<void> };
+}
