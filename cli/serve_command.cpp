@@ -84,19 +84,19 @@ class Explorer {
     const std::size_t offset = number(param("offset"), "offset", 0, 1u << 30);
     const std::size_t limit = number(param("limit"), "limit", 100, kMaxRunsPerPage);
     // A filter names a value of its facet; one that names none matches no run.
-    std::array<int, kFacets> wanted;
+    std::array<long long, kFacets> wanted;  // -1: any; -2: a value no run has; else its index
     for (std::size_t f = 0; f < kFacets; ++f) {
       const std::string v = param(kFacetNames[f]);
       const auto& values = x.facet_values[f];
       const auto it = std::find(values.begin(), values.end(), v);
-      wanted[f] = v.empty() ? -1 : it == values.end() ? -2 : static_cast<int>(it - values.begin());
+      wanted[f] = v.empty() ? -1 : it == values.end() ? -2 : static_cast<long long>(it - values.begin());
     }
     const std::vector<std::uint32_t>& order_of = sorted(x, db, id, sort, order == "desc");
     std::size_t total = 0;
     std::vector<std::uint32_t> page;
     for (const std::uint32_t i : order_of) {
       bool match = true;
-      for (std::size_t f = 0; f < kFacets && match; ++f) match = wanted[f] == -1 || wanted[f] == x.facet_of[f][i];
+      for (std::size_t f = 0; f < kFacets && match; ++f) match = wanted[f] == -1 || wanted[f] == static_cast<long long>(x.facet_of[f][i]);
       if (!match) continue;
       if (total >= offset && page.size() < limit) page.push_back(i);
       ++total;
