@@ -2,6 +2,13 @@
 // only the databases named on its command line and its own page files, each by a fixed name: no
 // part of a request reaches the file system. Errors are JSON: {"error": "one line"}.
 #include <httplib.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <atomic>
@@ -28,6 +35,7 @@
 #include "coverbench/walls_db.hpp"
 #include "coverbench/wall_file.hpp"
 #include "coverbench/limits.hpp"
+#include "coverbench/runner.hpp"
 #include "workbench.hpp"
 
 namespace coverbench::cli {
@@ -258,12 +266,95 @@ class Explorer {
   std::mutex mutex_;
 };
 
+/// Plans in a helper process forked when the server starts, before it has threads: a process
+/// with threads must not fork workers (a lock another thread held at the fork stays locked in
+/// the child forever), while the single-threaded helper forks each plan's worker safely
+/// (executeInWorker). One plan at a time; the helper ends with the server.
+class PlanHelper {
+ public:
+  explicit PlanHelper(double max_time_limit_s) {
+    int to[2], from[2];
+    if (::pipe2(to, O_CLOEXEC) != 0 || ::pipe2(from, O_CLOEXEC) != 0) throw std::runtime_error("pipe: cannot start the plan helper");
+    std::fflush(nullptr);
+    pid_ = ::fork();
+    if (pid_ < 0) throw std::runtime_error("fork: cannot start the plan helper");
+    if (pid_ == 0) {
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      ::close(to[1]);
+      ::close(from[0]);
+      for (;;) {
+        std::string body;
+        if (!readMessage(to[0], body)) ::_exit(0);
+        std::string answer;
+        try {
+          answer = "R" + serializeRecord(planInWorker(readWorkbenchRequest(body, max_time_limit_s)));
+        } catch (const InputError& e) {
+          answer = std::string("I") + e.what();
+        } catch (const std::exception& e) {
+          answer = std::string("X") + e.what();
+        }
+        if (!writeMessage(from[1], answer)) ::_exit(0);
+      }
+    }
+    ::close(to[0]);
+    ::close(from[1]);
+    to_ = to[1];
+    from_ = from[0];
+  }
+  ~PlanHelper() {
+    ::close(to_);
+    ::close(from_);
+    ::kill(pid_, SIGKILL);
+    ::waitpid(pid_, nullptr, 0);
+  }
+  RunRecord plan(const std::string& body) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::string answer;
+    if (!writeMessage(to_, body) || !readMessage(from_, answer) || answer.empty())
+      throw std::runtime_error("the plan helper process ended");
+    if (answer[0] == 'R') return deserializeRecord(answer.substr(1));
+    if (answer[0] == 'I') throw HttpError(400, answer.substr(1));
+    throw std::runtime_error(answer.substr(1));
+  }
+
+ private:
+  static bool writeMessage(int fd, const std::string& text) {
+    const std::uint64_t n = text.size();
+    const std::string bytes = std::string(reinterpret_cast<const char*>(&n), sizeof n) + text;
+    for (std::size_t off = 0; off < bytes.size();) {
+      const ssize_t w = ::write(fd, bytes.data() + off, bytes.size() - off);
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) return false;
+      off += static_cast<std::size_t>(w);
+    }
+    return true;
+  }
+  static bool readAll(int fd, char* data, std::size_t size) {
+    for (std::size_t off = 0; off < size;) {
+      const ssize_t r = ::read(fd, data + off, size - off);
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0) return false;
+      off += static_cast<std::size_t>(r);
+    }
+    return true;
+  }
+  static bool readMessage(int fd, std::string& text) {
+    std::uint64_t n = 0;
+    if (!readAll(fd, reinterpret_cast<char*>(&n), sizeof n) || n > (std::uint64_t{1} << 32)) return false;
+    text.assign(static_cast<std::size_t>(n), '\0');
+    return readAll(fd, text.data(), text.size());
+  }
+  pid_t pid_ = -1;
+  int to_ = -1, from_ = -1;
+  std::mutex mutex_;
+};
+
 /// The workbench's side of the server: walls from the named folders and walls database, checks
 /// and plans (docs/explorer.md#workbench). Plans run in worker processes, at most two at once; the
 /// last 32 are kept to draw and play.
 class WorkbenchServer {
  public:
-  explicit WorkbenchServer(const ServeOptions& o) : max_time_limit_s_(o.plan_time_limit_s) {
+  explicit WorkbenchServer(const ServeOptions& o) : max_time_limit_s_(o.plan_time_limit_s), helper_(o.plan_time_limit_s) {
     validateTimeLimit(o.plan_time_limit_s, "--plan-time-limit", "plan_time_limit");
     for (const std::string& folder : o.wall_folders) {
       std::error_code ec;
@@ -337,7 +428,7 @@ class WorkbenchServer {
       throw HttpError(503, "plan: " + std::to_string(kMaxPlansAtOnce) + " plans are running; ask again when one has ended");
     }
     const Slot slot{running_};
-    RunRecord rec = planInWorker(r);
+    RunRecord rec = helper_.plan(body);
     if (rec.status == RunStatus::Timeout)
       throw HttpError(504, "time_limit_s: the plan did not finish within its time limit of " + shortNumber(r.time_limit_s) + " s (" +
                                rec.reason + ")");
@@ -390,6 +481,7 @@ class WorkbenchServer {
     std::string status, title;
   };
   double max_time_limit_s_;
+  PlanHelper helper_;
   std::vector<std::pair<std::string, std::string>> folder_walls_;  // folder, file name
   std::unique_ptr<WallsDb> walls_db_;
   std::map<long long, Planned> plans_;

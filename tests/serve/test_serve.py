@@ -383,33 +383,35 @@ class Serve(unittest.TestCase):
             self.assertEqual(errors(page.events), [])
 
     def test_the_workbench_plans_edits_and_replans(self):
+        # Waits are long (a minute for a check, two for a plan): under the sanitizers a plan's
+        # worker process takes seconds to start.
         with opened(self.base + "/") as page:
             r = page.evaluate("""(async () => {
                 const sleep = ms => new Promise(r => setTimeout(r, ms));
                 const $ = id => document.getElementById(id);
-                for (let k = 0; k < 400 && !(document.body.dataset.ready && document.body.dataset.workbench); ++k) await sleep(25);
+                for (let k = 0; k < 2400 && !(document.body.dataset.ready && document.body.dataset.workbench); ++k) await sleep(25);
                 // zigzag on a residential wall (a rectangle: the form has its width)
                 const planner = $('planner');
                 planner.value = 'zigzag';
                 planner.dispatchEvent(new Event('change'));
                 const rows = () => [...document.querySelectorAll('#runs tbody tr')];
-                for (let k = 0; k < 400 && rows().some(r => r.cells[2].textContent !== 'zigzag'); ++k) await sleep(25);
+                for (let k = 0; k < 2400 && rows().some(r => r.cells[2].textContent !== 'zigzag'); ++k) await sleep(25);
                 $('dataset').value = 'residential';
                 $('dataset').dispatchEvent(new Event('change'));
-                for (let k = 0; k < 400 && rows().some(r => r.cells[3].textContent !== 'residential'); ++k) await sleep(25);
+                for (let k = 0; k < 2400 && rows().some(r => r.cells[3].textContent !== 'residential'); ++k) await sleep(25);
                 const row = rows().find(r => r.cells[4].textContent === 'ok');
                 const wall = row.cells[1].textContent;
                 row.click();
                 await sleep(100);
                 $('open-in-workbench').click();
-                for (let k = 0; k < 400 && !($('wb-name') && $('wb-name').value === wall); ++k) await sleep(25);
-                const checked = async () => { for (let k = 0; k < 400 && !$('wb-check').textContent.includes(wall); ++k) await sleep(25); };
+                for (let k = 0; k < 2400 && !($('wb-name') && $('wb-name').value === wall); ++k) await sleep(25);
+                const checked = async () => { for (let k = 0; k < 2400 && !$('wb-check').textContent.includes(wall); ++k) await sleep(25); };
                 await checked();
                 const plan = async () => {
                     const before = document.body.dataset.planned;
-                    for (let k = 0; k < 400 && $('wb-plan').disabled; ++k) await sleep(25);
+                    for (let k = 0; k < 2400 && $('wb-plan').disabled; ++k) await sleep(25);
                     $('wb-plan').click();
-                    for (let k = 0; k < 800 && document.body.dataset.planned === before && !($('wb-outcome') && $('wb-outcome').className === 'error'); ++k) await sleep(25);
+                    for (let k = 0; k < 4800 && document.body.dataset.planned === before && !($('wb-outcome') && $('wb-outcome').className === 'error'); ++k) await sleep(25);
                     return $('wb-outcome').textContent;
                 };
                 const first = await plan();
@@ -440,11 +442,11 @@ class Serve(unittest.TestCase):
                 const sleep = ms => new Promise(r => setTimeout(r, ms));
                 const $ = id => document.getElementById(id);
                 const wall = JSON.parse($('wb-text').value);
-                for (let k = 0; k < 400 && $('wb-plan').disabled; ++k) await sleep(25);
+                for (let k = 0; k < 2400 && $('wb-plan').disabled; ++k) await sleep(25);
                 const drawn = wall.obstacles[wall.obstacles.length - 1];
                 const before = document.body.dataset.planned;
                 $('wb-plan').click();
-                for (let k = 0; k < 800 && document.body.dataset.planned === before && !($('wb-outcome') && $('wb-outcome').className === 'error'); ++k) await sleep(25);
+                for (let k = 0; k < 4800 && document.body.dataset.planned === before && !($('wb-outcome') && $('wb-outcome').className === 'error'); ++k) await sleep(25);
                 const replanned = $('wb-outcome').textContent;
                 const fig = document.querySelector('#wb-result figure[data-playback]');
                 fig.querySelector('.player-start').click();
@@ -457,7 +459,7 @@ class Serve(unittest.TestCase):
                 const width = document.querySelector('#wb-form .wb-width');
                 width.value = '-3';
                 width.dispatchEvent(new Event('input'));
-                for (let k = 0; k < 400 && $('wb-check').className !== 'error'; ++k) await sleep(25);
+                for (let k = 0; k < 2400 && $('wb-check').className !== 'error'; ++k) await sleep(25);
                 return {count: wall.obstacles.length, drawn, replanned, played, error: $('wb-check').textContent,
                         disabled: $('wb-plan').disabled, marked: $('wb-text').classList.contains('invalid')};
             })()""")
@@ -477,10 +479,10 @@ class Serve(unittest.TestCase):
                 const width = document.querySelector('#wb-form .wb-width');
                 width.value = String(Number(JSON.parse($('wb-text').value).height) * 2);
                 width.dispatchEvent(new Event('input'));
-                for (let k = 0; k < 400 && $('wb-check').className !== 'ok'; ++k) await sleep(25);
+                for (let k = 0; k < 2400 && $('wb-check').className !== 'ok'; ++k) await sleep(25);
                 const before = document.body.dataset.planned;
                 $('wb-plan').click();
-                for (let k = 0; k < 800 && document.body.dataset.planned === before; ++k) await sleep(25);
+                for (let k = 0; k < 4800 && document.body.dataset.planned === before; ++k) await sleep(25);
                 document.querySelector('#workbench').scrollIntoView();
                 return $('wb-outcome').textContent;
             })()""")

@@ -47,5 +47,9 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
 /// when the worker did not answer in time or died). For callers that must not run planners in
 /// their own process (the explorer's workbench).
 RunRecord executeInWorker(const RunSpec& spec);
+/// A run record as bytes and back (what a worker sends through its pipe). deserializeRecord
+/// throws std::runtime_error on malformed bytes.
+std::string serializeRecord(const RunRecord& record);
+RunRecord deserializeRecord(const std::string& bytes);
 
 }  // namespace coverbench
