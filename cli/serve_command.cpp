@@ -350,7 +350,7 @@ class PlanHelper {
 };
 
 /// The workbench's side of the server: walls from the named folders and walls database, checks
-/// and plans (docs/explorer.md#workbench). Plans run in worker processes, at most two at once; the
+/// and plans (docs/explorer.md#workbench). Plans run in worker processes, one at a time with one more waiting; the
 /// last 32 are kept to draw and play.
 class WorkbenchServer {
  public:
@@ -425,7 +425,7 @@ class WorkbenchServer {
     };
     if (++running_ > kMaxPlansAtOnce) {
       --running_;
-      throw HttpError(503, "plan: " + std::to_string(kMaxPlansAtOnce) + " plans are running; ask again when one has ended");
+      throw HttpError(503, "plan: one plan is running and another is waiting; ask again when one has ended");
     }
     const Slot slot{running_};
     RunRecord rec = helper_.plan(body);
@@ -472,7 +472,7 @@ class WorkbenchServer {
   }
 
  private:
-  static constexpr int kMaxPlansAtOnce = 2;
+  static constexpr int kMaxPlansAtOnce = 2;  // the one the helper plans and one waiting for it
   static constexpr std::size_t kPlansKept = 32;
   struct Planned {
     Wall wall;

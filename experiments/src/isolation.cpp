@@ -19,7 +19,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <mutex>
 #include <new>
 #include <stdexcept>
 
@@ -351,11 +350,6 @@ class Pool {
 
  private:
   void start(Worker& w) {
-    // Pools in several threads of one process (the explorer's plans): a worker forked while
-    // another pool is between its pipes and its fork would hold that worker's result pipe open,
-    // and a crash there would be seen only at its deadline. One start at a time.
-    static std::mutex starting;
-    const std::lock_guard<std::mutex> lock(starting);
     int cmd[2], result[2];
     if (::pipe2(cmd, O_CLOEXEC) != 0 || ::pipe2(result, O_CLOEXEC) != 0)
       throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));

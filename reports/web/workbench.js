@@ -58,9 +58,9 @@
     });
     return out;
   }
-  function setWall(w, fromText) {
+  function setWall(w) {
     state.wall = w;
-    if (!fromText) $("wb-text").value = wallText(w);
+    $("wb-text").value = wallText(w);
     renderForm();
     renderDrawing();
     scheduleCheck();
