@@ -3,6 +3,7 @@
 #include "coverbench/registry.hpp"
 
 #include "coverbench/car.hpp"
+#include "coverbench/car_sweep.hpp"
 #include "coverbench/clearance.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
@@ -239,14 +240,18 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
   PlanResult result;
   try {
     if (problem.vehicle.isCar()) {
-      // Planners plan for a tool that turns on the spot; the car drives their path smoothed
-      // (vehicles/include/coverbench/car.hpp): corners rounded or turned, what it cannot reach left out and said.
-      Problem holonomic = problem;
-      holonomic.vehicle = VehicleModel{};
-      holonomic.straight_segments_only = true;
-      result = planner.make()->plan(holonomic, budget);
-      attachEnds(holonomic, result, false);  // smoothing reads only moves inside F
-      if (result.hasPath()) {
+      // Planners plan for a tool that turns on the spot and the car drives their path smoothed
+      // (vehicles/include/coverbench/car.hpp): corners rounded or turned, what it cannot reach left
+      // out and said. A planner that plans for the car itself (PlannerInfo::plans_for_car) is given
+      // the car and says whether it did (PlanResult::planned_for_car).
+      const Problem holonomic = asHolonomic(problem);
+      result = planner.make()->plan(planner.plans_for_car ? problem : holonomic, budget);
+      if (result.planned_for_car && result.hasPath() && (problem.wall->start || problem.wall->end))
+        result = PlanResult::failure(PlanStatus::InvalidInput,
+                                     "a plan made for the car itself (car_plan: headland) does not take a wall's start or "
+                                     "end yet; use car_plan: smoothed");
+      if (!result.planned_for_car) attachEnds(holonomic, result, false);  // smoothing reads only moves inside F
+      if (!result.planned_for_car && result.hasPath()) {
         const Workspace ws(*problem.wall, problem);
         const CarSmoothing car = smoothForCar(ws, result.path);
         result.path = car.path;

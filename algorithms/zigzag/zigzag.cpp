@@ -8,6 +8,7 @@
 #include "coverbench/region_ops.hpp"
 #include "coverbench/sweep_search.hpp"
 #include "coverbench/boundary_arcs.hpp"
+#include "coverbench/car_sweep.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::zigzag {
@@ -72,6 +73,7 @@ struct ZigzagParams {
   long long boundary_passes = 1;
   double row_end_inset = 0.5;
   bool fill_leftovers = false;
+  CarPlan car_plan = CarPlan::Headland;
 };
 
 const ParamTable<ZigzagParams>& paramTable() {
@@ -84,7 +86,8 @@ const ParamTable<ZigzagParams>& paramTable() {
                 "boundary-following loops around the wall and each obstacle before the rows"},
                &ZigzagParams::boundary_passes)
           .add(rowEndInsetParam(), &ZigzagParams::row_end_inset)
-          .add(fillLeftoversParam(), &ZigzagParams::fill_leftovers);
+          .add(fillLeftoversParam(), &ZigzagParams::fill_leftovers)
+          .add(carPlanParam(), &ZigzagParams::car_plan, carPlanChoices());
   return table;
 }
 
@@ -93,12 +96,50 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
   ZigzagPlanner() : TypedPlanner(paramTable()) {}
 
  protected:
-  PlanResult planWith(const Problem& problem, const ZigzagParams& params, const Budget& budget) override {
+  PlanResult planWith(const Problem& given, const ZigzagParams& params, const Budget& budget) override {
+    // car_plan: smoothed plans for a tool that turns on the spot; runPlanner smooths the path.
+    const Problem problem = given.vehicle.isCar() && params.car_plan == CarPlan::Smoothed ? asHolonomic(given) : given;
     return planSweep(problem, params.sweep, budget,
                      [&](double angle_deg) { return planAt(problem, params, budget, angle_deg); });
   }
 
  private:
+  /// For a car (car_plan: headland): as many rings as its turns need, then the rows in an order
+  /// its curves link (car_sweep.hpp).
+  PlanResult planForCar(const Problem& problem, const ZigzagParams& params, const Budget& budget, double angle,
+                        double angle_deg, Workspace& ws, const Region& main, std::size_t free_components) {
+    const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
+    const CarHeadlandLayout car = carHeadlandLayout(spacing, problem.vehicle.turn_radius);
+    HeadlandOptions layout;
+    layout.spacing = spacing;
+    layout.radius = problem.tool.tool_width / 2.0;
+    layout.loops = std::max<std::size_t>(car.loops, static_cast<std::size_t>(params.boundary_passes));
+    layout.end_inset = std::max(car.end_inset, params.row_end_inset);
+    layout.arc_tolerance = kRowArcTolerance;
+    Headland h = headland(ws, main, layout);
+    std::vector<CarRow> rows = carHolePasses(ws, h.loops, spacing);
+    const Box box = h.row_span;
+    const std::vector<double> heights = box.empty() ? std::vector<double>{} : rowHeights(box.min_y, box.max_y, spacing);
+    if (!heights.empty())
+      for (const auto& line : rowIntervals(allRings(h.ends), heights))
+        for (const Interval& iv : line) rows.push_back({iv.lowEnd(), iv.highEnd(), iv.row});
+    PathBuilder builder(ws);
+    const CarSweep sweep = carSweep(builder, h.loops, rows, spacing, budget);
+    PlanResult result;
+    result.status = PlanStatus::Ok;
+    result.path = sweep.path;
+    rotatePoints(result.path.waypoints, angle);
+    result.stats["rows"] = static_cast<double>(heights.size());
+    result.stats["row_spacing"] = heights.size() > 1 ? heights[1] - heights[0] : 0.0;
+    result.stats["intervals"] = static_cast<double>(rows.size());
+    result.stats["headland_rings"] = static_cast<double>(h.loops.size());
+    result.stats["sweep_angle_deg"] = angle_deg;
+    recordOutcome(result, builder, free_components, sweep.unreached_rings);
+    recordCarSweep(result, sweep);
+    result.planned_for_car = true;
+    return result;
+  }
+
   PlanResult planAt(const Problem& problem, const ZigzagParams& params, const Budget& budget, double angle_deg) {
     const double angle = angle_deg * M_PI / 180.0;
     const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
@@ -111,6 +152,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
       return PlanResult::failure(PlanStatus::NoReachableArea,
                                  "the tool fits nowhere: the free region F is empty for this tool and clearance");
     const Region main = coveredPart(components, problem.vehicle);
+    if (problem.vehicle.isCar()) return planForCar(problem, params, budget, angle, angle_deg, ws, main, components.size());
 
     // Loops along F's boundary first, then rows clear of their paint (headland.hpp), then, with
     // fill_leftovers, a pass for each piece both left.
@@ -233,12 +275,13 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "zigzag";
-  info.version = std::string("4");  // not = "4": GCC 12 warns falsely (-Wrestrict) on that assignment here
+  info.version = std::string("5");  // not = "5": GCC 12 warns falsely (-Wrestrict) on that assignment here
   info.code_folders = {"zigzag"};
   info.summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes";
   info.reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013";
   info.params = paramTable().specs();
   info.min_coverage_reachable = 0.995;
+  info.plans_for_car = true;
   info.make = [] { return std::make_unique<ZigzagPlanner>(); };
   return info;
 }

@@ -14,10 +14,6 @@
 namespace coverbench {
 namespace {
 
-/// Turns are planned on a radius this much above the car's (relative), so that ending a curve
-/// exactly on its target (moving the last arc's end by rounding) never makes an arc tighter.
-constexpr double kRadiusSlack = 1e-4;
-
 struct Segment {
   Point a, b;
   bool tool = false;
@@ -169,9 +165,44 @@ Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool) {
   return Path{};
 }
 
+double carCurveLength(Pose from, Pose to, double radius, bool reverse) {
+  if (reverse) return reedsSheppLength(from, to, radius);
+  const Point delta = to.at - from.at;
+  const double d = norm(delta) / radius, phi = std::atan2(delta.y, delta.x);
+  double best = INFINITY;
+  for (const auto& word : dubinsWords(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi))) {
+    double sum = 0.0;
+    for (const CurvePrimitive& c : word) sum += std::fabs(c.amount);
+    best = std::min(best, sum * radius);
+  }
+  return best;
+}
+
+Pose endPose(const Path& path) {
+  const std::size_t k = path.segments() - 1;
+  return {path.waypoints.back(), headings(path, k).second};
+}
+
+void checkDrivable(const Path& path, const VehicleModel& car, const char* who) {
+  double end_heading = 0.0;
+  for (std::size_t k = 0; k < path.segments(); ++k) {
+    const double bulge = path.bulgeOf(k);
+    if (bulge != 0.0 && arcGeometry(path.waypoints[k], path.waypoints[k + 1], bulge).radius < car.turn_radius)
+      throw std::logic_error(std::string(who) + " made an arc tighter than the turn radius at segment " + std::to_string(k));
+    const auto [start, end] = headings(path, k);
+    if (k > 0) {
+      const double jump = std::fabs(angleBetween(end_heading, start));
+      if (jump > kCarHeadingTolerance / 2.0 && !(car.reverse && jump > M_PI - kCarHeadingTolerance / 2.0))
+        throw std::logic_error(std::string(who) + " left a heading jump of " + std::to_string(jump) + " rad at segment " +
+                               std::to_string(k));
+    }
+    end_heading = end;
+  }
+}
+
 CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
   const VehicleModel& car = ws.vehicle();
-  const double rho = car.turn_radius * (1.0 + kRadiusSlack);
+  const double rho = car.turn_radius * (1.0 + kCarRadiusSlack);
   CarSmoothing out;
   if (in.waypoints.empty()) return out;
   out.path.moveTo(in.waypoints.front(), false);
@@ -367,20 +398,7 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
   }
   // The car's rules, checked on what was built (the judges check again): a slip here is a bug,
   // and the plan fails with it rather than hand over a path the car cannot drive.
-  double end_heading = 0.0;
-  for (std::size_t k = 0; k < out.path.segments(); ++k) {
-    const double bulge = out.path.bulgeOf(k);
-    if (bulge != 0.0 && arcGeometry(out.path.waypoints[k], out.path.waypoints[k + 1], bulge).radius < car.turn_radius)
-      throw std::logic_error("car smoothing made an arc tighter than the turn radius at segment " + std::to_string(k));
-    const auto [start, end] = headings(out.path, k);
-    if (k > 0) {
-      const double jump = std::fabs(angleBetween(end_heading, start));
-      if (jump > kCarHeadingTolerance / 2.0 && !(car.reverse && jump > M_PI - kCarHeadingTolerance / 2.0))
-        throw std::logic_error("car smoothing left a heading jump of " + std::to_string(jump) + " rad at segment " +
-                               std::to_string(k));
-    }
-    end_heading = end;
-  }
+  checkDrivable(out.path, car, "car smoothing");
   char buf[200];
   if (out.stopped || out.skipped) {
     std::snprintf(buf, sizeof buf, "the car skips %zu segments%s", out.skipped,

@@ -40,6 +40,11 @@ std::vector<CurvePrimitive> reedsSheppPrimitives(Pose from, Pose to, double radi
   return out;
 }
 
+double reedsSheppLength(Pose from, Pose to, double radius) {
+  ob::ReedsSheppStateSpace space(radius);
+  return withStates(space, from, to, [&](auto* a, auto* b) { return space.reedsShepp(a, b).length() * radius; });
+}
+
 double omplDubinsLength(Pose from, Pose to, double radius) {
   ob::DubinsStateSpace space(radius, false);
   return withStates(space, from, to, [&](auto* a, auto* b) { return space.dubins(a, b).length() * radius; });

@@ -131,6 +131,9 @@ struct PlanResult {
   std::size_t free_components = 0;     ///< connected components of the free region F
   std::size_t covered_components = 0;  ///< of which the path covers
   std::size_t unreachable_parts = 0;   ///< parts (rings, rows, cells) of covered components no transit reached
+  /// The path was planned for the problem's car itself, and is drivable by it (checked): runPlanner
+  /// does not smooth it.
+  bool planned_for_car = false;
   /// A path that knowingly leaves reachable parts out.
   bool leftPartsOut() const { return covered_components < free_components || unreachable_parts > 0; }
   bool hasPath() const { return status == PlanStatus::Ok || status == PlanStatus::Partial; }
@@ -170,6 +173,9 @@ struct PlannerInfo {
   /// The planner's promise, checked by the conformance suite: with default parameters, the
   /// coverage_reachable it reaches on every conformance wall whose free region is connected.
   double min_coverage_reachable = 0.0;
+  /// The planner is given the problem's car (not a holonomic tool) and may plan for it itself
+  /// (PlanResult::planned_for_car); else runPlanner plans it holonomic and smooths the path.
+  bool plans_for_car = false;
   std::function<std::unique_ptr<Planner>()> make;
 };
 

@@ -14,6 +14,10 @@ namespace coverbench {
 
 class Workspace;
 
+/// Turns are planned on a radius this much above the car's (relative), so that ending a curve
+/// exactly on its target (moving the last arc's end by rounding) never makes an arc tighter.
+inline constexpr double kCarRadiusSlack = 1e-4;
+
 /// A position and a heading (radians).
 struct Pose {
   Point at;
@@ -40,6 +44,21 @@ double omplDubinsLength(Pose from, Pose to, double radius);
 /// quarter circle) from from.at to exactly to.at, every segment with tool state `tool`; empty
 /// when no curve arrives within 1e-9 m and rad.
 Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool);
+/// The length of that curve (m), without building it: what turn-aware orders compare. Infinite
+/// when there is none.
+double carCurveLength(Pose from, Pose to, double radius, bool reverse);
+/// OMPL's shortest Reeds-Shepp curve's length (m).
+double reedsSheppLength(Pose from, Pose to, double radius);
+
+/// Where a path ends and the heading it ends with (an arc's: its chord's turned on by half its
+/// angle). The path must have a segment.
+Pose endPose(const Path& path);
+
+/// Checks the car's rules on `path` (every arc at least the turn radius, the heading continuous
+/// or, for a car that reverses, reversed at a cusp): std::logic_error on the first break. What a
+/// planner for a car calls on its finished path, so that a slip fails the plan rather than hand
+/// over a path the car cannot drive (the judges check again).
+void checkDrivable(const Path& path, const VehicleModel& car, const char* who);
 
 
 /// A planner's path made drivable by the workspace's car.

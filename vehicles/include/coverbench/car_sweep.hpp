@@ -1,0 +1,92 @@
+#pragma once
+/// Planning for a car from the start (docs/vehicles.md, "Planning for a car: headlands and
+/// turn-aware rows"): headland rings deep enough to turn in, painted first and driven as the car
+/// can (smoothForCar), then rows inside them in an order whose every link is a Dubins or
+/// Reeds-Shepp curve that stays in F, chosen by the curves' lengths.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "coverbench/car.hpp"
+#include "coverbench/planner.hpp"
+#include "coverbench/workspace.hpp"
+
+namespace coverbench {
+
+/// What a sweep planner does for a car (its parameter `car_plan`): plan for the car itself
+/// (headland rings and turn-aware rows, the default), or plan for a tool that turns on the spot
+/// and have runPlanner smooth the path (the baseline every planner has).
+enum class CarPlan { Headland, Smoothed };
+/// The parameter `car_plan`, as sweep planners declare it (PlannerInfo::plans_for_car).
+ParamSpec carPlanParam();
+inline const std::vector<std::pair<std::string, CarPlan>>& carPlanChoices() {
+  static const std::vector<std::pair<std::string, CarPlan>> choices{{"headland", CarPlan::Headland},
+                                                                    {"smoothed", CarPlan::Smoothed}};
+  return choices;
+}
+
+/// The problem for a tool that turns on the spot whose path will be smoothed for the car
+/// (runPlanner does the smoothing): what `car_plan: smoothed` plans.
+Problem asHolonomic(const Problem& problem);
+
+/// How many headland rings a car needs and where rows end (HeadlandOptions::loops, end_inset):
+/// rows end at least one turn radius inside F's edge, so a turn beyond a row's end fits, and the
+/// rings paint everything between (the rows' round ends reach into the last ring's band).
+struct CarHeadlandLayout {
+  std::size_t loops = 1;
+  double end_inset = 0.5;  ///< spacings inside the last ring
+};
+CarHeadlandLayout carHeadlandLayout(double spacing, double turn_radius);
+
+/// One row: a straight pass from a to b (or b to a), both ends in F; `line` numbers the rows'
+/// lines (parallel, one spacing apart), from one side.
+struct CarRow {
+  Point a, b;
+  std::size_t line = 0;
+  bool row = true;  ///< false: a pass along an obstacle's edge (carHolePasses), no line
+};
+
+/// The headland round the obstacles, for a car: a ring round a window turns round its corners
+/// tighter than any car (r + c + depth), so each hole ring of `loops` that has straight edges (2
+/// spacings or longer) is replaced by passes along those edges, each extended straight past the
+/// corner (up to 0.5 m, as far as it stays in F) so that it paints the corner and leaves room to
+/// turn; those rings are taken out of `loops`. Rings without straight edges (round obstacles)
+/// stay rings.
+std::vector<CarRow> carHolePasses(Workspace& ws, std::vector<Ring>& loops, double spacing);
+
+struct CarSweep {
+  Path path;
+  CarSmoothing headland;        ///< the rings as the car drives them
+  std::size_t rows = 0;         ///< rows given
+  std::size_t unreached = 0;    ///< rows no curve of the car reached (left out, said in `reason`)
+  std::size_t unreached_rings = 0;  ///< rings no transit reached (coverRings)
+  std::size_t links = 0;        ///< rows reached by one curve
+  std::size_t routed = 0;       ///< rows reached along a route round obstacles, smoothed for the car
+  std::size_t cusps = 0;        ///< reversals in the links (a Reeds-Shepp car)
+  std::size_t backtracks = 0;   ///< rows driven into and given up (no curve left them)
+  double undriven_m = 0.0;      ///< row length a routed link's turn replaced (tool off)
+  bool timed_out = false;
+  std::string reason;
+};
+
+/// Drives the rings `loops` (joined by coverRings on `rings`, an empty builder of the problem's
+/// workspace) smoothed for the car (smoothForCar), then every row it can: from where it is, the
+/// row end whose curve (Dubins for a forward-only car, Reeds-Shepp when it reverses) is shortest,
+/// plus `line_penalty` times the spacing for each line the row lies above the lowest unpainted
+/// line beside it (so the rows are taken in blocks, skipping as far as a turn needs and coming
+/// back, not in sweeps across the whole wall); the curve is taken only if it lies in F
+/// (pathFree). When no curve is free, a route round the obstacles (the workspace's transit
+/// planner) smoothed for the car; when neither leaves a row, the car goes back one row and marks
+/// that way in as a dead end. Where the rings end facing F's edge, their last stretch is cut
+/// short until a curve leaves it. The result is checked for the car's rules (std::logic_error on
+/// a slip).
+CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& rows, double spacing,
+                  const Budget& budget, double line_penalty = 0.5);
+
+/// The plan's statistics (car_rows, car_rows_unreached, car_links, car_routed_links, car_cusps,
+/// car_backtracks, car_ring_fillets, car_ring_turns, car_skipped_segments, car_undriven_m), its
+/// status (Partial when rows were left out or time ran out) and its reason.
+void recordCarSweep(PlanResult& result, const CarSweep& sweep);
+
+}  // namespace coverbench

@@ -1,0 +1,321 @@
+// Planning for a car from the start: headland rings, then rows in a turn-aware order
+// (coverbench/car_sweep.hpp, docs/vehicles.md).
+#include "coverbench/car_sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <queue>
+#include <utility>
+
+#include "coverbench/workspace.hpp"
+
+namespace coverbench {
+namespace {
+
+/// Curves checked for freedom per row before the routed links are tried.
+constexpr std::size_t kMaxCurveChecks = 64;
+/// Rows a stuck car goes back at most, from the furthest it got.
+constexpr std::size_t kMaxBacktracks = 4;
+/// Rows tried along a route round the obstacles when no curve was free.
+constexpr std::size_t kMaxRoutedTries = 8;
+
+/// Appends `piece` (which starts where `out` ends) to `out`.
+void append(Path& out, const Path& piece) {
+  for (std::size_t k = 0; k < piece.segments(); ++k) out.arcTo(piece.waypoints[k + 1], piece.bulgeOf(k), piece.tool_on[k]);
+}
+
+/// Reversals of heading (cusps) inside a piece.
+std::size_t cuspsOf(const Path& piece) {
+  std::size_t n = 0;
+  for (std::size_t k = 0; k + 1 < piece.segments(); ++k) {
+    const Point d0 = piece.waypoints[k + 1] - piece.waypoints[k], d1 = piece.waypoints[k + 2] - piece.waypoints[k + 1];
+    // Chords of arcs of at most a quarter circle: a cusp turns the heading by a half turn, which
+    // makes consecutive chords point apart by more than a quarter turn.
+    n += dot(d0, d1) < 0.0;
+  }
+  return n;
+}
+
+/// The piece starts where the car is, heading its way (or, for a car that reverses, backing up).
+bool startsAlong(const Path& piece, Pose pose, bool reverse) {
+  if (piece.segments() == 0 || distance(piece.waypoints.front(), pose.at) > 1e-12) return false;
+  const Point d = piece.waypoints[1] - piece.waypoints[0];
+  const double start = std::atan2(d.y, d.x) - 2.0 * std::atan(piece.bulgeOf(0));
+  const double jump = std::fabs(std::remainder(start - pose.heading, 2.0 * M_PI));
+  return jump <= kCarHeadingTolerance / 2.0 || (reverse && jump >= M_PI - kCarHeadingTolerance / 2.0);
+}
+
+}  // namespace
+
+ParamSpec carPlanParam() {
+  return {"car_plan", ParamType::Choice, std::string("headland"), 0, 0, {"headland", "smoothed"}, "",
+          "for a car: headland rings and rows in an order its turns can link (headland), or the path planned for a tool "
+          "that turns on the spot, smoothed (smoothed: the baseline); nothing changes for other vehicles"};
+}
+
+std::vector<CarRow> carHolePasses(Workspace& ws, std::vector<Ring>& loops, double spacing) {
+  std::vector<CarRow> passes;
+  std::vector<Ring> kept;
+  for (Ring& ring : loops) {
+    std::vector<CarRow> mine;
+    if (signedArea(ring) < 0.0)  // a hole's ring (clockwise)
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Point a = ring[i], b = ring[(i + 1) % ring.size()];
+        const double length = distance(a, b);
+        if (length < 2.0 * spacing) continue;
+        const Point u = (b - a) * (1.0 / length);
+        auto extended = [&](Point from, Point to, Point dir) {
+          for (double e : {0.5, 0.35, 0.25, 0.15, 0.08, 0.04})
+            if (ws.router().isFree(from, to + dir * e)) return to + dir * e;
+          return to;
+        };
+        const Point b2 = extended(a, b, u);
+        const Point a2 = extended(b2, a, u * -1.0);
+        mine.push_back({a2, b2, 0, false});
+      }
+    if (mine.empty()) kept.push_back(std::move(ring));
+    else passes.insert(passes.end(), mine.begin(), mine.end());
+  }
+  loops = std::move(kept);
+  return passes;
+}
+
+Problem asHolonomic(const Problem& problem) {
+  Problem holonomic = problem;
+  holonomic.vehicle = VehicleModel{};
+  holonomic.straight_segments_only = true;
+  return holonomic;
+}
+
+CarHeadlandLayout carHeadlandLayout(double spacing, double turn_radius) {
+  // Rows end (loops - 1 + 0.5) spacings inside F's edge: at least the turn radius.
+  CarHeadlandLayout layout;
+  const double needed = (turn_radius - 0.5 * spacing) / spacing;
+  layout.loops = 1 + static_cast<std::size_t>(std::max(0.0, std::ceil(needed - 1e-9)));
+  layout.end_inset = 0.5;
+  return layout;
+}
+
+CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& rows, double spacing,
+                  const Budget& budget, double line_penalty) {
+  Workspace& ws = const_cast<Workspace&>(rings.workspace());
+  const VehicleModel& car = ws.vehicle();
+  const double rho = car.turn_radius * (1.0 + kCarRadiusSlack);
+  CarSweep out;
+  out.rows = rows.size();
+  // The rings first, from the outermost, as the car can drive them (smoothForCar).
+  out.unreached_rings = coverRings(rings, loops, 1.5 * spacing);
+  if (rings.path().segments() > 0) {
+    out.headland = smoothForCar(ws, rings.path());
+    out.path = out.headland.path;
+  }
+  const std::size_t n = rows.size();
+  std::vector<char> done(n, 0);
+  // Rows shorter than a turn radius are left for last: a car that drives into one often has no
+  // room to turn out of it (they are what is left between the headlands of two obstacles).
+  auto isShort = [&](std::size_t i) { return distance(rows[i].a, rows[i].b) < rho; };
+  // Ways into a row found to be dead ends (the car got in and no curve took it anywhere): bit 1
+  // from a, bit 2 from b.
+  std::vector<char> dead(n, 0);
+  std::size_t remaining = n;
+  auto entryOf = [&](std::size_t i, bool from_a) { return from_a ? rows[i].a : rows[i].b; };
+  auto exitOf = [&](std::size_t i, bool from_a) { return from_a ? rows[i].b : rows[i].a; };
+  auto poseInto = [&](std::size_t i, bool from_a) {
+    const Point d = exitOf(i, from_a) - entryOf(i, from_a);
+    return Pose{entryOf(i, from_a), std::atan2(d.y, d.x)};
+  };
+  // What each row was entered after: where to go back to when it proves a dead end.
+  struct Step {
+    std::size_t row;
+    bool from_a;
+    std::size_t waypoints;  // the path's size before the link into it
+    bool routed;
+    std::size_t cusps;
+  };
+  std::vector<Step> steps;
+  auto driveRow = [&](std::size_t i, bool from_a) {
+    out.path.moveTo(exitOf(i, from_a), true);
+    done[i] = 1;
+    --remaining;
+  };
+  if (out.path.waypoints.empty() && n > 0) {
+    // Start at the first row's lowest end.
+    std::size_t first = 0;
+    for (std::size_t i = 1; i < n; ++i)
+      if (rows[i].row > rows[first].row || (rows[i].row == rows[first].row && std::make_pair(rows[i].line, std::min(rows[i].a.x, rows[i].b.x)) <
+          std::make_pair(rows[first].line, std::min(rows[first].a.x, rows[first].b.x))))
+        first = i;
+    const bool from_a = rows[first].a.x <= rows[first].b.x;
+    out.path.moveTo(entryOf(first, from_a), false);
+    driveRow(first, from_a);
+    ++out.links;
+  }
+  // The lowest unpainted line among the rows beside row i (overlapping it across the lines).
+  auto lowestBeside = [&](std::size_t i) {
+    const double lo = std::min(rows[i].a.x, rows[i].b.x), hi = std::max(rows[i].a.x, rows[i].b.x);
+    std::size_t low = rows[i].line;
+    if (!rows[i].row) return low;
+    for (std::size_t j = 0; j < n; ++j)
+      if (!done[j] && rows[j].row && rows[j].line < low && std::min(rows[j].a.x, rows[j].b.x) <= hi && std::max(rows[j].a.x, rows[j].b.x) >= lo)
+        low = rows[j].line;
+    return low;
+  };
+  const std::size_t max_backtracks = 2 * n + 8;
+  std::size_t furthest = 0;  // the most rows the sweep had driven
+  bool desperate = false;    // stuck after going back: routes to many more rows are tried
+  double retreat = 0.0;          // how far the rings' last stretch is cut back
+  std::pair<Point, Point> tail;  // that stretch as the rings drove it
+  while (remaining > 0) {
+    if (budget.expired()) {
+      out.timed_out = true;
+      break;
+    }
+    const Pose pose = endPose(out.path);
+    struct Candidate {
+      double bound;
+      std::size_t row;
+      bool from_a;
+    };
+    std::vector<Candidate> candidates;
+    std::size_t long_left = 0;
+    for (std::size_t i = 0; i < n; ++i) long_left += !done[i] && !isShort(i);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (done[i] || (long_left > 0 && isShort(i))) continue;
+      for (bool from_a : {true, false})
+        if (!(dead[i] & (from_a ? 1 : 2))) candidates.push_back({distance(pose.at, entryOf(i, from_a)), i, from_a});
+    }
+    std::sort(candidates.begin(), candidates.end(), [](const Candidate& p, const Candidate& q) {
+      return p.bound < q.bound || (p.bound == q.bound && (p.row < q.row || (p.row == q.row && p.from_a > q.from_a)));
+    });
+    // Best first by cost (curve length plus the line penalty), evaluated lazily: a curve is never
+    // shorter than the straight distance.
+    using Scored = std::pair<double, std::size_t>;  // cost, index into candidates
+    std::priority_queue<Scored, std::vector<Scored>, std::greater<>> heap;
+    std::size_t next = 0, checks = 0;
+    bool found = false;
+    // Where the rings end, every way on is tried (once): the car may face F's edge there.
+    const std::size_t max_checks = steps.empty() && out.links == 0 ? candidates.size() : kMaxCurveChecks;
+    while (!found && checks < max_checks) {
+      while (next < candidates.size() && (heap.empty() || candidates[next].bound < heap.top().first)) {
+        const Candidate& c = candidates[next];
+        const double length = carCurveLength(pose, poseInto(c.row, c.from_a), rho, car.reverse);
+        if (std::isfinite(length)) {
+          const double penalty = line_penalty * spacing * static_cast<double>(rows[c.row].line - lowestBeside(c.row));
+          heap.push({length + penalty, next});
+        }
+        ++next;
+      }
+      if (heap.empty()) break;
+      const Candidate c = candidates[heap.top().second];
+      heap.pop();
+      ++checks;
+      const Path curve = carCurve(pose, poseInto(c.row, c.from_a), rho, car.reverse, false);
+      if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
+      const std::size_t cusps = cuspsOf(curve);
+      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), false, cusps});
+      furthest = std::max(furthest, steps.size());
+      append(out.path, curve);
+      driveRow(c.row, c.from_a);
+      ++out.links;
+      out.cusps += cusps;
+      found = true;
+    }
+    // No curve is free (an obstacle between): a route round it, smoothed for the car, starting
+    // straight on from where the car is and ending along the row.
+    for (std::size_t t = 0; !found && t < candidates.size() && t < (steps.empty() || desperate ? 8 * kMaxRoutedTries : kMaxRoutedTries); ++t) {
+      const Candidate& c = candidates[t];
+      const Point ahead = pose.at + Point{std::cos(pose.heading), std::sin(pose.heading)} * 1e-3;
+      if (!ws.router().isFree(pose.at, ahead)) break;
+      const auto route = ws.route(ahead, entryOf(c.row, c.from_a));
+      if (!route) continue;
+      Path input;
+      input.moveTo(pose.at, false);
+      for (const Point& p : *route) input.moveTo(p, false);
+      input.moveTo(exitOf(c.row, c.from_a), true);
+      const CarSmoothing link = smoothForCar(ws, input);
+      if (link.stopped || link.path.segments() == 0 || distance(link.path.waypoints.back(), exitOf(c.row, c.from_a)) > 1e-9 ||
+          !startsAlong(link.path, pose, car.reverse))
+        continue;
+      const std::size_t cusps = link.cusps;
+      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), true, cusps});
+      furthest = std::max(furthest, steps.size());
+      append(out.path, link.path);
+      done[c.row] = 1;
+      --remaining;
+      ++out.routed;
+      out.cusps += cusps;
+      out.undriven_m += link.cut_m;
+      found = true;
+    }
+    if (found && desperate) {
+      desperate = false;
+      furthest = steps.size();
+    }
+    if (found) continue;
+    // Stuck where the rings end (facing F's edge closer than a turn): stop their last straight
+    // stretch short, by a quarter of a turn radius more each time, up to three radii.
+    if (steps.empty() && out.links == 0 && out.path.segments() > 0 && out.path.bulgeOf(out.path.segments() - 1) == 0.0) {
+      const std::size_t k = out.path.segments() - 1;
+      if (retreat == 0.0) tail = {out.path.waypoints[k], out.path.waypoints[k + 1]};
+      retreat += 0.25 * rho;
+      const double length = distance(tail.first, tail.second);
+      if (retreat < length && retreat <= 3.0 * rho + 1e-12) {
+        out.path.waypoints[k + 1] = tail.second + (tail.first - tail.second) * (retreat / length);
+        continue;
+      }
+    }
+    // Stuck at this row's end: go back to before it, and never enter it that way again; at most
+    // kMaxBacktracks rows back from the furthest the sweep got (then the rest is left out).
+    if (steps.empty() || out.backtracks >= max_backtracks || steps.size() + kMaxBacktracks <= furthest) {
+      // Once more, trying routes to many more rows; then the rest is left out.
+      if (desperate) break;
+      desperate = true;
+      continue;
+    }
+    const Step last = steps.back();
+    steps.pop_back();
+    out.path.waypoints.resize(last.waypoints);
+    out.path.tool_on.resize(last.waypoints - 1);
+    if (!out.path.bulge.empty()) out.path.bulge.resize(last.waypoints - 1);
+    done[last.row] = 0;
+    ++remaining;
+    dead[last.row] |= last.from_a ? 1 : 2;
+    ++out.backtracks;
+    (last.routed ? out.routed : out.links) -= 1;
+    out.cusps -= last.cusps;
+  }
+  out.unreached = remaining;
+  checkDrivable(out.path, car, "the car's sweep");
+  char buf[240];
+  if (out.unreached > 0) {
+    std::snprintf(buf, sizeof buf, "%s%zu of %zu rows left out: no curve of the car reached them", out.timed_out ? "time ran out; " : "",
+                  out.unreached, out.rows);
+    out.reason = buf;
+  }
+  if (out.headland.skipped > 0) {
+    std::snprintf(buf, sizeof buf, "%sthe headland's rings: %zu segments replaced by the car's turns or skipped (%.3g m of ring not driven as planned)",
+                  out.reason.empty() ? "" : "; ", out.headland.skipped, out.headland.cut_m);
+    out.reason += buf;
+  }
+  return out;
+}
+
+void recordCarSweep(PlanResult& result, const CarSweep& sweep) {
+  result.stats["car_rows"] = static_cast<double>(sweep.rows);
+  result.stats["car_rows_unreached"] = static_cast<double>(sweep.unreached);
+  result.stats["car_links"] = static_cast<double>(sweep.links);
+  result.stats["car_routed_links"] = static_cast<double>(sweep.routed);
+  result.stats["car_backtracks"] = static_cast<double>(sweep.backtracks);
+  result.stats["car_cusps"] = static_cast<double>(sweep.cusps + sweep.headland.cusps);
+  result.stats["car_ring_fillets"] = static_cast<double>(sweep.headland.fillets);
+  result.stats["car_ring_turns"] = static_cast<double>(sweep.headland.turns);
+  result.stats["car_skipped_segments"] = static_cast<double>(sweep.headland.skipped);
+  result.stats["car_undriven_m"] = sweep.headland.cut_m + sweep.undriven_m;
+  if (sweep.unreached > 0 || sweep.timed_out || sweep.headland.stopped) {
+    if (result.status == PlanStatus::Ok) result.status = PlanStatus::Partial;
+  }
+  if (!sweep.reason.empty()) result.reason += (result.reason.empty() ? "" : "; ") + sweep.reason;
+}
+
+}  // namespace coverbench
