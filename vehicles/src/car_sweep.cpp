@@ -114,16 +114,19 @@ CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std:
   std::vector<char> done(n, 0);
   // Rows shorter than a turn radius are left for last: a car that drives into one often has no
   // room to turn out of it (they are what is left between the headlands of two obstacles).
-  auto isShort = [&](std::size_t i) { return distance(rows[i].a, rows[i].b) < rho; };
+  std::vector<char> short_row(n);
+  for (std::size_t i = 0; i < n; ++i) short_row[i] = distance(rows[i].a, rows[i].b) < rho;
+  auto isShort = [&](std::size_t i) { return short_row[i] != 0; };
   // Ways into a row found to be dead ends (the car got in and no curve took it anywhere): bit 1
   // from a, bit 2 from b.
   std::vector<char> dead(n, 0);
   std::size_t remaining = n;
   auto entryOf = [&](std::size_t i, bool from_a) { return from_a ? rows[i].a : rows[i].b; };
   auto exitOf = [&](std::size_t i, bool from_a) { return from_a ? rows[i].b : rows[i].a; };
+  std::vector<double> heading_ab(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) heading_ab[i] = std::atan2(rows[i].b.y - rows[i].a.y, rows[i].b.x - rows[i].a.x);
   auto poseInto = [&](std::size_t i, bool from_a) {
-    const Point d = exitOf(i, from_a) - entryOf(i, from_a);
-    return Pose{entryOf(i, from_a), std::atan2(d.y, d.x)};
+    return Pose{entryOf(i, from_a), from_a ? heading_ab[i] : std::remainder(heading_ab[i] + M_PI, 2.0 * M_PI)};
   };
   // What each row was entered after: where to go back to when it proves a dead end.
   struct Step {
@@ -151,15 +154,25 @@ CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std:
     driveRow(first, from_a);
     ++out.links;
   }
+  // The rows of each line, and each row's extent along the lines.
+  std::size_t lines = 0;
+  for (const CarRow& r : rows)
+    if (r.row) lines = std::max(lines, r.line + 1);
+  std::vector<std::vector<std::size_t>> by_line(lines);
+  std::vector<double> lo_x(n), hi_x(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    lo_x[i] = std::min(rows[i].a.x, rows[i].b.x);
+    hi_x[i] = std::max(rows[i].a.x, rows[i].b.x);
+    if (rows[i].row) by_line[rows[i].line].push_back(i);
+  }
+  std::size_t lowest_line = 0;  // no unpainted row lies below it (set each step)
   // The lowest unpainted line among the rows beside row i (overlapping it across the lines).
   auto lowestBeside = [&](std::size_t i) {
-    const double lo = std::min(rows[i].a.x, rows[i].b.x), hi = std::max(rows[i].a.x, rows[i].b.x);
-    std::size_t low = rows[i].line;
-    if (!rows[i].row) return low;
-    for (std::size_t j = 0; j < n; ++j)
-      if (!done[j] && rows[j].row && rows[j].line < low && std::min(rows[j].a.x, rows[j].b.x) <= hi && std::max(rows[j].a.x, rows[j].b.x) >= lo)
-        low = rows[j].line;
-    return low;
+    if (!rows[i].row) return rows[i].line;
+    for (std::size_t line = lowest_line; line < rows[i].line; ++line)
+      for (std::size_t j : by_line[line])
+        if (!done[j] && lo_x[j] <= hi_x[i] && hi_x[j] >= lo_x[i]) return line;
+    return rows[i].line;
   };
   const std::size_t max_backtracks = 2 * n + 8;
   std::size_t furthest = 0;  // the most rows the sweep had driven
@@ -180,14 +193,31 @@ CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std:
     std::vector<Candidate> candidates;
     std::size_t long_left = 0;
     for (std::size_t i = 0; i < n; ++i) long_left += !done[i] && !isShort(i);
+    while (lowest_line < lines && std::all_of(by_line[lowest_line].begin(), by_line[lowest_line].end(),
+                                              [&](std::size_t j) { return done[j] != 0; }))
+      ++lowest_line;
     for (std::size_t i = 0; i < n; ++i) {
       if (done[i] || (long_left > 0 && isShort(i))) continue;
       for (bool from_a : {true, false})
-        if (!(dead[i] & (from_a ? 1 : 2))) candidates.push_back({distance(pose.at, entryOf(i, from_a)), i, from_a});
+        if (!(dead[i] & (from_a ? 1 : 2))) {
+          const Point d = entryOf(i, from_a) - pose.at;
+          candidates.push_back({std::sqrt(d.x * d.x + d.y * d.y), i, from_a});
+        }
     }
-    std::sort(candidates.begin(), candidates.end(), [](const Candidate& p, const Candidate& q) {
-      return p.bound < q.bound || (p.bound == q.bound && (p.row < q.row || (p.row == q.row && p.from_a > q.from_a)));
-    });
+    // Taken nearest first, in a fixed order (ties by row and end), from a heap: most are never
+    // looked at.
+    auto farther = [](const Candidate& p, const Candidate& q) {
+      return p.bound > q.bound || (p.bound == q.bound && (p.row > q.row || (p.row == q.row && p.from_a < q.from_a)));
+    };
+    std::make_heap(candidates.begin(), candidates.end(), farther);
+    std::size_t heap_end = candidates.size();  // candidates[heap_end..] are taken, nearest first
+    auto nextNearest = [&]() -> const Candidate* {
+      if (heap_end == 0) return nullptr;
+      std::pop_heap(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(heap_end), farther);
+      --heap_end;
+      return &candidates[heap_end];
+    };
+    std::vector<Candidate> taken;  // nearest first
     // Best first by cost (curve length plus the line penalty), evaluated lazily: a curve is never
     // shorter than the straight distance.
     using Scored = std::pair<double, std::size_t>;  // cost, index into candidates
@@ -197,8 +227,14 @@ CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std:
     // Where the rings end, every way on is tried (once): the car may face F's edge there.
     const std::size_t max_checks = steps.empty() && out.links == 0 ? candidates.size() : kMaxCurveChecks;
     while (!found && checks < max_checks) {
-      while (next < candidates.size() && (heap.empty() || candidates[next].bound < heap.top().first)) {
-        const Candidate& c = candidates[next];
+      while (true) {
+        if (next == taken.size()) {
+          const Candidate* more = nextNearest();
+          if (!more) break;
+          taken.push_back(*more);
+        }
+        if (!heap.empty() && taken[next].bound >= heap.top().first) break;
+        const Candidate& c = taken[next];
         const double length = carCurveLength(pose, poseInto(c.row, c.from_a), rho, car.reverse);
         if (std::isfinite(length)) {
           const double penalty = line_penalty * spacing * static_cast<double>(rows[c.row].line - lowestBeside(c.row));
@@ -207,7 +243,7 @@ CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std:
         ++next;
       }
       if (heap.empty()) break;
-      const Candidate c = candidates[heap.top().second];
+      const Candidate c = taken[heap.top().second];
       heap.pop();
       ++checks;
       const Path curve = carCurve(pose, poseInto(c.row, c.from_a), rho, car.reverse, false);
@@ -223,8 +259,14 @@ CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std:
     }
     // No curve is free (an obstacle between): a route round it, smoothed for the car, starting
     // straight on from where the car is and ending along the row.
-    for (std::size_t t = 0; !found && t < candidates.size() && t < (steps.empty() || desperate ? 8 * kMaxRoutedTries : kMaxRoutedTries); ++t) {
-      const Candidate& c = candidates[t];
+    const std::size_t routed_tries = steps.empty() || desperate ? 8 * kMaxRoutedTries : kMaxRoutedTries;
+    for (std::size_t t = 0; !found && t < routed_tries; ++t) {
+      if (t == taken.size()) {
+        const Candidate* more = nextNearest();
+        if (!more) break;
+        taken.push_back(*more);
+      }
+      const Candidate c = taken[t];
       const Point ahead = pose.at + Point{std::cos(pose.heading), std::sin(pose.heading)} * 1e-3;
       if (!ws.router().isFree(pose.at, ahead)) break;
       const auto route = ws.route(ahead, entryOf(c.row, c.from_a));
@@ -280,6 +322,7 @@ CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std:
     if (!out.path.bulge.empty()) out.path.bulge.resize(last.waypoints - 1);
     done[last.row] = 0;
     ++remaining;
+    lowest_line = 0;
     dead[last.row] |= last.from_a ? 1 : 2;
     ++out.backtracks;
     (last.routed ? out.routed : out.links) -= 1;
