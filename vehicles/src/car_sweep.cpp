@@ -46,6 +46,24 @@ bool startsAlong(const Path& piece, Pose pose, bool reverse) {
   return jump <= kCarHeadingTolerance / 2.0 || (reverse && jump >= M_PI - kCarHeadingTolerance / 2.0);
 }
 
+/// The ring with the vertices of its rounded corners thinned: a vertex is dropped where the chord
+/// that skips it stays within `deviation` of it and is free (the workspace's exact segment check).
+/// A car's smoothing turns at every vertex, and a corner offset at 1 mm chords gives it a turn
+/// every 2 cm, each a curve (three-point turns for a car that reverses) over the last.
+Ring thinned(Workspace& ws, const Ring& ring, double deviation) {
+  if (ring.size() < 4) return ring;
+  Ring out{ring.front()};
+  for (std::size_t i = 1; i < ring.size(); ++i) {
+    const Point next = ring[(i + 1) % ring.size()];
+    const Point a = out.back(), v = ring[i];
+    const double len = distance(a, next);
+    const double off = len > 0.0 ? std::fabs(cross(next - a, v - a)) / len : distance(a, v);
+    if (off <= deviation && ws.router().isFree(a, next)) continue;
+    out.push_back(v);
+  }
+  return out.size() >= 3 ? out : ring;
+}
+
 }  // namespace
 
 ParamSpec carPlanParam() {
@@ -105,7 +123,9 @@ CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std:
   CarSweep out;
   out.rows = rows.size();
   // The rings first, from the outermost, as the car can drive them (smoothForCar).
-  out.unreached_rings = coverRings(rings, loops, 1.5 * spacing);
+  std::vector<Ring> thin;
+  for (const Ring& ring : loops) thin.push_back(thinned(ws, ring, 0.03 * spacing));
+  out.unreached_rings = coverRings(rings, thin, 1.5 * spacing);
   if (rings.path().segments() > 0) {
     out.headland = smoothForCar(ws, rings.path());
     out.path = out.headland.path;
