@@ -124,7 +124,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
       for (const auto& line : rowIntervals(allRings(h.ends), heights))
         for (const Interval& iv : line) rows.push_back({iv.lowEnd(), iv.highEnd(), iv.row});
     PathBuilder builder(ws);
-    const CarSweep sweep = carSweep(builder, h.loops, rows, spacing, budget);
+    const CarSweep sweep = carSweep(ws, builder, h.loops, rows, spacing, budget);
     PlanResult result;
     result.status = PlanStatus::Ok;
     result.path = sweep.path;

@@ -115,9 +115,8 @@ CarHeadlandLayout carHeadlandLayout(double spacing, double turn_radius) {
   return layout;
 }
 
-CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& rows, double spacing,
+CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& rows, double spacing,
                   const Budget& budget, double line_penalty) {
-  Workspace& ws = const_cast<Workspace&>(rings.workspace());
   const VehicleModel& car = ws.vehicle();
   const double rho = car.turn_radius * (1.0 + kCarRadiusSlack);
   CarSweep out;

@@ -70,8 +70,8 @@ struct CarSweep {
   std::string reason;
 };
 
-/// Drives the rings `loops` (joined by coverRings on `rings`, an empty builder of the problem's
-/// workspace) smoothed for the car (smoothForCar), then every row it can: from where it is, the
+/// Drives the rings `loops` (joined by coverRings on `rings`, an empty builder of `ws`, the
+/// problem's workspace) smoothed for the car (smoothForCar), then every row it can: from where it is, the
 /// row end whose curve (Dubins for a forward-only car, Reeds-Shepp when it reverses) is shortest,
 /// plus `line_penalty` times the spacing for each line the row lies above the lowest unpainted
 /// line beside it (so the rows are taken in blocks, skipping as far as a turn needs and coming
@@ -81,7 +81,8 @@ struct CarSweep {
 /// that way in as a dead end. Where the rings end facing F's edge, their last stretch is cut
 /// short until a curve leaves it. The result is checked for the car's rules (std::logic_error on
 /// a slip).
-CarSweep carSweep(PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& rows, double spacing,
+CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& rows,
+                  double spacing,
                   const Budget& budget, double line_penalty = 0.5);
 
 /// The plan's statistics (car_rows, car_rows_unreached, car_links, car_routed_links, car_cusps,
