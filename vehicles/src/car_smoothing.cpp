@@ -71,6 +71,13 @@ double mod2pi(double a) {
   return r < 0.0 ? r + 2.0 * M_PI : r;
 }
 
+/// A curve's length in turn radii.
+double wordLength(const std::vector<CurvePrimitive>& word) {
+  double sum = 0.0;
+  for (const CurvePrimitive& c : word) sum += std::fabs(c.amount);
+  return sum;
+}
+
 /// The six Dubins words between the normalised poses (Shkel & Lumelsky 2001): distance d in radii,
 /// headings alpha and beta relative to the line between them. Each gives (t, p, q) or nothing.
 std::vector<std::vector<CurvePrimitive>> dubinsWords(double d, double alpha, double beta) {
@@ -136,12 +143,7 @@ Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool) {
     const Point delta = to.at - from.at;
     const double d = norm(delta) / radius, phi = std::atan2(delta.y, delta.x);
     candidates = dubinsWords(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi));
-    auto length = [](const std::vector<CurvePrimitive>& w) {
-      double sum = 0.0;
-      for (const CurvePrimitive& c : w) sum += std::fabs(c.amount);
-      return sum;
-    };
-    std::stable_sort(candidates.begin(), candidates.end(), [&](const auto& x, const auto& y) { return length(x) < length(y); });
+    std::stable_sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return wordLength(x) < wordLength(y); });
   }
   for (const auto& primitives : candidates) {
     bool arrives = false;
@@ -170,13 +172,24 @@ double carCurveLength(Pose from, Pose to, double radius, bool reverse) {
   const Point delta = to.at - from.at;
   const double d = norm(delta) / radius, phi = std::atan2(delta.y, delta.x);
   double best = INFINITY;
-  for (const auto& word : dubinsWords(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi))) {
-    double sum = 0.0;
-    for (const CurvePrimitive& c : word) sum += std::fabs(c.amount);
-    best = std::min(best, sum * radius);
-  }
+  for (const auto& word : dubinsWords(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi)))
+    best = std::min(best, wordLength(word) * radius);
   return best;
 }
+
+bool headingsJoin(double end, double start, bool reverse) {
+  const double jump = std::fabs(angleBetween(end, start));
+  return jump <= kCarHeadingTolerance / 2.0 || (reverse && jump >= M_PI - kCarHeadingTolerance / 2.0);
+}
+
+std::size_t cusps(const Path& path) {
+  std::size_t n = 0;
+  for (std::size_t k = 1; k < path.segments(); ++k)
+    n += std::fabs(angleBetween(headings(path, k - 1).second, headings(path, k).first)) > M_PI / 2.0;
+  return n;
+}
+
+double startHeading(const Path& path) { return headings(path, 0).first; }
 
 Pose endPose(const Path& path) {
   const std::size_t k = path.segments() - 1;
@@ -190,12 +203,10 @@ void checkDrivable(const Path& path, const VehicleModel& car, const char* who) {
     if (bulge != 0.0 && arcGeometry(path.waypoints[k], path.waypoints[k + 1], bulge).radius < car.turn_radius)
       throw std::logic_error(std::string(who) + " made an arc tighter than the turn radius at segment " + std::to_string(k));
     const auto [start, end] = headings(path, k);
-    if (k > 0) {
-      const double jump = std::fabs(angleBetween(end_heading, start));
-      if (jump > kCarHeadingTolerance / 2.0 && !(car.reverse && jump > M_PI - kCarHeadingTolerance / 2.0))
-        throw std::logic_error(std::string(who) + " left a heading jump of " + std::to_string(jump) + " rad at segment " +
-                               std::to_string(k));
-    }
+    if (k > 0 && !headingsJoin(end_heading, start, car.reverse))
+      throw std::logic_error(std::string(who) + " left a heading jump of " +
+                             std::to_string(std::fabs(angleBetween(end_heading, start))) + " rad at segment " +
+                             std::to_string(k));
     end_heading = end;
   }
 }
@@ -272,12 +283,7 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
   auto append = [&](const Path& piece) {
     for (std::size_t k = 0; k < piece.segments(); ++k) out.path.arcTo(piece.waypoints[k + 1], piece.bulgeOf(k), piece.tool_on[k]);
   };
-  auto cuspsOf = [&](const Path& piece) {
-    std::size_t n = 0;
-    for (std::size_t k = 1; k < piece.segments(); ++k)
-      n += std::fabs(angleBetween(headings(piece, k - 1).second, headings(piece, k).first)) > M_PI / 2.0;
-    return n;
-  };
+
   // Drives the path straight from x to the point at y (no corner between them), tool as the segment.
   auto driveTo = [&](double y) {
     const std::size_t k = segmentAt(y);
@@ -299,7 +305,7 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
   auto take = [&](const Path& curve, double to, double cut, std::size_t skipped) {
     append(curve);
     ++out.turns;
-    out.cusps += cuspsOf(curve);
+    out.cusps += cusps(curve);
     out.cut_m += cut;
     out.skipped += skipped;
     x = to;

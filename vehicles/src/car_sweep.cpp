@@ -25,25 +25,10 @@ void append(Path& out, const Path& piece) {
   for (std::size_t k = 0; k < piece.segments(); ++k) out.arcTo(piece.waypoints[k + 1], piece.bulgeOf(k), piece.tool_on[k]);
 }
 
-/// Reversals of heading (cusps) inside a piece.
-std::size_t cuspsOf(const Path& piece) {
-  std::size_t n = 0;
-  for (std::size_t k = 0; k + 1 < piece.segments(); ++k) {
-    const Point d0 = piece.waypoints[k + 1] - piece.waypoints[k], d1 = piece.waypoints[k + 2] - piece.waypoints[k + 1];
-    // Chords of arcs of at most a quarter circle: a cusp turns the heading by a half turn, which
-    // makes consecutive chords point apart by more than a quarter turn.
-    n += dot(d0, d1) < 0.0;
-  }
-  return n;
-}
-
 /// The piece starts where the car is, heading its way (or, for a car that reverses, backing up).
 bool startsAlong(const Path& piece, Pose pose, bool reverse) {
-  if (piece.segments() == 0 || distance(piece.waypoints.front(), pose.at) > 1e-12) return false;
-  const Point d = piece.waypoints[1] - piece.waypoints[0];
-  const double start = std::atan2(d.y, d.x) - 2.0 * std::atan(piece.bulgeOf(0));
-  const double jump = std::fabs(std::remainder(start - pose.heading, 2.0 * M_PI));
-  return jump <= kCarHeadingTolerance / 2.0 || (reverse && jump >= M_PI - kCarHeadingTolerance / 2.0);
+  return piece.segments() > 0 && distance(piece.waypoints.front(), pose.at) <= 1e-12 &&
+         headingsJoin(pose.heading, startHeading(piece), reverse);
 }
 
 /// The ring with the vertices of its rounded corners thinned: a vertex is dropped where the chord
@@ -267,13 +252,13 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       ++checks;
       const Path curve = carCurve(pose, poseInto(c.row, c.from_a), rho, car.reverse, false);
       if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
-      const std::size_t cusps = cuspsOf(curve);
-      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), false, cusps});
+      const std::size_t turned = cusps(curve);
+      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), false, turned});
       furthest = std::max(furthest, steps.size());
       append(out.path, curve);
       driveRow(c.row, c.from_a);
       ++out.links;
-      out.cusps += cusps;
+      out.cusps += turned;
       found = true;
     }
     // No curve is free (an obstacle between): a route round it, smoothed for the car, starting
@@ -298,14 +283,14 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       if (link.stopped || link.path.segments() == 0 || distance(link.path.waypoints.back(), exitOf(c.row, c.from_a)) > 1e-9 ||
           !startsAlong(link.path, pose, car.reverse))
         continue;
-      const std::size_t cusps = link.cusps;
-      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), true, cusps});
+      const std::size_t turned = link.cusps;
+      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), true, turned});
       furthest = std::max(furthest, steps.size());
       append(out.path, link.path);
       done[c.row] = 1;
       --remaining;
       ++out.routed;
-      out.cusps += cusps;
+      out.cusps += turned;
       out.undriven_m += link.cut_m;
       found = true;
     }

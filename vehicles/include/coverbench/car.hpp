@@ -50,6 +50,15 @@ double carCurveLength(Pose from, Pose to, double radius, bool reverse);
 /// OMPL's shortest Reeds-Shepp curve's length (m).
 double reedsSheppLength(Pose from, Pose to, double radius);
 
+/// A car may go on from heading `end` at `start`: the same heading (within kCarHeadingTolerance
+/// / 2), or, when it reverses, the opposite (a cusp). The rule checkDrivable applies at waypoints.
+bool headingsJoin(double end, double start, bool reverse);
+/// The reversals (cusps) at a path's waypoints: heading changes of more than a quarter turn.
+std::size_t cusps(const Path& path);
+/// The heading a path starts with (an arc's: its chord's turned back by half its angle). The path
+/// must have a segment.
+double startHeading(const Path& path);
+
 /// Where a path ends and the heading it ends with (an arc's: its chord's turned on by half its
 /// angle). The path must have a segment.
 Pose endPose(const Path& path);
