@@ -1,6 +1,7 @@
 // A planner's path made drivable by a car: fillets, Dubins / Reeds-Shepp turns, skips
 // (docs/vehicles.md). Every piece is checked against the free region before it is used.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -71,58 +72,73 @@ double mod2pi(double a) {
   return r < 0.0 ? r + 2.0 * M_PI : r;
 }
 
+/// A Dubins word: three primitives (turn, straight or turn, turn).
+using DubinsWord = std::array<CurvePrimitive, 3>;
+
 /// A curve's length in turn radii.
-double wordLength(const std::vector<CurvePrimitive>& word) {
+template <class Word>
+double wordLength(const Word& word) {
   double sum = 0.0;
   for (const CurvePrimitive& c : word) sum += std::fabs(c.amount);
   return sum;
 }
 
+/// The Dubins words that exist between two poses (at most six), without allocating: the sweep
+/// measures tens of thousands of these.
+struct DubinsWords {
+  std::array<DubinsWord, 6> words;
+  std::size_t count = 0;
+  void add(DubinsWord w) { words[count++] = w; }
+  const DubinsWord* begin() const { return words.data(); }
+  const DubinsWord* end() const { return words.data() + count; }
+};
+
 /// The six Dubins words between the normalised poses (Shkel & Lumelsky 2001): distance d in radii,
 /// headings alpha and beta relative to the line between them. Each gives (t, p, q) or nothing.
-std::vector<std::vector<CurvePrimitive>> dubinsWords(double d, double alpha, double beta) {
+DubinsWords dubinsWords(double d, double alpha, double beta) {
   const double sa = std::sin(alpha), sb = std::sin(beta), ca = std::cos(alpha), cb = std::cos(beta);
   const double cab = std::cos(alpha - beta);
-  std::vector<std::vector<CurvePrimitive>> out;
+  DubinsWords out;
   double p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb);  // LSL
   if (p2 >= 0.0) {
     const double tmp = std::atan2(cb - ca, d + sa - sb);
-    out.push_back({{'L', mod2pi(tmp - alpha)}, {'S', std::sqrt(p2)}, {'L', mod2pi(beta - tmp)}});
+    out.add({{{'L', mod2pi(tmp - alpha)}, {'S', std::sqrt(p2)}, {'L', mod2pi(beta - tmp)}}});
   }
   p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa);  // RSR
   if (p2 >= 0.0) {
     const double tmp = std::atan2(ca - cb, d - sa + sb);
-    out.push_back({{'R', mod2pi(alpha - tmp)}, {'S', std::sqrt(p2)}, {'R', mod2pi(tmp - beta)}});
+    out.add({{{'R', mod2pi(alpha - tmp)}, {'S', std::sqrt(p2)}, {'R', mod2pi(tmp - beta)}}});
   }
   p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb);  // LSR
   if (p2 >= 0.0) {
     const double p = std::sqrt(p2);
     const double tmp = std::atan2(-ca - cb, d + sa + sb) - std::atan2(-2.0, p);
-    out.push_back({{'L', mod2pi(tmp - alpha)}, {'S', p}, {'R', mod2pi(tmp - beta)}});
+    out.add({{{'L', mod2pi(tmp - alpha)}, {'S', p}, {'R', mod2pi(tmp - beta)}}});
   }
   p2 = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb);  // RSL
   if (p2 >= 0.0) {
     const double p = std::sqrt(p2);
     const double tmp = std::atan2(ca + cb, d - sa - sb) - std::atan2(2.0, p);
-    out.push_back({{'R', mod2pi(alpha - tmp)}, {'S', p}, {'L', mod2pi(beta - tmp)}});
+    out.add({{{'R', mod2pi(alpha - tmp)}, {'S', p}, {'L', mod2pi(beta - tmp)}}});
   }
   double tmp = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0;  // RLR
   if (std::fabs(tmp) <= 1.0) {
     const double p = mod2pi(2.0 * M_PI - std::acos(tmp));
     const double t = mod2pi(alpha - std::atan2(ca - cb, d - sa + sb) + p / 2.0);
-    out.push_back({{'R', t}, {'L', p}, {'R', mod2pi(alpha - beta - t + p)}});
+    out.add({{{'R', t}, {'L', p}, {'R', mod2pi(alpha - beta - t + p)}}});
   }
   tmp = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0;  // LRL
   if (std::fabs(tmp) <= 1.0) {
     const double p = mod2pi(2.0 * M_PI - std::acos(tmp));
     const double t = mod2pi(-alpha - std::atan2(ca - cb, d + sa - sb) + p / 2.0);
-    out.push_back({{'L', t}, {'R', p}, {'L', mod2pi(beta - alpha - t + p)}});
+    out.add({{{'L', t}, {'R', p}, {'L', mod2pi(beta - alpha - t + p)}}});
   }
   return out;
 }
 
 /// The curve of `primitives` from `from`: its path, and whether it arrives at `to`.
-Path drive(Pose from, Pose to, const std::vector<CurvePrimitive>& primitives, double radius, bool tool, bool& arrives) {
+template <class Word>
+Path drive(Pose from, Pose to, const Word& primitives, double radius, bool tool, bool& arrives) {
   Path out;
   out.moveTo(from.at, tool);
   Pose pose = from;
@@ -135,17 +151,12 @@ Path drive(Pose from, Pose to, const std::vector<CurvePrimitive>& primitives, do
 
 }  // namespace
 
-Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool) {
-  std::vector<std::vector<CurvePrimitive>> candidates;
-  if (reverse) {
-    candidates.push_back(reedsSheppPrimitives(from, to, radius));
-  } else {
-    const Point delta = to.at - from.at;
-    const double d = norm(delta) / radius, phi = std::atan2(delta.y, delta.x);
-    candidates = dubinsWords(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi));
-    std::stable_sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return wordLength(x) < wordLength(y); });
-  }
-  for (const auto& primitives : candidates) {
+namespace {
+
+/// The first of `words` (tried in order) that arrives at `to`, as a path; empty if none does.
+template <class Words>
+Path firstArriving(Pose from, Pose to, const Words& words, double radius, bool tool) {
+  for (const auto& primitives : words) {
     bool arrives = false;
     const Path out = drive(from, to, primitives, radius, tool, arrives);
     if (!arrives) continue;
@@ -165,6 +176,18 @@ Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool) {
     return clean;
   }
   return Path{};
+}
+
+}  // namespace
+
+Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool) {
+  if (reverse) return firstArriving(from, to, std::array{reedsSheppPrimitives(from, to, radius)}, radius, tool);
+  const Point delta = to.at - from.at;
+  const double d = norm(delta) / radius, phi = std::atan2(delta.y, delta.x);
+  DubinsWords words = dubinsWords(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi));
+  std::stable_sort(words.words.begin(), words.words.begin() + static_cast<std::ptrdiff_t>(words.count),
+                   [](const auto& x, const auto& y) { return wordLength(x) < wordLength(y); });
+  return firstArriving(from, to, words, radius, tool);
 }
 
 double carCurveLength(Pose from, Pose to, double radius, bool reverse) {

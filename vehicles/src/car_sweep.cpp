@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <queue>
+#include <tuple>
 #include <utility>
 
 #include "coverbench/workspace.hpp"
@@ -48,6 +50,106 @@ Ring thinned(Workspace& ws, const Ring& ring, double deviation) {
   }
   return out.size() >= 3 ? out : ring;
 }
+
+/// A sweep step's candidate: a row entered from one end, with the straight distance to that end
+/// (a curve is never shorter).
+struct Candidate {
+  double bound;
+  std::size_t row;
+  bool from_a;
+};
+
+/// The order candidates are taken in: nearest first, ties by row and then end.
+bool farther(const Candidate& p, const Candidate& q) {
+  return p.bound > q.bound || (p.bound == q.bound && (p.row > q.row || (p.row == q.row && p.from_a < q.from_a)));
+}
+
+/// The rows' ends in a uniform grid, so that a step of the sweep looks at the cells about the car
+/// rather than at every row's ends. `NearestFirst` walks it.
+class EntryGrid {
+ public:
+  EntryGrid(const std::vector<CarRow>& rows, double cell) : rows_(rows), cell_(cell) {
+    if (rows.empty()) return;
+    lo_ = hi_ = rows.front().a;
+    for (const CarRow& r : rows)
+      for (Point p : {r.a, r.b}) {
+        lo_ = {std::min(lo_.x, p.x), std::min(lo_.y, p.y)};
+        hi_ = {std::max(hi_.x, p.x), std::max(hi_.y, p.y)};
+      }
+    nx_ = static_cast<long>((hi_.x - lo_.x) / cell_) + 1;
+    ny_ = static_cast<long>((hi_.y - lo_.y) / cell_) + 1;
+    cells_.resize(static_cast<std::size_t>(nx_ * ny_));
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      for (bool from_a : {true, false}) {
+        const Point p = from_a ? rows[i].a : rows[i].b;
+        cells_[static_cast<std::size_t>(cellY(p) * nx_ + cellX(p))].push_back(2 * i + (from_a ? 0 : 1));
+      }
+  }
+  long cellX(Point p) const { return static_cast<long>(std::floor((p.x - lo_.x) / cell_)); }
+  long cellY(Point p) const { return static_cast<long>(std::floor((p.y - lo_.y) / cell_)); }
+
+  /// The candidates from `from`, nearest first in `farther`'s order, among the ends `keep(row,
+  /// from_a)` admits. Cells are visited in square rings about `from`'s cell: once rings 0..k are
+  /// seen, every end not yet seen is at least k cells away, so a seen one nearer than that is next.
+  template <class Keep>
+  class NearestFirst {
+   public:
+    NearestFirst(const EntryGrid& grid, Point from, Keep keep)
+        : grid_(grid), from_(from), keep_(std::move(keep)), cx_(grid.cellX(from)), cy_(grid.cellY(from)) {
+      last_ring_ = std::max({cx_, grid.nx_ - 1 - cx_, cy_, grid.ny_ - 1 - cy_, 0L});
+    }
+    /// The next candidate, or nothing when every admitted end was returned.
+    std::optional<Candidate> next() {
+      while (true) {
+        const bool all_seen = ring_ > last_ring_;
+        if (!seen_.empty() && (all_seen || seen_.front().bound < static_cast<double>(ring_ - 1) * grid_.cell_)) {
+          std::pop_heap(seen_.begin(), seen_.end(), farther);
+          const Candidate c = seen_.back();
+          seen_.pop_back();
+          return c;
+        }
+        if (all_seen) return std::nullopt;
+        visitRing(ring_++);
+      }
+    }
+
+   private:
+    void visitCell(long x, long y) {
+      if (x < 0 || y < 0 || x >= grid_.nx_ || y >= grid_.ny_) return;
+      for (std::size_t id : grid_.cells_[static_cast<std::size_t>(y * grid_.nx_ + x)]) {
+        const std::size_t row = id / 2;
+        const bool from_a = id % 2 == 0;
+        if (!keep_(row, from_a)) continue;
+        const Point d = (from_a ? grid_.rows_[row].a : grid_.rows_[row].b) - from_;
+        seen_.push_back({std::sqrt(d.x * d.x + d.y * d.y), row, from_a});
+        std::push_heap(seen_.begin(), seen_.end(), farther);
+      }
+    }
+    void visitRing(long k) {
+      for (long dy = -k; dy <= k; ++dy) {
+        if (dy == -k || dy == k) {
+          for (long dx = -k; dx <= k; ++dx) visitCell(cx_ + dx, cy_ + dy);
+        } else {
+          visitCell(cx_ - k, cy_ + dy);
+          if (k > 0) visitCell(cx_ + k, cy_ + dy);
+        }
+      }
+    }
+    const EntryGrid& grid_;
+    Point from_;
+    Keep keep_;
+    long cx_, cy_, last_ring_;
+    long ring_ = 0;  // rings 0..ring_-1 are seen
+    std::vector<Candidate> seen_;  // a heap in `farther`'s order
+  };
+
+ private:
+  const std::vector<CarRow>& rows_;
+  double cell_;
+  Point lo_{}, hi_{};
+  long nx_ = 0, ny_ = 0;
+  std::vector<std::vector<std::size_t>> cells_;  // 2 * row + (0 for end a, 1 for end b)
+};
 
 }  // namespace
 
@@ -178,6 +280,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
         if (!done[j] && lo_x[j] <= hi_x[i] && hi_x[j] >= lo_x[i]) return line;
     return rows[i].line;
   };
+  const EntryGrid entries(rows, std::max(rho, spacing));
   const std::size_t max_backtracks = 2 * n + 8;
   std::size_t furthest = 0;  // the most rows the sweep had driven
   bool desperate = false;    // stuck after going back: routes to many more rows are tried
@@ -189,65 +292,58 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       break;
     }
     const Pose pose = endPose(out.path);
-    struct Candidate {
-      double bound;
-      std::size_t row;
-      bool from_a;
-    };
-    std::vector<Candidate> candidates;
     std::size_t long_left = 0;
     for (std::size_t i = 0; i < n; ++i) long_left += !done[i] && !isShort(i);
     while (lowest_line < lines && std::all_of(by_line[lowest_line].begin(), by_line[lowest_line].end(),
                                               [&](std::size_t j) { return done[j] != 0; }))
       ++lowest_line;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (done[i] || (long_left > 0 && isShort(i))) continue;
-      for (bool from_a : {true, false})
-        if (!(dead[i] & (from_a ? 1 : 2))) {
-          const Point d = entryOf(i, from_a) - pose.at;
-          candidates.push_back({std::sqrt(d.x * d.x + d.y * d.y), i, from_a});
-        }
-    }
-    // Taken nearest first, in a fixed order (ties by row and end), from a heap: most are never
-    // looked at.
-    auto farther = [](const Candidate& p, const Candidate& q) {
-      return p.bound > q.bound || (p.bound == q.bound && (p.row > q.row || (p.row == q.row && p.from_a < q.from_a)));
+    auto keep = [&](std::size_t i, bool from_a) {
+      return !done[i] && !(long_left > 0 && isShort(i)) && !(dead[i] & (from_a ? 1 : 2));
     };
-    std::make_heap(candidates.begin(), candidates.end(), farther);
-    std::size_t heap_end = candidates.size();  // candidates[heap_end..] are taken, nearest first
-    auto nextNearest = [&]() -> const Candidate* {
-      if (heap_end == 0) return nullptr;
-      std::pop_heap(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(heap_end), farther);
-      --heap_end;
-      return &candidates[heap_end];
-    };
+    // Taken nearest first, in a fixed order (ties by row and end), from the grid of rows' ends:
+    // most are never looked at.
+    EntryGrid::NearestFirst<decltype(keep)> nearest(entries, pose.at, keep);
+    std::size_t admitted = 0;  // every way on is tried where the rings end (below)
+    if (steps.empty() && out.links == 0)
+      for (std::size_t i = 0; i < n; ++i) admitted += keep(i, true) + keep(i, false);
     std::vector<Candidate> taken;  // nearest first
     // Best first by cost (curve length plus the line penalty), evaluated lazily: a curve is never
-    // shorter than the straight distance.
-    using Scored = std::pair<double, std::size_t>;  // cost, index into candidates
+    // shorter than the straight distance, so a candidate enters the heap with that distance plus
+    // its penalty as its key, and its curve is measured only if it comes to the top.
+    struct Scored {
+      double cost;
+      std::size_t index;  // into taken
+      bool measured;      // cost is the curve's length plus the penalty (else a bound on it)
+      bool operator>(const Scored& o) const { return std::tie(cost, index, measured) > std::tie(o.cost, o.index, o.measured); }
+    };
     std::priority_queue<Scored, std::vector<Scored>, std::greater<>> heap;
+    std::vector<double> penalty;  // per taken candidate
     std::size_t next = 0, checks = 0;
     bool found = false;
     // Where the rings end, every way on is tried (once): the car may face F's edge there.
-    const std::size_t max_checks = steps.empty() && out.links == 0 ? candidates.size() : kMaxCurveChecks;
+    const std::size_t max_checks = steps.empty() && out.links == 0 ? admitted : kMaxCurveChecks;
     while (!found && checks < max_checks) {
       while (true) {
         if (next == taken.size()) {
-          const Candidate* more = nextNearest();
+          const std::optional<Candidate> more = nearest.next();
           if (!more) break;
           taken.push_back(*more);
         }
-        if (!heap.empty() && taken[next].bound >= heap.top().first) break;
+        if (!heap.empty() && taken[next].bound >= heap.top().cost) break;
         const Candidate& c = taken[next];
-        const double length = carCurveLength(pose, poseInto(c.row, c.from_a), rho, car.reverse);
-        if (std::isfinite(length)) {
-          const double penalty = line_penalty * spacing * static_cast<double>(rows[c.row].line - lowestBeside(c.row));
-          heap.push({length + penalty, next});
-        }
+        penalty.push_back(line_penalty * spacing * static_cast<double>(rows[c.row].line - lowestBeside(c.row)));
+        heap.push({c.bound + penalty.back(), next, false});
         ++next;
       }
       if (heap.empty()) break;
-      const Candidate c = taken[heap.top().second];
+      if (!heap.top().measured) {
+        const std::size_t k = heap.top().index;
+        heap.pop();
+        const double length = carCurveLength(pose, poseInto(taken[k].row, taken[k].from_a), rho, car.reverse);
+        if (std::isfinite(length)) heap.push({length + penalty[k], k, true});
+        continue;
+      }
+      const Candidate c = taken[heap.top().index];
       heap.pop();
       ++checks;
       const Path curve = carCurve(pose, poseInto(c.row, c.from_a), rho, car.reverse, false);
@@ -266,7 +362,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     const std::size_t routed_tries = steps.empty() || desperate ? 8 * kMaxRoutedTries : kMaxRoutedTries;
     for (std::size_t t = 0; !found && t < routed_tries; ++t) {
       if (t == taken.size()) {
-        const Candidate* more = nextNearest();
+        const std::optional<Candidate> more = nearest.next();
         if (!more) break;
         taken.push_back(*more);
       }

@@ -3,6 +3,8 @@
 #include <ompl/base/spaces/DubinsStateSpace.h>
 #include <ompl/base/spaces/ReedsSheppStateSpace.h>
 
+#include <memory>
+
 #include "coverbench/car.hpp"
 
 namespace coverbench {
@@ -28,9 +30,44 @@ auto withStates(Space& space, Pose from, Pose to, F&& f) {
 
 }  // namespace
 
+namespace {
+
+/// OMPL's shortest Reeds-Shepp curve. A state space (and its two states) is kept per thread and
+/// turn radius: building one per call was most of what a curve cost, and the sweep measures tens
+/// of thousands.
+ob::ReedsSheppStateSpace::ReedsSheppPath reedsShepp(Pose from, Pose to, double radius) {
+  struct Cached {
+    double radius = 0.0;
+    std::unique_ptr<ob::ReedsSheppStateSpace> space;
+    ob::SE2StateSpace::StateType* a = nullptr;
+    ob::SE2StateSpace::StateType* b = nullptr;
+    ~Cached() { release(); }
+    void release() {
+      if (!space) return;
+      space->freeState(a);
+      space->freeState(b);
+      space.reset();
+    }
+  };
+  thread_local Cached cached;
+  if (!cached.space || cached.radius != radius) {
+    cached.release();
+    cached.space = std::make_unique<ob::ReedsSheppStateSpace>(radius);
+    cached.radius = radius;
+    cached.a = cached.space->allocState()->as<ob::SE2StateSpace::StateType>();
+    cached.b = cached.space->allocState()->as<ob::SE2StateSpace::StateType>();
+  }
+  cached.a->setXY(from.at.x, from.at.y);
+  cached.a->setYaw(from.heading);
+  cached.b->setXY(to.at.x, to.at.y);
+  cached.b->setYaw(to.heading);
+  return cached.space->reedsShepp(cached.a, cached.b);
+}
+
+}  // namespace
+
 std::vector<CurvePrimitive> reedsSheppPrimitives(Pose from, Pose to, double radius) {
-  ob::ReedsSheppStateSpace space(radius);
-  const ob::ReedsSheppStateSpace::ReedsSheppPath p = withStates(space, from, to, [&](auto* a, auto* b) { return space.reedsShepp(a, b); });
+  const ob::ReedsSheppStateSpace::ReedsSheppPath p = reedsShepp(from, to, radius);
   std::vector<CurvePrimitive> out;
   for (int i = 0; i < 5; ++i) {
     const auto t = p.type_[i];
@@ -40,10 +77,7 @@ std::vector<CurvePrimitive> reedsSheppPrimitives(Pose from, Pose to, double radi
   return out;
 }
 
-double reedsSheppLength(Pose from, Pose to, double radius) {
-  ob::ReedsSheppStateSpace space(radius);
-  return withStates(space, from, to, [&](auto* a, auto* b) { return space.reedsShepp(a, b).length() * radius; });
-}
+double reedsSheppLength(Pose from, Pose to, double radius) { return reedsShepp(from, to, radius).length() * radius; }
 
 double omplDubinsLength(Pose from, Pose to, double radius) {
   ob::DubinsStateSpace space(radius, false);
