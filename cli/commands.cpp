@@ -16,6 +16,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "coverbench/car_ceiling.hpp"
 #include "coverbench/escape.hpp"
 #include "coverbench/judge.hpp"
 #include "coverbench/limits.hpp"
@@ -285,6 +286,39 @@ std::string judgedJson(const PathMetrics& m, const judge::Judgement& j) {
 }
 
 }  // namespace
+
+int carCeilingCommand(const CarCeilingCommandOptions& options) {
+  const Wall wall = loadWallFile(options.wall);
+  validateToolForWall(options.tool, wall, "command line");
+  if (!(options.turn_radius > 0.0) || !std::isfinite(options.turn_radius))
+    throw InputError("--turn-radius", "turn_radius", "must be positive and finite, got " + shortNumber(options.turn_radius));
+  if (!(options.resolution >= 0.001 && options.resolution <= 1.0))
+    throw InputError("--resolution", "resolution", "must be in [0.001, 1] m, got " + shortNumber(options.resolution));
+  if (options.headings < 8 || options.headings > 720)
+    throw InputError("--headings", "headings", "must be from 8 to 720, got " + std::to_string(options.headings));
+  CarCeilingOptions o;
+  o.turn_radius = options.turn_radius;
+  o.resolution = options.resolution;
+  o.headings = options.headings;
+  const CarCeiling c = forwardCarCeiling(wall, options.tool, o);
+  nlohmann::ordered_json doc;
+  doc["wall"] = wall.name;
+  doc["tool_width"] = options.tool.tool_width;
+  doc["clearance"] = options.tool.clearance;
+  doc["turn_radius"] = options.turn_radius;
+  doc["resolution"] = c.resolution;
+  doc["headings"] = c.headings;
+  doc["step"] = c.step;
+  doc["states"] = c.states;
+  doc["viable_states"] = c.viable;
+  doc["reachable_area"] = c.reachable_area;
+  doc["interior_area"] = c.interior_area;
+  doc["with_ends_area"] = c.with_ends_area;
+  doc["interior"] = c.interior;
+  doc["with_ends"] = c.with_ends;
+  std::cout << doc.dump(2) << "\n";
+  return 0;
+}
 
 int metricsCommand(const MetricsOptions& options) {
   validateTimeLimit(options.time_limit_s, "--time-limit", "time_limit");

@@ -72,6 +72,15 @@ struct MetricsOptions {
 /// valid, 3 when it is not (with --judge exact: when either judge finds it invalid).
 int metricsCommand(const MetricsOptions& options);
 
+struct CarCeilingCommandOptions {
+  std::string wall;
+  ToolParams tool;
+  double turn_radius = 0.5, resolution = 0.02;
+  std::size_t headings = 72;
+};
+/// Prints what a forward-only car could paint at best on the wall (car_ceiling.hpp) as JSON.
+int carCeilingCommand(const CarCeilingCommandOptions& options);
+
 struct ShowcaseOptions {
   std::string walls, out;
   ToolParams tool;

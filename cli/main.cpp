@@ -145,6 +145,18 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   metrics_cmd->callback([&] { plan_exit = coverbench::cli::metricsCommand(metrics); });
 
+  coverbench::cli::CarCeilingCommandOptions ceiling;
+  CLI::App* ceiling_cmd = app.add_subcommand(
+      "car-ceiling", "What a forward-only car could paint at best on a wall: an estimate on a lattice of poses (docs/metrics.md); prints JSON");
+  ceiling_cmd->add_option("--wall", ceiling.wall, "wall file (JSON)")->required();
+  ceiling_cmd->add_option("--tool-width", ceiling.tool.tool_width, "tool diameter s in metres")->capture_default_str();
+  ceiling_cmd->add_option("--clearance", ceiling.tool.clearance, "gap c between tool and obstacles, metres")->capture_default_str();
+  ceiling_cmd->add_option("--turn-radius", ceiling.turn_radius, "the car's smallest turn radius, m")->capture_default_str();
+  ceiling_cmd->add_option("--resolution", ceiling.resolution, "the lattice's cell, m (raised for walls that would need too many poses)")
+      ->capture_default_str();
+  ceiling_cmd->add_option("--headings", ceiling.headings, "headings per cell")->capture_default_str();
+  ceiling_cmd->callback([&] { plan_exit = coverbench::cli::carCeilingCommand(ceiling); });
+
   coverbench::cli::ShowcaseOptions showcase;
   CLI::App* show_cmd = app.add_subcommand(
       "showcase", "Plan every wall of a folder with every planner: plan files, pictures and a summary table");

@@ -4,7 +4,9 @@ smoothed), per family (docs/vehicles.md, "Planning for a car"): the first walls 
 (seed 3), a forward-only (Dubins) and a reversing (Reeds-Shepp) car, each path scored by
 `coverbench plan` as its vehicle drives it. Prints one row per family, car and car_plan: valid
 paths, the median coverage_reachable (lowest in brackets), the median overlap and length_ratio,
-and the statuses. Configurations are never pooled.
+and the statuses. Configurations are never pooled. For the forward-only car, the table also gives
+the median of what such a car could paint at best on the same walls (`coverbench car-ceiling`:
+from viable poses, and with the two best dead ends; docs/metrics.md).
 
   /usr/bin/python3 scripts/car_plans.py [--walls 5] [--turn-radius 0.3] [--families open,facade]
                                         [--coverbench build/coverbench]
@@ -55,11 +57,24 @@ def main():
             return (family, car, car_plan, bool(m.get("valid")), m.get("coverage_reachable", 0.0),
                     m.get("overlap", 0.0), m.get("length_ratio", 0.0), plan.get("status"))
 
+        def ceiling(wall):
+            out = subprocess.run([args.coverbench, "car-ceiling", "--wall", wall, "--turn-radius", str(args.turn_radius)],
+                                 check=True, capture_output=True, text=True).stdout
+            c = json.loads(out)
+            return c["interior"], c["with_ends"]
+
+        walls = sorted({(job[0], job[3]) for job in jobs})
         with concurrent.futures.ThreadPoolExecutor(2) as pool:
             results = list(pool.map(run, jobs))
+            ceilings = dict(zip(walls, pool.map(lambda fw: ceiling(fw[1]), walls)))
     print(f"turn radius {args.turn_radius} m, s = 0.1 m, c = 0.02 m; the first {args.walls} walls of each family, seed 3\n")
-    print("| family | vehicle | car_plan | valid | median coverage_reachable (min) | median overlap | median length_ratio | statuses |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| family | vehicle | car_plan | valid | median coverage_reachable (min) | median overlap | median length_ratio | statuses "
+          "| ceiling: interior, with ends (median) |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    def ceiling_text(family):
+        values = [c for (f, _), c in ceilings.items() if f == family]
+        return f"{statistics.median(v[0] for v in values):.3f}, {statistics.median(v[1] for v in values):.3f}"
+
     for family in families:
         for car in CARS:
             for car_plan in CAR_PLANS:
@@ -70,7 +85,7 @@ def main():
                 print(f"| {family} | {car} | {car_plan} | {sum(r[3] for r in rows)}/{len(rows)} | "
                       f"{statistics.median(r[4] for r in rows):.4f} ({min(r[4] for r in rows):.4f}) | "
                       f"{statistics.median(r[5] for r in rows):.4f} | {statistics.median(r[6] for r in rows):.3f} | "
-                      f"{statuses} |")
+                      f"{statuses} | {ceiling_text(family) if car == 'dubins' else ''} |")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,275 @@
+// What a forward-only car could paint at best: viable poses on a lattice (car_ceiling.hpp,
+// docs/metrics.md).
+#include "coverbench/car_ceiling.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "coverbench/clearance.hpp"
+
+namespace coverbench {
+namespace {
+
+/// Samples along each motion at which its cell must be free (the last is where it ends).
+constexpr std::size_t kSamples = 4;
+/// A motion is about this many cells long: long enough that rounding each to the lattice bends
+/// it little, short enough that it does not jump over an obstacle's corner between its samples.
+constexpr double kStepCells = 5.0;
+
+struct Lattice {
+  double x0 = 0.0, y0 = 0.0, g = 0.0;
+  long nx = 0, ny = 0;
+  std::size_t h = 0;
+  long turns = 0;  // a motion turns the heading by -turns..turns steps
+  std::vector<char> free;
+  // offsets[(j * (2 * turns + 1) + k + turns) * kSamples + q]: the cell offset of sample q of the
+  // motion turning by k steps from heading j.
+  std::vector<std::array<int, 2>> offsets;
+
+  std::size_t motions() const { return static_cast<std::size_t>(2 * turns + 1); }
+  const std::array<int, 2>& offset(std::size_t j, long k, std::size_t q) const {
+    return offsets[(j * motions() + static_cast<std::size_t>(k + turns)) * kSamples + q];
+  }
+  bool freeAt(long x, long y) const { return x >= 0 && y >= 0 && x < nx && y < ny && free[static_cast<std::size_t>(y * nx + x)]; }
+  /// The motion turning by k from heading j, starting at cell (x, y), stays on free cells.
+  bool motionFree(long x, long y, std::size_t j, long k) const {
+    for (std::size_t q = 0; q < kSamples; ++q) {
+      const auto& o = offset(j, k, q);
+      if (!freeAt(x + o[0], y + o[1])) return false;
+    }
+    return true;
+  }
+  std::size_t heading(long j) const {
+    const long n = static_cast<long>(h);
+    return static_cast<std::size_t>(((j % n) + n) % n);
+  }
+};
+
+/// Clears `alive` bit `bit` of every pose that has no motion on to (forward) or in from
+/// (backward) a pose that keeps the bit: the greatest such set, by removing poses one at a time
+/// and counting down their neighbours.
+void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t bit, bool forward) {
+  const std::size_t h = lat.h;
+  std::vector<std::uint8_t> count(alive.size(), 0);
+  std::vector<std::uint32_t> stack;
+  // The pose a motion leads to from (x, y, j), or comes from into it.
+  auto neighbour = [&](long x, long y, std::size_t j, long k, long& nx, long& ny, std::size_t& nj) {
+    if (forward) {
+      const auto& o = lat.offset(j, k, kSamples - 1);
+      nx = x + o[0];
+      ny = y + o[1];
+      nj = lat.heading(static_cast<long>(j) + k);
+      return lat.motionFree(x, y, j, k);
+    }
+    nj = lat.heading(static_cast<long>(j) - k);
+    const auto& o = lat.offset(nj, k, kSamples - 1);
+    nx = x - o[0];
+    ny = y - o[1];
+    return lat.freeAt(nx, ny) && lat.motionFree(nx, ny, nj, k);
+  };
+  for (long y = 0; y < lat.ny; ++y)
+    for (long x = 0; x < lat.nx; ++x) {
+      if (!lat.freeAt(x, y)) continue;
+      for (std::size_t j = 0; j < h; ++j) {
+        const std::size_t s = static_cast<std::size_t>(y * lat.nx + x) * h + j;
+        std::uint8_t n = 0;
+        for (long k = -lat.turns; k <= lat.turns; ++k) {
+          long nx, ny;
+          std::size_t nj;
+          n += neighbour(x, y, j, k, nx, ny, nj);
+        }
+        count[s] = n;
+        if (n == 0) {
+          alive[s] &= static_cast<std::uint8_t>(~bit);
+          stack.push_back(static_cast<std::uint32_t>(s));
+        }
+      }
+    }
+  // A removed pose takes one from the count of every pose that had it as its only way on.
+  while (!stack.empty()) {
+    const std::size_t s = stack.back();
+    stack.pop_back();
+    const std::size_t j = s % h, cell = s / h;
+    const long x = static_cast<long>(cell) % lat.nx, y = static_cast<long>(cell) / lat.nx;
+    for (long k = -lat.turns; k <= lat.turns; ++k) {
+      // The poses whose motion k reaches s (forward) or leaves from s (backward): the other
+      // direction's neighbours.
+      long px, py;
+      std::size_t pj;
+      bool ok;
+      if (forward) {
+        pj = lat.heading(static_cast<long>(j) - k);
+        const auto& o = lat.offset(pj, k, kSamples - 1);
+        px = x - o[0];
+        py = y - o[1];
+        ok = lat.freeAt(px, py) && lat.motionFree(px, py, pj, k);
+      } else {
+        const auto& o = lat.offset(j, k, kSamples - 1);
+        px = x + o[0];
+        py = y + o[1];
+        pj = lat.heading(static_cast<long>(j) + k);
+        ok = lat.motionFree(x, y, j, k);
+      }
+      if (!ok) continue;
+      const std::size_t p = static_cast<std::size_t>(py * lat.nx + px) * h + pj;
+      if (!(alive[p] & bit)) continue;
+      if (--count[p] == 0) {
+        alive[p] &= static_cast<std::uint8_t>(~bit);
+        stack.push_back(static_cast<std::uint32_t>(p));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const CarCeilingOptions& options) {
+  if (!(options.turn_radius > 0.0) || !(options.resolution > 0.0) || options.headings < 8)
+    throw std::invalid_argument("car ceiling: turn radius and resolution must be positive, and headings at least 8");
+  if (wall.boundary.size() < 3) throw std::invalid_argument("car ceiling: the wall has no boundary");
+  Lattice lat;
+  double x1 = wall.boundary.front().x, y1 = wall.boundary.front().y;
+  lat.x0 = x1;
+  lat.y0 = y1;
+  for (const Point& p : wall.boundary) {
+    lat.x0 = std::min(lat.x0, p.x);
+    lat.y0 = std::min(lat.y0, p.y);
+    x1 = std::max(x1, p.x);
+    y1 = std::max(y1, p.y);
+  }
+  lat.h = options.headings;
+  lat.g = options.resolution;
+  const double cells_allowed = static_cast<double>(options.max_states) / static_cast<double>(lat.h);
+  if ((x1 - lat.x0) * (y1 - lat.y0) / (lat.g * lat.g) > cells_allowed) lat.g = std::sqrt((x1 - lat.x0) * (y1 - lat.y0) / cells_allowed) * 1.01;
+  lat.nx = static_cast<long>(std::ceil((x1 - lat.x0) / lat.g)) + 1;
+  lat.ny = static_cast<long>(std::ceil((y1 - lat.y0) / lat.g)) + 1;
+  if (static_cast<double>(lat.nx) * static_cast<double>(lat.ny) * static_cast<double>(lat.h) >= 4.0e9)
+    throw std::invalid_argument("car ceiling: the wall needs too many poses");
+  const double r = tool.tool_width / 2.0;
+  auto centre = [&](long x, long y) { return Point{lat.x0 + (static_cast<double>(x) + 0.5) * lat.g, lat.y0 + (static_cast<double>(y) + 0.5) * lat.g}; };
+
+  // F on the lattice: cells whose centre a tool may be on.
+  const ClearanceField field(wall);
+  lat.free.assign(static_cast<std::size_t>(lat.nx * lat.ny), 0);
+  for (long y = 0; y < lat.ny; ++y)
+    for (long x = 0; x < lat.nx; ++x) {
+      const Point p = centre(x, y);
+      const SegmentClearance m = field.measure(p, p, r + tool.clearance);
+      lat.free[static_cast<std::size_t>(y * lat.nx + x)] = m.inside && m.boundary_distance >= r && m.obstacle_distance >= r + tool.clearance;
+    }
+
+  // Motions: arcs of one length turning by -turns..turns heading steps, the sharpest at the turn
+  // radius, each rounded to the lattice at its samples.
+  const double dh = 2.0 * M_PI / static_cast<double>(lat.h);
+  lat.turns = std::max(1L, std::lround(kStepCells * lat.g / (dh * options.turn_radius)));
+  const double step = static_cast<double>(lat.turns) * dh * options.turn_radius;
+  lat.offsets.resize(lat.h * lat.motions() * kSamples);
+  for (std::size_t j = 0; j < lat.h; ++j)
+    for (long k = -lat.turns; k <= lat.turns; ++k)
+      for (std::size_t q = 0; q < kSamples; ++q) {
+        const double t = static_cast<double>(q + 1) / kSamples, turn = static_cast<double>(k) * dh;
+        double dx = step * t, dy = 0.0;
+        if (k != 0) {
+          const double rho = step / turn;
+          dx = rho * std::sin(turn * t);
+          dy = rho * (1.0 - std::cos(turn * t));
+        }
+        const double th = static_cast<double>(j) * dh;
+        const double wx = dx * std::cos(th) - dy * std::sin(th), wy = dx * std::sin(th) + dy * std::cos(th);
+        lat.offsets[(j * lat.motions() + static_cast<std::size_t>(k + lat.turns)) * kSamples + q] = {
+            static_cast<int>(std::lround(wx / lat.g)), static_cast<int>(std::lround(wy / lat.g))};
+      }
+
+  const std::size_t cells = static_cast<std::size_t>(lat.nx * lat.ny);
+  std::vector<std::uint8_t> alive(cells * lat.h, 0);
+  CarCeiling out;
+  for (std::size_t c = 0; c < cells; ++c)
+    if (lat.free[c]) {
+      std::fill_n(alive.begin() + static_cast<std::ptrdiff_t>(c * lat.h), lat.h, std::uint8_t{3});
+      out.states += lat.h;
+    }
+  viable(lat, alive, 1, true);
+  viable(lat, alive, 2, false);
+
+  // Paint on the lattice: cells whose centre lies within r of a centre the tool is on.
+  std::vector<std::array<int, 2>> disk;
+  const long reach = static_cast<long>(std::ceil(r / lat.g));
+  for (long dy = -reach; dy <= reach; ++dy)
+    for (long dx = -reach; dx <= reach; ++dx)
+      if (static_cast<double>(dx * dx + dy * dy) * lat.g * lat.g <= r * r * (1.0 + 1e-12)) disk.push_back({static_cast<int>(dx), static_cast<int>(dy)});
+  // Marks the cells the tool paints about cell (x, y) with `mark`; counts those it marks anew.
+  auto stamp = [&](std::vector<int>& paint, long x, long y, int mark, std::size_t& added) {
+    for (const auto& d : disk) {
+      const long px = x + d[0], py = y + d[1];
+      if (px < 0 || py < 0 || px >= lat.nx || py >= lat.ny) continue;
+      int& v = paint[static_cast<std::size_t>(py * lat.nx + px)];
+      if (v == 1 || v == mark) continue;
+      v = mark;
+      ++added;
+    }
+  };
+  std::vector<char> interior(cells, 0);
+  for (std::size_t c = 0; c < cells; ++c)
+    for (std::size_t j = 0; j < lat.h && !interior[c]; ++j)
+      if (alive[c * lat.h + j] == 3) interior[c] = 1;
+  for (std::size_t s = 0; s < alive.size(); ++s) out.viable += alive[s] == 3;
+  alive.clear();
+  alive.shrink_to_fit();
+
+  std::size_t reachable = 0, painted = 0;
+  {
+    std::vector<int> all(cells, 0);
+    for (std::size_t c = 0; c < cells; ++c)
+      if (lat.free[c]) stamp(all, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, 1, reachable);
+  }
+  // 1: painted from viable poses; 2, 3, ...: painted from a dead end (the last one to reach it).
+  std::vector<int> paint(cells, 0);
+  for (std::size_t c = 0; c < cells; ++c)
+    if (interior[c]) stamp(paint, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, 1, painted);
+  // Dead ends: 8-connected pieces of free cells with no viable pose; what each adds to the paint.
+  std::vector<int> piece(cells, 0);
+  std::array<std::size_t, 2> best{0, 0};
+  int mark = 1;
+  for (std::size_t c0 = 0; c0 < cells; ++c0) {
+    if (!lat.free[c0] || interior[c0] || piece[c0]) continue;
+    ++mark;
+    std::size_t added = 0;
+    std::vector<std::size_t> todo{c0};
+    piece[c0] = mark;
+    while (!todo.empty()) {
+      const std::size_t c = todo.back();
+      todo.pop_back();
+      const long x = static_cast<long>(c) % lat.nx, y = static_cast<long>(c) / lat.nx;
+      stamp(paint, x, y, mark, added);
+      for (long dy = -1; dy <= 1; ++dy)
+        for (long dx = -1; dx <= 1; ++dx) {
+          const long nx = x + dx, ny = y + dy;
+          if (!lat.freeAt(nx, ny)) continue;
+          const std::size_t n = static_cast<std::size_t>(ny * lat.nx + nx);
+          if (interior[n] || piece[n]) continue;
+          piece[n] = mark;
+          todo.push_back(n);
+        }
+    }
+    if (added > best[1]) best[1] = added;
+    if (best[1] > best[0]) std::swap(best[0], best[1]);
+  }
+  const double cell_area = lat.g * lat.g;
+  out.resolution = lat.g;
+  out.headings = lat.h;
+  out.step = step;
+  out.reachable_area = static_cast<double>(reachable) * cell_area;
+  out.interior_area = static_cast<double>(painted) * cell_area;
+  out.with_ends_area = static_cast<double>(painted + best[0] + best[1]) * cell_area;
+  if (reachable > 0) {
+    out.interior = static_cast<double>(painted) / static_cast<double>(reachable);
+    out.with_ends = std::min(1.0, static_cast<double>(painted + best[0] + best[1]) / static_cast<double>(reachable));
+  }
+  return out;
+}
+
+}  // namespace coverbench

@@ -1,0 +1,112 @@
+// What a forward-only car could paint at best (metrics/include/coverbench/car_ceiling.hpp):
+// hand-computed rectangles, a strip too narrow to turn in, a dead-end pocket, and the bound held
+// against the plans a car actually drives.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "coverbench/car_ceiling.hpp"
+#include "coverbench/datasets.hpp"
+#include "coverbench/limits.hpp"
+#include "coverbench/metrics.hpp"
+#include "coverbench/registry.hpp"
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+const ToolParams kTool{0.1, 0.02};  // r = 0.05
+
+CarCeiling ceilingOf(const Wall& wall, double turn_radius) {
+  CarCeilingOptions o;
+  o.turn_radius = turn_radius;
+  return forwardCarCeiling(wall, kTool, o);
+}
+
+// An obstacle-free W x H rectangle: a tool that turns on the spot misses r^2 (1 - pi/4) in each
+// corner; a forward-only car, whose centre turns at R at best, misses (R + r)^2 (1 - pi/4). The
+// lattice may let the car a little closer into a corner (it errs high, as a ceiling should), by
+// at most 0.01.
+TEST(CarCeiling, ARectangleLosesItsFourCornersToTheTurnRadius) {
+  struct Case {
+    double w, h, radius;
+  };
+  for (const Case c : {Case{3, 2, 0.3}, Case{3, 2, 0.5}, Case{6, 4, 0.3}, Case{6, 4, 0.5}}) {
+    const double r = kTool.tool_width / 2.0, corner = 1.0 - M_PI / 4.0;
+    const double expected = (c.w * c.h - 4.0 * (c.radius + r) * (c.radius + r) * corner) / (c.w * c.h - 4.0 * r * r * corner);
+    const CarCeiling got = ceilingOf(test::rectWall(c.w, c.h), c.radius);
+    EXPECT_GE(got.interior, expected - 0.002) << c.w << " x " << c.h << ", R = " << c.radius;
+    EXPECT_LE(got.interior, expected + 0.01) << c.w << " x " << c.h << ", R = " << c.radius;
+    EXPECT_NEAR(got.reachable_area, c.w * c.h, 0.03 * c.w * c.h);
+    EXPECT_GE(got.with_ends, got.interior);
+  }
+}
+
+// A 3 m strip whose F is 0.52 m high cannot hold a U-turn of radius 0.3 m (2R = 0.6 m): no pose is
+// viable, and whatever a car paints there it paints on one way in or out. At 0.8 m high (F 0.7 m)
+// it turns at both ends, and only the corners are lost.
+TEST(CarCeiling, AStripTooNarrowToTurnInHasNoViablePose) {
+  const CarCeiling narrow = ceilingOf(test::rectWall(3.0, 0.62), 0.3);
+  EXPECT_EQ(narrow.viable, 0u);
+  EXPECT_EQ(narrow.interior, 0.0);
+  EXPECT_GT(narrow.states, 0u);
+  const CarCeiling wide = ceilingOf(test::rectWall(3.0, 0.8), 0.3);
+  EXPECT_GT(wide.viable, 0u);
+  EXPECT_GT(wide.interior, 0.9);
+}
+
+// A 3 m x 2 m room with a 1 m x 0.5 m pocket off its right side: the pocket's F is 0.4 m wide, so
+// a car that drives in never comes out. The pocket is a dead end: left out of `interior`, added
+// (with the room's best corner) to `with_ends`: about its 0.5 m^2, less the few centimetres a
+// car can dip into it and still turn out.
+TEST(CarCeiling, ADeadEndPocketCountsOnlyAsAnEnd) {
+  Wall wall;
+  wall.name = "pocket";
+  wall.boundary = {{0, 0}, {3, 0}, {3, 0.8}, {4, 0.8}, {4, 1.3}, {3, 1.3}, {3, 2}, {0, 2}};
+  const CarCeiling c = ceilingOf(wall, 0.3);
+  const double extra = c.with_ends_area - c.interior_area;
+  EXPECT_GT(extra, 0.40);
+  EXPECT_LT(extra, 0.55);
+  // The room alone, as in the rectangle case, over the room and the pocket; more by what a car
+  // paints dipping into the pocket's mouth and turning out, and by the lattice's error.
+  const double room = 6.0 - 4.0 * 0.35 * 0.35 * (1.0 - M_PI / 4.0);
+  EXPECT_GE(c.interior, room / 6.5 - 0.002);
+  EXPECT_LE(c.interior, room / 6.5 + 0.02);
+}
+
+TEST(CarCeiling, SameWallSameNumbers) {
+  const Wall wall = generateWall("residential", 3, 1);
+  const CarCeiling a = ceilingOf(wall, 0.3), b = ceilingOf(wall, 0.3);
+  EXPECT_EQ(a.viable, b.viable);
+  EXPECT_EQ(a.interior_area, b.interior_area);
+  EXPECT_EQ(a.with_ends_area, b.with_ends_area);
+}
+
+// The ceiling is an upper bound: no plan a forward-only car drives, ours or the smoothed
+// baseline, covers more of R than `with_ends` says it could (the lattice's raster counts area
+// to within about 0.01 of the metrics engine's).
+TEST(CarCeiling, NoDrivenPlanCoversMoreThanTheCeiling) {
+  const PlannerInfo& info = findPlanner("zigzag");
+  VehicleModel car;
+  car.kind = VehicleModel::Kind::Car;
+  car.turn_radius = 0.3;
+  for (const std::string family : {"open", "residential", "narrow", "stairwell"})
+    for (std::size_t i = 0; i < 2; ++i) {
+      const Wall wall = generateWall(family, 3, i);
+      const CarCeiling ceiling = ceilingOf(wall, 0.3);
+      for (const std::string car_plan : {"headland", "smoothed"}) {
+        Problem problem;
+        problem.wall = &wall;
+        problem.tool = kTool;
+        problem.params = resolveParams(info, {{"car_plan", car_plan}});
+        problem.vehicle = car;
+        const PlanResult plan = runPlanner(info, problem, Budget());
+        const PathMetrics m = computeMetrics(wall, kTool, plan.path, car);
+        ASSERT_TRUE(m.validity.valid) << wall.name << " " << car_plan;
+        EXPECT_LE(m.coverage.coverage_reachable, ceiling.with_ends + 0.01) << wall.name << " " << car_plan;
+      }
+    }
+}
+
+}  // namespace
+}  // namespace coverbench
