@@ -293,6 +293,57 @@ TEST(CarSmoothing, RoundsACornerWithAnArcOfTheTurnRadius) {
   EXPECT_TRUE(judge::judgeValidity(wall, kTool, s.path, car(0.5)).valid);
 }
 
+// From below a 3.5 m x 1.2 m window heading east to above it heading west: the shortest curve cuts
+// through the window, so the search drives round it (through the 0.38 m passage on its left, or
+// round its right); both judges find the route valid and drivable, and it is longer than the
+// blocked curve. A car that reverses gets one too.
+TEST(CarSearch, DrivesRoundAWindowTheShortestCurveCrosses) {
+  const Wall wall = rectWall(6.0, 3.0, {test::rect(0.5, 0.9, 3.5, 1.2)});
+  for (const bool reverse : {false, true}) {
+    Problem problem;
+    problem.wall = &wall;
+    problem.tool = kTool;
+    problem.vehicle = car(0.3, reverse);
+    const Workspace ws(wall, problem);
+    const Pose from{{1.0, 0.4}, 0.0}, to{{1.0, 2.6}, M_PI};
+    ASSERT_FALSE(pathFree(ws, carCurve(from, to, 0.3 * (1.0 + kCarRadiusSlack), reverse, false)));
+    const Path route = searchCarRoute(ws, from, to, 0.3 * (1.0 + kCarRadiusSlack), reverse, 5000);
+    ASSERT_GT(route.segments(), 0u) << reverse;
+    EXPECT_EQ(route.waypoints.front(), from.at);
+    EXPECT_NEAR(distance(route.waypoints.back(), to.at), 0.0, 1e-9);
+    EXPECT_TRUE(pathFree(ws, route));
+    EXPECT_TRUE(checkValidity(wall, kTool, route, car(0.3, reverse)).valid) << reverse;
+    EXPECT_TRUE(judge::judgeValidity(wall, kTool, route, car(0.3, reverse)).valid) << reverse;
+    double length = 0.0;
+    for (std::size_t k = 0; k < route.segments(); ++k) length += segmentLength(route, k);
+    EXPECT_GT(length, carCurveLength(from, to, 0.3 * (1.0 + kCarRadiusSlack), reverse));
+    EXPECT_LT(length, 12.0);
+  }
+}
+
+// A strip whose F is 0.52 m high holds no circle of radius 0.3 m (2R = 0.6 m): a forward-only car
+// in it can never loop, whichever way it heads. In a 1 m high strip (F 0.05..0.95 m) a circle fits
+// only centred between 0.35 and 0.65 m high, not 0.3 m beside a car on the middle line: the car
+// drives to where one fits. Facing F's end 0.2 m ahead it has no room for that; 1 m ahead it has.
+TEST(CarSearch, ALoopNeedsRoomForATurnCircle) {
+  const double rho = 0.3 * (1.0 + kCarRadiusSlack);
+  auto canLoop = [&](const Wall& wall, Pose pose) {
+    Problem problem;
+    problem.wall = &wall;
+    problem.tool = kTool;
+    problem.vehicle = car(0.3);
+    const Workspace ws(wall, problem);
+    return carCanLoop(ws, pose, rho, 300);
+  };
+  const Wall narrow = rectWall(3.0, 0.62);
+  EXPECT_FALSE(canLoop(narrow, {{1.5, 0.31}, 0.0}));
+  EXPECT_FALSE(canLoop(narrow, {{1.5, 0.31}, M_PI}));
+  const Wall wide = rectWall(3.0, 1.0);
+  EXPECT_TRUE(canLoop(wide, {{1.5, 0.5}, 0.0}));
+  EXPECT_FALSE(canLoop(wide, {{2.75, 0.5}, 0.0}));
+  EXPECT_TRUE(canLoop(wide, {{1.95, 0.5}, 0.0}));
+}
+
 TEST(CarSmoothing, TurnsAtPassEndsAndNeverMakesAPathInvalid) {
   // Two passes 0.1 m apart joined by a 0.1 m link: no fillet fits; a turn does, moved back from
   // the wall's edge (forward only) or as a three-point turn (reversing).
@@ -345,11 +396,13 @@ class CarFamilies : public testing::TestWithParam<std::string> {
         EXPECT_TRUE(v.valid) << where << ": " << v.violations << " violations, " << v.not_drivable << " not drivable";
         if (exact && (name == "zigzag" || name == "spanning-tree"))
           EXPECT_TRUE(judge::judgeValidity(wall, kTool, r.path, problem.vehicle).valid) << where;
-        // Partial exactly when something was left out: rows no curve reached (a plan for the car
-        // itself; what its rings could not turn into is said in the reason and the statistics),
-        // or segments the smoothing skipped.
+        // Partial exactly when something was left out: rows no curve reached, or the rings'
+        // rest where no curve went on (a plan for the car itself; what its rings could not turn
+        // into is said in the reason and the statistics), or segments the smoothing skipped.
         if (r.planned_for_car)
-          EXPECT_EQ(r.status == PlanStatus::Partial, r.stats.at("car_rows_unreached") > 0 || r.leftPartsOut()) << where;
+          EXPECT_EQ(r.status == PlanStatus::Partial,
+                    r.stats.at("car_rows_unreached") > 0 || r.stats.at("car_rings_stopped") > 0 || r.leftPartsOut())
+              << where;
         else
           EXPECT_EQ(r.status == PlanStatus::Partial, r.stats.at("car_skipped_segments") > 0 || !r.reason.empty()) << where;
         EXPECT_EQ(r.planned_for_car, info.plans_for_car && settings.empty()) << where;

@@ -21,6 +21,17 @@ constexpr std::size_t kMaxCurveChecks = 64;
 constexpr std::size_t kMaxBacktracks = 4;
 /// Rows tried along a route round the obstacles when no curve was free.
 constexpr std::size_t kMaxRoutedTries = 8;
+/// Of those, the nearest this many are also searched for over the car's own motions
+/// (searchCarRoute), each up to kSearchExpansions poses.
+constexpr std::size_t kSearchTries = 2;
+constexpr std::size_t kSearchExpansions = 800;
+/// Poses searched over the whole sweep at most (searches that fail cost the most; this bounds
+/// their time: about 2 us a pose).
+constexpr std::size_t kSearchBudget = 6000;
+/// Poses searched for a loop from a row's end (carCanLoop) before it counts as a dead end.
+constexpr std::size_t kLoopExpansions = 300;
+/// How much of the rings' end (in turn radii) a car stuck there gives up at most.
+constexpr double kRingGiveUpRadii = 10.0;
 
 /// Appends `piece` (which starts where `out` ends) to `out`.
 void append(Path& out, const Path& piece) {
@@ -239,10 +250,21 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     std::size_t row;
     bool from_a;
     std::size_t waypoints;  // the path's size before the link into it
-    bool routed;
+    char how;  // 'c': one curve; 'r': a route smoothed for the car; 's': a searched route
     std::size_t cusps;
   };
   std::vector<Step> steps;
+  if (!car.reverse) {
+    // A forward-only car that drives through a row and cannot loop from where it comes out (the
+    // row ends facing F's edge, or in a strip narrower than its turns) can only end its path
+    // there: that way through is a dead end from the start. (A car that reverses backs out.)
+    for (std::size_t i = 0; i < n; ++i)
+      for (bool from_a : {true, false}) {
+        const Pose out_pose{exitOf(i, from_a), poseInto(i, from_a).heading};
+        if (!carCanLoop(ws, out_pose, rho, kLoopExpansions)) dead[i] |= from_a ? 1 : 2;
+      }
+  }
+
   auto driveRow = [&](std::size_t i, bool from_a) {
     out.path.moveTo(exitOf(i, from_a), true);
     done[i] = 1;
@@ -281,6 +303,29 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     return rows[i].line;
   };
   const EntryGrid entries(rows, std::max(rho, spacing));
+  // Gives up the rings' last segments, a turn radius of them (ring not driven, said as such).
+  double ring_given_up = 0.0;  // how much of the rings' end was given up (m)
+  auto giveUpRingTail = [&]() {
+    double cut = 0.0;
+    while (out.path.segments() > 1 && cut < rho) {
+      const std::size_t k = out.path.segments() - 1;
+      cut += segmentLength(out.path, k);
+      out.path.waypoints.pop_back();
+      out.path.tool_on.pop_back();
+      if (out.path.bulge.size() > out.path.tool_on.size()) out.path.bulge.resize(out.path.tool_on.size());
+      ++out.headland.skipped;
+    }
+    ring_given_up += cut;
+    out.headland.cut_m += cut;
+  };
+  // A forward-only car whose rings end in a dead end gives them up until it can loop from their
+  // end, up to kRingGiveUpRadii turn radii.
+  const Path rings_whole = out.path;  // restored if giving up their end took the car nowhere
+  const CarSmoothing headland_whole = out.headland;
+  if (!car.reverse)
+    while (out.path.segments() > 1 && ring_given_up < kRingGiveUpRadii * rho && !carCanLoop(ws, endPose(out.path), rho, kLoopExpansions))
+      giveUpRingTail();
+  std::size_t searched_poses = 0;  // by searchCarRoute, over the whole sweep
   const std::size_t max_backtracks = 2 * n + 8;
   std::size_t furthest = 0;  // the most rows the sweep had driven
   bool desperate = false;    // stuck after going back: routes to many more rows are tried
@@ -349,7 +394,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       const Path curve = carCurve(pose, poseInto(c.row, c.from_a), rho, car.reverse, false);
       if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
       const std::size_t turned = cusps(curve);
-      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), false, turned});
+      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), 'c', turned});
       furthest = std::max(furthest, steps.size());
       append(out.path, curve);
       driveRow(c.row, c.from_a);
@@ -367,27 +412,50 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
         taken.push_back(*more);
       }
       const Candidate c = taken[t];
+      Path link;  // from the car through the row
+      std::size_t turned = 0;
+      double cut = 0.0;
       const Point ahead = pose.at + Point{std::cos(pose.heading), std::sin(pose.heading)} * 1e-3;
-      if (!ws.router().isFree(pose.at, ahead)) break;
-      const auto route = ws.route(ahead, entryOf(c.row, c.from_a));
-      if (!route) continue;
-      Path input;
-      input.moveTo(pose.at, false);
-      for (const Point& p : *route) input.moveTo(p, false);
-      input.moveTo(exitOf(c.row, c.from_a), true);
-      const CarSmoothing link = smoothForCar(ws, input);
-      if (link.stopped || link.path.segments() == 0 || distance(link.path.waypoints.back(), exitOf(c.row, c.from_a)) > 1e-9 ||
-          !startsAlong(link.path, pose, car.reverse))
+      const bool facing_free = ws.router().isFree(pose.at, ahead);
+      if (facing_free) {
+        if (const auto route = ws.route(ahead, entryOf(c.row, c.from_a))) {
+          Path input;
+          input.moveTo(pose.at, false);
+          for (const Point& p : *route) input.moveTo(p, false);
+          input.moveTo(exitOf(c.row, c.from_a), true);
+          CarSmoothing smoothed = smoothForCar(ws, input);
+          if (!smoothed.stopped && smoothed.path.segments() > 0 &&
+              distance(smoothed.path.waypoints.back(), exitOf(c.row, c.from_a)) <= 1e-9 && startsAlong(smoothed.path, pose, car.reverse)) {
+            link = std::move(smoothed.path);
+            turned = smoothed.cusps;
+            cut = smoothed.cut_m;
+          }
+        }
+      }
+      // The smoothed route does not take the car there (it would turn tighter than it can, or
+      // the car faces F's edge): a search over the car's own motions, for the nearest rows.
+      bool searched = false;
+      if (link.segments() == 0 && t < kSearchTries && searched_poses < kSearchBudget) {
+        link = searchCarRoute(ws, pose, poseInto(c.row, c.from_a), rho, car.reverse,
+                              std::min(kSearchExpansions, kSearchBudget - searched_poses), &searched_poses);
+        if (link.segments() > 0) {
+          link.moveTo(exitOf(c.row, c.from_a), true);
+          turned = cusps(link);
+          searched = true;
+        }
+      }
+      if (link.segments() == 0) {
+        if (!facing_free && t + 1 >= kSearchTries) break;
         continue;
-      const std::size_t turned = link.cusps;
-      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), true, turned});
+      }
+      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), searched ? 's' : 'r', turned});
       furthest = std::max(furthest, steps.size());
-      append(out.path, link.path);
+      append(out.path, link);
       done[c.row] = 1;
       --remaining;
-      ++out.routed;
+      ++(searched ? out.searched : out.routed);
       out.cusps += turned;
-      out.undriven_m += link.cut_m;
+      out.undriven_m += cut;
       found = true;
     }
     if (found && desperate) {
@@ -407,6 +475,13 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
         continue;
       }
     }
+    // Still stuck there: the rings end in a dead end no curve, route or search leaves (a strip
+    // narrower than a turn, an obstacle's corner). Give up their last segments and try again.
+    if (steps.empty() && out.links == 0 && out.path.segments() > 1 && ring_given_up < kRingGiveUpRadii * rho) {
+      giveUpRingTail();
+      retreat = 0.0;  // the straight cut-back starts over on the new last stretch
+      continue;
+    }
     // Stuck at this row's end: go back to before it, and never enter it that way again; at most
     // kMaxBacktracks rows back from the furthest the sweep got (then the rest is left out).
     if (steps.empty() || out.backtracks >= max_backtracks || steps.size() + kMaxBacktracks <= furthest) {
@@ -425,8 +500,33 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     lowest_line = 0;
     dead[last.row] |= last.from_a ? 1 : 2;
     ++out.backtracks;
-    (last.routed ? out.routed : out.links) -= 1;
+    (last.how == 'c' ? out.links : last.how == 'r' ? out.routed : out.searched) -= 1;
     out.cusps -= last.cusps;
+  }
+  if (steps.empty() && out.links == 0 && ring_given_up > 0.0) {
+    // No row was reached from anywhere the rings' end was cut back to: they are driven whole.
+    out.path = rings_whole;
+    out.headland = headland_whole;
+  }
+  if (remaining > 0 && !car.reverse && !out.timed_out && out.path.segments() > 0) {
+    // A forward-only car may end its path in a dead end: the nearest row left whose curve is free,
+    // though it cannot come out of it.
+    const Pose pose = endPose(out.path);
+    std::vector<std::tuple<double, std::size_t, bool>> left;  // curve length, row, from a
+    for (std::size_t i = 0; i < n; ++i)
+      for (bool from_a : {true, false})
+        if (!done[i]) left.emplace_back(carCurveLength(pose, poseInto(i, from_a), rho, false), i, from_a);
+    std::sort(left.begin(), left.end());
+    for (const auto& [length, i, from_a] : left) {
+      if (!std::isfinite(length)) break;
+      const Path curve = carCurve(pose, poseInto(i, from_a), rho, false, false);
+      if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
+      append(out.path, curve);
+      driveRow(i, from_a);
+      ++out.links;
+      out.ended_in_dead_end = true;
+      break;
+    }
   }
   out.unreached = remaining;
   checkDrivable(out.path, car, "the car's sweep");
@@ -441,6 +541,9 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
                   out.reason.empty() ? "" : "; ", out.headland.skipped, out.headland.cut_m);
     out.reason += buf;
   }
+  if (out.headland.stopped)
+    out.reason += std::string(out.reason.empty() ? "" : "; ") + "the rings stop where no curve the car can drive reaches further (the rest of them left out)";
+  if (out.ended_in_dead_end) out.reason += std::string(out.reason.empty() ? "" : "; ") + "the last row is a dead end the car cannot come out of";
   return out;
 }
 
@@ -449,6 +552,9 @@ void recordCarSweep(PlanResult& result, const CarSweep& sweep) {
   result.stats["car_rows_unreached"] = static_cast<double>(sweep.unreached);
   result.stats["car_links"] = static_cast<double>(sweep.links);
   result.stats["car_routed_links"] = static_cast<double>(sweep.routed);
+  result.stats["car_searched_links"] = static_cast<double>(sweep.searched);
+  result.stats["car_ends_in_dead_end"] = sweep.ended_in_dead_end ? 1.0 : 0.0;
+  result.stats["car_rings_stopped"] = sweep.headland.stopped ? 1.0 : 0.0;
   result.stats["car_backtracks"] = static_cast<double>(sweep.backtracks);
   result.stats["car_cusps"] = static_cast<double>(sweep.cusps + sweep.headland.cusps);
   result.stats["car_ring_fillets"] = static_cast<double>(sweep.headland.fillets);

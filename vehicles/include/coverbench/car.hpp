@@ -47,6 +47,20 @@ Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool);
 /// The length of that curve (m), without building it: what turn-aware orders compare. Infinite
 /// when there is none.
 double carCurveLength(Pose from, Pose to, double radius, bool reverse);
+/// A route a car of turn radius `radius` drives from `from` to `to` staying in F (tool off), when
+/// no single curve is free: a search over its own motions (hybrid A*: arcs of curvature 0, ±1/2R
+/// and ±1/R, pi R / 8 long, from continuous poses; the best cost kept per R/2 cell and 15-degree
+/// heading; guided by twice the obstacle-free curve's length; the shortest curve to `to` tried
+/// from each pose taken, and taken when free).
+/// Backing up (a reversing car) costs half as much again as driving on. Empty when no route was
+/// found within `max_expansions` poses. Adds the poses it took to `*used` when given.
+Path searchCarRoute(const Workspace& ws, Pose from, Pose to, double radius, bool reverse, std::size_t max_expansions,
+                    std::size_t* used = nullptr);
+/// Whether a forward-only car at `from` can reach, within `max_expansions` poses of the same
+/// search, a pose from which it could circle at radius `radius` (left or right) staying in F: a
+/// pose it can drive on from forever. A pose that cannot is in a dead end: the car only leaves
+/// it by ending its path there.
+bool carCanLoop(const Workspace& ws, Pose from, double radius, std::size_t max_expansions);
 /// OMPL's shortest Reeds-Shepp curve's length (m).
 double reedsSheppLength(Pose from, Pose to, double radius);
 

@@ -63,10 +63,13 @@ struct CarSweep {
   std::size_t unreached_rings = 0;  ///< rings no transit reached (coverRings)
   std::size_t links = 0;        ///< rows reached by one curve
   std::size_t routed = 0;       ///< rows reached along a route round obstacles, smoothed for the car
+  std::size_t searched = 0;     ///< rows reached along a route searched over the car's motions
   std::size_t cusps = 0;        ///< reversals in the links (a Reeds-Shepp car)
   std::size_t backtracks = 0;   ///< rows driven into and given up (no curve left them)
   double undriven_m = 0.0;      ///< row length a routed link's turn replaced (tool off)
   bool timed_out = false;
+  /// A forward-only car's last row is one it cannot come out of (the path ends there).
+  bool ended_in_dead_end = false;
   std::string reason;
 };
 
@@ -77,7 +80,8 @@ struct CarSweep {
 /// line beside it (so the rows are taken in blocks, skipping as far as a turn needs and coming
 /// back, not in sweeps across the whole wall); the curve is taken only if it lies in F
 /// (pathFree). When no curve is free, a route round the obstacles (the workspace's transit
-/// planner) smoothed for the car; when neither leaves a row, the car goes back one row and marks
+/// planner) smoothed for the car, or else, for the nearest rows, a route searched over the car's
+/// own motions (searchCarRoute); when none leaves a row, the car goes back one row and marks
 /// that way in as a dead end. Where the rings end facing F's edge, their last stretch is cut
 /// short until a curve leaves it. The result is checked for the car's rules (std::logic_error on
 /// a slip).
@@ -85,7 +89,8 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
                   double spacing,
                   const Budget& budget, double line_penalty = 0.5);
 
-/// The plan's statistics (car_rows, car_rows_unreached, car_links, car_routed_links, car_cusps,
+/// The plan's statistics (car_rows, car_rows_unreached, car_links, car_routed_links,
+/// car_searched_links, car_ends_in_dead_end, car_rings_stopped, car_cusps,
 /// car_backtracks, car_ring_fillets, car_ring_turns, car_skipped_segments, car_undriven_m), its
 /// status (Partial when rows were left out or time ran out) and its reason.
 void recordCarSweep(PlanResult& result, const CarSweep& sweep);

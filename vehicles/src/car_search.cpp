@@ -1,0 +1,152 @@
+// A car's route round obstacles, searched over its own motions (hybrid A*; coverbench/car.hpp).
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cmath>
+#include <cstdint>
+#include <queue>
+#include <unordered_map>
+#include <vector>
+
+#include "coverbench/boundary_arcs.hpp"
+#include "coverbench/car.hpp"
+#include "coverbench/workspace.hpp"
+
+namespace coverbench {
+namespace {
+
+/// Headings the search tells apart (15 degrees).
+
+constexpr int kHeadingBins = 24;
+/// The estimate's weight (weighted A*).
+constexpr double kWeight = 2.0;
+
+/// The arc of signed curvature `kappa` and length `length` from `pose` (backwards when `length` <
+/// 0): its end pose, and the piece as a path (tool off).
+Path motion(Pose pose, double kappa, double length, Pose& end) {
+  Path p;
+  p.moveTo(pose.at, false);
+  const Point dir{std::cos(pose.heading), std::sin(pose.heading)};
+  if (kappa == 0.0) {
+    end = {pose.at + dir * length, pose.heading};
+    p.moveTo(end.at, false);
+    return p;
+  }
+  // The heading turns by kappa * length whichever way the car drives.
+  const double turn = kappa * length;
+  const double heading = pose.heading + turn;
+  end = {pose.at + Point{std::sin(heading) - std::sin(pose.heading), std::cos(pose.heading) - std::cos(heading)} * (1.0 / kappa),
+         std::remainder(heading, 2.0 * M_PI)};
+  // The position turns about the centre by the heading's change: the arc's signed angle.
+  p.arcTo(end.at, std::tan(turn / 4.0), false);
+  return p;
+}
+
+}  // namespace
+
+namespace {
+
+/// Weighted A* over the car's motions from `from`: `estimate(pose)` guides it (0: by cost alone),
+/// `finish(pose, out)` ends it at a pose taken (true, with the last piece to append in `out`,
+/// possibly empty). The route as a path (tool off), or an empty path.
+template <class Estimate, class Finish>
+Path search(const Workspace& ws, Pose from, double radius, bool reverse, std::size_t max_expansions, Estimate estimate,
+            Finish finish, std::size_t* used = nullptr) {
+  const double step = radius * M_PI / 8.0;  // a full turn's motion turns the heading by 22.5 degrees
+  const double cell = radius / 2.0;
+  const std::array<double, 5> curvatures{-1.0 / radius, -0.5 / radius, 0.0, 0.5 / radius, 1.0 / radius};
+  struct Node {
+    Pose pose;
+    double cost;
+    std::size_t parent;  // index into nodes; itself for the start
+    Path piece;          // from the parent's pose to this one
+  };
+  std::vector<Node> nodes;
+  nodes.push_back({from, 0.0, 0, Path{}});
+  using Entry = std::pair<double, std::size_t>;  // cost plus estimate, node
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+  open.push({estimate(from), 0});
+  // The cheapest cost seen per cell and heading bin.
+  auto key = [&](Pose p) {
+    const auto x = static_cast<std::int64_t>(std::floor(p.at.x / cell)), y = static_cast<std::int64_t>(std::floor(p.at.y / cell));
+    const int h = static_cast<int>(std::floor(std::remainder(p.heading, 2.0 * M_PI) / (2.0 * M_PI) * kHeadingBins + kHeadingBins)) % kHeadingBins;
+    return (x * 1000003 + y) * kHeadingBins + h;
+  };
+  std::unordered_map<std::int64_t, double> best;
+  best[key(from)] = 0.0;
+  std::size_t expansions = 0;
+  while (!open.empty() && expansions < max_expansions) {
+    const std::size_t index = open.top().second;
+    open.pop();
+    const Pose pose = nodes[index].pose;
+    const double cost = nodes[index].cost;
+    if (cost > best[key(pose)] + 1e-12) continue;  // reached more cheaply since
+    ++expansions;
+    if (used) ++*used;
+    Path last;
+    if (finish(pose, last)) {
+      std::vector<const Path*> pieces{&last};
+      for (std::size_t i = index; i != 0; i = nodes[i].parent) pieces.push_back(&nodes[i].piece);
+      Path out;
+      out.moveTo(from.at, false);
+      for (auto it = pieces.rbegin(); it != pieces.rend(); ++it)
+        for (std::size_t k = 0; k < (*it)->segments(); ++k) out.arcTo((*it)->waypoints[k + 1], (*it)->bulgeOf(k), false);
+      return out;
+    }
+    for (const double direction : {1.0, -1.0}) {
+      if (direction < 0.0 && !reverse) break;
+      for (const double kappa : curvatures) {
+        Pose end;
+        Path piece = motion(pose, kappa, direction * step, end);
+        if (!pathFree(ws, piece)) continue;
+        // Reversing costs more, so that a reversing car backs up only where it must.
+        const double next_cost = cost + step * (direction < 0.0 ? 1.5 : 1.0);
+        const auto k = key(end);
+        const auto seen = best.find(k);
+        if (seen != best.end() && seen->second <= next_cost) continue;
+        best[k] = next_cost;
+        nodes.push_back({end, next_cost, index, std::move(piece)});
+        open.push({next_cost + estimate(end), nodes.size() - 1});
+      }
+    }
+  }
+  return Path{};
+}
+
+/// The full circle of radius `radius` the car drives turning left (or right) from `pose`.
+Path circle(Pose pose, double radius, bool left) {
+  Path p;
+  p.moveTo(pose.at, false);
+  Pose at = pose;
+  for (int k = 0; k < 4; ++k) {
+    Pose end;
+    const Path quarter = motion(at, (left ? 1.0 : -1.0) / radius, radius * M_PI / 2.0, end);
+    p.arcTo(quarter.waypoints.back(), quarter.bulgeOf(0), false);
+    at = end;
+  }
+  return p;
+}
+
+}  // namespace
+
+Path searchCarRoute(const Workspace& ws, Pose from, Pose to, double radius, bool reverse, std::size_t max_expansions,
+                    std::size_t* used) {
+  return search(
+      ws, from, radius, reverse, max_expansions, [&](Pose p) { return kWeight * carCurveLength(p, to, radius, reverse); },
+      [&](Pose p, Path& last) {
+        // The shortest curve on to the goal, if it is free.
+        last = carCurve(p, to, radius, reverse, false);
+        return !last.waypoints.empty() && pathFree(ws, last);
+      },
+      used);
+}
+
+bool carCanLoop(const Workspace& ws, Pose from, double radius, std::size_t max_expansions) {
+  const Path route = search(ws, from, radius, false, max_expansions, [](Pose) { return 0.0; }, [&](Pose p, Path& last) {
+    last = Path{};
+    return pathFree(ws, circle(p, radius, true)) || pathFree(ws, circle(p, radius, false));
+  });
+  return !route.waypoints.empty();
+}
+
+}  // namespace coverbench
