@@ -59,7 +59,9 @@ def paired(spec, values, baseline):
     out["losses"] = int(((diff * better < 0) & ~tie).sum())
     out["median"] = float(np.median(diff))
     if n >= 2 and np.ptp(diff) > 0:
-        res = stats.bootstrap((diff,), np.median, n_resamples=BOOTSTRAP_RESAMPLES, vectorized=True,
+        # Resampled from the sorted differences: the interval is a function of the pairs, not of
+        # the order they were read in (run keys, which change with a planner's version).
+        res = stats.bootstrap((np.sort(diff),), np.median, n_resamples=BOOTSTRAP_RESAMPLES, vectorized=True,
                               method="percentile", random_state=np.random.default_rng(BOOTSTRAP_SEED))
         out["low"], out["high"] = float(res.confidence_interval.low), float(res.confidence_interval.high)
     else:

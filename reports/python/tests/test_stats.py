@@ -38,6 +38,16 @@ class Wilcoxon(unittest.TestCase):
         self.assertLess(a["low"], a["median"])
         self.assertGreater(a["high"], a["median"])
 
+    def test_bootstrap_interval_does_not_depend_on_the_pairs_order(self):
+        # Run keys order the pairs, and a planner's new version changes its keys: the same pairs in
+        # another order must give the same interval.
+        d = [0.1, -0.2, 0.3, 0.05, 0.4, -0.1, 0.2, 0.7, -0.3]
+        a = stats.paired(EXACT, d, [0] * 9)
+        b = stats.paired(EXACT, list(reversed(d)), [0] * 9)
+        c = stats.paired(EXACT, d[4:] + d[:4], [0] * 9)
+        self.assertEqual((a["low"], a["high"]), (b["low"], b["high"]))
+        self.assertEqual((a["low"], a["high"]), (c["low"], c["high"]))
+
 
 class Friedman(unittest.TestCase):
     def test_identical_rankings_by_hand(self):
