@@ -56,9 +56,10 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
   const std::size_t h = lat.h;
   std::vector<std::uint8_t> count(alive.size(), 0);
   std::vector<std::uint32_t> stack;
-  // The pose a motion leads to from (x, y, j), or comes from into it.
-  auto neighbour = [&](long x, long y, std::size_t j, long k, long& nx, long& ny, std::size_t& nj) {
-    if (forward) {
+  // The pose motion k leads to from (x, y, j) (ahead), or comes from into it (not ahead); false
+  // when that motion is not free.
+  auto neighbour = [&](long x, long y, std::size_t j, long k, bool ahead, long& nx, long& ny, std::size_t& nj) {
+    if (ahead) {
       const auto& o = lat.offset(j, k, kSamples - 1);
       nx = x + o[0];
       ny = y + o[1];
@@ -80,7 +81,7 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
         for (long k = -lat.turns; k <= lat.turns; ++k) {
           long nx, ny;
           std::size_t nj;
-          n += neighbour(x, y, j, k, nx, ny, nj);
+          n += neighbour(x, y, j, k, forward, nx, ny, nj);
         }
         count[s] = n;
         if (n == 0) {
@@ -89,7 +90,8 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
         }
       }
     }
-  // A removed pose takes one from the count of every pose that had it as its only way on.
+  // A removed pose takes one from the count of every pose that had it as a way on (in), and
+  // removes those left with none.
   while (!stack.empty()) {
     const std::size_t s = stack.back();
     stack.pop_back();
@@ -100,21 +102,7 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
       // direction's neighbours.
       long px, py;
       std::size_t pj;
-      bool ok;
-      if (forward) {
-        pj = lat.heading(static_cast<long>(j) - k);
-        const auto& o = lat.offset(pj, k, kSamples - 1);
-        px = x - o[0];
-        py = y - o[1];
-        ok = lat.freeAt(px, py) && lat.motionFree(px, py, pj, k);
-      } else {
-        const auto& o = lat.offset(j, k, kSamples - 1);
-        px = x + o[0];
-        py = y + o[1];
-        pj = lat.heading(static_cast<long>(j) + k);
-        ok = lat.motionFree(x, y, j, k);
-      }
-      if (!ok) continue;
+      if (!neighbour(x, y, j, k, !forward, px, py, pj)) continue;
       const std::size_t p = static_cast<std::size_t>(py * lat.nx + px) * h + pj;
       if (!(alive[p] & bit)) continue;
       if (--count[p] == 0) {

@@ -1,7 +1,6 @@
 // A car's route round obstacles, searched over its own motions (hybrid A*; coverbench/car.hpp).
 #include <algorithm>
 #include <array>
-#include <cstdio>
 #include <cmath>
 #include <cstdint>
 #include <queue>
@@ -16,7 +15,6 @@ namespace coverbench {
 namespace {
 
 /// Headings the search tells apart (15 degrees).
-
 constexpr int kHeadingBins = 24;
 /// The estimate's weight (weighted A*).
 constexpr double kWeight = 2.0;
@@ -26,9 +24,8 @@ constexpr double kWeight = 2.0;
 Path motion(Pose pose, double kappa, double length, Pose& end) {
   Path p;
   p.moveTo(pose.at, false);
-  const Point dir{std::cos(pose.heading), std::sin(pose.heading)};
   if (kappa == 0.0) {
-    end = {pose.at + dir * length, pose.heading};
+    end = {pose.at + Point{std::cos(pose.heading), std::sin(pose.heading)} * length, pose.heading};
     p.moveTo(end.at, false);
     return p;
   }
@@ -41,10 +38,6 @@ Path motion(Pose pose, double kappa, double length, Pose& end) {
   p.arcTo(end.at, std::tan(turn / 4.0), false);
   return p;
 }
-
-}  // namespace
-
-namespace {
 
 /// Weighted A* over the car's motions from `from`: `estimate(pose)` guides it (0: by cost alone),
 /// `finish(pose, out)` ends it at a pose taken (true, with the last piece to append in `out`,
