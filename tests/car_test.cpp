@@ -18,6 +18,7 @@
 #include "coverbench/registry.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/workspace.hpp"
+#include "coverbench/wall_file.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {
@@ -291,6 +292,53 @@ TEST(CarSmoothing, RoundsACornerWithAnArcOfTheTurnRadius) {
   EXPECT_NEAR(arcGeometry(s.path.waypoints[1], s.path.waypoints[2], s.path.bulge[1]).radius, 0.5, 1e-4);
   EXPECT_TRUE(checkValidity(wall, kTool, s.path, car(0.5)).valid);
   EXPECT_TRUE(judge::judgeValidity(wall, kTool, s.path, car(0.5)).valid);
+}
+
+// A car that reverses does not round a right-angled corner: it drives into it, backs out R along
+// the way it came, drives the fillet tool off, and backs into the corner along the next segment,
+// then drives on: nothing of the path's painting is left undriven, at the price of two cusps and
+// R + R pi / 2 + R of driving with the tool off.
+TEST(CarSmoothing, AReversingCarBacksOutOfACornerInsteadOfRoundingIt) {
+  const Wall wall = rectWall(4.0, 4.0);
+  Path p;
+  p.moveTo({0.5, 0.5}, false);
+  p.moveTo({2.5, 0.5}, true);
+  p.moveTo({2.5, 2.5}, true);
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = kTool;
+  problem.vehicle = car(0.5, true);
+  const Workspace ws(wall, problem);
+  const CarSmoothing s = smoothForCar(ws, p);
+  EXPECT_EQ(s.fillets, 0u);
+  EXPECT_EQ(s.cusps, 2u);
+  EXPECT_EQ(s.cut_m, 0.0);
+  const double rho = 0.5 * (1.0 + kCarRadiusSlack);
+  ASSERT_EQ(s.path.waypoints.size(), 6u);
+  EXPECT_EQ(s.path.waypoints[1], (Point{2.5, 0.5})) << "into the corner";
+  EXPECT_NEAR(s.path.waypoints[2].x, 2.5 - rho, 1e-12);
+  EXPECT_EQ(s.path.waypoints[4], (Point{2.5, 0.5})) << "and back into it";
+  EXPECT_EQ(s.path.tool_on, (std::vector<bool>{true, false, false, false, true}));
+  const Lengths lengths = pathLengths(s.path);
+  EXPECT_NEAR(lengths.total, 4.0 + rho * (2.0 + M_PI / 2.0), 1e-9);
+  EXPECT_TRUE(checkValidity(wall, kTool, s.path, car(0.5, true)).valid);
+  EXPECT_TRUE(judge::judgeValidity(wall, kTool, s.path, car(0.5, true)).valid);
+}
+
+// A curve that ends on a point a skip picked inside a segment: its last piece may be only a
+// little longer than the rounding the curve's end is moved by, and turn by a heading no car
+// takes. Such a curve is not used (on the 24-window facade the smoothed baseline threw here).
+TEST(CarSmoothing, NoCurveEndsInAHeadingJump) {
+  const Wall wall = loadWallFile(test::sourcePath("datasets/canonical/facade_20x9_24win.json"));
+  const PlannerInfo& info = findPlanner("zigzag");
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = kTool;
+  problem.params = resolveParams(info, {{"car_plan", "smoothed"}});
+  problem.vehicle = car(0.3, false);
+  const PlanResult r = runPlanner(info, problem, Budget());
+  ASSERT_NE(r.status, PlanStatus::Error) << r.reason;
+  EXPECT_EQ(checkValidity(wall, kTool, r.path, car(0.3, false)).not_drivable, 0u);
 }
 
 // From below a 3.5 m x 1.2 m window heading east to above it heading west: the shortest curve cuts
@@ -599,12 +647,16 @@ TEST(CarSweep, AForwardOnlyCarCoversARectangleFromItsOwnPlan) {
     // The four corners a forward-only car cannot turn into cost 4 (R + r)^2 (1 - pi/4) = 0.105 m^2
     // (0.4 %, docs/metrics.md); the slivers between the rings' corner arcs about as much again.
     EXPECT_GE(m.coverage.coverage_reachable, 0.985) << reverse;
+    // A car that reverses drives into each of the rings' 16 corners and backs out: it leaves only
+    // the tool's own four corners, 4 r^2 (1 - pi/4) = 0.002 m^2 (with fillets it left 0.9917).
+    if (reverse) EXPECT_GE(m.coverage.coverage_reachable, 0.998);
     EXPECT_LE(m.passes.overlap, 0.02) << reverse;
     // Every link between rows is a U-turn of the car, at least pi R long: the rows' order skips
     // far enough for one (rows one spacing apart would need a loop of about 5 R). Here 1.27 for a
     // forward-only car (33 U-turns of at least 0.94 m over 5.3 m rows, and the returns the order
-    // still makes), 1.12 for one that reverses.
-    EXPECT_LE(m.length_ratio, reverse ? 1.15 : 1.3) << reverse;
+    // still makes), 1.18 for one that reverses (1.12 with fillets; each corner it backs out of
+    // adds about 1.2 m: back R, a quarter circle, back R, against a fillet's shortcut).
+    EXPECT_LE(m.length_ratio, reverse ? 1.2 : 1.3) << reverse;
     // The smoothed baseline on the same wall covers less for a forward-only car.
     if (!reverse) {
       const PlanResult smoothed = carZigzag(wall, reverse, "smoothed");
@@ -615,6 +667,25 @@ TEST(CarSweep, AForwardOnlyCarCoversARectangleFromItsOwnPlan) {
   }
   // The exact judge agrees (once: it takes seconds on a car's arcs).
   EXPECT_TRUE(judge::judgeValidity(wall, kTool, carZigzag(wall, false).path, car(0.3, false)).valid);
+}
+
+// A car that reverses paints its rings' corners (it backs out of each) and enters a ring's long
+// edge a little way along where no curve reaches its start: on the first 5 walls (seed 3) of the
+// residential, gable and industrial families its own plans cover a median of at least 0.98 of R
+// (issue 34's target; before: residential 0.969), every one valid and drivable.
+TEST(CarSweep, AReversingCarCoversCrowdedWallsAlmostWhole) {
+  for (const std::string family : {"residential", "gable", "industrial"}) {
+    std::vector<double> coverage;
+    for (std::size_t i = 0; i < 5; ++i) {
+      const Wall wall = generateWall(family, 3, i);
+      const PlanResult r = carZigzag(wall, true);
+      const PathMetrics m = computeMetrics(wall, kTool, r.path, car(0.3, true));
+      EXPECT_TRUE(m.validity.valid) << wall.name;
+      coverage.push_back(m.coverage.coverage_reachable);
+    }
+    std::sort(coverage.begin(), coverage.end());
+    EXPECT_GE(coverage[2], 0.98) << family;
+  }
 }
 
 // Property: on the first walls of the open and facade families, a forward-only and a reversing

@@ -155,7 +155,7 @@ namespace {
 
 /// The first of `words` (tried in order) that arrives at `to`, as a path; empty if none does.
 template <class Words>
-Path firstArriving(Pose from, Pose to, const Words& words, double radius, bool tool) {
+Path firstArriving(Pose from, Pose to, const Words& words, double radius, bool reverse, bool tool) {
   for (const auto& primitives : words) {
     bool arrives = false;
     const Path out = drive(from, to, primitives, radius, tool, arrives);
@@ -173,7 +173,13 @@ Path firstArriving(Pose from, Pose to, const Words& words, double radius, bool t
       }
       clean.arcTo(p, out.bulgeOf(i), tool);
     }
-    return clean;
+    // Ending exactly on `to` moved the last piece's end by up to 1e-9 m: a piece only a little
+    // longer than that turns by a heading a car cannot take. Such a word is not taken.
+    bool joins = clean.segments() == 0 || (headingsJoin(from.heading, startHeading(clean), reverse) &&
+                                            headingsJoin(endPose(clean).heading, to.heading, reverse));
+    for (std::size_t k = 1; k < clean.segments() && joins; ++k)
+      joins = headingsJoin(headings(clean, k - 1).second, headings(clean, k).first, reverse);
+    if (joins) return clean;
   }
   return Path{};
 }
@@ -181,13 +187,13 @@ Path firstArriving(Pose from, Pose to, const Words& words, double radius, bool t
 }  // namespace
 
 Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool) {
-  if (reverse) return firstArriving(from, to, std::array{reedsSheppPrimitives(from, to, radius)}, radius, tool);
+  if (reverse) return firstArriving(from, to, std::array{reedsSheppPrimitives(from, to, radius)}, radius, true, tool);
   const Point delta = to.at - from.at;
   const double d = norm(delta) / radius, phi = std::atan2(delta.y, delta.x);
   DubinsWords words = dubinsWords(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi));
   std::stable_sort(words.words.begin(), words.words.begin() + static_cast<std::ptrdiff_t>(words.count),
                    [](const auto& x, const auto& y) { return wordLength(x) < wordLength(y); });
-  return firstArriving(from, to, words, radius, tool);
+  return firstArriving(from, to, words, radius, false, tool);
 }
 
 double carCurveLength(Pose from, Pose to, double radius, bool reverse) {
@@ -315,6 +321,14 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     if (distance(out.path.waypoints.back(), target) <= 1e-9) return;
     out.path.moveTo(target, segs[k > 0 && y <= along[k] ? k - 1 : k].tool);
   };
+  // The pose a curve starts from after driveTo(y): where the car already is when that is within
+  // rounding of y (driveTo then stays; a curve from the rounded point would start off its end,
+  // and its first piece, when tiny, in a direction that means nothing).
+  auto startPose = [&](double y) {
+    Pose p = poseAt(y, true);
+    if (distance(out.path.waypoints.back(), p.at) <= 1e-9) p.at = out.path.waypoints.back();
+    return p;
+  };
   // Where the car was after each step (the output's waypoints then, its arc length), to go back to.
   struct Checkpoint {
     std::size_t waypoints;
@@ -344,6 +358,10 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     });
     return shifts;
   }();
+  // Where a skip may enter a later segment, in turn radii from its start: nearest first.
+  static constexpr double kSkipInto[] = {0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0};
+  // The sharpest turn a car that reverses rounds; sharper corners it drives into and backs out of.
+  static constexpr double kCornerManoeuvre = M_PI / 3.0;
   std::size_t corner = 1;  // the next vertex that may be a corner
   while (true) {
     if (checkpoints.empty() || checkpoints.back().x < x) checkpoints.push_back({out.path.waypoints.size(), x});
@@ -356,6 +374,46 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     const double at = along[corner];  // the corner's arc length
     const Segment &s = segs[corner - 1], &t = segs[corner];
     const double theta = angleBetween(s.heading, t.heading);
+    // 0. A car that reverses paints a sharp corner whole: it drives into it, backs out along the
+    //    segment it came by, and comes back into the corner along the next one (reversing), then
+    //    drives on from it. A fillet or a curve would leave the corner's tip unpainted: on F's
+    //    edge (rho + r)^2 (1 - pi / 4) at a right angle, far more than the tool's own corner
+    //    loss; on the rings inside, the slivers between their fillets, which no other pass
+    //    paints (on a 6 m x 4 m rectangle 0.9917 of R covered with fillets, 0.9995 without).
+    if (car.reverse && std::fabs(theta) >= kCornerManoeuvre && std::fabs(theta) < M_PI - 1e-9 && s.tool && t.tool) {
+      // Backing out by the fillet's tangent length, the fillet, and straight back into the
+      // corner along the next segment: every piece on the path's segments or the fillet.
+      const double d = rho * std::tan(std::fabs(theta) / 2.0);
+      if (d <= at - along[corner - 1] && d <= t.length) {
+        const Point p = s.b - s.dir * d, q = t.a + t.dir * d;
+        const double bulge = std::tan(theta / 4.0);
+        if (arcFree(ws, p, q, bulge)) {
+          driveTo(at);
+          out.path.moveTo(p, false);
+          out.path.arcTo(q, bulge, false);
+          out.path.moveTo(t.a, false);
+          ++out.turns;
+          out.cusps += 2;
+          x = at;
+          continue;
+        }
+      }
+      bool done = false;
+      const Pose corner_pose{t.a, t.heading};
+      for (double back : {0.5, 1.0, 1.5, 2.0, 3.0}) {
+        const double from = at - back * rho;
+        if (from < along[corner - 1]) break;
+        const Pose p = poseAt(from, true);
+        const Path curve = carCurve(p, corner_pose, rho, true, false);
+        if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
+        driveTo(at);
+        out.path.moveTo(p.at, false);  // backing out over what was just painted
+        take(curve, at, 0.0, 0);
+        done = true;
+        break;
+      }
+      if (done) continue;
+    }
     // 1. A fillet of the turn radius, tangent to both segments, where both are long enough.
     const double d = std::fabs(theta) < M_PI - 1e-9 ? rho * std::tan(std::fabs(theta) / 2.0) : INFINITY;
     if (d <= at - x && d <= at - along[corner - 1] && d <= t.length) {
@@ -376,7 +434,7 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     for (const auto& [back, on] : kTurnShifts) {
       const double from = at - back * rho, to = at + on * rho;
       if (from < x || to > total) continue;
-      const Pose p = poseAt(from, true), q = poseAt(to, false);
+      const Pose p = startPose(from), q = poseAt(to, false);
       const Path curve = carCurve(p, q, rho, car.reverse, paintedThrough(from, to));
       if (curve.waypoints.empty() || loops(curve, p, q) || !pathFree(ws, curve)) continue;
       driveTo(from);
@@ -386,19 +444,43 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
       break;
     }
     if (done) continue;
+    // 2b. A car that reverses drives into the corner (painting it), backs straight out along the
+    //     segment it came by, and turns from there: the shortest curve from the corner itself
+    //     often swings out of F where a short reversal first leaves it room.
+    if (car.reverse)
+      for (const auto& [back, on] : kTurnShifts) {
+        const double from = at - back * rho, to = at + on * rho;
+        if (back == 0.0 || from < along[corner - 1] || to > total) continue;
+        const Pose p = poseAt(from, true), q = poseAt(to, false);
+        const Path curve = carCurve(p, q, rho, true, paintedThrough(at, to));
+        if (curve.waypoints.empty() || loops(curve, p, q) || !pathFree(ws, curve)) continue;
+        driveTo(at);
+        out.path.moveTo(p.at, false);  // backing out over what was just painted
+        const std::size_t s0 = segmentAt(at), s1 = segmentAt(to);
+        take(curve, to, paintedLength(at, to), s1 - s0 > 1 ? s1 - s0 - 1 : 0);
+        done = true;
+        break;
+      }
+    if (done) continue;
     // 3. Skip, tool off: from the corner, or a point further back (a forward-only car facing a
-    //    wall needs room to turn), to the start of the first later segment a free curve reaches.
+    //    wall needs room to turn), to the first point a free curve reaches on a later segment:
+    //    its start, or up to kSkipInto turn radii into it (a long segment whose start lies in a
+    //    corner the car cannot turn into is entered a little further on, not skipped whole).
     for (double back : {0.0, 1.0, 2.0, 4.0, 8.0}) {
       const double from = at - back * rho;
       if (from < x || done) continue;
-      const Pose p = poseAt(from, true);
-      for (std::size_t j = corner + 1; j < m && !done; ++j) {
-        const Path curve = carCurve(p, {segs[j].a, segs[j].heading}, rho, car.reverse, false);
-        if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
-        driveTo(from);
-        take(curve, along[j], paintedLength(from, along[j]), j - corner);
-        done = true;
-      }
+      const Pose p = startPose(from);
+      for (std::size_t j = corner; j < m && !done; ++j)  // the corner's own next segment a little in, then later ones
+        for (double into : kSkipInto) {
+          if (j == corner && into == 0.0) continue;
+          if (done || (into > 0.0 && into * rho >= segs[j].length - 1e-9)) break;
+          const double to = along[j] + into * rho;
+          const Path curve = carCurve(p, {segs[j].a + segs[j].dir * (into * rho), segs[j].heading}, rho, car.reverse, false);
+          if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
+          driveTo(from);
+          take(curve, to, paintedLength(from, to), j - corner);  // segment j is entered, not skipped
+          done = true;
+        }
     }
     if (done) continue;
     // 4. Stuck (a forward-only car that drove into a passage too narrow to turn in): go back to
