@@ -259,6 +259,7 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
         result.stats["car_turns"] = static_cast<double>(car.turns);
         result.stats["car_cusps"] = static_cast<double>(car.cusps);
         result.stats["car_skipped_segments"] = static_cast<double>(car.skipped);
+        result.stats["car_searched_skips"] = static_cast<double>(car.searched);
         result.stats["car_undriven_m"] = car.cut_m;
         if (car.skipped > 0 || car.stopped) result.status = PlanStatus::Partial;
         if (!car.reason.empty()) result.reason += (result.reason.empty() ? "" : "; ") + car.reason;

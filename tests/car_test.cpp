@@ -688,6 +688,28 @@ TEST(CarSweep, AReversingCarCoversCrowdedWallsAlmostWhole) {
   }
 }
 
+// A stairwell's outer ring climbs the steps: from a step's corner every curve to what follows
+// crosses the steps, and the first ring segment one reached was on the far side of the wall (the
+// right edge, the top and the slope, 10 m of ring, left unpainted). A route searched over the
+// car's own motions reaches the right edge instead. Reversing car, first 5 stairwells (seed 3):
+// median coverage 0.865 before, at least 0.93 now (issue 34 asks 0.98: the steps' pockets are
+// what is left), and some plan's rings take a searched route.
+TEST(CarSweep, AReversingCarsRingsGetPastAStairsSteps) {
+  std::vector<double> coverage;
+  double searched = 0.0;
+  for (std::size_t i = 0; i < 5; ++i) {
+    const Wall wall = generateWall("stairwell", 3, i);
+    const PlanResult r = carZigzag(wall, true);
+    const PathMetrics m = computeMetrics(wall, kTool, r.path, car(0.3, true));
+    EXPECT_TRUE(m.validity.valid) << wall.name;
+    coverage.push_back(m.coverage.coverage_reachable);
+    searched += r.stats.at("car_ring_searched_skips");
+  }
+  std::sort(coverage.begin(), coverage.end());
+  EXPECT_GE(coverage[2], 0.93);
+  EXPECT_GT(searched, 0.0);
+}
+
 // Property: on the first walls of the open and facade families, a forward-only and a reversing
 // car's own plans are valid and drivable, and partial exactly when rows were left out.
 TEST(CarSweep, GeneratedWallsGiveValidDrivablePlans) {

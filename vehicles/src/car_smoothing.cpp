@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -359,9 +360,17 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     return shifts;
   }();
   // Where a skip may enter a later segment, in turn radii from its start: nearest first.
+  // (on the corner's own next segment and the next few: further on, the start is tried alone).
   static constexpr double kSkipInto[] = {0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0};
+  static constexpr std::size_t kSkipIntoSegments = 8;
   // The sharpest turn a car that reverses rounds; sharper corners it drives into and backs out of.
   static constexpr double kCornerManoeuvre = M_PI / 3.0;
+  // A skip that leaves more painting than this (m) is searched for a shorter way first: at most
+  // kSkipSearches routes of kSkipSearchExpansions poses each, and kSmoothingSearchBudget poses over
+  // the whole path (about 2 us each).
+  static constexpr double kSearchSkip = 1.0;
+  static constexpr std::size_t kSkipSearches = 2, kSkipSearchExpansions = 600, kSmoothingSearchBudget = 6000;
+  std::size_t searched = 0;
   std::size_t corner = 1;  // the next vertex that may be a corner
   while (true) {
     if (checkpoints.empty() || checkpoints.back().x < x) checkpoints.push_back({out.path.waypoints.size(), x});
@@ -463,26 +472,63 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
       }
     if (done) continue;
     // 3. Skip, tool off: from the corner, or a point further back (a forward-only car facing a
-    //    wall needs room to turn), to the first point a free curve reaches on a later segment:
-    //    its start, or up to kSkipInto turn radii into it (a long segment whose start lies in a
-    //    corner the car cannot turn into is entered a little further on, not skipped whole).
+    //    wall needs room to turn), to the nearest point along the path a free curve reaches on a
+    //    later segment: its start, or up to kSkipInto turn radii into it (a long segment whose
+    //    start lies in a corner the car cannot turn into is entered a little further on, not
+    //    skipped whole). Ties go to the point moved back least.
+    struct Skip {
+      double from, to;
+      std::size_t j;
+      Path curve;
+      bool searched = false;
+    };
+    std::optional<Skip> skip;
     for (double back : {0.0, 1.0, 2.0, 4.0, 8.0}) {
       const double from = at - back * rho;
-      if (from < x || done) continue;
+      if (from < x) continue;
       const Pose p = startPose(from);
-      for (std::size_t j = corner; j < m && !done; ++j)  // the corner's own next segment a little in, then later ones
+      bool found = false;
+      for (std::size_t j = corner; j < m && !found && !(skip && along[j] >= skip->to); ++j)
         for (double into : kSkipInto) {
-          if (j == corner && into == 0.0) continue;
-          if (done || (into > 0.0 && into * rho >= segs[j].length - 1e-9)) break;
           const double to = along[j] + into * rho;
-          const Path curve = carCurve(p, {segs[j].a + segs[j].dir * (into * rho), segs[j].heading}, rho, car.reverse, false);
+          if (j == corner && into == 0.0) continue;
+          if ((into > 0.0 && (into * rho >= segs[j].length - 1e-9 || j >= corner + kSkipIntoSegments)) || (skip && to >= skip->to)) break;
+          Path curve = carCurve(p, {segs[j].a + segs[j].dir * (into * rho), segs[j].heading}, rho, car.reverse, false);
           if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
-          driveTo(from);
-          take(curve, to, paintedLength(from, to), j - corner);  // segment j is entered, not skipped
-          done = true;
+          skip = Skip{from, to, j, std::move(curve)};
+          found = true;
+          break;
         }
     }
-    if (done) continue;
+    // 3b. No curve reaches the path again within kSearchSkip of painting (a corner of a stair,
+    //     from which every curve to what follows crosses the steps): a route searched over the car's
+    //     own motions (searchCarRoute) to the next long segments, a turn radius into each.
+    const double search_from = std::max(x, at - rho);
+    // Where the car is, as it heads (not as the path arrives there: x may be a vertex the car
+    // reached along the next segment), or the point ahead it drives to first.
+    const Pose search_start = search_from <= x && out.path.segments() > 0 ? endPose(out.path) : startPose(search_from);
+    if ((!skip || paintedLength(skip->from, skip->to) > kSearchSkip) && searched < kSmoothingSearchBudget) {
+      std::size_t tries = 0;
+      for (std::size_t j = corner; j < m && tries < kSkipSearches && searched < kSmoothingSearchBudget; ++j) {
+        const double into = std::min(rho, 0.5 * segs[j].length);
+        const double to = along[j] + into;
+        if (skip && to >= skip->to) break;
+        if (segs[j].length < 2.0 * rho) continue;
+        ++tries;
+        const Pose target{segs[j].a + segs[j].dir * into, segs[j].heading};
+        Path route = searchCarRoute(ws, search_start, target, rho, car.reverse,
+                                    std::min(kSkipSearchExpansions, kSmoothingSearchBudget - searched), &searched);
+        if (route.segments() == 0) continue;
+        skip = Skip{search_from, to, j, std::move(route), true};
+        break;
+      }
+    }
+    if (skip) {
+      driveTo(skip->from);
+      take(skip->curve, skip->to, paintedLength(skip->from, skip->to), skip->j - corner);  // segment j is entered, not skipped
+      out.searched += skip->searched;
+      continue;
+    }
     // 4. Stuck (a forward-only car that drove into a passage too narrow to turn in): go back to
     //    where it was some steps ago, drop what it drove since, and skip from there to a segment
     //    beyond this corner.

@@ -560,6 +560,7 @@ void recordCarSweep(PlanResult& result, const CarSweep& sweep) {
   result.stats["car_ring_fillets"] = static_cast<double>(sweep.headland.fillets);
   result.stats["car_ring_turns"] = static_cast<double>(sweep.headland.turns);
   result.stats["car_skipped_segments"] = static_cast<double>(sweep.headland.skipped);
+  result.stats["car_ring_searched_skips"] = static_cast<double>(sweep.headland.searched);
   result.stats["car_undriven_m"] = sweep.headland.cut_m + sweep.undriven_m;
   if (sweep.unreached > 0 || sweep.timed_out || sweep.headland.stopped) {
     if (result.status == PlanStatus::Ok) result.status = PlanStatus::Partial;

@@ -91,6 +91,7 @@ struct CarSmoothing {
   std::size_t turns = 0;      ///< corners (and runs of short segments) replaced by a Dubins / Reeds-Shepp curve
   std::size_t cusps = 0;      ///< reversals in those curves (a Reeds-Shepp car's three-point turns)
   std::size_t skipped = 0;    ///< segments left out because no curve reached past them
+  std::size_t searched = 0;   ///< skips made along a route searched over the car's own motions
   double cut_m = 0.0;         ///< length of the planner's tool-on segments not driven (cut back or skipped)
   bool stopped = false;       ///< no curve reached any later segment: the path ends early
   std::string reason;         ///< what was left out, for the plan's reason
@@ -98,12 +99,16 @@ struct CarSmoothing {
 
 /// Makes `path` drivable by the car of `ws` (its vehicle; docs/vehicles.md): a forward-only car
 /// first drops spurs (out and straight back). Then each corner is rounded by an arc of the turn
-/// radius where that arc is free and fits its two segments; else replaced by the shortest Dubins /
-/// Reeds-Shepp curve from a point moved back before the corner to a point moved on after it (0 to
-/// 3 turn radii each, past any corners between), the first that is free and does not loop; else
-/// skipped, tool off, to the first later segment a free curve reaches (from the corner or up to 8
-/// radii before it); else the car backs off to where it was 1, 2, 4, ... steps before and skips
-/// from there; else the path ends (`stopped`). Every piece is checked (arcFree), and the result is
+/// radius where that arc is free and fits its two segments (a car that reverses instead drives
+/// into a corner of 60 degrees or more, backs out and backs into it along the next segment, so
+/// that the corner is painted); else replaced by the shortest Dubins / Reeds-Shepp curve from a
+/// point moved back before the corner to a point moved on after it (0 to 3 turn radii each, past
+/// any corners between), the first that is free and does not loop (a car that reverses also
+/// backs out first); else skipped, tool off, to the nearest point a free curve reaches on a later
+/// segment, its start or up to 4 radii into it (from the corner or up to 8 radii before it), or,
+/// where that would leave more than 1 m of painting, along a route searched over the car's own
+/// motions (searchCarRoute) to the next long segments; else the car backs off to where it was 1,
+/// 2, 4, ... steps before and skips from there; else the path ends (`stopped`). Every piece is checked (arcFree), and the result is
 /// checked for the car's rules (std::logic_error on a slip). Painting continues through a turn
 /// only where the path it replaces was painted all along.
 CarSmoothing smoothForCar(const Workspace& ws, const Path& path);
