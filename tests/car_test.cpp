@@ -710,6 +710,19 @@ TEST(CarSweep, AReversingCarsRingsGetPastAStairsSteps) {
   EXPECT_GT(searched, 0.0);
 }
 
+// Two sockets 0.3 m above the floor sit in a forward-only car's headland: the rings inside bend
+// round them tighter than the car turns, and their smoothing skipped three of the four rings
+// (coverage 0.68). The straight stretches the smoothing skipped become passes the sweep orders
+// with the rows, ending a turn radius short of F's edge ahead: now at least 0.85.
+TEST(CarSweep, WhatTheRingsSmoothingSkipsBecomesPasses) {
+  const Wall wall = rectWall(3.63, 2.488, {test::rect(0.816, 0.315, 0.08, 0.08), test::rect(3.135, 0.268, 0.08, 0.08)});
+  const PlanResult r = carZigzag(wall, false);
+  EXPECT_GT(r.stats.at("car_ring_passes"), 0.0);
+  const PathMetrics m = computeMetrics(wall, kTool, r.path, car(0.3, false));
+  EXPECT_TRUE(m.validity.valid) << m.validity.violations << " " << m.validity.not_drivable;
+  EXPECT_GE(m.coverage.coverage_reachable, 0.85);
+}
+
 // Property: on the first walls of the open and facade families, a forward-only and a reversing
 // car's own plans are valid and drivable, and partial exactly when rows were left out.
 TEST(CarSweep, GeneratedWallsGiveValidDrivablePlans) {

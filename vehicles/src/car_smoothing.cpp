@@ -310,6 +310,15 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
       if (segs[k].tool) sum += std::max(0.0, std::min(x1, along[k] + segs[k].length) - std::max(x0, along[k]));
     return sum;
   };
+  // The painted pieces of [x0, x1] (what a skip or a stop leaves undriven), for a planner to cover
+  // otherwise.
+  auto recordUndriven = [&](double x0, double x1) {
+    for (std::size_t k = segmentAt(x0); k < m && along[k] < x1; ++k) {
+      const double lo = std::max(x0, along[k]), hi = std::min(x1, along[k] + segs[k].length);
+      if (segs[k].tool && hi - lo > 1e-9)
+        out.undriven.emplace_back(segs[k].a + segs[k].dir * (lo - along[k]), segs[k].a + segs[k].dir * (hi - along[k]));
+    }
+  };
   auto append = [&](const Path& piece) {
     for (std::size_t k = 0; k < piece.segments(); ++k) out.path.arcTo(piece.waypoints[k + 1], piece.bulgeOf(k), piece.tool_on[k]);
   };
@@ -526,6 +535,7 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     if (skip) {
       driveTo(skip->from);
       take(skip->curve, skip->to, paintedLength(skip->from, skip->to), skip->j - corner);  // segment j is entered, not skipped
+      recordUndriven(skip->from, skip->to);
       out.searched += skip->searched;
       continue;
     }
@@ -542,6 +552,7 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
         out.path.tool_on.resize(c.waypoints - 1);
         if (!out.path.bulge.empty()) out.path.bulge.resize(c.waypoints - 1);
         take(curve, along[j], paintedLength(c.x, along[j]), j - segmentAt(c.x));  // what it painted since is dropped too
+        recordUndriven(c.x, along[j]);
         checkpoints.resize(checkpoints.size() - steps);
         done = true;
       }
@@ -550,6 +561,7 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     driveTo(at);
     out.stopped = true;
     out.cut_m += paintedLength(at, total);
+    recordUndriven(at, total);
     out.skipped += m - corner;
     break;
   }

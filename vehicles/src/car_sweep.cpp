@@ -213,12 +213,11 @@ CarHeadlandLayout carHeadlandLayout(double spacing, double turn_radius) {
   return layout;
 }
 
-CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& rows, double spacing,
+CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& given, double spacing,
                   const Budget& budget, double line_penalty) {
   const VehicleModel& car = ws.vehicle();
   const double rho = car.turn_radius * (1.0 + kCarRadiusSlack);
   CarSweep out;
-  out.rows = rows.size();
   // The rings first, from the outermost, as the car can drive them (smoothForCar).
   std::vector<Ring> thin;
   for (const Ring& ring : loops) thin.push_back(thinned(ws, ring, 0.03 * spacing));
@@ -227,6 +226,33 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     out.headland = smoothForCar(ws, rings.path());
     out.path = out.headland.path;
   }
+  // What the rings' smoothing skipped (a ring bent round a socket tighter than the car turns, a
+  // stair's steps) is not lost: each straight stretch of it two spacings or longer (for a
+  // forward-only car, also a turn radius or longer: each costs it two loop checks) becomes a pass
+  // the sweep orders with the rows. A forward-only car's pass ends short of F's edge ahead, by
+  // up to a turn radius, so that it can turn out of it.
+  std::vector<CarRow> rows = given;
+  for (const auto& [a0, b0] : out.headland.undriven) {
+    Point a = a0, b = b0;
+    const double length = distance(a, b);
+    if (length < (car.reverse ? 2.0 * spacing : std::max(2.0 * spacing, rho))) continue;
+    if (!car.reverse) {
+      const Point u = (b - a) * (1.0 / length);
+      for (int end = 0; end < 2; ++end) {
+        Point& tip = end == 0 ? b : a;
+        const Point ahead = end == 0 ? u : u * -1.0;
+        double cut = 0.0;
+        while (cut < rho && !ws.router().isFree(tip, tip + ahead * rho)) {
+          cut += 0.25 * rho;
+          tip = tip - ahead * (0.25 * rho);
+        }
+      }
+      if (dot(b - a, u) < 2.0 * spacing) continue;
+    }
+    rows.push_back({a, b, 0, false});
+    ++out.ring_passes;
+  }
+  out.rows = rows.size();
   const std::size_t n = rows.size();
   std::vector<char> done(n, 0);
   // Rows shorter than a turn radius are left for last: a car that drives into one often has no
@@ -561,6 +587,7 @@ void recordCarSweep(PlanResult& result, const CarSweep& sweep) {
   result.stats["car_ring_turns"] = static_cast<double>(sweep.headland.turns);
   result.stats["car_skipped_segments"] = static_cast<double>(sweep.headland.skipped);
   result.stats["car_ring_searched_skips"] = static_cast<double>(sweep.headland.searched);
+  result.stats["car_ring_passes"] = static_cast<double>(sweep.ring_passes);
   result.stats["car_undriven_m"] = sweep.headland.cut_m + sweep.undriven_m;
   if (sweep.unreached > 0 || sweep.timed_out || sweep.headland.stopped) {
     if (result.status == PlanStatus::Ok) result.status = PlanStatus::Partial;

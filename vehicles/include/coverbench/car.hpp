@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coverbench/boundary_arcs.hpp"  // arcFree, pathFree
@@ -94,6 +95,8 @@ struct CarSmoothing {
   std::size_t searched = 0;   ///< skips made along a route searched over the car's own motions
   double cut_m = 0.0;         ///< length of the planner's tool-on segments not driven (cut back or skipped)
   bool stopped = false;       ///< no curve reached any later segment: the path ends early
+  /// The path's painted pieces that skips and a stop left undriven (straight pieces, in order).
+  std::vector<std::pair<Point, Point>> undriven;
   std::string reason;         ///< what was left out, for the plan's reason
 };
 

@@ -58,7 +58,8 @@ std::vector<CarRow> carHolePasses(Workspace& ws, std::vector<Ring>& loops, doubl
 struct CarSweep {
   Path path;
   CarSmoothing headland;        ///< the rings as the car drives them
-  std::size_t rows = 0;         ///< rows given
+  std::size_t rows = 0;         ///< rows given, and passes along what the rings' smoothing skipped
+  std::size_t ring_passes = 0;  ///< of them, passes along what the rings' smoothing skipped
   std::size_t unreached = 0;    ///< rows no curve of the car reached (left out, said in `reason`)
   std::size_t unreached_rings = 0;  ///< rings no transit reached (coverRings)
   std::size_t links = 0;        ///< rows reached by one curve
