@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <optional>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -368,8 +368,8 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     });
     return shifts;
   }();
-  // Where a skip may enter a later segment, in turn radii from its start: nearest first.
-  // (on the corner's own next segment and the next few: further on, the start is tried alone).
+  // Where a skip may enter a later segment, in turn radii from its start, nearest first: on the
+  // corner's own next segment and the next few (further on, only the start is tried).
   static constexpr double kSkipInto[] = {0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0};
   static constexpr std::size_t kSkipIntoSegments = 8;
   // The sharpest turn a car that reverses rounds; sharper corners it drives into and backs out of.
@@ -519,12 +519,11 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     if ((!skip || paintedLength(skip->from, skip->to) > kSearchSkip) && searched < kSmoothingSearchBudget) {
       std::size_t tries = 0;
       for (std::size_t j = corner; j < m && tries < kSkipSearches && searched < kSmoothingSearchBudget; ++j) {
-        const double into = std::min(rho, 0.5 * segs[j].length);
-        const double to = along[j] + into;
+        const double to = along[j] + rho;
         if (skip && to >= skip->to) break;
         if (segs[j].length < 2.0 * rho) continue;
         ++tries;
-        const Pose target{segs[j].a + segs[j].dir * into, segs[j].heading};
+        const Pose target{segs[j].a + segs[j].dir * rho, segs[j].heading};
         Path route = searchCarRoute(ws, search_start, target, rho, car.reverse,
                                     std::min(kSkipSearchExpansions, kSmoothingSearchBudget - searched), &searched);
         if (route.segments() == 0) continue;
