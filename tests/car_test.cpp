@@ -268,10 +268,9 @@ TEST(CarCurves, OurDubinsCurvesAreOmplsOnShortQueries) {
   }
 }
 
-TEST(CarSmoothing, RoundsACornerWithAnArcOfTheTurnRadius) {
-  // East 2 m, then north 2 m, on an open wall: one fillet of radius rho, tangent 0.5 m before and
-  // after the corner; the painting it does not drive is those 2 x 0.5 m.
-  const Wall wall = rectWall(4.0, 4.0);
+/// East 2 m, then north 2 m, painted, on an open 4 m x 4 m wall, smoothed for a car of turn radius
+/// 0.5 m.
+CarSmoothing smoothedRightAngle(const Wall& wall, bool reverse) {
   Path p;
   p.moveTo({0.5, 0.5}, false);
   p.moveTo({2.5, 0.5}, true);
@@ -279,9 +278,16 @@ TEST(CarSmoothing, RoundsACornerWithAnArcOfTheTurnRadius) {
   Problem problem;
   problem.wall = &wall;
   problem.tool = kTool;
-  problem.vehicle = car(0.5);
+  problem.vehicle = car(0.5, reverse);
   const Workspace ws(wall, problem);
-  const CarSmoothing s = smoothForCar(ws, p);
+  return smoothForCar(ws, p);
+}
+
+TEST(CarSmoothing, RoundsACornerWithAnArcOfTheTurnRadius) {
+  // A forward-only car: one fillet of radius rho, tangent 0.5 m before and after the corner; the
+  // painting it does not drive is those 2 x 0.5 m.
+  const Wall wall = rectWall(4.0, 4.0);
+  const CarSmoothing s = smoothedRightAngle(wall, false);
   EXPECT_EQ(s.fillets, 1u);
   EXPECT_EQ(s.turns, 0u);
   EXPECT_EQ(s.skipped, 0u);
@@ -300,16 +306,7 @@ TEST(CarSmoothing, RoundsACornerWithAnArcOfTheTurnRadius) {
 // R + R pi / 2 + R of driving with the tool off.
 TEST(CarSmoothing, AReversingCarBacksOutOfACornerInsteadOfRoundingIt) {
   const Wall wall = rectWall(4.0, 4.0);
-  Path p;
-  p.moveTo({0.5, 0.5}, false);
-  p.moveTo({2.5, 0.5}, true);
-  p.moveTo({2.5, 2.5}, true);
-  Problem problem;
-  problem.wall = &wall;
-  problem.tool = kTool;
-  problem.vehicle = car(0.5, true);
-  const Workspace ws(wall, problem);
-  const CarSmoothing s = smoothForCar(ws, p);
+  const CarSmoothing s = smoothedRightAngle(wall, true);
   EXPECT_EQ(s.fillets, 0u);
   EXPECT_EQ(s.cusps, 2u);
   EXPECT_EQ(s.cut_m, 0.0);
@@ -649,7 +646,9 @@ TEST(CarSweep, AForwardOnlyCarCoversARectangleFromItsOwnPlan) {
     EXPECT_GE(m.coverage.coverage_reachable, 0.985) << reverse;
     // A car that reverses drives into each of the rings' 16 corners and backs out: it leaves only
     // the tool's own four corners, 4 r^2 (1 - pi/4) = 0.002 m^2 (with fillets it left 0.9917).
-    if (reverse) EXPECT_GE(m.coverage.coverage_reachable, 0.998);
+    if (reverse) {
+      EXPECT_GE(m.coverage.coverage_reachable, 0.998);
+    }
     EXPECT_LE(m.passes.overlap, 0.02) << reverse;
     // Every link between rows is a U-turn of the car, at least pi R long: the rows' order skips
     // far enough for one (rows one spacing apart would need a loop of about 5 R). Here 1.27 for a
