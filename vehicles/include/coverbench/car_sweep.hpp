@@ -75,7 +75,8 @@ struct CarSweep {
 };
 
 /// Drives the rings `loops` (joined by coverRings on `rings`, an empty builder of `ws`, the
-/// problem's workspace) smoothed for the car (smoothForCar), then every row it can: from where it is, the
+/// problem's workspace) smoothed for the car (smoothForCar), then every row it can, and a pass
+/// along each straight stretch of ring the smoothing skipped (ring passes): from where it is, the
 /// row end whose curve (Dubins for a forward-only car, Reeds-Shepp when it reverses) is shortest,
 /// plus `line_penalty` times the spacing for each line the row lies above the lowest unpainted
 /// line beside it (so the rows are taken in blocks, skipping as far as a turn needs and coming
@@ -91,8 +92,9 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
                   const Budget& budget, double line_penalty = 0.5);
 
 /// The plan's statistics (car_rows, car_rows_unreached, car_links, car_routed_links,
-/// car_searched_links, car_ends_in_dead_end, car_rings_stopped, car_cusps,
-/// car_backtracks, car_ring_fillets, car_ring_turns, car_skipped_segments, car_undriven_m), its
+/// car_searched_links, car_ends_in_dead_end, car_rings_stopped, car_cusps, car_backtracks,
+/// car_ring_fillets, car_ring_turns, car_ring_searched_skips, car_ring_passes,
+/// car_skipped_segments, car_undriven_m), its
 /// status (Partial when rows were left out or time ran out) and its reason.
 void recordCarSweep(PlanResult& result, const CarSweep& sweep);
 
