@@ -392,6 +392,13 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
     const double at = along[corner];  // the corner's arc length
     const Segment &s = segs[corner - 1], &t = segs[corner];
     const double theta = angleBetween(s.heading, t.heading);
+    // A car that reverses drives into the corner (painting it), backs straight out to `from` over
+    // what it just painted, and takes `curve` from there (steps 0 and 2b).
+    auto backOutAndTake = [&](Point from, const Path& curve, double to, double cut, std::size_t skipped) {
+      driveTo(at);
+      out.path.moveTo(from, false);
+      take(curve, to, cut, skipped);
+    };
     // 0. A car that reverses paints a sharp corner whole: it drives into it, backs out along the
     //    segment it came by, and comes back into the corner along the next one (reversing), then
     //    drives on from it. A fillet or a curve would leave the corner's tip unpainted: on F's
@@ -424,9 +431,7 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
         const Pose p = poseAt(from, true);
         const Path curve = carCurve(p, corner_pose, rho, true, false);
         if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
-        driveTo(at);
-        out.path.moveTo(p.at, false);  // backing out over what was just painted
-        take(curve, at, 0.0, 0);
+        backOutAndTake(p.at, curve, at, 0.0, 0);
         done = true;
         break;
       }
@@ -472,10 +477,8 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
         const Pose p = poseAt(from, true), q = poseAt(to, false);
         const Path curve = carCurve(p, q, rho, true, paintedThrough(at, to));
         if (curve.waypoints.empty() || loops(curve, p, q) || !pathFree(ws, curve)) continue;
-        driveTo(at);
-        out.path.moveTo(p.at, false);  // backing out over what was just painted
         const std::size_t s0 = segmentAt(at), s1 = segmentAt(to);
-        take(curve, to, paintedLength(at, to), s1 - s0 > 1 ? s1 - s0 - 1 : 0);
+        backOutAndTake(p.at, curve, to, paintedLength(at, to), s1 - s0 > 1 ? s1 - s0 - 1 : 0);
         done = true;
         break;
       }
