@@ -30,6 +30,9 @@ constexpr std::size_t kSearchExpansions = 800;
 constexpr std::size_t kSearchBudget = 6000;
 /// Poses searched for a loop from a row's end (carCanLoop) before it counts as a dead end.
 constexpr std::size_t kLoopExpansions = 300;
+/// What entering a stack of rows anywhere but at its bottom or top row costs (in turn radii) when
+/// choosing the next row: there its block order begins (carBlockOrder).
+constexpr double kInsideStackPenalty = 4.0;
 /// How much of the rings' end (in turn radii) a car stuck there gives up at most.
 constexpr double kRingGiveUpRadii = 10.0;
 
@@ -164,6 +167,48 @@ class EntryGrid {
 
 }  // namespace
 
+std::vector<std::size_t> carBlockOrder(std::size_t m, std::size_t k, std::size_t p, bool whole) {
+  std::vector<std::size_t> order;
+  const std::size_t least = 2 * k + 1;
+  if (k == 0 || m < least || p >= k) return order;
+  // Blocks of about equal size, all but the last odd; when m leaves 2k over, a last block of 2k.
+  // Not whole: blocks of 2k + 1, the last of 2k + 2 when lines are left (as cheap), the rest left
+  // out.
+  const std::size_t blocks = m / least;
+  const std::size_t last = m % least == 2 * k ? 2 * k : 0;
+  if (!whole && last == 0) m = std::min(m, blocks * least + 1);
+  std::size_t base = 0;
+  auto pair = [&](std::size_t first, std::size_t second) {
+    order.push_back(base + first);
+    order.push_back(base + second);
+  };
+  for (std::size_t i = 0; i < blocks; ++i) {
+    std::size_t size = (m - last - base) / (blocks - i);  // not whole: 2k + 1, then 2k + 1 or 2k + 2
+    if ((i + 1 < blocks || last > 0) && size % 2 == 0) --size;
+    if (size % 2 == 1) {
+      // Lines j and j + h - 1 for j = p down to 0, the top line, then j + h - 1 and j for j = h -
+      // 2 down to p + 1: links span h - 1 or h lines, and the block ends on line p + h, h - 1
+      // below the next block's line p.
+      const std::size_t h = (size + 1) / 2;
+      for (std::size_t j = p + 1; j-- > 0;) pair(j, j + h - 1);
+      order.push_back(base + size - 1);
+      for (std::size_t j = h - 2; j > p; --j) pair(j, j + h - 1);
+    } else {
+      // The last block, of even size 2g: lines j and j + g for j = p down to 0, then j + g and j
+      // for j = g - 1 down to p + 1 (links span g - 1 or g lines).
+      const std::size_t g = size / 2;
+      for (std::size_t j = p + 1; j-- > 0;) pair(j, j + g);
+      for (std::size_t j = g - 1; j > p; --j) pair(j + g, j);
+    }
+    base += size;
+  }
+  // The last 2k lines, entered at their line k - 1 (h - 1 - p + k - 1 >= k lines above the last
+  // block's end): lines j and j + k for j = k - 1 down to 0 (links span k or k + 1 lines).
+  if (last > 0)
+    for (std::size_t j = k; j-- > 0;) pair(j, j + k);
+  return order;
+}
+
 ParamSpec carPlanParam() {
   return {"car_plan", ParamType::Choice, std::string("headland"), 0, 0, {"headland", "smoothed"}, "",
           "for a car: headland rings and rows in an order its turns can link (headland), or the path planned for a tool "
@@ -291,23 +336,6 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       }
   }
 
-  auto driveRow = [&](std::size_t i, bool from_a) {
-    out.path.moveTo(exitOf(i, from_a), true);
-    done[i] = 1;
-    --remaining;
-  };
-  if (out.path.waypoints.empty() && n > 0) {
-    // Start at the first row's lowest end.
-    std::size_t first = 0;
-    for (std::size_t i = 1; i < n; ++i)
-      if (rows[i].row > rows[first].row || (rows[i].row == rows[first].row && std::make_pair(rows[i].line, std::min(rows[i].a.x, rows[i].b.x)) <
-          std::make_pair(rows[first].line, std::min(rows[first].a.x, rows[first].b.x))))
-        first = i;
-    const bool from_a = rows[first].a.x <= rows[first].b.x;
-    out.path.moveTo(entryOf(first, from_a), false);
-    driveRow(first, from_a);
-    ++out.links;
-  }
   // The rows of each line, and each row's extent along the lines.
   std::size_t lines = 0;
   for (const CarRow& r : rows)
@@ -328,6 +356,104 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
         if (!done[j] && lo_x[j] <= hi_x[i] && hi_x[j] >= lo_x[i]) return line;
     return rows[i].line;
   };
+  // Stacks: runs of rows on consecutive lines, each the only row beside the one below it and that
+  // one's only row beside it above, their ends within a turn radius of each other (what a wall's
+  // open stretch or a cell between windows holds). A car that enters an untouched stack at its
+  // bottom or top row takes it in carBlockOrder, each link a U-turn over enough lines for a half
+  // circle (`follow`), as long as those curves are free.
+  constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  struct Stack {
+    std::vector<std::size_t> rows;  // bottom up
+    std::size_t k = 0;              // lines a half-circle U-turn spans at least (0: no block order)
+    std::size_t done = 0;           // rows painted
+  };
+  std::vector<Stack> stacks;
+  std::vector<std::size_t> stack_of(n, kNone), stack_pos(n, 0);
+  auto beside = [&](std::size_t i, std::size_t j) { return lo_x[j] <= hi_x[i] && hi_x[j] >= lo_x[i]; };
+  for (std::size_t line = 0; line < lines; ++line)
+    for (std::size_t i : by_line[line]) {
+      if (isShort(i)) continue;
+      std::size_t below = kNone, count = 0;
+      if (line > 0)
+        for (std::size_t j : by_line[line - 1])
+          if (beside(i, j)) {
+            below = j;
+            ++count;
+          }
+      bool joins = count == 1 && stack_of[below] != kNone && std::fabs(lo_x[i] - lo_x[below]) <= rho &&
+                   std::fabs(hi_x[i] - hi_x[below]) <= rho;
+      if (joins) joins = std::count_if(by_line[line].begin(), by_line[line].end(), [&](std::size_t j) { return beside(below, j); }) == 1;
+      if (joins) {
+        stack_of[i] = stack_of[below];
+      } else {
+        stack_of[i] = stacks.size();
+        stacks.emplace_back();
+      }
+      stack_pos[i] = stacks[stack_of[i]].rows.size();
+      stacks[stack_of[i]].rows.push_back(i);
+    }
+  for (Stack& stack : stacks) {
+    const std::size_t m = stack.rows.size();
+    if (m < 2) continue;
+    const double dy = std::fabs(rows[stack.rows.back()].a.y - rows[stack.rows.front()].a.y) / static_cast<double>(m - 1);
+    const std::size_t k = dy > 0.0 ? static_cast<std::size_t>(std::ceil(2.0 * rho / dy - 1e-9)) : 0;
+    if (!car.reverse && k > 0 && m >= 2 * k + 1) stack.k = k;
+  }
+  // A row more than k - 1 lines inside a stack no row of which is painted yet: a block order
+  // cannot start there.
+  auto insideUntouched = [&](std::size_t i) {
+    if (stack_of[i] == kNone) return false;
+    const Stack& stack = stacks[stack_of[i]];
+    return stack.k > 0 && stack.done == 0 && stack_pos[i] >= stack.k && stack.rows.size() - 1 - stack_pos[i] >= stack.k;
+  };
+  std::vector<std::size_t> follow(n, kNone);  // the row carBlockOrder takes after this one
+  auto markDone = [&](std::size_t i, bool painted) {
+    done[i] = painted ? 1 : 0;
+    if (painted) --remaining;
+    else ++remaining;
+    if (stack_of[i] == kNone) return;
+    Stack& stack = stacks[stack_of[i]];
+    stack.done = painted ? stack.done + 1 : stack.done - 1;
+    if (!painted || stack.done != 1 || stack.k == 0) return;
+    // The stack's first row: take the rest in its block order from there, counting lines from the
+    // nearer end.
+    const std::size_t m = stack.rows.size();
+    const bool up = stack_pos[i] <= m - 1 - stack_pos[i];
+    const std::size_t p = up ? stack_pos[i] : m - 1 - stack_pos[i];
+    auto at = [&](const std::vector<std::size_t>& order, std::size_t t) {
+      return up ? stack.rows[order[t]] : stack.rows[m - 1 - order[t]];
+    };
+    // The lines blocks of 2k + 1 leave over are taken into the blocks (each link then spans a
+    // little more), unless each of those lines holds another row the car can take them with (a
+    // row beside a window: nearest first, the sweep links them to that row's stack).
+    std::vector<std::size_t> order = carBlockOrder(m, stack.k, p, false);
+    bool shared = true;
+    for (std::size_t t = order.size(); t < m && shared; ++t) {
+      const std::size_t left = up ? stack.rows[t] : stack.rows[m - 1 - t];
+      shared = by_line[rows[left].line].size() > 1;
+    }
+    if (!shared) order = carBlockOrder(m, stack.k, p, true);
+    for (std::size_t r : stack.rows) follow[r] = kNone;  // an order from before a backtrack
+    for (std::size_t t = 0; t + 1 < order.size(); ++t) follow[at(order, t)] = at(order, t + 1);
+  };
+  auto driveRow = [&](std::size_t i, bool from_a) {
+    out.path.moveTo(exitOf(i, from_a), true);
+    markDone(i, true);
+  };
+  std::size_t first_row = kNone;  // the row the path starts with, when there are no rings
+  if (out.path.waypoints.empty() && n > 0) {
+    // Start at the first row's lowest end.
+    std::size_t first = 0;
+    for (std::size_t i = 1; i < n; ++i)
+      if (rows[i].row > rows[first].row || (rows[i].row == rows[first].row && std::make_pair(rows[i].line, std::min(rows[i].a.x, rows[i].b.x)) <
+          std::make_pair(rows[first].line, std::min(rows[first].a.x, rows[first].b.x))))
+        first = i;
+    const bool from_a = rows[first].a.x <= rows[first].b.x;
+    out.path.moveTo(entryOf(first, from_a), false);
+    driveRow(first, from_a);
+    ++out.links;
+    first_row = first;
+  }
   const EntryGrid entries(rows, std::max(rho, spacing));
   // Gives up the rings' last segments, a turn radius of them (ring not driven, said as such).
   double ring_given_up = 0.0;  // how much of the rings' end was given up (m)
@@ -354,6 +480,21 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   std::size_t searched_poses = 0;  // by searchCarRoute, over the whole sweep
   const std::size_t max_backtracks = 2 * n + 8;
   std::size_t furthest = 0;  // the most rows the sweep had driven
+  // Drives the curve from the car's pose into row i (from end a or b) and the row, if the curve
+  // is free; a step of the sweep.
+  auto takeCurve = [&](std::size_t i, bool from_a) {
+    const Pose pose = endPose(out.path);
+    const Path curve = carCurve(pose, poseInto(i, from_a), rho, car.reverse, false);
+    if (curve.waypoints.empty() || !pathFree(ws, curve)) return false;
+    const std::size_t turned = cusps(curve);
+    steps.push_back({i, from_a, out.path.waypoints.size(), 'c', turned});
+    furthest = std::max(furthest, steps.size());
+    append(out.path, curve);
+    driveRow(i, from_a);
+    ++out.links;
+    out.cusps += turned;
+    return true;
+  };
   bool desperate = false;    // stuck after going back: routes to many more rows are tried
   double retreat = 0.0;          // how far the rings' last stretch is cut back
   std::pair<Point, Point> tail;  // that stretch as the rings drove it
@@ -371,6 +512,13 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     auto keep = [&](std::size_t i, bool from_a) {
       return !done[i] && !(long_left > 0 && isShort(i)) && !(dead[i] & (from_a ? 1 : 2));
     };
+    // In a stack's block order, the next row of the order when its curve is free.
+    const std::size_t here = steps.empty() ? first_row : steps.back().row;
+    if (here != kNone && follow[here] != kNone && !done[follow[here]]) {
+      const std::size_t j = follow[here];
+      const bool from_a = distance(pose.at, rows[j].a) <= distance(pose.at, rows[j].b);
+      if (keep(j, from_a) && takeCurve(j, from_a)) continue;
+    }
     // Taken nearest first, in a fixed order (ties by row and end), from the grid of rows' ends:
     // most are never looked at.
     EntryGrid::NearestFirst<decltype(keep)> nearest(entries, pose.at, keep);
@@ -402,7 +550,8 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
         }
         if (!heap.empty() && taken[next].bound >= heap.top().cost) break;
         const Candidate& c = taken[next];
-        penalty.push_back(line_penalty * spacing * static_cast<double>(rows[c.row].line - lowestBeside(c.row)));
+        penalty.push_back(line_penalty * spacing * static_cast<double>(rows[c.row].line - lowestBeside(c.row)) +
+                          (insideUntouched(c.row) ? kInsideStackPenalty * rho : 0.0));
         heap.push({c.bound + penalty.back(), next, false});
         ++next;
       }
@@ -417,16 +566,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       const Candidate c = taken[heap.top().index];
       heap.pop();
       ++checks;
-      const Path curve = carCurve(pose, poseInto(c.row, c.from_a), rho, car.reverse, false);
-      if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
-      const std::size_t turned = cusps(curve);
-      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), 'c', turned});
-      furthest = std::max(furthest, steps.size());
-      append(out.path, curve);
-      driveRow(c.row, c.from_a);
-      ++out.links;
-      out.cusps += turned;
-      found = true;
+      found = takeCurve(c.row, c.from_a);
     }
     // No curve is free (an obstacle between): a route round it, smoothed for the car, starting
     // straight on from where the car is and ending along the row.
@@ -477,8 +617,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       steps.push_back({c.row, c.from_a, out.path.waypoints.size(), searched ? 's' : 'r', turned});
       furthest = std::max(furthest, steps.size());
       append(out.path, link);
-      done[c.row] = 1;
-      --remaining;
+      markDone(c.row, true);
       ++(searched ? out.searched : out.routed);
       out.cusps += turned;
       out.undriven_m += cut;
@@ -521,8 +660,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     out.path.waypoints.resize(last.waypoints);
     out.path.tool_on.resize(last.waypoints - 1);
     if (!out.path.bulge.empty()) out.path.bulge.resize(last.waypoints - 1);
-    done[last.row] = 0;
-    ++remaining;
+    markDone(last.row, false);
     lowest_line = 0;
     dead[last.row] |= last.from_a ? 1 : 2;
     ++out.backtracks;

@@ -55,6 +55,17 @@ struct CarRow {
 /// stay rings.
 std::vector<CarRow> carHolePasses(Workspace& ws, std::vector<Ring>& loops, double spacing);
 
+/// The order a car takes a stack of `m` rows on consecutive lines in, entering at line `p` (0 is
+/// the line at the end of the stack it enters from), so that each row's U-turn to the next spans
+/// at least `k` lines (k spacings of at least twice the turn radius: a half circle and a straight,
+/// no loop). Blocks of at least 2k + 1 lines, all but the last of odd size b = 2h - 1, each
+/// entered at its line p and left from its line p + h, h - 1 below the next block's line p; every
+/// link spans h - 1 or h lines (or, in an even last block of 2g, g - 1 or g; in a last block of
+/// exactly 2k, entered at its line k - 1, k or k + 1). Not `whole`: blocks of exactly 2k + 1 (the
+/// last 2k + 2, or 2k as above), and the lines beyond them left out of the order. Empty when m <
+/// 2k + 1 or p >= k (the sweep then takes those rows nearest first).
+std::vector<std::size_t> carBlockOrder(std::size_t m, std::size_t k, std::size_t p = 0, bool whole = true);
+
 struct CarSweep {
   Path path;
   CarSmoothing headland;        ///< the rings as the car drives them
@@ -81,7 +92,9 @@ struct CarSweep {
 /// plus `line_penalty` times the spacing for each line the row lies above the lowest unpainted
 /// line beside it (so the rows are taken in blocks, skipping as far as a turn needs and coming
 /// back, not in sweeps across the whole wall); the curve is taken only if it lies in F
-/// (pathFree). When no curve is free, a route round the obstacles (the workspace's transit
+/// (pathFree). A forward-only car that enters a stack of rows (rows on consecutive lines, each
+/// the only one beside the next, ends within a turn radius) at one of its first k lines from
+/// either end takes the stack in carBlockOrder while those curves are free. When no curve is free, a route round the obstacles (the workspace's transit
 /// planner) smoothed for the car, or else, for the nearest rows, a route searched over the car's
 /// own motions (searchCarRoute); when none leaves a row, the car goes back one row and marks
 /// that way in as a dead end. Where the rings end facing F's edge, their last stretch is cut
