@@ -12,24 +12,29 @@ struct Arc {
   Point a, b, centre;
   double radius = 0.0;
   Point start;         ///< a - centre
+  Point end;           ///< b - centre
   double sweep = 0.0;  ///< signed, radians
   Box box;             ///< a box holding the arc (its ends and the extreme points it passes)
 };
 
 Arc makeArc(Point a, Point b, double bulge) {
   const ArcGeometry g = arcGeometry(a, b, bulge);
-  Arc arc{a, b, g.centre, g.radius, a - g.centre, g.sweep, {}};
+  Arc arc{a, b, g.centre, g.radius, a - g.centre, b - g.centre, g.sweep, {}};
   arc.box.add(a);
   arc.box.add(b);
   return arc;
 }
 
-/// Whether the direction v from the centre lies within the arc's sweep.
+/// Whether the direction v (not 0) from the centre lies within the arc's sweep, by the signs of
+/// cross products (no angles: this runs for every edge near every arc checked). Turning the arc's
+/// way, v is within when it lies at most half a turn past the start and not past the end (a sweep
+/// under half a turn: both half-planes), or when it is not strictly between the end and the start
+/// (a sweep of half a turn or more: outside the complement's wedge).
 bool withinSweep(const Arc& arc, Point v) {
-  double angle = std::atan2(arc.start.x * v.y - arc.start.y * v.x, dot(arc.start, v));  // (-pi, pi]
-  if (arc.sweep < 0.0) angle = -angle;
-  if (angle < 0.0) angle += 2.0 * M_PI;
-  return angle <= std::fabs(arc.sweep);
+  const double turn = arc.sweep < 0.0 ? -1.0 : 1.0;
+  const double from_start = turn * cross(arc.start, v), to_end = turn * cross(v, arc.end);
+  if (std::fabs(arc.sweep) < M_PI) return from_start >= 0.0 && to_end >= 0.0 && (from_start > 0.0 || dot(arc.start, v) > 0.0);
+  return !(from_start < 0.0 && to_end < 0.0);
 }
 
 double distancePointArc(Point p, const Arc& arc) {
