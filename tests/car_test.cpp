@@ -657,7 +657,7 @@ TEST(CarSweep, TheBlockOrderSpansAtLeastKLinesPerLink) {
           std::sort(sorted.begin(), sorted.end());
           for (std::size_t t = 0; t < sorted.size(); ++t) ASSERT_EQ(sorted[t], t) << m << " " << k << " " << p << " " << whole;
           if (whole) EXPECT_EQ(order.size(), m);
-          else EXPECT_LE(order.size(), m / (2 * k + 1) * (2 * k + 1) + std::max<std::size_t>(1, m % (2 * k + 1) == 2 * k ? 2 * k : 1));
+          else EXPECT_LE(order.size(), m / (2 * k + 1) * (2 * k + 1) + (m % (2 * k + 1) == 2 * k ? 2 * k : 1));
           for (std::size_t t = 1; t < order.size(); ++t) {
             const std::size_t span = order[t] > order[t - 1] ? order[t] - order[t - 1] : order[t - 1] - order[t];
             ASSERT_GE(span, k) << m << " " << k << " " << p << " " << whole << " at " << t;

@@ -348,12 +348,14 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     if (rows[i].row) by_line[rows[i].line].push_back(i);
   }
   std::size_t lowest_line = 0;  // no unpainted row lies below it (set each step)
-  // The lowest unpainted line among the rows beside row i (overlapping it across the lines).
+  // Rows i and j overlap across the lines (lie beside each other).
+  auto beside = [&](std::size_t i, std::size_t j) { return lo_x[j] <= hi_x[i] && hi_x[j] >= lo_x[i]; };
+  // The lowest unpainted line among the rows beside row i.
   auto lowestBeside = [&](std::size_t i) {
     if (!rows[i].row) return rows[i].line;
     for (std::size_t line = lowest_line; line < rows[i].line; ++line)
       for (std::size_t j : by_line[line])
-        if (!done[j] && lo_x[j] <= hi_x[i] && hi_x[j] >= lo_x[i]) return line;
+        if (!done[j] && beside(i, j)) return line;
     return rows[i].line;
   };
   // Stacks: runs of rows on consecutive lines, each the only row beside the one below it and that
@@ -369,7 +371,6 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   };
   std::vector<Stack> stacks;
   std::vector<std::size_t> stack_of(n, kNone), stack_pos(n, 0);
-  auto beside = [&](std::size_t i, std::size_t j) { return lo_x[j] <= hi_x[i] && hi_x[j] >= lo_x[i]; };
   for (std::size_t line = 0; line < lines; ++line)
     for (std::size_t i : by_line[line]) {
       if (isShort(i)) continue;
