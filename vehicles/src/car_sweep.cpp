@@ -65,6 +65,14 @@ Ring thinned(Workspace& ws, const Ring& ring, double deviation) {
   return out.size() >= 3 ? out : ring;
 }
 
+/// A row's direction from a to b (a unit vector; exact for rows along an axis).
+Point rowDirection(const CarRow& r) {
+  const Point d = r.b - r.a;
+  if (d.y == 0.0) return {d.x > 0.0 ? 1.0 : -1.0, 0.0};
+  if (d.x == 0.0) return {0.0, d.y > 0.0 ? 1.0 : -1.0};
+  return d * (1.0 / std::hypot(d.x, d.y));
+}
+
 /// A sweep step's candidate: a row entered from one end, with the straight distance to that end
 /// (a curve is never shorter).
 struct Candidate {
@@ -336,15 +344,21 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       }
   }
 
-  // The rows of each line, and each row's extent along the lines.
+  // The rows of each line, and each row's extent along the lines (`along`: the lines' direction,
+  // x for rows along x, as zigzag's).
   std::size_t lines = 0;
+  Point along{1.0, 0.0};
   for (const CarRow& r : rows)
-    if (r.row) lines = std::max(lines, r.line + 1);
+    if (r.row) {
+      if (lines == 0 && distance(r.a, r.b) > 0.0) along = rowDirection(r);
+      lines = std::max(lines, r.line + 1);
+    }
+  auto along_at = [&](Point p) { return dot(p, along); };
   std::vector<std::vector<std::size_t>> by_line(lines);
   std::vector<double> lo_x(n), hi_x(n);
   for (std::size_t i = 0; i < n; ++i) {
-    lo_x[i] = std::min(rows[i].a.x, rows[i].b.x);
-    hi_x[i] = std::max(rows[i].a.x, rows[i].b.x);
+    lo_x[i] = std::min(along_at(rows[i].a), along_at(rows[i].b));
+    hi_x[i] = std::max(along_at(rows[i].a), along_at(rows[i].b));
     if (rows[i].row) by_line[rows[i].line].push_back(i);
   }
   std::size_t lowest_line = 0;  // no unpainted row lies below it (set each step)
@@ -396,7 +410,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   for (Stack& stack : stacks) {
     const std::size_t m = stack.rows.size();
     if (m < 2) continue;
-    const double dy = std::fabs(rows[stack.rows.back()].a.y - rows[stack.rows.front()].a.y) / static_cast<double>(m - 1);
+    const double dy = std::fabs(cross(along, rows[stack.rows.back()].a - rows[stack.rows.front()].a)) / static_cast<double>(m - 1);
     const std::size_t k = dy > 0.0 ? static_cast<std::size_t>(std::ceil(2.0 * rho / dy - 1e-9)) : 0;
     if (!car.reverse && k > 0 && m >= 2 * k + 1) stack.k = k;
   }
@@ -446,10 +460,10 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     // Start at the first row's lowest end.
     std::size_t first = 0;
     for (std::size_t i = 1; i < n; ++i)
-      if (rows[i].row > rows[first].row || (rows[i].row == rows[first].row && std::make_pair(rows[i].line, std::min(rows[i].a.x, rows[i].b.x)) <
-          std::make_pair(rows[first].line, std::min(rows[first].a.x, rows[first].b.x))))
+      if (rows[i].row > rows[first].row ||
+          (rows[i].row == rows[first].row && std::make_pair(rows[i].line, lo_x[i]) < std::make_pair(rows[first].line, lo_x[first])))
         first = i;
-    const bool from_a = rows[first].a.x <= rows[first].b.x;
+    const bool from_a = along_at(rows[first].a) <= along_at(rows[first].b);
     out.path.moveTo(entryOf(first, from_a), false);
     driveRow(first, from_a);
     ++out.links;
