@@ -81,6 +81,50 @@ std::size_t dropCellsWithoutPasses(Decomposition& d, std::vector<std::vector<dou
   return dropped;
 }
 
+/// The cells of every part of `region` that `keep` admits, as one decomposition.
+template <class Keep>
+Decomposition decomposeParts(const Region& region, Kind kind, Keep keep) {
+  Decomposition cells;
+  for (const PolygonWithHoles& poly : region) {
+    if (!keep(poly)) continue;
+    Decomposition d = decompose(poly, kind);
+    const std::size_t base = cells.cells.size();
+    for (Contact& c : d.contacts) c.left += base, c.right += base;
+    cells.cells.insert(cells.cells.end(), d.cells.begin(), d.cells.end());
+    cells.contacts.insert(cells.contacts.end(), d.contacts.begin(), d.contacts.end());
+    cells.slabs += d.slabs;
+  }
+  return cells;
+}
+
+/// The pass positions of every cell, on one grid: over the cells' extent, or, when `span` (a
+/// headland's row span) is not empty, over its extent (the first and last pass one spacing inside
+/// the loops).
+std::vector<std::vector<double>> cellPasses(const Decomposition& cells, const Box& span, double spacing,
+                                            bool boundary_loop, PassGrid& grid) {
+  std::vector<double> shared_left(cells.cells.size(), 0.0), shared_right(cells.cells.size(), 0.0);
+  for (const Contact& c : cells.contacts) {
+    shared_left[c.right] += c.y1 - c.y0;
+    shared_right[c.left] += c.y1 - c.y0;
+  }
+  grid = PassGrid{};
+  if (!cells.cells.empty()) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const Cell& c : cells.cells) lo = std::min(lo, c.minX()), hi = std::max(hi, c.maxX());
+    if (boundary_loop && !span.empty()) {
+      lo = span.min_x;
+      hi = span.max_x;
+    }
+    grid.min = lo;
+    grid.count = static_cast<std::size_t>(std::max(1.0, std::ceil((hi - lo) / spacing - 1e-9)));
+    grid.step = (hi - lo) / static_cast<double>(grid.count);
+  }
+  std::vector<std::vector<double>> passes(cells.cells.size());
+  for (std::size_t i = 0; i < cells.cells.size(); ++i)
+    passes[i] = passPositions(cells.cells[i], shared_left[i], shared_right[i], grid, boundary_loop);
+  return passes;
+}
+
 /// Entry and exit of a cell for its four orientations (see CellEnds).
 CellEnds cellEnds(const Cell& cell, const std::vector<double>& xs) {
   CellEnds ends;
@@ -187,44 +231,18 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
         boundary_loop ? h.ends : freeRegion(wall, problem.tool, kCellArcTolerance + kFreeSpaceMargin, kCellArcTolerance);
     // The headland comes from the part of F covered; the coarser F lies inside F, so each of its
     // parts lies in one part of F, and a vertex tells which.
-    Decomposition cells;
-    for (const PolygonWithHoles& poly : cell_region) {
-      if (!boundary_loop && std::none_of(main.begin(), main.end(), [&](const PolygonWithHoles& part) {
-          return pointInPolygon(part, poly.outer.front());
-        }))
-        continue;
-      Decomposition d = decompose(poly, kind_);
-      const std::size_t base = cells.cells.size();
-      for (Contact& c : d.contacts) c.left += base, c.right += base;
-      cells.cells.insert(cells.cells.end(), d.cells.begin(), d.cells.end());
-      cells.contacts.insert(cells.contacts.end(), d.contacts.begin(), d.contacts.end());
-      cells.slabs += d.slabs;
-    }
+    Decomposition cells = decomposeParts(cell_region, kind_, [&](const PolygonWithHoles& poly) {
+      return boundary_loop || std::any_of(main.begin(), main.end(), [&](const PolygonWithHoles& part) {
+               return pointInPolygon(part, poly.outer.front());
+             });
+    });
     const double decomposition_ms = msSince(t_start);
     if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the decomposition");
 
     // Passes per cell, on one grid of positions for all cells.
     const auto t_order = Clock::now();
-    std::vector<double> shared_left(cells.cells.size(), 0.0), shared_right(cells.cells.size(), 0.0);
-    for (const Contact& c : cells.contacts) {
-      shared_left[c.right] += c.y1 - c.y0;
-      shared_right[c.left] += c.y1 - c.y0;
-    }
     PassGrid grid;
-    if (!cells.cells.empty()) {
-      double lo = INFINITY, hi = -INFINITY;
-      for (const Cell& c : cells.cells) lo = std::min(lo, c.minX()), hi = std::max(hi, c.maxX());
-      if (boundary_loop && !h.row_span.empty()) {  // the first and last pass one spacing inside the loop
-        lo = h.row_span.min_x;
-        hi = h.row_span.max_x;
-      }
-      grid.min = lo;
-      grid.count = static_cast<std::size_t>(std::max(1.0, std::ceil((hi - lo) / spacing - 1e-9)));
-      grid.step = (hi - lo) / static_cast<double>(grid.count);
-    }
-    std::vector<std::vector<double>> passes(cells.cells.size());
-    for (std::size_t i = 0; i < cells.cells.size(); ++i)
-      passes[i] = passPositions(cells.cells[i], shared_left[i], shared_right[i], grid, boundary_loop);
+    std::vector<std::vector<double>> passes = cellPasses(cells, h.row_span, spacing, boundary_loop, grid);
     const std::size_t passless_cells = dropCellsWithoutPasses(cells, passes);
     std::vector<CellEnds> ends(cells.cells.size());
     std::size_t pass_count = 0;

@@ -307,6 +307,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   }
   out.rows = rows.size();
   const std::size_t n = rows.size();
+  const bool ordered = std::any_of(rows.begin(), rows.end(), [](const CarRow& r) { return r.cell != kAnyCell; });
   std::vector<char> done(n, 0);
   // Rows shorter than a turn radius are left for last: a car that drives into one often has no
   // room to turn out of it (they are what is left between the headlands of two obstacles).
@@ -395,7 +396,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
             below = j;
             ++count;
           }
-      bool joins = count == 1 && stack_of[below] != kNone && std::fabs(lo_x[i] - lo_x[below]) <= rho &&
+      bool joins = count == 1 && stack_of[below] != kNone && rows[i].cell == rows[below].cell && std::fabs(lo_x[i] - lo_x[below]) <= rho &&
                    std::fabs(hi_x[i] - hi_x[below]) <= rho;
       if (joins) joins = std::count_if(by_line[line].begin(), by_line[line].end(), [&](std::size_t j) { return beside(below, j); }) == 1;
       if (joins) {
@@ -524,120 +525,133 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     while (lowest_line < lines && std::all_of(by_line[lowest_line].begin(), by_line[lowest_line].end(),
                                               [&](std::size_t j) { return done[j] != 0; }))
       ++lowest_line;
-    auto keep = [&](std::size_t i, bool from_a) {
+    auto admissible = [&](std::size_t i, bool from_a) {
       return !done[i] && !(long_left > 0 && isShort(i)) && !(dead[i] & (from_a ? 1 : 2));
     };
-    // In a stack's block order, the next row of the order when its curve is free.
-    const std::size_t here = steps.empty() ? first_row : steps.back().row;
-    if (here != kNone && follow[here] != kNone && !done[follow[here]]) {
-      const std::size_t j = follow[here];
-      const bool from_a = distance(pose.at, rows[j].a) <= distance(pose.at, rows[j].b);
-      if (keep(j, from_a) && takeCurve(j, from_a)) continue;
-    }
-    // Taken nearest first, in a fixed order (ties by row and end), from the grid of rows' ends:
-    // most are never looked at.
-    EntryGrid::NearestFirst<decltype(keep)> nearest(entries, pose.at, keep);
-    std::size_t admitted = 0;  // every way on is tried where the rings end (below)
-    if (steps.empty() && out.links == 0)
-      for (std::size_t i = 0; i < n; ++i) admitted += keep(i, true) + keep(i, false);
-    std::vector<Candidate> taken;  // nearest first
-    // Best first by cost (curve length plus the line penalty), evaluated lazily: a curve is never
-    // shorter than the straight distance, so a candidate enters the heap with that distance plus
-    // its penalty as its key, and its curve is measured only if it comes to the top.
-    struct Scored {
-      double cost;
-      std::size_t index;  // into taken
-      bool measured;      // cost is the curve's length plus the penalty (else a bound on it)
-      bool operator>(const Scored& o) const { return std::tie(cost, index, measured) > std::tie(o.cost, o.index, o.measured); }
-    };
-    std::priority_queue<Scored, std::vector<Scored>, std::greater<>> heap;
-    std::vector<double> penalty;  // per taken candidate
-    std::size_t next = 0, checks = 0;
-    bool found = false;
-    // Where the rings end, every way on is tried (once): the car may face F's edge there.
-    const std::size_t max_checks = steps.empty() && out.links == 0 ? admitted : kMaxCurveChecks;
-    while (!found && checks < max_checks) {
-      while (true) {
-        if (next == taken.size()) {
+    // With a cell order, the first cell in it that has a row left the car may enter.
+    std::size_t cell = kAnyCell;
+    if (ordered)
+      for (std::size_t i = 0; i < n; ++i)
+        if (rows[i].cell < cell && (admissible(i, true) || admissible(i, false))) cell = rows[i].cell;
+    // A step of the sweep: a curve, else a route, into a row `keep` admits.
+    auto step = [&](auto keep) {
+      // In a stack's block order, the next row of the order when its curve is free.
+      const std::size_t here = steps.empty() ? first_row : steps.back().row;
+      if (here != kNone && follow[here] != kNone && !done[follow[here]]) {
+        const std::size_t j = follow[here];
+        const bool from_a = distance(pose.at, rows[j].a) <= distance(pose.at, rows[j].b);
+        if (keep(j, from_a) && takeCurve(j, from_a)) return true;
+      }
+      // Taken nearest first, in a fixed order (ties by row and end), from the grid of rows' ends:
+      // most are never looked at.
+      EntryGrid::NearestFirst<decltype(keep)> nearest(entries, pose.at, keep);
+      std::size_t admitted = 0;  // every way on is tried where the rings end (below)
+      if (steps.empty() && out.links == 0)
+        for (std::size_t i = 0; i < n; ++i) admitted += keep(i, true) + keep(i, false);
+      std::vector<Candidate> taken;  // nearest first
+      // Best first by cost (curve length plus the line penalty), evaluated lazily: a curve is never
+      // shorter than the straight distance, so a candidate enters the heap with that distance plus
+      // its penalty as its key, and its curve is measured only if it comes to the top.
+      struct Scored {
+        double cost;
+        std::size_t index;  // into taken
+        bool measured;      // cost is the curve's length plus the penalty (else a bound on it)
+        bool operator>(const Scored& o) const { return std::tie(cost, index, measured) > std::tie(o.cost, o.index, o.measured); }
+      };
+      std::priority_queue<Scored, std::vector<Scored>, std::greater<>> heap;
+      std::vector<double> penalty;  // per taken candidate
+      std::size_t next = 0, checks = 0;
+      bool found = false;
+      // Where the rings end, every way on is tried (once): the car may face F's edge there.
+      const std::size_t max_checks = steps.empty() && out.links == 0 ? admitted : kMaxCurveChecks;
+      while (!found && checks < max_checks) {
+        while (true) {
+          if (next == taken.size()) {
+            const std::optional<Candidate> more = nearest.next();
+            if (!more) break;
+            taken.push_back(*more);
+          }
+          if (!heap.empty() && taken[next].bound >= heap.top().cost) break;
+          const Candidate& c = taken[next];
+          penalty.push_back(line_penalty * spacing * static_cast<double>(rows[c.row].line - lowestBeside(c.row)) +
+                            (insideUntouched(c.row) ? kInsideStackPenalty * rho : 0.0));
+          heap.push({c.bound + penalty.back(), next, false});
+          ++next;
+        }
+        if (heap.empty()) break;
+        if (!heap.top().measured) {
+          const std::size_t k = heap.top().index;
+          heap.pop();
+          const double length = carCurveLength(pose, poseInto(taken[k].row, taken[k].from_a), rho, car.reverse);
+          if (std::isfinite(length)) heap.push({length + penalty[k], k, true});
+          continue;
+        }
+        const Candidate c = taken[heap.top().index];
+        heap.pop();
+        ++checks;
+        found = takeCurve(c.row, c.from_a);
+      }
+      // No curve is free (an obstacle between): a route round it, smoothed for the car, starting
+      // straight on from where the car is and ending along the row.
+      const std::size_t routed_tries = steps.empty() || desperate ? 8 * kMaxRoutedTries : kMaxRoutedTries;
+      for (std::size_t t = 0; !found && t < routed_tries; ++t) {
+        if (t == taken.size()) {
           const std::optional<Candidate> more = nearest.next();
           if (!more) break;
           taken.push_back(*more);
         }
-        if (!heap.empty() && taken[next].bound >= heap.top().cost) break;
-        const Candidate& c = taken[next];
-        penalty.push_back(line_penalty * spacing * static_cast<double>(rows[c.row].line - lowestBeside(c.row)) +
-                          (insideUntouched(c.row) ? kInsideStackPenalty * rho : 0.0));
-        heap.push({c.bound + penalty.back(), next, false});
-        ++next;
-      }
-      if (heap.empty()) break;
-      if (!heap.top().measured) {
-        const std::size_t k = heap.top().index;
-        heap.pop();
-        const double length = carCurveLength(pose, poseInto(taken[k].row, taken[k].from_a), rho, car.reverse);
-        if (std::isfinite(length)) heap.push({length + penalty[k], k, true});
-        continue;
-      }
-      const Candidate c = taken[heap.top().index];
-      heap.pop();
-      ++checks;
-      found = takeCurve(c.row, c.from_a);
-    }
-    // No curve is free (an obstacle between): a route round it, smoothed for the car, starting
-    // straight on from where the car is and ending along the row.
-    const std::size_t routed_tries = steps.empty() || desperate ? 8 * kMaxRoutedTries : kMaxRoutedTries;
-    for (std::size_t t = 0; !found && t < routed_tries; ++t) {
-      if (t == taken.size()) {
-        const std::optional<Candidate> more = nearest.next();
-        if (!more) break;
-        taken.push_back(*more);
-      }
-      const Candidate c = taken[t];
-      Path link;  // from the car through the row
-      std::size_t turned = 0;
-      double cut = 0.0;
-      const Point ahead = pose.at + Point{std::cos(pose.heading), std::sin(pose.heading)} * 1e-3;
-      const bool facing_free = ws.router().isFree(pose.at, ahead);
-      if (facing_free) {
-        if (const auto route = ws.route(ahead, entryOf(c.row, c.from_a))) {
-          Path input;
-          input.moveTo(pose.at, false);
-          for (const Point& p : *route) input.moveTo(p, false);
-          input.moveTo(exitOf(c.row, c.from_a), true);
-          CarSmoothing smoothed = smoothForCar(ws, input);
-          if (!smoothed.stopped && smoothed.path.segments() > 0 &&
-              distance(smoothed.path.waypoints.back(), exitOf(c.row, c.from_a)) <= 1e-9 && startsAlong(smoothed.path, pose, car.reverse)) {
-            link = std::move(smoothed.path);
-            turned = smoothed.cusps;
-            cut = smoothed.cut_m;
+        const Candidate c = taken[t];
+        Path link;  // from the car through the row
+        std::size_t turned = 0;
+        double cut = 0.0;
+        const Point ahead = pose.at + Point{std::cos(pose.heading), std::sin(pose.heading)} * 1e-3;
+        const bool facing_free = ws.router().isFree(pose.at, ahead);
+        if (facing_free) {
+          if (const auto route = ws.route(ahead, entryOf(c.row, c.from_a))) {
+            Path input;
+            input.moveTo(pose.at, false);
+            for (const Point& p : *route) input.moveTo(p, false);
+            input.moveTo(exitOf(c.row, c.from_a), true);
+            CarSmoothing smoothed = smoothForCar(ws, input);
+            if (!smoothed.stopped && smoothed.path.segments() > 0 &&
+                distance(smoothed.path.waypoints.back(), exitOf(c.row, c.from_a)) <= 1e-9 && startsAlong(smoothed.path, pose, car.reverse)) {
+              link = std::move(smoothed.path);
+              turned = smoothed.cusps;
+              cut = smoothed.cut_m;
+            }
           }
         }
-      }
-      // The smoothed route does not take the car there (it would turn tighter than it can, or
-      // the car faces F's edge): a search over the car's own motions, for the nearest rows.
-      bool searched = false;
-      if (link.segments() == 0 && t < kSearchTries && searched_poses < kSearchBudget) {
-        link = searchCarRoute(ws, pose, poseInto(c.row, c.from_a), rho, car.reverse,
-                              std::min(kSearchExpansions, kSearchBudget - searched_poses), &searched_poses);
-        if (link.segments() > 0) {
-          link.moveTo(exitOf(c.row, c.from_a), true);
-          turned = cusps(link);
-          searched = true;
+        // The smoothed route does not take the car there (it would turn tighter than it can, or
+        // the car faces F's edge): a search over the car's own motions, for the nearest rows.
+        bool searched = false;
+        if (link.segments() == 0 && t < kSearchTries && searched_poses < kSearchBudget) {
+          link = searchCarRoute(ws, pose, poseInto(c.row, c.from_a), rho, car.reverse,
+                                std::min(kSearchExpansions, kSearchBudget - searched_poses), &searched_poses);
+          if (link.segments() > 0) {
+            link.moveTo(exitOf(c.row, c.from_a), true);
+            turned = cusps(link);
+            searched = true;
+          }
         }
+        if (link.segments() == 0) {
+          if (!facing_free && t + 1 >= kSearchTries) break;
+          continue;
+        }
+        steps.push_back({c.row, c.from_a, out.path.waypoints.size(), searched ? 's' : 'r', turned});
+        furthest = std::max(furthest, steps.size());
+        append(out.path, link);
+        markDone(c.row, true);
+        ++(searched ? out.searched : out.routed);
+        out.cusps += turned;
+        out.undriven_m += cut;
+        found = true;
       }
-      if (link.segments() == 0) {
-        if (!facing_free && t + 1 >= kSearchTries) break;
-        continue;
-      }
-      steps.push_back({c.row, c.from_a, out.path.waypoints.size(), searched ? 's' : 'r', turned});
-      furthest = std::max(furthest, steps.size());
-      append(out.path, link);
-      markDone(c.row, true);
-      ++(searched ? out.searched : out.routed);
-      out.cusps += turned;
-      out.undriven_m += cut;
-      found = true;
-    }
+      return found;
+    };
+    // With a cell order, that cell's rows (and passes of no cell) first, then any.
+    const bool found = (cell != kAnyCell && step([&](std::size_t i, bool from_a) {
+                         return admissible(i, from_a) && (rows[i].cell == cell || rows[i].cell == kAnyCell);
+                       })) || step(admissible);
     if (found && desperate) {
       desperate = false;
       furthest = steps.size();

@@ -39,12 +39,19 @@ struct CarHeadlandLayout {
 };
 CarHeadlandLayout carHeadlandLayout(double spacing, double turn_radius);
 
+/// CarRow::cell of a row that belongs to no cell of an order.
+inline constexpr std::size_t kAnyCell = static_cast<std::size_t>(-1);
+
 /// One row: a straight pass from a to b (or b to a), both ends in F; `line` numbers the rows'
 /// lines (parallel, one spacing apart), from one side.
 struct CarRow {
   Point a, b;
   std::size_t line = 0;
   bool row = true;  ///< false: a pass along an obstacle's edge (carHolePasses), no line
+  /// The place of the row's cell in a planner's cell order (a cell decomposition's tour): the
+  /// sweep takes the rows of the first cell in that order with rows left it may enter, and rows
+  /// of no cell (kAnyCell), before any other row, as long as it reaches one of them.
+  std::size_t cell = kAnyCell;
 };
 
 /// The headland round the obstacles, for a car: a ring round a window turns round its corners
