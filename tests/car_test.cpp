@@ -415,7 +415,7 @@ TEST(CarSmoothing, TurnsAtPassEndsAndNeverMakesAPathInvalid) {
 }
 
 /// Every planner's path on a wall of every family, smoothed for a Dubins and a Reeds-Shepp car of
-/// turn radius 0.3 m: a valid, drivable path (fast engine on all; exact judge on two planners' paths
+/// turn radius 0.3 m: a valid, drivable path (fast engine on all; exact judge on three planners' paths
 /// of the residential wall),
 /// whatever it leaves out. Stress walls: the next suite.
 class CarFamilies : public testing::TestWithParam<std::string> {
@@ -439,7 +439,7 @@ class CarFamilies : public testing::TestWithParam<std::string> {
         const std::string where = wall.name + " " + name + (reverse ? " reeds-shepp" : " dubins");
         const Validity v = checkValidity(wall, kTool, r.path, problem.vehicle);
         EXPECT_TRUE(v.valid) << where << ": " << v.violations << " violations, " << v.not_drivable << " not drivable";
-        if (exact && (name == "zigzag" || name == "spanning-tree"))
+        if (exact && (name == "zigzag" || name == "boustrophedon" || name == "spanning-tree"))
           EXPECT_TRUE(judge::judgeValidity(wall, kTool, r.path, problem.vehicle).valid) << where;
         // Partial exactly when something was left out: rows no curve reached, or the rings'
         // rest where no curve went on (a plan for the car itself; what its rings could not turn
@@ -665,15 +665,27 @@ TEST(CarSweep, TheBlockOrderSpansAtLeastKLinesPerLink) {
         }
 }
 
-/// zigzag planning for the car itself on an obstacle-free 6 m x 4 m wall, R = 0.3 m.
-PlanResult carZigzag(const Wall& wall, bool reverse, const std::string& car_plan = "headland") {
-  const PlannerInfo& info = findPlanner("zigzag");
+/// A sweep planner's plan for a car of R = 0.3 m (its own, or the smoothed baseline).
+PlanResult carPlanOf(const std::string& planner, const Wall& wall, bool reverse, const std::string& car_plan = "headland") {
+  const PlannerInfo& info = findPlanner(planner);
   Problem problem;
   problem.wall = &wall;
   problem.tool = kTool;
   problem.params = resolveParams(info, {{"car_plan", car_plan}});
   problem.vehicle = car(0.3, reverse);
   return runPlanner(info, problem, Budget());
+}
+
+/// The median of values.
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : 0.5 * (v[(n - 1) / 2] + v[n / 2]);
+}
+
+/// zigzag's plan for a car of R = 0.3 m.
+PlanResult carZigzag(const Wall& wall, bool reverse, const std::string& car_plan = "headland") {
+  return carPlanOf("zigzag", wall, reverse, car_plan);
 }
 
 TEST(CarSweep, AForwardOnlyCarCoversARectangleFromItsOwnPlan) {
@@ -719,27 +731,27 @@ TEST(CarSweep, AForwardOnlyCarCoversARectangleFromItsOwnPlan) {
 
 // Issue 34's rectangles: on the first 20 open walls (seed 1: obstacle-free, 5-12 m a side), a
 // forward-only car's own plans cover a median of at least 0.985 of R at overlap at most 0.02 and
-// length_ratio at most 1.15 (1.177 when rows were taken nearest first; at least about 1 + pi R /
-// row length, docs/vehicles.md).
+// length_ratio at most 1.15 (zigzag: 1.177 when rows were taken nearest first; at least about 1 +
+// pi R / row length, docs/vehicles.md). The cell decompositions' plans too (their passes run
+// along y, each cell's in its block order).
 TEST(CarSweep, AForwardOnlyCarsRowsOnOpenWallsCostLittleMoreThanItsUTurns) {
-  std::vector<double> coverage, overlap, length;
-  for (std::size_t i = 0; i < 20; ++i) {
-    const Wall wall = generateWall("open", 1, i);
-    const PlanResult r = carZigzag(wall, false);
-    ASSERT_EQ(r.status, PlanStatus::Ok) << wall.name << ": " << r.reason;
-    const PathMetrics m = computeMetrics(wall, kTool, r.path, car(0.3, false));
-    EXPECT_TRUE(m.validity.valid) << wall.name;
-    coverage.push_back(m.coverage.coverage_reachable);
-    overlap.push_back(m.passes.overlap);
-    length.push_back(m.length_ratio);
+  for (const std::string planner : {"zigzag", "boustrophedon", "trapezoidal"}) {
+    std::vector<double> coverage, overlap, length;
+    for (std::size_t i = 0; i < 20; ++i) {
+      const Wall wall = generateWall("open", 1, i);
+      const PlanResult r = carPlanOf(planner, wall, false);
+      ASSERT_EQ(r.status, PlanStatus::Ok) << planner << " " << wall.name << ": " << r.reason;
+      EXPECT_TRUE(r.planned_for_car) << planner;
+      const PathMetrics m = computeMetrics(wall, kTool, r.path, car(0.3, false));
+      EXPECT_TRUE(m.validity.valid) << planner << " " << wall.name;
+      coverage.push_back(m.coverage.coverage_reachable);
+      overlap.push_back(m.passes.overlap);
+      length.push_back(m.length_ratio);
+    }
+    EXPECT_GE(median(coverage), 0.985) << planner;
+    EXPECT_LE(median(overlap), 0.02) << planner;
+    EXPECT_LE(median(length), 1.15) << planner;
   }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return 0.5 * (v[9] + v[10]);
-  };
-  EXPECT_GE(median(coverage), 0.985);
-  EXPECT_LE(median(overlap), 0.02);
-  EXPECT_LE(median(length), 1.15);
 }
 
 // A car that reverses paints its rings' corners (it backs out of each) and enters a ring's long
@@ -810,6 +822,56 @@ TEST(CarSweep, GeneratedWallsGiveValidDrivablePlans) {
         EXPECT_EQ(r.status == PlanStatus::Partial, r.stats.at("car_rows_unreached") > 0 || r.leftPartsOut()) << wall.name;
       }
     }
+}
+
+// A cell order (CarRow::cell, what the cell decompositions give) is taken cell by cell: three
+// stacks of 20 rows (3 m long, along y as the decompositions' passes run) side by side on an open
+// 12 m x 4 m wall, no rings. With the order left, right, middle, the car paints all of the left
+// stack, then all of the right one, then the middle one, though the middle one is nearer; without
+// an order it takes them nearest first: left, middle, right.
+TEST(CarSweep, ACellOrderIsTakenCellByCell) {
+  const Wall wall = rectWall(12.0, 4.0);
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = kTool;
+  problem.vehicle = car(0.3, false);
+  for (bool ordered : {true, false}) {
+    Workspace ws(wall, problem);
+    std::vector<CarRow> rows;
+    const std::size_t rank[3] = {0, 2, 1};  // of the left, middle and right stack
+    for (std::size_t side = 0; side < 3; ++side)
+      for (std::size_t k = 0; k < 20; ++k) {
+        const double x = 0.6 + 4.4 * static_cast<double>(side) + 0.1 * static_cast<double>(k);
+        rows.push_back({{x, 0.5}, {x, 3.5}, static_cast<std::size_t>(std::lround(x / 0.1)), true,
+                        ordered ? rank[side] : kAnyCell});
+      }
+    PathBuilder rings(ws);
+    const CarSweep sweep = carSweep(ws, rings, {}, rows, 0.1, Budget());
+    ASSERT_EQ(sweep.unreached, 0u) << ordered;
+    // The stacks the painted rows lie in, in the path's order, each run of one stack once.
+    std::vector<int> sides;
+    for (std::size_t k = 0; k < sweep.path.segments(); ++k)
+      if (sweep.path.tool_on[k] && sweep.path.bulgeOf(k) == 0.0 && segmentLength(sweep.path, k) > 2.5) {
+        const int side = static_cast<int>(sweep.path.waypoints[k].x / 4.4);
+        if (sides.empty() || sides.back() != side) sides.push_back(side);
+      }
+    EXPECT_EQ(sides, ordered ? std::vector<int>({0, 2, 1}) : std::vector<int>({0, 1, 2}));
+    EXPECT_EQ(sweep.path.waypoints.front(), rows.front().a) << ordered;
+    EXPECT_TRUE(checkValidity(wall, kTool, sweep.path, problem.vehicle).valid) << ordered;
+  }
+}
+
+// The rings start at their lowest vertex. On random-s3-0000, with the cell decompositions' frame,
+// that vertex lies in a pocket between two obstacles at the wall's left edge: the car stopped on
+// the rings after 3 cm and reached no row (coverage 0.0002). Where the car stops before half the
+// rings, they start again at their first ring's longest edge.
+TEST(CarSweep, RingsThatStartInAPocketStartAgainAtTheirLongestEdge) {
+  const Wall wall = generateWall("random", 3, 0);
+  const PlanResult r = carPlanOf("boustrophedon", wall, false);
+  const PathMetrics m = computeMetrics(wall, kTool, r.path, car(0.3, false));
+  EXPECT_TRUE(m.validity.valid);
+  EXPECT_GT(r.stats.at("car_links"), 100.0);
+  EXPECT_GE(m.coverage.coverage_reachable, 0.7);
 }
 
 }  // namespace

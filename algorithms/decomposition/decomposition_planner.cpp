@@ -12,6 +12,7 @@
 #include "coverbench/region_ops.hpp"
 #include "coverbench/sweep_search.hpp"
 #include "coverbench/boundary_arcs.hpp"
+#include "coverbench/car_sweep.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::decomposition {
@@ -169,6 +170,7 @@ struct DecompositionParams {
   bool boundary_loop = true;
   double row_end_inset = 0.5;
   bool fill_leftovers = false;
+  CarPlan car_plan = CarPlan::Headland;
 };
 
 const ParamTable<DecompositionParams>& paramTable() {
@@ -184,7 +186,8 @@ const ParamTable<DecompositionParams>& paramTable() {
                 "one loop around the wall and each obstacle after the cells (covers corners the passes miss)"},
                &DecompositionParams::boundary_loop)
           .add(rowEndInsetParam(), &DecompositionParams::row_end_inset)
-          .add(fillLeftoversParam(), &DecompositionParams::fill_leftovers);
+          .add(fillLeftoversParam(), &DecompositionParams::fill_leftovers)
+          .add(carPlanParam(), &DecompositionParams::car_plan, carPlanChoices());
   return table;
 }
 
@@ -193,12 +196,56 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
   explicit DecompositionPlanner(Kind kind) : TypedPlanner(paramTable()), kind_(kind) {}
 
  protected:
-  PlanResult planWith(const Problem& problem, const DecompositionParams& params, const Budget& budget) override {
+  PlanResult planWith(const Problem& given, const DecompositionParams& params, const Budget& budget) override {
+    // car_plan: smoothed plans for a tool that turns on the spot; runPlanner smooths the path.
+    const Problem problem = given.vehicle.isCar() && params.car_plan == CarPlan::Smoothed ? asHolonomic(given) : given;
     return planSweep(problem, params.sweep, budget,
                      [&](double angle_deg) { return planAt(problem, params, budget, angle_deg); });
   }
 
  private:
+  /// For a car (car_plan: headland): as many rings as its turns need, the cells cut from what they
+  /// leave, and every cell's passes handed to the car's sweep with the cells' tour as its order
+  /// (car_sweep.hpp, CarRow::cell): the car takes the first cell of the tour it has passes left in
+  /// (each stack of passes in its block order) before the others, as long as it reaches it.
+  PlanResult planForCar(const Problem& problem, const DecompositionParams& params, const Budget& budget, double turn,
+                        double angle_deg, Workspace& ws, const Region& main, std::size_t free_components) {
+    const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
+    const HeadlandOptions layout = carHeadlandOptions(problem, spacing, 1, params.row_end_inset, kCellArcTolerance, false);
+    Headland h = headland(ws, main, layout);
+    std::vector<CarRow> rows = carHolePasses(ws, h.loops, spacing);
+    Decomposition cells = decomposeParts(h.ends, kind_, [](const PolygonWithHoles&) { return true; });
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the decomposition");
+    PassGrid grid;
+    std::vector<std::vector<double>> passes = cellPasses(cells, h.row_span, spacing, true, grid);
+    const std::size_t passless_cells = dropCellsWithoutPasses(cells, passes);
+    std::vector<CellEnds> ends(cells.cells.size());
+    for (std::size_t i = 0; i < cells.cells.size(); ++i) ends[i] = cellEnds(cells.cells[i], passes[i]);
+    std::vector<CellLink> links;
+    for (const Contact& c : cells.contacts) links.push_back({c.left, c.right});
+    const Ordering ordering = orderCells(ends, links, params.order, [&] { return !budget.expired(); });
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the cell ordering");
+    std::size_t pass_count = 0;
+    for (std::size_t rank = 0; rank < ordering.visits.size(); ++rank) {
+      const std::size_t c = ordering.visits[rank].cell;
+      for (double x : passes[c]) {
+        const Span span = cells.cells[c].spanAt(x);
+        const auto line = static_cast<std::size_t>(std::llround((x - grid.min) / grid.step));
+        rows.push_back({{x, span.bottom}, {x, span.top}, line, true, rank});
+        ++pass_count;
+      }
+    }
+    PathBuilder builder(ws);
+    const CarSweep sweep = carSweep(ws, builder, h.loops, rows, spacing, budget);
+    PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), turn, angle_deg, free_components);
+    result.stats["cells"] = static_cast<double>(cells.cells.size());
+    result.stats["cells_without_pass"] = static_cast<double>(passless_cells);
+    result.stats["cell_contacts"] = static_cast<double>(cells.contacts.size());
+    result.stats["slabs"] = static_cast<double>(cells.slabs);
+    result.stats["passes"] = static_cast<double>(pass_count);
+    return result;
+  }
+
   PlanResult planAt(const Problem& problem, const DecompositionParams& params, const Budget& budget, double angle_deg) {
     using Clock = std::chrono::steady_clock;
     const auto t_start = Clock::now();
@@ -216,6 +263,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
       return PlanResult::failure(PlanStatus::NoReachableArea,
                                  "the tool fits nowhere: the free region F is empty for this tool and clearance");
     const Region main = coveredPart(components, problem.vehicle);
+    if (problem.vehicle.isCar()) return planForCar(problem, params, budget, turn, angle_deg, ws, main, components.size());
     // With the boundary loop, passes keep one spacing clear of it across their direction and end
     // half a spacing from it along it (headland.hpp); without, they run from edge to edge of F
     // drawn with coarser arcs (fewer vertices, fewer slabs), 2 mm inside F.
@@ -406,6 +454,7 @@ PlannerInfo plannerInfo(Kind kind) {
   PlannerInfo info;
   info.params = paramTable().specs();
   info.min_coverage_reachable = 0.99;
+  info.plans_for_car = true;
   info.make = [kind] { return std::make_unique<DecompositionPlanner>(kind); };
   return info;
 }

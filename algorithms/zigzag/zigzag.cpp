@@ -109,14 +109,9 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
   PlanResult planForCar(const Problem& problem, const ZigzagParams& params, const Budget& budget, double angle,
                         double angle_deg, Workspace& ws, const Region& main, std::size_t free_components) {
     const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
-    const CarHeadlandLayout car = carHeadlandLayout(spacing, problem.vehicle.turn_radius);
-    HeadlandOptions layout;
-    layout.spacing = spacing;
-    layout.radius = problem.tool.tool_width / 2.0;
-    layout.loops = std::max<std::size_t>(car.loops, static_cast<std::size_t>(params.boundary_passes));
-    layout.end_inset = std::max(car.end_inset, params.row_end_inset);
-    layout.arc_tolerance = kRowArcTolerance;
-    Headland h = headland(ws, main, layout);
+    Headland h = headland(ws, main,
+                          carHeadlandOptions(problem, spacing, static_cast<std::size_t>(params.boundary_passes),
+                                             params.row_end_inset, kRowArcTolerance, true));
     std::vector<CarRow> rows = carHolePasses(ws, h.loops, spacing);
     const Box box = h.row_span;
     const std::vector<double> heights = box.empty() ? std::vector<double>{} : rowHeights(box.min_y, box.max_y, spacing);
@@ -125,18 +120,10 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
         for (const Interval& iv : line) rows.push_back({iv.lowEnd(), iv.highEnd(), iv.row});
     PathBuilder builder(ws);
     const CarSweep sweep = carSweep(ws, builder, h.loops, rows, spacing, budget);
-    PlanResult result;
-    result.status = PlanStatus::Ok;
-    result.path = sweep.path;
-    rotatePoints(result.path.waypoints, angle);
+    PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), angle, angle_deg, free_components);
     result.stats["rows"] = static_cast<double>(heights.size());
     result.stats["row_spacing"] = heights.size() > 1 ? heights[1] - heights[0] : 0.0;
     result.stats["intervals"] = static_cast<double>(rows.size());
-    result.stats["headland_rings"] = static_cast<double>(h.loops.size());
-    result.stats["sweep_angle_deg"] = angle_deg;
-    recordOutcome(result, builder, free_components, sweep.unreached_rings);
-    recordCarSweep(result, sweep);
-    result.planned_for_car = true;
     return result;
   }
 
@@ -275,7 +262,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "zigzag";
-  info.version = std::string("8");  // not = "8": GCC 12 warns falsely (-Wrestrict) on that assignment here
+  info.version = std::string("9");  // not = "9": GCC 12 warns falsely (-Wrestrict) on that assignment here
   info.code_folders = {"zigzag"};
   info.summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes";
   info.reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013";

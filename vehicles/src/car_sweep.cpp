@@ -65,6 +65,14 @@ Ring thinned(Workspace& ws, const Ring& ring, double deviation) {
   return out.size() >= 3 ? out : ring;
 }
 
+/// The length of a path's painted segments.
+double paintedLength(const Path& path) {
+  double length = 0.0;
+  for (std::size_t k = 0; k < path.segments(); ++k)
+    if (path.tool_on[k]) length += segmentLength(path, k);
+  return length;
+}
+
 /// A row's direction from a to b (a unit vector; exact for rows along an axis).
 Point rowDirection(const CarRow& r) {
   const Point d = r.b - r.a;
@@ -266,6 +274,33 @@ CarHeadlandLayout carHeadlandLayout(double spacing, double turn_radius) {
   return layout;
 }
 
+HeadlandOptions carHeadlandOptions(const Problem& problem, double spacing, std::size_t loops, double end_inset,
+                                   double arc_tolerance, bool along_x) {
+  const CarHeadlandLayout car = carHeadlandLayout(spacing, problem.vehicle.turn_radius);
+  HeadlandOptions layout;
+  layout.spacing = spacing;
+  layout.radius = problem.tool.tool_width / 2.0;
+  layout.loops = std::max(car.loops, loops);
+  layout.end_inset = std::max(car.end_inset, end_inset);
+  layout.arc_tolerance = arc_tolerance;
+  layout.along_x = along_x;
+  return layout;
+}
+
+PlanResult carSweepPlan(const CarSweep& sweep, const PathBuilder& rings, std::size_t headland_rings, double angle,
+                        double angle_deg, std::size_t free_components) {
+  PlanResult result;
+  result.status = PlanStatus::Ok;
+  result.path = sweep.path;
+  rotatePoints(result.path.waypoints, angle);
+  result.stats["headland_rings"] = static_cast<double>(headland_rings);
+  result.stats["sweep_angle_deg"] = angle_deg;
+  recordOutcome(result, rings, free_components, sweep.unreached_rings);
+  recordCarSweep(result, sweep);
+  result.planned_for_car = true;
+  return result;
+}
+
 CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& given, double spacing,
                   const Budget& budget, double line_penalty) {
   const VehicleModel& car = ws.vehicle();
@@ -275,10 +310,31 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   std::vector<Ring> thin;
   for (const Ring& ring : loops) thin.push_back(thinned(ws, ring, 0.03 * spacing));
   out.unreached_rings = coverRings(rings, thin, 1.5 * spacing);
-  if (rings.path().segments() > 0) {
-    out.headland = smoothForCar(ws, rings.path());
-    out.path = out.headland.path;
+  if (rings.path().segments() > 0) out.headland = smoothForCar(ws, rings.path());
+  // The rings start at their lowest vertex (coverRings). Where the car stops on them before it
+  // drove half their length (they start in a pocket it cannot turn out of), they start again at
+  // the start of that ring's longest edge, kept when the car paints more of them so.
+  if (out.headland.stopped && paintedLength(out.headland.path) < 0.5 * paintedLength(rings.path())) {
+    const Point lowest = rings.path().waypoints.front();
+    const auto first = std::find_if(thin.begin(), thin.end(), [&](const Ring& ring) {
+      return std::find(ring.begin(), ring.end(), lowest) != ring.end();
+    });
+    std::size_t longest = 0;
+    for (std::size_t i = 1; first != thin.end() && i < first->size(); ++i)
+      if (distance((*first)[i], (*first)[(i + 1) % first->size()]) >
+          distance((*first)[longest], (*first)[(longest + 1) % first->size()]))
+        longest = i;
+    PathBuilder other(ws);
+    if (first != thin.end()) other.moveTo((*first)[longest], false);
+    const std::size_t unreached = coverRings(other, thin, 1.5 * spacing);
+    CarSmoothing driven = smoothForCar(ws, other.path());
+    if (paintedLength(driven.path) > paintedLength(out.headland.path)) {
+      rings = other;
+      out.unreached_rings = unreached;
+      out.headland = std::move(driven);
+    }
   }
+  out.path = out.headland.path;
   // What the rings' smoothing skipped (a ring bent round a socket tighter than the car turns, a
   // stair's steps) is not lost: each straight stretch of it two spacings or longer (for a
   // forward-only car, also a turn radius or longer: each costs it two loop checks) becomes a pass
@@ -458,11 +514,11 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   };
   std::size_t first_row = kNone;  // the row the path starts with, when there are no rings
   if (out.path.waypoints.empty() && n > 0) {
-    // Start at the first row's lowest end.
+    // Start at the lowest end of the first row (of the first cell, with a cell order).
     std::size_t first = 0;
     for (std::size_t i = 1; i < n; ++i)
-      if (rows[i].row > rows[first].row ||
-          (rows[i].row == rows[first].row && std::make_pair(rows[i].line, lo_x[i]) < std::make_pair(rows[first].line, lo_x[first])))
+      if (std::make_tuple(rows[i].cell, !rows[i].row, rows[i].line, lo_x[i]) <
+          std::make_tuple(rows[first].cell, !rows[first].row, rows[first].line, lo_x[first]))
         first = i;
     const bool from_a = along_at(rows[first].a) <= along_at(rows[first].b);
     out.path.moveTo(entryOf(first, from_a), false);

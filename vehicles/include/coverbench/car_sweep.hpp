@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "coverbench/car.hpp"
+#include "coverbench/headland.hpp"
 #include "coverbench/planner.hpp"
 #include "coverbench/workspace.hpp"
 
@@ -38,6 +39,12 @@ struct CarHeadlandLayout {
   double end_inset = 0.5;  ///< spacings inside the last ring
 };
 CarHeadlandLayout carHeadlandLayout(double spacing, double turn_radius);
+
+/// The headland a sweep planner lays out for a car: at least `loops` rings and as many as the turn
+/// radius needs, rows ending at least `end_inset` spacings inside the last (carHeadlandLayout),
+/// offsets drawn with chords of `arc_tolerance`, rows along x or along y.
+HeadlandOptions carHeadlandOptions(const Problem& problem, double spacing, std::size_t loops, double end_inset,
+                                   double arc_tolerance, bool along_x);
 
 /// CarRow::cell of a row that belongs to no cell of an order.
 inline constexpr std::size_t kAnyCell = static_cast<std::size_t>(-1);
@@ -110,6 +117,13 @@ struct CarSweep {
 CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& rows,
                   double spacing,
                   const Budget& budget, double line_penalty = 0.5);
+
+/// A sweep planner's plan for a car from its sweep (carSweep, whose rings `rings` built): the path
+/// turned back into the wall's frame by `angle` (radians), `headland_rings` and
+/// `sweep_angle_deg`, the outcome (recordOutcome), the sweep's statistics, status and reason
+/// (recordCarSweep), and planned_for_car.
+PlanResult carSweepPlan(const CarSweep& sweep, const PathBuilder& rings, std::size_t headland_rings, double angle,
+                        double angle_deg, std::size_t free_components);
 
 /// The plan's statistics (car_rows, car_rows_unreached, car_links, car_routed_links,
 /// car_searched_links, car_ends_in_dead_end, car_rings_stopped, car_cusps, car_backtracks,
