@@ -9,7 +9,7 @@ the median of what such a car could paint at best on the same walls (`coverbench
 from viable poses, and with the two best dead ends; docs/metrics.md).
 
   /usr/bin/python3 scripts/car_plans.py [--walls 5] [--turn-radius 0.3] [--families open,facade]
-                                        [--planners zigzag,boustrophedon,trapezoidal]
+                                        [--planners zigzag,boustrophedon,trapezoidal,spiral]
                                         [--car-plans headland,smoothed] [--coverbench build/coverbench]
 """
 import argparse
@@ -23,7 +23,7 @@ import tempfile
 FAMILIES = ["open", "facade", "residential", "gable", "stairwell", "industrial", "random", "stress", "narrow"]
 CARS = {"dubins": [], "rs": ["--reverse"]}
 CAR_PLANS = ["headland", "smoothed"]
-PLANNERS = ["zigzag", "boustrophedon", "trapezoidal"]
+PLANNERS = ["zigzag", "boustrophedon", "trapezoidal", "spiral"]
 
 
 def main():

@@ -876,3 +876,35 @@ TEST(CarSweep, RingsThatStartInAPocketStartAgainAtTheirLongestEdge) {
 
 }  // namespace
 }  // namespace coverbench
+
+namespace coverbench {
+namespace {
+
+// spiral plans for a car too: every level's ring driven as the car can (corners rounded on R for
+// a forward-only car; a reversing car drives into them and backs out). On the 6 m x 4 m
+// rectangle a forward-only car's own spiral covers 0.942 of R, its smoothed baseline 0.804 (it
+// stops where the smoothed rings' links turn tighter than the car); what the own plan leaves is
+// thin wedges along the corners' bisectors (each ring's corner arc lies s * sqrt(2) from the
+// next there, s elsewhere) and the innermost rings, narrower than 2R. A reversing car's: 0.9985.
+TEST(CarSweep, ASpiralPlannedForTheCarPaintsMoreThanItsSmoothedBaseline) {
+  const Wall wall = rectWall(6.0, 4.0);
+  for (bool reverse : {false, true}) {
+    const PlanResult own = carPlanOf("spiral", wall, reverse);
+    ASSERT_EQ(own.status, PlanStatus::Ok) << reverse << " " << own.reason;
+    EXPECT_TRUE(own.planned_for_car);
+    EXPECT_GT(own.stats.at("levels"), 15.0) << "every level's ring: (4 - 2 x 0.07) / 2 / 0.1 = 19";
+    const PathMetrics m = computeMetrics(wall, kTool, own.path, car(0.3, reverse));
+    EXPECT_TRUE(m.validity.valid) << reverse;
+    EXPECT_GE(m.coverage.coverage_reachable, reverse ? 0.995 : 0.93) << reverse;
+    EXPECT_LE(m.passes.overlap, 0.04) << reverse;
+    if (!reverse) {
+      const PlanResult smoothed = carPlanOf("spiral", wall, false, "smoothed");
+      EXPECT_FALSE(smoothed.planned_for_car);
+      const PathMetrics b = computeMetrics(wall, kTool, smoothed.path, car(0.3, false));
+      EXPECT_GT(m.coverage.coverage_reachable, b.coverage.coverage_reachable + 0.1);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace coverbench

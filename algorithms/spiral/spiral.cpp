@@ -7,6 +7,7 @@
 #include "coverbench/param_table.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/boundary_arcs.hpp"
+#include "coverbench/car_sweep.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench::spiral {
@@ -77,12 +78,15 @@ Ring withCornerSpurs(const Ring& ring, double r, const TransitRouter& router, st
 /// The planner's parameters (paramTable declares them).
 struct SpiralParams {
   double overlap = 0.0;
+  CarPlan car_plan = CarPlan::Headland;
 };
 
 const ParamTable<SpiralParams>& paramTable() {
-  static const ParamTable<SpiralParams> table = ParamTable<SpiralParams>().add(
-      {"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent rings overlap"},
-      &SpiralParams::overlap);
+  static const ParamTable<SpiralParams> table =
+      ParamTable<SpiralParams>()
+          .add({"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent rings overlap"},
+               &SpiralParams::overlap)
+          .add(carPlanParam(), &SpiralParams::car_plan, carPlanChoices());
   return table;
 }
 
@@ -90,8 +94,35 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
  public:
   SpiralPlanner() : TypedPlanner(paramTable()) {}
 
+ private:
+  /// For a car (car_plan: headland): every level's rings (no corner spurs or centre loops: a car
+  /// turns round neither), the rings round obstacles replaced by passes along their straight
+  /// edges (carHolePasses), all driven by the car's sweep (car_sweep.hpp): the rings smoothed for
+  /// the car, from the outermost, and what their smoothing skips (corners tighter than it turns,
+  /// the innermost rings) as passes taken in a turn-aware order with the obstacles' passes.
+  PlanResult planForCar(const Budget& budget, double spacing, double tolerance, Workspace& ws, const Region& main,
+                        std::size_t free_components) {
+    const Region base = simplifyRegion(main, tolerance);
+    std::vector<Ring> loops = allRings(main);
+    std::size_t levels = 1;
+    for (std::size_t j = 1;; ++j, ++levels) {
+      if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out");
+      const Region inner = offsetRegion(base, -static_cast<double>(j) * spacing, tolerance);
+      if (inner.empty()) break;
+      for (Ring& ring : allRings(inner)) loops.push_back(std::move(ring));
+    }
+    const std::vector<CarRow> passes = carHolePasses(ws, loops, spacing);
+    PathBuilder builder(ws);
+    const CarSweep sweep = carSweep(ws, builder, loops, passes, spacing, budget);
+    PlanResult result = carSweepPlan(sweep, builder, loops.size(), 0.0, NAN, free_components);
+    result.stats["levels"] = static_cast<double>(levels);
+    return result;
+  }
+
  protected:
-  PlanResult planWith(const Problem& problem, const SpiralParams& params, const Budget& budget) override {
+  PlanResult planWith(const Problem& given, const SpiralParams& params, const Budget& budget) override {
+    // car_plan: smoothed plans for a tool that turns on the spot; runPlanner smooths the path.
+    const Problem problem = given.vehicle.isCar() && params.car_plan == CarPlan::Smoothed ? asHolonomic(given) : given;
     const double s = problem.tool.tool_width;
     const double r = problem.tool.radius();
     const double spacing = s * (1.0 - params.overlap);
@@ -108,6 +139,7 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
       return PlanResult::failure(PlanStatus::NoReachableArea,
                                  "the tool fits nowhere: the free region F is empty for this tool and clearance");
     const Region main = coveredPart(components, problem.vehicle);
+    if (problem.vehicle.isCar()) return planForCar(budget, spacing, tolerance, ws, main, components.size());
 
     // Ring j is the boundary of F eroded by j * spacing (outer rings shrink, rings around
     // obstacles grow, until they meet).
@@ -167,12 +199,13 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "spiral";
-  info.version = "2";
+  info.version = "3";
   info.code_folders = {"spiral"};
   info.summary = "Concentric passes offset inward from the free region's boundary, around obstacles, centre covered";
   info.reference = "Held, On the Computational Geometry of Pocket Machining, LNCS 500, 1991";
   info.params = paramTable().specs();
   info.min_coverage_reachable = 0.995;
+  info.plans_for_car = true;
   info.make = [] { return std::make_unique<SpiralPlanner>(); };
   return info;
 }

@@ -294,7 +294,7 @@ PlanResult carSweepPlan(const CarSweep& sweep, const PathBuilder& rings, std::si
   result.path = sweep.path;
   rotatePoints(result.path.waypoints, angle);
   result.stats["headland_rings"] = static_cast<double>(headland_rings);
-  result.stats["sweep_angle_deg"] = angle_deg;
+  if (std::isfinite(angle_deg)) result.stats["sweep_angle_deg"] = angle_deg;
   recordOutcome(result, rings, free_components, sweep.unreached_rings);
   recordCarSweep(result, sweep);
   result.planned_for_car = true;

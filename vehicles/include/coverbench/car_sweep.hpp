@@ -120,7 +120,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
 
 /// A sweep planner's plan for a car from its sweep (carSweep, whose rings `rings` built): the path
 /// turned back into the wall's frame by `angle` (radians), `headland_rings` and
-/// `sweep_angle_deg`, the outcome (recordOutcome), the sweep's statistics, status and reason
+/// `sweep_angle_deg` (none when it is not finite: no sweep direction), the outcome (recordOutcome), the sweep's statistics, status and reason
 /// (recordCarSweep), and planned_for_car.
 PlanResult carSweepPlan(const CarSweep& sweep, const PathBuilder& rings, std::size_t headland_rings, double angle,
                         double angle_deg, std::size_t free_components);
