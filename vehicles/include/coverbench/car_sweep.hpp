@@ -100,20 +100,23 @@ struct CarSweep {
 };
 
 /// Drives the rings `loops` (joined by coverRings on `rings`, an empty builder of `ws`, the
-/// problem's workspace) smoothed for the car (smoothForCar), then every row it can, and a pass
-/// along each straight stretch of ring the smoothing skipped (ring passes): from where it is, the
-/// row end whose curve (Dubins for a forward-only car, Reeds-Shepp when it reverses) is shortest,
-/// plus `line_penalty` times the spacing for each line the row lies above the lowest unpainted
-/// line beside it (so the rows are taken in blocks, skipping as far as a turn needs and coming
-/// back, not in sweeps across the whole wall); the curve is taken only if it lies in F
-/// (pathFree). A forward-only car that enters a stack of rows (rows on consecutive lines, each
-/// the only one beside the next, ends within a turn radius) at one of its first k lines from
-/// either end takes the stack in carBlockOrder while those curves are free. When no curve is free, a route round the obstacles (the workspace's transit
-/// planner) smoothed for the car, or else, for the nearest rows, a route searched over the car's
-/// own motions (searchCarRoute); when none leaves a row, the car goes back one row and marks
-/// that way in as a dead end. Where the rings end facing F's edge, their last stretch is cut
-/// short until a curve leaves it. The result is checked for the car's rules (std::logic_error on
-/// a slip).
+/// problem's workspace) smoothed for the car (smoothForCar; where the car stops before half their
+/// length, they start again at their first ring's longest edge, `rings` rebuilt so), then every
+/// row it can, and a pass along each straight stretch of ring the smoothing skipped (ring
+/// passes). Rows are taken along any direction they run in (all parallel). From where the car
+/// is: the row end whose curve (Dubins for a forward-only car, Reeds-Shepp when it reverses) is
+/// shortest, plus `line_penalty` times the spacing for each line the row lies above the lowest
+/// unpainted line beside it (so the rows are taken in blocks, skipping as far as a turn needs and
+/// coming back, not in sweeps across the whole wall), among the rows of the first cell of a cell
+/// order (CarRow::cell) first when one is given; the curve is taken only if it lies in F
+/// (pathFree). A forward-only car that enters a stack of rows (rows of one cell on consecutive
+/// lines, each the only one beside the next, ends within a turn radius) at one of its first k
+/// lines from either end takes the stack in carBlockOrder while those curves are free. When no
+/// curve is free, a route round the obstacles (the workspace's transit planner) smoothed for the
+/// car, or else, for the nearest rows, a route searched over the car's own motions
+/// (searchCarRoute); when none leaves a row, the car goes back one row and marks that way in as a
+/// dead end. Where the rings end facing F's edge, their last stretch is cut short until a curve
+/// leaves it. The result is checked for the car's rules (std::logic_error on a slip).
 CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& rows,
                   double spacing,
                   const Budget& budget, double line_penalty = 0.5);
