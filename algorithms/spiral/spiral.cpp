@@ -114,7 +114,7 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
     const std::vector<CarRow> passes = carHolePasses(ws, loops, spacing);
     PathBuilder builder(ws);
     const CarSweep sweep = carSweep(ws, builder, loops, passes, spacing, budget);
-    PlanResult result = carSweepPlan(sweep, builder, loops.size(), 0.0, NAN, free_components);
+    PlanResult result = carSweepPlan(sweep, builder, loops.size(), 0.0, std::nullopt, free_components);
     result.stats["levels"] = static_cast<double>(levels);
     return result;
   }

@@ -288,13 +288,13 @@ HeadlandOptions carHeadlandOptions(const Problem& problem, double spacing, std::
 }
 
 PlanResult carSweepPlan(const CarSweep& sweep, const PathBuilder& rings, std::size_t headland_rings, double angle,
-                        double angle_deg, std::size_t free_components) {
+                        std::optional<double> angle_deg, std::size_t free_components) {
   PlanResult result;
   result.status = PlanStatus::Ok;
   result.path = sweep.path;
   rotatePoints(result.path.waypoints, angle);
   result.stats["headland_rings"] = static_cast<double>(headland_rings);
-  if (std::isfinite(angle_deg)) result.stats["sweep_angle_deg"] = angle_deg;
+  if (angle_deg) result.stats["sweep_angle_deg"] = *angle_deg;
   recordOutcome(result, rings, free_components, sweep.unreached_rings);
   recordCarSweep(result, sweep);
   result.planned_for_car = true;

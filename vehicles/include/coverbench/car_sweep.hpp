@@ -5,6 +5,7 @@
 /// Reeds-Shepp curve that stays in F, chosen by the curves' lengths.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -123,10 +124,10 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
 
 /// A sweep planner's plan for a car from its sweep (carSweep, whose rings `rings` built): the path
 /// turned back into the wall's frame by `angle` (radians), `headland_rings` and
-/// `sweep_angle_deg` (none when it is not finite: no sweep direction), the outcome (recordOutcome), the sweep's statistics, status and reason
+/// `sweep_angle_deg` (none without a sweep direction), the outcome (recordOutcome), the sweep's statistics, status and reason
 /// (recordCarSweep), and planned_for_car.
 PlanResult carSweepPlan(const CarSweep& sweep, const PathBuilder& rings, std::size_t headland_rings, double angle,
-                        double angle_deg, std::size_t free_components);
+                        std::optional<double> angle_deg, std::size_t free_components);
 
 /// The plan's statistics (car_rows, car_rows_unreached, car_links, car_routed_links,
 /// car_searched_links, car_ends_in_dead_end, car_rings_stopped, car_cusps, car_backtracks,
