@@ -19,24 +19,30 @@ constexpr int kHeadingBins = 24;
 /// The estimate's weight (weighted A*).
 constexpr double kWeight = 2.0;
 
-/// The arc of signed curvature `kappa` and length `length` from `pose` (backwards when `length` <
-/// 0): its end pose, and the piece as a path (tool off).
-Path motion(Pose pose, double kappa, double length, Pose& end) {
+/// Where the arc of signed curvature `kappa` and length `length` from `pose` ends (backwards when
+/// `length` < 0).
+Pose motionEnd(Pose pose, double kappa, double length) {
+  if (kappa == 0.0) return {pose.at + Point{std::cos(pose.heading), std::sin(pose.heading)} * length, pose.heading};
+  // The heading turns by kappa * length whichever way the car drives.
+  const double heading = pose.heading + kappa * length;
+  return {pose.at + Point{std::sin(heading) - std::sin(pose.heading), std::cos(pose.heading) - std::cos(heading)} * (1.0 / kappa),
+          std::remainder(heading, 2.0 * M_PI)};
+}
+
+/// That arc as a path (tool off), `end` its end (motionEnd).
+Path motionPath(Pose pose, double kappa, double length, Pose end) {
   Path p;
   p.moveTo(pose.at, false);
-  if (kappa == 0.0) {
-    end = {pose.at + Point{std::cos(pose.heading), std::sin(pose.heading)} * length, pose.heading};
-    p.moveTo(end.at, false);
-    return p;
-  }
-  // The heading turns by kappa * length whichever way the car drives.
-  const double turn = kappa * length;
-  const double heading = pose.heading + turn;
-  end = {pose.at + Point{std::sin(heading) - std::sin(pose.heading), std::cos(pose.heading) - std::cos(heading)} * (1.0 / kappa),
-         std::remainder(heading, 2.0 * M_PI)};
   // The position turns about the centre by the heading's change: the arc's signed angle.
-  p.arcTo(end.at, std::tan(turn / 4.0), false);
+  if (kappa == 0.0) p.moveTo(end.at, false);
+  else p.arcTo(end.at, std::tan(kappa * length / 4.0), false);
   return p;
+}
+
+/// The arc and its end pose.
+Path motion(Pose pose, double kappa, double length, Pose& end) {
+  end = motionEnd(pose, kappa, length);
+  return motionPath(pose, kappa, length, end);
 }
 
 /// Weighted A* over the car's motions from `from`: `estimate(pose)` guides it (0: by cost alone),
@@ -89,14 +95,14 @@ Path search(const Workspace& ws, Pose from, double radius, bool reverse, std::si
     for (const double direction : {1.0, -1.0}) {
       if (direction < 0.0 && !reverse) break;
       for (const double kappa : curvatures) {
-        Pose end;
-        Path piece = motion(pose, kappa, direction * step, end);
-        if (!pathFree(ws, piece)) continue;
         // Reversing costs more, so that a reversing car backs up only where it must.
         const double next_cost = cost + step * (direction < 0.0 ? 1.5 : 1.0);
+        const Pose end = motionEnd(pose, kappa, direction * step);
         const auto k = key(end);
         const auto seen = best.find(k);
-        if (seen != best.end() && seen->second <= next_cost) continue;
+        if (seen != best.end() && seen->second <= next_cost) continue;  // before the costlier check
+        Path piece = motionPath(pose, kappa, direction * step, end);
+        if (!pathFree(ws, piece)) continue;
         best[k] = next_cost;
         nodes.push_back({end, next_cost, index, std::move(piece)});
         open.push({next_cost + estimate(end), nodes.size() - 1});
