@@ -73,6 +73,31 @@ double distanceArcFilledRing(const Arc& arc, const Ring& ring) {
   return best;
 }
 
+/// The edge's box is within `need` of the arc's (squared, with the room for rounding the
+/// measurements' pruning takes): only then may the edge lie nearer than `need`.
+bool edgeMayBeNearer(const Arc& arc, Point p, Point q, double need) {
+  const Box edge{std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)};
+  return squaredBoxDistance(arc.box, edge) < need * need * (1.0 + 1e-12);
+}
+
+/// Some edge of `ring` lies nearer the arc than `need` (distanceSegmentArc < need); edges whose
+/// boxes are farther are not measured.
+bool ringEdgeNearer(const Arc& arc, const Ring& ring, double need) {
+  for (std::size_t k = 0, n = ring.size(); k < n; ++k) {
+    const Point p = ring[k], q = ring[(k + 1) % n];
+    if (edgeMayBeNearer(arc, p, q, need) && distanceSegmentArc(p, q, arc) < need) return true;
+  }
+  return false;
+}
+
+/// The arc with its box: its ends, and each axis extreme of the circle it sweeps over.
+Arc boxedArc(Point a, Point b, double bulge) {
+  Arc arc = makeArc(a, b, bulge);
+  for (const Point dir : {Point{1, 0}, Point{0, 1}, Point{-1, 0}, Point{0, -1}})
+    if (withinSweep(arc, dir)) arc.box.add(arc.centre + dir * arc.radius);
+  return arc;
+}
+
 }  // namespace
 
 ClearanceField::ClearanceField(const Wall& wall) : wall_(&wall) {
@@ -212,10 +237,7 @@ bool ClearanceField::segmentFree(Point a, Point b, double radius, double clearan
 
 SegmentClearance ClearanceField::measureArc(Point a, Point b, double bulge, double obstacle_cutoff) const {
   if (bulge == 0.0) return measure(a, b, obstacle_cutoff);
-  Arc arc = makeArc(a, b, bulge);
-  // The arc's box: its ends, and each axis extreme of the circle it sweeps over.
-  for (const Point dir : {Point{1, 0}, Point{0, 1}, Point{-1, 0}, Point{0, -1}})
-    if (withinSweep(arc, dir)) arc.box.add(arc.centre + dir * arc.radius);
+  const Arc arc = boxedArc(a, b, bulge);
   SegmentClearance c;
   const Ring& ring = wall_->boundary;
   double best = INFINITY;
@@ -248,8 +270,22 @@ SegmentClearance ClearanceField::measureArc(Point a, Point b, double bulge, doub
 
 bool ClearanceField::arcFree(Point a, Point b, double bulge, double radius, double clearance, double margin) const {
   if (bulge == 0.0) return segmentFree(a, b, radius, clearance, margin);
-  const SegmentClearance c = measureArc(a, b, bulge, radius + clearance + margin);
-  return c.inside && c.boundary_distance >= radius + margin && c.obstacle_distance >= radius + clearance + margin;
+  // measureArc's answer, but stopping at the first edge or obstacle nearer than needed and never
+  // measuring those whose boxes are farther (the planners' searches check tens of thousands).
+  const double need_boundary = radius + margin, need_obstacle = radius + clearance + margin;
+  if (!(need_boundary > 0.0)) {
+    const SegmentClearance c = measureArc(a, b, bulge, need_obstacle);
+    return c.inside && c.boundary_distance >= need_boundary && c.obstacle_distance >= need_obstacle;
+  }
+  const Arc arc = boxedArc(a, b, bulge);
+  // An arc that keeps need_boundary > 0 from the boundary is entirely inside or entirely outside.
+  if (ringEdgeNearer(arc, wall_->boundary, need_boundary) || !pointInRing(a, wall_->boundary)) return false;
+  return forObstaclesNear(arc.box, need_obstacle, [&](std::size_t i) {
+    if (squaredBoxDistance(arc.box, obstacle_boxes_[i]) >= need_obstacle * need_obstacle * (1.0 + 1e-12)) return true;
+    const Obstacle& o = wall_->obstacles[i];
+    if (o.type == ObstacleType::Circle) return std::fmax(0.0, distancePointArc(o.center, arc) - o.radius) >= need_obstacle;
+    return !pointInRing(arc.a, o.polygon) && !ringEdgeNearer(arc, o.polygon, need_obstacle);
+  });
 }
 
 }  // namespace coverbench
