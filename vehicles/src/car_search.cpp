@@ -32,6 +32,7 @@ Pose motionEnd(Pose pose, double kappa, double length) {
 /// That arc as a path (tool off), `end` its end (motionEnd).
 Path motionPath(Pose pose, double kappa, double length, Pose end) {
   Path p;
+  p.reserve(1);
   p.moveTo(pose.at, false);
   // The position turns about the centre by the heading's change: the arc's signed angle.
   if (kappa == 0.0) p.moveTo(end.at, false);

@@ -137,10 +137,16 @@ DubinsWords dubinsWords(double d, double alpha, double beta) {
   return out;
 }
 
+/// Segments a curve has at most, but for rounding: up to five primitives (Reeds-Shepp), arcs in
+/// pieces of a quarter circle (space reserved for them up front: curves are built by the ten
+/// thousand).
+constexpr std::size_t kCurveSegments = 16;
+
 /// The curve of `primitives` from `from`: its path, and whether it arrives at `to`.
 template <class Word>
 Path drive(Pose from, Pose to, const Word& primitives, double radius, bool tool, bool& arrives) {
   Path out;
+  out.reserve(kCurveSegments);
   out.moveTo(from.at, tool);
   Pose pose = from;
   for (const CurvePrimitive& c : primitives) appendPrimitive(out, pose, c, radius, tool);
@@ -164,6 +170,7 @@ Path firstArriving(Pose from, Pose to, const Words& words, double radius, bool r
     // End exactly at `to` (the last chord moves by rounding), without segments of rounding
     // length, whose direction means nothing.
     Path clean;
+    clean.reserve(out.segments());
     clean.moveTo(from.at, tool);
     for (std::size_t i = 0; i < out.segments(); ++i) {
       const bool last = i + 1 == out.segments();
@@ -192,8 +199,11 @@ Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool) {
   const Point delta = to.at - from.at;
   const double d = norm(delta) / radius, phi = std::atan2(delta.y, delta.x);
   DubinsWords words = dubinsWords(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi));
-  std::stable_sort(words.words.begin(), words.words.begin() + static_cast<std::ptrdiff_t>(words.count),
-                   [](const auto& x, const auto& y) { return wordLength(x) < wordLength(y); });
+  // Shortest first, ties in the order found (a stable insertion sort: at most six words, no
+  // buffer to allocate).
+  for (std::size_t i = 1; i < words.count; ++i)
+    for (std::size_t j = i; j > 0 && wordLength(words.words[j]) < wordLength(words.words[j - 1]); --j)
+      std::swap(words.words[j], words.words[j - 1]);
   return firstArriving(from, to, words, radius, false, tool);
 }
 

@@ -28,6 +28,12 @@ struct Path {
   /// dropped; a bulge under kMinArcBulge or on a chord under kMinArcChord is a straight segment.
   void arcTo(Point p, double b, bool tool);
   std::size_t segments() const { return tool_on.size(); }
+  /// Room for `count` more segments without reallocating (a curve built piece by piece).
+  void reserve(std::size_t count) {
+    waypoints.reserve(waypoints.size() + count + 1);
+    tool_on.reserve(tool_on.size() + count);
+    bulge.reserve(tool_on.size() + count);
+  }
   double bulgeOf(std::size_t i) const { return bulge.empty() ? 0.0 : bulge[i]; }
   bool hasArcs() const;
 };
