@@ -183,11 +183,15 @@ Path firstArriving(Pose from, Pose to, const Words& words, double radius, bool r
     }
     // Ending exactly on `to` moved the last piece's end by up to 1e-9 m: a piece only a little
     // longer than that turns by a heading a car cannot take. Such a word is not taken.
-    bool joins = clean.segments() == 0 || (headingsJoin(from.heading, startHeading(clean), reverse) &&
-                                            headingsJoin(endPose(clean).heading, to.heading, reverse));
-    for (std::size_t k = 1; k < clean.segments() && joins; ++k)
-      joins = headingsJoin(headings(clean, k - 1).second, headings(clean, k).first, reverse);
-    if (joins) return clean;
+    // Each segment's headings measured once: from `from`'s heading through every join to `to`'s.
+    bool joins = true;
+    double arrive = from.heading;
+    for (std::size_t k = 0; k < clean.segments() && joins; ++k) {
+      const auto [start, end] = headings(clean, k);
+      joins = headingsJoin(arrive, start, reverse);
+      arrive = end;
+    }
+    if (clean.segments() == 0 || (joins && headingsJoin(arrive, to.heading, reverse))) return clean;
   }
   return Path{};
 }
