@@ -631,7 +631,11 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
           const Candidate& c = taken[next];
           penalty.push_back(line_penalty * spacing * static_cast<double>(rows[c.row].line - lowestBeside(c.row)) +
                             (insideUntouched(c.row) ? kInsideStackPenalty * rho : 0.0));
-          heap.push({c.bound + penalty.back(), next, false});
+          // A curve is no shorter than the straight distance, nor than the turn its headings
+          // differ by (a Reeds-Shepp length costs the most to measure): the larger, a hair less
+          // for rounding, is its key until it is measured.
+          const double turn = std::fabs(std::remainder(poseInto(c.row, c.from_a).heading - pose.heading, 2.0 * M_PI));
+          heap.push({std::max(c.bound, rho * turn * (1.0 - 1e-9)) + penalty.back(), next, false});
           ++next;
         }
         if (heap.empty()) break;
