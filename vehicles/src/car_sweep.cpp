@@ -115,6 +115,21 @@ class EntryGrid {
         cells_[static_cast<std::size_t>(cellY(p) * nx_ + cellX(p))].push_back(2 * i + (from_a ? 0 : 1));
       }
   }
+  /// A row painted is taken out of the grid (its ends are never candidates: `keep` admits no
+  /// painted row), and put back when a backtrack unpaints it; the sweep then walks past fewer ends.
+  void setPainted(std::size_t row, bool painted) {
+    for (bool from_a : {true, false}) {
+      const Point p = from_a ? rows_[row].a : rows_[row].b;
+      std::vector<std::size_t>& ends = cells_[static_cast<std::size_t>(cellY(p) * nx_ + cellX(p))];
+      const std::size_t id = 2 * row + (from_a ? 0 : 1);
+      if (!painted) {
+        ends.push_back(id);
+      } else if (const auto at = std::find(ends.begin(), ends.end(), id); at != ends.end()) {
+        *at = ends.back();  // the order within a cell is immaterial: candidates come out in `farther`'s order
+        ends.pop_back();
+      }
+    }
+  }
   long cellX(Point p) const { return static_cast<long>(std::floor((p.x - lo_.x) / cell_)); }
   long cellY(Point p) const { return static_cast<long>(std::floor((p.y - lo_.y) / cell_)); }
 
@@ -421,13 +436,16 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   std::size_t lowest_line = 0;  // no unpainted row lies below it (set each step)
   // Rows i and j overlap across the lines (lie beside each other).
   auto beside = [&](std::size_t i, std::size_t j) { return lo_x[j] <= hi_x[i] && hi_x[j] >= lo_x[i]; };
+  // Per row, a line below which no row beside it is unpainted (rows only get painted between
+  // backtracks, which start these over): where lowestBeside looks from next time.
+  std::vector<std::size_t> beside_from(n, 0);
   // The lowest unpainted line among the rows beside row i.
   auto lowestBeside = [&](std::size_t i) {
     if (!rows[i].row) return rows[i].line;
-    for (std::size_t line = lowest_line; line < rows[i].line; ++line)
+    for (std::size_t line = std::max(lowest_line, beside_from[i]); line < rows[i].line; ++line)
       for (std::size_t j : by_line[line])
-        if (!done[j] && beside(i, j)) return line;
-    return rows[i].line;
+        if (!done[j] && beside(i, j)) return beside_from[i] = line;
+    return beside_from[i] = rows[i].line;
   };
   // Stacks: runs of rows on consecutive lines, each the only row beside the one below it and that
   // one's only row beside it above, their ends within a turn radius of each other (what a wall's
@@ -479,10 +497,24 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     return stack.k > 0 && stack.done == 0 && stack_pos[i] >= stack.k && stack.rows.size() - 1 - stack_pos[i] >= stack.k;
   };
   std::vector<std::size_t> follow(n, kNone);  // the row carBlockOrder takes after this one
+  // Rows left that are not short, and the rows by cell (in the order, then rows of no cell), the
+  // first `open_from` of them painted: counted as rows are painted, not each step.
+  std::size_t long_left = static_cast<std::size_t>(std::count(short_row.begin(), short_row.end(), 0));
+  std::vector<std::size_t> by_cell(n);
+  for (std::size_t i = 0; i < n; ++i) by_cell[i] = i;
+  std::stable_sort(by_cell.begin(), by_cell.end(), [&](std::size_t i, std::size_t j) { return rows[i].cell < rows[j].cell; });
+  std::size_t open_from = 0;
+  EntryGrid entries(rows, std::max(rho, spacing));  // the unpainted rows' ends
   auto markDone = [&](std::size_t i, bool painted) {
     done[i] = painted ? 1 : 0;
+    entries.setPainted(i, painted);
     if (painted) --remaining;
     else ++remaining;
+    if (!isShort(i)) long_left = painted ? long_left - 1 : long_left + 1;
+    if (!painted) {  // a backtrack: what was known painted below is not any more
+      std::fill(beside_from.begin(), beside_from.end(), 0);
+      open_from = 0;
+    }
     if (stack_of[i] == kNone) return;
     Stack& stack = stacks[stack_of[i]];
     stack.done = painted ? stack.done + 1 : stack.done - 1;
@@ -526,7 +558,6 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     ++out.links;
     first_row = first;
   }
-  const EntryGrid entries(rows, std::max(rho, spacing));
   // Gives up the rings' last segments, a turn radius of them (ring not driven, said as such).
   double ring_given_up = 0.0;  // how much of the rings' end was given up (m)
   auto giveUpRingTail = [&]() {
@@ -576,8 +607,6 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       break;
     }
     const Pose pose = endPose(out.path);
-    std::size_t long_left = 0;
-    for (std::size_t i = 0; i < n; ++i) long_left += !done[i] && !isShort(i);
     while (lowest_line < lines && std::all_of(by_line[lowest_line].begin(), by_line[lowest_line].end(),
                                               [&](std::size_t j) { return done[j] != 0; }))
       ++lowest_line;
@@ -586,9 +615,14 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     };
     // With a cell order, the first cell in it that has a row left the car may enter.
     std::size_t cell = kAnyCell;
-    if (ordered)
-      for (std::size_t i = 0; i < n; ++i)
-        if (rows[i].cell < cell && (admissible(i, true) || admissible(i, false))) cell = rows[i].cell;
+    if (ordered) {
+      while (open_from < n && done[by_cell[open_from]]) ++open_from;
+      for (std::size_t t = open_from; t < n; ++t)
+        if (admissible(by_cell[t], true) || admissible(by_cell[t], false)) {
+          cell = rows[by_cell[t]].cell;
+          break;
+        }
+    }
     // A step of the sweep: a curve, else a route, into a row `keep` admits.
     auto step = [&](auto keep) {
       // In a stack's block order, the next row of the order when its curve is free.
