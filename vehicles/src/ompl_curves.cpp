@@ -3,6 +3,8 @@
 #include <ompl/base/spaces/DubinsStateSpace.h>
 #include <ompl/base/spaces/ReedsSheppStateSpace.h>
 
+#include <algorithm>
+#include <array>
 #include <memory>
 
 #include "coverbench/car.hpp"
@@ -34,8 +36,23 @@ namespace {
 
 /// OMPL's shortest Reeds-Shepp curve. A state space (and its two states) is kept per thread and
 /// turn radius: building one per call was most of what a curve cost, and the sweep measures tens
-/// of thousands.
+/// of thousands. The last few curves are kept too, by their exact poses and radius: the sweep
+/// builds the curve whose length it just measured.
 ob::ReedsSheppStateSpace::ReedsSheppPath reedsShepp(Pose from, Pose to, double radius) {
+  struct Recent {
+    Pose from, to;
+    double radius = 0.0;
+    ob::ReedsSheppStateSpace::ReedsSheppPath path;
+  };
+  constexpr std::size_t kRecent = 8;
+  thread_local std::array<Recent, kRecent> recent{};
+  thread_local std::size_t filled = 0, next = 0;
+  for (std::size_t k = 0; k < filled; ++k) {
+    const Recent& r = recent[k];
+    if (r.radius == radius && r.from.at == from.at && r.from.heading == from.heading && r.to.at == to.at &&
+        r.to.heading == to.heading)
+      return r.path;
+  }
   struct Cached {
     double radius = 0.0;
     std::unique_ptr<ob::ReedsSheppStateSpace> space;
@@ -61,7 +78,11 @@ ob::ReedsSheppStateSpace::ReedsSheppPath reedsShepp(Pose from, Pose to, double r
   cached.a->setYaw(from.heading);
   cached.b->setXY(to.at.x, to.at.y);
   cached.b->setYaw(to.heading);
-  return cached.space->reedsShepp(cached.a, cached.b);
+  recent[next] = {from, to, radius, cached.space->reedsShepp(cached.a, cached.b)};
+  const ob::ReedsSheppStateSpace::ReedsSheppPath& path = recent[next].path;
+  filled = std::max(filled, next + 1);
+  next = (next + 1) % kRecent;
+  return path;
 }
 
 }  // namespace
