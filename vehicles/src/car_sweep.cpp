@@ -109,11 +109,14 @@ class EntryGrid {
     nx_ = static_cast<long>((hi_.x - lo_.x) / cell_) + 1;
     ny_ = static_cast<long>((hi_.y - lo_.y) / cell_) + 1;
     cells_.resize(static_cast<std::size_t>(nx_ * ny_));
+    row_ends_.assign(static_cast<std::size_t>(ny_), 0);
     for (std::size_t i = 0; i < rows.size(); ++i)
       for (bool from_a : {true, false}) {
         const Point p = from_a ? rows[i].a : rows[i].b;
         cells_[static_cast<std::size_t>(cellY(p) * nx_ + cellX(p))].push_back(2 * i + (from_a ? 0 : 1));
+        ++row_ends_[static_cast<std::size_t>(cellY(p))];
       }
+    ends_ = 2 * rows.size();
   }
   /// A row painted is taken out of the grid (its ends are never candidates: `keep` admits no
   /// painted row), and put back when a backtrack unpaints it; the sweep then walks past fewer ends.
@@ -122,11 +125,14 @@ class EntryGrid {
       const Point p = from_a ? rows_[row].a : rows_[row].b;
       std::vector<std::size_t>& ends = cells_[static_cast<std::size_t>(cellY(p) * nx_ + cellX(p))];
       const std::size_t id = 2 * row + (from_a ? 0 : 1);
+      std::size_t& in_row = row_ends_[static_cast<std::size_t>(cellY(p))];
       if (!painted) {
         ends.push_back(id);
+        ++in_row, ++ends_;
       } else if (const auto at = std::find(ends.begin(), ends.end(), id); at != ends.end()) {
         *at = ends.back();  // the order within a cell is immaterial: candidates come out in `farther`'s order
         ends.pop_back();
+        --in_row, --ends_;
       }
     }
   }
@@ -146,7 +152,7 @@ class EntryGrid {
     /// The next candidate, or nothing when every admitted end was returned.
     std::optional<Candidate> next() {
       while (true) {
-        const bool all_seen = ring_ > last_ring_;
+        const bool all_seen = ring_ > last_ring_ || visited_ == grid_.ends_;
         if (!seen_.empty() && (all_seen || seen_.front().bound < static_cast<double>(ring_ - 1) * grid_.cell_)) {
           std::pop_heap(seen_.begin(), seen_.end(), farther);
           const Candidate c = seen_.back();
@@ -160,8 +166,9 @@ class EntryGrid {
 
    private:
     void visitCell(long x, long y) {
-      if (x < 0 || y < 0 || x >= grid_.nx_ || y >= grid_.ny_) return;
-      for (std::size_t id : grid_.cells_[static_cast<std::size_t>(y * grid_.nx_ + x)]) {
+      const std::vector<std::size_t>& ends = grid_.cells_[static_cast<std::size_t>(y * grid_.nx_ + x)];
+      visited_ += ends.size();
+      for (std::size_t id : ends) {
         const std::size_t row = id / 2;
         const bool from_a = id % 2 == 0;
         if (!keep_(row, from_a)) continue;
@@ -170,13 +177,17 @@ class EntryGrid {
         std::push_heap(seen_.begin(), seen_.end(), farther);
       }
     }
+    /// The cells k cells from `from`'s (in the square metric) that lie in the grid, in grid rows
+    /// holding ends.
     void visitRing(long k) {
-      for (long dy = -k; dy <= k; ++dy) {
-        if (dy == -k || dy == k) {
-          for (long dx = -k; dx <= k; ++dx) visitCell(cx_ + dx, cy_ + dy);
+      const long x0 = std::max(cx_ - k, 0L), x1 = std::min(cx_ + k, grid_.nx_ - 1);
+      for (long y = std::max(cy_ - k, 0L), y1 = std::min(cy_ + k, grid_.ny_ - 1); y <= y1; ++y) {
+        if (grid_.row_ends_[static_cast<std::size_t>(y)] == 0) continue;
+        if (y == cy_ - k || y == cy_ + k) {
+          for (long x = x0; x <= x1; ++x) visitCell(x, y);
         } else {
-          visitCell(cx_ - k, cy_ + dy);
-          if (k > 0) visitCell(cx_ + k, cy_ + dy);
+          if (cx_ - k >= 0 && cx_ - k < grid_.nx_) visitCell(cx_ - k, y);
+          if (k > 0 && cx_ + k >= 0 && cx_ + k < grid_.nx_) visitCell(cx_ + k, y);
         }
       }
     }
@@ -185,6 +196,7 @@ class EntryGrid {
     Keep keep_;
     long cx_, cy_, last_ring_;
     long ring_ = 0;  // rings 0..ring_-1 are seen
+    std::size_t visited_ = 0;  // ends in the cells visited, admitted or not
     std::vector<Candidate> seen_;  // a heap in `farther`'s order
   };
 
@@ -194,6 +206,8 @@ class EntryGrid {
   Point lo_{}, hi_{};
   long nx_ = 0, ny_ = 0;
   std::vector<std::vector<std::size_t>> cells_;  // 2 * row + (0 for end a, 1 for end b)
+  std::vector<std::size_t> row_ends_;  // ends in each row of cells
+  std::size_t ends_ = 0;               // ends in the grid
 };
 
 }  // namespace
