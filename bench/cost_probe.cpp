@@ -45,12 +45,16 @@ const WallCase kWalls[] = {{"seed_1x1_empty", "datasets/canonical/seed_1x1_empty
 // The metrics engine: all metrics of a path planned by the named planner.
 const char* const kMetricsPaths[][2] = {{"zigzag", "seed_5x5_3obs"}, {"zigzag", "facade_20x9_24win"},
                                         {"spiral", "facade_20x9_24win"}, {"spanning-tree", "seed_10x10_5obs"}};
+// Planning for a car (turn radius 0.3 m, the planner's own plan) on the facade: a row sweep for a
+// forward-only car and a cell decomposition for a car that reverses (issue 34's item 5).
+const char* const kCarCases[][2] = {{"zigzag", "dubins"}, {"boustrophedon", "reeds-shepp"}};
 
 std::vector<std::string> caseNames() {
   std::vector<std::string> names;
   for (const PlannerInfo& p : registeredPlanners())
     for (const WallCase& w : kWalls) names.push_back(p.name + "/" + w.name);
   for (const auto& m : kMetricsPaths) names.push_back(std::string("metrics/") + m[0] + "/" + m[1]);
+  for (const auto& c : kCarCases) names.push_back(std::string("car/") + c[0] + "/" + c[1] + "/facade_20x9_24win");
   return names;
 }
 
@@ -95,6 +99,24 @@ int runCase(const std::string& name) {
   const auto slash = name.find('/');
   if (slash == std::string::npos) throw std::runtime_error("no case '" + name + "' (see --list)");
   const std::string first = name.substr(0, slash), rest = name.substr(slash + 1);
+  if (first == "car") {
+    // car/PLANNER/dubins|reeds-shepp/WALL
+    const auto s2 = rest.find('/'), s3 = rest.find('/', s2 == std::string::npos ? s2 : s2 + 1);
+    if (s2 == std::string::npos || s3 == std::string::npos) throw std::runtime_error("no case '" + name + "' (see --list)");
+    const std::string planner = rest.substr(0, s2), car = rest.substr(s2 + 1, s3 - s2 - 1);
+    if (car != "dubins" && car != "reeds-shepp") throw std::runtime_error("no car '" + car + "' in case '" + name + "'");
+    const Input in = load(planner, rest.substr(s3 + 1));
+    Problem problem = in.problem();
+    problem.vehicle.kind = VehicleModel::Kind::Car;
+    problem.vehicle.turn_radius = 0.3;
+    problem.vehicle.reverse = car == "reeds-shepp";
+    CALLGRIND_TOGGLE_COLLECT;
+    const PlanResult r = runPlanner(findPlanner(planner), problem, Budget());
+    CALLGRIND_TOGGLE_COLLECT;
+    if (!r.hasPath()) throw std::runtime_error(planner + ": " + toString(r.status) + ": " + r.reason);
+    std::printf("%s: %zu waypoints\n", name.c_str(), r.path.waypoints.size());
+    return 0;
+  }
   if (first == "metrics") {
     const auto slash2 = rest.find('/');
     const std::string planner = rest.substr(0, slash2), wall = slash2 == std::string::npos ? "" : rest.substr(slash2 + 1);
