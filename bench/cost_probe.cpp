@@ -101,8 +101,9 @@ int runCase(const std::string& name) {
   const std::string first = name.substr(0, slash), rest = name.substr(slash + 1);
   if (first == "car") {
     // car/PLANNER/dubins|reeds-shepp/WALL
-    const auto s2 = rest.find('/'), s3 = rest.find('/', s2 == std::string::npos ? s2 : s2 + 1);
-    if (s2 == std::string::npos || s3 == std::string::npos) throw std::runtime_error("no case '" + name + "' (see --list)");
+    const auto s2 = rest.find('/');
+    const auto s3 = s2 == std::string::npos ? s2 : rest.find('/', s2 + 1);
+    if (s3 == std::string::npos) throw std::runtime_error("no case '" + name + "' (see --list)");
     const std::string planner = rest.substr(0, s2), car = rest.substr(s2 + 1, s3 - s2 - 1);
     if (car != "dubins" && car != "reeds-shepp") throw std::runtime_error("no car '" + car + "' in case '" + name + "'");
     const Input in = load(planner, rest.substr(s3 + 1));

@@ -514,9 +514,11 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   // Rows left that are not short, and the rows by cell (in the order, then rows of no cell), the
   // first `open_from` of them painted: counted as rows are painted, not each step.
   std::size_t long_left = static_cast<std::size_t>(std::count(short_row.begin(), short_row.end(), 0));
-  std::vector<std::size_t> by_cell(n);
-  for (std::size_t i = 0; i < n; ++i) by_cell[i] = i;
-  std::stable_sort(by_cell.begin(), by_cell.end(), [&](std::size_t i, std::size_t j) { return rows[i].cell < rows[j].cell; });
+  std::vector<std::size_t> by_cell;
+  if (ordered) {
+    for (std::size_t i = 0; i < n; ++i) by_cell.push_back(i);
+    std::stable_sort(by_cell.begin(), by_cell.end(), [&](std::size_t i, std::size_t j) { return rows[i].cell < rows[j].cell; });
+  }
   std::size_t open_from = 0;
   EntryGrid entries(rows, std::max(rho, spacing));  // the unpainted rows' ends
   auto markDone = [&](std::size_t i, bool painted) {
