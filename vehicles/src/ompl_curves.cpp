@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "coverbench/car.hpp"
 
@@ -36,23 +39,28 @@ namespace {
 
 /// OMPL's shortest Reeds-Shepp curve. A state space (and its two states) is kept per thread and
 /// turn radius: building one per call was most of what a curve cost, and the sweep measures tens
-/// of thousands. The last few curves are kept too, by their exact poses and radius: the sweep
-/// builds the curve whose length it just measured.
+/// of thousands. Curves solved are kept too, by their exact poses and radius, in a table of
+/// kKept slots (a pair's slot by a hash of its numbers; a newer pair takes the slot over): the
+/// sweep builds the curve whose length it just measured, and the car's route search builds the
+/// curve on to the goal from the pose whose estimate it measured when it reached that pose.
 ob::ReedsSheppStateSpace::ReedsSheppPath reedsShepp(Pose from, Pose to, double radius) {
-  struct Recent {
+  struct Kept {
+    bool used = false;
     Pose from, to;
     double radius = 0.0;
     ob::ReedsSheppStateSpace::ReedsSheppPath path;
   };
-  constexpr std::size_t kRecent = 8;
-  thread_local std::array<Recent, kRecent> recent{};
-  thread_local std::size_t filled = 0, next = 0;
-  for (std::size_t k = 0; k < filled; ++k) {
-    const Recent& r = recent[k];
-    if (r.radius == radius && r.from.at == from.at && r.from.heading == from.heading && r.to.at == to.at &&
-        r.to.heading == to.heading)
-      return r.path;
+  constexpr std::size_t kKept = 4096;
+  thread_local std::vector<Kept> kept(kKept);
+  std::uint64_t hash = 0x9e3779b97f4a7c15ULL;
+  for (const double v : {from.at.x, from.at.y, from.heading, to.at.x, to.at.y, to.heading, radius}) {
+    hash ^= std::bit_cast<std::uint64_t>(v) + 0x9e3779b97f4a7c15ULL + (hash << 6) + (hash >> 2);
+    hash *= 0xff51afd7ed558ccdULL;
   }
+  Kept& slot = kept[(hash ^ (hash >> 29)) % kKept];
+  if (slot.used && slot.radius == radius && slot.from.at == from.at && slot.from.heading == from.heading &&
+      slot.to.at == to.at && slot.to.heading == to.heading)
+    return slot.path;
   struct Cached {
     double radius = 0.0;
     std::unique_ptr<ob::ReedsSheppStateSpace> space;
@@ -78,11 +86,8 @@ ob::ReedsSheppStateSpace::ReedsSheppPath reedsShepp(Pose from, Pose to, double r
   cached.a->setYaw(from.heading);
   cached.b->setXY(to.at.x, to.at.y);
   cached.b->setYaw(to.heading);
-  recent[next] = {from, to, radius, cached.space->reedsShepp(cached.a, cached.b)};
-  const ob::ReedsSheppStateSpace::ReedsSheppPath& path = recent[next].path;
-  filled = std::max(filled, next + 1);
-  next = (next + 1) % kRecent;
-  return path;
+  slot = {true, from, to, radius, cached.space->reedsShepp(cached.a, cached.b)};
+  return slot.path;
 }
 
 }  // namespace
