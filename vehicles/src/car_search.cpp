@@ -29,14 +29,22 @@ Pose motionEnd(Pose pose, double kappa, double length) {
           std::remainder(heading, 2.0 * M_PI)};
 }
 
-/// That arc as a path (tool off), `end` its end (motionEnd).
-Path motionPath(Pose pose, double kappa, double length, Pose end) {
-  Path p;
+/// That arc as a path (tool off) in `p` (emptied first, its room kept), `end` its end (motionEnd).
+void motionInto(Path& p, Pose pose, double kappa, double length, Pose end) {
+  p.waypoints.clear();
+  p.tool_on.clear();
+  p.bulge.clear();
   p.reserve(1);
   p.moveTo(pose.at, false);
   // The position turns about the centre by the heading's change: the arc's signed angle.
   if (kappa == 0.0) p.moveTo(end.at, false);
   else p.arcTo(end.at, std::tan(kappa * length / 4.0), false);
+}
+
+/// That arc as a path of its own.
+Path motionPath(Pose pose, double kappa, double length, Pose end) {
+  Path p;
+  motionInto(p, pose, kappa, length, end);
   return p;
 }
 
@@ -58,11 +66,12 @@ Path search(const Workspace& ws, Pose from, double radius, bool reverse, std::si
   struct Node {
     Pose pose;
     double cost;
-    std::size_t parent;  // index into nodes; itself for the start
-    Path piece;          // from the parent's pose to this one
+    std::size_t parent;   // index into nodes; itself for the start
+    double kappa, length;  // the motion from the parent's pose to this one (built again at the end)
   };
   std::vector<Node> nodes;
-  nodes.push_back({from, 0.0, 0, Path{}});
+  nodes.push_back({from, 0.0, 0, 0.0, 0.0});
+  Path piece;  // the motion being checked (its room reused)
   using Entry = std::pair<double, std::size_t>;  // cost plus estimate, node
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
   open.push({estimate(from), 0});
@@ -85,12 +94,15 @@ Path search(const Workspace& ws, Pose from, double radius, bool reverse, std::si
     if (used) ++*used;
     Path last;
     if (finish(pose, last)) {
-      std::vector<const Path*> pieces{&last};
-      for (std::size_t i = index; i != 0; i = nodes[i].parent) pieces.push_back(&nodes[i].piece);
+      std::vector<Path> pieces{std::move(last)};
+      for (std::size_t i = index; i != 0; i = nodes[i].parent) {
+        const Node& n = nodes[i];
+        pieces.push_back(motionPath(nodes[n.parent].pose, n.kappa, n.length, n.pose));
+      }
       Path out;
       out.moveTo(from.at, false);
       for (auto it = pieces.rbegin(); it != pieces.rend(); ++it)
-        for (std::size_t k = 0; k < (*it)->segments(); ++k) out.arcTo((*it)->waypoints[k + 1], (*it)->bulgeOf(k), false);
+        for (std::size_t k = 0; k < it->segments(); ++k) out.arcTo(it->waypoints[k + 1], it->bulgeOf(k), false);
       return out;
     }
     for (const double direction : {1.0, -1.0}) {
@@ -102,10 +114,10 @@ Path search(const Workspace& ws, Pose from, double radius, bool reverse, std::si
         const auto k = key(end);
         const auto seen = best.find(k);
         if (seen != best.end() && seen->second <= next_cost) continue;  // before the costlier check
-        Path piece = motionPath(pose, kappa, direction * step, end);
+        motionInto(piece, pose, kappa, direction * step, end);
         if (!pathFree(ws, piece)) continue;
         best[k] = next_cost;
-        nodes.push_back({end, next_cost, index, std::move(piece)});
+        nodes.push_back({end, next_cost, index, kappa, direction * step});
         open.push({next_cost + estimate(end), nodes.size() - 1});
       }
     }
