@@ -3,8 +3,6 @@
 #include <ompl/base/spaces/DubinsStateSpace.h>
 #include <ompl/base/spaces/ReedsSheppStateSpace.h>
 
-#include <algorithm>
-#include <array>
 #include <bit>
 #include <cstdint>
 #include <memory>
