@@ -511,9 +511,13 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     return stack.k > 0 && stack.done == 0 && stack_pos[i] >= stack.k && stack.rows.size() - 1 - stack_pos[i] >= stack.k;
   };
   std::vector<std::size_t> follow(n, kNone);  // the row carBlockOrder takes after this one
-  // Rows left that are not short, and the rows by cell (in the order, then rows of no cell), the
-  // first `open_from` of them painted: counted as rows are painted, not each step.
-  std::size_t long_left = static_cast<std::size_t>(std::count(short_row.begin(), short_row.end(), 0));
+  // Rows left that are not short and may still be entered one way or the other (a row that is a
+  // dead end both ways holds no short row back), and the rows by cell (in the order, then rows of
+  // no cell), the first `open_from` of them painted: counted as rows are painted or found dead
+  // ends, not each step.
+  auto holdsShortBack = [&](std::size_t i) { return !isShort(i) && dead[i] != 3; };
+  std::size_t long_left = 0;
+  for (std::size_t i = 0; i < n; ++i) long_left += holdsShortBack(i);
   std::vector<std::size_t> by_cell;
   if (ordered) {
     for (std::size_t i = 0; i < n; ++i) by_cell.push_back(i);
@@ -526,7 +530,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     entries.setPainted(i, painted);
     if (painted) --remaining;
     else ++remaining;
-    if (!isShort(i)) long_left = painted ? long_left - 1 : long_left + 1;
+    if (holdsShortBack(i)) long_left = painted ? long_left - 1 : long_left + 1;
     if (!painted) {  // a backtrack: what was known painted below is not any more
       std::fill(beside_from.begin(), beside_from.end(), 0);
       open_from = 0;
@@ -802,6 +806,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     markDone(last.row, false);
     lowest_line = 0;
     dead[last.row] |= last.from_a ? 1 : 2;
+    if (!isShort(last.row) && dead[last.row] == 3) --long_left;
     ++out.backtracks;
     (last.how == 'c' ? out.links : last.how == 'r' ? out.routed : out.searched) -= 1;
     out.cusps -= last.cusps;
