@@ -283,6 +283,42 @@ CarSmoothing smoothedRightAngle(const Wall& wall, bool reverse) {
   return smoothForCar(ws, p);
 }
 
+/// `in` smoothed for a forward-only car of turn radius 0.3 m on `wall` (the workspace's own checks
+/// throw on a path the car cannot drive).
+CarSmoothing smoothedOn(const Wall& wall, const Path& in) {
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = kTool;
+  problem.vehicle = car(0.3, false);
+  const Workspace ws(wall, problem);
+  return smoothForCar(ws, in);
+}
+
+// Two routes into a pass the car sweep asked for (each from the car's pose, a millimetre ahead,
+// to the pass's entry, then the pass painted), exact to the bit. The first one's last turn ends
+// at the pass's end: driving on "to the end" added a segment of no length, whose heading is
+// noise, and the smoothing threw (a heading jump of 0.23 rad). The second one's first vertex
+// turns by less than 1e-7 rad: its fillet was a chord of picometres, its heading noise too
+// (0.005 rad). Both are drivable now, every segment longer than a nanometre.
+TEST(CarSmoothing, LeavesNoSegmentWhoseHeadingIsRoundingNoise) {
+  const std::vector<std::pair<Wall, std::vector<Point>>> cases = {
+      {generateWall("stairwell", 3, 2),
+       {{2.8900000000000001, 1.5929450000000001}, {2.8908885859632045, 1.5924862898671321},
+        {2.4200020000000002, 2.4214060000000019}, {2.165000126961194, 2.2633172728664683}}},
+      {generateWall("stress", 3, 3),
+       {{18.606826617681179, 16.087713186489427}, {18.605826629444252, 16.0877180368512},
+        {18.53182, 16.088076999999998}, {18.641671808372262, 15.52664014590772}}}};
+  for (const auto& [wall, points] : cases) {
+    Path in;
+    for (std::size_t i = 0; i < points.size(); ++i) in.moveTo(points[i], i + 1 == points.size());
+    CarSmoothing s;
+    ASSERT_NO_THROW(s = smoothedOn(wall, in)) << wall.name;
+    ASSERT_GT(s.path.segments(), 0u) << wall.name;
+    for (std::size_t k = 0; k < s.path.segments(); ++k)
+      EXPECT_GT(distance(s.path.waypoints[k], s.path.waypoints[k + 1]), 1e-9) << wall.name << " segment " << k;
+  }
+}
+
 TEST(CarSmoothing, RoundsACornerWithAnArcOfTheTurnRadius) {
   // A forward-only car: one fillet of radius rho, tangent 0.5 m before and after the corner; the
   // painting it does not drive is those 2 x 0.5 m.
@@ -927,6 +963,7 @@ TEST(CarSweep, ASpiralPlannedForTheCarPaintsMoreThanItsSmoothedBaseline) {
     }
   }
 }
+
 
 }  // namespace
 }  // namespace coverbench

@@ -397,10 +397,16 @@ CarSmoothing smoothForCar(const Workspace& ws, const Path& in) {
   std::size_t corner = 1;  // the next vertex that may be a corner
   while (true) {
     if (checkpoints.empty() || checkpoints.back().x < x) checkpoints.push_back({out.path.waypoints.size(), x});
-    while (corner < m && (along[corner] <= x || std::fabs(angleBetween(segs[corner - 1].heading, segs[corner].heading)) <= 1e-12))
+    // A vertex whose segments' headings differ by less than the car's rules notice is no corner:
+    // a fillet of it (a few picometres) would be a chord whose heading is rounding noise.
+    while (corner < m && (along[corner] <= x ||
+                          std::fabs(angleBetween(segs[corner - 1].heading, segs[corner].heading)) <= kCarHeadingTolerance / 4.0))
       ++corner;
-    if (corner >= m) {  // no corner left: drive to the end
-      for (std::size_t k = segmentAt(x); k < m; ++k) out.path.moveTo(segs[k].b, segs[k].tool);
+    if (corner >= m) {
+      // No corner left: drive to the end, from where the car is (a turn may end there already: a
+      // segment of no length has no heading to keep).
+      for (std::size_t k = segmentAt(x); k < m; ++k)
+        if (distance(out.path.waypoints.back(), segs[k].b) > 1e-9) out.path.moveTo(segs[k].b, segs[k].tool);
       break;
     }
     const double at = along[corner];  // the corner's arc length
