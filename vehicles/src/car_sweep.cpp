@@ -86,6 +86,12 @@ double paintedLength(const Path& path) {
   return length;
 }
 
+/// A straight stretch of ring the sweep drives as a pass (ringStretches).
+struct RingStretch {
+  Point a, b;
+  bool run;  ///< made of a run of shorter pieces
+};
+
 /// The straight stretches the sweep drives of what the rings' smoothing left undriven (`pieces`,
 /// in order). A piece `min_length` or longer is one as it is. Consecutive shorter pieces that join
 /// (a stair's treads, risers and nosings; a ring's bend) make runs: the most of them whose points
@@ -94,10 +100,6 @@ double paintedLength(const Path& path) {
 /// the longest edge of its points' convex hull (a stair's pitch, through its nosings), touching
 /// them from one side, the side where it is free (the nosings' side, not the corners'); where
 /// neither side is free, or the run is one piece, nothing (as a short piece).
-struct RingStretch {
-  Point a, b;
-  bool run;  ///< made of a run of shorter pieces
-};
 std::vector<RingStretch> ringStretches(Workspace& ws, const std::vector<std::pair<Point, Point>>& pieces, double min_length,
                                        double band) {
   namespace bg = boost::geometry;
