@@ -268,6 +268,17 @@ TEST(CarCurves, OurDubinsCurvesAreOmplsOnShortQueries) {
   }
 }
 
+/// `in` smoothed for a car of `turn_radius` on `wall` (the smoothing's own checks throw on a path
+/// the car cannot drive).
+CarSmoothing smoothedOn(const Wall& wall, const Path& in, double turn_radius = 0.3, bool reverse = false) {
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = kTool;
+  problem.vehicle = car(turn_radius, reverse);
+  const Workspace ws(wall, problem);
+  return smoothForCar(ws, in);
+}
+
 /// East 2 m, then north 2 m, painted, on an open 4 m x 4 m wall, smoothed for a car of turn radius
 /// 0.5 m.
 CarSmoothing smoothedRightAngle(const Wall& wall, bool reverse) {
@@ -275,23 +286,7 @@ CarSmoothing smoothedRightAngle(const Wall& wall, bool reverse) {
   p.moveTo({0.5, 0.5}, false);
   p.moveTo({2.5, 0.5}, true);
   p.moveTo({2.5, 2.5}, true);
-  Problem problem;
-  problem.wall = &wall;
-  problem.tool = kTool;
-  problem.vehicle = car(0.5, reverse);
-  const Workspace ws(wall, problem);
-  return smoothForCar(ws, p);
-}
-
-/// `in` smoothed for a forward-only car of turn radius 0.3 m on `wall` (the workspace's own checks
-/// throw on a path the car cannot drive).
-CarSmoothing smoothedOn(const Wall& wall, const Path& in) {
-  Problem problem;
-  problem.wall = &wall;
-  problem.tool = kTool;
-  problem.vehicle = car(0.3, false);
-  const Workspace ws(wall, problem);
-  return smoothForCar(ws, in);
+  return smoothedOn(wall, p, 0.5, reverse);
 }
 
 // Two routes into a pass the car sweep asked for (each from the car's pose, a millimetre ahead,
