@@ -68,9 +68,18 @@ void appendPrimitive(Path& out, Pose& pose, CurvePrimitive c, double radius, boo
   }
 }
 
+/// a into [0, 2 pi), exactly as fmod would put it. The angles here are within two turns of that
+/// range, where one subtraction or addition of 2 pi is exact (Sterbenz: both lie within a factor
+/// of two of each other), so fmod (tens of instructions, half a million calls a plan) is needed
+/// only beyond them; -2 pi goes to fmod, which keeps its sign of zero.
 double mod2pi(double a) {
-  const double r = std::fmod(a, 2.0 * M_PI);
-  return r < 0.0 ? r + 2.0 * M_PI : r;
+  constexpr double kTwoPi = 2.0 * M_PI;
+  if (a >= 0.0 && a < kTwoPi) return a;
+  if (a >= kTwoPi && a < 2.0 * kTwoPi) return a - kTwoPi;
+  if (a < 0.0 && a > -kTwoPi) return a + kTwoPi;
+  if (a < -kTwoPi && a > -2.0 * kTwoPi) return (a + kTwoPi) + kTwoPi;
+  const double r = std::fmod(a, kTwoPi);
+  return r < 0.0 ? r + kTwoPi : r;
 }
 
 /// A Dubins word: three primitives (turn, straight or turn, turn).
@@ -100,16 +109,18 @@ DubinsWords dubinsWords(double d, double alpha, double beta) {
   const double sa = std::sin(alpha), sb = std::sin(beta), ca = std::cos(alpha), cb = std::cos(beta);
   const double cab = std::cos(alpha - beta);
   DubinsWords out;
+  // LSL and LRL measure the same angle, with opposite signs of its sine (atan2 is odd in it, and
+  // at a sine of exactly zero both are +0); RSR and RLR measure one angle. One atan2 each serves both.
   double p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb);  // LSL
-  if (p2 >= 0.0) {
-    const double tmp = std::atan2(cb - ca, d + sa - sb);
-    out.add({{{'L', mod2pi(tmp - alpha)}, {'S', std::sqrt(p2)}, {'L', mod2pi(beta - tmp)}}});
-  }
+  const double lrl = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0;
+  const double left = p2 >= 0.0 || std::fabs(lrl) <= 1.0 ? std::atan2(cb - ca, d + sa - sb) : 0.0;
+  if (p2 >= 0.0)
+    out.add({{{'L', mod2pi(left - alpha)}, {'S', std::sqrt(p2)}, {'L', mod2pi(beta - left)}}});
   p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa);  // RSR
-  if (p2 >= 0.0) {
-    const double tmp = std::atan2(ca - cb, d - sa + sb);
-    out.add({{{'R', mod2pi(alpha - tmp)}, {'S', std::sqrt(p2)}, {'R', mod2pi(tmp - beta)}}});
-  }
+  const double rlr = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0;
+  const double right = p2 >= 0.0 || std::fabs(rlr) <= 1.0 ? std::atan2(ca - cb, d - sa + sb) : 0.0;
+  if (p2 >= 0.0)
+    out.add({{{'R', mod2pi(alpha - right)}, {'S', std::sqrt(p2)}, {'R', mod2pi(right - beta)}}});
   p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb);  // LSR
   if (p2 >= 0.0) {
     const double p = std::sqrt(p2);
@@ -122,16 +133,14 @@ DubinsWords dubinsWords(double d, double alpha, double beta) {
     const double tmp = std::atan2(ca + cb, d - sa - sb) - std::atan2(2.0, p);
     out.add({{{'R', mod2pi(alpha - tmp)}, {'S', p}, {'L', mod2pi(beta - tmp)}}});
   }
-  double tmp = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0;  // RLR
-  if (std::fabs(tmp) <= 1.0) {
-    const double p = mod2pi(2.0 * M_PI - std::acos(tmp));
-    const double t = mod2pi(alpha - std::atan2(ca - cb, d - sa + sb) + p / 2.0);
+  if (std::fabs(rlr) <= 1.0) {  // RLR
+    const double p = mod2pi(2.0 * M_PI - std::acos(rlr));
+    const double t = mod2pi(alpha - right + p / 2.0);
     out.add({{{'R', t}, {'L', p}, {'R', mod2pi(alpha - beta - t + p)}}});
   }
-  tmp = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0;  // LRL
-  if (std::fabs(tmp) <= 1.0) {
-    const double p = mod2pi(2.0 * M_PI - std::acos(tmp));
-    const double t = mod2pi(-alpha - std::atan2(ca - cb, d + sa - sb) + p / 2.0);
+  if (std::fabs(lrl) <= 1.0) {  // LRL
+    const double p = mod2pi(2.0 * M_PI - std::acos(lrl));
+    const double t = mod2pi(-alpha - (ca == cb ? left : -left) + p / 2.0);
     out.add({{{'L', t}, {'R', p}, {'L', mod2pi(beta - alpha - t + p)}}});
   }
   return out;
