@@ -47,6 +47,30 @@ TEST(Transit, GoesAroundAWindowWithTheShortestDetour) {
   for (const Point& q : *route) EXPECT_GE(q.y, 1.0);  // over, not under (the bottom is longer)
 }
 
+TEST(Transit, OfEqualRoutesTakesTheOneWithFewestPoints) {
+  // Two windows of equal height: the route over them passes the nodes above their four top
+  // corners, all on the line y = 1.3 + R (R = 0.07 plus the nodes' 5e-6), at x = 1, 2, 3 and 4.
+  // Going through the middle two is exactly as long (steps of 1 m), so the search meets exact
+  // ties; the straight move from the first to the last is free, and a route must take it rather
+  // than stopping on the way.
+  const Wall w = rectWall(6, 2.5, {rect(1, 0.1, 1, 1.2), rect(3, 0.1, 1, 1.2)});
+  const ToolParams tool{0.1, 0.02};
+  Workspace ws(w, tool);
+  const Point a{0.5, 0.8}, b{4.5, 0.8};
+  const auto route = ws.router().route(a, b);
+  ASSERT_TRUE(route);
+  Path p;
+  for (const Point& q : *route) p.moveTo(q, false);
+  EXPECT_TRUE(test::isValidPath(w, tool, p));
+  std::size_t on_top = 0;
+  for (const Point& q : *route) on_top += std::fabs(q.y - (1.3 + 0.07)) < 1e-4;
+  EXPECT_EQ(on_top, 2u) << "the route stops on the line over the windows at " << on_top << " points";
+  for (std::size_t k = 1; k + 1 < route->size(); ++k) {
+    const Point u = (*route)[k] - (*route)[k - 1], v = (*route)[k + 1] - (*route)[k];
+    EXPECT_FALSE(std::fabs(cross(u, v)) <= 1e-12 && dot(u, v) > 0.0) << "vertex " << k << " lies on the straight way on";
+  }
+}
+
 TEST(Transit, OutOfACuspOfTheFreeRegion) {
   // A window 0.118 m above the floor (the gap below is too low for the tool) and a second one
   // 0.181 m to its right leave a corridor. Right of the first window's lower corner, the floor's

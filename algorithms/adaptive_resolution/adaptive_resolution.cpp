@@ -247,7 +247,7 @@ class AdaptivePlanner final : public TypedPlanner<AdaptiveParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "adaptive-resolution";
-  info.version = "2";
+  info.version = "3";
   info.code_folders = {"adaptive_resolution"};
   info.summary = "Quadtree over F: rows across open leaves, single cells where obstacles cut in, a loop along every edge; optional waypoint density by distance";
   info.reference = "Seed 000 (adaptive resolution); quadtree coverage as in Choset, Coverage for robotics, AMAI 31, 2001";

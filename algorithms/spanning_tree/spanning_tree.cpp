@@ -635,7 +635,7 @@ class SpanningTreePlanner final : public TypedPlanner<SpanningTreeParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "spanning-tree";
-  info.version = std::string("4");  // not = "4": GCC 12 warns falsely (-Wrestrict) on that assignment here
+  info.version = std::string("5");  // not = "5": GCC 12 warns falsely (-Wrestrict) on that assignment here
   info.code_folders = {"spanning_tree"};
   info.summary = "A loop along F's boundary, then spanning-tree coverage of a grid of tool-sized cells; return, stop, short-branches-first or Spiral-STC";
   info.reference = "Gabriely & Rimon, Spanning-tree based coverage of continuous areas by a mobile robot, AMAI 31, 2001";

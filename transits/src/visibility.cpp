@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <queue>
+#include <tuple>
 
 #include "coverbench/transit_planners.hpp"
 #include "coverbench/transit_router.hpp"
@@ -133,10 +134,13 @@ std::optional<std::vector<Point>> TransitRouter::lazySearch(const std::vector<Po
   // A* from pos[0] to pos[1] with lazy edges: a move is checked only when it is the cheapest way
   // left to reach its end. The Euclidean heuristic is consistent, so the first valid arrival at
   // pos[1] is the shortest. Routes longer than `bound` are not searched.
+  // Moves into one node at one cost are tried fewest hops first, then from the node closed first:
+  // of equal routes (through collinear nodes) the one with the fewest points, whatever the heap's
+  // order of equal entries.
   struct Entry {
     double f, g;
-    std::size_t v, from;
-    bool operator>(const Entry& o) const { return f > o.f || (f == o.f && v > o.v); }
+    std::size_t v, from, hops, rank;  // rank: from's place in the closing order
+    bool operator>(const Entry& o) const { return std::tie(f, v, hops, rank) > std::tie(o.f, o.v, o.hops, o.rank); }
   };
   const Point b = pos[1];
   const std::size_t none = pos.size();
@@ -145,7 +149,8 @@ std::optional<std::vector<Point>> TransitRouter::lazySearch(const std::vector<Po
   std::vector<bool> closed(pos.size(), false);
   std::vector<std::size_t> pred(pos.size(), none);
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
-  open.push({to_b[0], 0.0, 0, none});
+  std::size_t closings = 0;
+  open.push({to_b[0], 0.0, 0, none, 0, none});
   while (!open.empty()) {
     const Entry e = open.top();
     open.pop();
@@ -160,11 +165,12 @@ std::optional<std::vector<Point>> TransitRouter::lazySearch(const std::vector<Po
       std::reverse(points.begin(), points.end());
       return points;
     }
+    const std::size_t rank = closings++;
     for (std::size_t w = 1; w < pos.size(); ++w) {
       if (closed[w]) continue;
       const double g = e.g + length(pos[e.v], pos[w]);
       const double f = g + to_b[w];
-      if (f <= bound) open.push({f, g, w, e.v});
+      if (f <= bound) open.push({f, g, w, e.v, e.hops + 1, rank});
     }
   }
   return std::nullopt;
