@@ -71,6 +71,26 @@ TEST(Transit, OfEqualRoutesTakesTheOneWithFewestPoints) {
   }
 }
 
+TEST(Transit, AroundABarrierSixTimesLongerThanTheStraightLine) {
+  // A barrier from the left edge to x = 4 between two points 1 m apart: the route goes round its end,
+  // over six times the straight distance (the search's growing bounds must reach it).
+  const Wall w = rectWall(5, 3, {rect(0, 1.4, 4, 0.2)});
+  const ToolParams tool{0.1, 0.02};
+  Workspace ws(w, tool);
+  const Point a{1.0, 1.0}, b{1.0, 2.0};
+  const auto route = ws.router().route(a, b);
+  ASSERT_TRUE(route);
+  Path p;
+  for (const Point& q : *route) p.moveTo(q, false);
+  EXPECT_TRUE(test::isValidPath(w, tool, p));
+  // At least the way round the barrier's two end corners (4, 1.4) and (4, 1.6); at most that plus
+  // the half turn round the end at R = 0.07, whose nodes circumscribe it by a square's half (4 R,
+  // not pi R), and 2 cm of slack.
+  const double round_end = distance(a, {4, 1.4}) + 0.2 + distance({4, 1.6}, b);
+  EXPECT_GE(polylineLength(*route), round_end);
+  EXPECT_LE(polylineLength(*route), round_end + 4 * 0.07 + 0.02);
+}
+
 TEST(Transit, OutOfACuspOfTheFreeRegion) {
   // A window 0.118 m above the floor (the gap below is too low for the tool) and a second one
   // 0.181 m to its right leave a corridor. Right of the first window's lower corner, the floor's

@@ -50,8 +50,14 @@ class TransitRouter {
   /// The shortest route through the nodes in a box around a and b, grown until no route leaving
   /// the box could be shorter (at most to every node); nullopt when there is none.
   std::optional<std::vector<Point>> localRoute(Point a, Point b);
-  /// The shortest route from pos[0] to pos[1] through pos, no longer than `bound` (lazy A*).
-  std::optional<std::vector<Point>> lazySearch(const std::vector<Point>& pos, double bound) const;
+  /// Marks a point of a search that is not one of the nodes.
+  static constexpr std::size_t kNoNode = static_cast<std::size_t>(-1);
+  /// The shortest route from pos[0] to pos[1] through pos, no longer than `bound` (lazy A*);
+  /// node[i] is pos[i]'s index among the nodes (kNoNode if it is none): moves between nodes are
+  /// checked once per router.
+  std::optional<std::vector<Point>> lazySearch(const std::vector<Point>& pos, const std::vector<std::size_t>& node, double bound) const;
+  /// lazySearch's A* over all of pos.
+  std::optional<std::vector<Point>> searchWithin(const std::vector<Point>& pos, const std::vector<std::size_t>& node, double bound) const;
   /// Runs of F's boundary vertices near a or b (needs the free region).
   std::vector<std::vector<Point>> boundaryChains(Point a, Point b) const;
 
