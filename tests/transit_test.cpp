@@ -47,26 +47,33 @@ TEST(Transit, GoesAroundAWindowWithTheShortestDetour) {
   for (const Point& q : *route) EXPECT_GE(q.y, 1.0);  // over, not under (the bottom is longer)
 }
 
+/// The route from a to b on wall w for the tool (r 0.05, c 0.02), checked valid; empty when there is
+/// none (a failure is recorded).
+std::vector<Point> validRoute(const Wall& w, Point a, Point b) {
+  const ToolParams tool{0.1, 0.02};
+  Workspace ws(w, tool);
+  const auto route = ws.router().route(a, b);
+  EXPECT_TRUE(route.has_value());
+  if (!route) return {};
+  Path p;
+  for (const Point& q : *route) p.moveTo(q, false);
+  EXPECT_TRUE(test::isValidPath(w, tool, p));
+  return *route;
+}
+
 TEST(Transit, OfEqualRoutesTakesTheOneWithFewestPoints) {
   // Two windows of equal height: the route over them passes the nodes above their four top
   // corners, all on the line y = 1.3 + R (R = 0.07 plus the nodes' 5e-6), at x = 1, 2, 3 and 4.
   // Going through the middle two is exactly as long (steps of 1 m), so the search meets exact
   // ties; the straight move from the first to the last is free, and a route must take it rather
   // than stopping on the way.
-  const Wall w = rectWall(6, 2.5, {rect(1, 0.1, 1, 1.2), rect(3, 0.1, 1, 1.2)});
-  const ToolParams tool{0.1, 0.02};
-  Workspace ws(w, tool);
-  const Point a{0.5, 0.8}, b{4.5, 0.8};
-  const auto route = ws.router().route(a, b);
-  ASSERT_TRUE(route);
-  Path p;
-  for (const Point& q : *route) p.moveTo(q, false);
-  EXPECT_TRUE(test::isValidPath(w, tool, p));
+  const std::vector<Point> route = validRoute(rectWall(6, 2.5, {rect(1, 0.1, 1, 1.2), rect(3, 0.1, 1, 1.2)}), {0.5, 0.8}, {4.5, 0.8});
+  ASSERT_FALSE(route.empty());
   std::size_t on_top = 0;
-  for (const Point& q : *route) on_top += std::fabs(q.y - (1.3 + 0.07)) < 1e-4;
+  for (const Point& q : route) on_top += std::fabs(q.y - (1.3 + 0.07)) < 1e-4;
   EXPECT_EQ(on_top, 2u) << "the route stops on the line over the windows at " << on_top << " points";
-  for (std::size_t k = 1; k + 1 < route->size(); ++k) {
-    const Point u = (*route)[k] - (*route)[k - 1], v = (*route)[k + 1] - (*route)[k];
+  for (std::size_t k = 1; k + 1 < route.size(); ++k) {
+    const Point u = route[k] - route[k - 1], v = route[k + 1] - route[k];
     EXPECT_FALSE(std::fabs(cross(u, v)) <= 1e-12 && dot(u, v) > 0.0) << "vertex " << k << " lies on the straight way on";
   }
 }
@@ -74,21 +81,15 @@ TEST(Transit, OfEqualRoutesTakesTheOneWithFewestPoints) {
 TEST(Transit, AroundABarrierSixTimesLongerThanTheStraightLine) {
   // A barrier from the left edge to x = 4 between two points 1 m apart: the route goes round its end,
   // over six times the straight distance (the search's growing bounds must reach it).
-  const Wall w = rectWall(5, 3, {rect(0, 1.4, 4, 0.2)});
-  const ToolParams tool{0.1, 0.02};
-  Workspace ws(w, tool);
   const Point a{1.0, 1.0}, b{1.0, 2.0};
-  const auto route = ws.router().route(a, b);
-  ASSERT_TRUE(route);
-  Path p;
-  for (const Point& q : *route) p.moveTo(q, false);
-  EXPECT_TRUE(test::isValidPath(w, tool, p));
+  const std::vector<Point> route = validRoute(rectWall(5, 3, {rect(0, 1.4, 4, 0.2)}), a, b);
+  ASSERT_FALSE(route.empty());
   // At least the way round the barrier's two end corners (4, 1.4) and (4, 1.6); at most that plus
   // the half turn round the end at R = 0.07, whose nodes circumscribe it by a square's half (4 R,
   // not pi R), and 2 cm of slack.
   const double round_end = distance(a, {4, 1.4}) + 0.2 + distance({4, 1.6}, b);
-  EXPECT_GE(polylineLength(*route), round_end);
-  EXPECT_LE(polylineLength(*route), round_end + 4 * 0.07 + 0.02);
+  EXPECT_GE(polylineLength(route), round_end);
+  EXPECT_LE(polylineLength(route), round_end + 4 * 0.07 + 0.02);
 }
 
 TEST(Transit, OutOfACuspOfTheFreeRegion) {
