@@ -62,6 +62,17 @@ TEST(RegionOps, SubtractMakesHoles) {
   EXPECT_NEAR(area(result), 15.0, 1e-9);
 }
 
+TEST(RegionOps, SimplifyingKeepsAnIslandInAHole) {
+  // A frame 10 x 10 round a 6 x 6 hole, a 2 x 2 island in the hole (an uncovered patch inside a
+  // covered band inside an uncovered rim): 100 - 36 + 4. The frame's hole must not take the island.
+  const Region frame = subtract(regionFromRings({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}}),
+                                regionFromRings({{{2, 2}, {8, 2}, {8, 8}, {2, 8}}}));
+  const Region island = regionFromRings({{{4, 4}, {6, 4}, {6, 6}, {4, 6}}});
+  const Region both = unite(frame, island);
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_NEAR(area(simplifyRegion(both, 0.01)), 68.0, 1e-9);
+}
+
 TEST(RegionOps, CircumscribedCircleContainsCircleWithinTolerance) {
   const Ring ring = circumscribedCircle({0, 0}, 1.0, 1e-4);
   for (const Point& p : ring) {

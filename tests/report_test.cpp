@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -131,6 +132,24 @@ TEST(Pictures, FailedSegmentsAreMarkedAndAPathLeavingTheWallStaysInThePicture) {
   EXPECT_NE(svg.find("1024.00,"), std::string::npos);
   const std::string clean = pathPicture(wall, ToolParams{0.1, 0.02}, VehicleModel{}, Path{{{0.2, 0.5}, {1.8, 0.5}}, {true}}, "t");
   EXPECT_EQ(clean.find("class=\"violation\""), std::string::npos);
+}
+
+TEST(Pictures, AnUnpaintedPatchInsideAPaintedLoopIsDrawnAsUncovered) {
+  Wall wall;
+  wall.name = "w";
+  wall.boundary = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+  // A painted square loop 1 m across: unpainted are the rim between it and the wall's edge and
+  // the patch inside it. The patch is an island in the rim's hole; both must be red.
+  Path path;
+  path.waypoints = {{0.5, 0.5}, {1.5, 0.5}, {1.5, 1.5}, {0.5, 1.5}, {0.5, 0.5}};
+  path.tool_on = {true, true, true, true};
+  const std::string svg = pathPicture(wall, ToolParams{0.1, 0.02}, VehicleModel{}, path, "t");
+  const std::size_t fill = svg.find("\" fill=\"#e8383d\" fill-opacity=\"0.75\"");
+  ASSERT_NE(fill, std::string::npos);
+  const std::size_t start = svg.rfind("<path d=\"", fill);
+  const std::string red = svg.substr(start, fill - start);
+  // Three rings: the rim's outside, its inside (the loop's outer edge), the patch (its inner edge).
+  EXPECT_EQ(std::count(red.begin(), red.end(), 'z'), 3) << red;
 }
 
 TEST(Pictures, PathDataIsTheFirstPointAbsoluteThenStepsInHundredthsOfAPixel) {

@@ -173,14 +173,25 @@ Ring simplifyRing(const Ring& ring, double tolerance) {
 }  // namespace
 
 Region simplifyRegion(const Region& region, double tolerance) {
-  // Simplified rings can touch or cross where the region is thinner than 2 * tolerance; a
-  // non-zero union of the outer rings minus the holes turns them back into a valid region.
-  std::vector<Ring> outers, holes;
+  // Simplified rings can touch or cross where the region is thinner than 2 * tolerance. One
+  // union of every outer ring counter-clockwise and every hole clockwise, filled where the
+  // winding is positive, turns them back into a valid region: a hole takes away only from its
+  // own polygon (not from an island another polygon has inside it), and a piece of hole pushed
+  // outside its polygon takes away nothing.
+  cl::Clipper clipper;
   for (const PolygonWithHoles& poly : region) {
-    outers.push_back(simplifyRing(poly.outer, tolerance));
-    for (const Ring& h : poly.holes) holes.push_back(simplifyRing(h, tolerance));
+    cl::Path outer = toPath(simplifyRing(poly.outer, tolerance));
+    if (!cl::Orientation(outer)) cl::ReversePath(outer);
+    clipper.AddPath(outer, cl::ptSubject, true);
+    for (const Ring& h : poly.holes) {
+      cl::Path hole = toPath(simplifyRing(h, tolerance));
+      if (cl::Orientation(hole)) cl::ReversePath(hole);
+      clipper.AddPath(hole, cl::ptSubject, true);
+    }
   }
-  return subtract(regionFromRings(outers), regionFromRings(holes));
+  cl::PolyTree tree;
+  clipper.Execute(cl::ctUnion, tree, cl::pftPositive, cl::pftPositive);
+  return fromTree(tree);
 }
 
 Region sweptRegion(const std::vector<std::vector<Point>>& polylines, double radius, double arc_tolerance) {
