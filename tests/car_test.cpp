@@ -835,6 +835,43 @@ TEST(CarSweep, WhatTheRingsSmoothingSkipsBecomesPasses) {
   EXPECT_GE(m.coverage.coverage_reachable, 0.85);
 }
 
+// A window tucked into the wall's top-right corner (0.15 m beside it, 0.29 m above it: gaps a car
+// of R = 0.3 m cannot turn in), as on stairwell-s3-0002. A forward-only car's passes along the
+// window's edges ran on past its corners into those gaps, where the car could only drive in: each
+// was a dead end both ways and left out (stairwell-s3-0002: the window's surroundings unpainted).
+// Now each end of every pass has a turn radius free straight ahead, and some pass is kept.
+TEST(CarSweep, AForwardOnlyCarsPassesAlongAWindowEndWhereItCanTurnOut) {
+  const Wall wall = rectWall(3.984, 3.344, {test::rect(2.89, 2.063, 0.944, 0.991)});
+  for (bool reverse : {false, true}) {
+    Problem problem;
+    problem.wall = &wall;
+    problem.tool = kTool;
+    problem.vehicle = car(0.3, reverse);
+    Workspace ws(wall, problem);
+    Headland h = headland(ws, ws.free(), carHeadlandOptions(problem, 0.1, 1, 0.5, 1e-3, true));
+    const std::size_t rings = h.loops.size();
+    const std::vector<CarRow> passes = carHolePasses(ws, h.loops, 0.1);
+    ASSERT_FALSE(passes.empty()) << reverse;
+    EXPECT_LT(h.loops.size(), rings) << "the window's rings are replaced by passes";
+    std::size_t blocked = 0;  // pass ends facing F's edge within a turn radius
+    for (const CarRow& p : passes) {
+      const Point u = (p.b - p.a) * (1.0 / distance(p.a, p.b));
+      EXPECT_GE(distance(p.a, p.b), 0.2 - 1e-9);
+      blocked += !ws.router().isFree(p.b, p.b + u * 0.3) + !ws.router().isFree(p.a, p.a - u * 0.3);
+    }
+    // A car that reverses backs out of a pass: its passes keep running to the corners' gaps.
+    if (reverse) EXPECT_GT(blocked, 0u);
+    else EXPECT_EQ(blocked, 0u);
+  }
+  // residential-s3-0004: a window 0.34 m from the wall's left edge, a door 0.7 m from its right
+  // one. zigzag's forward-only plan covered 0.415 of R; 0.576 now.
+  const Wall tucked = generateWall("residential", 3, 4);
+  const PlanResult r = carZigzag(tucked, false);
+  const PathMetrics m = computeMetrics(tucked, kTool, r.path, car(0.3, false));
+  EXPECT_TRUE(m.validity.valid);
+  EXPECT_GE(m.coverage.coverage_reachable, 0.55);
+}
+
 // Rows shorter than a turn radius wait until no longer row is left, and on a stairwell some long
 // rows are dead ends both ways (a forward-only car that drives through one cannot loop where it
 // comes out): they never get painted, and they held every short row back until the end, where the

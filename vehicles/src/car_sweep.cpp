@@ -54,6 +54,23 @@ void append(Path& out, const Path& piece) {
   for (std::size_t k = 0; k < piece.segments(); ++k) out.arcTo(piece.waypoints[k + 1], piece.bulgeOf(k), piece.tool_on[k]);
 }
 
+/// A forward-only car's pass from a to b, each end moved back (by up to `max_cut_a` at a, up to
+/// `max_cut_b` at b, in steps of a quarter turn radius) until a turn radius straight ahead of it is
+/// free: room to turn out of it, whichever way the pass is driven.
+void leaveRoomToTurn(Workspace& ws, Point& a, Point& b, double rho, double max_cut_a, double max_cut_b) {
+  const Point u = (b - a) * (1.0 / distance(a, b));
+  for (int end = 0; end < 2; ++end) {
+    Point& tip = end == 0 ? b : a;
+    const Point ahead = end == 0 ? u : u * -1.0;
+    const double max_cut = end == 0 ? max_cut_b : max_cut_a;
+    double cut = 0.0;
+    while (cut < max_cut && !ws.router().isFree(tip, tip + ahead * rho)) {
+      cut += 0.25 * rho;
+      tip = tip - ahead * (0.25 * rho);
+    }
+  }
+}
+
 /// The piece starts where the car is, heading its way (or, for a car that reverses, backing up).
 bool startsAlong(const Path& piece, Pose pose, bool reverse) {
   return piece.segments() > 0 && distance(piece.waypoints.front(), pose.at) <= 1e-12 &&
@@ -362,22 +379,31 @@ std::vector<CarRow> carHolePasses(Workspace& ws, std::vector<Ring>& loops, doubl
   std::vector<Ring> kept;
   for (Ring& ring : loops) {
     std::vector<CarRow> mine;
+    bool straight = false;  // an edge long enough for a pass (the ring is replaced by passes)
     if (signedArea(ring) < 0.0)  // a hole's ring (clockwise)
       for (std::size_t i = 0; i < ring.size(); ++i) {
         const Point a = ring[i], b = ring[(i + 1) % ring.size()];
         const double length = distance(a, b);
         if (length < 2.0 * spacing) continue;
+        straight = true;
         const Point u = (b - a) * (1.0 / length);
         auto extended = [&](Point from, Point to, Point dir) {
           for (double e : {0.5, 0.35, 0.25, 0.15, 0.08, 0.04})
             if (ws.router().isFree(from, to + dir * e)) return to + dir * e;
           return to;
         };
-        const Point b2 = extended(a, b, u);
-        const Point a2 = extended(b2, a, u * -1.0);
+        Point b2 = extended(a, b, u);
+        Point a2 = extended(b2, a, u * -1.0);
+        if (!ws.vehicle().reverse) {
+          // A forward-only car turns out of a pass beyond its end: not along an edge that runs on
+          // into a gap too narrow to turn in (a window tucked into a corner of the wall).
+          const double rho = ws.vehicle().turn_radius * (1.0 + kCarRadiusSlack);
+          leaveRoomToTurn(ws, a2, b2, rho, distance(a2, a) + rho, distance(b2, b) + rho);
+          if (dot(b2 - a2, u) < 2.0 * spacing) continue;
+        }
         mine.push_back({a2, b2, 0, false});
       }
-    if (mine.empty()) kept.push_back(std::move(ring));
+    if (!straight) kept.push_back(std::move(ring));
     else passes.insert(passes.end(), mine.begin(), mine.end());
   }
   loops = std::move(kept);
@@ -476,15 +502,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     if (length < min_pass) continue;
     if (!car.reverse) {
       const Point u = (b - a) * (1.0 / length);
-      for (int end = 0; end < 2; ++end) {
-        Point& tip = end == 0 ? b : a;
-        const Point ahead = end == 0 ? u : u * -1.0;
-        double cut = 0.0;
-        while (cut < rho && !ws.router().isFree(tip, tip + ahead * rho)) {
-          cut += 0.25 * rho;
-          tip = tip - ahead * (0.25 * rho);
-        }
-      }
+      leaveRoomToTurn(ws, a, b, rho, rho, rho);
       if (dot(b - a, u) < 2.0 * spacing) continue;
     }
     rows.push_back({a, b, 0, false});

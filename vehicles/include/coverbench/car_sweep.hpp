@@ -66,7 +66,9 @@ struct CarRow {
 /// tighter than any car (r + c + depth), so each hole ring of `loops` that has straight edges (2
 /// spacings or longer) is replaced by passes along those edges, each extended straight past the
 /// corner (up to 0.5 m, as far as it stays in F) so that it paints the corner and leaves room to
-/// turn; those rings are taken out of `loops`. Rings without straight edges (round obstacles)
+/// turn; for a forward-only car each end then moves back (up to a turn radius behind the corner)
+/// until a turn radius straight ahead of it is free, and a pass left shorter than 2 spacings is
+/// dropped. Those rings are taken out of `loops`. Rings without straight edges (round obstacles)
 /// stay rings.
 std::vector<CarRow> carHolePasses(Workspace& ws, std::vector<Ring>& loops, double spacing);
 
