@@ -56,8 +56,10 @@ void append(Path& out, const Path& piece) {
 
 /// A forward-only car's pass from a to b, each end moved back (by up to `max_cut_a` at a, up to
 /// `max_cut_b` at b, in steps of a quarter turn radius) until a turn radius straight ahead of it is
-/// free: room to turn out of it, whichever way the pass is driven.
-void leaveRoomToTurn(Workspace& ws, Point& a, Point& b, double rho, double max_cut_a, double max_cut_b) {
+/// free: room to turn out of it, whichever way the pass is driven. Whether the pass still runs at
+/// least `min_length` its way (else it is not worth a pass).
+bool leaveRoomToTurn(Workspace& ws, Point& a, Point& b, double rho, double max_cut_a, double max_cut_b,
+                     double min_length) {
   const Point u = (b - a) * (1.0 / distance(a, b));
   for (int end = 0; end < 2; ++end) {
     Point& tip = end == 0 ? b : a;
@@ -69,6 +71,7 @@ void leaveRoomToTurn(Workspace& ws, Point& a, Point& b, double rho, double max_c
       tip = tip - ahead * (0.25 * rho);
     }
   }
+  return dot(b - a, u) >= min_length;
 }
 
 /// The piece starts where the car is, heading its way (or, for a car that reverses, backing up).
@@ -377,6 +380,8 @@ ParamSpec carPlanParam() {
 std::vector<CarRow> carHolePasses(Workspace& ws, std::vector<Ring>& loops, double spacing) {
   std::vector<CarRow> passes;
   std::vector<Ring> kept;
+  const bool forward_only = !ws.vehicle().reverse;
+  const double rho = ws.vehicle().turn_radius * (1.0 + kCarRadiusSlack);
   for (Ring& ring : loops) {
     std::vector<CarRow> mine;
     bool straight = false;  // an edge long enough for a pass (the ring is replaced by passes)
@@ -394,13 +399,10 @@ std::vector<CarRow> carHolePasses(Workspace& ws, std::vector<Ring>& loops, doubl
         };
         Point b2 = extended(a, b, u);
         Point a2 = extended(b2, a, u * -1.0);
-        if (!ws.vehicle().reverse) {
-          // A forward-only car turns out of a pass beyond its end: not along an edge that runs on
-          // into a gap too narrow to turn in (a window tucked into a corner of the wall).
-          const double rho = ws.vehicle().turn_radius * (1.0 + kCarRadiusSlack);
-          leaveRoomToTurn(ws, a2, b2, rho, distance(a2, a) + rho, distance(b2, b) + rho);
-          if (dot(b2 - a2, u) < 2.0 * spacing) continue;
-        }
+        // A forward-only car turns out of a pass beyond its end: not along an edge that runs on
+        // into a gap too narrow to turn in (a window tucked into a corner of the wall).
+        if (forward_only && !leaveRoomToTurn(ws, a2, b2, rho, distance(a2, a) + rho, distance(b2, b) + rho, 2.0 * spacing))
+          continue;
         mine.push_back({a2, b2, 0, false});
       }
     if (!straight) kept.push_back(std::move(ring));
@@ -500,11 +502,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     Point a = stretch.a, b = stretch.b;
     const double length = distance(a, b);
     if (length < min_pass) continue;
-    if (!car.reverse) {
-      const Point u = (b - a) * (1.0 / length);
-      leaveRoomToTurn(ws, a, b, rho, rho, rho);
-      if (dot(b - a, u) < 2.0 * spacing) continue;
-    }
+    if (!car.reverse && !leaveRoomToTurn(ws, a, b, rho, rho, rho, 2.0 * spacing)) continue;
     rows.push_back({a, b, 0, false});
     run_pass.push_back(stretch.run);
     ++out.ring_passes;
