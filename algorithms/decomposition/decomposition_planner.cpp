@@ -236,7 +236,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
       }
     }
     PathBuilder builder(ws);
-    const CarSweep sweep = carSweep(ws, builder, h.loops, rows, spacing, budget);
+    const CarSweep sweep = carSweep(ws, builder, h.loops, rows, spacing, budget, params.car_plan == CarPlan::Headland);
     PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), turn, angle_deg, free_components);
     result.stats["cells"] = static_cast<double>(cells.cells.size());
     result.stats["cells_without_pass"] = static_cast<double>(passless_cells);

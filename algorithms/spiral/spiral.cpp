@@ -99,9 +99,10 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
   /// turns round neither), the rings round obstacles replaced by passes along their straight
   /// edges (carHolePasses), all driven by the car's sweep (car_sweep.hpp): the rings smoothed for
   /// the car, from the outermost, and what their smoothing skips (corners tighter than it turns,
-  /// the innermost rings) as passes taken in a turn-aware order with the obstacles' passes.
+  /// the innermost rings) as passes taken in a turn-aware order with the obstacles' passes, then
+  /// (`fill`, car_plan: headland) the sweep's fill rounds.
   PlanResult planForCar(const Budget& budget, double spacing, double tolerance, Workspace& ws, const Region& main,
-                        std::size_t free_components) {
+                        std::size_t free_components, bool fill) {
     const Region base = simplifyRegion(main, tolerance);
     std::vector<Ring> loops = allRings(main);
     std::size_t levels = 1;
@@ -113,7 +114,7 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
     }
     const std::vector<CarRow> passes = carHolePasses(ws, loops, spacing);
     PathBuilder builder(ws);
-    const CarSweep sweep = carSweep(ws, builder, loops, passes, spacing, budget);
+    const CarSweep sweep = carSweep(ws, builder, loops, passes, spacing, budget, fill);
     PlanResult result = carSweepPlan(sweep, builder, loops.size(), 0.0, std::nullopt, free_components);
     result.stats["levels"] = static_cast<double>(levels);
     return result;
@@ -139,7 +140,8 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
       return PlanResult::failure(PlanStatus::NoReachableArea,
                                  "the tool fits nowhere: the free region F is empty for this tool and clearance");
     const Region main = coveredPart(components, problem.vehicle);
-    if (problem.vehicle.isCar()) return planForCar(budget, spacing, tolerance, ws, main, components.size());
+    if (problem.vehicle.isCar())
+      return planForCar(budget, spacing, tolerance, ws, main, components.size(), params.car_plan == CarPlan::Headland);
 
     // Ring j is the boundary of F eroded by j * spacing (outer rings shrink, rings around
     // obstacles grow, until they meet).
@@ -199,7 +201,7 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "spiral";
-  info.version = "7";
+  info.version = "8";
   info.code_folders = {"spiral"};
   info.summary = "Concentric passes offset inward from the free region's boundary, around obstacles, centre covered";
   info.reference = "Held, On the Computational Geometry of Pocket Machining, LNCS 500, 1991";

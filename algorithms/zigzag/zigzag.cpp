@@ -119,7 +119,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
       for (const auto& line : rowIntervals(allRings(h.ends), heights))
         for (const Interval& iv : line) rows.push_back({iv.lowEnd(), iv.highEnd(), iv.row});
     PathBuilder builder(ws);
-    const CarSweep sweep = carSweep(ws, builder, h.loops, rows, spacing, budget);
+    const CarSweep sweep = carSweep(ws, builder, h.loops, rows, spacing, budget, params.car_plan == CarPlan::Headland);
     PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), angle, angle_deg, free_components);
     result.stats["rows"] = static_cast<double>(heights.size());
     result.stats["row_spacing"] = heights.size() > 1 ? heights[1] - heights[0] : 0.0;
@@ -262,7 +262,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "zigzag";
-  info.version = std::string("13");  // not = "13": GCC 12 warns falsely (-Wrestrict) on that assignment here
+  info.version = std::string("14");  // not = "14": GCC 12 warns falsely (-Wrestrict) on that assignment here
   info.code_folders = {"zigzag"};
   info.summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes";
   info.reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013";

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <optional>
 #include <queue>
 #include <tuple>
@@ -16,11 +17,30 @@
 #include <boost/geometry/geometries/ring.hpp>
 #include <boost/geometry/strategies/strategies.hpp>
 
+#include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
 
 namespace coverbench {
 namespace {
 
+/// The fill rounds (carSweep): at most this many...
+constexpr int kFillRounds = 8;
+/// ...each giving a pass to every piece left unpainted of at least this many spacings²...
+constexpr double kFillMinArea = 0.4;
+/// ...where a stretch of at least this many spacings fits (first 5 walls of each family, seed 3,
+/// forward-only car: these three chosen by the median coverage of residential and stairwell walls,
+/// docs/vehicles.md).
+constexpr double kFillMinPass = 1.3;
+/// A fill round is kept when what it paints more is at least this share of a band one spacing
+/// wide along the path it adds (rows paint about 0.8; fill passes, reached by long curves, 0.02-0.09:
+/// below 0.03, as on obstacle-free walls where only the corners are left, the round is not kept).
+constexpr double kFillMinYield = 0.03;
+/// A fill round not worth it from where the sweep ended is tried with the whole sweep planned
+/// again only when the sweep leaves at least this share of F's reach unpainted (on the canonical
+/// facade, 0.7 %, it would double the planning time for nothing).
+constexpr double kFillResweepLeft = 0.03;
+/// The fill rounds' raster (PaintGrid) has at most about this many cells.
+constexpr double kFillMaxCells = 4e6;
 /// Curves checked for freedom per row before the routed links are tried.
 constexpr std::size_t kMaxCurveChecks = 64;
 /// Rows a stuck car goes back at most, from the furthest it got.
@@ -372,8 +392,9 @@ std::vector<std::size_t> carBlockOrder(std::size_t m, std::size_t k, std::size_t
 }
 
 ParamSpec carPlanParam() {
-  return {"car_plan", ParamType::Choice, std::string("headland"), 0, 0, {"headland", "smoothed"}, "",
-          "for a car: headland rings and rows in an order its turns can link (headland), or the path planned for a tool "
+  return {"car_plan", ParamType::Choice, std::string("headland"), 0, 0, {"headland", "headland_no_fill", "smoothed"}, "",
+          "for a car: headland rings and rows in an order its turns can link, then passes through what they left "
+          "unpainted (headland), the same without those passes (headland_no_fill), or the path planned for a tool "
           "that turns on the spot, smoothed (smoothed: the baseline); nothing changes for other vehicles"};
 }
 
@@ -455,8 +476,14 @@ PlanResult carSweepPlan(const CarSweep& sweep, const PathBuilder& rings, std::si
   return result;
 }
 
-CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& given, double spacing,
-                  const Budget& budget, double line_penalty) {
+namespace {
+
+/// carSweep without its fill rounds: the rings, then `given` and the ring passes, then the passes
+/// `fill` (taken last; one the car does not reach is not a row left out). With `from`, no rings:
+/// the sweep goes on from the end of that path (a fill round), which it never cuts back.
+CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& given,
+                   const std::vector<CarRow>& fill, double spacing, const Budget& budget, double line_penalty,
+                   const Path* from = nullptr) {
   const VehicleModel& car = ws.vehicle();
   const double rho = car.turn_radius * (1.0 + kCarRadiusSlack);
   CarSweep out;
@@ -488,7 +515,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       out.headland = std::move(driven);
     }
   }
-  out.path = out.headland.path;
+  out.path = from ? *from : out.headland.path;
   // What the rings' smoothing skipped (a ring bent round a socket tighter than the car turns, a
   // stair's steps) is not lost: each straight stretch of it two spacings or longer (for a
   // forward-only car, also a turn radius or longer: each costs it two loop checks), and each run
@@ -508,6 +535,11 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     ++out.ring_passes;
   }
   out.rows = rows.size();
+  const std::size_t first_fill = rows.size();
+  for (const CarRow& pass : fill) {
+    rows.push_back(pass);
+    run_pass.push_back(1);
+  }
   const std::size_t n = rows.size();
   const bool ordered = std::any_of(rows.begin(), rows.end(), [](const CarRow& r) { return r.cell != kAnyCell; });
   std::vector<char> done(n, 0);
@@ -717,7 +749,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   // end, up to kRingGiveUpRadii turn radii.
   const Path rings_whole = out.path;  // restored if giving up their end took the car nowhere
   const CarSmoothing headland_whole = out.headland;
-  if (!car.reverse)
+  if (!car.reverse && !from)
     while (out.path.segments() > 1 && ring_given_up < kRingGiveUpRadii * rho && !carCanLoop(ws, endPose(out.path), rho, kLoopExpansions))
       giveUpRingTail();
   std::size_t searched_poses = 0;  // by searchCarRoute, over the whole sweep
@@ -894,7 +926,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     if (found) continue;
     // Stuck where the rings end (facing F's edge closer than a turn): stop their last straight
     // stretch short, by a quarter of a turn radius more each time, up to three radii.
-    if (steps.empty() && out.links == 0 && out.path.segments() > 0 && out.path.bulgeOf(out.path.segments() - 1) == 0.0) {
+    if (!from && steps.empty() && out.links == 0 && out.path.segments() > 0 && out.path.bulgeOf(out.path.segments() - 1) == 0.0) {
       const std::size_t k = out.path.segments() - 1;
       if (retreat == 0.0) tail = {out.path.waypoints[k], out.path.waypoints[k + 1]};
       retreat += 0.25 * rho;
@@ -906,7 +938,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     }
     // Still stuck there: the rings end in a dead end no curve, route or search leaves (a strip
     // narrower than a turn, an obstacle's corner). Give up their last segments and try again.
-    if (steps.empty() && out.links == 0 && out.path.segments() > 1 && ring_given_up < kRingGiveUpRadii * rho) {
+    if (!from && steps.empty() && out.links == 0 && out.path.segments() > 1 && ring_given_up < kRingGiveUpRadii * rho) {
       giveUpRingTail();
       retreat = 0.0;  // the straight cut-back starts over on the new last stretch
       continue;
@@ -957,6 +989,8 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       if (!std::isfinite(length)) break;
       const Path curve = carCurve(pose, poseInto(i, from_a), rho, false, false);
       if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
+      out.dead_end_from = out.path.waypoints.size();
+      out.dead_end_row = rows[i];
       append(out.path, curve);
       driveRow(i, from_a);
       ++out.links;
@@ -964,8 +998,258 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       break;
     }
   }
+  for (std::size_t i = first_fill; i < n; ++i) {
+    if (done[i]) ++out.fill_passes;
+    else --remaining;
+  }
   out.unreached = remaining;
   checkDrivable(out.path, car, "the car's sweep");
+  return out;
+}
+
+/// The path's painted stretches as polylines, its arcs drawn with chords within `tolerance`.
+std::vector<std::vector<Point>> paintedRuns(const Path& path, double tolerance) {
+  std::vector<std::vector<Point>> runs;
+  for (std::size_t i = 0; i < path.segments(); ++i) {
+    if (!path.tool_on[i]) continue;
+    const Point a = path.waypoints[i], b = path.waypoints[i + 1];
+    if (i == 0 || !path.tool_on[i - 1]) runs.push_back({a});
+    if (effectiveBulge(a, b, path.bulgeOf(i)) != 0.0) {
+      const ArcGeometry arc = arcGeometry(a, b, path.bulgeOf(i));
+      const double step = 2.0 * std::acos(std::max(-1.0, 1.0 - tolerance / arc.radius));
+      const int k = std::max(1, static_cast<int>(std::ceil(std::fabs(arc.sweep) / step)));
+      const double start = std::atan2(a.y - arc.centre.y, a.x - arc.centre.x);
+      for (int j = 1; j < k; ++j) {
+        const double t = start + arc.sweep * j / k;
+        runs.back().push_back(arc.centre + Point{std::cos(t), std::sin(t)} * arc.radius);
+      }
+    }
+    runs.back().push_back(b);
+  }
+  return runs;
+}
+
+/// A raster of F and of its painted reach (what lies within a tool radius of F), and what a path
+/// paints of it: what the fill rounds look for passes in. Cells of `h` metres; a cell is in F, or
+/// painted, when its centre is, and in the reach when its centre lies within a tool radius of the
+/// centre of a cell of F. Same path, same cells.
+class PaintGrid {
+ public:
+  PaintGrid(const Workspace& ws, double h) : h_(h), r_(ws.tool().radius()) {
+    Box box = boundingBox(ws.free());
+    origin_ = {box.min_x - r_ - h, box.min_y - r_ - h};
+    nx_ = std::max(1, static_cast<int>(std::ceil((box.max_x - box.min_x + 2.0 * (r_ + h)) / h)));
+    ny_ = std::max(1, static_cast<int>(std::ceil((box.max_y - box.min_y + 2.0 * (r_ + h)) / h)));
+    cells_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), 0);
+    std::vector<double> ys(static_cast<std::size_t>(ny_));
+    for (int j = 0; j < ny_; ++j) ys[static_cast<std::size_t>(j)] = origin_.y + (j + 0.5) * h;
+    const auto crossings = scanlineCrossings(allRings(ws.free()), ys);
+    for (int j = 0; j < ny_; ++j) {
+      const auto& line = crossings[static_cast<std::size_t>(j)];
+      for (std::size_t k = 0; k + 1 < line.size(); k += 2) mark(j, line[k].x, line[k + 1].x, kFree | kReach);
+    }
+    // The reach: a disk of the tool's radius round each cell of F on its edge.
+    const int d = static_cast<int>(std::floor(r_ / h_));
+    std::vector<std::pair<int, int>> disk;
+    for (int dj = -d; dj <= d; ++dj)
+      for (int di = -d; di <= d; ++di)
+        if ((di * di + dj * dj) * h_ * h_ <= r_ * r_) disk.emplace_back(di, dj);
+    for (int j = 1; j + 1 < ny_; ++j)
+      for (int i = 1; i + 1 < nx_; ++i) {
+        if (!(cells_[index(i, j)] & kFree)) continue;
+        if ((cells_[index(i - 1, j)] & kFree) && (cells_[index(i + 1, j)] & kFree) && (cells_[index(i, j - 1)] & kFree) &&
+            (cells_[index(i, j + 1)] & kFree))
+          continue;
+        for (const auto& [di, dj] : disk)
+          if (i + di >= 0 && i + di < nx_ && j + dj >= 0 && j + dj < ny_) cells_[index(i + di, j + dj)] |= kReach;
+      }
+  }
+  /// Marks what `path` paints (its arcs drawn with chords within a tenth of a cell).
+  void paint(const Path& path) {
+    for (auto& cell : cells_) cell &= static_cast<std::uint8_t>(~kPainted);
+    for (const std::vector<Point>& run : paintedRuns(path, 0.1 * h_)) {
+      if (run.size() == 1) capsule(run[0], run[0]);
+      for (std::size_t i = 0; i + 1 < run.size(); ++i) capsule(run[i], run[i + 1]);
+    }
+  }
+  /// The reach's area, counted in cells (m²).
+  double reach() const {
+    std::size_t count = 0;
+    for (std::uint8_t cell : cells_) count += (cell & kReach) != 0;
+    return static_cast<double>(count) * h_ * h_;
+  }
+  /// The painted area, counted in cells of the reach (m²).
+  double painted() const {
+    std::size_t count = 0;
+    for (std::uint8_t cell : cells_) count += (cell & kReach) && (cell & kPainted);
+    return static_cast<double>(count) * h_ * h_;
+  }
+  /// Passes through each piece of the reach left unpainted (4-connected cells) of at least
+  /// `min_area`: lines along the piece's long axis (the principal axis of its cells), a spacing
+  /// apart and centred on it, as many as its width across them needs; each stretch of a line whose
+  /// points lie in F and within half a tool radius of the piece is a pass, kept when it runs at
+  /// least `min_pass` and the workspace finds it free (its ends moved in by up to 3 cells
+  /// otherwise), and for a forward-only car when it leaves room to turn out of both ends
+  /// (leaveRoomToTurn).
+  std::vector<CarRow> passes(Workspace& ws, double spacing, double min_area, double rho, bool forward_only, double min_pass) {
+    std::vector<CarRow> out;
+    std::vector<int> piece(cells_.size(), -1);
+    std::vector<std::size_t> stack, members;
+    int pieces = 0;
+    for (std::size_t seed = 0; seed < cells_.size(); ++seed) {
+      if (!open(seed) || piece[seed] >= 0) continue;
+      members.clear();
+      piece[seed] = pieces;
+      stack.assign(1, seed);
+      while (!stack.empty()) {
+        const std::size_t c = stack.back();
+        stack.pop_back();
+        members.push_back(c);
+        const int i = static_cast<int>(c % static_cast<std::size_t>(nx_)), j = static_cast<int>(c / static_cast<std::size_t>(nx_));
+        for (const auto& [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+          if (i + di < 0 || i + di >= nx_ || j + dj < 0 || j + dj >= ny_) continue;
+          const std::size_t d = index(i + di, j + dj);
+          if (open(d) && piece[d] < 0) {
+            piece[d] = pieces;
+            stack.push_back(d);
+          }
+        }
+      }
+      const int id = pieces++;
+      if (static_cast<double>(members.size()) * h_ * h_ < min_area) continue;
+      // The principal axis of the piece's cells.
+      double sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
+      for (std::size_t c : members) {
+        const Point p = centre(c) - origin_;
+        sx += p.x, sy += p.y, sxx += p.x * p.x, syy += p.y * p.y, sxy += p.x * p.y;
+      }
+      const double n = static_cast<double>(members.size()), cx = sx / n, cy = sy / n;
+      const double axis = 0.5 * std::atan2(2.0 * (sxy / n - cx * cy), (sxx / n - cx * cx) - (syy / n - cy * cy));
+      const std::size_t before = out.size();
+      for (int turn = 0; turn < 2 && out.size() == before; ++turn) {
+      const double theta = axis + turn * M_PI / 2.0;
+      const Point u{std::cos(theta), std::sin(theta)}, v{-u.y, u.x};
+      double lo_u = INFINITY, hi_u = -INFINITY, lo_v = INFINITY, hi_v = -INFINITY;
+      for (std::size_t c : members) {
+        const Point p = centre(c);
+        lo_u = std::min(lo_u, dot(p, u)), hi_u = std::max(hi_u, dot(p, u));
+        lo_v = std::min(lo_v, dot(p, v)), hi_v = std::max(hi_v, dot(p, v));
+      }
+      lo_v -= h_ / 2.0, hi_v += h_ / 2.0;
+      const int lines = std::max(1, static_cast<int>(std::ceil((hi_v - lo_v) / spacing - 1e-9)));
+      const int near = static_cast<int>(std::ceil(0.5 * r_ / h_));
+      // A piece one line wide whose middle line gives no pass (it lies beyond F's edge, along a
+      // wall or an obstacle): that line moved across by half a tool radius, then a whole one.
+      const int tries = lines == 1 ? 5 : lines;
+      for (int line = 0; line < tries; ++line) {
+        if (lines == 1 && out.size() > before) break;
+        const double shift = lines == 1 ? (line == 0 ? 0.0 : (line % 2 ? 1.0 : -1.0) * ((line + 1) / 2) * 0.5 * r_) : 0.0;
+        const double at_v = (lo_v + hi_v) / 2.0 + (lines == 1 ? shift : (line - (lines - 1) / 2.0) * spacing);
+        // Samples every half cell from a tool radius before the piece to a tool radius after it.
+        const double step = h_ / 2.0;
+        const int samples = static_cast<int>(std::ceil((hi_u - lo_u + 2.0 * r_) / step)) + 1;
+        int first = -1;
+        for (int k = 0; k <= samples; ++k) {
+          const Point p = u * (lo_u - r_ + k * step) + v * at_v;
+          const bool in = k < samples && inFree(p) && nearPiece(p, piece, id, near);
+          if (in && first < 0) first = k;
+          if (in || first < 0) continue;
+          Point a = u * (lo_u - r_ + first * step) + v * at_v, b = u * (lo_u - r_ + (k - 1) * step) + v * at_v;
+          first = -1;
+          for (int shrink = 0; shrink < 3 && distance(a, b) >= min_pass && !ws.router().isFree(a, b); ++shrink) {
+            a = a + u * h_;
+            b = b - u * h_;
+          }
+          if (distance(a, b) < min_pass || dot(b - a, u) <= 0.0 || !ws.router().isFree(a, b)) continue;
+          if (forward_only && !leaveRoomToTurn(ws, a, b, rho, rho, rho, min_pass)) continue;
+          out.push_back({a, b, 0, false});
+        }
+      }
+      }
+    }
+    return out;
+  }
+
+ private:
+  static constexpr std::uint8_t kReach = 1, kFree = 2, kPainted = 4;
+  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i); }
+  Point centre(std::size_t c) const {
+    return origin_ + Point{(static_cast<double>(c % static_cast<std::size_t>(nx_)) + 0.5) * h_,
+                           (static_cast<double>(c / static_cast<std::size_t>(nx_)) + 0.5) * h_};
+  }
+  bool open(std::size_t c) const { return (cells_[c] & kReach) && !(cells_[c] & kPainted); }
+  bool cellOf(Point p, int& i, int& j) const {
+    i = static_cast<int>(std::floor((p.x - origin_.x) / h_));
+    j = static_cast<int>(std::floor((p.y - origin_.y) / h_));
+    return i >= 0 && i < nx_ && j >= 0 && j < ny_;
+  }
+  bool inFree(Point p) const {
+    int i = 0, j = 0;
+    return cellOf(p, i, j) && (cells_[index(i, j)] & kFree);
+  }
+  /// Whether a cell of piece `id` lies within `near` cells of p's.
+  bool nearPiece(Point p, const std::vector<int>& piece, int id, int near) const {
+    int i = 0, j = 0;
+    cellOf(p, i, j);
+    for (int dj = -near; dj <= near; ++dj)
+      for (int di = -near; di <= near; ++di)
+        if (i + di >= 0 && i + di < nx_ && j + dj >= 0 && j + dj < ny_ && piece[index(i + di, j + dj)] == id) return true;
+    return false;
+  }
+  /// Sets `bit` on the cells of row j whose centres lie in [x0, x1].
+  void mark(int j, double x0, double x1, std::uint8_t bit) {
+    const int i0 = std::max(0, static_cast<int>(std::ceil((x0 - origin_.x) / h_ - 0.5)));
+    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((x1 - origin_.x) / h_ - 0.5)));
+    for (int i = i0; i <= i1; ++i) cells_[index(i, j)] |= bit;
+  }
+  /// Paints the capsule of the tool's radius round the segment p-q: per row, the span of the two
+  /// end disks and the rectangle between them (their union is convex).
+  void capsule(Point p, Point q) {
+    const double len = distance(p, q);
+    const Point nrm = len > 0.0 ? Point{-(q.y - p.y) / len, (q.x - p.x) / len} * r_ : Point{0.0, 0.0};
+    const Point quad[4] = {p + nrm, q + nrm, q - nrm, p - nrm};
+    const int j0 = std::max(0, static_cast<int>(std::ceil((std::min(p.y, q.y) - r_ - origin_.y) / h_ - 0.5)));
+    const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((std::max(p.y, q.y) + r_ - origin_.y) / h_ - 0.5)));
+    for (int j = j0; j <= j1; ++j) {
+      const double y = origin_.y + (j + 0.5) * h_;
+      double lo = INFINITY, hi = -INFINITY;
+      for (const Point& c : {p, q}) {
+        const double dy = y - c.y;
+        if (std::fabs(dy) > r_) continue;
+        const double half = std::sqrt(r_ * r_ - dy * dy);
+        lo = std::min(lo, c.x - half), hi = std::max(hi, c.x + half);
+      }
+      if (len > 0.0)
+        for (int e = 0; e < 4; ++e) {
+          const Point a = quad[e], b = quad[(e + 1) % 4];
+          if ((a.y - y) * (b.y - y) > 0.0 || a.y == b.y) continue;
+          const double x = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
+          lo = std::min(lo, x), hi = std::max(hi, x);
+        }
+      if (lo <= hi) mark(j, lo, hi, kPainted);
+    }
+  }
+
+  double h_, r_;
+  Point origin_;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::uint8_t> cells_;
+};
+
+double pathLength(const Path& path) {
+  double length = 0.0;
+  for (std::size_t k = 0; k < path.segments(); ++k) length += segmentLength(path, k);
+  return length;
+}
+
+/// Whether a fill round that paints `gained` m² more for `driven` m more path is kept: it paints
+/// at least kFillMinYield of a band one spacing wide along what it adds (and something).
+bool worthIt(double gained, double driven, double spacing) {
+  return gained > 0.0 && gained >= kFillMinYield * spacing * std::max(driven, 0.0);
+}
+
+/// The sweep's reason: rows left out, the rings' skipped segments, a dead end at the end.
+void describe(CarSweep& out) {
   char buf[240];
   if (out.unreached > 0) {
     std::snprintf(buf, sizeof buf, "%s%zu of %zu rows left out: no curve of the car reached them", out.timed_out ? "time ran out; " : "",
@@ -980,6 +1264,80 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   if (out.headland.stopped)
     out.reason += std::string(out.reason.empty() ? "" : "; ") + "the rings stop where no curve the car can drive reaches further (the rest of them left out)";
   if (out.ended_in_dead_end) out.reason += std::string(out.reason.empty() ? "" : "; ") + "the last row is a dead end the car cannot come out of";
+}
+
+}  // namespace
+
+CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& given, double spacing,
+                  const Budget& budget, bool fill, double line_penalty) {
+  CarSweep out = sweepOnce(ws, rings, loops, given, {}, spacing, budget, line_penalty);
+  // Fill rounds: passes through what the path leaves unpainted (PaintGrid::passes), driven from
+  // where it ends (before its last row, when that is a dead end: that row is taken again with
+  // them), or, where the car reaches none of them so, the whole sweep planned again with every
+  // round's passes taken last. A round is kept when what it paints more is worth the path it adds
+  // (worthIt); the rounds stop at the first that is not kept.
+  const VehicleModel& car = ws.vehicle();
+  const double rho = car.turn_radius * (1.0 + kCarRadiusSlack);
+  std::vector<CarRow> all;  // every round's passes
+  // Cells of a fifth of a spacing, at most about kFillMaxCells of them.
+  const Box box = boundingBox(ws.free());
+  const double cell = std::max(spacing / 5.0, std::sqrt((box.max_x - box.min_x + 1.0) * (box.max_y - box.min_y + 1.0) / kFillMaxCells));
+  std::optional<PaintGrid> grid;
+  int resweeps = 0;
+  for (int round = 0; fill && round < kFillRounds && !out.timed_out && out.path.segments() > 0 && !budget.expired(); ++round) {
+    if (!grid) grid.emplace(ws, cell);
+    grid->paint(out.path);
+    const double painted = grid->painted();
+    const std::vector<CarRow> passes = grid->passes(ws, spacing, kFillMinArea * spacing * spacing, rho, !car.reverse, kFillMinPass * spacing);
+    if (passes.empty()) break;
+    all.insert(all.end(), passes.begin(), passes.end());
+    Path start = out.path;
+    std::vector<CarRow> again;
+    if (out.ended_in_dead_end) {
+      start.waypoints.resize(out.dead_end_from);
+      start.tool_on.resize(out.dead_end_from - 1);
+      if (!start.bulge.empty()) start.bulge.resize(out.dead_end_from - 1);
+      again.push_back(out.dead_end_row);
+      again.back().row = false;
+    }
+    PathBuilder none(ws);
+    const CarSweep more = sweepOnce(ws, none, {}, again, passes, spacing, budget, line_penalty, &start);
+    const bool reached = !more.timed_out && more.fill_passes > 0;
+    bool reached_but_not_worth = false;
+    if (reached) {
+      grid->paint(more.path);
+      if (!worthIt(grid->painted() - painted, pathLength(more.path) - pathLength(out.path), spacing)) {
+        // Not worth it from there: the whole sweep again (it costs as much as the first), once,
+        // and only where much is left (PaintGrid::reach).
+        if (resweeps > 0 || painted > (1.0 - kFillResweepLeft) * grid->reach()) break;
+        reached_but_not_worth = true;
+      }
+    }
+    if (reached && !reached_but_not_worth) {
+      out.unreached += more.unreached;
+      out.path = more.path;
+      out.links = out.links + more.links - (again.empty() ? 0 : 1);  // the link into the row taken again
+      out.routed += more.routed;
+      out.searched += more.searched;
+      out.cusps += more.cusps;
+      out.backtracks += more.backtracks;
+      out.undriven_m += more.undriven_m;
+      out.fill_passes += more.fill_passes;
+      out.ended_in_dead_end = more.ended_in_dead_end;
+      out.dead_end_from = more.dead_end_from;
+      out.dead_end_row = more.dead_end_row;
+      continue;
+    }
+    ++resweeps;
+    PathBuilder other(ws);
+    CarSweep again_whole = sweepOnce(ws, other, loops, given, all, spacing, budget, line_penalty);
+    if (again_whole.timed_out || again_whole.fill_passes == 0) break;
+    grid->paint(again_whole.path);
+    if (!worthIt(grid->painted() - painted, pathLength(again_whole.path) - pathLength(out.path), spacing)) break;
+    rings = other;
+    out = std::move(again_whole);
+  }
+  describe(out);
   return out;
 }
 
@@ -998,6 +1356,7 @@ void recordCarSweep(PlanResult& result, const CarSweep& sweep) {
   result.stats["car_skipped_segments"] = static_cast<double>(sweep.headland.skipped);
   result.stats["car_ring_searched_skips"] = static_cast<double>(sweep.headland.searched);
   result.stats["car_ring_passes"] = static_cast<double>(sweep.ring_passes);
+  result.stats["car_fill_passes"] = static_cast<double>(sweep.fill_passes);
   result.stats["car_undriven_m"] = sweep.headland.cut_m + sweep.undriven_m;
   if (sweep.unreached > 0 || sweep.timed_out || sweep.headland.stopped) {
     if (result.status == PlanStatus::Ok) result.status = PlanStatus::Partial;

@@ -17,14 +17,15 @@
 namespace coverbench {
 
 /// What a sweep planner does for a car (its parameter `car_plan`): plan for the car itself
-/// (headland rings and turn-aware rows, the default), or plan for a tool that turns on the spot
-/// and have runPlanner smooth the path (the baseline every planner has).
-enum class CarPlan { Headland, Smoothed };
+/// (headland rings and turn-aware rows, then fill rounds: the default), the same without the fill
+/// rounds, or plan for a tool that turns on the spot and have runPlanner smooth the path (the
+/// baseline every planner has).
+enum class CarPlan { Headland, HeadlandNoFill, Smoothed };
 /// The parameter `car_plan`, as sweep planners declare it (PlannerInfo::plans_for_car).
 ParamSpec carPlanParam();
 inline const std::vector<std::pair<std::string, CarPlan>>& carPlanChoices() {
-  static const std::vector<std::pair<std::string, CarPlan>> choices{{"headland", CarPlan::Headland},
-                                                                    {"smoothed", CarPlan::Smoothed}};
+  static const std::vector<std::pair<std::string, CarPlan>> choices{
+      {"headland", CarPlan::Headland}, {"headland_no_fill", CarPlan::HeadlandNoFill}, {"smoothed", CarPlan::Smoothed}};
   return choices;
 }
 
@@ -88,6 +89,7 @@ struct CarSweep {
   CarSmoothing headland;        ///< the rings as the car drives them
   std::size_t rows = 0;         ///< rows given, and passes along what the rings' smoothing skipped
   std::size_t ring_passes = 0;  ///< of them, passes along what the rings' smoothing skipped
+  std::size_t fill_passes = 0;  ///< passes of the fill round driven (not in `rows`)
   std::size_t unreached = 0;    ///< rows no curve of the car reached (left out, said in `reason`)
   std::size_t unreached_rings = 0;  ///< rings no transit reached (coverRings)
   std::size_t links = 0;        ///< rows reached by one curve
@@ -99,6 +101,8 @@ struct CarSweep {
   bool timed_out = false;
   /// A forward-only car's last row is one it cannot come out of (the path ends there).
   bool ended_in_dead_end = false;
+  std::size_t dead_end_from = 0;  ///< then: the path's waypoints before the curve into that row
+  CarRow dead_end_row;            ///< and that row
   std::string reason;
 };
 
@@ -119,10 +123,13 @@ struct CarSweep {
 /// car, or else, for the nearest rows, a route searched over the car's own motions
 /// (searchCarRoute); when none leaves a row, the car goes back one row and marks that way in as a
 /// dead end. Where the rings end facing F's edge, their last stretch is cut short until a curve
-/// leaves it. The result is checked for the car's rules (std::logic_error on a slip).
+/// leaves it. Then (`fill`) fill rounds: what the path leaves unpainted is found on a raster (cells of a
+/// fifth of a spacing), each piece of it gets passes along its long axis, and the sweep goes on
+/// through them from where it ended (or, where it cannot, is planned again with them taken last),
+/// kept when it paints more. The result is checked for the car's rules (std::logic_error on a
+/// slip).
 CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& rows,
-                  double spacing,
-                  const Budget& budget, double line_penalty = 0.5);
+                  double spacing, const Budget& budget, bool fill = true, double line_penalty = 0.5);
 
 /// A sweep planner's plan for a car from its sweep (carSweep, whose rings `rings` built): the path
 /// turned back into the wall's frame by `angle` (radians), `headland_rings` and
