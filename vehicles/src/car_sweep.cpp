@@ -1085,12 +1085,13 @@ class PaintGrid {
     return static_cast<double>(count) * h_ * h_;
   }
   /// Passes through each piece of the reach left unpainted (4-connected cells) of at least
-  /// `min_area`: lines along the piece's long axis (the principal axis of its cells), a spacing
-  /// apart and centred on it, as many as its width across them needs; each stretch of a line whose
-  /// points lie in F and within half a tool radius of the piece is a pass, kept when it runs at
-  /// least `min_pass` and the workspace finds it free (its ends moved in by up to 3 cells
-  /// otherwise), and for a forward-only car when it leaves room to turn out of both ends
-  /// (leaveRoomToTurn).
+  /// `min_area`: lines along the piece's long axis (the principal axis of its cells; across it when
+  /// that gives no pass), a spacing apart and centred on it, as many as its width across them
+  /// needs (a piece one line wide whose middle line gives none: that line moved across); each
+  /// stretch of a line whose points lie in F and within half a tool radius of the piece is a pass,
+  /// kept when it runs at least `min_pass` and the workspace finds it free (its ends moved in by up
+  /// to 3 cells otherwise), and for a forward-only car when it leaves room to turn out of both
+  /// ends (leaveRoomToTurn).
   std::vector<CarRow> passes(Workspace& ws, double spacing, double min_area, double rho, bool forward_only, double min_pass) {
     std::vector<CarRow> out;
     std::vector<int> piece(cells_.size(), -1);
@@ -1127,44 +1128,44 @@ class PaintGrid {
       const double axis = 0.5 * std::atan2(2.0 * (sxy / n - cx * cy), (sxx / n - cx * cx) - (syy / n - cy * cy));
       const std::size_t before = out.size();
       for (int turn = 0; turn < 2 && out.size() == before; ++turn) {
-      const double theta = axis + turn * M_PI / 2.0;
-      const Point u{std::cos(theta), std::sin(theta)}, v{-u.y, u.x};
-      double lo_u = INFINITY, hi_u = -INFINITY, lo_v = INFINITY, hi_v = -INFINITY;
-      for (std::size_t c : members) {
-        const Point p = centre(c);
-        lo_u = std::min(lo_u, dot(p, u)), hi_u = std::max(hi_u, dot(p, u));
-        lo_v = std::min(lo_v, dot(p, v)), hi_v = std::max(hi_v, dot(p, v));
-      }
-      lo_v -= h_ / 2.0, hi_v += h_ / 2.0;
-      const int lines = std::max(1, static_cast<int>(std::ceil((hi_v - lo_v) / spacing - 1e-9)));
-      const int near = static_cast<int>(std::ceil(0.5 * r_ / h_));
-      // A piece one line wide whose middle line gives no pass (it lies beyond F's edge, along a
-      // wall or an obstacle): that line moved across by half a tool radius, then a whole one.
-      const int tries = lines == 1 ? 5 : lines;
-      for (int line = 0; line < tries; ++line) {
-        if (lines == 1 && out.size() > before) break;
-        const double shift = lines == 1 ? (line == 0 ? 0.0 : (line % 2 ? 1.0 : -1.0) * ((line + 1) / 2) * 0.5 * r_) : 0.0;
-        const double at_v = (lo_v + hi_v) / 2.0 + (lines == 1 ? shift : (line - (lines - 1) / 2.0) * spacing);
-        // Samples every half cell from a tool radius before the piece to a tool radius after it.
-        const double step = h_ / 2.0;
-        const int samples = static_cast<int>(std::ceil((hi_u - lo_u + 2.0 * r_) / step)) + 1;
-        int first = -1;
-        for (int k = 0; k <= samples; ++k) {
-          const Point p = u * (lo_u - r_ + k * step) + v * at_v;
-          const bool in = k < samples && inFree(p) && nearPiece(p, piece, id, near);
-          if (in && first < 0) first = k;
-          if (in || first < 0) continue;
-          Point a = u * (lo_u - r_ + first * step) + v * at_v, b = u * (lo_u - r_ + (k - 1) * step) + v * at_v;
-          first = -1;
-          for (int shrink = 0; shrink < 3 && distance(a, b) >= min_pass && !ws.router().isFree(a, b); ++shrink) {
-            a = a + u * h_;
-            b = b - u * h_;
-          }
-          if (distance(a, b) < min_pass || dot(b - a, u) <= 0.0 || !ws.router().isFree(a, b)) continue;
-          if (forward_only && !leaveRoomToTurn(ws, a, b, rho, rho, rho, min_pass)) continue;
-          out.push_back({a, b, 0, false});
+        const double theta = axis + turn * M_PI / 2.0;
+        const Point u{std::cos(theta), std::sin(theta)}, v{-u.y, u.x};
+        double lo_u = INFINITY, hi_u = -INFINITY, lo_v = INFINITY, hi_v = -INFINITY;
+        for (std::size_t c : members) {
+          const Point p = centre(c);
+          lo_u = std::min(lo_u, dot(p, u)), hi_u = std::max(hi_u, dot(p, u));
+          lo_v = std::min(lo_v, dot(p, v)), hi_v = std::max(hi_v, dot(p, v));
         }
-      }
+        lo_v -= h_ / 2.0, hi_v += h_ / 2.0;
+        const int lines = std::max(1, static_cast<int>(std::ceil((hi_v - lo_v) / spacing - 1e-9)));
+        const int near = static_cast<int>(std::ceil(0.5 * r_ / h_));
+        // A piece one line wide whose middle line gives no pass (it lies beyond F's edge, along a
+        // wall or an obstacle): that line moved across by half a tool radius, then a whole one.
+        const int tries = lines == 1 ? 5 : lines;
+        for (int line = 0; line < tries; ++line) {
+          if (lines == 1 && out.size() > before) break;
+          const double shift = lines == 1 ? (line == 0 ? 0.0 : (line % 2 ? 1.0 : -1.0) * ((line + 1) / 2) * 0.5 * r_) : 0.0;
+          const double at_v = (lo_v + hi_v) / 2.0 + (lines == 1 ? shift : (line - (lines - 1) / 2.0) * spacing);
+          // Samples every half cell from a tool radius before the piece to a tool radius after it.
+          const double step = h_ / 2.0;
+          const int samples = static_cast<int>(std::ceil((hi_u - lo_u + 2.0 * r_) / step)) + 1;
+          int first = -1;
+          for (int k = 0; k <= samples; ++k) {
+            const Point p = u * (lo_u - r_ + k * step) + v * at_v;
+            const bool in = k < samples && inFree(p) && nearPiece(p, piece, id, near);
+            if (in && first < 0) first = k;
+            if (in || first < 0) continue;
+            Point a = u * (lo_u - r_ + first * step) + v * at_v, b = u * (lo_u - r_ + (k - 1) * step) + v * at_v;
+            first = -1;
+            for (int shrink = 0; shrink < 3 && distance(a, b) >= min_pass && !ws.router().isFree(a, b); ++shrink) {
+              a = a + u * h_;
+              b = b - u * h_;
+            }
+            if (distance(a, b) < min_pass || dot(b - a, u) <= 0.0 || !ws.router().isFree(a, b)) continue;
+            if (forward_only && !leaveRoomToTurn(ws, a, b, rho, rho, rho, min_pass)) continue;
+            out.push_back({a, b, 0, false});
+          }
+        }
       }
     }
     return out;
