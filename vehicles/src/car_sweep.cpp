@@ -118,11 +118,11 @@ Ring thinned(Workspace& ws, const Ring& ring, double deviation) {
   return out.size() >= 3 ? out : ring;
 }
 
-/// The length of a path's painted segments.
-double paintedLength(const Path& path) {
+/// The length of a path, or of its painted segments only.
+double pathLength(const Path& path, bool painted_only = false) {
   double length = 0.0;
   for (std::size_t k = 0; k < path.segments(); ++k)
-    if (path.tool_on[k]) length += segmentLength(path, k);
+    if (path.tool_on[k] || !painted_only) length += segmentLength(path, k);
   return length;
 }
 
@@ -495,7 +495,7 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
   // The rings start at their lowest vertex (coverRings). Where the car stops on them before it
   // drove half their length (they start in a pocket it cannot turn out of), they start again at
   // the start of that ring's longest edge, kept when the car paints more of them so.
-  if (out.headland.stopped && paintedLength(out.headland.path) < 0.5 * paintedLength(rings.path())) {
+  if (out.headland.stopped && pathLength(out.headland.path, true) < 0.5 * pathLength(rings.path(), true)) {
     const Point lowest = rings.path().waypoints.front();
     const auto first = std::find_if(thin.begin(), thin.end(), [&](const Ring& ring) {
       return std::find(ring.begin(), ring.end(), lowest) != ring.end();
@@ -509,7 +509,7 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
     if (first != thin.end()) other.moveTo((*first)[longest], false);
     const std::size_t unreached = coverRings(other, thin, 1.5 * spacing);
     CarSmoothing driven = smoothForCar(ws, other.path());
-    if (paintedLength(driven.path) > paintedLength(out.headland.path)) {
+    if (pathLength(driven.path, true) > pathLength(out.headland.path, true)) {
       rings = other;
       out.unreached_rings = unreached;
       out.headland = std::move(driven);
@@ -1236,12 +1236,6 @@ class PaintGrid {
   int nx_ = 0, ny_ = 0;
   std::vector<std::uint8_t> cells_;
 };
-
-double pathLength(const Path& path) {
-  double length = 0.0;
-  for (std::size_t k = 0; k < path.segments(); ++k) length += segmentLength(path, k);
-  return length;
-}
 
 /// Whether a fill round that paints `gained` m² more for `driven` m more path is kept: it paints
 /// at least kFillMinYield of a band one spacing wide along what it adds (and something).
