@@ -48,12 +48,6 @@ Path motionPath(Pose pose, double kappa, double length, Pose end) {
   return p;
 }
 
-/// The arc and its end pose.
-Path motion(Pose pose, double kappa, double length, Pose& end) {
-  end = motionEnd(pose, kappa, length);
-  return motionPath(pose, kappa, length, end);
-}
-
 /// Weighted A* over the car's motions from `from`: `estimate(pose)` guides it (0: by cost alone),
 /// `finish(pose, out)` ends it at a pose taken (true, with the last piece to append in `out`,
 /// possibly empty). The route as a path (tool off), or an empty path.
@@ -126,14 +120,16 @@ Path search(const Workspace& ws, Pose from, double radius, bool reverse, std::si
 }
 
 /// The full circle of radius `radius` the car drives turning left (or right) from `pose`.
+/// Four quarter turns, each as motionInto draws it.
 Path circle(Pose pose, double radius, bool left) {
+  const double kappa = (left ? 1.0 : -1.0) / radius, length = radius * M_PI / 2.0;
   Path p;
+  p.reserve(4);
   p.moveTo(pose.at, false);
   Pose at = pose;
   for (int k = 0; k < 4; ++k) {
-    Pose end;
-    const Path quarter = motion(at, (left ? 1.0 : -1.0) / radius, radius * M_PI / 2.0, end);
-    p.arcTo(quarter.waypoints.back(), quarter.bulgeOf(0), false);
+    const Pose end = motionEnd(at, kappa, length);
+    p.arcTo(end.at, std::tan(kappa * length / 4.0), false);
     at = end;
   }
   return p;

@@ -1007,13 +1007,14 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
   return out;
 }
 
-/// The path's painted stretches as polylines, its arcs drawn with chords within `tolerance`.
-std::vector<std::vector<Point>> paintedRuns(const Path& path, double tolerance) {
-  std::vector<std::vector<Point>> runs;
-  for (std::size_t i = 0; i < path.segments(); ++i) {
+/// Calls chord(p, q) for each piece of what the path paints from segment `first` on: its straight
+/// segments, and chords within `tolerance` of its arcs.
+template <class Chord>
+void forEachPaintedChord(const Path& path, double tolerance, std::size_t first, Chord&& chord) {
+  for (std::size_t i = first; i < path.segments(); ++i) {
     if (!path.tool_on[i]) continue;
     const Point a = path.waypoints[i], b = path.waypoints[i + 1];
-    if (i == 0 || !path.tool_on[i - 1]) runs.push_back({a});
+    Point from = a;
     if (effectiveBulge(a, b, path.bulgeOf(i)) != 0.0) {
       const ArcGeometry arc = arcGeometry(a, b, path.bulgeOf(i));
       const double step = 2.0 * std::acos(std::max(-1.0, 1.0 - tolerance / arc.radius));
@@ -1021,12 +1022,13 @@ std::vector<std::vector<Point>> paintedRuns(const Path& path, double tolerance) 
       const double start = std::atan2(a.y - arc.centre.y, a.x - arc.centre.x);
       for (int j = 1; j < k; ++j) {
         const double t = start + arc.sweep * j / k;
-        runs.back().push_back(arc.centre + Point{std::cos(t), std::sin(t)} * arc.radius);
+        const Point to = arc.centre + Point{std::cos(t), std::sin(t)} * arc.radius;
+        chord(from, to);
+        from = to;
       }
     }
-    runs.back().push_back(b);
+    chord(from, b);
   }
-  return runs;
 }
 
 /// A raster of F and of its painted reach (what lies within a tool radius of F), and what a path
@@ -1054,23 +1056,29 @@ class PaintGrid {
     for (int dj = -d; dj <= d; ++dj)
       for (int di = -d; di <= d; ++di)
         if ((di * di + dj * dj) * h_ * h_ <= r_ * r_) disk.emplace_back(di, dj);
-    for (int j = 1; j + 1 < ny_; ++j)
+    // A cell on F's edge: in F, with a 4-neighbour outside it (a row at a time, without branches).
+    std::vector<std::uint8_t> edge(static_cast<std::size_t>(nx_), 0);
+    for (int j = 1; j + 1 < ny_; ++j) {
+      const std::uint8_t* row = &cells_[index(0, j)];
+      const std::uint8_t *below = row - nx_, *above = row + nx_;
+      for (int i = 1; i + 1 < nx_; ++i)
+        edge[static_cast<std::size_t>(i)] = row[i] & static_cast<std::uint8_t>(~(row[i - 1] & row[i + 1] & below[i] & above[i])) & kFree;
       for (int i = 1; i + 1 < nx_; ++i) {
-        if (!(cells_[index(i, j)] & kFree)) continue;
-        if ((cells_[index(i - 1, j)] & kFree) && (cells_[index(i + 1, j)] & kFree) && (cells_[index(i, j - 1)] & kFree) &&
-            (cells_[index(i, j + 1)] & kFree))
-          continue;
+        if (!edge[static_cast<std::size_t>(i)]) continue;
         for (const auto& [di, dj] : disk)
           if (i + di >= 0 && i + di < nx_ && j + dj >= 0 && j + dj < ny_) cells_[index(i + di, j + dj)] |= kReach;
       }
+    }
   }
-  /// Marks what `path` paints (its arcs drawn with chords within a tenth of a cell).
+  /// Marks what `path` paints (its arcs drawn with chords within a tenth of a cell), and only that.
   void paint(const Path& path) {
     for (auto& cell : cells_) cell &= static_cast<std::uint8_t>(~kPainted);
-    for (const std::vector<Point>& run : paintedRuns(path, 0.1 * h_)) {
-      if (run.size() == 1) capsule(run[0], run[0]);
-      for (std::size_t i = 0; i + 1 < run.size(); ++i) capsule(run[i], run[i + 1]);
-    }
+    paintMore(path, 0);
+  }
+  /// Marks what `path` paints from segment `first` on, besides what is marked (a path painted
+  /// before, which this one goes on from: what a path paints is the union of its segments').
+  void paintMore(const Path& path, std::size_t first) {
+    forEachPaintedChord(path, 0.1 * h_, first, [&](Point p, Point q) { capsule(p, q); });
   }
   /// The reach's area, counted in cells (m²).
   double reach() const {
@@ -1280,8 +1288,11 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   std::optional<PaintGrid> grid;
   int resweeps = 0;
   for (int round = 0; fill && round < kFillRounds && !out.timed_out && out.path.segments() > 0 && !budget.expired(); ++round) {
-    if (!grid) grid.emplace(ws, cell);
-    grid->paint(out.path);
+    // The grid shows what out.path paints from the second round on (below).
+    if (!grid) {
+      grid.emplace(ws, cell);
+      grid->paint(out.path);
+    }
     const double painted = grid->painted();
     const std::vector<CarRow> passes = grid->passes(ws, spacing, kFillMinArea * spacing * spacing, rho, !car.reverse, kFillMinPass * spacing);
     if (passes.empty()) break;
@@ -1300,7 +1311,9 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     const bool reached = !more.timed_out && more.fill_passes > 0;
     bool reached_but_not_worth = false;
     if (reached) {
-      grid->paint(more.path);
+      // The continuation is out.path and more, unless it left out the dead-end last row.
+      if (again.empty()) grid->paintMore(more.path, out.path.segments());
+      else grid->paint(more.path);
       if (!worthIt(grid->painted() - painted, pathLength(more.path) - pathLength(out.path), spacing)) {
         // Not worth it from there: the whole sweep again (it costs as much as the first), once,
         // and only where much is left (PaintGrid::reach).
