@@ -1058,6 +1058,27 @@ TEST(CarSweep, FillRoundsPaintWhatTheRowsLeftWhereItIsWorthTheDriving) {
   EXPECT_EQ(open_filled.path.waypoints, open_bare.path.waypoints);
 }
 
+TEST(CarSweep, RingsThatEndWhereNoRowIsReachedBecomePassesTakenWithTheRows) {
+  // residential-s5-0003: the rings end in the strip right of the window and the radiator, 0.28 m
+  // wide, where a forward-only car of R = 0.3 m cannot turn; from there no row was reached (0.081
+  // of R painted by zigzag, 0.074 by spiral). random-s5-0002: the rings start in a neck between
+  // obstacles and stop there (0.0005). The sweep is planned again with the rings as passes, the
+  // car starting along their longest segment (either way).
+  for (const auto& [family, index, planner, floor] :
+       std::vector<std::tuple<std::string, std::size_t, std::string, double>>{{"residential", 3, "zigzag", 0.7},
+                                                                              {"residential", 3, "spiral", 0.65},
+                                                                              {"random", 2, "zigzag", 0.65}}) {
+    SCOPED_TRACE(family + " " + planner);
+    const Wall wall = generateWall(family, 5, index);
+    const PlanResult plan = carPlanOf(planner, wall, false);
+    const PathMetrics m = computeMetrics(wall, kTool, plan.path, car(0.3, false));
+    EXPECT_TRUE(m.validity.valid) << m.validity.violations << " " << m.validity.not_drivable;
+    EXPECT_EQ(plan.stats.at("car_rings_as_passes"), 1.0);
+    EXPECT_NE(plan.reason.find("the rings were taken as passes with the rows"), std::string::npos) << plan.reason;
+    EXPECT_LT(plan.stats.at("car_rows_unreached"), plan.stats.at("car_rows"));
+    EXPECT_GE(m.coverage.coverage_reachable, floor);
+  }
+}
 
 }  // namespace
 }  // namespace coverbench

@@ -201,7 +201,7 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "spiral";
-  info.version = "8";
+  info.version = "9";
   info.code_folders = {"spiral"};
   info.summary = "Concentric passes offset inward from the free region's boundary, around obstacles, centre covered";
   info.reference = "Held, On the Computational Geometry of Pocket Machining, LNCS 500, 1991";

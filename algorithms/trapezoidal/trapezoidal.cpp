@@ -7,7 +7,7 @@ namespace coverbench::trapezoidal {
 PlannerInfo info() {
   PlannerInfo info = decomposition::plannerInfo(decomposition::Kind::Trapezoidal);
   info.name = "trapezoidal";
-  info.version = std::string("11");  // not = "11": GCC 12 warns falsely (-Wrestrict) on that assignment here
+  info.version = std::string("12");  // not = "12": GCC 12 warns falsely (-Wrestrict) on that assignment here
   info.code_folders = {"trapezoidal", "decomposition"};
   info.summary = "Trapezoidal decomposition of the free region (a cell boundary through every corner), cells ordered "
                  "by a TSP tour and covered by back-and-forth passes";

@@ -262,7 +262,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
 PlannerInfo info() {
   PlannerInfo info;
   info.name = "zigzag";
-  info.version = std::string("14");  // not = "14": GCC 12 warns falsely (-Wrestrict) on that assignment here
+  info.version = std::string("15");  // not = "15": GCC 12 warns falsely (-Wrestrict) on that assignment here
   info.code_folders = {"zigzag"};
   info.summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes";
   info.reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013";

@@ -483,7 +483,7 @@ namespace {
 /// the sweep goes on from the end of that path (a fill round), which it never cuts back.
 CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& given,
                    const std::vector<CarRow>& fill, double spacing, const Budget& budget, double line_penalty,
-                   const Path* from = nullptr) {
+                   const Path* from = nullptr, int rings_as_passes = 0) {
   const VehicleModel& car = ws.vehicle();
   const double rho = car.turn_radius * (1.0 + kCarRadiusSlack);
   CarSweep out;
@@ -491,7 +491,7 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
   std::vector<Ring> thin;
   for (const Ring& ring : loops) thin.push_back(thinned(ws, ring, 0.03 * spacing));
   out.unreached_rings = coverRings(rings, thin, 1.5 * spacing);
-  if (rings.path().segments() > 0) out.headland = smoothForCar(ws, rings.path());
+  if (rings.path().segments() > 0 && !rings_as_passes) out.headland = smoothForCar(ws, rings.path());
   // The rings start at their lowest vertex (coverRings). Where the car stops on them before it
   // drove half their length (they start in a pocket it cannot turn out of), they start again at
   // the start of that ring's longest edge, kept when the car paints more of them so.
@@ -514,6 +514,24 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
       out.unreached_rings = unreached;
       out.headland = std::move(driven);
     }
+  }
+  if (rings_as_passes && rings.path().segments() > 0) {
+    // The car starts along the rings' longest segment (where they start may be a pocket too),
+    // driven as the rings drive it (rings_as_passes 1) or the other way (2), and every other
+    // painted segment of them is a pass ordered with the rows (below): where the rings lead it
+    // into a pocket no row is reached from, the rows come first.
+    const Path& planned = rings.path();
+    std::size_t longest = 0;
+    for (std::size_t k = 1; k < planned.segments(); ++k)
+      if (planned.tool_on[k] && segmentLength(planned, k) > segmentLength(planned, longest)) longest = k;
+    CarSmoothing start;
+    const bool backwards = rings_as_passes == 2;
+    start.path.moveTo(planned.waypoints[backwards ? longest + 1 : longest], false);
+    start.path.moveTo(planned.waypoints[backwards ? longest : longest + 1], true);
+    for (std::size_t k = 0; k < planned.segments(); ++k)
+      if (planned.tool_on[k] && k != longest) start.undriven.emplace_back(planned.waypoints[k], planned.waypoints[k + 1]);
+    out.headland = std::move(start);
+    out.rings_as_passes = rings_as_passes;
   }
   out.path = from ? *from : out.headland.path;
   // What the rings' smoothing skipped (a ring bent round a socket tighter than the car turns, a
@@ -1266,6 +1284,9 @@ void describe(CarSweep& out) {
   }
   if (out.headland.stopped)
     out.reason += std::string(out.reason.empty() ? "" : "; ") + "the rings stop where no curve the car can drive reaches further (the rest of them left out)";
+  if (out.rings_as_passes > 0)
+    out.reason += std::string(out.reason.empty() ? "" : "; ") +
+                  "no row was reached from the rings' end: the rings were taken as passes with the rows";
   if (out.ended_in_dead_end) out.reason += std::string(out.reason.empty() ? "" : "; ") + "the last row is a dead end the car cannot come out of";
 }
 
@@ -1274,18 +1295,36 @@ void describe(CarSweep& out) {
 CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& given, double spacing,
                   const Budget& budget, bool fill, double line_penalty) {
   CarSweep out = sweepOnce(ws, rings, loops, given, {}, spacing, budget, line_penalty);
+  const VehicleModel& car = ws.vehicle();
+  const double rho = car.turn_radius * (1.0 + kCarRadiusSlack);
+  // Cells of a fifth of a spacing, at most about kFillMaxCells of them.
+  const Box box = boundingBox(ws.free());
+  const double cell = std::max(spacing / 5.0, std::sqrt((box.max_x - box.min_x + 1.0) * (box.max_y - box.min_y + 1.0) / kFillMaxCells));
+  std::optional<PaintGrid> grid;
+  // No row reached from where the rings end (a pocket the car cannot turn out of, and giving up
+  // their end did not get it out): the sweep again with the rings as passes ordered with the
+  // rows (sweepOnce's rings_as_passes), kept when it paints more.
+  for (int way = 1; way <= 2 && out.rows > 0 && out.unreached == out.rows && !out.timed_out && !budget.expired() && !loops.empty(); ++way) {
+    PathBuilder other(ws);
+    CarSweep passes_first = sweepOnce(ws, other, loops, given, {}, spacing, budget, line_penalty, nullptr, way);
+    if (passes_first.timed_out || passes_first.unreached == passes_first.rows) continue;
+    if (!grid) grid.emplace(ws, cell);
+    grid->paint(out.path);
+    const double painted = grid->painted();
+    grid->paint(passes_first.path);
+    if (grid->painted() > painted) {
+      rings = other;
+      out = std::move(passes_first);
+    } else {
+      grid->paint(out.path);
+    }
+  }
   // Fill rounds: passes through what the path leaves unpainted (PaintGrid::passes), driven from
   // where it ends (before its last row, when that is a dead end: that row is taken again with
   // them), or, where the car reaches none of them so, the whole sweep planned again with every
   // round's passes taken last. A round is kept when what it paints more is worth the path it adds
   // (worthIt); the rounds stop at the first that is not kept.
-  const VehicleModel& car = ws.vehicle();
-  const double rho = car.turn_radius * (1.0 + kCarRadiusSlack);
   std::vector<CarRow> all;  // every round's passes
-  // Cells of a fifth of a spacing, at most about kFillMaxCells of them.
-  const Box box = boundingBox(ws.free());
-  const double cell = std::max(spacing / 5.0, std::sqrt((box.max_x - box.min_x + 1.0) * (box.max_y - box.min_y + 1.0) / kFillMaxCells));
-  std::optional<PaintGrid> grid;
   int resweeps = 0;
   for (int round = 0; fill && round < kFillRounds && !out.timed_out && out.path.segments() > 0 && !budget.expired(); ++round) {
     // The grid shows what out.path paints from the second round on (below).
@@ -1338,7 +1377,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     }
     ++resweeps;
     PathBuilder other(ws);
-    CarSweep again_whole = sweepOnce(ws, other, loops, given, all, spacing, budget, line_penalty);
+    CarSweep again_whole = sweepOnce(ws, other, loops, given, all, spacing, budget, line_penalty, nullptr, out.rings_as_passes);
     if (again_whole.timed_out || again_whole.fill_passes == 0) break;
     grid->paint(again_whole.path);
     if (!worthIt(grid->painted() - painted, pathLength(again_whole.path) - pathLength(out.path), spacing)) break;
@@ -1357,6 +1396,7 @@ void recordCarSweep(PlanResult& result, const CarSweep& sweep) {
   result.stats["car_searched_links"] = static_cast<double>(sweep.searched);
   result.stats["car_ends_in_dead_end"] = sweep.ended_in_dead_end ? 1.0 : 0.0;
   result.stats["car_rings_stopped"] = sweep.headland.stopped ? 1.0 : 0.0;
+  result.stats["car_rings_as_passes"] = sweep.rings_as_passes > 0 ? 1.0 : 0.0;
   result.stats["car_backtracks"] = static_cast<double>(sweep.backtracks);
   result.stats["car_cusps"] = static_cast<double>(sweep.cusps + sweep.headland.cusps);
   result.stats["car_ring_fillets"] = static_cast<double>(sweep.headland.fillets);

@@ -99,6 +99,10 @@ struct CarSweep {
   std::size_t backtracks = 0;   ///< rows driven into and given up (no curve left them)
   double undriven_m = 0.0;      ///< row length a routed link's turn replaced (tool off)
   bool timed_out = false;
+  /// The rings were not driven first: from their end no row was reached, so they became passes
+  /// ordered with the rows, the car starting along their longest segment the way they drive it
+  /// (1) or the other way (2); 0: the rings first.
+  int rings_as_passes = 0;
   /// A forward-only car's last row is one it cannot come out of (the path ends there).
   bool ended_in_dead_end = false;
   std::size_t dead_end_from = 0;  ///< then: the path's waypoints before the curve into that row
@@ -123,7 +127,9 @@ struct CarSweep {
 /// car, or else, for the nearest rows, a route searched over the car's own motions
 /// (searchCarRoute); when none leaves a row, the car goes back one row and marks that way in as a
 /// dead end. Where the rings end facing F's edge, their last stretch is cut short until a curve
-/// leaves it. Then (`fill`) fill rounds: what the path leaves unpainted is found on a raster (cells of a
+/// leaves it. Where no row is reached from where they end, the sweep is planned again with the
+/// rings as passes taken with the rows, the car starting along their longest segment (either way;
+/// CarSweep::rings_as_passes), kept when it paints more. Then (`fill`) fill rounds: what the path leaves unpainted is found on a raster (cells of a
 /// fifth of a spacing), each piece of it gets passes along its long axis, and the sweep goes on
 /// through them from where it ended (or, where it cannot, is planned again with them taken last),
 /// kept when it paints more. The result is checked for the car's rules (std::logic_error on a
