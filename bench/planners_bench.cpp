@@ -107,8 +107,8 @@ const bool kRegistered = [] {
                                std::string("boustrophedon"), std::string("bench/field_100m_15_buildings"),
                                Settings{{"direction_search", "true"}}, 3.0, 0.0)
       ->Unit(benchmark::kMillisecond);
-  // Planning for a car: zigzag's own plan and its smoothed baseline; boustrophedon's own plan.
-  for (const std::string planner : {"zigzag", "boustrophedon"})
+  // Planning for a car: each car-aware planner's own plan (zigzag's smoothed baseline too).
+  for (const std::string planner : {"zigzag", "boustrophedon", "trapezoidal", "spiral"})
     for (const bool reverse : {false, true})
       for (const char* car_plan : {"headland", "smoothed"}) {
         if (planner != "zigzag" && std::string(car_plan) == "smoothed") continue;

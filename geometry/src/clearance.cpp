@@ -112,8 +112,10 @@ ClearanceField::ClearanceField(const Wall& wall) : wall_(&wall) {
       obstacle_boxes_.push_back(boundingBox(o.polygon));
     }
   }
-  // A grid pays off only past a few dozen obstacles; aim at about one obstacle per bucket.
-  if (obstacle_boxes_.size() < 32) return;
+  // A grid pays off from about 8 obstacles (the 24-window facade's car zigzag plan: 7.5 % fewer
+  // instructions than a scan of every box; walls of 3-5 obstacles within 0.3 % either way); aim
+  // at about one obstacle per bucket.
+  if (obstacle_boxes_.size() < 8) return;
   for (const Box& b : obstacle_boxes_) grid_box_.add({b.min_x, b.min_y}), grid_box_.add({b.max_x, b.max_y});
   const double area = std::max(grid_box_.width() * grid_box_.height(), 1e-12);
   grid_cell_ = std::max({std::sqrt(area / static_cast<double>(obstacle_boxes_.size())), grid_box_.width() / 512.0,

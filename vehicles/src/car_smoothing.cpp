@@ -151,10 +151,13 @@ DubinsWords dubinsWords(double d, double alpha, double beta) {
 /// thousand).
 constexpr std::size_t kCurveSegments = 16;
 
-/// The curve of `primitives` from `from`: its path, and whether it arrives at `to`.
+/// The curve of `primitives` from `from` into `out` (emptied first, its room kept: curves are
+/// built by the ten thousand), and whether it arrives at `to`.
 template <class Word>
-Path drive(Pose from, Pose to, const Word& primitives, double radius, bool tool, bool& arrives) {
-  Path out;
+void drive(Pose from, Pose to, const Word& primitives, double radius, bool tool, Path& out, bool& arrives) {
+  out.waypoints.clear();
+  out.tool_on.clear();
+  out.bulge.clear();
   out.reserve(kCurveSegments);
   out.moveTo(from.at, tool);
   Pose pose = from;
@@ -162,7 +165,6 @@ Path drive(Pose from, Pose to, const Word& primitives, double radius, bool tool,
   // Within 1e-9 m (and a fifth of the heading tolerance: the pieces left out turn at most 1e-6 rad).
   arrives = distance(pose.at, to.at) <= 1e-9 * (1.0 + radius) &&
             std::fabs(angleBetween(pose.heading, to.heading)) <= kCarHeadingTolerance / 5.0;
-  return out;
 }
 
 }  // namespace
@@ -174,7 +176,8 @@ template <class Words>
 Path firstArriving(Pose from, Pose to, const Words& words, double radius, bool reverse, bool tool) {
   for (const auto& primitives : words) {
     bool arrives = false;
-    const Path out = drive(from, to, primitives, radius, tool, arrives);
+    thread_local Path out;
+    drive(from, to, primitives, radius, tool, out, arrives);
     if (!arrives) continue;
     // End exactly at `to` (the last chord moves by rounding), without segments of rounding
     // length, whose direction means nothing.
