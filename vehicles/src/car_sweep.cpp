@@ -1304,20 +1304,24 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   // No row reached from where the rings end (a pocket the car cannot turn out of, and giving up
   // their end did not get it out): the sweep again with the rings as passes ordered with the
   // rows (sweepOnce's rings_as_passes), kept when it paints more.
-  for (int way = 1; way <= 2 && out.rows > 0 && out.unreached == out.rows && !out.timed_out && !budget.expired() && !loops.empty(); ++way) {
-    PathBuilder other(ws);
-    CarSweep passes_first = sweepOnce(ws, other, loops, given, {}, spacing, budget, line_penalty, nullptr, way);
-    if (passes_first.timed_out || passes_first.unreached == passes_first.rows) continue;
-    if (!grid) grid.emplace(ws, cell);
-    grid->paint(out.path);
-    const double painted = grid->painted();
-    grid->paint(passes_first.path);
-    if (grid->painted() > painted) {
-      rings = other;
-      out = std::move(passes_first);
-    } else {
-      grid->paint(out.path);
+  if (out.rows > 0 && out.unreached == out.rows && !loops.empty()) {
+    std::optional<double> painted;  // what out.path paints, measured once
+    for (int way = 1; way <= 2 && out.rings_as_passes == 0 && !out.timed_out && !budget.expired(); ++way) {
+      PathBuilder other(ws);
+      CarSweep passes_first = sweepOnce(ws, other, loops, given, {}, spacing, budget, line_penalty, nullptr, way);
+      if (passes_first.timed_out || passes_first.unreached == passes_first.rows) continue;
+      if (!grid) grid.emplace(ws, cell);
+      if (!painted) {
+        grid->paint(out.path);
+        painted = grid->painted();
+      }
+      grid->paint(passes_first.path);
+      if (grid->painted() > *painted) {
+        rings = other;
+        out = std::move(passes_first);
+      }
     }
+    if (grid && out.rings_as_passes == 0) grid->paint(out.path);  // the fill rounds start from out.path's paint
   }
   // Fill rounds: passes through what the path leaves unpainted (PaintGrid::passes), driven from
   // where it ends (before its last row, when that is a dead end: that row is taken again with
