@@ -63,6 +63,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadWall{"zero_rect",
                 R"({"width": 3, "height": 2, "obstacles": [{"type": "rect", "x": 1, "y": 1, "width": 0, "height": 1}]})",
                 "obstacles[0].width", "must be positive"},
+        // Found by the wall parser's fuzzer: this rectangle was read, and its corners written back
+        // as a polygon were refused as degenerate.
+        BadWall{"rect_thinner_than_rounding",
+                R"({"width": 5, "height": 5, "obstacles": [{"type": "rect", "x": 2.4, "y": 3.4, "width": 0.15, "height": 0.000000000000001}]})",
+                "obstacles[0]", "rectangle is degenerate"},
         BadWall{"absurd_rect",
                 R"({"width": 3, "height": 2, "obstacles": [{"type": "rect", "x": 1, "y": 1, "width": 12000, "height": 1}]})",
                 "obstacles[0].width", "beyond 10 km"},

@@ -96,6 +96,9 @@ Obstacle parseObstacle(const Reader& r, const json& v, const std::string& field)
     const double h = r.positiveSize(v, "height", field + ".height");
     o.type = ObstacleType::Rect;
     o.polygon = {{x, y}, {x + w, y}, {x + w, y + h}, {x, y + h}};
+    // As thin as rounding (a height of 1e-15 m): its corners make a polygon the same check as a
+    // polygon obstacle's refuses, so its own JSON would not read back.
+    if (!ringIsSimple(o.polygon)) r.fail(field, "rectangle is degenerate (its width or height is lost to rounding)");
   } else if (type == "polygon") {
     r.onlyKeys(v, field, {"type", "label", "points"});
     if (!v.contains("points")) r.fail(field + ".points", "missing");
