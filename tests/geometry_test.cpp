@@ -1,11 +1,47 @@
 // Geometry predicates against hand-computed values.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
 #include "coverbench/geometry.hpp"
+#include "coverbench/path.hpp"
 #include "coverbench/region_ops.hpp"
 
 namespace coverbench {
 namespace {
+
+// wrapAngle is std::remainder(a, 2 pi) bit for bit (its fast paths are one comparison and one
+// exact subtraction): at the edges of each path (+-pi, +-2 pi, +-3 pi, the doubles beside them,
+// +-0) and over a million angles spread over ten turns.
+TEST(Geometry, WrapAngleIsRemainderBitForBit) {
+  auto same = [](double a) {
+    const double want = std::remainder(a, 2.0 * M_PI), got = wrapAngle(a);
+    return std::signbit(want) == std::signbit(got) && (want == got || (std::isnan(want) && std::isnan(got)));
+  };
+  std::vector<double> edges{0.0, -0.0, M_PI, -M_PI, 2.0 * M_PI, -2.0 * M_PI, 3.0 * M_PI, -3.0 * M_PI, 1e-300, INFINITY, NAN};
+  for (const double e : std::vector<double>(edges))
+    for (const double towards : {INFINITY, -INFINITY}) edges.push_back(std::nextafter(e, towards));
+  for (const double e : edges) EXPECT_TRUE(same(e)) << e;
+  std::uint64_t x = 88172645463325252ull;  // xorshift: the same angles every run
+  for (int i = 0; i < 1000000; ++i) {
+    x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+    const double a = (static_cast<double>(x >> 11) / 9007199254740992.0 - 0.5) * 20.0 * M_PI;
+    ASSERT_TRUE(same(a)) << a;
+  }
+}
+
+// A bulge on a chord under kMinArcChord is a straight segment, whichever way the chord lies; on
+// a chord of kMinArcChord or more along either axis, it stays.
+TEST(Geometry, EffectiveBulgeDropsOnlyChordsTooShortForAnArc) {
+  EXPECT_EQ(effectiveBulge({0, 0}, {1e-9, 0}, 0.5), 0.5);
+  EXPECT_EQ(effectiveBulge({0, 0}, {0, -1e-9}, 0.5), 0.5);
+  EXPECT_EQ(effectiveBulge({0, 0}, {0.9e-9, 0}, 0.5), 0.0);
+  EXPECT_EQ(effectiveBulge({0, 0}, {0.8e-9, 0.8e-9}, 0.5), 0.5);  // 1.13e-9 long
+  EXPECT_EQ(effectiveBulge({0, 0}, {0.7e-9, 0.7e-9}, 0.5), 0.0);  // 0.99e-9 long
+  EXPECT_EQ(effectiveBulge({0, 0}, {1, 1}, 0.5e-12), 0.0);
+}
 
 TEST(Geometry, SignedAreaFollowsOrientation) {
   const Ring ccw{{0, 0}, {2, 0}, {2, 1}, {0, 1}};

@@ -12,7 +12,11 @@ void Path::moveTo(Point p, bool tool) {
 }
 
 double effectiveBulge(Point a, Point b, double bulge) {
-  return std::fabs(bulge) < kMinArcBulge || distance(a, b) < kMinArcChord ? 0.0 : bulge;
+  // A chord with a coordinate difference of kMinArcChord or more is at least that long (the
+  // hypotenuse is never shorter than a side): no hypot for nearly every segment a path takes.
+  if (std::fabs(bulge) < kMinArcBulge) return 0.0;
+  if (std::fabs(a.x - b.x) >= kMinArcChord || std::fabs(a.y - b.y) >= kMinArcChord) return bulge;
+  return distance(a, b) < kMinArcChord ? 0.0 : bulge;
 }
 
 void Path::arcTo(Point p, double b, bool tool) {

@@ -38,7 +38,7 @@ double chainBulge(const std::vector<Point>& p, std::size_t i, std::size_t j, dou
   const Point c{(am.y * ab2 - ab.y * am2) / (2.0 * cross), (ab.x * am2 - am.x * ab2) / (2.0 * cross)};
   const Point centre = a + c;
   const double t0 = std::atan2(a.y - centre.y, a.x - centre.x), t1 = std::atan2(b.y - centre.y, b.x - centre.x);
-  double sweep = std::remainder(t1 - t0, 2.0 * M_PI);
+  double sweep = wrapAngle(t1 - t0);
   // The way the chain turns decides the way round (a chain of over a half circle is not fitted).
   if (sweep * turn_sign <= 0.0) return 0.0;
   if (std::fabs(sweep) > M_PI * (1.0 - 1e-9)) return 0.0;

@@ -24,7 +24,7 @@ struct Segment {
   double heading = 0.0;
 };
 
-double angleBetween(double from, double to) { return std::remainder(to - from, 2.0 * M_PI); }
+double angleBetween(double from, double to) { return wrapAngle(to - from); }
 
 /// The headings segment k of `path` starts and ends with: its chord's, turned back and on by half
 /// an arc's angle.
@@ -104,46 +104,73 @@ struct DubinsWords {
 };
 
 /// The six Dubins words between the normalised poses (Shkel & Lumelsky 2001): distance d in radii,
-/// headings alpha and beta relative to the line between them. Each gives (t, p, q) or nothing.
-DubinsWords dubinsWords(double d, double alpha, double beta) {
+/// headings alpha and beta relative to the line between them. Each gives (t, p, q) or nothing;
+/// `emit` gets those that exist, in that order, but for a word whose middle part alone is no
+/// shorter than `bound()`: it is not finished (its atan2s not taken), as no word is shorter than
+/// its middle part.
+template <class Bound, class Emit>
+void dubinsWordsWithin(double d, double alpha, double beta, Bound bound, Emit emit) {
   const double sa = std::sin(alpha), sb = std::sin(beta), ca = std::cos(alpha), cb = std::cos(beta);
   const double cab = std::cos(alpha - beta);
-  DubinsWords out;
   // LSL and LRL measure the same angle, with opposite signs of its sine (atan2 is odd in it, and
   // at a sine of exactly zero both are +0); RSR and RLR measure one angle. One atan2 each serves both.
-  double p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb);  // LSL
+  const double lsl = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb);
   const double lrl = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0;
-  const double left = p2 >= 0.0 || std::fabs(lrl) <= 1.0 ? std::atan2(cb - ca, d + sa - sb) : 0.0;
-  if (p2 >= 0.0)
-    out.add({{{'L', mod2pi(left - alpha)}, {'S', std::sqrt(p2)}, {'L', mod2pi(beta - left)}}});
-  p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa);  // RSR
+  const double left = lsl >= 0.0 || std::fabs(lrl) <= 1.0 ? std::atan2(cb - ca, d + sa - sb) : 0.0;
+  if (lsl >= 0.0 && std::sqrt(lsl) < bound())
+    emit(DubinsWord{{{'L', mod2pi(left - alpha)}, {'S', std::sqrt(lsl)}, {'L', mod2pi(beta - left)}}});
+  const double rsr = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa);
   const double rlr = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0;
-  const double right = p2 >= 0.0 || std::fabs(rlr) <= 1.0 ? std::atan2(ca - cb, d - sa + sb) : 0.0;
-  if (p2 >= 0.0)
-    out.add({{{'R', mod2pi(alpha - right)}, {'S', std::sqrt(p2)}, {'R', mod2pi(right - beta)}}});
-  p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb);  // LSR
-  if (p2 >= 0.0) {
+  bool have_right = false;
+  double right = 0.0;
+  auto rightAngle = [&] {
+    if (!have_right) right = std::atan2(ca - cb, d - sa + sb), have_right = true;
+    return right;
+  };
+  if (rsr >= 0.0 && std::sqrt(rsr) < bound())
+    emit(DubinsWord{{{'R', mod2pi(alpha - rightAngle())}, {'S', std::sqrt(rsr)}, {'R', mod2pi(rightAngle() - beta)}}});
+  double p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb);  // LSR
+  if (p2 >= 0.0 && std::sqrt(p2) < bound()) {
     const double p = std::sqrt(p2);
     const double tmp = std::atan2(-ca - cb, d + sa + sb) - std::atan2(-2.0, p);
-    out.add({{{'L', mod2pi(tmp - alpha)}, {'S', p}, {'R', mod2pi(tmp - beta)}}});
+    emit(DubinsWord{{{'L', mod2pi(tmp - alpha)}, {'S', p}, {'R', mod2pi(tmp - beta)}}});
   }
   p2 = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb);  // RSL
-  if (p2 >= 0.0) {
+  if (p2 >= 0.0 && std::sqrt(p2) < bound()) {
     const double p = std::sqrt(p2);
     const double tmp = std::atan2(ca + cb, d - sa - sb) - std::atan2(2.0, p);
-    out.add({{{'R', mod2pi(alpha - tmp)}, {'S', p}, {'L', mod2pi(beta - tmp)}}});
+    emit(DubinsWord{{{'R', mod2pi(alpha - tmp)}, {'S', p}, {'L', mod2pi(beta - tmp)}}});
   }
   if (std::fabs(rlr) <= 1.0) {  // RLR
     const double p = mod2pi(2.0 * M_PI - std::acos(rlr));
-    const double t = mod2pi(alpha - right + p / 2.0);
-    out.add({{{'R', t}, {'L', p}, {'R', mod2pi(alpha - beta - t + p)}}});
+    if (p < bound()) {
+      const double t = mod2pi(alpha - rightAngle() + p / 2.0);
+      emit(DubinsWord{{{'R', t}, {'L', p}, {'R', mod2pi(alpha - beta - t + p)}}});
+    }
   }
   if (std::fabs(lrl) <= 1.0) {  // LRL
     const double p = mod2pi(2.0 * M_PI - std::acos(lrl));
-    const double t = mod2pi(-alpha - (ca == cb ? left : -left) + p / 2.0);
-    out.add({{{'L', t}, {'R', p}, {'L', mod2pi(beta - alpha - t + p)}}});
+    if (p < bound()) {
+      const double t = mod2pi(-alpha - (ca == cb ? left : -left) + p / 2.0);
+      emit(DubinsWord{{{'L', t}, {'R', p}, {'L', mod2pi(beta - alpha - t + p)}}});
+    }
   }
+}
+
+/// Every Dubins word between the normalised poses (dubinsWordsWithin).
+DubinsWords dubinsWords(double d, double alpha, double beta) {
+  DubinsWords out;
+  dubinsWordsWithin(d, alpha, beta, [] { return INFINITY; }, [&](const DubinsWord& w) { out.add(w); });
   return out;
+}
+
+/// The shortest of those words' lengths (in radii; infinite when there is none), the same number
+/// to the last bit, without finishing the words that cannot be shorter (turn-aware orders and the
+/// car's searches measure these by the ten thousand).
+double dubinsShortest(double d, double alpha, double beta) {
+  double best = INFINITY;
+  dubinsWordsWithin(d, alpha, beta, [&] { return best; }, [&](const DubinsWord& w) { best = std::min(best, wordLength(w)); });
+  return best;
 }
 
 /// Segments a curve has at most, but for rounding: up to five primitives (Reeds-Shepp), arcs in
@@ -171,9 +198,10 @@ void drive(Pose from, Pose to, const Word& primitives, double radius, bool tool,
 
 namespace {
 
-/// The first of `words` (tried in order) that arrives at `to`, as a path; empty if none does.
+/// The first of `words` (tried in order) that arrives at `to`, as a path in `clean` (emptied
+/// first, its room kept); false, and `clean` empty, if none does.
 template <class Words>
-Path firstArriving(Pose from, Pose to, const Words& words, double radius, bool reverse, bool tool) {
+bool firstArriving(Pose from, Pose to, const Words& words, double radius, bool reverse, bool tool, Path& clean) {
   for (const auto& primitives : words) {
     bool arrives = false;
     thread_local Path out;
@@ -181,7 +209,9 @@ Path firstArriving(Pose from, Pose to, const Words& words, double radius, bool r
     if (!arrives) continue;
     // End exactly at `to` (the last chord moves by rounding), without segments of rounding
     // length, whose direction means nothing.
-    Path clean;
+    clean.waypoints.clear();
+    clean.tool_on.clear();
+    clean.bulge.clear();
     clean.reserve(out.segments());
     clean.moveTo(from.at, tool);
     for (std::size_t i = 0; i < out.segments(); ++i) {
@@ -203,15 +233,24 @@ Path firstArriving(Pose from, Pose to, const Words& words, double radius, bool r
       joins = headingsJoin(arrive, start, reverse);
       arrive = end;
     }
-    if (clean.segments() == 0 || (joins && headingsJoin(arrive, to.heading, reverse))) return clean;
+    if (clean.segments() == 0 || (joins && headingsJoin(arrive, to.heading, reverse))) return true;
   }
-  return Path{};
+  clean.waypoints.clear();
+  clean.tool_on.clear();
+  clean.bulge.clear();
+  return false;
 }
 
 }  // namespace
 
 Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool) {
-  if (reverse) return firstArriving(from, to, std::array{reedsSheppPrimitives(from, to, radius)}, radius, true, tool);
+  Path out;
+  carCurveInto(from, to, radius, reverse, tool, out);
+  return out;
+}
+
+bool carCurveInto(Pose from, Pose to, double radius, bool reverse, bool tool, Path& out) {
+  if (reverse) return firstArriving(from, to, std::array{reedsSheppPrimitives(from, to, radius)}, radius, true, tool, out);
   const Point delta = to.at - from.at;
   const double d = norm(delta) / radius, phi = std::atan2(delta.y, delta.x);
   DubinsWords words = dubinsWords(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi));
@@ -220,17 +259,16 @@ Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool) {
   for (std::size_t i = 1; i < words.count; ++i)
     for (std::size_t j = i; j > 0 && wordLength(words.words[j]) < wordLength(words.words[j - 1]); --j)
       std::swap(words.words[j], words.words[j - 1]);
-  return firstArriving(from, to, words, radius, false, tool);
+  return firstArriving(from, to, words, radius, false, tool, out);
 }
 
 double carCurveLength(Pose from, Pose to, double radius, bool reverse) {
   if (reverse) return reedsSheppLength(from, to, radius);
   const Point delta = to.at - from.at;
   const double d = norm(delta) / radius, phi = std::atan2(delta.y, delta.x);
-  double best = INFINITY;
-  for (const auto& word : dubinsWords(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi)))
-    best = std::min(best, wordLength(word) * radius);
-  return best;
+  // (The shortest length in radii times the radius is the shortest of the lengths times it:
+  // multiplying by a positive number keeps their order.)
+  return dubinsShortest(d, mod2pi(from.heading - phi), mod2pi(to.heading - phi)) * radius;
 }
 
 bool headingsJoin(double end, double start, bool reverse) {

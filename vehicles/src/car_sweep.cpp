@@ -578,7 +578,7 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
   std::vector<double> heading_ab(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) heading_ab[i] = std::atan2(rows[i].b.y - rows[i].a.y, rows[i].b.x - rows[i].a.x);
   auto poseInto = [&](std::size_t i, bool from_a) {
-    return Pose{entryOf(i, from_a), from_a ? heading_ab[i] : std::remainder(heading_ab[i] + M_PI, 2.0 * M_PI)};
+    return Pose{entryOf(i, from_a), from_a ? heading_ab[i] : wrapAngle(heading_ab[i] + M_PI)};
   };
   // What each row was entered after: where to go back to when it proves a dead end.
   struct Step {
@@ -859,7 +859,7 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
           // A curve is no shorter than the straight distance, nor than the turn its headings
           // differ by (a Reeds-Shepp length costs the most to measure): the larger, a hair less
           // for rounding, is its key until it is measured.
-          const double turn = std::fabs(std::remainder(poseInto(c.row, c.from_a).heading - pose.heading, 2.0 * M_PI));
+          const double turn = std::fabs(wrapAngle(poseInto(c.row, c.from_a).heading - pose.heading));
           heap.push({std::max(c.bound, rho * turn * (1.0 - 1e-9)) + penalty.back(), next, false});
           ++next;
         }

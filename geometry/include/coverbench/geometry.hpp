@@ -25,6 +25,18 @@ inline double cross(Point a, Point b) { return a.x * b.y - a.y * b.x; }
 inline double norm(Point a) { return std::hypot(a.x, a.y); }
 inline double distance(Point a, Point b) { return norm(a - b); }
 
+/// `radians` into [-pi, pi]: exactly std::remainder(radians, 2 pi), bit for bit. Angles within a
+/// turn of that range (nearly all a planner makes) take one comparison and at most one exact
+/// subtraction (Sterbenz: both lie within a factor of two); only the rest call remainder, which
+/// costs tens of instructions and runs hundreds of thousands of times a car plan.
+inline double wrapAngle(double radians) {
+  constexpr double kTwoPi = 2.0 * M_PI;
+  if (std::fabs(radians) <= M_PI) return radians;  // remainder rounds a quotient of 1/2 to 0
+  if (radians > M_PI && radians <= kTwoPi) return radians - kTwoPi;
+  if (radians < -M_PI && radians > -kTwoPi) return radians + kTwoPi;  // -2 pi: remainder gives -0
+  return std::remainder(radians, kTwoPi);
+}
+
 /// Rotates p by `radians` counter-clockwise about the origin.
 Point rotate(Point p, double radians);
 /// rotate() applied to every point, with the sine and cosine computed once (same results).

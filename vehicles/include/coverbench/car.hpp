@@ -45,6 +45,9 @@ double omplDubinsLength(Pose from, Pose to, double radius);
 /// quarter circle) from from.at to exactly to.at, every segment with tool state `tool`; empty
 /// when no curve arrives within 1e-9 m and rad.
 Path carCurve(Pose from, Pose to, double radius, bool reverse, bool tool);
+/// carCurve's curve into `out` (emptied first, its room kept: searches build one at every pose
+/// they take); false, with `out` empty, when there is none.
+bool carCurveInto(Pose from, Pose to, double radius, bool reverse, bool tool, Path& out);
 /// The length of that curve (m), without building it: what turn-aware orders compare. Infinite
 /// when there is none.
 double carCurveLength(Pose from, Pose to, double radius, bool reverse);
