@@ -1058,6 +1058,32 @@ TEST(CarSweep, FillRoundsPaintWhatTheRowsLeftWhereItIsWorthTheDriving) {
   EXPECT_EQ(open_filled.path.waypoints, open_bare.path.waypoints);
 }
 
+// A plan cut short by its time limit says so. residential-s3-0001's boustrophedon plan for a
+// forward-only car is `ok` with 14 fill passes, in about 30 ms; under limits from 1 ms up, some
+// cut the first sweep and some the fill rounds after it (before, those were left out without a
+// word: an `ok` plan with fewer passes). Whatever the limit, a plan that is not the one planned
+// without a limit is not `ok` and its reason says that time ran out.
+TEST(CarSweep, APlanCutByItsTimeLimitSaysSo) {
+  const Wall wall = generateWall("residential", 3, 1);
+  const PlannerInfo& info = findPlanner("boustrophedon");
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = kTool;
+  problem.params = resolveParams(info, {{"car_plan", "headland"}});
+  problem.vehicle = car(0.3, false);
+  const PlanResult whole = runPlanner(info, problem, Budget());
+  ASSERT_EQ(whole.status, PlanStatus::Ok) << whole.reason;
+  ASSERT_GT(whole.stats.at("car_fill_passes"), 0.0);
+  for (double limit = 0.001; limit < 0.1; limit *= 1.2) {
+    const PlanResult cut = runPlanner(info, problem, Budget(std::chrono::duration<double>(limit)));
+    if (cut.status == PlanStatus::Error) continue;  // nothing planned at all: said as an error
+    if (cut.path.waypoints == whole.path.waypoints && cut.path.bulge == whole.path.bulge) continue;
+    EXPECT_NE(cut.status, PlanStatus::Ok) << "limit " << limit << " s";
+    // ("time ran out" from the sweep, "time budget ran out" from the decomposition before it)
+    EXPECT_NE(cut.reason.find("ran out"), std::string::npos) << "limit " << limit << " s: " << cut.reason;
+  }
+}
+
 TEST(CarSweep, RingsThatEndWhereNoRowIsReachedBecomePassesTakenWithTheRows) {
   // residential-s5-0003: the rings end in the strip right of the window and the radiator, 0.28 m
   // wide, where a forward-only car of R = 0.3 m cannot turn; from there no row was reached (0.081

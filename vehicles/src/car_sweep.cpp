@@ -1288,6 +1288,9 @@ void describe(CarSweep& out) {
     out.reason += std::string(out.reason.empty() ? "" : "; ") +
                   "no row was reached from the rings' end: the rings were taken as passes with the rows";
   if (out.ended_in_dead_end) out.reason += std::string(out.reason.empty() ? "" : "; ") + "the last row is a dead end the car cannot come out of";
+  if (out.rounds_timed_out)
+    out.reason += std::string(out.reason.empty() ? "" : "; ") +
+                  "time ran out before the sweep's retries and fill rounds (passes through what it leaves unpainted) were done";
 }
 
 }  // namespace
@@ -1306,9 +1309,14 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   // rows (sweepOnce's rings_as_passes), kept when it paints more.
   if (out.rows > 0 && out.unreached == out.rows && !loops.empty()) {
     std::optional<double> painted;  // what out.path paints, measured once
-    for (int way = 1; way <= 2 && out.rings_as_passes == 0 && !out.timed_out && !budget.expired(); ++way) {
+    for (int way = 1; way <= 2 && out.rings_as_passes == 0 && !out.timed_out; ++way) {
+      if (budget.expired()) {
+        out.rounds_timed_out = true;
+        break;
+      }
       PathBuilder other(ws);
       CarSweep passes_first = sweepOnce(ws, other, loops, given, {}, spacing, budget, line_penalty, nullptr, way);
+      if (passes_first.timed_out) out.rounds_timed_out = true;
       if (passes_first.timed_out || passes_first.unreached == passes_first.rows) continue;
       if (!grid) grid.emplace(ws, cell);
       if (!painted) {
@@ -1330,7 +1338,11 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   // (worthIt); the rounds stop at the first that is not kept.
   std::vector<CarRow> all;  // every round's passes
   int resweeps = 0;
-  for (int round = 0; fill && round < kFillRounds && !out.timed_out && out.path.segments() > 0 && !budget.expired(); ++round) {
+  for (int round = 0; fill && round < kFillRounds && !out.timed_out && out.path.segments() > 0; ++round) {
+    if (budget.expired()) {
+      out.rounds_timed_out = true;
+      break;
+    }
     // The grid shows what out.path paints from the second round on (below).
     if (!grid) {
       grid.emplace(ws, cell);
@@ -1351,7 +1363,11 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     }
     PathBuilder none(ws);
     const CarSweep more = sweepOnce(ws, none, {}, again, passes, spacing, budget, line_penalty, &start);
-    const bool reached = !more.timed_out && more.fill_passes > 0;
+    if (more.timed_out) {
+      out.rounds_timed_out = true;
+      break;
+    }
+    const bool reached = more.fill_passes > 0;
     bool reached_but_not_worth = false;
     if (reached) {
       // The continuation is out.path and more, unless it left out the dead-end last row.
@@ -1382,6 +1398,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     ++resweeps;
     PathBuilder other(ws);
     CarSweep again_whole = sweepOnce(ws, other, loops, given, all, spacing, budget, line_penalty, nullptr, out.rings_as_passes);
+    if (again_whole.timed_out) out.rounds_timed_out = true;
     if (again_whole.timed_out || again_whole.fill_passes == 0) break;
     grid->paint(again_whole.path);
     if (!worthIt(grid->painted() - painted, pathLength(again_whole.path) - pathLength(out.path), spacing)) break;
@@ -1410,7 +1427,7 @@ void recordCarSweep(PlanResult& result, const CarSweep& sweep) {
   result.stats["car_ring_passes"] = static_cast<double>(sweep.ring_passes);
   result.stats["car_fill_passes"] = static_cast<double>(sweep.fill_passes);
   result.stats["car_undriven_m"] = sweep.headland.cut_m + sweep.undriven_m;
-  if (sweep.unreached > 0 || sweep.timed_out || sweep.headland.stopped) {
+  if (sweep.unreached > 0 || sweep.timed_out || sweep.rounds_timed_out || sweep.headland.stopped) {
     if (result.status == PlanStatus::Ok) result.status = PlanStatus::Partial;
   }
   if (!sweep.reason.empty()) result.reason += (result.reason.empty() ? "" : "; ") + sweep.reason;

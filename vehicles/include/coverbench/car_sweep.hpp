@@ -99,6 +99,9 @@ struct CarSweep {
   std::size_t backtracks = 0;   ///< rows driven into and given up (no curve left them)
   double undriven_m = 0.0;      ///< row length a routed link's turn replaced (tool off)
   bool timed_out = false;
+  /// The budget ran out before the retries and fill rounds that follow the first sweep (carSweep)
+  /// were done: the plan is what it had by then (partial, said in `reason`).
+  bool rounds_timed_out = false;
   /// The rings were not driven first: from their end no row was reached, so they became passes
   /// ordered with the rows, the car starting along their longest segment the way they drive it
   /// (1) or the other way (2); 0: the rings first.
