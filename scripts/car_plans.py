@@ -6,7 +6,7 @@ baselines (car_plan: smoothed), per family and planner (docs/vehicles.md, "Plann
 paths, the median coverage_reachable (lowest in brackets), the median overlap and length_ratio,
 and the statuses. Configurations are never pooled. For the forward-only car, the table also gives
 the median of what such a car could paint at best on the same walls (`coverbench car-ceiling`:
-from viable poses, and with the two best dead ends; docs/metrics.md).
+from viable poses, and with what a head and a tail add in dead ends; docs/metrics.md).
 
   /usr/bin/python3 scripts/car_plans.py [--walls 5] [--turn-radius 0.3] [--families open,facade]
                                         [--planners zigzag,boustrophedon,trapezoidal,spiral]

@@ -49,12 +49,21 @@ struct Lattice {
   }
 };
 
+/// Chains longer than this many poses are not told apart (chain lengths are kept in a byte a pose).
+constexpr unsigned kLongChain = 255;
+
 /// Clears `alive` bit `bit` of every pose that has no motion on to (forward) or in from
 /// (backward) a pose that keeps the bit: the greatest such set, by removing poses one at a time
-/// and counting down their neighbours.
-void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t bit, bool forward) {
+/// and counting down their neighbours. The poses removed have no such motion among them that
+/// ever comes back (a cycle would keep its poses), so they are ordered: each is removed after
+/// every pose it leads to (forward; comes from, backward). `chain` gets, for each, the most poses
+/// a car passes through among them from it on (forward) or up to it (backward), itself included
+/// (kLongChain for that many or more).
+void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t bit, bool forward, std::vector<std::uint8_t>& chain) {
   const std::size_t h = lat.h;
-  std::vector<std::uint8_t> count(alive.size(), 0);
+  // While a pose keeps the bit: its ways on (in) that keep it. Once removed: its chain.
+  std::vector<std::uint8_t>& count = chain;
+  count.assign(alive.size(), 0);
   std::vector<std::uint32_t> stack;
   // The pose motion k leads to from (x, y, j) (ahead), or comes from into it (not ahead); false
   // when that motion is not free.
@@ -72,6 +81,19 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
     ny = y - o[1];
     return lat.freeAt(nx, ny) && lat.motionFree(nx, ny, nj, k);
   };
+  // The chain of a pose being removed: one more than the longest of its ways on (in), every one
+  // of them removed already.
+  auto chainOf = [&](std::size_t s) {
+    const std::size_t j = s % h, cell = s / h;
+    const long x = static_cast<long>(cell) % lat.nx, y = static_cast<long>(cell) / lat.nx;
+    unsigned longest = 0;
+    for (long k = -lat.turns; k <= lat.turns; ++k) {
+      long nx, ny;
+      std::size_t nj;
+      if (neighbour(x, y, j, k, forward, nx, ny, nj)) longest = std::max<unsigned>(longest, count[static_cast<std::size_t>(ny * lat.nx + nx) * h + nj]);
+    }
+    return static_cast<std::uint8_t>(std::min(kLongChain, longest + 1));
+  };
   for (long y = 0; y < lat.ny; ++y)
     for (long x = 0; x < lat.nx; ++x) {
       if (!lat.freeAt(x, y)) continue;
@@ -86,6 +108,7 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
         count[s] = n;
         if (n == 0) {
           alive[s] &= static_cast<std::uint8_t>(~bit);
+          count[s] = 1;  // no way on (in): a chain of itself
           stack.push_back(static_cast<std::uint32_t>(s));
         }
       }
@@ -107,6 +130,7 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
       if (!(alive[p] & bit)) continue;
       if (--count[p] == 0) {
         alive[p] &= static_cast<std::uint8_t>(~bit);
+        count[p] = chainOf(p);
         stack.push_back(static_cast<std::uint32_t>(p));
       }
     }
@@ -180,8 +204,10 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
       std::fill_n(alive.begin() + static_cast<std::ptrdiff_t>(c * lat.h), lat.h, std::uint8_t{3});
       out.states += lat.h;
     }
-  viable(lat, alive, 1, true);
-  viable(lat, alive, 2, false);
+  // Chains of poses without a future (a path's tail) and without a past (its head).
+  std::vector<std::uint8_t> tail_chain, head_chain;
+  viable(lat, alive, 1, true, tail_chain);
+  viable(lat, alive, 2, false, head_chain);
 
   // Paint on the lattice: cells whose centre lies within r of a centre the tool is on.
   std::vector<std::array<int, 2>> disk;
@@ -201,12 +227,19 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
     }
   };
   std::vector<char> interior(cells, 0);
+  // Per cell, the longest tail and head chain from (up to) a pose there.
+  std::vector<std::uint8_t> tail_here(cells, 0), head_here(cells, 0);
   for (std::size_t c = 0; c < cells; ++c)
-    for (std::size_t j = 0; j < lat.h && !interior[c]; ++j)
-      if (alive[c * lat.h + j] == 3) interior[c] = 1;
+    for (std::size_t j = 0; j < lat.h; ++j) {
+      const std::size_t s = c * lat.h + j;
+      if (alive[s] == 3) interior[c] = 1;
+      if (!(alive[s] & 1)) tail_here[c] = std::max(tail_here[c], tail_chain[s]);
+      if (!(alive[s] & 2)) head_here[c] = std::max(head_here[c], head_chain[s]);
+    }
   for (std::size_t s = 0; s < alive.size(); ++s) out.viable += alive[s] == 3;
-  alive.clear();
-  alive.shrink_to_fit();
+  alive = {};
+  tail_chain = {};
+  head_chain = {};
 
   std::size_t reachable = 0, painted = 0;
   {
@@ -218,14 +251,29 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
   std::vector<int> paint(cells, 0);
   for (std::size_t c = 0; c < cells; ++c)
     if (interior[c]) stamp(paint, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, 1, painted);
-  // Dead ends: 8-connected pieces of free cells with no viable pose; what each adds to the paint.
+  // What a chain of `poses` poses paints at most, in cells: a tool's disk, and a band of its
+  // width along each motion (the band's rasters counted a cell wide and long more); nothing
+  // without a pose (a piece with no pose of a head, or of a tail); no bound for chains of
+  // kLongChain poses or more.
+  auto chainPaint = [&](unsigned poses) {
+    if (poses == 0) return 0.0;
+    if (poses >= kLongChain) return static_cast<double>(cells);
+    const double length = static_cast<double>(poses - 1) * step;
+    return static_cast<double>(disk.size()) + (2.0 * r + lat.g) * (length + lat.g) / (lat.g * lat.g);
+  };
+  // Dead ends: 8-connected pieces of free cells with no viable pose. What each adds to the paint,
+  // and what a path's head or tail there can add: at most what its longest chain paints.
+  struct End {
+    double added = 0.0, head = 0.0, tail = 0.0;
+  };
+  std::vector<End> ends;
   std::vector<int> piece(cells, 0);
-  std::array<std::size_t, 2> best{0, 0};
   int mark = 1;
   for (std::size_t c0 = 0; c0 < cells; ++c0) {
     if (!lat.free[c0] || interior[c0] || piece[c0]) continue;
     ++mark;
     std::size_t added = 0;
+    unsigned head = 0, tail = 0;
     std::vector<std::size_t> todo{c0};
     piece[c0] = mark;
     while (!todo.empty()) {
@@ -233,6 +281,8 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
       todo.pop_back();
       const long x = static_cast<long>(c) % lat.nx, y = static_cast<long>(c) / lat.nx;
       stamp(paint, x, y, mark, added);
+      head = std::max<unsigned>(head, head_here[c]);
+      tail = std::max<unsigned>(tail, tail_here[c]);
       for (long dy = -1; dy <= 1; ++dy)
         for (long dx = -1; dx <= 1; ++dx) {
           const long nx = x + dx, ny = y + dy;
@@ -243,19 +293,34 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
           todo.push_back(n);
         }
     }
-    if (added > best[1]) best[1] = added;
-    if (best[1] > best[0]) std::swap(best[0], best[1]);
+    const double a = static_cast<double>(added);
+    ends.push_back({a, std::min(a, chainPaint(head)), std::min(a, chainPaint(tail))});
   }
+  // The head in one piece and the tail in another (the best two of each suffice), or both in one.
+  double extra = 0.0;
+  std::array<std::size_t, 2> heads{ends.size(), ends.size()}, tails{ends.size(), ends.size()};
+  auto keepBest = [&](std::array<std::size_t, 2>& top, std::size_t i, double End::*v) {
+    if (top[0] == ends.size() || ends[i].*v > ends[top[0]].*v) top = {i, top[0]};
+    else if (top[1] == ends.size() || ends[i].*v > ends[top[1]].*v) top[1] = i;
+  };
+  for (std::size_t i = 0; i < ends.size(); ++i) {
+    extra = std::max(extra, std::min(ends[i].added, ends[i].head + ends[i].tail));
+    keepBest(heads, i, &End::head);
+    keepBest(tails, i, &End::tail);
+  }
+  for (std::size_t h : heads)
+    for (std::size_t t : tails)
+      if (h != ends.size() && t != ends.size() && h != t) extra = std::max(extra, ends[h].head + ends[t].tail);
   const double cell_area = lat.g * lat.g;
   out.resolution = lat.g;
   out.headings = lat.h;
   out.step = step;
   out.reachable_area = static_cast<double>(reachable) * cell_area;
   out.interior_area = static_cast<double>(painted) * cell_area;
-  out.with_ends_area = static_cast<double>(painted + best[0] + best[1]) * cell_area;
+  out.with_ends_area = (static_cast<double>(painted) + extra) * cell_area;
   if (reachable > 0) {
     out.interior = static_cast<double>(painted) / static_cast<double>(reachable);
-    out.with_ends = std::min(1.0, static_cast<double>(painted + best[0] + best[1]) / static_cast<double>(reachable));
+    out.with_ends = std::min(1.0, (static_cast<double>(painted) + extra) / static_cast<double>(reachable));
   }
   return out;
 }

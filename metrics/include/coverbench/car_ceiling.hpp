@@ -8,8 +8,9 @@
 /// with a successor (and a predecessor) in the set. A path's poses are viable except on its
 /// head (before it first reaches a pose it could come back to) and its tail (after it last
 /// leaves one): there it drives into a dead end it cannot leave, or out of one. `interior` is
-/// what the tool paints from viable poses; `with_ends` adds the two dead ends (connected pieces of
-/// F with no viable pose) that would add most.
+/// what the tool paints from viable poses; `with_ends` adds what a head and a tail can paint in
+/// the dead ends (connected pieces of F with no viable pose): in each, at most what the piece adds
+/// and at most a band of the tool's width along the longest chain of poses a car drives there.
 
 #include <cstddef>
 #include <string>
@@ -34,7 +35,7 @@ struct CarCeiling {
   std::size_t states = 0;    ///< free poses
   std::size_t viable = 0;    ///< of them, viable both ways
   /// Areas on the lattice (m^2): what a tool reaches at all (a tool that turns on the spot), what a
-  /// forward-only car paints from viable poses, and that plus its two best dead ends.
+  /// forward-only car paints from viable poses, and that plus what its head and tail add in dead ends.
   double reachable_area = 0.0, interior_area = 0.0, with_ends_area = 0.0;
   /// interior_area / reachable_area and with_ends_area / reachable_area: read a forward-only car's
   /// coverage_reachable against these.
