@@ -24,6 +24,10 @@ FAMILIES = ["open", "facade", "residential", "gable", "stairwell", "industrial",
 CARS = {"dubins": [], "rs": ["--reverse"]}
 CAR_PLANS = ["headland", "smoothed"]
 PLANNERS = ["zigzag", "boustrophedon", "trapezoidal", "spiral"]
+# Far above the slowest plan here (stress walls, about 50 s alone): two plans at a time on a
+# loaded machine must not be cut by `coverbench plan`'s default 60 s, or the table would measure
+# the load.
+TIME_LIMIT_S = 600
 
 
 def main():
@@ -56,7 +60,8 @@ def main():
             os.close(fd)
             # Exit 3 for partial plans: read the file.
             subprocess.run([args.coverbench, "plan", "--wall", wall, "--planner", planner, "--vehicle", "car",
-                            "--turn-radius", str(args.turn_radius), "--param", "car_plan=" + car_plan, "--out", out]
+                            "--turn-radius", str(args.turn_radius), "--param", "car_plan=" + car_plan, "--out", out,
+                            "--time-limit", str(TIME_LIMIT_S)]
                            + flags, capture_output=True)
             with open(out, encoding="utf-8") as f:
                 plan = json.load(f)
