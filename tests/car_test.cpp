@@ -697,14 +697,15 @@ TEST(CarSweep, TheBlockOrderSpansAtLeastKLinesPerLink) {
 }
 
 /// A sweep planner's plan for a car of R = 0.3 m (its own, or the smoothed baseline).
-PlanResult carPlanOf(const std::string& planner, const Wall& wall, bool reverse, const std::string& car_plan = "headland") {
+PlanResult carPlanOf(const std::string& planner, const Wall& wall, bool reverse, const std::string& car_plan = "headland",
+                     const Budget& budget = Budget()) {
   const PlannerInfo& info = findPlanner(planner);
   Problem problem;
   problem.wall = &wall;
   problem.tool = kTool;
   problem.params = resolveParams(info, {{"car_plan", car_plan}});
   problem.vehicle = car(0.3, reverse);
-  return runPlanner(info, problem, Budget());
+  return runPlanner(info, problem, budget);
 }
 
 /// The median of values.
@@ -1065,17 +1066,11 @@ TEST(CarSweep, FillRoundsPaintWhatTheRowsLeftWhereItIsWorthTheDriving) {
 // without a limit is not `ok` and its reason says that time ran out.
 TEST(CarSweep, APlanCutByItsTimeLimitSaysSo) {
   const Wall wall = generateWall("residential", 3, 1);
-  const PlannerInfo& info = findPlanner("boustrophedon");
-  Problem problem;
-  problem.wall = &wall;
-  problem.tool = kTool;
-  problem.params = resolveParams(info, {{"car_plan", "headland"}});
-  problem.vehicle = car(0.3, false);
-  const PlanResult whole = runPlanner(info, problem, Budget());
+  const PlanResult whole = carPlanOf("boustrophedon", wall, false);
   ASSERT_EQ(whole.status, PlanStatus::Ok) << whole.reason;
   ASSERT_GT(whole.stats.at("car_fill_passes"), 0.0);
   for (double limit = 0.001; limit < 0.1; limit *= 1.2) {
-    const PlanResult cut = runPlanner(info, problem, Budget(std::chrono::duration<double>(limit)));
+    const PlanResult cut = carPlanOf("boustrophedon", wall, false, "headland", Budget(std::chrono::duration<double>(limit)));
     if (cut.status == PlanStatus::Error) continue;  // nothing planned at all: said as an error
     if (cut.path.waypoints == whole.path.waypoints && cut.path.bulge == whole.path.bulge) continue;
     EXPECT_NE(cut.status, PlanStatus::Ok) << "limit " << limit << " s";
