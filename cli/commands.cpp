@@ -311,6 +311,7 @@ int carCeilingCommand(const CarCeilingCommandOptions& options) {
   doc["step"] = c.step;
   doc["states"] = c.states;
   doc["viable_states"] = c.viable;
+  doc["pieces_of_f"] = c.pieces;
   doc["reachable_area"] = c.reachable_area;
   doc["interior_area"] = c.interior_area;
   doc["with_ends_area"] = c.with_ends_area;

@@ -80,6 +80,24 @@ TEST(CarCeiling, ADeadEndPocketCountsOnlyAsItsHeadAndTail) {
   EXPECT_LE(c.interior, room / 6.5 + 0.02);
 }
 
+// Two rooms, 3 m x 2 m and 2 m x 2 m, joined by a slit 6 cm high that no tool of 10 cm passes: F
+// falls into two pieces and a path stays in one. The estimate is the larger room's: its area less
+// its four corners, (6 - 4 (R + r)^2 (1 - pi/4)) = 5.895 m^2, over what a tool reaches in both
+// rooms (about 10 m^2), 0.59; counting both rooms would give 0.98.
+TEST(CarCeiling, APathStaysInOnePieceOfF) {
+  Wall wall;
+  wall.name = "two_rooms";
+  wall.boundary = {{0, 0}, {3, 0}, {3, 0.9}, {4, 0.9}, {4, 0}, {6, 0}, {6, 2}, {4, 2}, {4, 0.96}, {3, 0.96}, {3, 2}, {0, 2}};
+  const CarCeiling c = ceilingOf(wall, 0.3);
+  EXPECT_EQ(c.pieces, 2u);
+  // (To within the lattice's error, as for a rectangle: 0.005 of R.)
+  const double room = 6.0 - 4.0 * 0.35 * 0.35 * (1.0 - M_PI / 4.0);
+  EXPECT_NEAR(c.reachable_area, 10.0, 0.3);
+  EXPECT_NEAR(c.interior, room / c.reachable_area, 0.005);
+  EXPECT_LT(c.with_ends, 0.62);
+  EXPECT_GE(c.with_ends, c.interior);
+}
+
 TEST(CarCeiling, SameWallSameNumbers) {
   const Wall wall = generateWall("residential", 3, 1);
   const CarCeiling a = ceilingOf(wall, 0.3), b = ceilingOf(wall, 0.3);

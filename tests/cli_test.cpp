@@ -79,6 +79,27 @@ TEST_F(Cli, MetricsWithTheExactJudge) {
   EXPECT_TRUE(out.empty()) << out;
 }
 
+// `car-ceiling`: JSON with the estimate and the pieces of F it chose among (two rooms joined by a
+// slit no tool passes: a path stays in one, so the estimate is at most the larger room's 0.6 of
+// R); a turn radius that is not positive is one line naming it, exit 2 and nothing on stdout.
+TEST_F(Cli, CarCeilingPrintsTheBestPieceOfF) {
+  const std::string wall = write("rooms.json", R"({ "name": "rooms", "boundary": [[0, 0], [3, 0], [3, 0.9], [4, 0.9], [4, 0],
+      [6, 0], [6, 2], [4, 2], [4, 0.96], [3, 0.96], [3, 2], [0, 2]], "obstacles": [] })");
+  std::string out;
+  const CommandRun r = run("car-ceiling --wall " + wall + " --turn-radius 0.3", &out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(out);
+  EXPECT_EQ(doc["pieces_of_f"], 2);
+  EXPECT_GT(doc["interior"].get<double>(), 0.55);
+  EXPECT_LT(doc["with_ends"].get<double>(), 0.62);
+  std::string none;
+  const CommandRun bad = run("car-ceiling --wall " + wall + " --turn-radius 0", &none);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(lines(bad.err), 1) << bad.err;
+  EXPECT_NE(bad.err.find("turn"), std::string::npos) << bad.err;
+  EXPECT_TRUE(none.empty()) << none;
+}
+
 TEST_F(Cli, MetricsScoresAHandWrittenPlan) {
   // A 4 m x 2 m wall, tool 0.2 m, no clearance needed; one 2 m pass written by hand, with only
   // the two required fields. Closed forms: |S| = 0.2 * 2 + pi * 0.1^2; R is the 4 x 2 rectangle

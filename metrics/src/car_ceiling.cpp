@@ -215,13 +215,14 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
   for (long dy = -reach; dy <= reach; ++dy)
     for (long dx = -reach; dx <= reach; ++dx)
       if (static_cast<double>(dx * dx + dy * dy) * lat.g * lat.g <= r * r * (1.0 + 1e-12)) disk.push_back({static_cast<int>(dx), static_cast<int>(dy)});
-  // Marks the cells the tool paints about cell (x, y) with `mark`; counts those it marks anew.
-  auto stamp = [&](std::vector<int>& paint, long x, long y, int mark, std::size_t& added) {
+  // Marks the cells the tool paints about cell (x, y) with `mark`; counts those it marks anew
+  // (those not marked `mark` or `base` already).
+  auto stamp = [&](std::vector<int>& paint, long x, long y, int mark, int base, std::size_t& added) {
     for (const auto& d : disk) {
       const long px = x + d[0], py = y + d[1];
       if (px < 0 || py < 0 || px >= lat.nx || py >= lat.ny) continue;
       int& v = paint[static_cast<std::size_t>(py * lat.nx + px)];
-      if (v == 1 || v == mark) continue;
+      if (v == base || v == mark) continue;
       v = mark;
       ++added;
     }
@@ -241,16 +242,12 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
   tail_chain = {};
   head_chain = {};
 
-  std::size_t reachable = 0, painted = 0;
+  std::size_t reachable = 0;
   {
     std::vector<int> all(cells, 0);
     for (std::size_t c = 0; c < cells; ++c)
-      if (lat.free[c]) stamp(all, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, 1, reachable);
+      if (lat.free[c]) stamp(all, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, 1, 1, reachable);
   }
-  // 1: painted from viable poses; 2, 3, ...: painted from a dead end (the last one to reach it).
-  std::vector<int> paint(cells, 0);
-  for (std::size_t c = 0; c < cells; ++c)
-    if (interior[c]) stamp(paint, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, 1, painted);
   // What a chain of `poses` poses paints at most, in cells: a tool's disk, and a band of its
   // width along each motion (the band's rasters counted a cell wide and long more); nothing
   // without a pose (a piece with no pose of a head, or of a tail); no bound for chains of
@@ -261,66 +258,94 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
     const double length = static_cast<double>(poses - 1) * step;
     return static_cast<double>(disk.size()) + (2.0 * r + lat.g) * (length + lat.g) / (lat.g * lat.g);
   };
-  // Dead ends: 8-connected pieces of free cells with no viable pose. What each adds to the paint,
-  // and what a path's head or tail there can add: at most what its longest chain paints.
+  // What a dead end adds to the paint, and what a path's head or tail there can add: at most
+  // what its longest chain paints.
   struct End {
     double added = 0.0, head = 0.0, tail = 0.0;
   };
-  std::vector<End> ends;
-  std::vector<int> piece(cells, 0);
-  int mark = 1;
-  for (std::size_t c0 = 0; c0 < cells; ++c0) {
-    if (!lat.free[c0] || interior[c0] || piece[c0]) continue;
-    ++mark;
-    std::size_t added = 0;
-    unsigned head = 0, tail = 0;
-    std::vector<std::size_t> todo{c0};
-    piece[c0] = mark;
+  // The head in one dead end and the tail in another (the best two of each suffice), or both in one.
+  auto bestEnds = [](const std::vector<End>& ends) {
+    double extra = 0.0;
+    std::array<std::size_t, 2> heads{ends.size(), ends.size()}, tails{ends.size(), ends.size()};
+    auto keepBest = [&](std::array<std::size_t, 2>& top, std::size_t i, double End::*v) {
+      if (top[0] == ends.size() || ends[i].*v > ends[top[0]].*v) top = {i, top[0]};
+      else if (top[1] == ends.size() || ends[i].*v > ends[top[1]].*v) top[1] = i;
+    };
+    for (std::size_t i = 0; i < ends.size(); ++i) {
+      extra = std::max(extra, std::min(ends[i].added, ends[i].head + ends[i].tail));
+      keepBest(heads, i, &End::head);
+      keepBest(tails, i, &End::tail);
+    }
+    for (std::size_t h : heads)
+      for (std::size_t t : tails)
+        if (h != ends.size() && t != ends.size() && h != t) extra = std::max(extra, ends[h].head + ends[t].tail);
+    return extra;
+  };
+  // The free cells 8-connected to c that `admit` admits and `label` has not labelled, labelled
+  // `mark`, c first.
+  auto flood = [&](std::size_t c0, std::vector<int>& label, int mark, auto admit) {
+    std::vector<std::size_t> found{c0}, todo{c0};
+    label[c0] = mark;
     while (!todo.empty()) {
       const std::size_t c = todo.back();
       todo.pop_back();
       const long x = static_cast<long>(c) % lat.nx, y = static_cast<long>(c) / lat.nx;
-      stamp(paint, x, y, mark, added);
-      head = std::max<unsigned>(head, head_here[c]);
-      tail = std::max<unsigned>(tail, tail_here[c]);
       for (long dy = -1; dy <= 1; ++dy)
         for (long dx = -1; dx <= 1; ++dx) {
           const long nx = x + dx, ny = y + dy;
           if (!lat.freeAt(nx, ny)) continue;
           const std::size_t n = static_cast<std::size_t>(ny * lat.nx + nx);
-          if (interior[n] || piece[n]) continue;
-          piece[n] = mark;
+          if (label[n] || !admit(n)) continue;
+          label[n] = mark;
           todo.push_back(n);
+          found.push_back(n);
         }
     }
-    const double a = static_cast<double>(added);
-    ends.push_back({a, std::min(a, chainPaint(head)), std::min(a, chainPaint(tail))});
-  }
-  // The head in one piece and the tail in another (the best two of each suffice), or both in one.
-  double extra = 0.0;
-  std::array<std::size_t, 2> heads{ends.size(), ends.size()}, tails{ends.size(), ends.size()};
-  auto keepBest = [&](std::array<std::size_t, 2>& top, std::size_t i, double End::*v) {
-    if (top[0] == ends.size() || ends[i].*v > ends[top[0]].*v) top = {i, top[0]};
-    else if (top[1] == ends.size() || ends[i].*v > ends[top[1]].*v) top[1] = i;
+    return found;
   };
-  for (std::size_t i = 0; i < ends.size(); ++i) {
-    extra = std::max(extra, std::min(ends[i].added, ends[i].head + ends[i].tail));
-    keepBest(heads, i, &End::head);
-    keepBest(tails, i, &End::tail);
+  // A path never leaves F, so it stays in one of F's pieces (8-connected free cells): the estimate
+  // is the best piece's. In each, what the tool paints from its viable poses' cells (marked with
+  // the piece's `base`), and its dead ends (pieces of it with no viable pose, each with a mark of
+  // its own).
+  std::vector<int> paint(cells, 0), piece_of_f(cells, 0), dead_end(cells, 0);
+  int mark = 0;
+  std::size_t best_interior = 0;
+  double best_with_ends = 0.0;
+  for (std::size_t c0 = 0; c0 < cells; ++c0) {
+    if (!lat.free[c0] || piece_of_f[c0]) continue;
+    ++out.pieces;
+    const std::vector<std::size_t> here = flood(c0, piece_of_f, static_cast<int>(out.pieces), [](std::size_t) { return true; });
+    const int base = ++mark;
+    std::size_t painted = 0;
+    for (const std::size_t c : here)
+      if (interior[c]) stamp(paint, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, base, base, painted);
+    std::vector<End> ends;
+    for (const std::size_t d0 : here) {
+      if (interior[d0] || dead_end[d0]) continue;
+      ++mark;
+      std::size_t added = 0;
+      unsigned head = 0, tail = 0;
+      for (const std::size_t c : flood(d0, dead_end, mark, [&](std::size_t n) { return !interior[n]; })) {
+        stamp(paint, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, mark, base, added);
+        head = std::max<unsigned>(head, head_here[c]);
+        tail = std::max<unsigned>(tail, tail_here[c]);
+      }
+      const double a = static_cast<double>(added);
+      ends.push_back({a, std::min(a, chainPaint(head)), std::min(a, chainPaint(tail))});
+    }
+    best_interior = std::max(best_interior, painted);
+    best_with_ends = std::max(best_with_ends, static_cast<double>(painted) + bestEnds(ends));
   }
-  for (std::size_t h : heads)
-    for (std::size_t t : tails)
-      if (h != ends.size() && t != ends.size() && h != t) extra = std::max(extra, ends[h].head + ends[t].tail);
   const double cell_area = lat.g * lat.g;
   out.resolution = lat.g;
   out.headings = lat.h;
   out.step = step;
   out.reachable_area = static_cast<double>(reachable) * cell_area;
-  out.interior_area = static_cast<double>(painted) * cell_area;
-  out.with_ends_area = (static_cast<double>(painted) + extra) * cell_area;
+  out.interior_area = static_cast<double>(best_interior) * cell_area;
+  out.with_ends_area = best_with_ends * cell_area;
   if (reachable > 0) {
-    out.interior = static_cast<double>(painted) / static_cast<double>(reachable);
-    out.with_ends = std::min(1.0, (static_cast<double>(painted) + extra) / static_cast<double>(reachable));
+    out.interior = static_cast<double>(best_interior) / static_cast<double>(reachable);
+    out.with_ends = std::min(1.0, best_with_ends / static_cast<double>(reachable));
   }
   return out;
 }

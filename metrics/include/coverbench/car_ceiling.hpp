@@ -11,6 +11,7 @@
 /// what the tool paints from viable poses; `with_ends` adds what a head and a tail can paint in
 /// the dead ends (connected pieces of F with no viable pose): in each, at most what the piece adds
 /// and at most a band of the tool's width along the longest chain of poses a car drives there.
+/// A path never leaves F, so both are taken in the piece of F where they are largest.
 
 #include <cstddef>
 #include <string>
@@ -34,8 +35,10 @@ struct CarCeiling {
   double step = 0.0;         ///< length of each motion on the lattice (m)
   std::size_t states = 0;    ///< free poses
   std::size_t viable = 0;    ///< of them, viable both ways
-  /// Areas on the lattice (m^2): what a tool reaches at all (a tool that turns on the spot), what a
-  /// forward-only car paints from viable poses, and that plus what its head and tail add in dead ends.
+  std::size_t pieces = 0;    ///< F's pieces on the lattice (8-connected free cells); a path stays in one
+  /// Areas on the lattice (m^2): what a tool reaches at all (a tool that turns on the spot, in
+  /// every piece of F), what a forward-only car paints from viable poses, and that plus what its
+  /// head and tail add in dead ends (these two in the best piece of F).
   double reachable_area = 0.0, interior_area = 0.0, with_ends_area = 0.0;
   /// interior_area / reachable_area and with_ends_area / reachable_area: read a forward-only car's
   /// coverage_reachable against these.
