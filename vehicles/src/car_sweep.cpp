@@ -1009,6 +1009,8 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
       if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
       out.dead_end_from = out.path.waypoints.size();
       out.dead_end_row = rows[i];
+      out.dead_end_index = i;
+      out.dead_end_fill = i >= first_fill;
       append(out.path, curve);
       driveRow(i, from_a);
       ++out.links;
@@ -1021,6 +1023,7 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
     else --remaining;
   }
   out.unreached = remaining;
+  for (std::size_t i = 0; i < first_fill; ++i) out.dead_both_ways += !done[i] && dead[i] == 3;
   checkDrivable(out.path, car, "the car's sweep");
   return out;
 }
@@ -1273,9 +1276,18 @@ bool worthIt(double gained, double driven, double spacing) {
 void describe(CarSweep& out) {
   char buf[240];
   if (out.unreached > 0) {
-    std::snprintf(buf, sizeof buf, "%s%zu of %zu rows left out: no curve of the car reached them", out.timed_out ? "time ran out; " : "",
-                  out.unreached, out.rows);
+    const std::size_t not_reached = out.unreached - out.dead_both_ways;
+    std::snprintf(buf, sizeof buf, "%s%zu of %zu rows left out", out.timed_out ? "time ran out; " : "", out.unreached, out.rows);
     out.reason = buf;
+    if (out.dead_both_ways > 0) {
+      std::snprintf(buf, sizeof buf, ": %zu dead ends both ways (from neither end did the car find a way on)%s", out.dead_both_ways,
+                    not_reached > 0 ? "," : "");
+      out.reason += buf;
+    }
+    if (not_reached > 0) {
+      std::snprintf(buf, sizeof buf, "%s%zu no curve or route of the car reached", out.dead_both_ways > 0 ? " " : ": ", not_reached);
+      out.reason += buf;
+    }
   }
   if (out.headland.skipped > 0) {
     std::snprintf(buf, sizeof buf, "%sthe headland's rings: %zu segments replaced by the car's turns or skipped (%.3g m of ring not driven as planned)",
@@ -1381,7 +1393,15 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       }
     }
     if (reached && !reached_but_not_worth) {
-      out.unreached += more.unreached;
+      // The dead-end last row taken again (the continuation's one given row) and left out: a row
+      // left out, or, when it was a fill pass, one fill pass fewer.
+      const bool again_fill = !again.empty() && out.dead_end_fill;
+      const bool again_left = !again.empty() && more.unreached > 0;
+      if (again_left && again_fill) --out.fill_passes;
+      else {
+        out.unreached += more.unreached;
+        out.dead_both_ways += more.dead_both_ways;
+      }
       out.path = more.path;
       out.links = out.links + more.links - (again.empty() ? 0 : 1);  // the link into the row taken again
       out.routed += more.routed;
@@ -1393,6 +1413,9 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       out.ended_in_dead_end = more.ended_in_dead_end;
       out.dead_end_from = more.dead_end_from;
       out.dead_end_row = more.dead_end_row;
+      out.dead_end_index = more.dead_end_index;
+      // The continuation's row 0 is the row taken again.
+      out.dead_end_fill = more.ended_in_dead_end && (more.dead_end_fill || (more.dead_end_index == 0 && again_fill));
       continue;
     }
     ++resweeps;
@@ -1412,6 +1435,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
 void recordCarSweep(PlanResult& result, const CarSweep& sweep) {
   result.stats["car_rows"] = static_cast<double>(sweep.rows);
   result.stats["car_rows_unreached"] = static_cast<double>(sweep.unreached);
+  result.stats["car_rows_dead_both_ways"] = static_cast<double>(sweep.dead_both_ways);
   result.stats["car_links"] = static_cast<double>(sweep.links);
   result.stats["car_routed_links"] = static_cast<double>(sweep.routed);
   result.stats["car_searched_links"] = static_cast<double>(sweep.searched);

@@ -90,7 +90,11 @@ struct CarSweep {
   std::size_t rows = 0;         ///< rows given, and passes along what the rings' smoothing skipped
   std::size_t ring_passes = 0;  ///< of them, passes along what the rings' smoothing skipped
   std::size_t fill_passes = 0;  ///< passes of the fill round driven (not in `rows`)
-  std::size_t unreached = 0;    ///< rows no curve of the car reached (left out, said in `reason`)
+  std::size_t unreached = 0;    ///< rows left out (said in `reason`): not reached, or dead ends both ways
+  /// Of them, rows the car would be stuck in from either end: a forward-only car finds no loop
+  /// from either end's exit (carCanLoop), or the car drove in and no curve, route or search took
+  /// it on (a backtrack), both ways. The rest no curve or route reached.
+  std::size_t dead_both_ways = 0;
   std::size_t unreached_rings = 0;  ///< rings no transit reached (coverRings)
   std::size_t links = 0;        ///< rows reached by one curve
   std::size_t routed = 0;       ///< rows reached along a route round obstacles, smoothed for the car
@@ -110,6 +114,8 @@ struct CarSweep {
   bool ended_in_dead_end = false;
   std::size_t dead_end_from = 0;  ///< then: the path's waypoints before the curve into that row
   CarRow dead_end_row;            ///< and that row
+  std::size_t dead_end_index = 0;  ///< its place in the sweep's rows
+  bool dead_end_fill = false;      ///< it is a fill pass (counted in fill_passes, not in rows)
   std::string reason;
 };
 
@@ -147,7 +153,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
 PlanResult carSweepPlan(const CarSweep& sweep, const PathBuilder& rings, std::size_t headland_rings, double angle,
                         std::optional<double> angle_deg, std::size_t free_components);
 
-/// The plan's statistics (car_rows, car_rows_unreached, car_links, car_routed_links,
+/// The plan's statistics (car_rows, car_rows_unreached, car_rows_dead_both_ways, car_links, car_routed_links,
 /// car_searched_links, car_ends_in_dead_end, car_rings_stopped, car_cusps, car_backtracks,
 /// car_ring_fillets, car_ring_turns, car_ring_searched_skips, car_ring_passes,
 /// car_skipped_segments, car_undriven_m), its
