@@ -1009,7 +1009,6 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
       if (curve.waypoints.empty() || !pathFree(ws, curve)) continue;
       out.dead_end_from = out.path.waypoints.size();
       out.dead_end_row = rows[i];
-      out.dead_end_index = i;
       out.dead_end_fill = i >= first_fill;
       append(out.path, curve);
       driveRow(i, from_a);
@@ -1397,8 +1396,9 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       // left out, or, when it was a fill pass, one fill pass fewer.
       const bool again_fill = !again.empty() && out.dead_end_fill;
       const bool again_left = !again.empty() && more.unreached > 0;
-      if (again_left && again_fill) --out.fill_passes;
-      else {
+      if (again_left && again_fill) {
+        --out.fill_passes;
+      } else {
         out.unreached += more.unreached;
         out.dead_both_ways += more.dead_both_ways;
       }
@@ -1413,9 +1413,8 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       out.ended_in_dead_end = more.ended_in_dead_end;
       out.dead_end_from = more.dead_end_from;
       out.dead_end_row = more.dead_end_row;
-      out.dead_end_index = more.dead_end_index;
-      // The continuation's row 0 is the row taken again.
-      out.dead_end_fill = more.ended_in_dead_end && (more.dead_end_fill || (more.dead_end_index == 0 && again_fill));
+      // The continuation's only row that is no fill pass is the row taken again (it has no rings).
+      out.dead_end_fill = more.ended_in_dead_end && (more.dead_end_fill || again_fill);
       continue;
     }
     ++resweeps;

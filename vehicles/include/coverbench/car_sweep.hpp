@@ -114,8 +114,7 @@ struct CarSweep {
   bool ended_in_dead_end = false;
   std::size_t dead_end_from = 0;  ///< then: the path's waypoints before the curve into that row
   CarRow dead_end_row;            ///< and that row
-  std::size_t dead_end_index = 0;  ///< its place in the sweep's rows
-  bool dead_end_fill = false;      ///< it is a fill pass (counted in fill_passes, not in rows)
+  bool dead_end_fill = false;     ///< it is a fill pass (counted in fill_passes, not in rows)
   std::string reason;
 };
 
