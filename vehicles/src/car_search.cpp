@@ -97,11 +97,7 @@ Path search(const Workspace& ws, Pose from, double radius, bool reverse, std::si
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
   open.push({estimate(from), 0});
   // The cheapest cost seen per cell and heading bin.
-  auto key = [&](Pose p) {
-    const auto x = static_cast<std::int64_t>(std::floor(p.at.x / cell)), y = static_cast<std::int64_t>(std::floor(p.at.y / cell));
-    const int h = static_cast<int>(std::floor(wrapAngle(p.heading) / (2.0 * M_PI) * kHeadingBins + kHeadingBins)) % kHeadingBins;
-    return (x * 1000003 + y) * kHeadingBins + h;
-  };
+  auto key = [&](Pose p) { return poseKey(p, cell, kHeadingBins); };
   std::unordered_map<std::int64_t, double> best;
   best[key(from)] = 0.0;
   std::size_t expansions = 0;
@@ -176,6 +172,17 @@ Path searchCarRoute(const Workspace& ws, Pose from, Pose to, double radius, bool
         return carCurveInto(p, to, radius, reverse, false, last) && pathFree(ws, last);
       },
       used);
+}
+
+std::int64_t poseKey(Pose p, double cell, int headings) {
+  const auto x = static_cast<std::int64_t>(std::floor(p.at.x / cell)), y = static_cast<std::int64_t>(std::floor(p.at.y / cell));
+  const int h = static_cast<int>(std::floor(wrapAngle(p.heading) / (2.0 * M_PI) * headings + headings)) % headings;
+  return (x * 1000003 + y) * headings + h;
+}
+
+Path searchCarUntil(const Workspace& ws, Pose from, double radius, std::size_t max_expansions,
+                    const std::function<bool(Pose, Path&)>& finish, std::size_t* used) {
+  return search(ws, from, radius, false, max_expansions, [](Pose) { return 0.0; }, finish, used);
 }
 
 bool carCanLoop(const Workspace& ws, Pose from, double radius, std::size_t max_expansions) {

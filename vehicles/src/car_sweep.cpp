@@ -9,6 +9,7 @@
 #include <optional>
 #include <queue>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 
 #include <boost/geometry/algorithms/convex_hull.hpp>
@@ -43,6 +44,21 @@ constexpr double kFillResweepLeft = 0.03;
 constexpr double kFillMaxCells = 4e6;
 /// Curves checked for freedom per row before the routed links are tried.
 constexpr std::size_t kMaxCurveChecks = 64;
+/// Strokes after the fill rounds (forward-only): at most this many, searched for over at most
+/// kStrokeBudget poses in all, kStrokeExpansions each...
+constexpr int kStrokes = 400;
+constexpr std::size_t kStrokeBudget = 300000;
+constexpr std::size_t kStrokeExpansions = 20000;
+/// ...each a spacing long at least, where at least kStrokeOpen of its cells are unpainted, and
+/// going on by half spacings (up to kStrokeSteps) while kStrokeOpenOn of each step's are.
+constexpr double kStrokeOpen = 0.5;
+constexpr double kStrokeOpenOn = 0.3;
+constexpr int kStrokeSteps = 80;
+/// Poses searched from a stroke's end for a way back to the path (else it counts as a dead end).
+constexpr std::size_t kStrokeLoopExpansions = 3000;
+/// Strokes are looked for only when the fill rounds leave at least this share of the reach
+/// unpainted.
+constexpr double kStrokeMinLeft = 0.01;
 /// Rows a stuck car goes back at most, from the furthest it got.
 constexpr std::size_t kMaxBacktracks = 4;
 /// Rows tried along a route round the obstacles when no curve was free.
@@ -68,6 +84,15 @@ constexpr double kRunBandSpacings = 3.0;
 /// ...and none turns more than this from it (radians: 75 degrees; a stair of 0.15 m rise and
 /// 0.30 m run has risers 63 degrees off its pitch).
 constexpr double kRunMaxTurn = 5.0 * M_PI / 12.0;
+
+/// The path's first `waypoints` waypoints (and the segments between them).
+Path upTo(const Path& path, std::size_t waypoints) {
+  Path out = path;
+  out.waypoints.resize(waypoints);
+  out.tool_on.resize(waypoints - 1);
+  if (!out.bulge.empty()) out.bulge.resize(waypoints - 1);
+  return out;
+}
 
 /// Appends `piece` (which starts where `out` ends) to `out`.
 void append(Path& out, const Path& piece) {
@@ -1030,9 +1055,9 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
 /// Calls chord(p, q) for each piece of what the path paints from segment `first` on: its straight
 /// segments, and chords within `tolerance` of its arcs.
 template <class Chord>
-void forEachPaintedChord(const Path& path, double tolerance, std::size_t first, Chord&& chord) {
+void forEachChord(const Path& path, double tolerance, std::size_t first, bool painted_only, Chord&& chord) {
   for (std::size_t i = first; i < path.segments(); ++i) {
-    if (!path.tool_on[i]) continue;
+    if (painted_only && !path.tool_on[i]) continue;
     const Point a = path.waypoints[i], b = path.waypoints[i + 1];
     Point from = a;
     if (effectiveBulge(a, b, path.bulgeOf(i)) != 0.0) {
@@ -1050,6 +1075,40 @@ void forEachPaintedChord(const Path& path, double tolerance, std::size_t first, 
     chord(from, b);
   }
 }
+
+template <class Chord>
+void forEachPaintedChord(const Path& path, double tolerance, std::size_t first, Chord&& chord) {
+  forEachChord(path, tolerance, first, true, chord);
+}
+
+/// The poses a path passes through, by cells `cell` wide and 15-degree headings (poseKey): a car
+/// that comes back to one of them has driven a loop (it can go on forever).
+class PathPoses {
+ public:
+  explicit PathPoses(double cell) : cell_(cell) {}
+  void add(const Path& path, std::size_t first) {
+    forEachChord(path, 0.1 * cell_, first, false, [&](Point p, Point q) {
+      const double len = distance(p, q);
+      if (len <= 0.0) return;
+      const double heading = std::atan2(q.y - p.y, q.x - p.x);
+      const int n = std::max(1, static_cast<int>(std::ceil(len / (0.5 * cell_))));
+      for (int i = 0; i < n; ++i) {
+        const Pose at{p + (q - p) * (static_cast<double>(i) / n), heading};
+        poses_.emplace(key(at), at);
+      }
+    });
+  }
+  /// A pose the path drove through in p's cell and heading, if any.
+  const Pose* near(Pose p) const {
+    const auto it = poses_.find(key(p));
+    return it == poses_.end() ? nullptr : &it->second;
+  }
+
+ private:
+  std::int64_t key(Pose p) const { return poseKey(p, cell_, 24); }
+  double cell_;
+  std::unordered_map<std::int64_t, Pose> poses_;
+};
 
 /// A raster of F and of its painted reach (what lies within a tool radius of F), and what a path
 /// paints of it: what the fill rounds look for passes in. Cells of `h` metres; a cell is in F, or
@@ -1099,6 +1158,21 @@ class PaintGrid {
   /// before, which this one goes on from: what a path paints is the union of its segments').
   void paintMore(const Path& path, std::size_t first) {
     forEachPaintedChord(path, 0.1 * h_, first, [&](Point p, Point q) { capsule(p, q); });
+  }
+  /// The cells of the reach left unpainted, and all cells of the reach, in the capsule of the
+  /// tool's radius round p-q.
+  std::pair<std::size_t, std::size_t> openIn(Point p, Point q) const {
+    std::size_t open_cells = 0, reach_cells = 0;
+    capsuleRows(p, q, [&](int j, double x0, double x1) {
+      const int i0 = std::max(0, static_cast<int>(std::ceil((x0 - origin_.x) / h_ - 0.5)));
+      const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((x1 - origin_.x) / h_ - 0.5)));
+      for (int i = i0; i <= i1; ++i) {
+        const std::size_t c = index(i, j);
+        reach_cells += (cells_[c] & kReach) != 0;
+        open_cells += open(c);
+      }
+    });
+    return {open_cells, reach_cells};
   }
   /// The reach's area, counted in cells (m²).
   double reach() const {
@@ -1231,9 +1305,15 @@ class PaintGrid {
     const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((x1 - origin_.x) / h_ - 0.5)));
     for (int i = i0; i <= i1; ++i) cells_[index(i, j)] |= bit;
   }
-  /// Paints the capsule of the tool's radius round the segment p-q: per row, the span of the two
-  /// end disks and the rectangle between them (their union is convex).
+  /// Paints the capsule of the tool's radius round the segment p-q.
   void capsule(Point p, Point q) {
+    capsuleRows(p, q, [&](int j, double lo, double hi) { mark(j, lo, hi, kPainted); });
+  }
+  /// The capsule of the tool's radius round the segment p-q, a row of cells at a time:
+  /// `row(j, lo, hi)` with the span of the two end disks and the rectangle between them (their
+  /// union is convex).
+  template <class Row>
+  void capsuleRows(Point p, Point q, Row&& row) const {
     const double len = distance(p, q);
     const Point nrm = len > 0.0 ? Point{-(q.y - p.y) / len, (q.x - p.x) / len} * r_ : Point{0.0, 0.0};
     const Point quad[4] = {p + nrm, q + nrm, q - nrm, p - nrm};
@@ -1255,7 +1335,7 @@ class PaintGrid {
           const double x = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
           lo = std::min(lo, x), hi = std::max(hi, x);
         }
-      if (lo <= hi) mark(j, lo, hi, kPainted);
+      if (lo <= hi) row(j, lo, hi);
     }
   }
 
@@ -1298,10 +1378,129 @@ void describe(CarSweep& out) {
   if (out.rings_as_passes > 0)
     out.reason += std::string(out.reason.empty() ? "" : "; ") +
                   "no row was reached from the rings' end: the rings were taken as passes with the rows";
-  if (out.ended_in_dead_end) out.reason += std::string(out.reason.empty() ? "" : "; ") + "the last row is a dead end the car cannot come out of";
+  if (out.ended_in_dead_end) out.reason += std::string(out.reason.empty() ? "" : "; ") + "the path ends in a dead end the car cannot come out of";
   if (out.rounds_timed_out)
     out.reason += std::string(out.reason.empty() ? "" : "; ") +
-                  "time ran out before the sweep's retries and fill rounds (passes through what it leaves unpainted) were done";
+                  "time ran out before the sweep's retries, fill rounds and strokes (passes through what it leaves unpainted) were done";
+}
+
+/// Strokes (a forward-only car, after the fill rounds): straight passes through what the path
+/// leaves unpainted, each reached from where the path ends by a search over the car's motions
+/// (searchCarUntil) to the nearest pose with a spacing of mostly unpainted reach (kStrokeOpen)
+/// straight ahead, and driven on while each half spacing finds enough unpainted (kStrokeOpenOn).
+/// A stroke ends where the car can go on: loop there (carCanLoop), or come back to a pose it
+/// drove (an exact curve onto it that lies in F: then it drove a loop). A sweep that ended in a
+/// dead-end row strokes from before it and takes that row again last, when a search reaches it;
+/// else the last stroke may end in a dead end. Each stroke is kept when it paints more, and all
+/// of them when what they paint is worth the path they add (worthIt, as a fill round). `grid`
+/// shows what out.path paints (`painted_before`), before and after.
+void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_before, double spacing, double rho, const Budget& budget) {
+  Path path = out.ended_in_dead_end ? upTo(out.path, out.dead_end_from) : out.path;
+  std::optional<Pose> row_from;  // the dead-end row's first pose, when the sweep ended in one
+  if (out.ended_in_dead_end) {
+    const std::size_t n = out.path.waypoints.size();
+    const Point a = out.path.waypoints[n - 2], b = out.path.waypoints[n - 1];
+    row_from = Pose{a, std::atan2(b.y - a.y, b.x - a.x)};
+    grid.paint(path);
+  }
+  PathPoses driven(rho / 4.0);
+  driven.add(path, 0);
+  std::size_t poses = 0, count = 0;
+  // Whether the car can go on from `at`: loop there, or come back onto the path.
+  auto goesOn = [&](Pose at) {
+    if (carCanLoop(ws, at, rho, kLoopExpansions)) return true;
+    return searchCarUntil(ws, at, rho, kStrokeLoopExpansions, [&](Pose q, Path& last) {
+      const Pose* on = driven.near(q);
+      return on && carCurveInto(q, *on, rho, false, false, last) && pathFree(ws, last);
+    }, &poses).segments() > 0;
+  };
+  auto lineFree = [&](Point a, Point b) { return ws.router().isFree(a, b); };
+  const double step = spacing / 2.0;
+  bool dead_end_stroke = false;  // the stroke searched for may end in a dead end
+  auto stroke = [&](Pose p, Path& last) {
+    const Point dir{std::cos(p.heading), std::sin(p.heading)};
+    Point b = p.at + dir * spacing;
+    const auto [open, reach] = grid.openIn(p.at, b);
+    if (reach == 0 || static_cast<double>(open) < kStrokeOpen * static_cast<double>(reach) || !lineFree(p.at, b)) return false;
+    for (int k = 0; k < kStrokeSteps; ++k) {
+      const Point c = b + dir * step;
+      const auto [o, r] = grid.openIn(b, c);
+      if (r == 0 || static_cast<double>(o) < kStrokeOpenOn * static_cast<double>(r) || !lineFree(b, c)) break;
+      b = c;
+    }
+    if (!dead_end_stroke)
+      while (!goesOn({b, p.heading})) {
+        b = b - dir * step;
+        if (distance(p.at, b) < spacing - 1e-9) return false;
+      }
+    last = Path{};
+    last.moveTo(p.at, true);
+    last.moveTo(b, true);
+    return true;
+  };
+  // Appends `route` (its last segment painted) when it paints more; false (and the path as it
+  // was) otherwise.
+  auto take = [&](Path& route) {
+    if (route.segments() == 0) return false;
+    route.tool_on.back() = true;
+    const double before = grid.painted();
+    const std::size_t first = path.segments();
+    Path longer = path;
+    append(longer, route);
+    grid.paintMore(longer, first);
+    if (!(grid.painted() > before)) {
+      grid.paint(path);
+      return false;
+    }
+    path = std::move(longer);
+    driven.add(path, first);
+    return true;
+  };
+  // The time limit ends the strokes where it is found to have passed (the plan is then partial).
+  bool timed_out = false;
+  auto expired = [&] { return timed_out = timed_out || budget.expired(); };
+  for (; count < kStrokes && poses < kStrokeBudget && !expired(); ++count) {
+    Path route = searchCarUntil(ws, endPose(path), rho, std::min(kStrokeExpansions, kStrokeBudget - poses), stroke, &poses);
+    if (!take(route)) break;
+  }
+  // The dead-end row again, or a last stroke that may end in a dead end.
+  bool row_again = false, dead_end = false;
+  const std::size_t before_end = path.waypoints.size();
+  if (row_from && !expired()) {
+    Path route = searchCarRoute(ws, endPose(path), *row_from, rho, false, kSearchExpansions, &poses);
+    if (route.segments() > 0) {
+      route.moveTo(out.path.waypoints.back(), true);
+      row_again = dead_end = take(route);
+    }
+  }
+  if (!row_again && !expired()) {
+    dead_end_stroke = true;
+    Path route = searchCarUntil(ws, endPose(path), rho, kStrokeExpansions, stroke, &poses);
+    if (take(route)) {
+      ++count;
+      dead_end = true;
+      const std::size_t n = path.waypoints.size();
+      out.dead_end_row = {path.waypoints[n - 2], path.waypoints[n - 1], 0, false, kAnyCell};
+    }
+  }
+  if (!worthIt(grid.painted() - painted_before, pathLength(path) - pathLength(out.path), spacing)) {
+    grid.paint(out.path);
+    if (timed_out) out.rounds_timed_out = true;
+    return;
+  }
+  if (row_from && !row_again) {
+    // The dead-end row is left out: a row left out (no route reached it from the strokes' end),
+    // or one fill pass fewer.
+    if (out.dead_end_fill) --out.fill_passes;
+    else ++out.unreached;
+  }
+  out.path = std::move(path);
+  out.strokes = count;
+  out.ended_in_dead_end = dead_end;
+  if (dead_end) out.dead_end_from = before_end;
+  if (!row_again) out.dead_end_fill = false;
+  if (timed_out) out.rounds_timed_out = true;
+  checkDrivable(out.path, ws.vehicle(), "the car's strokes");
 }
 
 }  // namespace
@@ -1348,6 +1547,8 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
   // round's passes taken last. A round is kept when what it paints more is worth the path it adds
   // (worthIt); the rounds stop at the first that is not kept.
   std::vector<CarRow> all;  // every round's passes
+  bool grid_shows_out = grid.has_value();  // the grid shows what out.path paints
+  std::optional<double> out_painted;       // what out.path paints, when measured
   int resweeps = 0;
   for (int round = 0; fill && round < kFillRounds && !out.timed_out && out.path.segments() > 0; ++round) {
     if (budget.expired()) {
@@ -1358,17 +1559,16 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     if (!grid) {
       grid.emplace(ws, cell);
       grid->paint(out.path);
+      grid_shows_out = true;
     }
     const double painted = grid->painted();
+    out_painted = painted;
     const std::vector<CarRow> passes = grid->passes(ws, spacing, kFillMinArea * spacing * spacing, rho, !car.reverse, kFillMinPass * spacing);
     if (passes.empty()) break;
     all.insert(all.end(), passes.begin(), passes.end());
-    Path start = out.path;
+    Path start = out.ended_in_dead_end ? upTo(out.path, out.dead_end_from) : out.path;
     std::vector<CarRow> again;
     if (out.ended_in_dead_end) {
-      start.waypoints.resize(out.dead_end_from);
-      start.tool_on.resize(out.dead_end_from - 1);
-      if (!start.bulge.empty()) start.bulge.resize(out.dead_end_from - 1);
       again.push_back(out.dead_end_row);
       again.back().row = false;
     }
@@ -1384,6 +1584,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
       // The continuation is out.path and more, unless it left out the dead-end last row.
       if (again.empty()) grid->paintMore(more.path, out.path.segments());
       else grid->paint(more.path);
+      grid_shows_out = false;
       if (!worthIt(grid->painted() - painted, pathLength(more.path) - pathLength(out.path), spacing)) {
         // Not worth it from there: the whole sweep again (it costs as much as the first), once,
         // and only where much is left (PaintGrid::reach).
@@ -1403,6 +1604,8 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
         out.dead_both_ways += more.dead_both_ways;
       }
       out.path = more.path;
+      grid_shows_out = true;
+      out_painted.reset();
       out.links = out.links + more.links - (again.empty() ? 0 : 1);  // the link into the row taken again
       out.routed += more.routed;
       out.searched += more.searched;
@@ -1423,9 +1626,26 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     if (again_whole.timed_out) out.rounds_timed_out = true;
     if (again_whole.timed_out || again_whole.fill_passes == 0) break;
     grid->paint(again_whole.path);
+    grid_shows_out = false;
     if (!worthIt(grid->painted() - painted, pathLength(again_whole.path) - pathLength(out.path), spacing)) break;
     rings = other;
     out = std::move(again_whole);
+    grid_shows_out = true;
+    out_painted.reset();
+  }
+  // Strokes through what is left, when it is more than kStrokeMinLeft of the reach (a forward-only
+  // car; strokes()).
+  if (fill && !car.reverse && !out.timed_out && out.path.segments() > 0) {
+    if (!grid) grid.emplace(ws, cell);
+    if (!out_painted) {
+      if (!grid_shows_out) grid->paint(out.path);
+      grid_shows_out = true;
+      out_painted = grid->painted();
+    }
+    if (*out_painted < (1.0 - kStrokeMinLeft) * grid->reach()) {
+      if (!grid_shows_out) grid->paint(out.path);
+      strokes(ws, out, *grid, *out_painted, spacing, rho, budget);
+    }
   }
   describe(out);
   return out;
@@ -1449,6 +1669,7 @@ void recordCarSweep(PlanResult& result, const CarSweep& sweep) {
   result.stats["car_ring_searched_skips"] = static_cast<double>(sweep.headland.searched);
   result.stats["car_ring_passes"] = static_cast<double>(sweep.ring_passes);
   result.stats["car_fill_passes"] = static_cast<double>(sweep.fill_passes);
+  result.stats["car_strokes"] = static_cast<double>(sweep.strokes);
   result.stats["car_undriven_m"] = sweep.headland.cut_m + sweep.undriven_m;
   if (sweep.unreached > 0 || sweep.timed_out || sweep.rounds_timed_out || sweep.headland.stopped) {
     if (result.status == PlanStatus::Ok) result.status = PlanStatus::Partial;

@@ -3,6 +3,8 @@
 /// Dubins and Reeds-Shepp state spaces as a path of arcs and lines, checks of arcs against the
 /// free region, and the smoothing that makes any planner's path drivable by a car.
 
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -60,6 +62,14 @@ double carCurveLength(Pose from, Pose to, double radius, bool reverse);
 /// found within `max_expansions` poses. Adds the poses it took to `*used` when given.
 Path searchCarRoute(const Workspace& ws, Pose from, Pose to, double radius, bool reverse, std::size_t max_expansions,
                     std::size_t* used = nullptr);
+/// A pose's cell (`cell` wide) and heading bin (of `headings`) as one key: what the search tells
+/// poses apart by.
+std::int64_t poseKey(Pose p, double cell, int headings);
+/// The same search (forward-only, by cost alone) from `from` to the first pose `finish` takes:
+/// `finish(pose, last)` returns true with the last piece to append (starting at that pose) in
+/// `last`. The route (tool off) and that piece as they come, or an empty path.
+Path searchCarUntil(const Workspace& ws, Pose from, double radius, std::size_t max_expansions,
+                    const std::function<bool(Pose, Path&)>& finish, std::size_t* used = nullptr);
 /// Whether a forward-only car at `from` can reach, within `max_expansions` poses of the same
 /// search, a pose from which it could circle at radius `radius` (left or right) staying in F: a
 /// pose it can drive on from forever. A pose that cannot is in a dead end: the car only leaves
