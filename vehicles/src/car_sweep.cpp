@@ -1390,8 +1390,9 @@ void describe(CarSweep& out) {
 /// straight ahead, and driven on while each half spacing finds enough unpainted (kStrokeOpenOn).
 /// A stroke ends where the car can go on: loop there (carCanLoop), or come back to a pose it
 /// drove (an exact curve onto it that lies in F: then it drove a loop). A sweep that ended in a
-/// dead-end row strokes from before it and takes that row again last, when a search reaches it;
-/// else the last stroke may end in a dead end. Each stroke is kept when it paints more, and all
+/// dead-end row strokes from before it and takes that row again last, when a search reaches it
+/// (and it paints more; else the row is left out, unless the strokes painted all it would); else
+/// the last stroke may end in a dead end. Each stroke is kept when it paints more, and all
 /// of them when what they paint is worth the path they add (worthIt, as a fill round). `grid`
 /// shows what out.path paints (`painted_before`), before and after.
 void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_before, double spacing, double rho, const Budget& budget) {
@@ -1464,13 +1465,14 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
     if (!take(route)) break;
   }
   // The dead-end row again, or a last stroke that may end in a dead end.
-  bool row_again = false, dead_end = false;
+  bool row_reached = false, row_again = false, dead_end = false;
   const std::size_t before_end = path.waypoints.size();
   if (row_from && !expired()) {
     Path route = searchCarRoute(ws, endPose(path), *row_from, rho, false, kSearchExpansions, &poses);
     if (route.segments() > 0) {
       route.moveTo(out.path.waypoints.back(), true);
-      row_again = dead_end = take(route);
+      row_reached = true;
+      row_again = dead_end = take(route);  // not taken: the strokes painted all it would
     }
   }
   if (!row_again && !expired()) {
@@ -1479,8 +1481,6 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
     if (take(route)) {
       ++count;
       dead_end = true;
-      const std::size_t n = path.waypoints.size();
-      out.dead_end_row = {path.waypoints[n - 2], path.waypoints[n - 1], 0, false, kAnyCell};
     }
   }
   if (!worthIt(grid.painted() - painted_before, pathLength(path) - pathLength(out.path), spacing)) {
@@ -1488,11 +1488,15 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
     if (timed_out) out.rounds_timed_out = true;
     return;
   }
-  if (row_from && !row_again) {
+  if (row_from && !row_reached) {
     // The dead-end row is left out: a row left out (no route reached it from the strokes' end),
     // or one fill pass fewer.
     if (out.dead_end_fill) --out.fill_passes;
     else ++out.unreached;
+  }
+  if (dead_end && !row_again) {
+    const std::size_t n = path.waypoints.size();
+    out.dead_end_row = {path.waypoints[n - 2], path.waypoints[n - 1], 0, false, kAnyCell};
   }
   out.path = std::move(path);
   out.strokes = count;
