@@ -71,14 +71,17 @@ Path motionPath(Pose pose, double kappa, double length, Pose end) {
   return p;
 }
 
-/// Weighted A* over the car's motions from `from`: `estimate(pose)` guides it (0: by cost alone),
+/// Weighted A* over the car's motions from `from` (`fineness`: searchCarUntil's): `estimate(pose)` guides it (0: by cost alone),
 /// `finish(pose, out)` ends it at a pose taken (true, with the last piece to append in `out`,
 /// possibly empty). The route as a path (tool off), or an empty path.
 template <class Estimate, class Finish>
 Path search(const Workspace& ws, Pose from, double radius, bool reverse, std::size_t max_expansions, Estimate estimate,
-            Finish finish, std::size_t* used = nullptr) {
-  const double step = radius * M_PI / 8.0;  // a full turn's motion turns the heading by 22.5 degrees
-  const double cell = radius / 2.0;
+            Finish finish, std::size_t* used = nullptr, int fineness = 1) {
+  // A full turn's motion turns the heading by 22.5 degrees (by 22.5 / fineness; cells and heading
+  // bins as much finer).
+  const double step = radius * M_PI / (8.0 * fineness);
+  const double cell = radius / (2.0 * fineness);
+  const int bins = kHeadingBins * fineness;
   const std::array<double, 5> curvatures{-1.0 / radius, -0.5 / radius, 0.0, 0.5 / radius, 1.0 / radius};
   // Each motion's bulge, forwards and backwards (the same for every pose).
   std::array<std::array<double, 5>, 2> bulges{};
@@ -97,7 +100,7 @@ Path search(const Workspace& ws, Pose from, double radius, bool reverse, std::si
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
   open.push({estimate(from), 0});
   // The cheapest cost seen per cell and heading bin.
-  auto key = [&](Pose p) { return poseKey(p, cell, kHeadingBins); };
+  auto key = [&](Pose p) { return poseKey(p, cell, bins); };
   std::unordered_map<std::int64_t, double> best;
   best[key(from)] = 0.0;
   std::size_t expansions = 0;
@@ -181,8 +184,8 @@ std::int64_t poseKey(Pose p, double cell, int headings) {
 }
 
 Path searchCarUntil(const Workspace& ws, Pose from, double radius, std::size_t max_expansions,
-                    const std::function<bool(Pose, Path&)>& finish, std::size_t* used) {
-  return search(ws, from, radius, false, max_expansions, [](Pose) { return 0.0; }, finish, used);
+                    const std::function<bool(Pose, Path&)>& finish, std::size_t* used, int fineness) {
+  return search(ws, from, radius, false, max_expansions, [](Pose) { return 0.0; }, finish, used, fineness);
 }
 
 bool carCanLoop(const Workspace& ws, Pose from, double radius, std::size_t max_expansions) {

@@ -56,6 +56,9 @@ constexpr double kStrokeOpenOn = 0.3;
 constexpr int kStrokeSteps = 80;
 /// Poses searched from a stroke's end for a way back to the path (else it counts as a dead end).
 constexpr std::size_t kStrokeLoopExpansions = 3000;
+/// A stroke the search at cells of R/2 does not find is searched for at cells of R/4, then R/8
+/// (searchCarUntil's fineness), up to this fineness.
+constexpr int kStrokeFinestSearch = 4;
 /// Strokes are looked for only when the fill rounds leave at least this share of the reach
 /// unpainted.
 constexpr double kStrokeMinLeft = 0.01;
@@ -1439,6 +1442,14 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
     last.moveTo(b, true);
     return true;
   };
+  // The route to the nearest stroke and the stroke: the search at cells of R/2, and where it finds
+  // none, at cells twice and four times finer (kStrokeFinestSearch), while the budget lasts.
+  auto findStroke = [&] {
+    Path route;
+    for (int fineness = 1; fineness <= kStrokeFinestSearch && route.segments() == 0 && poses < kStrokeBudget; fineness *= 2)
+      route = searchCarUntil(ws, endPose(path), rho, std::min(kStrokeExpansions, kStrokeBudget - poses), stroke, &poses, fineness);
+    return route;
+  };
   // Appends `route` (its last segment painted) when it paints more; false (and the path as it
   // was) otherwise.
   auto take = [&](Path& route) {
@@ -1461,7 +1472,7 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
   bool timed_out = false;
   auto expired = [&] { return timed_out = timed_out || budget.expired(); };
   for (; count < kStrokes && poses < kStrokeBudget && !expired(); ++count) {
-    Path route = searchCarUntil(ws, endPose(path), rho, std::min(kStrokeExpansions, kStrokeBudget - poses), stroke, &poses);
+    Path route = findStroke();
     if (!take(route)) break;
   }
   // The dead-end row again, or a last stroke that may end in a dead end.
@@ -1477,7 +1488,7 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
   }
   if (!row_again && !expired()) {
     dead_end_stroke = true;
-    Path route = searchCarUntil(ws, endPose(path), rho, kStrokeExpansions, stroke, &poses);
+    Path route = findStroke();
     if (take(route)) {
       ++count;
       dead_end = true;

@@ -67,9 +67,10 @@ Path searchCarRoute(const Workspace& ws, Pose from, Pose to, double radius, bool
 std::int64_t poseKey(Pose p, double cell, int headings);
 /// The same search (forward-only, by cost alone) from `from` to the first pose `finish` takes:
 /// `finish(pose, last)` returns true with the last piece to append (starting at that pose) in
-/// `last`. The route (tool off) and that piece as they come, or an empty path.
+/// `last`. The route (tool off) and that piece as they come, or an empty path. `fineness` k makes
+/// the cells R/(2k), the headings told apart 24k and the motions pi R / (8k) long.
 Path searchCarUntil(const Workspace& ws, Pose from, double radius, std::size_t max_expansions,
-                    const std::function<bool(Pose, Path&)>& finish, std::size_t* used = nullptr);
+                    const std::function<bool(Pose, Path&)>& finish, std::size_t* used = nullptr, int fineness = 1);
 /// Whether a forward-only car at `from` can reach, within `max_expansions` poses of the same
 /// search, a pose from which it could circle at radius `radius` (left or right) staying in F: a
 /// pose it can drive on from forever. A pose that cannot is in a dead end: the car only leaves
