@@ -46,7 +46,7 @@ constexpr double kFillMaxCells = 4e6;
 constexpr std::size_t kMaxCurveChecks = 64;
 /// Strokes after the fill rounds (forward-only): at most this many, searched for over at most
 /// kStrokeBudget poses in all, kStrokeExpansions each...
-constexpr int kStrokes = 400;
+constexpr std::size_t kStrokes = 400;
 constexpr std::size_t kStrokeBudget = 300000;
 constexpr std::size_t kStrokeExpansions = 20000;
 /// ...each a spacing long at least, where at least kStrokeOpen of its cells are unpainted, and
@@ -1457,14 +1457,13 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
     route.tool_on.back() = true;
     const double before = grid.painted();
     const std::size_t first = path.segments();
-    Path longer = path;
-    append(longer, route);
-    grid.paintMore(longer, first);
+    append(path, route);
+    grid.paintMore(path, first);
     if (!(grid.painted() > before)) {
+      path = upTo(path, first + 1);
       grid.paint(path);
       return false;
     }
-    path = std::move(longer);
     driven.add(path, first);
     return true;
   };
