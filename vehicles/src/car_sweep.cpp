@@ -47,11 +47,14 @@ constexpr std::size_t kMaxCurveChecks = 64;
 /// Strokes after the fill rounds (forward-only): at most this many, searched for over at most
 /// kStrokeBudget poses in all, kStrokeExpansions each...
 constexpr std::size_t kStrokes = 400;
-constexpr std::size_t kStrokeBudget = 300000;
+constexpr std::size_t kStrokeBudget = 1000000;
 constexpr std::size_t kStrokeExpansions = 20000;
-/// ...each a spacing long at least, where at least kStrokeOpen of its cells are unpainted, and
-/// going on by half spacings (up to kStrokeSteps) while kStrokeOpenOn of each step's are.
+/// ...each a spacing long at least, where at least kStrokeOpen of its cells are unpainted (or
+/// kStrokeOpenLast, where the search finds none), and going on by half spacings (up to
+/// kStrokeSteps) while kStrokeOpenOn of each step's are. The route to a stroke paints where
+/// kStrokeOpenOn of a segment's cells are unpainted.
 constexpr double kStrokeOpen = 0.5;
+constexpr double kStrokeOpenLast = 0.25;
 constexpr double kStrokeOpenOn = 0.3;
 constexpr int kStrokeSteps = 80;
 /// Poses searched from a stroke's end for a way back to the path (else it counts as a dead end).
@@ -1055,28 +1058,33 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
   return out;
 }
 
+/// Calls chord(p, q) for each piece of segment i of the path: the segment when it is straight,
+/// else chords within `tolerance` of its arc.
+template <class Chord>
+void forEachChordOf(const Path& path, std::size_t i, double tolerance, Chord&& chord) {
+  const Point a = path.waypoints[i], b = path.waypoints[i + 1];
+  Point from = a;
+  if (effectiveBulge(a, b, path.bulgeOf(i)) != 0.0) {
+    const ArcGeometry arc = arcGeometry(a, b, path.bulgeOf(i));
+    const double step = 2.0 * std::acos(std::max(-1.0, 1.0 - tolerance / arc.radius));
+    const int k = std::max(1, static_cast<int>(std::ceil(std::fabs(arc.sweep) / step)));
+    const double start = std::atan2(a.y - arc.centre.y, a.x - arc.centre.x);
+    for (int j = 1; j < k; ++j) {
+      const double t = start + arc.sweep * j / k;
+      const Point to = arc.centre + Point{std::cos(t), std::sin(t)} * arc.radius;
+      chord(from, to);
+      from = to;
+    }
+  }
+  chord(from, b);
+}
+
 /// Calls chord(p, q) for each piece of what the path paints from segment `first` on: its straight
 /// segments, and chords within `tolerance` of its arcs.
 template <class Chord>
 void forEachChord(const Path& path, double tolerance, std::size_t first, bool painted_only, Chord&& chord) {
-  for (std::size_t i = first; i < path.segments(); ++i) {
-    if (painted_only && !path.tool_on[i]) continue;
-    const Point a = path.waypoints[i], b = path.waypoints[i + 1];
-    Point from = a;
-    if (effectiveBulge(a, b, path.bulgeOf(i)) != 0.0) {
-      const ArcGeometry arc = arcGeometry(a, b, path.bulgeOf(i));
-      const double step = 2.0 * std::acos(std::max(-1.0, 1.0 - tolerance / arc.radius));
-      const int k = std::max(1, static_cast<int>(std::ceil(std::fabs(arc.sweep) / step)));
-      const double start = std::atan2(a.y - arc.centre.y, a.x - arc.centre.x);
-      for (int j = 1; j < k; ++j) {
-        const double t = start + arc.sweep * j / k;
-        const Point to = arc.centre + Point{std::cos(t), std::sin(t)} * arc.radius;
-        chord(from, to);
-        from = to;
-      }
-    }
-    chord(from, b);
-  }
+  for (std::size_t i = first; i < path.segments(); ++i)
+    if (!painted_only || path.tool_on[i]) forEachChordOf(path, i, tolerance, chord);
 }
 
 template <class Chord>
@@ -1176,6 +1184,17 @@ class PaintGrid {
       }
     });
     return {open_cells, reach_cells};
+  }
+  /// Whether at least `share` of the reach's cells that segment i of `path` would paint are
+  /// unpainted (counted chord by chord, as paintMore draws it), and there are some.
+  bool openAlong(const Path& path, std::size_t i, double share) const {
+    std::size_t open_cells = 0, reach_cells = 0;
+    forEachChordOf(path, i, 0.1 * h_, [&](Point p, Point q) {
+      const auto [o, r] = openIn(p, q);
+      open_cells += o;
+      reach_cells += r;
+    });
+    return reach_cells > 0 && static_cast<double>(open_cells) >= share * static_cast<double>(reach_cells);
   }
   /// The reach's area, counted in cells (m²).
   double reach() const {
@@ -1387,17 +1406,20 @@ void describe(CarSweep& out) {
                   "time ran out before the sweep's retries, fill rounds and strokes (passes through what it leaves unpainted) were done";
 }
 
-/// Strokes (a forward-only car, after the fill rounds): straight passes through what the path
-/// leaves unpainted, each reached from where the path ends by a search over the car's motions
-/// (searchCarUntil) to the nearest pose with a spacing of mostly unpainted reach (kStrokeOpen)
-/// straight ahead, and driven on while each half spacing finds enough unpainted (kStrokeOpenOn).
-/// A stroke ends where the car can go on: loop there (carCanLoop), or come back to a pose it
-/// drove (an exact curve onto it that lies in F: then it drove a loop). A sweep that ended in a
-/// dead-end row strokes from before it and takes that row again last, when a search reaches it
-/// (and it paints more; else the row is left out, unless the strokes painted all it would); else
-/// the last stroke may end in a dead end. Each stroke is kept when it paints more, and all
-/// of them when what they paint is worth the path they add (worthIt, as a fill round). `grid`
-/// shows what out.path paints (`painted_before`), before and after.
+/// Strokes (a forward-only car, after the fill rounds): passes through what the path leaves
+/// unpainted, each reached from where the path ends by a search over the car's motions
+/// (searchCarUntil) to the nearest pose with a spacing of mostly unpainted reach (kStrokeOpen;
+/// kStrokeOpenLast where none has) ahead: straight, or else on an arc of radius rho, left or
+/// right; driven on while each half spacing finds enough unpainted (kStrokeOpenOn). The route
+/// there paints where it passes over enough unpainted (kStrokeOpenOn). A stroke ends where the car
+/// can come back to a pose it drove (an exact curve onto it that lies in F): then it drove a loop
+/// through the path, and can go on. A circle it could drive there is not enough: it may circle in
+/// a pocket with no way out. A sweep that ended in a dead-end row strokes from before it and takes
+/// that row again last, when a search reaches it (and it paints more; else the row is left out,
+/// unless the strokes painted all it would); else the last stroke, the straight one with the most
+/// unpainted reach a search finds, may end in a dead end. Each stroke is kept when it paints more,
+/// and all of them when what they paint is worth the path they add (worthIt, as a fill round).
+/// `grid` shows what out.path paints (`painted_before`), before and after.
 void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_before, double spacing, double rho, const Budget& budget) {
   Path path = out.ended_in_dead_end ? upTo(out.path, out.dead_end_from) : out.path;
   std::optional<Pose> row_from;  // the dead-end row's first pose, when the sweep ended in one
@@ -1410,9 +1432,8 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
   PathPoses driven(rho / 4.0);
   driven.add(path, 0);
   std::size_t poses = 0, count = 0;
-  // Whether the car can go on from `at`: loop there, or come back onto the path.
+  // Whether the car can go on from `at`: come back onto the path.
   auto goesOn = [&](Pose at) {
-    if (carCanLoop(ws, at, rho, kLoopExpansions)) return true;
     return searchCarUntil(ws, at, rho, kStrokeLoopExpansions, [&](Pose q, Path& last) {
       const Pose* on = driven.near(q);
       return on && carCurveInto(q, *on, rho, false, false, last) && pathFree(ws, last);
@@ -1421,11 +1442,42 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
   auto lineFree = [&](Point a, Point b) { return ws.router().isFree(a, b); };
   const double step = spacing / 2.0;
   bool dead_end_stroke = false;  // the stroke searched for may end in a dead end
+  double open_share = kStrokeOpen;
+  // The arc of radius rho from p, `length` along it (turning left when `left`; at most half a
+  // circle), as a path of one segment (tool on), and the pose at its end.
+  Path arc;
+  auto arcTo = [&](Pose p, bool left, double length) {
+    const double k = (left ? 1.0 : -1.0) / rho, h = p.heading + k * length;
+    const Pose end{{p.at.x + (std::sin(h) - std::sin(p.heading)) / k, p.at.y - (std::cos(h) - std::cos(p.heading)) / k}, h};
+    arc = Path{};
+    arc.moveTo(p.at, true);
+    arc.arcTo(end.at, std::tan(k * length / 4.0), true);
+    return end;
+  };
+  auto arcStroke = [&](Pose p, Path& last) {
+    for (const bool left : {true, false}) {
+      double length = spacing;
+      Pose end = arcTo(p, left, length);
+      if (!grid.openAlong(arc, 0, open_share) || !pathFree(ws, arc)) continue;
+      for (; length + step <= M_PI * rho; length += step) {
+        const Pose next = arcTo(end, left, step);
+        if (!grid.openAlong(arc, 0, kStrokeOpenOn) || !pathFree(ws, arc)) break;
+        end = next;
+      }
+      for (; length >= spacing - 1e-9 && !goesOn(end); length -= step) end = arcTo(p, left, length - step);
+      if (length < spacing - 1e-9) continue;
+      arcTo(p, left, length);
+      last = arc;
+      return true;
+    }
+    return false;
+  };
   auto stroke = [&](Pose p, Path& last) {
     const Point dir{std::cos(p.heading), std::sin(p.heading)};
     Point b = p.at + dir * spacing;
     const auto [open, reach] = grid.openIn(p.at, b);
-    if (reach == 0 || static_cast<double>(open) < kStrokeOpen * static_cast<double>(reach) || !lineFree(p.at, b)) return false;
+    if (reach == 0 || static_cast<double>(open) < open_share * static_cast<double>(reach) || !lineFree(p.at, b))
+      return !dead_end_stroke && arcStroke(p, last);
     for (int k = 0; k < kStrokeSteps; ++k) {
       const Point c = b + dir * step;
       const auto [o, r] = grid.openIn(b, c);
@@ -1435,7 +1487,7 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
     if (!dead_end_stroke)
       while (!goesOn({b, p.heading})) {
         b = b - dir * step;
-        if (distance(p.at, b) < spacing - 1e-9) return false;
+        if (distance(p.at, b) < spacing - 1e-9) return arcStroke(p, last);
       }
     last = Path{};
     last.moveTo(p.at, true);
@@ -1444,16 +1496,28 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
   };
   // The route to the nearest stroke and the stroke: the search at cells of R/2, and where it finds
   // none, at cells twice and four times finer (kStrokeFinestSearch), while the budget lasts.
-  auto findStroke = [&] {
+  auto searchStroke = [&] {
     Path route;
     for (int fineness = 1; fineness <= kStrokeFinestSearch && route.segments() == 0 && poses < kStrokeBudget; fineness *= 2)
       route = searchCarUntil(ws, endPose(path), rho, std::min(kStrokeExpansions, kStrokeBudget - poses), stroke, &poses, fineness);
     return route;
   };
-  // Appends `route` (its last segment painted) when it paints more; false (and the path as it
-  // was) otherwise.
+  // ...and where there is none, the nearest at kStrokeOpenLast.
+  auto findStroke = [&] {
+    Path route = searchStroke();
+    if (route.segments() == 0) {
+      open_share = kStrokeOpenLast;
+      route = searchStroke();
+      open_share = kStrokeOpen;
+    }
+    return route;
+  };
+  // Appends `route` when it paints more: its last segment (the stroke) painted, and each segment
+  // before it that passes over enough unpainted (kStrokeOpenOn). False (and the path as it was)
+  // otherwise.
   auto take = [&](Path& route) {
     if (route.segments() == 0) return false;
+    for (std::size_t k = 0; k + 1 < route.segments(); ++k) route.tool_on[k] = grid.openAlong(route, k, kStrokeOpenOn);
     route.tool_on.back() = true;
     const double before = grid.painted();
     const std::size_t first = path.segments();
@@ -1486,8 +1550,25 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
     }
   }
   if (!row_again && !expired()) {
+    // The stroke with the most unpainted reach of all the search finds (it looks at every pose it
+    // reaches), then the same search again, stopped at that stroke.
     dead_end_stroke = true;
-    Path route = findStroke();
+    std::size_t most = 0;
+    std::optional<Pose> best;
+    int fineness = 1;
+    for (; fineness <= kStrokeFinestSearch && !best && poses < kStrokeBudget; fineness *= 2)
+      searchCarUntil(ws, endPose(path), rho, std::min(kStrokeExpansions, kStrokeBudget - poses), [&](Pose q, Path& last) {
+        if (stroke(q, last)) {
+          const std::size_t open_cells = grid.openIn(last.waypoints.front(), last.waypoints.back()).first;
+          if (open_cells > most) most = open_cells, best = q;
+        }
+        return false;
+      }, &poses, fineness);
+    Path route;
+    if (best)
+      route = searchCarUntil(ws, endPose(path), rho, kStrokeExpansions, [&](Pose q, Path& last) {
+        return q.at.x == best->at.x && q.at.y == best->at.y && q.heading == best->heading && stroke(q, last);
+      }, &poses, fineness / 2);
     if (take(route)) {
       ++count;
       dead_end = true;
