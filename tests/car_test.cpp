@@ -949,6 +949,20 @@ TEST(CarSweep, StrokesReachWhatTheRowsDoNot) {
   EXPECT_EQ(r.stats.at("car_strokes"), 0.0) << r.reason;
 }
 
+// random-s7-0001 (12.5 m x 5.9 m): the rings' lowest vertex and their longest edge both start the
+// forward-only car where it drives into a pocket of 1.7 m x 1.2 m, closed by a slot narrower than
+// its turns, and every planner's plan stayed there: zigzag painted 0.046 of R (the car-ceiling's
+// `interior` is 0.936). The sweep is now planned again with the rings started at their first
+// ring's next longest edges until a search of the car's motions from the path's first pose finds
+// 5,000 poses: zigzag paints 0.858. The build before fails this test.
+TEST(CarSweep, ACarThatStartsInAPocketStartsAgainWhereItGetsOut) {
+  const Wall wall = generateWall("random", 7, 1);
+  const PlanResult r = carPlanOf("zigzag", wall, false);
+  const PathMetrics m = computeMetrics(wall, kTool, r.path, car(0.3, false));
+  EXPECT_TRUE(m.validity.valid) << r.reason;
+  EXPECT_GE(m.coverage.coverage_reachable, 0.8) << r.reason;
+}
+
 // A stroke's route paints where it passes over enough unpainted reach, a stroke may be an arc of
 // radius R where no straight one starts, and a stroke ends only where the car can come back onto
 // a pose its path drove. A circle the car could drive there was enough before; with routes that

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
+#include <numeric>
 #include <optional>
 #include <queue>
 #include <tuple>
@@ -65,6 +66,11 @@ constexpr int kStrokeFinestSearch = 4;
 /// Strokes are looked for only when the fill rounds leave at least this share of the reach
 /// unpainted.
 constexpr double kStrokeMinLeft = 0.01;
+/// A forward-only car is in a pocket where a search of its motions finds fewer than kPocketPoses
+/// poses; where it starts in one, the rings start at up to kRingStarts longest edges of their
+/// first ring (carSweep).
+constexpr std::size_t kPocketPoses = 5000;
+constexpr std::size_t kRingStarts = 8;
 /// Rows a stuck car goes back at most, from the furthest it got.
 constexpr std::size_t kMaxBacktracks = 4;
 /// Rows tried along a route round the obstacles when no curve was free.
@@ -509,12 +515,33 @@ PlanResult carSweepPlan(const CarSweep& sweep, const PathBuilder& rings, std::si
 
 namespace {
 
+/// The start of the k-th longest edge (0: the longest; the first of equal ones) of the ring of
+/// `thin` that holds `vertex`, if it has one.
+std::optional<Point> ringEdgeStart(const std::vector<Ring>& thin, Point vertex, std::size_t k) {
+  const auto ring = std::find_if(thin.begin(), thin.end(), [&](const Ring& r) { return std::find(r.begin(), r.end(), vertex) != r.end(); });
+  if (ring == thin.end() || k >= ring->size()) return std::nullopt;
+  std::vector<std::size_t> edges(ring->size());
+  std::iota(edges.begin(), edges.end(), std::size_t{0});
+  auto length = [&](std::size_t i) { return distance((*ring)[i], (*ring)[(i + 1) % ring->size()]); };
+  std::stable_sort(edges.begin(), edges.end(), [&](std::size_t i, std::size_t j) { return length(i) > length(j); });
+  return (*ring)[edges[k]];
+}
+
+/// Whether a forward-only car that starts where `path` does is in a pocket: a search of its
+/// motions from there finds fewer than kPocketPoses poses.
+bool startsInPocket(const Workspace& ws, const Path& path, double rho) {
+  if (path.segments() == 0) return false;
+  std::size_t found = 0;
+  searchCarUntil(ws, Pose{path.waypoints.front(), startHeading(path)}, rho, kPocketPoses, [](Pose, Path&) { return false; }, &found);
+  return found < kPocketPoses;
+}
+
 /// carSweep without its fill rounds: the rings, then `given` and the ring passes, then the passes
 /// `fill` (taken last; one the car does not reach is not a row left out). With `from`, no rings:
 /// the sweep goes on from the end of that path (a fill round), which it never cuts back.
 CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& given,
                    const std::vector<CarRow>& fill, double spacing, const Budget& budget, double line_penalty,
-                   const Path* from = nullptr, int rings_as_passes = 0) {
+                   const Path* from = nullptr, int rings_as_passes = 0, std::size_t ring_start = 0) {
   const VehicleModel& car = ws.vehicle();
   const double rho = car.turn_radius * (1.0 + kCarRadiusSlack);
   CarSweep out;
@@ -526,24 +553,27 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
   // The rings start at their lowest vertex (coverRings). Where the car stops on them before it
   // drove half their length (they start in a pocket it cannot turn out of), they start again at
   // the start of that ring's longest edge, kept when the car paints more of them so.
-  if (out.headland.stopped && pathLength(out.headland.path, true) < 0.5 * pathLength(rings.path(), true)) {
-    const Point lowest = rings.path().waypoints.front();
-    const auto first = std::find_if(thin.begin(), thin.end(), [&](const Ring& ring) {
-      return std::find(ring.begin(), ring.end(), lowest) != ring.end();
-    });
-    std::size_t longest = 0;
-    for (std::size_t i = 1; first != thin.end() && i < first->size(); ++i)
-      if (distance((*first)[i], (*first)[(i + 1) % first->size()]) >
-          distance((*first)[longest], (*first)[(longest + 1) % first->size()]))
-        longest = i;
+  if (ring_start == 0 && out.headland.stopped && pathLength(out.headland.path, true) < 0.5 * pathLength(rings.path(), true)) {
     PathBuilder other(ws);
-    if (first != thin.end()) other.moveTo((*first)[longest], false);
+    if (const auto at = ringEdgeStart(thin, rings.path().waypoints.front(), 0)) other.moveTo(*at, false);
     const std::size_t unreached = coverRings(other, thin, 1.5 * spacing);
     CarSmoothing driven = smoothForCar(ws, other.path());
     if (pathLength(driven.path, true) > pathLength(out.headland.path, true)) {
       rings = other;
       out.unreached_rings = unreached;
       out.headland = std::move(driven);
+    }
+  }
+  // Started at the first ring's ring_start-th longest edge instead (carSweep: where the car
+  // starts in a pocket).
+  if (ring_start > 0 && rings.path().segments() > 0) {
+    if (const auto at = ringEdgeStart(thin, rings.path().waypoints.front(), ring_start)) {
+      PathBuilder other(ws);
+      other.moveTo(*at, false);
+      out.unreached_rings = coverRings(other, thin, 1.5 * spacing);
+      out.headland = smoothForCar(ws, other.path());
+      rings = other;
+      out.ring_start = ring_start;
     }
   }
   if (rings_as_passes && rings.path().segments() > 0) {
@@ -1636,6 +1666,39 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     }
     if (grid && out.rings_as_passes == 0) grid->paint(out.path);  // the fill rounds start from out.path's paint
   }
+  // A forward-only car that leaves most rows out and starts in a pocket (startsInPocket: as on
+  // random-s7-0001, a pocket of 1.7 m x 1.2 m that a slot narrower than its turns closes, where
+  // every planner painted 0.05 of R): the sweep again with the rings started at their first
+  // ring's next longest edges (up to kRingStarts), until one starts out of a pocket, kept when it
+  // paints more.
+  if (!car.reverse && out.rings_as_passes == 0 && !loops.empty() && !out.timed_out && 2 * out.unreached > out.rows &&
+      startsInPocket(ws, out.path, rho)) {
+    for (std::size_t e = 1; e < kRingStarts; ++e) {
+      if (budget.expired()) {
+        out.rounds_timed_out = true;
+        break;
+      }
+      PathBuilder other(ws);
+      CarSweep again = sweepOnce(ws, other, loops, given, {}, spacing, budget, line_penalty, nullptr, 0, e);
+      if (again.timed_out) {
+        out.rounds_timed_out = true;
+        break;
+      }
+      if (again.ring_start != e) break;  // the first ring has no more edges
+      if (startsInPocket(ws, again.path, rho)) continue;
+      if (!grid) grid.emplace(ws, cell);
+      grid->paint(out.path);
+      const double before = grid->painted();
+      grid->paint(again.path);
+      if (grid->painted() > before) {
+        rings = other;
+        out = std::move(again);
+      } else {
+        grid->paint(out.path);
+      }
+      break;
+    }
+  }
   // Fill rounds: passes through what the path leaves unpainted (PaintGrid::passes), driven from
   // where it ends (before its last row, when that is a dead end: that row is taken again with
   // them), or, where the car reaches none of them so, the whole sweep planned again with every
@@ -1717,7 +1780,7 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     }
     ++resweeps;
     PathBuilder other(ws);
-    CarSweep again_whole = sweepOnce(ws, other, loops, given, all, spacing, budget, line_penalty, nullptr, out.rings_as_passes);
+    CarSweep again_whole = sweepOnce(ws, other, loops, given, all, spacing, budget, line_penalty, nullptr, out.rings_as_passes, out.ring_start);
     if (again_whole.timed_out) out.rounds_timed_out = true;
     if (again_whole.timed_out || again_whole.fill_passes == 0) break;
     grid->paint(again_whole.path);

@@ -111,6 +111,9 @@ struct CarSweep {
   /// ordered with the rows, the car starting along their longest segment the way they drive it
   /// (1) or the other way (2); 0: the rings first.
   int rings_as_passes = 0;
+  /// The rings start at their first ring's ring_start-th longest edge (from 0, the longest): the
+  /// car started in a pocket from the default start (carSweep); 0: the default.
+  std::size_t ring_start = 0;
   /// A forward-only car's last row is one it cannot come out of (the path ends there).
   bool ended_in_dead_end = false;
   std::size_t dead_end_from = 0;  ///< then: the path's waypoints before the curve into that row
@@ -138,7 +141,10 @@ struct CarSweep {
 /// dead end. Where the rings end facing F's edge, their last stretch is cut short until a curve
 /// leaves it. Where no row is reached from where they end, the sweep is planned again with the
 /// rings as passes taken with the rows, the car starting along their longest segment (either way;
-/// CarSweep::rings_as_passes), kept when it paints more. Then (`fill`) fill rounds: what the path leaves unpainted is found on a raster (cells of a
+/// CarSweep::rings_as_passes), kept when it paints more. A forward-only car that leaves most rows
+/// out and starts in a pocket (a search of its motions from its first pose finds fewer than 5,000
+/// poses) is planned for again with the rings started at their first ring's next longest edges
+/// until one starts out of a pocket (CarSweep::ring_start), kept when it paints more. Then (`fill`) fill rounds: what the path leaves unpainted is found on a raster (cells of a
 /// fifth of a spacing), each piece of it gets passes along its long axis, and the sweep goes on
 /// through them from where it ended (or, where it cannot, is planned again with them taken last),
 /// kept when it paints more. The result is checked for the car's rules (std::logic_error on a
