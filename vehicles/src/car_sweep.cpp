@@ -552,28 +552,23 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
   if (rings.path().segments() > 0 && !rings_as_passes) out.headland = smoothForCar(ws, rings.path());
   // The rings start at their lowest vertex (coverRings). Where the car stops on them before it
   // drove half their length (they start in a pocket it cannot turn out of), they start again at
-  // the start of that ring's longest edge, kept when the car paints more of them so.
-  if (ring_start == 0 && out.headland.stopped && pathLength(out.headland.path, true) < 0.5 * pathLength(rings.path(), true)) {
-    PathBuilder other(ws);
-    if (const auto at = ringEdgeStart(thin, rings.path().waypoints.front(), 0)) other.moveTo(*at, false);
-    const std::size_t unreached = coverRings(other, thin, 1.5 * spacing);
-    CarSmoothing driven = smoothForCar(ws, other.path());
-    if (pathLength(driven.path, true) > pathLength(out.headland.path, true)) {
-      rings = other;
-      out.unreached_rings = unreached;
-      out.headland = std::move(driven);
-    }
-  }
-  // Started at the first ring's ring_start-th longest edge instead (carSweep: where the car
-  // starts in a pocket).
-  if (ring_start > 0 && rings.path().segments() > 0) {
-    if (const auto at = ringEdgeStart(thin, rings.path().waypoints.front(), ring_start)) {
+  // the start of that ring's longest edge, kept when the car paints more of them so. With
+  // ring_start, they start at that ring's ring_start-th longest edge instead, kept as the car
+  // drives them (carSweep: where the car starts in a pocket).
+  const bool again = ring_start > 0 || (out.headland.stopped && pathLength(out.headland.path, true) < 0.5 * pathLength(rings.path(), true));
+  if (again && rings.path().segments() > 0) {
+    const auto at = ringEdgeStart(thin, rings.path().waypoints.front(), ring_start);
+    if (at || ring_start == 0) {
       PathBuilder other(ws);
-      other.moveTo(*at, false);
-      out.unreached_rings = coverRings(other, thin, 1.5 * spacing);
-      out.headland = smoothForCar(ws, other.path());
-      rings = other;
-      out.ring_start = ring_start;
+      if (at) other.moveTo(*at, false);
+      const std::size_t unreached = coverRings(other, thin, 1.5 * spacing);
+      CarSmoothing driven = smoothForCar(ws, other.path());
+      if (ring_start > 0 || pathLength(driven.path, true) > pathLength(out.headland.path, true)) {
+        rings = other;
+        out.unreached_rings = unreached;
+        out.headland = std::move(driven);
+        out.ring_start = ring_start;
+      }
     }
   }
   if (rings_as_passes && rings.path().segments() > 0) {
@@ -1088,6 +1083,12 @@ CarSweep sweepOnce(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& l
   return out;
 }
 
+/// Whether `cells` (unpainted cells of the reach, cells of the reach) has some reach and at least
+/// `share` of it unpainted.
+bool enoughOpen(std::pair<std::size_t, std::size_t> cells, double share) {
+  return cells.second > 0 && static_cast<double>(cells.first) >= share * static_cast<double>(cells.second);
+}
+
 /// Calls chord(p, q) for each piece of segment i of the path: the segment when it is straight,
 /// else chords within `tolerance` of its arc.
 template <class Chord>
@@ -1218,13 +1219,13 @@ class PaintGrid {
   /// Whether at least `share` of the reach's cells that segment i of `path` would paint are
   /// unpainted (counted chord by chord, as paintMore draws it), and there are some.
   bool openAlong(const Path& path, std::size_t i, double share) const {
-    std::size_t open_cells = 0, reach_cells = 0;
+    std::pair<std::size_t, std::size_t> cells{0, 0};
     forEachChordOf(path, i, 0.1 * h_, [&](Point p, Point q) {
       const auto [o, r] = openIn(p, q);
-      open_cells += o;
-      reach_cells += r;
+      cells.first += o;
+      cells.second += r;
     });
-    return reach_cells > 0 && static_cast<double>(open_cells) >= share * static_cast<double>(reach_cells);
+    return enoughOpen(cells, share);
   }
   /// The reach's area, counted in cells (m²).
   double reach() const {
@@ -1505,13 +1506,10 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
   auto stroke = [&](Pose p, Path& last) {
     const Point dir{std::cos(p.heading), std::sin(p.heading)};
     Point b = p.at + dir * spacing;
-    const auto [open, reach] = grid.openIn(p.at, b);
-    if (reach == 0 || static_cast<double>(open) < open_share * static_cast<double>(reach) || !lineFree(p.at, b))
-      return !dead_end_stroke && arcStroke(p, last);
+    if (!enoughOpen(grid.openIn(p.at, b), open_share) || !lineFree(p.at, b)) return !dead_end_stroke && arcStroke(p, last);
     for (int k = 0; k < kStrokeSteps; ++k) {
       const Point c = b + dir * step;
-      const auto [o, r] = grid.openIn(b, c);
-      if (r == 0 || static_cast<double>(o) < kStrokeOpenOn * static_cast<double>(r) || !lineFree(b, c)) break;
+      if (!enoughOpen(grid.openIn(b, c), kStrokeOpenOn) || !lineFree(b, c)) break;
       b = c;
     }
     if (!dead_end_stroke)
@@ -1586,7 +1584,7 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
     std::size_t most = 0;
     std::optional<Pose> best;
     int fineness = 1;
-    for (; fineness <= kStrokeFinestSearch && !best && poses < kStrokeBudget; fineness *= 2)
+    for (; fineness <= kStrokeFinestSearch && poses < kStrokeBudget; fineness *= 2) {
       searchCarUntil(ws, endPose(path), rho, std::min(kStrokeExpansions, kStrokeBudget - poses), [&](Pose q, Path& last) {
         if (stroke(q, last)) {
           const std::size_t open_cells = grid.openIn(last.waypoints.front(), last.waypoints.back()).first;
@@ -1594,11 +1592,13 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
         }
         return false;
       }, &poses, fineness);
+      if (best) break;
+    }
     Path route;
     if (best)
       route = searchCarUntil(ws, endPose(path), rho, kStrokeExpansions, [&](Pose q, Path& last) {
-        return q.at.x == best->at.x && q.at.y == best->at.y && q.heading == best->heading && stroke(q, last);
-      }, &poses, fineness / 2);
+        return q.at == best->at && q.heading == best->heading && stroke(q, last);
+      }, &poses, fineness);
     if (take(route)) {
       ++count;
       dead_end = true;
