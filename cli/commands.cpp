@@ -312,11 +312,14 @@ int carCeilingCommand(const CarCeilingCommandOptions& options) {
   doc["states"] = c.states;
   doc["viable_states"] = c.viable;
   doc["pieces_of_f"] = c.pieces;
+  doc["viable_components"] = c.components;
   doc["reachable_area"] = c.reachable_area;
   doc["interior_area"] = c.interior_area;
   doc["with_ends_area"] = c.with_ends_area;
   doc["interior"] = c.interior;
   doc["with_ends"] = c.with_ends;
+  doc["largest_piece_area"] = c.largest_piece_area;
+  doc["largest_piece"] = c.largest_piece;
   std::cout << doc.dump(2) << "\n";
   return 0;
 }

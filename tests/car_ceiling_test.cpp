@@ -96,6 +96,29 @@ TEST(CarCeiling, APathStaysInOnePieceOfF) {
   EXPECT_NEAR(c.interior, room / c.reachable_area, 0.005);
   EXPECT_LT(c.with_ends, 0.62);
   EXPECT_GE(c.with_ends, c.interior);
+  // What a tool paints at best in the larger room, turning on the spot or reversing: about 6 of 10.
+  EXPECT_NEAR(c.largest_piece_area, 6.0, 0.2);
+  EXPECT_NEAR(c.largest_piece, c.largest_piece_area / c.reachable_area, 1e-12);
+}
+
+// A 3 m x 2 m room and, behind a corridor 0.3 m long and 0.16 m high, a room of 0.72 m x 0.72 m
+// (F 0.62 m across) where a car of R = 0.3 m can drive circles but never join one from the
+// corridor, nor leave one for it. Its circles' poses are viable, but in components of their own:
+// a path's viable poses lie in one component, so the estimate is the large room's alone, its area
+// less its four corners over R of both rooms: 5.895 / 6.49 m^2 = 0.908 (counting the small room's
+// circles too gave about 0.93). Every reachable point is in one piece of F: `largest_piece` 1.
+TEST(CarCeiling, APathsViablePosesLieInOneComponent) {
+  Wall wall;
+  wall.name = "room_behind_a_corridor";
+  wall.boundary = {{0, 0}, {3, 0}, {3, 0.92}, {3.3, 0.92}, {3.3, 0.64}, {4.02, 0.64}, {4.02, 1.36}, {3.3, 1.36}, {3.3, 1.08}, {3, 1.08}, {3, 2}, {0, 2}};
+  const CarCeiling c = ceilingOf(wall, 0.3);
+  EXPECT_EQ(c.pieces, 1u);
+  EXPECT_GT(c.components, 1u);
+  const double room = 6.0 - 4.0 * 0.35 * 0.35 * (1.0 - M_PI / 4.0);
+  EXPECT_NEAR(c.interior, room / c.reachable_area, 0.005);
+  EXPECT_GE(c.with_ends, c.interior);
+  EXPECT_NEAR(c.largest_piece, 1.0, 1e-12);
+  EXPECT_NEAR(c.largest_piece_area, c.reachable_area, 1e-9);
 }
 
 TEST(CarCeiling, SameWallSameNumbers) {

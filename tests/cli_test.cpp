@@ -80,8 +80,8 @@ TEST_F(Cli, MetricsWithTheExactJudge) {
 }
 
 // `car-ceiling`: JSON with the estimate and the pieces of F it chose among (two rooms joined by a
-// slit no tool passes: a path stays in one, so the estimate is at most the larger room's 0.6 of
-// R); a turn radius that is not positive is one line naming it, exit 2 and nothing on stdout.
+// slit no tool passes: a path stays in one, so the estimate, and the largest piece, are at most
+// the larger room's 0.6 of R); a turn radius that is not positive is one line naming it, exit 2 and nothing on stdout.
 TEST_F(Cli, CarCeilingPrintsTheBestPieceOfF) {
   const std::string wall = write("rooms.json", R"({ "name": "rooms", "boundary": [[0, 0], [3, 0], [3, 0.9], [4, 0.9], [4, 0],
       [6, 0], [6, 2], [4, 2], [4, 0.96], [3, 0.96], [3, 2], [0, 2]], "obstacles": [] })");
@@ -92,6 +92,8 @@ TEST_F(Cli, CarCeilingPrintsTheBestPieceOfF) {
   EXPECT_EQ(doc["pieces_of_f"], 2);
   EXPECT_GT(doc["interior"].get<double>(), 0.55);
   EXPECT_LT(doc["with_ends"].get<double>(), 0.62);
+  EXPECT_GE(doc["viable_components"].get<int>(), 2);  // a car circles in each room
+  EXPECT_NEAR(doc["largest_piece"].get<double>(), 0.6, 0.03);
   std::string none;
   const CommandRun bad = run("car-ceiling --wall " + wall + " --turn-radius 0", &none);
   EXPECT_EQ(bad.exit_code, 2);

@@ -47,10 +47,29 @@ struct Lattice {
     const long n = static_cast<long>(h);
     return static_cast<std::size_t>(((j % n) + n) % n);
   }
+  /// The pose motion k leads to from (x, y, j) (ahead), or comes from into it (not ahead); false
+  /// when that motion is not free.
+  bool neighbour(long x, long y, std::size_t j, long k, bool ahead, long& to_x, long& to_y, std::size_t& to_j) const {
+    if (ahead) {
+      const auto& o = offset(j, k, kSamples - 1);
+      to_x = x + o[0];
+      to_y = y + o[1];
+      to_j = heading(static_cast<long>(j) + k);
+      return motionFree(x, y, j, k);
+    }
+    to_j = heading(static_cast<long>(j) - k);
+    const auto& o = offset(to_j, k, kSamples - 1);
+    to_x = x - o[0];
+    to_y = y - o[1];
+    return freeAt(to_x, to_y) && motionFree(to_x, to_y, to_j, k);
+  }
 };
 
 /// Chains longer than this many poses are not told apart (chain lengths are kept in a byte a pose).
 constexpr unsigned kLongChain = 255;
+/// A piece of F's largest viable components are each a candidate of their own; the rest one
+/// together.
+constexpr std::size_t kComponents = 8;
 
 /// Clears `alive` bit `bit` of every pose that has no motion on to (forward) or in from
 /// (backward) a pose that keeps the bit: the greatest such set, by removing poses one at a time
@@ -65,22 +84,6 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
   std::vector<std::uint8_t>& count = chain;
   count.assign(alive.size(), 0);
   std::vector<std::uint32_t> stack;
-  // The pose motion k leads to from (x, y, j) (ahead), or comes from into it (not ahead); false
-  // when that motion is not free.
-  auto neighbour = [&](long x, long y, std::size_t j, long k, bool ahead, long& nx, long& ny, std::size_t& nj) {
-    if (ahead) {
-      const auto& o = lat.offset(j, k, kSamples - 1);
-      nx = x + o[0];
-      ny = y + o[1];
-      nj = lat.heading(static_cast<long>(j) + k);
-      return lat.motionFree(x, y, j, k);
-    }
-    nj = lat.heading(static_cast<long>(j) - k);
-    const auto& o = lat.offset(nj, k, kSamples - 1);
-    nx = x - o[0];
-    ny = y - o[1];
-    return lat.freeAt(nx, ny) && lat.motionFree(nx, ny, nj, k);
-  };
   // The chain of a pose being removed: one more than the longest of its ways on (in), every one
   // of them removed already.
   auto chainOf = [&](std::size_t s) {
@@ -90,7 +93,7 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
     for (long k = -lat.turns; k <= lat.turns; ++k) {
       long nx, ny;
       std::size_t nj;
-      if (neighbour(x, y, j, k, forward, nx, ny, nj)) longest = std::max<unsigned>(longest, count[static_cast<std::size_t>(ny * lat.nx + nx) * h + nj]);
+      if (lat.neighbour(x, y, j, k, forward, nx, ny, nj)) longest = std::max<unsigned>(longest, count[static_cast<std::size_t>(ny * lat.nx + nx) * h + nj]);
     }
     return static_cast<std::uint8_t>(std::min(kLongChain, longest + 1));
   };
@@ -103,7 +106,7 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
         for (long k = -lat.turns; k <= lat.turns; ++k) {
           long nx, ny;
           std::size_t nj;
-          n += neighbour(x, y, j, k, forward, nx, ny, nj);
+          n += lat.neighbour(x, y, j, k, forward, nx, ny, nj);
         }
         count[s] = n;
         if (n == 0) {
@@ -125,7 +128,7 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
       // direction's neighbours.
       long px, py;
       std::size_t pj;
-      if (!neighbour(x, y, j, k, !forward, px, py, pj)) continue;
+      if (!lat.neighbour(x, y, j, k, !forward, px, py, pj)) continue;
       const std::size_t p = static_cast<std::size_t>(py * lat.nx + px) * h + pj;
       if (!(alive[p] & bit)) continue;
       if (--count[p] == 0) {
@@ -135,6 +138,50 @@ void viable(const Lattice& lat, std::vector<std::uint8_t>& alive, std::uint8_t b
       }
     }
   }
+}
+
+/// The viable poses' components: poses joined by a motion between two viable poses, either way
+/// (`alive` 3; each is marked 4 as it is reached). A path's poses from the first viable one to the
+/// last are all viable (each has the path's past and its future), so they lie in one component:
+/// it cannot paint from two. Returns each component's cells, each once; the most cells first.
+std::vector<std::vector<std::uint32_t>> viableComponents(const Lattice& lat, std::vector<std::uint8_t>& alive) {
+  const std::size_t h = lat.h;
+  std::vector<std::vector<std::uint32_t>> out;
+  // The component (its number + 1) that last listed each cell.
+  std::vector<std::uint32_t> listed_by(static_cast<std::size_t>(lat.nx * lat.ny), 0);
+  std::vector<std::uint32_t> layer, next;
+  for (std::size_t s0 = 0; s0 < alive.size(); ++s0) {
+    if (alive[s0] != 3) continue;
+    out.emplace_back();
+    std::vector<std::uint32_t>& cells = out.back();
+    const auto id = static_cast<std::uint32_t>(out.size());
+    alive[s0] |= 4;
+    layer.assign(1, static_cast<std::uint32_t>(s0));
+    while (!layer.empty()) {
+      next.clear();
+      for (const std::uint32_t s : layer) {
+        const std::size_t j = s % h, cell = s / h;
+        if (listed_by[cell] != id) {
+          listed_by[cell] = id;
+          cells.push_back(static_cast<std::uint32_t>(cell));
+        }
+        const long x = static_cast<long>(cell) % lat.nx, y = static_cast<long>(cell) / lat.nx;
+        for (long k = -lat.turns; k <= lat.turns; ++k)
+          for (const bool ahead : {true, false}) {
+            long nx, ny;
+            std::size_t nj;
+            if (!lat.neighbour(x, y, j, k, ahead, nx, ny, nj)) continue;
+            const std::size_t n = static_cast<std::size_t>(ny * lat.nx + nx) * h + nj;
+            if (alive[n] != 3) continue;
+            alive[n] |= 4;
+            next.push_back(static_cast<std::uint32_t>(n));
+          }
+      }
+      layer.swap(next);
+    }
+  }
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  return out;
 }
 
 }  // namespace
@@ -227,17 +274,17 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
       ++added;
     }
   };
-  std::vector<char> interior(cells, 0);
   // Per cell, the longest tail and head chain from (up to) a pose there.
   std::vector<std::uint8_t> tail_here(cells, 0), head_here(cells, 0);
   for (std::size_t c = 0; c < cells; ++c)
     for (std::size_t j = 0; j < lat.h; ++j) {
       const std::size_t s = c * lat.h + j;
-      if (alive[s] == 3) interior[c] = 1;
       if (!(alive[s] & 1)) tail_here[c] = std::max(tail_here[c], tail_chain[s]);
       if (!(alive[s] & 2)) head_here[c] = std::max(head_here[c], head_chain[s]);
     }
   for (std::size_t s = 0; s < alive.size(); ++s) out.viable += alive[s] == 3;
+  const std::vector<std::vector<std::uint32_t>> components = viableComponents(lat, alive);
+  out.components = components.size();
   alive = {};
   tail_chain = {};
   head_chain = {};
@@ -303,22 +350,25 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
     }
     return found;
   };
-  // A path never leaves F, so it stays in one of F's pieces (8-connected free cells): the estimate
-  // is the best piece's. In each, what the tool paints from its viable poses' cells (marked with
-  // the piece's `base`), and its dead ends (pieces of it with no viable pose, each with a mark of
-  // its own).
-  std::vector<int> paint(cells, 0), piece_of_f(cells, 0), dead_end(cells, 0);
+  // A path never leaves F, so it stays in one of F's pieces (8-connected free cells), and its viable
+  // poses in one component: the estimate is the best piece's, with the best component there. For
+  // a candidate (the cells of a component, or of several: an interior), what the tool paints from
+  // them (marked with a fresh `base`), and the dead ends (pieces of the piece of F outside the
+  // interior, each with a mark of its own) where a head and a tail paint more.
+  std::vector<int> paint(cells, 0), piece_of_f(cells, 0), dead_end(cells, 0), piece_reach(cells, 0);
+  std::vector<char> interior(cells, 0);
   int mark = 0;
-  std::size_t best_interior = 0;
+  std::size_t best_interior = 0, best_piece = 0;
   double best_with_ends = 0.0;
-  for (std::size_t c0 = 0; c0 < cells; ++c0) {
-    if (!lat.free[c0] || piece_of_f[c0]) continue;
-    ++out.pieces;
-    const std::vector<std::size_t> here = flood(c0, piece_of_f, static_cast<int>(out.pieces), [](std::size_t) { return true; });
+  auto candidate = [&](const std::vector<std::size_t>& here, const std::vector<const std::vector<std::uint32_t>*>& parts) {
+    for (const auto* part : parts)
+      for (const std::uint32_t c : *part) interior[c] = 1;
     const int base = ++mark;
     std::size_t painted = 0;
-    for (const std::size_t c : here)
+    for (const std::size_t c : here) {
+      dead_end[c] = 0;
       if (interior[c]) stamp(paint, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, base, base, painted);
+    }
     std::vector<End> ends;
     for (const std::size_t d0 : here) {
       if (interior[d0] || dead_end[d0]) continue;
@@ -333,8 +383,27 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
       const double a = static_cast<double>(added);
       ends.push_back({a, std::min(a, chainPaint(head)), std::min(a, chainPaint(tail))});
     }
+    for (const auto* part : parts)
+      for (const std::uint32_t c : *part) interior[c] = 0;
     best_interior = std::max(best_interior, painted);
     best_with_ends = std::max(best_with_ends, static_cast<double>(painted) + bestEnds(ends));
+  };
+  for (std::size_t c0 = 0; c0 < cells; ++c0) {
+    if (!lat.free[c0] || piece_of_f[c0]) continue;
+    ++out.pieces;
+    const int piece = static_cast<int>(out.pieces);
+    const std::vector<std::size_t> here = flood(c0, piece_of_f, piece, [](std::size_t) { return true; });
+    std::size_t piece_r = 0;
+    for (const std::size_t c : here) stamp(piece_reach, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, piece, piece, piece_r);
+    best_piece = std::max(best_piece, piece_r);
+    // The piece's components, the largest first: the first kComponents each alone, the rest
+    // together (their union bounds each of them); none (a piece without a viable pose).
+    std::vector<const std::vector<std::uint32_t>*> mine;
+    for (const auto& comp : components)
+      if (piece_of_f[comp.front()] == piece) mine.push_back(&comp);
+    for (std::size_t i = 0; i < std::min(mine.size(), kComponents); ++i) candidate(here, {mine[i]});
+    if (mine.size() > kComponents) candidate(here, std::vector<const std::vector<std::uint32_t>*>(mine.begin() + static_cast<std::ptrdiff_t>(kComponents), mine.end()));
+    if (mine.empty()) candidate(here, {});
   }
   const double cell_area = lat.g * lat.g;
   out.resolution = lat.g;
@@ -343,9 +412,11 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
   out.reachable_area = static_cast<double>(reachable) * cell_area;
   out.interior_area = static_cast<double>(best_interior) * cell_area;
   out.with_ends_area = best_with_ends * cell_area;
+  out.largest_piece_area = static_cast<double>(best_piece) * cell_area;
   if (reachable > 0) {
     out.interior = static_cast<double>(best_interior) / static_cast<double>(reachable);
     out.with_ends = std::min(1.0, best_with_ends / static_cast<double>(reachable));
+    out.largest_piece = static_cast<double>(best_piece) / static_cast<double>(reachable);
   }
   return out;
 }

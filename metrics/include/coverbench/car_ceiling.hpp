@@ -7,11 +7,13 @@
 /// F, and came from a pose it could have driven forever before: the greatest set of poses each
 /// with a successor (and a predecessor) in the set. A path's poses are viable except on its
 /// head (before it first reaches a pose it could come back to) and its tail (after it last
-/// leaves one): there it drives into a dead end it cannot leave, or out of one. `interior` is
-/// what the tool paints from viable poses; `with_ends` adds what a head and a tail can paint in
-/// the dead ends (connected pieces of F with no viable pose): in each, at most what the piece adds
-/// and at most a band of the tool's width along the longest chain of poses a car drives there.
-/// A path never leaves F, so both are taken in the piece of F where they are largest.
+/// leaves one): there it drives into a dead end it cannot leave, or out of one. Its viable poses
+/// lie in one component of them (poses joined by motions). `interior` is what the tool paints
+/// from the best component's poses; `with_ends` adds what a head and a tail can paint in the
+/// dead ends (connected pieces of F outside that component's cells): in each, at most what the
+/// piece adds and at most a band of the tool's width along the longest chain of poses a car
+/// drives there. A path never leaves F, so both are taken in the piece of F where they are
+/// largest.
 
 #include <cstddef>
 #include <string>
@@ -36,6 +38,7 @@ struct CarCeiling {
   std::size_t states = 0;    ///< free poses
   std::size_t viable = 0;    ///< of them, viable both ways
   std::size_t pieces = 0;    ///< F's pieces on the lattice (8-connected free cells); a path stays in one
+  std::size_t components = 0;  ///< the viable poses' components (joined by motions); a path's viable poses lie in one
   /// Areas on the lattice (m^2): what a tool reaches at all (a tool that turns on the spot, in
   /// every piece of F), what a forward-only car paints from viable poses, and that plus what its
   /// head and tail add in dead ends (these two in the best piece of F).
@@ -43,6 +46,9 @@ struct CarCeiling {
   /// interior_area / reachable_area and with_ends_area / reachable_area: read a forward-only car's
   /// coverage_reachable against these.
   double interior = 0.0, with_ends = 0.0;
+  /// R of the piece of F that holds the most of it (m^2), and that over reachable_area: all a path
+  /// can paint, a car that reverses (or a tool that turns on the spot) included.
+  double largest_piece_area = 0.0, largest_piece = 0.0;
 };
 
 /// The estimate for a forward-only car of `options.turn_radius` carrying `tool` on `wall`.
