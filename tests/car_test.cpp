@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <tuple>
 
 #include "coverbench/limits.hpp"
@@ -1011,6 +1012,56 @@ TEST(CarSweep, StrokesPaintOnTheWayAndEndWhereTheCarComesBackToItsPath) {
     EXPECT_GT(back.segments(), 0u) << wall.name;
   }
   EXPECT_GT(checked, 0);
+}
+
+// A forward-only car's transits paint where they pass over enough unpainted reach. On
+// random-s3-0002 the rings start in a dead-end corridor along the right edge, and the car drove
+// 1.8 m out of it with the tool off over a band nothing else paints; zigzag covered 0.720 of R, and
+// 0.733 now (the path is the same, only its tool). Counted on a raster of 1 cm here: no tool-off
+// segment of the plan passes over a band of which 0.4 or more is unpainted (the planner turns on
+// those with 0.3, on its own coarser raster). The build before fails this test.
+TEST(CarSweep, AForwardOnlyCarsTransitsPaintWhereTheyPassOverWhatNothingElsePaints) {
+  const double cell = 0.01, r = kTool.tool_width / 2.0;
+  for (const auto& [seed, index] : {std::pair{3u, 2u}, std::pair{5u, 2u}}) {
+    const Wall wall = generateWall("random", seed, index);
+    const PlanResult plan = carPlanOf("zigzag", wall, false);
+    const Path& path = plan.path;
+    ASSERT_TRUE(computeMetrics(wall, kTool, path, car(0.3, false)).validity.valid) << wall.name;
+    EXPECT_GT(plan.stats.at("car_painted_transits"), 0.0) << wall.name;
+    // The cells (by their centres) within r of points 5 mm apart along segment i.
+    auto cellsOf = [&](std::size_t i) {
+      std::set<std::pair<long, long>> out;
+      const Point a = path.waypoints[i], b = path.waypoints[i + 1];
+      const double bulge = effectiveBulge(a, b, path.bulgeOf(i));
+      const ArcGeometry arc = bulge != 0.0 ? arcGeometry(a, b, bulge) : ArcGeometry{};
+      const double length = bulge != 0.0 ? std::fabs(arc.sweep) * arc.radius : distance(a, b);
+      const int n = std::max(1, static_cast<int>(std::ceil(length / 0.005)));
+      for (int k = 0; k <= n; ++k) {
+        const double t = static_cast<double>(k) / n;
+        Point p = a + (b - a) * t;
+        if (bulge != 0.0) {
+          const double at = std::atan2(a.y - arc.centre.y, a.x - arc.centre.x) + arc.sweep * t;
+          p = arc.centre + Point{std::cos(at), std::sin(at)} * arc.radius;
+        }
+        for (long y = std::lround((p.y - r) / cell) - 1; y <= std::lround((p.y + r) / cell) + 1; ++y)
+          for (long x = std::lround((p.x - r) / cell) - 1; x <= std::lround((p.x + r) / cell) + 1; ++x)
+            if (distance(Point{(static_cast<double>(x) + 0.5) * cell, (static_cast<double>(y) + 0.5) * cell}, p) <= r) out.insert({x, y});
+      }
+      return out;
+    };
+    std::set<std::pair<long, long>> painted;
+    for (std::size_t i = 0; i < path.segments(); ++i)
+      if (path.tool_on[i]) painted.merge(cellsOf(i));
+    std::size_t transits = 0;
+    for (std::size_t i = 0; i < path.segments(); ++i) {
+      if (path.tool_on[i]) continue;
+      ++transits;
+      const auto band = cellsOf(i);
+      const auto open = std::count_if(band.begin(), band.end(), [&](const auto& c) { return !painted.count(c); });
+      EXPECT_LT(static_cast<double>(open), 0.4 * static_cast<double>(band.size())) << wall.name << ": segment " << i << " of " << path.segments();
+    }
+    EXPECT_GT(transits, 0u) << wall.name;
+  }
 }
 
 // A flight of 8 steps (0.28 m run, 0.17 m rise: a pitch of 31.3 degrees) below a level ceiling.

@@ -1201,6 +1201,10 @@ class PaintGrid {
   void paintMore(const Path& path, std::size_t first) {
     forEachPaintedChord(path, 0.1 * h_, first, [&](Point p, Point q) { capsule(p, q); });
   }
+  /// Marks what segment i of `path` paints, besides what is marked.
+  void paintSegment(const Path& path, std::size_t i) {
+    forEachChordOf(path, i, 0.1 * h_, [&](Point p, Point q) { capsule(p, q); });
+  }
   /// The cells of the reach left unpainted, and all cells of the reach, in the capsule of the
   /// tool's radius round p-q.
   std::pair<std::size_t, std::size_t> openIn(Point p, Point q) const {
@@ -1630,6 +1634,19 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
 
 }  // namespace
 
+/// A forward-only car's transits paint where they pass over enough unpainted reach
+/// (kStrokeOpenOn), as a stroke's route does: the path's tool-off segments in order, each against
+/// what the path paints and the transits turned on before it. `grid` shows what the path paints.
+void paintTransits(CarSweep& out, PaintGrid& grid) {
+  Path& path = out.path;
+  for (std::size_t i = 0; i < path.segments(); ++i) {
+    if (path.tool_on[i] || !grid.openAlong(path, i, kStrokeOpenOn)) continue;
+    path.tool_on[i] = true;
+    grid.paintSegment(path, i);
+    ++out.painted_transits;
+  }
+}
+
 CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& given, double spacing,
                   const Budget& budget, bool fill, double line_penalty) {
   CarSweep out = sweepOnce(ws, rings, loops, given, {}, spacing, budget, line_penalty);
@@ -1791,9 +1808,10 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     grid_shows_out = true;
     out_painted.reset();
   }
-  // Strokes through what is left, when it is more than kStrokeMinLeft of the reach (a forward-only
-  // car; strokes()).
-  if (fill && !car.reverse && !out.timed_out && out.path.segments() > 0) {
+  // Where the path leaves more than kStrokeMinLeft of the reach unpainted: strokes through what is
+  // left (a forward-only car; strokes()), and the transits paint where they pass over it
+  // (paintTransits).
+  if (fill && !out.timed_out && out.path.segments() > 0) {
     if (!grid) grid.emplace(ws, cell);
     if (!out_painted) {
       if (!grid_shows_out) grid->paint(out.path);
@@ -1802,7 +1820,8 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
     }
     if (*out_painted < (1.0 - kStrokeMinLeft) * grid->reach()) {
       if (!grid_shows_out) grid->paint(out.path);
-      strokes(ws, out, *grid, *out_painted, spacing, rho, budget);
+      if (!car.reverse) strokes(ws, out, *grid, *out_painted, spacing, rho, budget);
+      paintTransits(out, *grid);
     }
   }
   describe(out);
@@ -1828,6 +1847,7 @@ void recordCarSweep(PlanResult& result, const CarSweep& sweep) {
   result.stats["car_ring_passes"] = static_cast<double>(sweep.ring_passes);
   result.stats["car_fill_passes"] = static_cast<double>(sweep.fill_passes);
   result.stats["car_strokes"] = static_cast<double>(sweep.strokes);
+  result.stats["car_painted_transits"] = static_cast<double>(sweep.painted_transits);
   result.stats["car_undriven_m"] = sweep.headland.cut_m + sweep.undriven_m;
   if (sweep.unreached > 0 || sweep.timed_out || sweep.rounds_timed_out || sweep.headland.stopped) {
     if (result.status == PlanStatus::Ok) result.status = PlanStatus::Partial;

@@ -91,6 +91,7 @@ struct CarSweep {
   std::size_t ring_passes = 0;  ///< of them, passes along what the rings' smoothing skipped
   std::size_t fill_passes = 0;  ///< passes of the fill round driven (not in `rows`)
   std::size_t strokes = 0;      ///< strokes driven after the fill rounds
+  std::size_t painted_transits = 0;  ///< tool-off segments turned on where they pass over unpainted reach
   std::size_t unreached = 0;    ///< rows left out (said in `reason`): not reached, or dead ends both ways
   /// Of them, rows the car would be stuck in from either end: a forward-only car finds no loop
   /// from either end's exit (carCanLoop), or the car drove in and no curve, route or search took
