@@ -1014,19 +1014,21 @@ TEST(CarSweep, StrokesPaintOnTheWayAndEndWhereTheCarComesBackToItsPath) {
   EXPECT_GT(checked, 0);
 }
 
-// A forward-only car's transits paint where they pass over enough unpainted reach. On
-// random-s3-0002 the rings start in a dead-end corridor along the right edge, and the car drove
-// 1.8 m out of it with the tool off over a band nothing else paints; zigzag covered 0.720 of R, and
+// A car's transits paint where they pass over enough unpainted reach. On random-s3-0002 the
+// rings start in a dead-end corridor along the right edge, and the forward-only car drove 1.8 m
+// out of it with the tool off over a band nothing else paints; zigzag covered 0.720 of R, and
 // 0.733 now (the path is the same, only its tool). Counted on a raster of 1 cm here: no tool-off
 // segment of the plan passes over a band of which 0.4 or more is unpainted (the planner turns on
-// those with 0.3, on its own coarser raster). The build before fails this test.
-TEST(CarSweep, AForwardOnlyCarsTransitsPaintWhereTheyPassOverWhatNothingElsePaints) {
+// those with 0.3, on its own coarser raster). Likewise for a reversing car on random-s3-0004
+// (spiral 0.609 -> 0.630). The build before fails this test.
+TEST(CarSweep, ACarsTransitsPaintWhereTheyPassOverWhatNothingElsePaints) {
   const double cell = 0.01, r = kTool.tool_width / 2.0;
-  for (const auto& [seed, index] : {std::pair{3u, 2u}, std::pair{5u, 2u}}) {
+  for (const auto& [seed, index, planner, reverse] :
+       {std::tuple{3u, 2u, "zigzag", false}, std::tuple{5u, 2u, "zigzag", false}, std::tuple{3u, 4u, "spiral", true}}) {
     const Wall wall = generateWall("random", seed, index);
-    const PlanResult plan = carPlanOf("zigzag", wall, false);
+    const PlanResult plan = carPlanOf(planner, wall, reverse);
     const Path& path = plan.path;
-    ASSERT_TRUE(computeMetrics(wall, kTool, path, car(0.3, false)).validity.valid) << wall.name;
+    ASSERT_TRUE(computeMetrics(wall, kTool, path, car(0.3, reverse)).validity.valid) << wall.name;
     EXPECT_GT(plan.stats.at("car_painted_transits"), 0.0) << wall.name;
     // The cells (by their centres) within r of points 5 mm apart along segment i.
     auto cellsOf = [&](std::size_t i) {

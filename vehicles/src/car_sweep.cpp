@@ -1632,10 +1632,8 @@ void strokes(Workspace& ws, CarSweep& out, PaintGrid& grid, double painted_befor
   checkDrivable(out.path, ws.vehicle(), "the car's strokes");
 }
 
-}  // namespace
-
-/// A forward-only car's transits paint where they pass over enough unpainted reach
-/// (kStrokeOpenOn), as a stroke's route does: the path's tool-off segments in order, each against
+/// A car's transits paint where they pass over enough unpainted reach (kStrokeOpenOn), as a
+/// stroke's route does: the path's tool-off segments in order, each against
 /// what the path paints and the transits turned on before it. `grid` shows what the path paints.
 void paintTransits(CarSweep& out, PaintGrid& grid) {
   Path& path = out.path;
@@ -1646,6 +1644,8 @@ void paintTransits(CarSweep& out, PaintGrid& grid) {
     ++out.painted_transits;
   }
 }
+
+}  // namespace
 
 CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& loops, const std::vector<CarRow>& given, double spacing,
                   const Budget& budget, bool fill, double line_penalty) {
