@@ -50,18 +50,20 @@ struct Lattice {
   /// The pose motion k leads to from (x, y, j) (ahead), or comes from into it (not ahead); false
   /// when that motion is not free.
   bool neighbour(long x, long y, std::size_t j, long k, bool ahead, long& to_x, long& to_y, std::size_t& to_j) const {
-    if (ahead) {
-      const auto& o = offset(j, k, kSamples - 1);
-      to_x = x + o[0];
-      to_y = y + o[1];
-      to_j = heading(static_cast<long>(j) + k);
-      return motionFree(x, y, j, k);
-    }
-    to_j = heading(static_cast<long>(j) - k);
-    const auto& o = offset(to_j, k, kSamples - 1);
-    to_x = x - o[0];
-    to_y = y - o[1];
-    return freeAt(to_x, to_y) && motionFree(to_x, to_y, to_j, k);
+    return reaches(x, y, j, k, ahead, to_x, to_y, to_j) && joined(x, y, j, k, ahead, to_x, to_y, to_j);
+  }
+  /// The pose motion k would lead to, or come from, as neighbour() says, and whether it lies on the
+  /// lattice; not whether the motion is free (joined()).
+  bool reaches(long x, long y, std::size_t j, long k, bool ahead, long& to_x, long& to_y, std::size_t& to_j) const {
+    to_j = ahead ? heading(static_cast<long>(j) + k) : heading(static_cast<long>(j) - k);
+    const auto& o = offset(ahead ? j : to_j, k, kSamples - 1);
+    to_x = ahead ? x + o[0] : x - o[0];
+    to_y = ahead ? y + o[1] : y - o[1];
+    return to_x >= 0 && to_y >= 0 && to_x < nx && to_y < ny;
+  }
+  /// Whether the motion between (x, y, j) and the pose reaches() gave is free.
+  bool joined(long x, long y, std::size_t j, long k, bool ahead, long to_x, long to_y, std::size_t to_j) const {
+    return ahead ? motionFree(x, y, j, k) : freeAt(to_x, to_y) && motionFree(to_x, to_y, to_j, k);
   }
 };
 
@@ -170,9 +172,9 @@ std::vector<std::vector<std::uint32_t>> viableComponents(const Lattice& lat, std
           for (const bool ahead : {true, false}) {
             long nx, ny;
             std::size_t nj;
-            if (!lat.neighbour(x, y, j, k, ahead, nx, ny, nj)) continue;
+            if (!lat.reaches(x, y, j, k, ahead, nx, ny, nj)) continue;
             const std::size_t n = static_cast<std::size_t>(ny * lat.nx + nx) * h + nj;
-            if (alive[n] != 3) continue;
+            if (alive[n] != 3 || !lat.joined(x, y, j, k, ahead, nx, ny, nj)) continue;
             alive[n] |= 4;
             next.push_back(static_cast<std::uint32_t>(n));
           }
