@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "ring_simplicity.hpp"
+
 namespace coverbench {
 
 Point rotate(Point p, double radians) {
@@ -135,26 +137,14 @@ bool pointInPolygon(const PolygonWithHoles& polygon, Point p) {
 }
 
 bool ringIsSimple(const Ring& ring) {
+  // Simple: at least 3 vertices, no edge of zero length, no two edges meeting but consecutive
+  // ones at their shared vertex (touching counts as meeting; so does folding back onto the last
+  // edge), and an area. The sweep makes it O(n log n): walls from outside have 10^6 vertices.
   const std::size_t n = ring.size();
   if (n < 3) return false;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Point a = ring[i], b = ring[(i + 1) % n];
-    if (a == b) return false;
-    for (std::size_t j = i + 1; j < n; ++j) {
-      const Point c = ring[j], d = ring[(j + 1) % n];
-      const bool adjacent = (j == i + 1) || (i == 0 && j == n - 1);
-      if (!adjacent) {
-        if (segmentsIntersect(a, b, c, d)) return false;
-        continue;
-      }
-      // Adjacent edges share one vertex; they must not fold back onto each other.
-      const Point shared = (j == i + 1) ? b : a;
-      const Point p = (j == i + 1) ? a : b;
-      const Point q = (j == i + 1) ? d : c;
-      if (orient(p, shared, q) == 0 && dot(p - shared, q - shared) > 0.0) return false;
-    }
-  }
-  return std::fabs(signedArea(ring)) > 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (ring[i] == ring[(i + 1) % n] || !std::isfinite(ring[i].x) || !std::isfinite(ring[i].y)) return false;
+  return detail::edgesMeetOnlyAtSharedVertices(ring) && std::fabs(signedArea(ring)) > 0.0;
 }
 
 }  // namespace coverbench
