@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "serve.hpp"
 #include "coverbench/metric_spec.hpp"
 #include "coverbench/wall.hpp"
 
@@ -54,6 +55,8 @@ void readValuesOneWay(CLI::App& app) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The workbench's plan helper, which `coverbench serve` starts as this executable.
+  if (argc >= 2 && std::string(argv[1]) == coverbench::cli::kPlanHelperArgument) return coverbench::cli::planHelperMain(argc, argv);
   CLI::App app{"CoverBench: benchmark 2-D coverage path planners"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "coverbench 0.1.0");

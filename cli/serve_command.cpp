@@ -2,13 +2,20 @@
 // only the databases named on its command line and its own page files, each by a fixed name: no
 // part of a request reaches the file system. Errors are JSON: {"error": "one line"}.
 #include <httplib.h>
+#include <arpa/inet.h>
 #include <fcntl.h>
+#include <netinet/in.h>
+#include <poll.h>
 #include <signal.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
+#include <cstring>
 
 #include <algorithm>
 #include <atomic>
@@ -36,6 +43,7 @@
 #include "coverbench/wall_file.hpp"
 #include "coverbench/limits.hpp"
 #include "coverbench/runner.hpp"
+#include "serve.hpp"
 #include "workbench.hpp"
 
 namespace coverbench::cli {
@@ -52,6 +60,12 @@ struct HttpError : std::runtime_error {
 
 constexpr std::size_t kMaxRunsPerPage = 1000;
 constexpr std::size_t kMaxBodyBytes = 1 << 20;
+constexpr std::size_t kMaxSavedNameBytes = 1000;  // what GET /api/walls/db/NAME takes
+/// A request's line, headers and body must all arrive within this many seconds of its first
+/// byte; then the connection is answered 408 and closed (a slow client holds no thread longer).
+constexpr int kRequestReadSeconds = 10;
+/// Connections served at once (threads); more wait for one of them.
+constexpr std::size_t kConnectionThreads = 64;
 
 /// The page's files, by the only names they are served under.
 const std::map<std::string, std::pair<std::string, std::string>>& pageFiles() {
@@ -266,126 +280,255 @@ class Explorer {
   std::mutex mutex_;
 };
 
-/// Plans in a helper process forked when the server starts, before it has threads: a process
-/// with threads must not fork workers (a lock another thread held at the fork stays locked in
-/// the child forever), while the single-threaded helper forks each plan's worker safely
-/// (executeInWorker). One plan at a time; the helper ends with the server.
+/// Length-prefixed messages over a pipe (the plan helper's protocol).
+bool writeMessage(int fd, const std::string& text) {
+  const std::uint64_t n = text.size();
+  const std::string bytes = std::string(reinterpret_cast<const char*>(&n), sizeof n) + text;
+  for (std::size_t off = 0; off < bytes.size();) {
+    const ssize_t w = ::write(fd, bytes.data() + off, bytes.size() - off);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return false;
+    off += static_cast<std::size_t>(w);
+  }
+  return true;
+}
+
+/// Reads `size` bytes; with a deadline, gives up (false, *timed_out set) when it passes.
+bool readAll(int fd, char* data, std::size_t size, const std::chrono::steady_clock::time_point* deadline = nullptr,
+             bool* timed_out = nullptr) {
+  for (std::size_t off = 0; off < size;) {
+    if (deadline) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(*deadline - std::chrono::steady_clock::now()).count();
+      if (left <= 0) {
+        if (timed_out) *timed_out = true;
+        return false;
+      }
+      pollfd p{fd, POLLIN, 0};
+      const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
+      if (ready < 0 && errno != EINTR) return false;
+      if (ready <= 0) continue;
+    }
+    const ssize_t r = ::read(fd, data + off, size - off);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) return false;
+    off += static_cast<std::size_t>(r);
+  }
+  return true;
+}
+
+bool readMessage(int fd, std::string& text, const std::chrono::steady_clock::time_point* deadline = nullptr,
+                 bool* timed_out = nullptr) {
+  std::uint64_t n = 0;
+  if (!readAll(fd, reinterpret_cast<char*>(&n), sizeof n, deadline, timed_out) || n > (std::uint64_t{1} << 32)) return false;
+  text.assign(static_cast<std::size_t>(n), '\0');
+  return readAll(fd, text.data(), text.size(), deadline, timed_out);
+}
+
+/// Plans in a helper process of its own: the server has threads, and a process with threads must
+/// not fork workers (a lock another thread held at the fork stays locked in the child forever),
+/// so the helper is a fresh process (this executable run with kPlanHelperArgument), which forks
+/// each plan's worker safely (executeInWorker). One plan at a time. A helper that ends, or that
+/// does not answer by its plan's deadline, is killed with everything it started and started
+/// again for the next plan; the helper ends with the server (its parent-death signal, and the
+/// end of its input).
 class PlanHelper {
  public:
-  explicit PlanHelper(double max_time_limit_s) {
-    int to[2], from[2];
-    if (::pipe2(to, O_CLOEXEC) != 0 || ::pipe2(from, O_CLOEXEC) != 0) throw std::runtime_error("pipe: cannot start the plan helper");
-    std::fflush(nullptr);
-    pid_ = ::fork();
-    if (pid_ < 0) throw std::runtime_error("fork: cannot start the plan helper");
-    if (pid_ == 0) {
-      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-      ::close(to[1]);
-      ::close(from[0]);
-      for (;;) {
-        std::string body;
-        if (!readMessage(to[0], body)) ::_exit(0);
-        std::string answer;
-        try {
-          answer = "R" + serializeRecord(planInWorker(readWorkbenchRequest(body, max_time_limit_s)));
-        } catch (const InputError& e) {
-          answer = std::string("I") + e.what();
-        } catch (const std::exception& e) {
-          answer = std::string("X") + e.what();
-        }
-        if (!writeMessage(from[1], answer)) ::_exit(0);
-      }
-    }
-    ::close(to[0]);
-    ::close(from[1]);
-    to_ = to[1];
-    from_ = from[0];
-  }
-  ~PlanHelper() {
-    ::close(to_);
-    ::close(from_);
-    ::kill(pid_, SIGKILL);
-    ::waitpid(pid_, nullptr, 0);
-  }
-  RunRecord plan(const std::string& body) {
-    std::lock_guard<std::mutex> lock(mutex_);
+  PlanHelper(std::string exe, double max_time_limit_s) : exe_(std::move(exe)), max_time_limit_s_(max_time_limit_s) { start(); }
+  ~PlanHelper() { stop(); }
+
+  /// The plan's record, within `deadline`; throws HttpError 504 when the helper did not answer
+  /// by then (it is restarted), 500 when it ended (restarted too), 400 for a refused request.
+  RunRecord plan(const std::string& body, std::chrono::steady_clock::time_point deadline) {
+    std::unique_lock<std::timed_mutex> lock(mutex_, std::defer_lock);
+    if (!lock.try_lock_until(deadline))
+      throw HttpError(503, "plan: another plan held the planner past this one's deadline; ask again");
+    // A helper that has ended (killed, or a crash) since the last plan is started again first.
+    if (pid_ >= 0 && ::waitpid(pid_, nullptr, WNOHANG) == pid_) forget();
+    if (pid_ < 0) start();
     std::string answer;
-    if (!writeMessage(to_, body) || !readMessage(from_, answer) || answer.empty())
-      throw std::runtime_error("the plan helper process ended");
+    bool timed_out = false;
+    if (!writeMessage(to_, body) || !readMessage(from_, answer, &deadline, &timed_out) || answer.empty()) {
+      stop();  // the next plan starts a new helper
+      if (timed_out) throw HttpError(504, "plan: no answer by the plan's deadline; its process was ended");
+      throw std::runtime_error("the plan helper process ended while planning (it is started again for the next plan)");
+    }
     if (answer[0] == 'R') return deserializeRecord(answer.substr(1));
     if (answer[0] == 'I') throw HttpError(400, answer.substr(1));
     throw std::runtime_error(answer.substr(1));
   }
 
  private:
-  static bool writeMessage(int fd, const std::string& text) {
-    const std::uint64_t n = text.size();
-    const std::string bytes = std::string(reinterpret_cast<const char*>(&n), sizeof n) + text;
-    for (std::size_t off = 0; off < bytes.size();) {
-      const ssize_t w = ::write(fd, bytes.data() + off, bytes.size() - off);
-      if (w < 0 && errno == EINTR) continue;
-      if (w <= 0) return false;
-      off += static_cast<std::size_t>(w);
+  void start() {
+    int to[2], from[2];
+    if (::pipe2(to, O_CLOEXEC) != 0) throw std::runtime_error("pipe: cannot start the plan helper");
+    if (::pipe2(from, O_CLOEXEC) != 0) {
+      ::close(to[0]), ::close(to[1]);
+      throw std::runtime_error("pipe: cannot start the plan helper");
     }
-    return true;
-  }
-  static bool readAll(int fd, char* data, std::size_t size) {
-    for (std::size_t off = 0; off < size;) {
-      const ssize_t r = ::read(fd, data + off, size - off);
-      if (r < 0 && errno == EINTR) continue;
-      if (r <= 0) return false;
-      off += static_cast<std::size_t>(r);
+    const std::string limit = shortNumber(max_time_limit_s_);
+    const char* argv[] = {exe_.c_str(), kPlanHelperArgument, limit.c_str(), nullptr};
+    const pid_t parent = ::getpid();
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      // Only async-signal-safe calls between fork and exec (the server has threads).
+      ::setpgid(0, 0);  // its own group: a helper that misses its deadline is ended with its workers
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (::getppid() != parent) ::_exit(127);
+      // Onto fds 3 and 4 by way of fds above them, so neither dup2 is onto itself (which would
+      // keep close-on-exec) or onto the other's source.
+      const int in = ::fcntl(to[0], F_DUPFD, 10), out = ::fcntl(from[1], F_DUPFD, 10);
+      if (in < 0 || out < 0 || ::dup2(in, 3) < 0 || ::dup2(out, 4) < 0) ::_exit(127);
+      ::execv(argv[0], const_cast<char* const*>(argv));
+      ::_exit(127);
     }
-    return true;
+    ::close(to[0]);
+    ::close(from[1]);
+    if (pid < 0) {
+      ::close(to[1]), ::close(from[0]);
+      throw std::runtime_error("fork: cannot start the plan helper");
+    }
+    ::setpgid(pid, pid);  // also here: whichever runs first
+    pid_ = pid, to_ = to[1], from_ = from[0];
   }
-  static bool readMessage(int fd, std::string& text) {
-    std::uint64_t n = 0;
-    if (!readAll(fd, reinterpret_cast<char*>(&n), sizeof n) || n > (std::uint64_t{1} << 32)) return false;
-    text.assign(static_cast<std::size_t>(n), '\0');
-    return readAll(fd, text.data(), text.size());
+  void stop() {
+    if (pid_ < 0) return;
+    ::kill(-pid_, SIGKILL);  // the helper and the workers it forked
+    ::kill(pid_, SIGKILL);
+    ::waitpid(pid_, nullptr, 0);
+    forget();
   }
+  /// After the helper was reaped: its pipes closed (its workers end by their parent-death signal).
+  void forget() {
+    ::close(to_);
+    ::close(from_);
+    pid_ = -1, to_ = -1, from_ = -1;
+  }
+
+  std::string exe_;
+  double max_time_limit_s_;
   pid_t pid_ = -1;
   int to_ = -1, from_ = -1;
-  std::mutex mutex_;
+  std::timed_mutex mutex_;
 };
+
+/// At most `most` holders at once; the rest are refused (503), not queued: a check or save of a
+/// large wall is CPU work, and the machine's cores are the bound.
+class Gate {
+ public:
+  explicit Gate(int most) : most_(most) {}
+  struct Pass {
+    std::atomic<int>* n;
+    ~Pass() { --*n; }
+  };
+  Pass enter(const char* what) {
+    if (++n_ > most_) {
+      --n_;
+      throw HttpError(503, std::string(what) + ": " + std::to_string(most_) + " are being worked on; ask again when one has ended");
+    }
+    return Pass{&n_};
+  }
+
+ private:
+  int most_;
+  std::atomic<int> n_{0};
+};
+
+/// A walls database's own failure (locked, unwritable, corrupt) is the server's, not the
+/// request's: 503 with the reason. Other refusals keep `status`.
+[[noreturn]] void rethrowWallsDbError(const InputError& e, int status) {
+  if (e.field() == "(database)") throw HttpError(503, std::string("walls database: ") + e.what());
+  throw HttpError(status, e.what());
+}
 
 /// The workbench's side of the server: walls from the named folders and walls database, checks
 /// and plans (docs/explorer.md#workbench). Plans run in worker processes, one at a time with one more waiting; the
 /// last 32 are kept to draw and play.
 class WorkbenchServer {
  public:
-  explicit WorkbenchServer(const ServeOptions& o) : max_time_limit_s_(o.plan_time_limit_s), helper_(o.plan_time_limit_s) {
-    validateTimeLimit(o.plan_time_limit_s, "--plan-time-limit", "plan_time_limit");
+  WorkbenchServer(const ServeOptions& o, const std::string& helper_exe)
+      : max_time_limit_s_(o.plan_time_limit_s), helper_((validateTimeLimit(o.plan_time_limit_s, "--plan-time-limit", "plan_time_limit"),
+                                                         helper_exe),
+                                                        o.plan_time_limit_s) {
     for (const std::string& folder : o.wall_folders) {
       std::error_code ec;
       if (!fs::is_directory(folder, ec)) throw InputError(folder, "--walls", "is not a folder");
+      // The folder is held open: each file is opened in it by name, without following links.
+      const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      if (dir < 0) throw InputError(folder, "--walls", std::string("cannot be opened: ") + std::strerror(errno));
+      folders_.push_back({folder, dir});
       std::vector<std::string> names;
-      for (const auto& e : fs::directory_iterator(folder))
-        if (e.is_regular_file() && e.path().extension() == ".json") names.push_back(e.path().filename().string());
+      for (const auto& e : fs::directory_iterator(folder, ec)) {
+        std::error_code sec;
+        // Regular files only: a link (to /etc/passwd, or out of the folder), a FIFO or a device is not listed.
+        if (e.symlink_status(sec).type() == fs::file_type::regular && e.path().extension() == ".json")
+          names.push_back(e.path().filename().string());
+      }
+      if (ec) throw InputError(folder, "--walls", "cannot be listed: " + ec.message());
       std::sort(names.begin(), names.end());
-      for (const std::string& n : names) folder_walls_.push_back({folder, n});
+      for (const std::string& n : names) folder_walls_.push_back({folders_.size() - 1, n});
     }
     if (!o.walls_db.empty()) walls_db_ = std::make_unique<WallsDb>(o.walls_db);
+  }
+  ~WorkbenchServer() {
+    for (const auto& f : folders_) ::close(f.second);
   }
 
   json walls() {
     json out = json::array();
     for (std::size_t i = 0; i < folder_walls_.size(); ++i)
-      out.push_back({{"source", "folder"}, {"folder", folder_walls_[i].first}, {"name", folder_walls_[i].second},
+      out.push_back({{"source", "folder"}, {"folder", folders_[folder_walls_[i].first].first}, {"name", folder_walls_[i].second},
                      {"url", "/api/walls/folder/" + std::to_string(i)}});
     if (walls_db_) {
       std::lock_guard<std::mutex> lock(mutex_);
-      for (const WallsDb::Entry& e : walls_db_->list())
-        out.push_back({{"source", "database"}, {"file", walls_db_->file()}, {"name", e.name}, {"sha256", e.sha256},
-                       {"saved_at", e.saved_at}});
+      try {
+        for (const WallsDb::Entry& e : walls_db_->list())
+          out.push_back({{"source", "database"}, {"file", walls_db_->file()}, {"name", e.name}, {"sha256", e.sha256},
+                         {"saved_at", e.saved_at}});
+      } catch (const InputError& e) {
+        rethrowWallsDbError(e, 500);
+      }
     }
     return {{"walls", out}, {"walls_db", walls_db_ ? walls_db_->file() : ""}};
   }
 
-  /// A listed wall file's text (by its position in the listing: no request names a file).
+  /// A listed wall file's text (by its position in the listing: no request names a file). It is
+  /// opened in its folder without following a link and must still be a regular file of at most
+  /// the body limit that parses as a wall: a file swapped for a link or a FIFO since the listing is
+  /// refused, never followed or waited on.
   std::string folderWall(std::size_t i) {
     if (i >= folder_walls_.size()) throw HttpError(404, "no wall file " + std::to_string(i) + " (serving " + std::to_string(folder_walls_.size()) + ")");
-    return readFile((fs::path(folder_walls_[i].first) / folder_walls_[i].second).string());
+    const auto& [folder, name] = folder_walls_[i];
+    const std::string shown = (fs::path(folders_[folder].first) / name).string();
+    const int fd = ::openat(folders_[folder].second, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0)
+      throw HttpError(404, shown + ": cannot be opened as a regular file of the folder (" +
+                               (errno == ELOOP ? std::string("it is now a link") : std::string(std::strerror(errno))) + ")");
+    struct Closer {
+      int fd;
+      ~Closer() { ::close(fd); }
+    } closer{fd};
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) throw HttpError(404, shown + ": is no longer a regular file");
+    if (static_cast<std::uint64_t>(st.st_size) > kMaxBodyBytes)
+      throw HttpError(413, shown + ": over " + std::to_string(kMaxBodyBytes) + " bytes, the most a wall the workbench opens may have");
+    std::string text(static_cast<std::size_t>(st.st_size) + 1, '\0');  // one more: a file that grew is seen
+    std::size_t got = 0;
+    while (got < text.size()) {
+      const ssize_t r = ::read(fd, text.data() + got, text.size() - got);
+      if (r < 0 && errno == EINTR) continue;
+      if (r < 0) throw HttpError(500, shown + ": read error: " + std::strerror(errno));
+      if (r == 0) break;
+      got += static_cast<std::size_t>(r);
+    }
+    if (got > static_cast<std::size_t>(st.st_size)) throw HttpError(409, shown + ": changed while read; ask again");
+    text.resize(got);
+    try {
+      const Gate::Pass pass = checks_.enter("wall checks");
+      parseWallJson(text, shown);
+    } catch (const InputError& e) {
+      throw HttpError(422, e.what());
+    }
+    return text;
   }
   std::string databaseWall(const std::string& name) {
     if (!walls_db_) throw HttpError(404, "no walls database is served (serve --walls-db FILE)");
@@ -393,13 +536,14 @@ class WorkbenchServer {
     try {
       return walls_db_->content(name);
     } catch (const InputError& e) {
-      throw HttpError(404, e.what());
+      rethrowWallsDbError(e, 404);
     }
   }
 
   /// The request checked as a plan request is: {"ok": true, ...} or {"ok": false, "error": the
   /// command line's one line}. A verdict, not a failure: answered 200 either way.
   json check(const std::string& body) {
+    const Gate::Pass pass = checks_.enter("wall checks");
     try {
       const WorkbenchRequest r = readWorkbenchRequest(body, max_time_limit_s_);
       return {{"ok", true}, {"name", r.wall.wall.name}, {"wall", r.wall.json}, {"obstacles", r.wall.wall.obstacles.size()}};
@@ -410,14 +554,25 @@ class WorkbenchServer {
 
   json save(const std::string& body) {
     if (!walls_db_) throw HttpError(400, "walls database: none is served (start coverbench serve with --walls-db FILE)");
+    const Gate::Pass pass = checks_.enter("wall checks");
     const WorkbenchRequest r = readWorkbenchRequest(body, max_time_limit_s_);
+    checkSavedName(r.wall.wall.name);
     std::lock_guard<std::mutex> lock(mutex_);
-    const WallsDb::Entry e = walls_db_->save(r.wall.wall);
-    return {{"name", e.name}, {"sha256", e.sha256}, {"saved_at", e.saved_at}, {"file", walls_db_->file()}};
+    try {
+      const WallsDb::Entry e = walls_db_->save(r.wall.wall);
+      return {{"name", e.name}, {"sha256", e.sha256}, {"saved_at", e.saved_at}, {"file", walls_db_->file()}};
+    } catch (const InputError& e) {
+      rethrowWallsDbError(e, 400);
+    }
   }
 
   json plan(const std::string& body) {
-    const WorkbenchRequest r = readWorkbenchRequest(body, max_time_limit_s_);
+    const auto received = std::chrono::steady_clock::now();
+    WorkbenchRequest r;
+    {
+      const Gate::Pass pass = checks_.enter("wall checks");
+      r = readWorkbenchRequest(body, max_time_limit_s_);
+    }
     if (!r.planner) throw InputError("request body", "planner", "name a planner to plan with (see GET /api/planners)");
     struct Slot {
       std::atomic<int>& n;
@@ -428,7 +583,10 @@ class WorkbenchServer {
       throw HttpError(503, "plan: one plan is running and another is waiting; ask again when one has ended");
     }
     const Slot slot{running_};
-    RunRecord rec = helper_.plan(body);
+    // The answer's deadline (docs/explorer.md): the worker's hard deadline (twice the limit plus
+    // 5 s) and 5 s for the helper to read the request and score the path.
+    const auto deadline = received + std::chrono::milliseconds(static_cast<long long>((2 * r.time_limit_s + 10) * 1000));
+    RunRecord rec = helper_.plan(body, deadline);
     if (rec.status == RunStatus::Timeout)
       throw HttpError(504, "time_limit_s: the plan did not finish within its time limit of " + shortNumber(r.time_limit_s) + " s (" +
                                rec.reason + ")");
@@ -480,108 +638,406 @@ class WorkbenchServer {
     Path path;
     std::string status, title;
   };
+
+  /// A name the walls database can give back through GET /api/walls/db/NAME: 1 to 1000 bytes,
+  /// no control characters (a newline, a NUL), so a saved wall can always be read back.
+  static void checkSavedName(const std::string& name) {
+    if (name.empty()) throw InputError("request body", "wall.name", "a saved wall needs a name (it is how it is opened again)");
+    if (name.size() > kMaxSavedNameBytes)
+      throw InputError("request body", "wall.name",
+                       "is " + std::to_string(name.size()) + " bytes; a saved wall's name has at most " + std::to_string(kMaxSavedNameBytes));
+    for (const unsigned char c : name)
+      if (c < 0x20 || c == 0x7f) throw InputError("request body", "wall.name", "has a control character (a newline, a tab, a NUL); a saved wall's name may not");
+  }
+
   double max_time_limit_s_;
   PlanHelper helper_;
-  std::vector<std::pair<std::string, std::string>> folder_walls_;  // folder, file name
+  std::vector<std::pair<std::string, int>> folders_;                 // --walls folder, its open descriptor
+  std::vector<std::pair<std::size_t, std::string>> folder_walls_;  // folder's index, file name
   std::unique_ptr<WallsDb> walls_db_;
   std::map<long long, Planned> plans_;
   long long last_plan_ = 0;
   std::atomic<int> running_{0};
+  Gate checks_{2};
   std::mutex mutex_;
 };
 
+/// JSON text whatever the strings hold: bytes that are not UTF-8 (a path, a file name, a wall's
+/// name) become U+FFFD instead of ending the process with nlohmann's type_error.
+std::string jsonText(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace) + "\n"; }
+
 void answerError(httplib::Response& res, int status, const std::string& message) {
   res.status = status;
-  res.set_content(json{{"error", message}}.dump() + "\n", "application/json");
+  res.set_content(jsonText(json{{"error", message}}), "application/json");
 }
 
-/// Runs `handler`, answering its errors as JSON.
-template <class F>
-httplib::Server::Handler guarded(F handler) {
-  return [handler](const httplib::Request& req, httplib::Response& res) {
-    try {
-      handler(req, res);
-    } catch (const HttpError& e) {
-      answerError(res, e.status, e.what());
-    } catch (const InputError& e) {
-      answerError(res, 400, e.what());
-    } catch (const std::exception& e) {
-      answerError(res, 500, std::string("internal error: ") + e.what());
+/// One request's bytes from its socket: each read waits at most until the request's deadline,
+/// so a client that sends a header line every few seconds cannot hold its thread past it.
+class DeadlineStream final : public httplib::Stream {
+ public:
+  explicit DeadlineStream(int sock) : sock_(sock) {}
+  void startRequest() {
+    deadline_ = std::chrono::steady_clock::now() + std::chrono::seconds(kRequestReadSeconds);
+    timed_out_ = false;
+    readTimedOut() = false;
+    malformed() = false;
+    written_ = 0;
+  }
+  std::size_t written() const { return written_; }
+  bool timedOut() const { return timed_out_; }
+
+  bool is_readable() const override { return wait(POLLIN, remainingMs()); }
+  /// Whether this thread's request just passed its read deadline (the error handler answers 408).
+  static bool& readTimedOut() {
+    thread_local bool timed_out = false;
+    return timed_out;
+  }
+  /// Whether httplib refused this thread's request before any route saw it (a malformed request
+  /// line or header): what follows on the connection cannot be trusted to start a request, so
+  /// the connection is closed after the answer.
+  static bool& malformed() {
+    thread_local bool refused = false;
+    return refused;
+  }
+  bool is_writable() const override { return wait(POLLOUT, kWriteMs); }
+  ssize_t read(char* ptr, size_t size) override {
+    if (!wait(POLLIN, remainingMs())) {
+      if (remainingMs() <= 0) timed_out_ = readTimedOut() = true;
+      return -1;
     }
-  };
+    for (;;) {
+      const ssize_t r = ::recv(sock_, ptr, size, 0);
+      if (r < 0 && errno == EINTR) continue;
+      return r;
+    }
+  }
+  ssize_t write(const char* ptr, size_t size) override {
+    if (!wait(POLLOUT, kWriteMs)) return -1;
+    for (;;) {
+      const ssize_t w = ::send(sock_, ptr, size, MSG_NOSIGNAL);
+      if (w < 0 && errno == EINTR) continue;
+      if (w > 0) written_ += static_cast<std::size_t>(w);
+      return w;
+    }
+  }
+  void get_remote_ip_and_port(std::string& ip, int& port) const override { address(::getpeername, ip, port); }
+  void get_local_ip_and_port(std::string& ip, int& port) const override { address(::getsockname, ip, port); }
+  socket_t socket() const override { return sock_; }
+
+ private:
+  static constexpr int kWriteMs = 5000;
+  long long remainingMs() const {
+    return std::chrono::duration_cast<std::chrono::milliseconds>(deadline_ - std::chrono::steady_clock::now()).count();
+  }
+  bool wait(short events, long long ms) const {
+    for (;;) {
+      if (ms <= 0) return false;
+      pollfd p{sock_, events, 0};
+      const int r = ::poll(&p, 1, static_cast<int>(std::min<long long>(ms, 60000)));
+      if (r < 0 && errno == EINTR) {
+        ms = events == POLLIN ? remainingMs() : ms;
+        continue;
+      }
+      return r > 0;
+    }
+  }
+  template <class F>
+  void address(F get, std::string& ip, int& port) const {
+    sockaddr_storage a{};
+    socklen_t n = sizeof a;
+    ip.clear();
+    port = 0;
+    if (get(sock_, reinterpret_cast<sockaddr*>(&a), &n) != 0) return;
+    char text[INET6_ADDRSTRLEN] = {};
+    if (a.ss_family == AF_INET) {
+      const auto* v4 = reinterpret_cast<const sockaddr_in*>(&a);
+      ::inet_ntop(AF_INET, &v4->sin_addr, text, sizeof text);
+      port = ntohs(v4->sin_port);
+    } else if (a.ss_family == AF_INET6) {
+      const auto* v6 = reinterpret_cast<const sockaddr_in6*>(&a);
+      ::inet_ntop(AF_INET6, &v6->sin6_addr, text, sizeof text);
+      port = ntohs(v6->sin6_port);
+    }
+    ip = text;
+  }
+
+  int sock_;
+  std::chrono::steady_clock::time_point deadline_{};
+  mutable bool timed_out_ = false;
+  std::size_t written_ = 0;
+};
+
+std::string readDeadlineMessage() {
+  return "request: not read whole within " + std::to_string(kRequestReadSeconds) + " s of its first byte; the connection is closed";
 }
+
+/// httplib's server with each request's reading bounded in time (DeadlineStream) and keep-alive
+/// connections served the same way (httplib's SSLServer overrides the same function).
+class DeadlineServer final : public httplib::Server {
+ private:
+  bool process_and_close_socket(socket_t sock) override {
+    DeadlineStream stream(sock);
+    bool ok = false;
+    for (std::size_t left = keep_alive_max_count_; left > 0 && svr_sock_ != INVALID_SOCKET; --left) {
+      // Between requests: wait for the next one's first byte up to the keep-alive timeout.
+      pollfd p{sock, POLLIN, 0};
+      int ready = 0;
+      do ready = ::poll(&p, 1, static_cast<int>(keep_alive_timeout_sec_ * 1000));
+      while (ready < 0 && errno == EINTR);
+      if (ready <= 0) break;
+      char probe;
+      if (::recv(sock, &probe, 1, MSG_PEEK | MSG_DONTWAIT) <= 0) break;  // closed by the client
+      stream.startRequest();
+      bool closed = false;
+      ok = process_request(stream, left == 1, closed, nullptr);
+      if (stream.timedOut()) {
+        // httplib answers a request cut off in its headers or body itself (through the error
+        // handler, as 408); one cut off in its first line gets no answer from it: this one.
+        if (stream.written() == 0) {
+          const std::string body = jsonText(json{{"error", readDeadlineMessage()}});
+          const std::string head = "HTTP/1.1 408 Request Timeout\r\nContent-Type: application/json\r\nContent-Length: " +
+                                   std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n";
+          stream.write((head + body).data(), head.size() + body.size());
+        }
+        // A lingering close: what the client still sends is read and dropped for up to 1 s, so
+        // the answer is not lost to a reset.
+        ::shutdown(sock, SHUT_WR);
+        char scratch[4096];
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+        for (;;) {
+          const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()).count();
+          pollfd q{sock, POLLIN, 0};
+          if (ms <= 0 || ::poll(&q, 1, static_cast<int>(ms)) <= 0 || ::recv(sock, scratch, sizeof scratch, 0) <= 0) break;
+        }
+        break;
+      }
+      if (!ok || closed || DeadlineStream::malformed()) break;
+    }
+    ::shutdown(sock, SHUT_RDWR);
+    ::close(sock);
+    return ok;
+  }
+};
+
+/// The names a request's Host header may give for this server (DNS rebinding: a page on another
+/// name that resolves to this address is refused), and the request checks that go with them.
+class HostCheck {
+ public:
+  HostCheck(const std::string& host, int port) : port_(port) {
+    const std::string p = ":" + std::to_string(port);
+    auto add = [&](const std::string& name) {
+      names_.insert(name + p);
+      if (port == 80) names_.insert(name);
+    };
+    any_ = host == "0.0.0.0" || host == "::" || host.empty();
+    add(host.find(':') != std::string::npos ? "[" + host + "]" : host);
+    if (any_ || isLoopback(host)) {
+      add("localhost"), add("127.0.0.1"), add("[::1]");
+    }
+    char name[256] = {};
+    if (any_ && ::gethostname(name, sizeof name - 1) == 0) add(name);
+  }
+
+  static bool isLoopback(const std::string& host) {
+    return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+  }
+
+  /// Throws HttpError 403 for a request this server must not answer: a Host it is not, or a
+  /// state-changing request from another origin (a page elsewhere posting through the user's
+  /// browser) or in a form a page elsewhere may send without asking (not application/json).
+  void check(const httplib::Request& req) const {
+    const std::string host = req.get_header_value("Host");
+    if (!allowedHost(host))
+      throw HttpError(403, "Host: '" + host + "' is not a name this server answers to (it serves " + *names_.begin() + " and the like)");
+    if (req.method == "GET" || req.method == "HEAD") return;
+    const std::string origin = req.get_header_value("Origin");
+    if (req.has_header("Origin") && origin != "http://" + host)
+      throw HttpError(403, "Origin: '" + origin + "' may not change anything here (only pages of http://" + host + " may)");
+    if (req.get_header_value("Sec-Fetch-Site") == "cross-site")
+      throw HttpError(403, "Sec-Fetch-Site: a cross-site request may not change anything here");
+    const std::string type = req.get_header_value("Content-Type");
+    if (type.substr(0, type.find(';')) != "application/json")
+      throw HttpError(415, "Content-Type: must be application/json, got '" + type + "'");
+  }
+
+ private:
+  bool allowedHost(const std::string& host) const {
+    if (names_.count(host)) return true;
+    if (!any_) return false;
+    // Bound to every address: any IP literal with this port (a name could be rebound; a literal cannot).
+    const std::string p = ":" + std::to_string(port_);
+    if (host.size() <= p.size() || host.compare(host.size() - p.size(), p.size(), p) != 0) return false;
+    std::string ip = host.substr(0, host.size() - p.size());
+    if (ip.size() > 2 && ip.front() == '[' && ip.back() == ']') ip = ip.substr(1, ip.size() - 2);
+    unsigned char buf[sizeof(in6_addr)];
+    return ::inet_pton(AF_INET, ip.c_str(), buf) == 1 || ::inet_pton(AF_INET6, ip.c_str(), buf) == 1;
+  }
+
+  int port_;
+  bool any_ = false;
+  std::set<std::string> names_;
+};
 
 }  // namespace
 
-int serveCommand(const ServeOptions& o) {
+int planHelperMain(int argc, char** argv) {
+  if (argc != 3) return 2;
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  const double max_time_limit_s = std::strtod(argv[2], nullptr);
+  for (;;) {
+    std::string body;
+    if (!readMessage(3, body)) return 0;
+    std::string answer;
+    try {
+      answer = "R" + serializeRecord(planInWorker(readWorkbenchRequest(body, max_time_limit_s)));
+    } catch (const InputError& e) {
+      answer = std::string("I") + e.what();
+    } catch (const std::exception& e) {
+      answer = std::string("X") + e.what();
+    }
+    if (!writeMessage(4, answer)) return 0;
+  }
+}
+
+struct ServeApp::Impl {
+  Impl(const ServeOptions& o, const std::string& helper_exe) : explorer(o.databases), workbench(o, helper_exe), hosts(o.host, 0) {}
+
+  /// Runs `handler` after the request checks, answering its errors as JSON.
+  template <class F>
+  httplib::Server::Handler guarded(F handler) {
+    return [this, handler](const httplib::Request& req, httplib::Response& res) {
+      try {
+        hosts.check(req);
+        handler(req, res);
+      } catch (const HttpError& e) {
+        answerError(res, e.status, e.what());
+      } catch (const InputError& e) {
+        answerError(res, 400, e.what());
+      } catch (const std::exception& e) {
+        answerError(res, 500, std::string("internal error: ") + e.what());
+      }
+    };
+  }
+
+  Explorer explorer;
+  WorkbenchServer workbench;
+  HostCheck hosts;
+  DeadlineServer server;
+  int port = -1;
+};
+
+ServeApp::ServeApp(const ServeOptions& o, const std::string& helper_exe) {
   if (o.port < 0 || o.port > 65535) throw InputError("--port", "port", "must be from 0 to 65535, got " + std::to_string(o.port));
-  Explorer explorer(o.databases);
-  WorkbenchServer workbench(o);
+  ::signal(SIGPIPE, SIG_IGN);  // a client or the plan helper gone mid-answer is an error, not the server's end
   for (const auto& [route, file] : pageFiles())
     if (!fs::exists(file.first)) throw InputError(file.first, "serve", "the explorer's page file is missing");
-  httplib::Server server;
+  impl_ = std::make_unique<Impl>(o, helper_exe);
+  Impl& x = *impl_;
+  httplib::Server& server = x.server;
+  server.new_task_queue = [] { return new httplib::ThreadPool(kConnectionThreads); };
   server.set_payload_max_length(kMaxBodyBytes);
+  // Address reuse lets a restarted server bind at once, but not port reuse: a second server on a
+  // busy port must fail at start, not share the port and split the saves between two databases.
+  server.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   for (const auto& [route, file] : pageFiles()) {
     const std::string path = file.first, type = file.second;
-    server.Get(route, guarded([path, type](const httplib::Request&, httplib::Response& res) { res.set_content(readFile(path), type); }));
+    server.Get(route, x.guarded([path, type](const httplib::Request&, httplib::Response& res) { res.set_content(readFile(path), type); }));
   }
-  server.Get("/api/experiments", guarded([&](const httplib::Request&, httplib::Response& res) {
-    res.set_content(explorer.experiments().dump() + "\n", "application/json");
+  server.Get("/api/experiments", x.guarded([&x](const httplib::Request&, httplib::Response& res) {
+    res.set_content(jsonText(x.explorer.experiments()), "application/json");
   }));
-  server.Get(R"(/api/experiments/(\d{1,6})/(\d{1,12})/runs)", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    res.set_content(explorer.runs(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req).dump() + "\n", "application/json");
+  server.Get(R"(/api/experiments/(\d{1,6})/(\d{1,12})/runs)", x.guarded([&x](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(jsonText(x.explorer.runs(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req)), "application/json");
   }));
   server.Get(R"(/api/experiments/(\d{1,6})/(\d{1,12})/runs/([0-9a-f]{64})/(picture\.svg|playback\.js))",
-             guarded([&](const httplib::Request& req, httplib::Response& res) {
+             x.guarded([&x](const httplib::Request& req, httplib::Response& res) {
                const bool playback = req.matches[4] == "playback.js";
-               res.set_content(explorer.drawing(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.matches[3], playback),
+               res.set_content(x.explorer.drawing(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.matches[3], playback),
                                playback ? "text/javascript; charset=utf-8" : "image/svg+xml");
              }));
-  server.Get("/api/experiments/(\\d{1,6})/(\\d{1,12})/runs/([0-9a-f]{64})/problem", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    res.set_content(explorer.problem(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.matches[3]).dump() + "\n",
-                    "application/json");
+  server.Get("/api/experiments/(\\d{1,6})/(\\d{1,12})/runs/([0-9a-f]{64})/problem",
+             x.guarded([&x](const httplib::Request& req, httplib::Response& res) {
+               res.set_content(jsonText(x.explorer.problem(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.matches[3])),
+                               "application/json");
+             }));
+  server.Get("/api/planners", x.guarded([](const httplib::Request&, httplib::Response& res) {
+    res.set_content(jsonText(plannersJson()), "application/json");
   }));
-  server.Get("/api/planners", guarded([&](const httplib::Request&, httplib::Response& res) {
-    res.set_content(plannersJson().dump() + "\n", "application/json");
+  server.Get("/api/walls", x.guarded([&x](const httplib::Request&, httplib::Response& res) {
+    res.set_content(jsonText(x.workbench.walls()), "application/json");
   }));
-  server.Get("/api/walls", guarded([&](const httplib::Request&, httplib::Response& res) {
-    res.set_content(workbench.walls().dump() + "\n", "application/json");
+  server.Get(R"(/api/walls/folder/(\d{1,9}))", x.guarded([&x](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(x.workbench.folderWall(std::stoul(req.matches[1])), "application/json");
   }));
-  server.Get(R"(/api/walls/folder/(\d{1,9}))", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    res.set_content(workbench.folderWall(std::stoul(req.matches[1])), "application/json");
+  server.Get(R"(/api/walls/db/(.{1,1000}))", x.guarded([&x](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(x.workbench.databaseWall(req.matches[1]), "application/json");
   }));
-  server.Get(R"(/api/walls/db/(.{1,1000}))", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    res.set_content(workbench.databaseWall(req.matches[1]), "application/json");
+  server.Post("/api/check", x.guarded([&x](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(jsonText(x.workbench.check(req.body)), "application/json");
   }));
-  server.Post("/api/check", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    res.set_content(workbench.check(req.body).dump() + "\n", "application/json");
+  server.Post("/api/walls", x.guarded([&x](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(jsonText(x.workbench.save(req.body)), "application/json");
   }));
-  server.Post("/api/walls", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    res.set_content(workbench.save(req.body).dump() + "\n", "application/json");
+  server.Post("/api/plan", x.guarded([&x](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(jsonText(x.workbench.plan(req.body)), "application/json");
   }));
-  server.Post("/api/plan", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    res.set_content(workbench.plan(req.body).dump() + "\n", "application/json");
-  }));
-  server.Get(R"(/api/plans/(\d{1,12})/(picture\.svg|playback\.js))", guarded([&](const httplib::Request& req, httplib::Response& res) {
+  server.Get(R"(/api/plans/(\d{1,12})/(picture\.svg|playback\.js))", x.guarded([&x](const httplib::Request& req, httplib::Response& res) {
     const bool playback = req.matches[2] == "playback.js";
-    res.set_content(workbench.drawing(std::stoll(req.matches[1]), playback), playback ? "text/javascript; charset=utf-8" : "image/svg+xml");
+    res.set_content(x.workbench.drawing(std::stoll(req.matches[1]), playback), playback ? "text/javascript; charset=utf-8" : "image/svg+xml");
   }));
+  // An exception outside a route's own handling (httplib's, or a bug): 500 as JSON, never the
+  // process's end.
+  server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr ep) {
+    std::string what = "unknown";
+    try {
+      if (ep) std::rethrow_exception(ep);
+    } catch (const std::exception& e) {
+      what = e.what();
+    } catch (...) {
+    }
+    answerError(res, 500, "internal error: " + what);
+  });
   // Anything else, and bodies over the limit: a JSON error (httplib calls this for every status
   // >= 400 left without a body).
   server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;
-    if (res.status == 413)
-      answerError(res, 413, "request body: over " + std::to_string(kMaxBodyBytes) + " bytes");
-    else if (res.status == 404)
-      answerError(res, 404, req.path + ": no such page or API (see docs/explorer.md)");
-    else
-      answerError(res, res.status, req.path + ": refused (HTTP " + std::to_string(res.status) + ")");
+    if (res.status == 400) DeadlineStream::malformed() = true;  // every route's own 400 has a body
+    try {
+      if (DeadlineStream::readTimedOut())
+        answerError(res, 408, readDeadlineMessage());
+      else if (res.status == 413)
+        answerError(res, 413, "request body: over " + std::to_string(kMaxBodyBytes) + " bytes");
+      else if (res.status == 404)
+        answerError(res, 404, req.path + ": no such page or API (see docs/explorer.md)");
+      else
+        answerError(res, res.status, req.path + ": refused (HTTP " + std::to_string(res.status) + ")");
+    } catch (...) {
+      res.set_content("{\"error\": \"refused\"}\n", "application/json");
+    }
   });
-  const int port = o.port == 0 ? server.bind_to_any_port(o.host) : (server.bind_to_port(o.host, o.port) ? o.port : -1);
-  if (port < 0) throw InputError("--port", "port", "cannot listen on " + o.host + ":" + std::to_string(o.port));
-  std::cout << "coverbench serve: http://" << o.host << ":" << port << "/ (" << o.databases.size() << " database"
+  x.port = o.port == 0 ? server.bind_to_any_port(o.host) : (server.bind_to_port(o.host, o.port) ? o.port : -1);
+  if (x.port < 0)
+    throw InputError("--port", "port", "cannot listen on " + o.host + ":" + std::to_string(o.port) + " (is another server on it?)");
+  x.hosts = HostCheck(o.host, x.port);
+}
+
+ServeApp::~ServeApp() = default;
+int ServeApp::port() const { return impl_->port; }
+bool ServeApp::listen() { return impl_->server.listen_after_bind(); }
+void ServeApp::stop() { impl_->server.stop(); }
+
+int serveCommand(const ServeOptions& o) {
+  ServeApp app(o, "/proc/self/exe");
+  if (!HostCheck::isLoopback(o.host))
+    std::cerr << "coverbench serve: warning: listening on " << o.host
+              << ", not a loopback address: anyone who can reach it on that network can read the served results, "
+                 "save walls and start plans\n";
+  std::cout << "coverbench serve: http://" << o.host << ":" << app.port() << "/ (" << o.databases.size() << " database"
             << (o.databases.size() == 1 ? "" : "s") << "; Ctrl-C stops it)" << std::endl;
-  server.listen_after_bind();
+  app.listen();
   return 0;
 }
 

@@ -52,8 +52,8 @@ WorkbenchRequest readWorkbenchRequest(const std::string& text, double max_time_l
   json body;
   try {
     body = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw InputError(kBody, "(json)", std::string("is not JSON: ") + e.what());
+  } catch (const json::exception& e) {  // a syntax error, or a number no double holds (1e999)
+    throw InputError(kBody, "(json)", std::string("is not JSON this server reads: ") + e.what());
   }
   if (!body.is_object()) throw InputError(kBody, "(json)", "must be an object");
   for (const auto& [key, value] : body.items())

@@ -11,7 +11,7 @@ seconds="${1:-30}"
 build="${COVERBENCH_SANITIZE_BUILD:-build-sanitize}"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:allocator_may_return_null=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-for target in wall_parser experiment_config plan_file planners; do
+for target in wall_parser experiment_config plan_file planners serve; do
   work="$build/fuzz/$target"
   mkdir -p "$work/corpus" "$work/artifacts" "$work/tmp"
   start=$(date +%s)

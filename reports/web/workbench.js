@@ -16,7 +16,10 @@
   const state = {wall: null, planners: [], checkTimer: 0, checkSeq: 0, drag: null};
 
   async function call(method, url, body) {
-    const res = await fetch(url, body === undefined ? {method} : {method, body: JSON.stringify(body)});
+    // The server changes nothing for a POST that is not application/json (a page elsewhere can
+    // send text/plain without asking; this type it cannot).
+    const res = await fetch(url, body === undefined ? {method}
+      : {method, headers: {"Content-Type": "application/json"}, body: JSON.stringify(body)});
     const text = await res.text();
     let data;
     try { data = JSON.parse(text); } catch (e) { data = {error: `${url}: HTTP ${res.status}`}; }

@@ -108,7 +108,8 @@ class Serve(unittest.TestCase):
     def post(self, path, body):
         """Status and JSON answer of a POST."""
         c = http.client.HTTPConnection("127.0.0.1", self.port, timeout=120)
-        c.request("POST", path, body=json.dumps(body) if not isinstance(body, (bytes, str)) else body)
+        c.request("POST", path, body=json.dumps(body) if not isinstance(body, (bytes, str)) else body,
+                  headers={"Content-Type": "application/json"})
         r = c.getresponse()
         text = r.read().decode()
         c.close()
@@ -212,17 +213,18 @@ class Serve(unittest.TestCase):
         self.assertEqual(self.post("/api/plan", {"wall": wall, "planner": "zigzag", "time_limit_s": 100}),
                          (400, {"error": "request body: time_limit_s: must be at most 20 s (serve --plan-time-limit), got 100"}))
         # A plan that cannot finish within its time limit: spiral on a 100 m field at a 5 cm tool
-        # takes about 20 s; asked for 0.5 s, the answer is a 504 within the limit and the hard
-        # deadline (2 x 0.5 s + 5 s), not a 20 s wait.
+        # takes about 20 s; asked for 0.5 s, the answer is a 504 within its answer deadline
+        # (2 x 0.5 s + 10 s: the worker's hard deadline and the helper's reading and scoring), not
+        # a 20 s wait. The bound is the server's promise, not a speed: it holds on a busy machine.
         field = read(os.path.join(SOURCE, "bench", "walls", "field_100m_15_buildings.json"))
         start = time.monotonic()
         status, answer = self.post("/api/plan", {"wall": field, "planner": "spiral", "tool_width": 0.05, "clearance": 0,
                                                  "time_limit_s": 0.5})
-        self.assertLess(time.monotonic() - start, 6.0)
+        self.assertLess(time.monotonic() - start, 11.0)
         self.assertEqual(status, 504, answer)
         self.assertTrue(answer["error"].startswith("time_limit_s: the plan did not finish within its time limit of 0.5 s"), answer)
         for body, message in (
-                ("{", "request body: (json): is not JSON: "),
+                ("{", "request body: (json): is not JSON this server reads: "),
                 ({"wall": wall, "planner": "zigzag", "colour": 1}, "request body: colour: unknown key"),
                 ({"wall": wall}, "request body: planner: name a planner"),
                 ({"wall": wall, "planner": "zagzig"}, "planner: zagzig: unknown planner (registered: zigzag, "),

@@ -1,0 +1,340 @@
+"""`coverbench serve` under attack: one test per class of door that used to give way (issue
+"Doors that hold"). Each talks to a real server over loopback, sends the bytes as they are (no
+client normalising) and then checks the server still answers.
+
+- another origin or another Host name cannot read or change anything; a state-changing request
+  must be application/json (what a page elsewhere cannot send without asking first);
+- no byte sequence ends the server (non-UTF-8 in a path, a query value, a body, a file name);
+- a --walls folder serves regular files only, opened without following links, parsed as walls;
+  a file swapped for a link or a FIFO after the listing is refused, never followed or waited on;
+- a busy port is an error at start, not a second server splitting the saves;
+- slow clients hold no thread past the request's read deadline, and others are served meanwhile;
+- the plan helper, killed, is started again;
+- overflowing numbers are 400, a locked walls database 503, names that could not be read back
+  are refused at save;
+- a --host that is not loopback prints its warning."""
+import http.client
+import json
+import os
+import re
+import shutil
+import signal
+import socket
+import sqlite3
+import subprocess
+import tempfile
+import threading
+import time
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+BIN = os.environ.get("COVERBENCH_BINARY", "build/coverbench")
+SOURCE = os.path.join(HERE, "..", "..")
+WALL = os.path.join(SOURCE, "datasets", "canonical", "seed_10x8_3obs.json")
+
+
+def start_server(*args):
+    """A server on a free port: (process, port)."""
+    p = subprocess.Popen([BIN, "serve", "--port", "0", *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    line = p.stdout.readline()
+    m = re.search(r"http://[^:]+:(\d+)/", line)
+    if not m:
+        p.kill()
+        raise RuntimeError("serve printed: " + line + p.stderr.read())
+    return p, int(m.group(1))
+
+
+def stop_server(p):
+    p.kill()
+    p.wait()
+    p.stdout.close()
+    p.stderr.close()
+
+
+def raw(port, data, timeout=60):
+    """Sends `data` as it is, half-closes, and returns (status, headers text, body bytes)."""
+    with socket.create_connection(("127.0.0.1", port), timeout=timeout) as s:
+        s.sendall(data)
+        s.shutdown(socket.SHUT_WR)
+        got = b""
+        while True:
+            chunk = s.recv(65536)
+            if not chunk:
+                break
+            got += chunk
+    head, _, body = got.partition(b"\r\n\r\n")
+    m = re.match(rb"HTTP/1\.1 (\d+)", head)
+    return (int(m.group(1)) if m else None), head.decode("latin-1"), body
+
+
+class Doors(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.work = tempfile.mkdtemp(prefix="coverbench-doors-")
+        cls.walls = os.path.join(cls.work, "walls")
+        os.makedirs(cls.walls)
+        shutil.copy(WALL, os.path.join(cls.walls, "a.json"))
+        shutil.copy(WALL, os.path.join(cls.walls, "b.json"))
+        os.symlink("/etc/passwd", os.path.join(cls.walls, "passwd.json"))
+        os.symlink(os.path.join(cls.walls, "a.json"), os.path.join(cls.walls, "link_in_folder.json"))
+        os.mkfifo(os.path.join(cls.walls, "fifo.json"))
+        cls.walls_db = os.path.join(cls.work, "saved.sqlite")
+        cls.server, cls.port = start_server("--walls", cls.walls, "--walls-db", cls.walls_db, "--plan-time-limit", "20")
+        with open(WALL) as f:
+            cls.wall = f.read()
+
+    @classmethod
+    def tearDownClass(cls):
+        stop_server(cls.server)
+        shutil.rmtree(cls.work, ignore_errors=True)
+
+    def request(self, method, path, body=None, headers=None, timeout=60):
+        """(status, JSON answer) of a request sent as is."""
+        c = http.client.HTTPConnection("127.0.0.1", self.port, timeout=timeout)
+        c.putrequest(method, path, skip_host="Host" in (headers or {}), skip_accept_encoding=True)
+        for k, v in (headers or {}).items():
+            c.putheader(k, v)
+        data = body if isinstance(body, bytes) else (json.dumps(body).encode() if body is not None else None)
+        if data is not None:
+            c.putheader("Content-Length", str(len(data)))
+        c.endheaders(data)
+        r = c.getresponse()
+        text = r.read()
+        c.close()
+        return r.status, (json.loads(text) if r.getheader("Content-Type") == "application/json" else text)
+
+    def assert_alive(self):
+        status, answer = self.request("GET", "/api/walls")
+        self.assertEqual(status, 200, answer)
+        self.assertIsNone(self.server.poll(), "the server ended")
+
+    def assert_one_line_error(self, answer):
+        self.assertEqual(list(answer), ["error"], answer)
+        self.assertEqual(len(answer["error"].splitlines()), 1, answer)
+
+    def test_another_origin_or_host_changes_nothing(self):
+        json_type = {"Content-Type": "application/json"}
+        body = {"wall": json.dumps({**json.loads(self.wall), "name": "cross-origin-probe"})}
+        # A page elsewhere posting text/plain (no preflight in a browser): refused, nothing saved.
+        status, answer = self.request("POST", "/api/walls", body, {"Content-Type": "text/plain", "Origin": "http://evil.example"})
+        self.assertEqual(status, 403, answer)
+        self.assert_one_line_error(answer)
+        status, answer = self.request("POST", "/api/walls", body, {"Content-Type": "text/plain"})
+        self.assertEqual(status, 415, answer)
+        status, answer = self.request("POST", "/api/plan", {"wall": self.wall, "planner": "zigzag"},
+                                      {**json_type, "Origin": "http://evil.example"})
+        self.assertEqual(status, 403, answer)
+        status, answer = self.request("POST", "/api/plan", {"wall": self.wall, "planner": "zigzag"},
+                                      {**json_type, "Sec-Fetch-Site": "cross-site"})
+        self.assertEqual(status, 403, answer)
+        self.assertNotIn("cross-origin-probe", [w["name"] for w in self.request("GET", "/api/walls")[1]["walls"]], "nothing saved")
+        # DNS rebinding: another name for this address is not answered, even for reading.
+        for host in ("evil.example", f"evil.example:{self.port}", "127.0.0.1:1", ""):
+            status, answer = self.request("GET", "/api/walls", headers={"Host": host})
+            self.assertEqual(status, 403, (host, answer))
+            self.assert_one_line_error(answer)
+        # Its own origin, by any of its loopback names, may.
+        for host in (f"127.0.0.1:{self.port}", f"localhost:{self.port}"):
+            status, answer = self.request("POST", "/api/check", {"wall": self.wall},
+                                          {**json_type, "Host": host, "Origin": f"http://{host}"})
+            self.assertEqual((status, answer.get("ok")), (200, True), (host, answer))
+
+    def test_no_byte_sequence_ends_the_server(self):
+        cases = [b"GET /%FF HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n\r\n",
+                 b"GET /\xff\xfe HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n\r\n",
+                 b"GET /api/walls/db/%FF%C0 HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n\r\n",
+                 b"GET /api/experiments/0/1/runs?sort=%FF HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n\r\n",
+                 b"GET /api/walls HTTP/1.1\r\nHost: \xff:%d\r\n\r\n",
+                 b"POST /api/check HTTP/1.1\r\nHost: 127.0.0.1:%d\r\nContent-Type: application/json\r\nContent-Length: 9\r\n\r\n{\"w\xff\":1}",
+                 b"\xff\xff\xff\xff\r\n\r\n",
+                 b"GET / HTTP/1.1\r\nHost: 127.0.0.1:%d\r\nContent-Length: 99999999999999999999999\r\n\r\n"]
+        for case in cases:
+            data = case.replace(b"%d", str(self.port).encode()) if b"%d" in case else case
+            status, head, body = raw(self.port, data)
+            if status is not None and status >= 400:
+                self.assertIn("application/json", head, data)
+                self.assert_one_line_error(json.loads(body))
+            self.assert_alive()
+        # A saved wall whose name is not UTF-8 cannot reach the database (the body is JSON), and one
+        # named with U+FFFD is listed and read back.
+        status, answer = self.request("POST", "/api/walls", {"wall": json.dumps({**json.loads(self.wall), "name": "\ufffd"})},
+                                      {"Content-Type": "application/json"})
+        self.assertEqual(status, 200, answer)
+        self.assert_alive()
+
+    def test_the_walls_folder_serves_regular_files_only(self):
+        listed = {w["name"]: w["url"] for w in self.request("GET", "/api/walls")[1]["walls"] if w["source"] == "folder"}
+        self.assertEqual(sorted(listed), ["a.json", "b.json"], "no link, no FIFO is listed")
+        status, wall = self.request("GET", listed["a.json"])
+        self.assertEqual((status, wall["name"]), (200, json.loads(self.wall)["name"]))
+        b = os.path.join(self.walls, "b.json")
+        try:
+            # Swapped for a link to the environment: refused, and no byte of it served.
+            os.remove(b)
+            os.symlink("/proc/self/environ", b)
+            status, answer = self.request("GET", listed["b.json"])
+            self.assertEqual(status, 404, answer)
+            self.assert_one_line_error(answer)
+            self.assertNotIn("PATH=", json.dumps(answer))
+            # Swapped for a FIFO nobody writes: answered at once, not waited on.
+            os.remove(b)
+            os.mkfifo(b)
+            status, answer = self.request("GET", listed["b.json"], timeout=30)
+            self.assertEqual(status, 404, answer)
+            # Swapped for a regular file that is not a wall: its parser's line, not its bytes.
+            os.remove(b)
+            with open(b, "w") as f:
+                f.write("root:x:0:0:root:/root:/bin/bash\n")
+            status, answer = self.request("GET", listed["b.json"])
+            self.assertEqual(status, 422, answer)
+            self.assert_one_line_error(answer)
+            self.assertNotIn("root:x", answer["error"])
+        finally:
+            os.remove(b)
+            shutil.copy(WALL, b)
+        self.assert_alive()
+
+    def test_a_busy_port_is_an_error_at_start(self):
+        r = subprocess.run([BIN, "serve", "--port", str(self.port)], capture_output=True, text=True, timeout=60)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(r.stderr, f"coverbench: --port: port: cannot listen on 127.0.0.1:{self.port} (is another server on it?)\n")
+        self.assert_alive()
+
+    def test_slow_clients_do_not_block_the_others(self):
+        stop = threading.Event()
+        answers = []
+
+        def dribble():
+            # A header line every 2 s: under httplib's per-read timeout, forever.
+            try:
+                with socket.create_connection(("127.0.0.1", self.port), timeout=120) as s:
+                    s.sendall(f"GET /api/walls HTTP/1.1\r\nHost: 127.0.0.1:{self.port}\r\n".encode())
+                    for k in range(60):
+                        if stop.wait(2):
+                            return
+                        s.sendall(f"X-Slow-{k}: 1\r\n".encode())
+            except OSError:
+                pass  # closed by the server: what the read deadline does
+
+        def dribble_and_read():
+            try:
+                with socket.create_connection(("127.0.0.1", self.port), timeout=120) as s:
+                    s.sendall(f"GET /api/walls HTTP/1.1\r\nHost: 127.0.0.1:{self.port}\r\n".encode())
+                    got = b""
+                    for k in range(60):
+                        if stop.is_set():
+                            break
+                        try:
+                            s.sendall(f"X-Slow-{k}: 1\r\n".encode())
+                        except OSError:
+                            break
+                        s.settimeout(2)
+                        try:
+                            chunk = s.recv(65536)
+                            if not chunk:
+                                break
+                            got += chunk
+                        except socket.timeout:
+                            continue
+                    s.settimeout(30)
+                    try:
+                        while True:
+                            chunk = s.recv(65536)
+                            if not chunk:
+                                break
+                            got += chunk
+                    except OSError:
+                        pass
+                    answers.append(got)
+            except OSError as e:
+                answers.append(repr(e).encode())
+
+        threads = [threading.Thread(target=dribble) for _ in range(16)] + [threading.Thread(target=dribble_and_read)]
+        for t in threads:
+            t.start()
+        try:
+            time.sleep(1)
+            # While they dribble (for up to two minutes), others are answered.
+            status, answer = self.request("GET", "/api/walls", timeout=30)
+            self.assertEqual(status, 200, answer)
+            threads[-1].join(timeout=100)
+            self.assertEqual(len(answers), 1)
+            self.assertTrue(answers[0].startswith(b"HTTP/1.1 408 "), answers[0][:200])
+            self.assertIn(b"not read whole within 10 s", answers[0])
+        finally:
+            stop.set()
+            for t in threads:
+                t.join()
+        self.assert_alive()
+
+    def test_a_killed_plan_helper_is_started_again(self):
+        def helpers():
+            out = subprocess.run(["ps", "-o", "pid=,args=", "--ppid", str(self.server.pid)], capture_output=True, text=True).stdout
+            return [int(line.split()[0]) for line in out.splitlines() if "--internal-plan-helper" in line]
+
+        body = {"wall": self.wall, "planner": "zigzag", "time_limit_s": 5}
+        json_type = {"Content-Type": "application/json"}
+        self.assertEqual(len(helpers()), 1)
+        for _ in range(2):
+            pid = helpers()[0]
+            os.kill(pid, signal.SIGKILL)
+            for _ in range(600):  # until it has ended (a zombie until the server reaps it)
+                try:
+                    with open(f"/proc/{pid}/stat") as f:
+                        if f.read().rsplit(")", 1)[1].split()[0] == "Z":
+                            break
+                except FileNotFoundError:
+                    break
+                time.sleep(0.05)
+            status, answer = self.request("POST", "/api/plan", body, json_type, timeout=120)
+            self.assertEqual((status, answer.get("status")), (200, "ok"), answer)
+        self.assertEqual(len(helpers()), 1, "one helper, started again")
+
+    def test_statuses_and_saves_that_read_back(self):
+        json_type = {"Content-Type": "application/json"}
+        # A number no double holds: the request's fault (400), not ours (500).
+        body = '{"wall": %s, "planner": "zigzag", "tool_width": 1e999}' % json.dumps(self.wall)
+        status, answer = self.request("POST", "/api/plan", body.encode(), json_type)
+        self.assertEqual(status, 400, answer)
+        self.assertTrue(answer["error"].startswith("request body: (json): is not JSON this server reads: "), answer)
+        status, answer = self.request("POST", "/api/check", body.encode(), json_type)
+        self.assertEqual((status, answer["ok"]), (200, False), answer)
+        # Names that could not be opened again are refused at save.
+        wall = json.loads(self.wall)
+        for name, problem in (("", "a saved wall needs a name"), ("two\nlines", "has a control character"),
+                              ("x" * 1001, "is 1001 bytes; a saved wall's name has at most 1000")):
+            status, answer = self.request("POST", "/api/walls", {"wall": json.dumps({**wall, "name": name})}, json_type)
+            self.assertEqual(status, 400, (name[:20], answer))
+            self.assertTrue(answer["error"].startswith("request body: wall.name: " + problem), answer)
+        # A name at the limit saves and reads back.
+        long_name = "y" * 1000
+        status, answer = self.request("POST", "/api/walls", {"wall": json.dumps({**wall, "name": long_name})}, json_type)
+        self.assertEqual(status, 200, answer)
+        status, saved = self.request("GET", "/api/walls/db/" + long_name)
+        self.assertEqual((status, saved["name"]), (200, long_name))
+        # A locked walls database is the server's trouble: 503 with the reason, not 400 or 404.
+        lock = sqlite3.connect(self.walls_db, timeout=30)
+        try:
+            lock.execute("BEGIN EXCLUSIVE")
+            status, answer = self.request("POST", "/api/walls", {"wall": self.wall}, json_type, timeout=120)
+            self.assertEqual(status, 503, answer)
+            self.assertIn("database is locked", answer["error"])
+            status, answer = self.request("GET", "/api/walls/db/" + long_name, timeout=120)
+            self.assertEqual(status, 503, answer)
+        finally:
+            lock.rollback()
+            lock.close()
+        self.assert_alive()
+
+    def test_a_host_beyond_loopback_is_warned_of(self):
+        p = subprocess.Popen([BIN, "serve", "--host", "0.0.0.0", "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True)
+        try:
+            warning = p.stderr.readline()
+            self.assertIn("warning: listening on 0.0.0.0, not a loopback address: anyone who can reach it", warning)
+        finally:
+            stop_server(p)
+
+
+if __name__ == "__main__":
+    unittest.main()
