@@ -65,6 +65,10 @@ int datasetImportCommand(DatasetImportOptions o) {
   const Dataset d = writeDataset(o.out, "import", 0, walls, importRecordJson(result, o.options));
   std::cout << "imported " << d.entries.size() << " walls from " << result.sources.size() << " files into " << o.out;
   if (dropped) std::cout << " (" << dropped << " holes under --min-hole-area dropped, " << shortNumber(dropped_area) << " m^2)";
+  std::size_t components = 0;
+  double component_area = 0.0;
+  for (const ImportedWall& w : result.walls) components += w.dropped_components, component_area += w.dropped_component_area;
+  if (components) std::cout << " (" << components << " free map components left out, " << shortNumber(component_area) << " m^2)";
   std::cout << "\n" << describeDataset(d);
   return 0;
 }

@@ -234,7 +234,9 @@ TEST_F(Import, WktPolygonsWithHolesAndMultipolygons) {
   EXPECT_DOUBLE_EQ(boundingBox(walls[2].wall.boundary).min_x, 30.0);
   ImportOptions o;
   o.split_multipolygons = false;
-  EXPECT_EQ(test::inputError([&] { import(file, o); }), file + ": geometry 2: is a multipolygon of 2 parts");
+  EXPECT_EQ(test::inputError([&] { import(file, o); }),
+            file + ": geometry 2: is a multipolygon of 2 parts, refused by --refuse-multipolygons (without it each part "
+                   "becomes a wall)");
 }
 
 TEST_F(Import, PolygonTextFoldersAreNamedAfterTheirFolder) {
@@ -298,7 +300,8 @@ TEST_F(Import, BadInputIsRefusedWithOneLine) {
   EXPECT_NE(test::inputError([&] { import(bowtie); }).find(bowtie + ": geometry 1: is not a valid polygon"), std::string::npos);
   const std::string degrees = write("field.wkt", "POLYGON ((8.1 47.1, 8.102 47.1, 8.102 47.101, 8.1 47.101, 8.1 47.1))");
   EXPECT_EQ(test::inputError([&] { import(degrees); }),
-            degrees + ": (CRS): names no CRS and its coordinates look like degrees (longitude/latitude): give --source-crs EPSG:4326");
+            degrees + ": (CRS): names no CRS and its coordinates look like degrees (longitude/latitude; as metres it would be "
+                      "0.002 x 0.001 m): give --source-crs EPSG:4326, or --source-crs metres if they are metres");
   ImportOptions lonlat;
   lonlat.source_crs = "EPSG:4326";
   EXPECT_EQ(import(degrees, lonlat)[0].crs, "EPSG:32632");
@@ -307,7 +310,8 @@ TEST_F(Import, BadInputIsRefusedWithOneLine) {
   EXPECT_EQ(test::inputError([&] { import(thresholds); }), thresholds + ": occupied_thresh: must be between 0 and 1, got 1.5");
   const std::string unknown = write("walls.xyz", "1 2 3");
   EXPECT_EQ(test::inputError([&] { import(unknown); }),
-            unknown + ": --format: cannot tell the format from the name 'walls.xyz': give --format");
+            unknown + ": --format: cannot tell the format from the name 'walls.xyz': give --format (auto, geojson, gml, kml, "
+                      "shapefile, gpkg, dxf, wkt, polygon-text, yaml-polygon, map)");
   ImportOptions bad_format;
   bad_format.format = "svg";
   EXPECT_EQ(test::inputError([&] { import(unknown, bad_format); }), "--format: (value): unknown format 'svg'");
@@ -354,6 +358,332 @@ TEST_F(Import, AConfigImportsAsADatasetKind) {
   write("bad.yaml", "name: x\noutput: out\ndatasets:\n  - folder: fields/\n    format: wkt\nplanners: [zigzag]\n");
   EXPECT_EQ(test::inputError([&] { loadExperimentConfig((dir_ / "bad.yaml").string()); }),
             (dir_ / "bad.yaml").string() + ":5: datasets[0].format: is an import option: it needs import: FILE_OR_FOLDER");
+}
+
+// --- hardening: each test below failed on the importer before it (the comment says how) ------
+
+// 1. Degrees read as metres. A 0.1 x 0.06 degree field without a CRS became a 0.1 m wall: the
+// refusal needed an extent under 0.05. Now any file without a CRS whose coordinates all lie in
+// degree range and within one degree is refused, polygon text and YAML too, unless --source-crs
+// says what they are.
+TEST_F(Import, CoordinatesThatLookLikeDegreesAreRefusedWithoutASourceCrs) {
+  const std::string wkt = write("field.wkt", "POLYGON ((8.1 47.1, 8.2 47.1, 8.2 47.16, 8.1 47.16, 8.1 47.1))");
+  EXPECT_EQ(test::inputError([&] { import(wkt); }),
+            wkt + ": (CRS): names no CRS and its coordinates look like degrees (longitude/latitude; as metres it would be "
+                  "0.1 x 0.06 m): give --source-crs EPSG:4326, or --source-crs metres if they are metres");
+  writeBytes("lonlat/poly_1/outer_polygon", "8.1 47.1\n8.2 47.1\n8.2 47.16\n8.1 47.16\n");
+  EXPECT_NE(test::inputError([&] { import((dir_ / "lonlat" / "poly_1").string()); })
+                .find((dir_ / "lonlat" / "poly_1" / "outer_polygon").string() + ": (CRS): names no CRS"),
+            std::string::npos);
+  const std::string yaml = write("yard.yaml", "hull: [{x: 8.1, y: 47.1}, {x: 8.2, y: 47.1}, {x: 8.2, y: 47.16}]\n");
+  EXPECT_NE(test::inputError([&] { import(yaml); }).find(yaml + ": (CRS): names no CRS"), std::string::npos);
+  // Said to be metres: a 0.1 m x 0.06 m wall, as written.
+  ImportOptions metres;
+  metres.source_crs = "metres";
+  const std::vector<ImportedWall> small = import(wkt, metres);
+  ASSERT_EQ(small.size(), 1u);
+  EXPECT_EQ(small[0].crs, "");
+  EXPECT_NEAR(signedArea(small[0].wall.boundary), 0.1 * 0.06, 1e-9);
+  // Said to be longitude/latitude: projected to UTM zone 32 (8.1..8.2 E), about 7.6 km x 6.7 km.
+  ImportOptions lonlat;
+  lonlat.source_crs = "EPSG:4326";
+  const std::vector<ImportedWall> field = import(wkt, lonlat);
+  EXPECT_EQ(field[0].crs, "EPSG:32632");
+  EXPECT_GT(boundingBox(field[0].wall.boundary).width(), 7000.0);
+  EXPECT_EQ(import((dir_ / "lonlat" / "poly_1").string(), lonlat)[0].crs, "EPSG:32632");
+  // Metres near the origin, a metre or more across, are not degrees.
+  EXPECT_EQ(import(write("room.wkt", "POLYGON ((0 0, 1.5 0, 1.5 1, 0 1, 0 0))"))[0].crs, "");
+}
+
+// 2. Map images by map_server's rule. A 16-bit image was read as 8 bits clamped at 255: every
+// pixel above 255 (occupied ones included) read as white, free. A grey+alpha PNG had its alpha
+// averaged into the grey: an unknown cell (205) with opaque alpha read as 230, free.
+
+/// A PNG (RFC 2083) of `samples` (row-major, channels interleaved), colour type 0 (grey) or 4
+/// (grey+alpha), 8 or 16 bits, with stored (uncompressed) deflate blocks.
+std::string png(int width, int height, int colour_type, int bits, const std::vector<int>& samples) {
+  static const std::vector<std::uint32_t> table = [] {
+    std::vector<std::uint32_t> t(256);
+    for (std::uint32_t n = 0; n < 256; ++n) {
+      std::uint32_t c = n;
+      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xedb88320u ^ (c >> 1) : c >> 1;
+      t[n] = c;
+    }
+    return t;
+  }();
+  auto be32 = [](std::uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
+  };
+  auto chunk = [&](const std::string& type, const std::string& data) {
+    std::uint32_t crc = 0xffffffffu;
+    for (unsigned char ch : type + data) crc = table[(crc ^ ch) & 0xff] ^ (crc >> 8);
+    return be32(static_cast<std::uint32_t>(data.size())) + type + data + be32(crc ^ 0xffffffffu);
+  };
+  const int channels = colour_type == 4 ? 2 : 1;
+  std::string raw;
+  for (int y = 0; y < height; ++y) {
+    raw += '\0';  // filter: none
+    for (int i = 0; i < width * channels; ++i) {
+      const int v = samples.at(static_cast<std::size_t>(y * width * channels + i));
+      if (bits == 16) raw += static_cast<char>(v >> 8);
+      raw += static_cast<char>(v & 0xff);
+    }
+  }
+  std::string z = "\x78\x01";
+  std::uint32_t a = 1, b = 0;
+  for (unsigned char ch : raw) a = (a + ch) % 65521, b = (b + a) % 65521;
+  for (std::size_t at = 0; at < raw.size() || at == 0; at += 65535) {
+    const std::size_t len = std::min<std::size_t>(65535, raw.size() - at);
+    z += static_cast<char>(at + len >= raw.size() ? 1 : 0);
+    z += static_cast<char>(len & 0xff);
+    z += static_cast<char>(len >> 8);
+    z += static_cast<char>(~len & 0xff);
+    z += static_cast<char>((~len >> 8) & 0xff);
+    z += raw.substr(at, len);
+  }
+  z += be32((b << 16) | a);
+  const std::string header = be32(static_cast<std::uint32_t>(width)) + be32(static_cast<std::uint32_t>(height)) +
+                             std::string{static_cast<char>(bits), static_cast<char>(colour_type), 0, 0, 0};
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", header) + chunk("IDAT", z) + chunk("IEND", "");
+}
+
+/// A binary PGM of `rows` with maximum value `maxval` (two bytes a sample above 255).
+std::string pgm16(const std::vector<std::vector<int>>& rows, int maxval) {
+  std::string s = "P5\n" + std::to_string(rows[0].size()) + " " + std::to_string(rows.size()) + "\n" + std::to_string(maxval) + "\n";
+  for (const auto& row : rows)
+    for (int v : row) s += std::string{static_cast<char>(v >> 8), static_cast<char>(v & 0xff)};
+  return s;
+}
+
+std::vector<int> flat(const std::vector<std::vector<int>>& rows, int scale, int alpha = -1) {
+  std::vector<int> out;
+  for (const auto& row : rows)
+    for (int v : row) {
+      out.push_back(v * scale);
+      if (alpha >= 0) out.push_back(alpha);
+    }
+  return out;
+}
+
+/// The free area of a map's only wall.
+double freeArea(const ImportedWall& w) {
+  double a = signedArea(w.wall.boundary);
+  for (std::size_t i = 0; i < w.wall.obstacles.size(); ++i) a -= holeArea(w.wall, i);
+  return a;
+}
+
+TEST_F(Import, SixteenBitMapsGiveTheWallsOfTheirEightBitCopies) {
+  // testMap: 132 free pixels, an occupied block of 8 and an unknown (128) block of 4 as holes.
+  // 16 bits: each value v as v * 257, the same shade on 0..65535.
+  const auto rows = testMap();
+  writeBytes("m8.pgm", pgm(rows));
+  std::vector<std::vector<int>> rows16 = rows;
+  for (auto& row : rows16)
+    for (int& v : row) v *= 257;
+  writeBytes("m16.pgm", pgm16(rows16, 65535));
+  writeBytes("m8.png", png(20, 10, 0, 8, flat(rows, 1)));
+  writeBytes("m16.png", png(20, 10, 0, 16, flat(rows, 257)));
+  std::vector<std::vector<ImportedWall>> maps;
+  for (const char* image : {"m8.pgm", "m16.pgm", "m8.png", "m16.png"})
+    maps.push_back(import(write(std::string(image) + ".yaml", "image: " + std::string(image) + "\nresolution: 0.05\norigin: [0, 0, 0]\n")));
+  for (const auto& walls : maps) {
+    ASSERT_EQ(walls.size(), 1u);
+    ASSERT_EQ(walls[0].wall.obstacles.size(), 2u);
+    EXPECT_NEAR(freeArea(walls[0]), 132 * 0.05 * 0.05, 1e-9);
+    EXPECT_EQ(walls[0].wall.boundary, maps[0][0].wall.boundary);
+    EXPECT_EQ(walls[0].wall.obstacles[0].polygon, maps[0][0].wall.obstacles[0].polygon);
+    EXPECT_EQ(walls[0].wall.obstacles[1].polygon, maps[0][0].wall.obstacles[1].polygon);
+  }
+  // A PGM's maximum value is its white: 1000 here.
+  std::vector<std::vector<int>> rows1000 = rows;
+  for (auto& row : rows1000)
+    for (int& v : row) v = v * 1000 / 255;
+  writeBytes("m1000.pgm", pgm16(rows1000, 1000));
+  const auto m1000 = import(write("m1000.yaml", "image: m1000.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n"));
+  EXPECT_NEAR(freeArea(m1000[0]), 132 * 0.05 * 0.05, 1e-9);
+}
+
+TEST_F(Import, AlphaIsNotAveragedIntoTheGrey) {
+  // testMap with map_server's unknown grey (205: occupancy 0.196, not below free_thresh 0.196)
+  // in the unknown block: 132 free pixels with or without an opaque alpha channel.
+  auto rows = testMap();
+  for (auto& row : rows)
+    for (int& v : row)
+      if (v == 128) v = 205;
+  writeBytes("grey.png", png(20, 10, 0, 8, flat(rows, 1)));
+  writeBytes("alpha.png", png(20, 10, 4, 8, flat(rows, 1, 255)));
+  writeBytes("alpha16.png", png(20, 10, 4, 16, flat(rows, 257, 65535)));
+  for (const char* image : {"grey.png", "alpha.png", "alpha16.png"}) {
+    const auto walls = import(write(std::string(image) + ".yaml", "image: " + std::string(image) + "\nresolution: 0.05\norigin: [0, 0, 0]\n"));
+    ASSERT_EQ(walls.size(), 1u) << image;
+    EXPECT_NEAR(freeArea(walls[0]), 132 * 0.05 * 0.05, 1e-9) << image;
+    EXPECT_EQ(walls[0].wall.obstacles.size(), 2u) << image;
+  }
+  // In scale mode a transparent pixel is unknown: a free pixel (254) with alpha 0 is a hole.
+  std::vector<int> samples = flat(rows, 1, 255);
+  samples[static_cast<std::size_t>(2 * (2 * 20 + 12) + 1)] = 0;  // row 2, column 12: free, now transparent
+  writeBytes("clear.png", png(20, 10, 4, 8, samples));
+  const auto trinary = import(write("clear_t.yaml", "image: clear.png\nresolution: 0.05\norigin: [0, 0, 0]\n"));
+  EXPECT_NEAR(freeArea(trinary[0]), 132 * 0.05 * 0.05, 1e-9);
+  const auto scale = import(write("clear_s.yaml", "image: clear.png\nresolution: 0.05\norigin: [0, 0, 0]\nmode: scale\n"));
+  EXPECT_NEAR(freeArea(scale[0]), 131 * 0.05 * 0.05, 1e-9);
+}
+
+// 3. A map import kept its largest free component and recorded "component 1 of 1" with the
+// others gone without a word. Now the feature counts them all, the wall records how many were
+// left out and their area, the manifest says so and the command prints it.
+TEST_F(Import, AMapSaysWhichFreeComponentsItLeftOut) {
+  auto rows = testMap();
+  rows[0][15] = rows[0][16] = rows[0][17] = 254;  // a second free component of 3 pixels, top right
+  rows[1][15] = rows[1][16] = rows[1][17] = 0;
+  rows[0][2] = 254;  // a third of 1 pixel, top left (row 1 below it is occupied)
+  rows[1][2] = 0;
+  writeBytes("room.pgm", pgm(rows));
+  const std::string map = write("room.yaml", "image: room.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
+  const std::vector<ImportedWall> walls = import(map);
+  ASSERT_EQ(walls.size(), 1u);
+  EXPECT_EQ(walls[0].feature, "component 1 of 3");
+  EXPECT_EQ(walls[0].dropped_components, 2u);
+  EXPECT_NEAR(walls[0].dropped_component_area, 4 * 0.05 * 0.05, 1e-12);
+  EXPECT_NEAR(freeArea(walls[0]), (132 - 3 - 1) * 0.05 * 0.05, 1e-9);  // row 1 lost 4 free pixels to the cuts
+  ImportOptions all;
+  all.all_components = true;
+  const std::vector<ImportedWall> every = import(map, all);
+  ASSERT_EQ(every.size(), 3u);
+  EXPECT_EQ(every[2].feature, "component 3 of 3");
+  EXPECT_EQ(every[0].dropped_components, 0u);
+  std::string out;
+  ASSERT_EQ(run("dataset import " + map + " --out " + (dir_ / "ds").string(), &out).exit_code, 0) << out;
+  EXPECT_NE(out.find("(2 free map components left out, 0.01 m^2)"), std::string::npos) << out;
+  const std::string manifest = slurp((dir_ / "ds" / "manifest.json").string());
+  EXPECT_NE(manifest.find("\"feature\": \"component 1 of 3\""), std::string::npos) << manifest;
+  EXPECT_NE(manifest.find("\"dropped_components\": 2, \"dropped_component_area\": 0.01"), std::string::npos) << manifest;
+}
+
+// 4. Resources. A 1 KB PGM declaring 30000 x 30000 pixels allocated 3.5 GB and exited 70; a
+// resolution of 1e155 hung in GEOS; a coordinate of 1e155 or a --transform scale of 1e300 went
+// on into the geometry; NaN in GeoJSON got GDAL's internal hint. Each is now one line before any
+// work.
+TEST_F(Import, AbsurdSizesAreRefusedBeforeAnyWork) {
+  writeBytes("huge.pgm", "P5\n30000 30000\n255\n" + std::string(1000, '\xff'));
+  const std::string huge = write("huge.yaml", "image: huge.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(test::inputError([&] { import(huge); }),
+            huge + ": image: '" + (dir_ / "huge.pgm").string() + "' declares 30000 x 30000 pixels, over the limit of 10^8");
+  writeBytes("short.pgm", "P5\n100 100\n255\n" + std::string(1000, '\xff'));
+  const std::string cut = write("short.yaml", "image: short.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(test::inputError([&] { import(cut); }),
+            cut + ": image: '" + (dir_ / "short.pgm").string() + "' declares 100 x 100 pixels (10015 bytes) but holds 1015 bytes");
+  writeBytes("room.pgm", pgm(testMap()));
+  const std::string far = write("far.yaml", "image: room.pgm\nresolution: 1e155\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(test::inputError([&] { import(far); }), far + ": resolution: must be between 0.001 and 100 metres per pixel, got 1e+155");
+  writeBytes("strip.pgm", pgm(std::vector<std::vector<int>>(3, std::vector<int>(120, 254))));
+  const std::string wide = write("wide.yaml", "image: strip.pgm\nresolution: 100\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(test::inputError([&] { import(wide); }),
+            wide + ": resolution: 100 m per pixel makes the 120 x 3 image 12000 m across, over 10 km");
+  const std::string big = write("big.wkt", "POLYGON ((0 0, 1e155 0, 1e155 1, 0 1, 0 0))");
+  EXPECT_EQ(test::inputError([&] { import(big); }),
+            big + ": geometry 1: has a coordinate beyond 1e8 (1e+155, 0): no wall is drawn in such units");
+  // NaN in GeoJSON (GDAL reads it): one line of ours, not GDAL's hint.
+  const std::string nan = write("nan.geojson", R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {}, "geometry": {"type": "Polygon", "coordinates": [
+      [[8.0, 47.0], [NaN, 47.0], [8.001, 47.001], [8.0, 47.001], [8.0, 47.0]]]}}]})");
+  EXPECT_EQ(test::inputError([&] { import(nan); }), nan + ": feature 1: has a coordinate that is not a finite number (nan, 47)");
+  ImportOptions blown;
+  blown.transform = parseTransform("scale=1e300", "--transform", "(value)");
+  const std::string room = write("room.wkt", "POLYGON ((0 0, 4 0, 4 3, 0 3, 0 0))");
+  EXPECT_EQ(test::inputError([&] { import(room, blown); }),
+            room + ": geometry 1 (outer ring): has a point (4e+300, 0) beyond 1e8 m once placed (--transform?)");
+}
+
+// 5. Messages and what folders hold. Before: a bare PNG said "give --format" though no format
+// read it; --format map parsed a PNG as YAML; a YAML key that is a list exited 70; --format
+// polygon-text on the folder of instances wanted an outer_polygon there; a folder of folders of
+// files held "nothing to import"; an opening across two DXF boundaries became a hole of the
+// first only; WKT after a NUL byte was dropped without a word.
+TEST_F(Import, ImagesAloneAndBadYamlGetOneClearLine) {
+  writeBytes("room.png", png(20, 10, 0, 8, flat(testMap(), 1)));
+  const std::string image = (dir_ / "room.png").string();
+  const std::string needed = image + ": (file): is an image without its map_server YAML, which gives its scale and place: "
+                                     "write room.yaml holding `image: room.png`, `resolution: METRES_PER_PIXEL` and "
+                                     "`origin: [X, Y, YAW]` beside it and import that";
+  EXPECT_EQ(test::inputError([&] { import(image); }), needed);
+  ImportOptions as_map;
+  as_map.format = "map";
+  EXPECT_EQ(test::inputError([&] { import(image, as_map); }),
+            image + ": --format: is an image without its map_server YAML, which gives its scale and place: write room.yaml "
+                    "holding `image: room.png`, `resolution: METRES_PER_PIXEL` and `origin: [X, Y, YAW]` beside it and import that");
+  // A key that is a list: one line and exit 2, as any other input error (it was exit 70).
+  const std::string key = write("key.yaml", "? [a, b]\n: 1\nhull: [{x: 0, y: 0}, {x: 4, y: 0}, {x: 4, y: 3}]\n");
+  EXPECT_EQ(test::inputError([&] { import(key); }), key + ": line 1: a key must be a plain name, got a list");
+  const test::CommandRun bad = run("dataset import " + key + " --out " + (dir_ / "ds").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "ds"));
+  const std::string name = write("name.yaml", "name: {a: 1}\nhull: [{x: 0, y: 0}, {x: 4, y: 0}, {x: 4, y: 3}]\n");
+  EXPECT_EQ(test::inputError([&] { import(name); }), name + ": name: must be text");
+  // The refusal of a multipolygon names the flag that exists.
+  const std::string multi = write("multi.geojson", R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {}, "geometry": {"type": "MultiPolygon", "coordinates": [
+      [[[0, 0], [4, 0], [4, 3], [0, 3], [0, 0]]], [[[10, 0], [14, 0], [14, 3], [10, 3], [10, 0]]]]}}]})");
+  ImportOptions refuse;
+  refuse.split_multipolygons = false;
+  refuse.source_crs = "metres";
+  EXPECT_EQ(test::inputError([&] { import(multi, refuse); }),
+            multi + ": feature 1: is a multipolygon of 2 parts, refused by --refuse-multipolygons (without it each part becomes a wall)");
+}
+
+TEST_F(Import, FoldersOfFoldersAndPolygonTextSetsAreSearched) {
+  writeBytes("eth/poly_007/outer_polygon", "0 0\n20 0\n20 10\n0 10\n");
+  writeBytes("eth/poly_008/outer_polygon", "0 0\n5 0\n5 5\n");
+  ImportOptions polygon_text;
+  polygon_text.format = "polygon-text";
+  const std::vector<ImportedWall> set = import((dir_ / "eth").string(), polygon_text);
+  ASSERT_EQ(set.size(), 2u);
+  EXPECT_EQ(set[1].wall.name, "poly_008");
+  writeBytes("tree/site_a/rooms/a.wkt", "POLYGON ((0 0, 4 0, 4 3, 0 3, 0 0))");
+  writeBytes("tree/site_b/b.wkt", "POLYGON ((0 0, 3 0, 3 3, 0 3, 0 0))");
+  writeBytes("tree/site_b/notes.txt", "not a wall");
+  const std::vector<ImportedWall> tree = import((dir_ / "tree").string());
+  ASSERT_EQ(tree.size(), 2u);
+  EXPECT_DOUBLE_EQ(signedArea(tree[0].wall.boundary), 12.0);
+  EXPECT_DOUBLE_EQ(signedArea(tree[1].wall.boundary), 9.0);
+}
+
+TEST_F(Import, AnOpeningAcrossTwoDxfBoundariesIsAHoleInBoth) {
+  // Two 5 x 4 walls side by side (x 0..5 and 5..10) and a 2 x 2 opening across the line
+  // between them (x 4..6, y 1..3): 1 x 2 of it in each.
+  const std::string file = write("two.dxf", "0\nSECTION\n2\nENTITIES\n" + lwpolyline("walls", {{0, 0}, {5, 0}, {5, 4}, {0, 4}}) +
+                                                lwpolyline("walls", {{5, 0}, {10, 0}, {10, 4}, {5, 4}}) +
+                                                lwpolyline("openings", {{4, 1}, {6, 1}, {6, 3}, {4, 3}}) + "0\nENDSEC\n0\nEOF\n");
+  ImportOptions o;
+  o.dxf_boundary_layer = "walls";
+  o.dxf_obstacle_layers = {"openings"};
+  const std::vector<ImportedWall> walls = import(file, o);
+  ASSERT_EQ(walls.size(), 2u);
+  for (const ImportedWall& w : walls) {
+    ASSERT_EQ(w.wall.obstacles.size(), 1u) << w.wall.name;
+    EXPECT_DOUBLE_EQ(holeArea(w.wall, 0), 4.0);
+    const Region free = subtract(regionFromRings({w.wall.boundary}), regionFromRings({w.wall.obstacles[0].polygon}));
+    EXPECT_NEAR(area(free), 20.0 - 2.0, 1e-6) << w.wall.name;
+  }
+}
+
+TEST_F(Import, AWallNamedManifestIsWrittenBesideTheManifest) {
+  // A wall named "manifest" took manifest.json, which the manifest needs: "written twice".
+  const std::string wkt = write("manifest.wkt", "POLYGON ((0 0, 4 0, 4 3, 0 3, 0 0))");
+  std::string out;
+  ASSERT_EQ(run("dataset import " + wkt + " --out " + (dir_ / "ds").string(), &out).exit_code, 0) << out;
+  const Dataset d = readDataset((dir_ / "ds").string());
+  ASSERT_EQ(d.walls.size(), 1u);
+  EXPECT_EQ(d.walls[0].name, "manifest");
+  EXPECT_EQ(d.entries[0].file, "manifest-2.json");
+}
+
+TEST_F(Import, WktWithANulByteIsRefused) {
+  const std::string file =
+      writeBytes("rooms.wkt", std::string("POLYGON ((0 0, 4 0, 4 3, 0 3, 0 0))\n", 36) + std::string(1, '\0') +
+                                  "POLYGON ((10 0, 14 0, 14 3, 10 3, 10 0))\n");
+  EXPECT_EQ(test::inputError([&] { import(file); }), file + ": (text): contains a NUL byte at offset 36 (not a WKT text file)");
 }
 
 // --- every planner plans every imported test wall -------------------------------------------

@@ -44,9 +44,12 @@ Dataset writeDataset(const std::string& dir, const std::string& family, std::uin
   d.family = family;
   d.seed = seed;
   d.import_record = import_record;
-  std::vector<std::string> texts, names;
+  // "manifest" first: the manifest's name is taken, so a wall named manifest is manifest-2.json
+  // (it was written twice, and refused).
+  std::vector<std::string> texts, names{"manifest"};
   for (const Wall& w : walls) names.push_back(w.name);
-  const std::vector<std::string> files = uniqueFileNames(names);  // path-safe, one file per wall
+  std::vector<std::string> files = uniqueFileNames(names);  // path-safe, one file per wall
+  files.erase(files.begin());
   for (std::size_t i = 0; i < walls.size(); ++i) {
     texts.push_back(wallToJson(walls[i]));
     d.entries.push_back({files[i] + ".json", walls[i].name, family, sha256Hex(texts.back())});

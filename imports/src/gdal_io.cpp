@@ -9,7 +9,11 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -73,13 +77,16 @@ std::string crsName(const OGRSpatialReference& srs) {
 
 /// The projection of coordinates in `source_srs` (null when the file names none) whose centre is
 /// (cx, cy) in that CRS's traditional x/y order.
+/// `--source-crs metres` (or `m`): the file's coordinates are local metres, whatever they look like.
+bool saysMetres(const std::string& crs) { return crs == "metres" || crs == "meters" || crs == "m"; }
+
 Projection projectionFor(const OGRSpatialReference* file_srs, double cx, double cy, const ImportOptions& options,
                          const std::string& source) {
   Projection p;
   OGRSpatialReference src;
   if (file_srs) {
     src = *file_srs;
-  } else if (!options.source_crs.empty()) {
+  } else if (!options.source_crs.empty() && !saysMetres(options.source_crs)) {
     if (src.SetFromUserInput(options.source_crs.c_str()) != OGRERR_NONE)
       throw InputError("--source-crs", "(value)", "'" + options.source_crs + "' is not a CRS PROJ knows");
   } else {
@@ -109,18 +116,64 @@ Projection projectionFor(const OGRSpatialReference* file_srs, double cx, double 
   return p;
 }
 
-/// No CRS and coordinates that look like degrees: a field in longitude/latitude read as metres
-/// would be a few millimetres wide. Refused rather than guessed.
+/// Three significant digits: a size in a message, not a value to read back.
+std::string roughNumber(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+/// No CRS and coordinates that look like degrees (every one within longitude/latitude range and
+/// all of them within a degree): a field in longitude/latitude read as metres would be a wall a
+/// few centimetres wide. Refused rather than guessed; --source-crs says what they are.
 void refuseBareDegrees(const OGREnvelope& env, const OGRSpatialReference* srs, const ImportOptions& options,
                        const std::string& source) {
   if (srs || !options.source_crs.empty()) return;
   const bool in_degree_range = std::fabs(env.MinX) <= 180 && std::fabs(env.MaxX) <= 180 && std::fabs(env.MinY) <= 90 &&
                                std::fabs(env.MaxY) <= 90;
-  const bool tiny_far_away = std::max(env.MaxX - env.MinX, env.MaxY - env.MinY) < 0.05 &&
-                             std::max(std::fabs(env.MinX), std::fabs(env.MinY)) > 1.0;
-  if (in_degree_range && tiny_far_away)
+  const double width = env.MaxX - env.MinX, height = env.MaxY - env.MinY;
+  if (in_degree_range && std::max(width, height) < 1.0)
     throw InputError(source, "(CRS)",
-                     "names no CRS and its coordinates look like degrees (longitude/latitude): give --source-crs EPSG:4326");
+                     "names no CRS and its coordinates look like degrees (longitude/latitude; as metres it would be " +
+                         roughNumber(width) + " x " + roughNumber(height) +
+                         " m): give --source-crs EPSG:4326, or --source-crs metres if they are metres");
+}
+
+/// Every coordinate finite and within kMaxImportCoordinate, checked before GEOS or PROJ sees
+/// them (GEOS hung on 1e155; NaN made GEOS report a self-intersection).
+void checkCoordinate(double x, double y, const std::string& source, const std::string& field) {
+  if (!std::isfinite(x) || !std::isfinite(y))
+    throw InputError(source, field, "has a coordinate that is not a finite number (" + shortNumber(x) + ", " + shortNumber(y) + ")");
+  if (std::fabs(x) > kMaxImportCoordinate || std::fabs(y) > kMaxImportCoordinate)
+    throw InputError(source, field, "has a coordinate beyond 1e8 (" + shortNumber(x) + ", " + shortNumber(y) +
+                                        "): no wall is drawn in such units");
+}
+
+void checkCoordinates(const OGRGeometry* g, const std::string& source, const std::string& field) {
+  if (!g || g->IsEmpty()) return;
+  const OGRwkbGeometryType type = wkbFlatten(g->getGeometryType());
+  if (type == wkbPoint) {
+    checkCoordinate(g->toPoint()->getX(), g->toPoint()->getY(), source, field);
+  } else if (OGR_GT_IsSubClassOf(type, wkbCurvePolygon)) {
+    for (const OGRCurve* ring : *g->toCurvePolygon()) checkCoordinates(ring, source, field);
+  } else if (type == wkbCompoundCurve) {
+    for (const OGRCurve* part : *g->toCompoundCurve()) checkCoordinates(part, source, field);
+  } else if (OGR_GT_IsSubClassOf(type, wkbGeometryCollection)) {
+    for (const OGRGeometry* part : *g->toGeometryCollection()) checkCoordinates(part, source, field);
+  } else if (type == wkbLineString || type == wkbCircularString || type == wkbLinearRing) {
+    const OGRSimpleCurve* curve = g->toSimpleCurve();
+    for (int i = 0; i < curve->getNumPoints(); ++i) checkCoordinate(curve->getX(i), curve->getY(i), source, field);
+  } else {
+    OGREnvelope env;  // any other type: its envelope (NaN slips past an envelope; these types are rare)
+    g->getEnvelope(&env);
+    checkCoordinate(env.MinX, env.MinY, source, field);
+    checkCoordinate(env.MaxX, env.MaxY, source, field);
+  }
+}
+
+std::string multipolygonRefused(std::size_t parts) {
+  return "is a multipolygon of " + std::to_string(parts) +
+         " parts, refused by --refuse-multipolygons (without it each part becomes a wall)";
 }
 
 /// Appends the polygons of `g` (a polygon, a multipolygon, or a collection of them; curves
@@ -194,6 +247,7 @@ RawSet readPolygons(GDALDataset& ds, const std::string& path, const ImportOption
       const std::string where = "feature " + std::to_string(feature_number);
       OGRGeometry* g = feature->GetGeometryRef();
       if (!g) continue;
+      checkCoordinates(g, path, where);
       std::vector<const OGRPolygon*> polys;
       std::vector<GeometryPtr> keep;
       GeometryPtr projected;
@@ -204,9 +258,7 @@ RawSet readPolygons(GDALDataset& ds, const std::string& path, const ImportOption
         g = projected.get();
       }
       collectPolygons(g, polys, keep);
-      if (polys.size() > 1 && !options.split_multipolygons)
-        throw InputError(path, where, "is a multipolygon of " + std::to_string(polys.size()) +
-                                          " parts (import with --split-multipolygons to make one wall per part)");
+      if (polys.size() > 1 && !options.split_multipolygons) throw InputError(path, where, multipolygonRefused(polys.size()));
       const std::string name =
           name_index >= 0 && feature->IsFieldSetAndNotNull(name_index) ? feature->GetFieldAsString(name_index) : "";
       for (std::size_t k = 0; k < polys.size(); ++k) {
@@ -277,6 +329,7 @@ RawSet readDxfFile(const std::string& path, const ImportOptions& options) {
     if (!is_boundary && !is_obstacle) continue;
     OGRGeometry* g = feature->GetGeometryRef();
     if (!g) continue;
+    checkCoordinates(g, path, where);
     GeometryPtr linear(g->hasCurveGeometry() ? g->getLinearGeometry() : g->clone());
     std::vector<Ring> rings;
     const OGRwkbGeometryType type = wkbFlatten(linear->getGeometryType());
@@ -306,15 +359,46 @@ RawSet readDxfFile(const std::string& path, const ImportOptions& options) {
     throw InputError(path, "--boundary-layer", "no closed polyline on layer '" + options.dxf_boundary_layer +
                                                    "' (layers: " + (known.empty() ? "none" : known) + ")");
   }
-  // Each obstacle goes to the boundary that holds its first vertex; with obstacle layers named,
-  // one that lies in no boundary is an error, otherwise it is other drawing content.
+  // Each obstacle goes to every boundary it overlaps (an opening across the line between two
+  // walls is a hole in both); with obstacle layers named, one that lies in no boundary is an
+  // error, otherwise it is other drawing content.
+  auto polygonOf = [](const Ring& ring) {
+    auto linear = std::make_unique<OGRLinearRing>();
+    for (const Point& p : ring) linear->addPoint(p.x, p.y);
+    if (!ring.empty() && !(ring.front() == ring.back())) linear->addPoint(ring.front().x, ring.front().y);
+    auto poly = std::make_unique<OGRPolygon>();
+    poly->addRingDirectly(linear.release());
+    return poly;
+  };
+  const bool geos = OGRGeometryFactory::haveGEOS();
+  std::vector<std::unique_ptr<OGRPolygon>> boundary_polys;
+  std::vector<OGREnvelope> boundary_envs;
+  std::vector<bool> boundary_valid;
+  for (const RawPolygon& b : boundaries) {
+    boundary_polys.push_back(polygonOf(b.outer));
+    boundary_envs.emplace_back();
+    boundary_polys.back()->getEnvelope(&boundary_envs.back());
+    boundary_valid.push_back(geos && boundary_polys.back()->IsValid());
+  }
   for (auto& [ring, where] : obstacles) {
     bool placed = false;
-    for (RawPolygon& b : boundaries) {
-      if (pointInRing(ring.front(), b.outer) || pointInRing(vertexMean(ring), b.outer)) {
+    const std::unique_ptr<OGRPolygon> obstacle = polygonOf(ring);
+    OGREnvelope obstacle_env;
+    obstacle->getEnvelope(&obstacle_env);
+    const bool obstacle_valid = geos && obstacle->IsValid();
+    for (std::size_t k = 0; k < boundaries.size(); ++k) {
+      RawPolygon& b = boundaries[k];
+      if (!boundary_envs[k].Intersects(obstacle_env)) continue;
+      bool overlaps = false;
+      if (boundary_valid[k] && obstacle_valid) {
+        const GeometryPtr common(boundary_polys[k]->Intersection(obstacle.get()));
+        overlaps = common && !common->IsEmpty() && OGR_G_Area(OGRGeometry::ToHandle(common.get())) > 0.0;
+      } else {  // no GEOS, or a ring the wall check refuses below anyway
+        overlaps = pointInRing(ring.front(), b.outer) || pointInRing(vertexMean(ring), b.outer);
+      }
+      if (overlaps) {
         b.holes.push_back(ring);
         placed = true;
-        break;
       }
     }
     if (!placed && !obstacle_layers.empty())
@@ -335,6 +419,10 @@ RawSet readDxfFile(const std::string& path, const ImportOptions& options) {
 
 RawSet readWktText(const std::string& text, const std::string& source, const ImportOptions& options) {
   registerOnce();
+  // OGR reads up to a NUL byte: the rest of the file would be dropped without a word.
+  const std::size_t nul = text.find('\0');
+  if (nul != std::string::npos)
+    throw InputError(source, "(text)", "contains a NUL byte at offset " + std::to_string(nul) + " (not a WKT text file)");
   std::vector<GeometryPtr> geometries;
   const char* cursor = text.c_str();
   const char* const begin = cursor;
@@ -348,6 +436,7 @@ RawSet readWktText(const std::string& text, const std::string& source, const Imp
     if (OGRGeometryFactory::createFromWkt(&cursor, nullptr, &g) != OGRERR_NONE || !g)
       throw InputError(source, where, "is not WKT (at character " + std::to_string(at + 1) + ")");
     geometries.emplace_back(g);
+    checkCoordinates(g, source, where);
     OGREnvelope env;
     g->getEnvelope(&env);
     all.Merge(env);
@@ -367,8 +456,7 @@ RawSet readWktText(const std::string& text, const std::string& source, const Imp
     std::vector<GeometryPtr> keep;
     collectPolygons(g, polys, keep);
     if (polys.empty()) throw InputError(source, where, "is not a polygon (" + std::string(g->getGeometryName()) + ")");
-    if (polys.size() > 1 && !options.split_multipolygons)
-      throw InputError(source, where, "is a multipolygon of " + std::to_string(polys.size()) + " parts");
+    if (polys.size() > 1 && !options.split_multipolygons) throw InputError(source, where, multipolygonRefused(polys.size()));
     for (std::size_t k = 0; k < polys.size(); ++k) {
       const std::string field = polys.size() > 1 ? where + " part " + std::to_string(k + 1) : where;
       checkValid(*polys[k], source, field);
@@ -380,31 +468,173 @@ RawSet readWktText(const std::string& text, const std::string& source, const Imp
   return set;
 }
 
-GreyImage readGreyImage(const std::string& path, const std::string& source, const std::string& field) {
+void placeBareSet(RawSet& set, const std::string& source, const ImportOptions& options) {
   registerOnce();
-  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!ds) throw InputError(source, field, "cannot read the image '" + path + "': " + lastGdalError());
-  GreyImage img;
-  img.width = ds->GetRasterXSize();
-  img.height = ds->GetRasterYSize();
-  const int bands = std::min(ds->GetRasterCount(), 3);  // a fourth band is alpha: not occupancy
-  if (bands < 1 || img.width < 1 || img.height < 1) throw InputError(source, field, "'" + path + "' has no pixels");
-  const std::size_t n = static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
-  std::vector<unsigned> sum(n, 0);
-  std::vector<std::uint8_t> band_values(n);
-  for (int b = 1; b <= bands; ++b) {
-    if (ds->GetRasterBand(b)->RasterIO(GF_Read, 0, 0, img.width, img.height, band_values.data(), img.width, img.height,
-                                       GDT_Byte, 0, 0) != CE_None)
-      throw InputError(source, field, "cannot read the pixels of '" + path + "': " + lastGdalError());
-    for (std::size_t i = 0; i < n; ++i) sum[i] += band_values[i];
+  OGREnvelope all;
+  for (const RawPolygon& poly : set.polygons) {
+    for (const Ring* ring : [&] { std::vector<const Ring*> r{&poly.outer}; for (const Ring& h : poly.holes) r.push_back(&h); return r; }())
+      for (const Point& p : *ring) {
+        checkCoordinate(p.x, p.y, source, poly.feature);
+        all.Merge(p.x, p.y);
+      }
   }
-  img.values.resize(n);
-  for (std::size_t i = 0; i < n; ++i) img.values[i] = static_cast<std::uint8_t>(sum[i] / static_cast<unsigned>(bands));
-  return img;
+  if (!all.IsInit()) return;
+  refuseBareDegrees(all, nullptr, options, source);
+  Projection projection = projectionFor(nullptr, (all.MinX + all.MaxX) / 2, (all.MinY + all.MaxY) / 2, options, source);
+  set.crs = projection.crs;
+  if (!projection.transform) return;
+  for (RawPolygon& poly : set.polygons) {
+    std::vector<Ring*> rings{&poly.outer};
+    for (Ring& h : poly.holes) rings.push_back(&h);
+    for (Ring* r : rings)
+      for (Point& p : *r)
+        if (!projection.transform->Transform(1, &p.x, &p.y))
+          throw InputError(source, poly.feature, "cannot be projected to " + projection.crs);
+  }
 }
 
-std::vector<RawPolygon> polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int height, double resolution,
-                                       double tolerance, const std::string& source) {
+namespace {
+
+/// The header of a binary PNM (P5 grey, P6 colour): its maximum value, and whether the file
+/// holds the pixels it declares (GDAL would read a 1 KB file declaring 30000 x 30000 pixels).
+struct PnmHeader {
+  bool is_pnm = false;
+  long long width = 0, height = 0, maxval = 0, channels = 1, data_offset = 0;
+};
+
+PnmHeader readPnmHeader(const std::string& path) {
+  PnmHeader h;
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return h;
+  char buf[1024];
+  const std::size_t n = std::fread(buf, 1, sizeof buf, f);
+  std::fclose(f);
+  if (n < 2 || buf[0] != 'P' || (buf[1] != '5' && buf[1] != '6')) return h;
+  h.channels = buf[1] == '6' ? 3 : 1;
+  std::size_t at = 2;
+  long long values[3] = {0, 0, 0};
+  for (long long& v : values) {
+    while (at < n && (std::isspace(static_cast<unsigned char>(buf[at])) || buf[at] == '#')) {
+      if (buf[at] == '#')
+        while (at < n && buf[at] != '\n') ++at;
+      else
+        ++at;
+    }
+    if (at >= n || !std::isdigit(static_cast<unsigned char>(buf[at]))) return h;
+    while (at < n && std::isdigit(static_cast<unsigned char>(buf[at])) && v < (1LL << 40)) v = v * 10 + (buf[at++] - '0');
+  }
+  if (at >= n) return h;
+  h.is_pnm = true;
+  h.width = values[0];
+  h.height = values[1];
+  h.maxval = values[2];
+  h.data_offset = static_cast<long long>(at) + 1;  // one white space character ends the header
+  return h;
+}
+
+std::string pixelCount(long long w, long long h) { return std::to_string(w) + " x " + std::to_string(h); }
+
+}  // namespace
+
+FreeMask readFreeCells(const std::string& path, const std::string& source, const std::string& field, const MapRule& rule,
+                       double resolution) {
+  registerOnce();
+  const PnmHeader pnm = readPnmHeader(path);
+  if (pnm.is_pnm) {
+    // The limits first, from the header alone: nothing is allocated for what the file lacks.
+    if (pnm.width < 1 || pnm.height < 1) throw InputError(source, field, "'" + path + "' has no pixels");
+    if (static_cast<double>(pnm.width) * static_cast<double>(pnm.height) > kMaxMapPixels)
+      throw InputError(source, field, "'" + path + "' declares " + pixelCount(pnm.width, pnm.height) +
+                                          " pixels, over the limit of 10^8");
+    if (pnm.maxval < 1 || pnm.maxval > 65535)
+      throw InputError(source, field, "'" + path + "' declares a maximum value of " + std::to_string(pnm.maxval) + " (1 to 65535)");
+    std::error_code ec;
+    const auto size = static_cast<long long>(std::filesystem::file_size(path, ec));
+    const long long need = pnm.data_offset + pnm.width * pnm.height * pnm.channels * (pnm.maxval > 255 ? 2 : 1);
+    if (!ec && size < need)
+      throw InputError(source, field, "'" + path + "' declares " + pixelCount(pnm.width, pnm.height) + " pixels (" +
+                                          std::to_string(need) + " bytes) but holds " + std::to_string(size) + " bytes");
+  }
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!ds) throw InputError(source, field, "cannot read the image '" + path + "': " + lastGdalError());
+  FreeMask out;
+  out.width = ds->GetRasterXSize();
+  out.height = ds->GetRasterYSize();
+  if (ds->GetRasterCount() < 1 || out.width < 1 || out.height < 1) throw InputError(source, field, "'" + path + "' has no pixels");
+  if (static_cast<double>(out.width) * static_cast<double>(out.height) > kMaxMapPixels)
+    throw InputError(source, field, "'" + path + "' is " + pixelCount(out.width, out.height) + " pixels, over the limit of 10^8");
+  const double across = resolution * std::max(out.width, out.height);
+  if (across > kMaxExtent)
+    throw InputError(source, "resolution", shortNumber(resolution) + " m per pixel makes the " + pixelCount(out.width, out.height) +
+                                               " image " + shortNumber(across) + " m across, over 10 km");
+
+  // The bands' roles: colour channels (averaged), alpha (never averaged), or a palette.
+  std::vector<GDALRasterBand*> colour;
+  GDALRasterBand* alpha = nullptr;
+  for (int b = 1; b <= ds->GetRasterCount(); ++b) {
+    GDALRasterBand* band = ds->GetRasterBand(b);
+    if (band->GetColorInterpretation() == GCI_AlphaBand) alpha = band;
+    else if (colour.size() < 3) colour.push_back(band);
+  }
+  if (!alpha && (ds->GetRasterCount() == 2 || ds->GetRasterCount() == 4)) {  // grey+alpha or RGBA, unlabelled
+    alpha = ds->GetRasterBand(ds->GetRasterCount());
+    colour.erase(std::remove(colour.begin(), colour.end(), alpha), colour.end());
+  }
+  if (colour.empty()) throw InputError(source, field, "'" + path + "' has no colour or grey channel");
+  const GDALColorTable* palette =
+      colour.size() == 1 && colour[0]->GetColorInterpretation() == GCI_PaletteIndex ? colour[0]->GetColorTable() : nullptr;
+  // The full scale of a channel: a PGM's maximum value, else its bits (16-bit PNG: 65535).
+  double full = 255.0;
+  const GDALDataType type = colour[0]->GetRasterDataType();
+  if (type == GDT_UInt16) full = 65535.0;
+  else if (type != GDT_Byte)
+    throw InputError(source, field, "'" + path + "' has " + GDALGetDataTypeName(type) + " pixels: a map image has 8 or 16 bits");
+  if (const char* nbits = colour[0]->GetMetadataItem("NBITS", "IMAGE_STRUCTURE")) {
+    const int bits = std::atoi(nbits);
+    if (bits >= 1 && bits < 16) full = static_cast<double>((1 << bits) - 1);
+  }
+  if (pnm.is_pnm) full = static_cast<double>(pnm.maxval);
+
+  const std::size_t width = static_cast<std::size_t>(out.width);
+  out.free.assign(width * static_cast<std::size_t>(out.height), 0);
+  std::vector<std::vector<std::uint16_t>> rows(colour.size(), std::vector<std::uint16_t>(width));
+  std::vector<std::uint16_t> alpha_row(alpha ? width : 0);
+  auto read = [&](GDALRasterBand* band, int y, std::vector<std::uint16_t>& row) {
+    if (band->RasterIO(GF_Read, 0, y, out.width, 1, row.data(), out.width, 1, GDT_UInt16, 0, 0) != CE_None)
+      throw InputError(source, field, "cannot read the pixels of '" + path + "': " + lastGdalError());
+  };
+  for (int y = 0; y < out.height; ++y) {
+    for (std::size_t c = 0; c < colour.size(); ++c) read(colour[c], y, rows[c]);
+    if (alpha) read(alpha, y, alpha_row);
+    for (std::size_t x = 0; x < width; ++x) {
+      double shade;  // 0 black .. 1 white: the mean of the colour channels
+      bool transparent = alpha && alpha_row[x] == 0;
+      if (palette) {
+        const GDALColorEntry* e = palette->GetColorEntry(rows[0][x]);
+        shade = e ? (e->c1 + e->c2 + e->c3) / (3.0 * 255.0) : 0.0;
+        transparent = transparent || (e && e->c4 == 0);
+      } else {
+        double sum = 0.0;
+        for (const auto& row : rows) sum += row[x];
+        shade = sum / (static_cast<double>(rows.size()) * full);
+      }
+      bool is_free;
+      if (rule.mode == MapRule::Mode::Raw) {
+        is_free = std::round(shade * 255.0) == 0.0;  // the value is the occupancy: free is 0
+      } else {
+        const double occ = rule.negate ? shade : 1.0 - shade;
+        is_free = !(occ > rule.occupied_thresh) && occ < rule.free_thresh;
+        if (rule.mode == MapRule::Mode::Scale && transparent) is_free = false;  // unknown
+      }
+      out.free[static_cast<std::size_t>(y) * width + x] = is_free ? 1 : 0;
+      out.free_cells += is_free;
+    }
+  }
+  return out;
+}
+
+Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int height, double resolution, double tolerance,
+                          const std::string& source) {
   registerOnce();
   GDALDriver* raster_driver = GetGDALDriverManager()->GetDriverByName("MEM");
   GDALDriver* vector_driver = GetGDALDriverManager()->GetDriverByName("Memory");
@@ -423,21 +653,39 @@ std::vector<RawPolygon> polygonizeMask(const std::vector<std::uint8_t>& mask, in
   // The band as its own mask: only the non-zero (free) cells become polygons; 4-connected.
   if (GDALPolygonize(band, band, layer, 0, nullptr, nullptr, nullptr) != CE_None)
     throw InputError(source, "image", "cannot be polygonised: " + lastGdalError());
-  std::vector<std::pair<double, RawPolygon>> found;
+  struct Found {
+    double pixel_area;
+    std::size_t order;
+    RawPolygon raw;
+  };
+  std::vector<Found> found;
+  Components out;
   layer->ResetReading();
   for (auto& feature : *layer) {
     const OGRGeometry* g = feature->GetGeometryRef();
     if (!g || wkbFlatten(g->getGeometryType()) != wkbPolygon) continue;
+    const double pixel_area = g->toPolygon()->get_Area();
     GeometryPtr simple(tolerance > 0 ? g->SimplifyPreserveTopology(tolerance) : g->clone());
-    if (!simple || simple->IsEmpty()) continue;
     std::vector<const OGRPolygon*> polys;
     std::vector<GeometryPtr> keep;
-    collectPolygons(simple.get(), polys, keep);
-    for (const OGRPolygon* p : polys) found.emplace_back(p->get_Area(), rawOf(*p));
+    if (simple) collectPolygons(simple.get(), polys, keep);
+    if (polys.empty()) {  // simplified away: said, not dropped silently
+      ++out.lost;
+      out.lost_area += pixel_area;
+      continue;
+    }
+    // A component is one polygon; should simplification split it, its largest part stands for it.
+    const OGRPolygon* best = *std::max_element(polys.begin(), polys.end(),
+                                               [](const OGRPolygon* a, const OGRPolygon* b) { return a->get_Area() < b->get_Area(); });
+    found.push_back({pixel_area, found.size(), rawOf(*best)});
   }
-  std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  std::vector<RawPolygon> out;
-  for (auto& [a, raw] : found) out.push_back(std::move(raw));
+  std::sort(found.begin(), found.end(), [](const Found& a, const Found& b) {
+    return a.pixel_area != b.pixel_area ? a.pixel_area > b.pixel_area : a.order < b.order;
+  });
+  for (Found& f : found) {
+    out.polygons.push_back(std::move(f.raw));
+    out.pixel_areas.push_back(f.pixel_area);
+  }
   return out;
 }
 

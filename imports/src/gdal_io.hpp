@@ -37,17 +37,39 @@ RawSet readDxfFile(const std::string& path, const ImportOptions& options);
 /// WKT text (one or more POLYGON / MULTIPOLYGON, separated by white space).
 RawSet readWktText(const std::string& text, const std::string& source, const ImportOptions& options);
 
-/// A grey image (PGM, PNG; colour channels averaged as map_server does), row 0 at the top.
-struct GreyImage {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> values;  ///< width * height, row-major
+/// Coordinates of input without a CRS (polygon text, YAML hull/holes): refused when they look
+/// like degrees, projected when --source-crs names a CRS in degrees. Sets `set.crs`.
+void placeBareSet(RawSet& set, const std::string& source, const ImportOptions& options);
+
+/// map_server's rule for one pixel (docs/datasets.md): occupancy is 1 - shade (shade with
+/// `negate`), shade the mean of the colour channels (never alpha) on 0..1.
+struct MapRule {
+  enum class Mode { Trinary, Scale, Raw } mode = Mode::Trinary;
+  double occupied_thresh = 0.65, free_thresh = 0.196;
+  bool negate = false;
 };
-GreyImage readGreyImage(const std::string& path, const std::string& source, const std::string& field);
+
+/// The free cells of a map image (PGM, PNG, 8 or 16 bits, grey, grey+alpha, RGB(A), palette),
+/// row 0 at the top; free = 1. `resolution` is checked against the image's size (10 km at most).
+struct FreeMask {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> free;  ///< width * height, row-major
+  std::size_t free_cells = 0;
+};
+FreeMask readFreeCells(const std::string& path, const std::string& source, const std::string& field, const MapRule& rule,
+                       double resolution);
 
 /// The polygons of the cells where `mask` is non-zero (4-connected components), in metres with
 /// the image's lower-left corner at (0, 0) and `resolution` metres per pixel, each simplified
-/// within `tolerance` (topology kept). Sorted by area, largest first.
-std::vector<RawPolygon> polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int height, double resolution,
-                                       double tolerance, const std::string& source);
+/// within `tolerance` (topology kept). Sorted by their pixels' area, largest first; components
+/// that simplification leaves empty are counted in `lost`.
+struct Components {
+  std::vector<RawPolygon> polygons;
+  std::vector<double> pixel_areas;  ///< each polygon's area before simplification (pixels * r^2)
+  std::size_t lost = 0;
+  double lost_area = 0.0;
+};
+Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int height, double resolution,
+                          double tolerance, const std::string& source);
 
 }  // namespace coverbench::import_detail

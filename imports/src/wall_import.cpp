@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -50,9 +51,18 @@ std::string polygonTextFile(const fs::path& folder, const std::string& name) {
   return "";
 }
 
+/// A text file's bytes; a NUL byte (a binary file, or one cut short by it) is refused.
+std::string readText(const std::string& path) {
+  std::string text = readFile(path);
+  const std::size_t nul = text.find('\0');
+  if (nul != std::string::npos)
+    throw InputError(path, "(text)", "contains a NUL byte at offset " + std::to_string(nul) + " (not a text file)");
+  return text;
+}
+
 /// Rings of `x y` lines, separated by blank lines.
 std::vector<Ring> readPointRings(const std::string& path) {
-  std::istringstream in(readFile(path));
+  std::istringstream in(readText(path));
   std::vector<Ring> rings(1);
   std::string line;
   int number = 0;
@@ -78,7 +88,7 @@ std::vector<Ring> readPointRings(const std::string& path) {
   return rings;
 }
 
-RawSet readPolygonTextFolder(const fs::path& folder) {
+RawSet readPolygonTextFolder(const fs::path& folder, const ImportOptions& options) {
   const std::string outer_path = polygonTextFile(folder, "outer_polygon");
   if (outer_path.empty()) throw InputError(folder.string(), "outer_polygon", "missing (the polygon-text layout needs it)");
   std::vector<Ring> outer = readPointRings(outer_path);
@@ -89,13 +99,15 @@ RawSet readPolygonTextFolder(const fs::path& folder) {
   if (!holes_path.empty()) raw.holes = readPointRings(holes_path);
   raw.name = stemOf(folder.string());
   raw.feature = "outer_polygon";
-  return {{std::move(raw)}, ""};
+  RawSet set{{std::move(raw)}, ""};
+  import_detail::placeBareSet(set, outer_path, options);
+  return set;
 }
 
 /// Reads YAML with the file named in its errors.
 YAML::Node loadYaml(const std::string& path) {
   try {
-    return YAML::Load(readFile(path));
+    return YAML::Load(readText(path));
   } catch (const YAML::Exception& e) {
     throw InputError(path, "line " + std::to_string(e.mark.line + 1), e.msg);
   }
@@ -123,9 +135,17 @@ Ring yamlRing(const YAML::Node& node, const std::string& path, const std::string
   return ring;
 }
 
-RawSet readHullYaml(const std::string& path, const YAML::Node& doc) {
+/// A mapping's key as text; a key that is a list or a mapping is refused (yaml-cpp would throw).
+std::string keyOf(const YAML::Node& key, const std::string& path) {
+  if (!key.IsScalar())
+    throw InputError(path, "line " + std::to_string(key.Mark().line + 1), std::string("a key must be a plain name, got a ") +
+                                                                            (key.IsSequence() ? "list" : key.IsMap() ? "mapping" : "null"));
+  return key.Scalar();
+}
+
+RawSet readHullYaml(const std::string& path, const YAML::Node& doc, const ImportOptions& options) {
   for (const auto& kv : doc) {
-    const std::string key = kv.first.as<std::string>();
+    const std::string key = keyOf(kv.first, path);
     if (key != "hull" && key != "holes" && key != "name") throw InputError(path, key, "unknown key (expected hull, holes, name)");
   }
   RawPolygon raw;
@@ -135,9 +155,12 @@ RawSet readHullYaml(const std::string& path, const YAML::Node& doc) {
     for (std::size_t i = 0; i < doc["holes"].size(); ++i)
       raw.holes.push_back(yamlRing(doc["holes"][i], path, "holes[" + std::to_string(i) + "]"));
   }
-  raw.name = doc["name"] ? doc["name"].as<std::string>() : stemOf(path);
+  if (doc["name"] && !doc["name"].IsScalar()) throw InputError(path, "name", "must be text");
+  raw.name = doc["name"] ? doc["name"].Scalar() : stemOf(path);
   raw.feature = "hull";
-  return {{std::move(raw)}, ""};
+  RawSet set{{std::move(raw)}, ""};
+  import_detail::placeBareSet(set, path, options);
+  return set;
 }
 
 /// A map_server map: its image's free cells (by the thresholds and `negate`) as polygons, placed
@@ -146,57 +169,74 @@ struct MapPlacement {
   double x = 0, y = 0, yaw = 0;
 };
 
+/// What a map import left out: free components other than the kept ones.
+struct MapDrops {
+  std::size_t components = 0;
+  double area = 0.0;
+};
+
 RawSet readOccupancyMap(const std::string& path, const YAML::Node& doc, const ImportOptions& options,
-                        MapPlacement& placement, std::vector<ImportedSource>& extra_sources) {
+                        MapPlacement& placement, std::vector<ImportedSource>& extra_sources, MapDrops& drops) {
   static const std::set<std::string> known = {"image", "resolution", "origin", "occupied_thresh", "free_thresh",
                                                "negate", "mode"};
   for (const auto& kv : doc)
-    if (!known.count(kv.first.as<std::string>())) throw InputError(path, kv.first.as<std::string>(), "unknown key of a map_server map");
+    if (!known.count(keyOf(kv.first, path))) throw InputError(path, kv.first.Scalar(), "unknown key of a map_server map");
   if (!doc["image"] || !doc["image"].IsScalar()) throw InputError(path, "image", "missing (the map's PGM or PNG file)");
   const double resolution = yamlNumber(doc["resolution"], path, "resolution");
-  if (resolution <= 0) throw InputError(path, "resolution", "must be positive (metres per pixel)");
+  if (!(resolution >= kMinMapResolution && resolution <= kMaxMapResolution))
+    throw InputError(path, "resolution", "must be between 0.001 and 100 metres per pixel, got " + shortNumber(resolution));
   const YAML::Node origin = doc["origin"];
   if (!origin || !origin.IsSequence() || origin.size() != 3)
     throw InputError(path, "origin", origin ? "must be [x, y, yaw]" : "missing ([x, y, yaw] of the lower-left pixel)");
   placement = {yamlNumber(origin[0], path, "origin[0]"), yamlNumber(origin[1], path, "origin[1]"),
                yamlNumber(origin[2], path, "origin[2]")};
-  const double occupied = doc["occupied_thresh"] ? yamlNumber(doc["occupied_thresh"], path, "occupied_thresh") : 0.65;
-  const double free = doc["free_thresh"] ? yamlNumber(doc["free_thresh"], path, "free_thresh") : 0.196;
+  for (int k = 0; k < 2; ++k)
+    if (std::fabs(k == 0 ? placement.x : placement.y) > kMaxImportCoordinate)
+      throw InputError(path, "origin[" + std::to_string(k) + "]", "must be within 1e8 metres, got " + shortNumber(k == 0 ? placement.x : placement.y));
+  import_detail::MapRule rule;
+  rule.occupied_thresh = doc["occupied_thresh"] ? yamlNumber(doc["occupied_thresh"], path, "occupied_thresh") : 0.65;
+  rule.free_thresh = doc["free_thresh"] ? yamlNumber(doc["free_thresh"], path, "free_thresh") : 0.196;
+  const double occupied = rule.occupied_thresh, free = rule.free_thresh;
   if (occupied < 0 || occupied > 1) throw InputError(path, "occupied_thresh", "must be between 0 and 1, got " + shortNumber(occupied));
   if (free < 0 || free > 1) throw InputError(path, "free_thresh", "must be between 0 and 1, got " + shortNumber(free));
   if (free > occupied) throw InputError(path, "free_thresh", "must not exceed occupied_thresh (" + shortNumber(occupied) + ")");
-  bool negate = false;
   if (doc["negate"]) {
-    const std::string n = doc["negate"].Scalar();
+    const std::string n = doc["negate"].IsScalar() ? doc["negate"].Scalar() : "(not a value)";
     if (n != "0" && n != "1" && n != "true" && n != "false") throw InputError(path, "negate", "must be 0 or 1, got '" + n + "'");
-    negate = n == "1" || n == "true";
+    rule.negate = n == "1" || n == "true";
   }
-  const std::string mode = doc["mode"] ? doc["mode"].Scalar() : "trinary";
+  const std::string mode = doc["mode"] ? (doc["mode"].IsScalar() ? doc["mode"].Scalar() : "(not a value)") : "trinary";
   if (mode != "trinary" && mode != "scale" && mode != "raw")
     throw InputError(path, "mode", "must be trinary, scale or raw, got '" + mode + "'");
+  rule.mode = mode == "raw" ? import_detail::MapRule::Mode::Raw
+              : mode == "scale" ? import_detail::MapRule::Mode::Scale
+                                : import_detail::MapRule::Mode::Trinary;
+  if (options.simplify > kMaxExtent)
+    throw InputError("--simplify", "(value)", "must be at most 10000 metres, got " + shortNumber(options.simplify));
 
   const fs::path image_path = fs::path(path).parent_path() / doc["image"].Scalar();
-  const import_detail::GreyImage img = import_detail::readGreyImage(image_path.string(), path, "image");
+  if (!fs::is_regular_file(image_path)) throw InputError(path, "image", "'" + image_path.string() + "' is not a file");
+  const import_detail::FreeMask mask = import_detail::readFreeCells(image_path.string(), path, "image", rule, resolution);
   extra_sources.push_back({image_path.string(), sha256Hex(readFile(image_path.string()))});
-  // map_server's rule: p = (255 - v) / 255 (v / 255 when negated) is the occupancy; free below
-  // free_thresh. In raw mode the value is the occupancy in percent: free is 0.
-  std::vector<std::uint8_t> mask(img.values.size());
-  std::size_t free_cells = 0;
-  for (std::size_t i = 0; i < mask.size(); ++i) {
-    const double v = img.values[i];
-    const bool is_free = mode == "raw" ? img.values[i] == 0 : (negate ? v / 255.0 : (255.0 - v) / 255.0) < free;
-    mask[i] = is_free ? 1 : 0;
-    free_cells += is_free;
-  }
-  if (free_cells == 0) throw InputError(path, "image", "has no free cell (by free_thresh " + shortNumber(free) + ")");
+  if (mask.free_cells == 0) throw InputError(path, "image", "has no free cell (by free_thresh " + shortNumber(free) + ")");
   const double tolerance = options.simplify >= 0 ? options.simplify : resolution / 2;
-  std::vector<RawPolygon> components =
-      import_detail::polygonizeMask(mask, img.width, img.height, resolution, tolerance, path);
-  if (components.empty()) throw InputError(path, "image", "has no free area left after simplification");
-  if (!options.all_components) components.resize(1);
+  import_detail::Components found = import_detail::polygonizeMask(mask.free, mask.width, mask.height, resolution, tolerance, path);
+  if (found.polygons.empty()) throw InputError(path, "image", "has no free area left after simplification");
+  std::vector<RawPolygon>& components = found.polygons;
+  const std::size_t total = components.size() + found.lost;
+  drops.components = found.lost;
+  drops.area = found.lost_area;
+  if (!options.all_components) {
+    for (std::size_t i = 1; i < components.size(); ++i) {
+      ++drops.components;
+      drops.area += found.pixel_areas[i];
+    }
+    components.resize(1);
+  }
+  drops.area = std::round(drops.area * 1e8) / 1e8;  // whole pixels' area, as the decimal it is
   const std::string stem = stemOf(path);
   for (std::size_t i = 0; i < components.size(); ++i) {
-    components[i].feature = "component " + std::to_string(i + 1) + " of " + std::to_string(components.size());
+    components[i].feature = "component " + std::to_string(i + 1) + " of " + std::to_string(total);
     components[i].name = components.size() > 1 ? stem + "_" + std::to_string(i + 1) : stem;
   }
   return {std::move(components), ""};
@@ -212,6 +252,25 @@ std::string formatOf(const fs::path& p) {
       {".yaml", "yaml"},       {".yml", "yaml"}};
   const auto it = by_extension.find(lower(p.extension().string()));
   return it == by_extension.end() ? "" : it->second;
+}
+
+/// An image a map_server map names: on its own it has no scale or placement.
+bool isImageFile(const fs::path& p) {
+  static const std::set<std::string> images = {".png", ".pgm", ".ppm", ".pnm", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".gif"};
+  if (images.count(lower(p.extension().string()))) return true;
+  std::ifstream in(p, std::ios::binary);
+  std::string head(8, '\0');
+  in.read(head.data(), 8);
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head.rfind("\x89PNG", 0) == 0 || head.rfind("P5", 0) == 0 || head.rfind("P6", 0) == 0;
+}
+
+std::string bareImageMessage(const fs::path& p) {
+  fs::path yaml = p;
+  yaml.replace_extension(".yaml");
+  return "is an image without its map_server YAML, which gives its scale and place: write " + yaml.filename().string() +
+         " holding `image: " + p.filename().string() +
+         "`, `resolution: METRES_PER_PIXEL` and `origin: [X, Y, YAW]` beside it and import that";
 }
 
 /// The files a source reads besides itself, for the manifest's hashes (a Shapefile's parts).
@@ -253,16 +312,92 @@ Eigen::Affine2d userTransform(const std::vector<TransformStep>& steps) {
   return t;
 }
 
+/// ringIsSimple's test (coverbench/geometry.hpp) without comparing every edge with every other:
+/// that took 54 s for 10^5 vertices. Edges are put in the cells (about the mean edge long) of a
+/// grid that they pass through; only edges sharing a cell, with overlapping bounding boxes, are tested,
+/// with the same predicates in the same order, so the answer is ringIsSimple's (edges whose
+/// boxes are apart cannot meet).
+bool ringIsSimpleFast(const Ring& ring) {
+  const std::size_t n = ring.size();
+  if (n < 3) return false;
+  for (std::size_t i = 0; i < n; ++i) {
+    // Adjacent edges share one vertex; they must not fold back onto each other.
+    const Point prev = ring[(i + n - 1) % n], v = ring[i], next = ring[(i + 1) % n];
+    if (v == next) return false;
+    // The same arithmetic as ringIsSimple's: at vertex 0 it orients (next, v, prev).
+    const double turn = i == 0 ? cross(v - next, prev - next) : cross(v - prev, next - prev);
+    if (turn == 0.0 && dot(prev - v, next - v) > 0.0) return false;
+  }
+  if (n <= 3) return std::fabs(signedArea(ring)) > 0.0;
+  Box box = boundingBox(ring);
+  const double w = std::max(box.width(), 1e-300), h = std::max(box.height(), 1e-300);
+  // Cells about the mean edge long: an outline meets a few edges per cell, whatever its box.
+  double perimeter = 0.0;
+  for (std::size_t i = 0; i < n; ++i) perimeter += std::hypot(ring[(i + 1) % n].x - ring[i].x, ring[(i + 1) % n].y - ring[i].y);
+  const double side = std::max(perimeter / static_cast<double>(n), 1e-300);
+  constexpr std::size_t kMaxCellsPerSide = std::size_t{1} << 20;
+  const std::size_t nx = std::clamp<std::size_t>(static_cast<std::size_t>(std::min(w / side, 1e7)) + 1, 1, kMaxCellsPerSide);
+  const std::size_t ny = std::clamp<std::size_t>(static_cast<std::size_t>(std::min(h / side, 1e7)) + 1, 1, kMaxCellsPerSide);
+  const double cw = w / static_cast<double>(nx), ch = h / static_cast<double>(ny);
+  auto cellX = [&](double x) { return std::min(nx - 1, static_cast<std::size_t>(std::max(0.0, (x - box.min_x) / cw))); };
+  auto cellY = [&](double y) { return std::min(ny - 1, static_cast<std::size_t>(std::max(0.0, (y - box.min_y) / ch))); };
+  std::vector<std::pair<std::size_t, std::uint32_t>> entries;  // (cell, edge)
+  entries.reserve(2 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point a = ring[i], b = ring[(i + 1) % n];
+    const std::size_t x0 = cellX(std::min(a.x, b.x)), x1 = cellX(std::max(a.x, b.x));
+    for (std::size_t cx = x0; cx <= x1; ++cx) {
+      // The edge's y range within this column (one cell either way against rounding).
+      double ylo = std::min(a.y, b.y), yhi = std::max(a.y, b.y);
+      if (x0 != x1 && a.x != b.x) {
+        const double xl = std::max(std::min(a.x, b.x), box.min_x + static_cast<double>(cx) * cw);
+        const double xr = std::min(std::max(a.x, b.x), box.min_x + static_cast<double>(cx + 1) * cw);
+        const double yl = a.y + (b.y - a.y) * ((xl - a.x) / (b.x - a.x));
+        const double yr = a.y + (b.y - a.y) * ((xr - a.x) / (b.x - a.x));
+        ylo = std::max(ylo, std::min(yl, yr));
+        yhi = std::min(yhi, std::max(yl, yr));
+      }
+      const std::size_t y0 = cellY(ylo) > 0 ? cellY(ylo) - 1 : 0, y1 = std::min(ny - 1, cellY(yhi) + 1);
+      for (std::size_t cy = y0; cy <= y1; ++cy) entries.emplace_back(cy * nx + cx, static_cast<std::uint32_t>(i));
+    }
+  }
+  std::sort(entries.begin(), entries.end());
+  for (std::size_t lo = 0; lo < entries.size();) {
+    std::size_t hi = lo;
+    while (hi < entries.size() && entries[hi].first == entries[lo].first) ++hi;
+    for (std::size_t p = lo; p < hi; ++p) {
+      const std::size_t i = entries[p].second;
+      const Point a = ring[i], b = ring[(i + 1) % n];
+      for (std::size_t q = p + 1; q < hi; ++q) {
+        const std::size_t j = entries[q].second;  // j > i: entries sort by edge within a cell
+        if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // adjacent: checked above
+        const Point c = ring[j], d = ring[(j + 1) % n];
+        if (std::max(a.x, b.x) < std::min(c.x, d.x) || std::max(c.x, d.x) < std::min(a.x, b.x) ||
+            std::max(a.y, b.y) < std::min(c.y, d.y) || std::max(c.y, d.y) < std::min(a.y, b.y))
+          continue;
+        if (segmentsIntersect(a, b, c, d)) return false;
+      }
+    }
+    lo = hi;
+  }
+  return std::fabs(signedArea(ring)) > 0.0;
+}
+
 /// A ring as the wall model keeps it: rounded, repeated and closing vertices dropped, checked.
 Ring cleanRing(const Ring& in, const std::string& source, const std::string& field) {
   Ring ring;
+  ring.reserve(in.size());
   for (const Point& p : in) {
+    // After projection and --transform: a scale of 1e300 must not reach the geometry.
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || std::fabs(p.x) > kMaxImportCoordinate || std::fabs(p.y) > kMaxImportCoordinate)
+      throw InputError(source, field, "has a point (" + shortNumber(p.x) + ", " + shortNumber(p.y) +
+                                          ") beyond 1e8 m once placed (--transform?)");
     const Point q{roundToGrid(p.x), roundToGrid(p.y)};
     if (ring.empty() || !(ring.back() == q)) ring.push_back(q);
   }
   while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
   if (ring.size() < 3) throw InputError(source, field, "has fewer than 3 distinct points");
-  if (!ringIsSimple(ring)) throw InputError(source, field, "is self-intersecting or degenerate");
+  if (!ringIsSimpleFast(ring)) throw InputError(source, field, "is self-intersecting or degenerate");
   if (signedArea(ring) < 0) std::reverse(ring.begin(), ring.end());
   return ring;
 }
@@ -312,62 +447,108 @@ ImportedWall wallOf(const RawPolygon& raw, const std::string& fallback_name, con
   return out;
 }
 
+/// The files of a folder to import, with its subfolders' (any depth), in name order: polygon-text
+/// folders as themselves. Symbolic links to folders are not followed (no loops).
+void collectFolder(const fs::path& folder, const std::string& forced_format, std::vector<std::pair<fs::path, std::string>>& out,
+                   int depth) {
+  if (depth > 32) throw InputError(folder.string(), "(folder)", "is nested over 32 folders deep");
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::directory_iterator(folder)) entries.push_back(e.path());
+  std::sort(entries.begin(), entries.end());
+  for (const fs::path& e : entries) {
+    const std::string f = formatOf(e);
+    if (f == "folder") {
+      // A CoverBench dataset (an earlier import's output, say) is walls, not sources.
+      if (!fs::is_symlink(e) && !fs::exists(e / "manifest.json")) collectFolder(e, forced_format, out, depth + 1);
+      continue;
+    }
+    if (f.empty()) continue;
+    const bool matches = forced_format == "auto" || f == forced_format ||
+                         (f == "yaml" && (forced_format == "map" || forced_format == "yaml-polygon"));
+    if (matches) out.emplace_back(e, forced_format == "auto" ? f : forced_format);
+  }
+}
+
+std::string formatList() {
+  std::string s;
+  for (const std::string& f : importFormats()) s += (s.empty() ? "" : ", ") + f;
+  return s;
+}
+
+void importFile(const std::string& source, const std::string& format, const ImportOptions& options, ImportResult& result);
+
 /// Imports one file or folder into `result`.
 void importSource(const std::string& source, const std::string& forced_format, const ImportOptions& options,
-                  ImportResult& result, bool top_level) {
+                  ImportResult& result) {
   const fs::path p(source);
   if (!fs::exists(p)) throw InputError(source, "(source)", "does not exist");
-  std::string format = forced_format == "auto" ? formatOf(p) : forced_format;
-  if (fs::is_directory(p) && format != "polygon-text") {
-    if (!top_level && format == "folder") return;  // one level deep: a folder's folders are polygon text or nothing
-    // A folder: every file of a known format in it, and its polygon-text folders, in name order.
-    std::vector<fs::path> entries;
-    for (const auto& e : fs::directory_iterator(p)) entries.push_back(e.path());
-    std::sort(entries.begin(), entries.end());
-    const std::size_t before = result.walls.size();
-    for (const fs::path& e : entries) {
-      const std::string f = formatOf(e);
-      if (f.empty() || f == "folder") continue;
-      const bool matches = forced_format == "auto" || f == forced_format ||
-                           (f == "yaml" && (forced_format == "map" || forced_format == "yaml-polygon"));
-      if (!matches) continue;
-      importSource(e.string(), forced_format == "auto" ? "auto" : forced_format, options, result, false);
+  if (fs::is_directory(p)) {
+    // A polygon-text folder is one wall; any other folder: every file of a known format in it
+    // and in its subfolders, and its polygon-text folders, in name order.
+    if (formatOf(p) == "polygon-text" && (forced_format == "auto" || forced_format == "polygon-text")) {
+      importFile(source, "polygon-text", options, result);
+      return;
     }
-    if (result.walls.size() == before)
-      throw InputError(source, "(folder)", "holds nothing to import (formats: " +
-                                               [] { std::string s; for (const std::string& f : importFormats()) s += (s.empty() ? "" : ", ") + f; return s; }() + ")");
+    std::vector<std::pair<fs::path, std::string>> files;
+    collectFolder(p, forced_format, files, 0);
+    if (files.empty())
+      throw InputError(source, "(folder)", forced_format == "auto"
+                                               ? "holds nothing to import (formats: " + formatList() + ")"
+                                               : "holds nothing of --format " + forced_format);
+    for (const auto& [file, format] : files) importFile(file.string(), format, options, result);
     return;
   }
-  if (format.empty())
-    throw InputError(source, "--format", "cannot tell the format from the name '" + p.filename().string() + "': give --format");
+  const std::string format = forced_format == "auto" ? formatOf(p) : forced_format;
+  if (format.empty()) {
+    if (isImageFile(p)) throw InputError(source, "(file)", bareImageMessage(p));
+    throw InputError(source, "--format", "cannot tell the format from the name '" + p.filename().string() +
+                                             "': give --format (" + formatList() + ")");
+  }
+  importFile(source, format, options, result);
+}
+
+void importFile(const std::string& source, const std::string& format, const ImportOptions& options, ImportResult& result) {
+  const fs::path p(source);
+  if (format == "polygon-text") {
+    if (!fs::is_directory(p)) throw InputError(source, "--format", "polygon-text is a folder holding outer_polygon (and holes)");
+  } else if (fs::is_directory(p)) {
+    throw InputError(source, "--format", "is a folder: " + format + " is a file");
+  }
+  if (format != "polygon-text" && format != "yaml" && format != "yaml-polygon" && format != "map" && format != "wkt" &&
+      format != "dxf" && format != "geojson" && format != "gml" && format != "kml" && format != "shapefile" && format != "gpkg")
+    throw InputError(source, "--format", "unknown format '" + format + "'");
+  if ((format == "map" || format == "yaml" || format == "yaml-polygon" || format == "wkt") && isImageFile(p))
+    throw InputError(source, "--format", format == "map" ? bareImageMessage(p) : "is an image, not " + format + " text");
   if (!fs::is_directory(p)) result.sources.push_back({source, sha256Hex(readFile(source))});
 
   RawSet set;
   MapPlacement placement;
+  MapDrops drops;
   bool is_map = false;
   if (format == "polygon-text") {
-    if (!fs::is_directory(p)) throw InputError(source, "--format", "polygon-text is a folder holding outer_polygon (and holes)");
-    set = readPolygonTextFolder(p);
+    set = readPolygonTextFolder(p, options);
     for (const char* name : {"outer_polygon", "holes"}) {
       const std::string f = polygonTextFile(p, name);
       if (!f.empty()) result.sources.push_back({f, sha256Hex(readFile(f))});
     }
   } else if (format == "yaml" || format == "yaml-polygon" || format == "map") {
-    const YAML::Node doc = loadYaml(source);
-    if (!doc.IsMap()) throw InputError(source, "(document)", "must be a YAML mapping (hull/holes, or a map_server map)");
-    is_map = format == "map" || (format == "yaml" && doc["image"]);
-    if (is_map) set = readOccupancyMap(source, doc, options, placement, result.sources);
-    else if (format == "yaml-polygon" || doc["hull"]) set = readHullYaml(source, doc);
-    else throw InputError(source, "(document)", "is neither a hull/holes polygon (no 'hull') nor a map_server map (no 'image')");
+    try {
+      const YAML::Node doc = loadYaml(source);
+      if (!doc.IsMap()) throw InputError(source, "(document)", "must be a YAML mapping (hull/holes, or a map_server map)");
+      is_map = format == "map" || (format == "yaml" && doc["image"]);
+      if (is_map) set = readOccupancyMap(source, doc, options, placement, result.sources, drops);
+      else if (format == "yaml-polygon" || doc["hull"]) set = readHullYaml(source, doc, options);
+      else throw InputError(source, "(document)", "is neither a hull/holes polygon (no 'hull') nor a map_server map (no 'image')");
+    } catch (const YAML::Exception& e) {  // a value of the wrong kind anywhere: one line, not an internal error
+      throw InputError(source, "line " + std::to_string(e.mark.line + 1), e.msg);
+    }
   } else if (format == "wkt") {
     set = import_detail::readWktText(readFile(source), source, options);
   } else if (format == "dxf") {
     set = import_detail::readDxfFile(source, options);
-  } else if (format == "geojson" || format == "gml" || format == "kml" || format == "shapefile" || format == "gpkg") {
+  } else {
     set = import_detail::readVectorFile(source, format, options);
     for (const std::string& c : companionFiles(p, format)) result.sources.push_back({c, sha256Hex(readFile(c))});
-  } else {
-    throw InputError(source, "--format", "unknown format '" + format + "'");
   }
 
   Eigen::Affine2d placement_transform = userTransform(options.transform);
@@ -377,6 +558,13 @@ void importSource(const std::string& source, const std::string& forced_format, c
   for (std::size_t i = 0; i < set.polygons.size(); ++i) {
     const std::string fallback = set.polygons.size() > 1 ? stem + "_" + std::to_string(i + 1) : stem;
     result.walls.push_back(wallOf(set.polygons[i], fallback, set.crs, source, options));
+    if (is_map) {
+      result.walls.back().from_map = true;
+      if (i == 0) {  // a map's drops are recorded once, on its first wall
+        result.walls.back().dropped_components = drops.components;
+        result.walls.back().dropped_component_area = drops.area;
+      }
+    }
   }
 }
 
@@ -432,7 +620,7 @@ ImportResult importWalls(const std::vector<std::string>& sources, const ImportOp
   if (!(options.min_hole_area >= 0)) throw InputError("--min-hole-area", "(value)", "must be 0 or more");
   if (sources.empty()) throw InputError("(sources)", "(value)", "name at least one file or folder to import");
   ImportResult result;
-  for (const std::string& s : sources) importSource(s, options.format, options, result, true);
+  for (const std::string& s : sources) importSource(s, options.format, options, result);
   return result;
 }
 
@@ -464,7 +652,11 @@ std::string importRecordJson(const ImportResult& result, const ImportOptions& op
     out += std::string(i ? ",\n      " : "\n      ") + "{\"name\": " + json(w.wall.name).dump() + ", \"source\": " +
            json(w.source).dump() + ", \"feature\": " + json(w.feature).dump() + ", \"crs\": " + json(w.crs).dump() +
            ", \"origin\": [" + num(w.origin_x) + ", " + num(w.origin_y) + "], \"dropped_holes\": " +
-           std::to_string(w.dropped_holes) + ", \"dropped_hole_area\": " + num(w.dropped_hole_area) + "}";
+           std::to_string(w.dropped_holes) + ", \"dropped_hole_area\": " + num(w.dropped_hole_area) +
+           (w.from_map ? ", \"dropped_components\": " + std::to_string(w.dropped_components) +
+                             ", \"dropped_component_area\": " + num(w.dropped_component_area)
+                       : std::string()) +
+           "}";
   }
   return out + "\n    ]\n  }";
 }

@@ -13,6 +13,14 @@
 
 namespace coverbench {
 
+/// Limits on what an import reads, refused up front with one line (docs/datasets.md): a map
+/// image's pixels (a 30000 x 30000 PGM of 1 KB asked for 3.5 GB), a map's metres per pixel, and
+/// any coordinate's magnitude in the file's units (1e155 hung GEOS).
+inline constexpr double kMaxMapPixels = 1e8;
+inline constexpr double kMinMapResolution = 1e-3;
+inline constexpr double kMaxMapResolution = 100.0;
+inline constexpr double kMaxImportCoordinate = 1e8;
+
 /// The formats `--format` names; "auto" picks one by the file's extension (or a folder's files).
 const std::vector<std::string>& importFormats();
 
@@ -27,7 +35,9 @@ struct ImportOptions {
   /// Target CRS of geographic input ("EPSG:32632", any string PROJ reads); empty: the local UTM
   /// zone of each file's centre.
   std::string crs;
-  /// CRS of input that names none (a Shapefile without .prj, DXF, WKT): empty means metres.
+  /// CRS of input that names none (a Shapefile without .prj, DXF, WKT, polygon text, YAML hull):
+  /// empty means metres, but coordinates that look like degrees are refused; "metres" says they
+  /// are metres.
   std::string source_crs;
   /// The attribute that names each wall (vector formats); empty: "name" when present, else the
   /// file's stem and the feature's number.
@@ -62,6 +72,11 @@ struct ImportedWall {
   std::string crs;           ///< the CRS of its coordinates before that shift ("" for local metres)
   std::size_t dropped_holes = 0;
   double dropped_hole_area = 0.0;
+  /// A map's wall: the free components left out (all but the largest, without --all-components,
+  /// and those simplification left empty) and their area before simplification.
+  bool from_map = false;
+  std::size_t dropped_components = 0;
+  double dropped_component_area = 0.0;
 };
 
 struct ImportedSource {
