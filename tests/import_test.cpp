@@ -399,9 +399,11 @@ TEST_F(Import, CoordinatesThatLookLikeDegreesAreRefusedWithoutASourceCrs) {
 // pixel above 255 (occupied ones included) read as white, free. A grey+alpha PNG had its alpha
 // averaged into the grey: an unknown cell (205) with opaque alpha read as 230, free.
 
-/// A PNG (RFC 2083) of `samples` (row-major, channels interleaved), colour type 0 (grey) or 4
-/// (grey+alpha), 8 or 16 bits, with stored (uncompressed) deflate blocks.
-std::string png(int width, int height, int colour_type, int bits, const std::vector<int>& samples) {
+/// A PNG (RFC 2083) of `samples` (row-major, channels interleaved), colour type 0 (grey), 4
+/// (grey+alpha) or 3 (palette indices, `palette` as r, g, b triples), 8 or 16 bits, with stored
+/// (uncompressed) deflate blocks.
+std::string png(int width, int height, int colour_type, int bits, const std::vector<int>& samples,
+                const std::vector<int>& palette = {}) {
   static const std::vector<std::uint32_t> table = [] {
     std::vector<std::uint32_t> t(256);
     for (std::uint32_t n = 0; n < 256; ++n) {
@@ -444,7 +446,10 @@ std::string png(int width, int height, int colour_type, int bits, const std::vec
   z += be32((b << 16) | a);
   const std::string header = be32(static_cast<std::uint32_t>(width)) + be32(static_cast<std::uint32_t>(height)) +
                              std::string{static_cast<char>(bits), static_cast<char>(colour_type), 0, 0, 0};
-  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", header) + chunk("IDAT", z) + chunk("IEND", "");
+  std::string plte;
+  for (int v : palette) plte += static_cast<char>(v);
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", header) + (plte.empty() ? "" : chunk("PLTE", plte)) +
+         chunk("IDAT", z) + chunk("IEND", "");
 }
 
 /// A binary PGM of `rows` with maximum value `maxval` (two bytes a sample above 255).
@@ -519,6 +524,16 @@ TEST_F(Import, AlphaIsNotAveragedIntoTheGrey) {
     EXPECT_NEAR(freeArea(walls[0]), 132 * 0.05 * 0.05, 1e-9) << image;
     EXPECT_EQ(walls[0].wall.obstacles.size(), 2u) << image;
   }
+  // A palette PNG: the shade is the mean of the index's colour, not the index (index 1, white,
+  // read as a grey of 1 made every pixel occupied).
+  std::vector<int> indices;
+  for (const auto& row : rows)
+    for (int v : row) indices.push_back(v == 0 ? 0 : v == 254 ? 1 : 2);
+  writeBytes("palette.png", png(20, 10, 3, 8, indices, {0, 0, 0, 254, 254, 254, 200, 210, 205}));
+  const auto paletted = import(write("palette.yaml", "image: palette.png\nresolution: 0.05\norigin: [0, 0, 0]\n"));
+  ASSERT_EQ(paletted.size(), 1u);
+  EXPECT_NEAR(freeArea(paletted[0]), 132 * 0.05 * 0.05, 1e-9);
+  EXPECT_EQ(paletted[0].wall.obstacles.size(), 2u);
   // In scale mode a transparent pixel is unknown: a free pixel (254) with alpha 0 is a hole.
   std::vector<int> samples = flat(rows, 1, 255);
   samples[static_cast<std::size_t>(2 * (2 * 20 + 12) + 1)] = 0;  // row 2, column 12: free, now transparent
