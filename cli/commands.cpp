@@ -18,6 +18,7 @@
 
 #include "coverbench/car_ceiling.hpp"
 #include "coverbench/escape.hpp"
+#include "coverbench/experiment.hpp"
 #include "coverbench/judge.hpp"
 #include "coverbench/limits.hpp"
 #include "coverbench/metrics.hpp"
@@ -112,15 +113,16 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   o.plan.transit = transit;
   o.plan.seed = seed;
   o.plan.params = std::move(params);
+  // An external planner's processes are held to the experiments' default memory limit here.
+  problem.memory_limit_bytes = external::kDefaultMemoryLimitBytes;
   const double rss_before = residentBytes();
-  o.plan.result = runPlanner(planner, problem, Budget(std::chrono::duration<double>(time_limit_s)));
+  // Planned and judged as Python's coverbench.plan and a run judge it (planAndJudge).
+  JudgedPlan judged = planAndJudge(planner, problem, Budget(std::chrono::duration<double>(time_limit_s)));
   // The process's peak resident set grew by this much during the plan (0 if an earlier peak was higher).
   o.plan.peak_memory_bytes = std::max(0.0, peakResidentBytes() - rss_before);
-  try {
-    o.plan.metrics = computeMetrics(wall, tool, o.plan.result.path, vehicle);
-  } catch (const InputError& e) {  // beyond the scoring limits (docs/metrics.md)
-    o.plan.not_scored = "the path " + e.problem();
-  }
+  o.plan.result = std::move(judged.result);
+  o.plan.metrics = judged.metrics;
+  o.plan.not_scored = judged.not_scored;
   o.plan_json = planFileJson(o.plan);
   const bool scored = o.plan.not_scored.empty();
   char title[256];
@@ -290,8 +292,10 @@ std::string judgedJson(const PathMetrics& m, const judge::Judgement& j) {
 int carCeilingCommand(const CarCeilingCommandOptions& options) {
   const Wall wall = loadWallFile(options.wall);
   validateToolForWall(options.tool, wall, "command line");
-  if (!(options.turn_radius > 0.0) || !std::isfinite(options.turn_radius))
-    throw InputError("--turn-radius", "turn_radius", "must be positive and finite, got " + shortNumber(options.turn_radius));
+  VehicleModel car;  // the range `plan` holds a car's turn radius to, with its one-line error
+  car.kind = VehicleModel::Kind::Car;
+  car.turn_radius = options.turn_radius;
+  validateVehicle(car, "command line", "vehicle");
   if (!(options.resolution >= 0.001 && options.resolution <= 1.0))
     throw InputError("--resolution", "resolution", "must be in [0.001, 1] m, got " + shortNumber(options.resolution));
   if (options.headings < 8 || options.headings > 720)

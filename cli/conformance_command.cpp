@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "commands.hpp"
+#include "coverbench/experiment.hpp"
 #include "coverbench/external_planner.hpp"
 #include "coverbench/files.hpp"
 #include "coverbench/free_region.hpp"
@@ -83,7 +84,12 @@ int conformanceCommand(const ConformanceOptions& o) {
       row.wall = wall.name;
       row.file = fs::path(file).filename().string();
       row.tool = tool;
-      const PlanResult a = runPlanner(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
+      // An external planner's processes are held to the experiments' default memory limit.
+      problem.memory_limit_bytes = external::kDefaultMemoryLimitBytes;
+      // Judged as `plan` and a run judge it: a path beyond the scoring limits fails its row with
+      // the reason (the card goes on).
+      const JudgedPlan judged = planAndJudge(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
+      const PlanResult& a = judged.result;
       const PlanResult b = runPlanner(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
       row.status = toString(a.status);
       row.reason = a.reason;
@@ -92,8 +98,12 @@ int conformanceCommand(const ConformanceOptions& o) {
                           a.path.tool_on == b.path.tool_on && a.path.bulge == b.path.bulge;
       for (std::size_t i = 0; row.deterministic && i < a.path.waypoints.size(); ++i)
         row.deterministic = a.path.waypoints[i].x == b.path.waypoints[i].x && a.path.waypoints[i].y == b.path.waypoints[i].y;
-      if (a.hasPath()) {
-        const PathMetrics m = computeMetrics(wall, tool, a.path);
+      if (a.hasPath() && !judged.not_scored.empty()) {
+        row.status = toString(judged.verdict);  // metrics_error: the row fails, saying why
+        row.reason = judged.reason;
+        row.contract = false;
+      } else if (a.hasPath()) {
+        const PathMetrics& m = judged.metrics;
         row.valid = m.validity.valid;
         row.coverage = m.coverage.coverage_reachable;
         row.contract = row.valid && (a.status == PlanStatus::Ok || !a.reason.empty());

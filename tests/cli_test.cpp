@@ -102,6 +102,25 @@ TEST_F(Cli, CarCeilingPrintsTheBestPieceOfF) {
   EXPECT_TRUE(none.empty()) << none;
 }
 
+// `car-ceiling` holds the turn radius to the range `plan` holds a car to, with the same one line:
+// 1e20 m is a car that cannot turn (it reported 1.0), 1e-9 m one that asked for memory without end.
+TEST_F(Cli, CarCeilingHoldsTheTurnRadiusToPlansRange) {
+  const std::string wall = test::sourcePath("datasets/canonical/living_room_north.json");
+  for (const std::string radius : {"1e20", "1e-9", "0.001", "101"}) {
+    std::string ceiling_out, plan_out;
+    const CommandRun ceiling = run("car-ceiling --wall " + wall + " --turn-radius " + radius, &ceiling_out);
+    const CommandRun plan = run("plan --wall " + wall + " --planner zigzag --vehicle car --turn-radius " + radius +
+                                    " --out " + (dir_ / "p.json").string(),
+                                &plan_out);
+    EXPECT_EQ(ceiling.exit_code, 2) << radius << ": " << ceiling_out;
+    EXPECT_EQ(lines(ceiling.err), 1) << ceiling.err;
+    EXPECT_NE(ceiling.err.find("command line: vehicle.turn_radius: must be in [0.01, 100] m"), std::string::npos)
+        << radius << ": " << ceiling.err;
+    EXPECT_EQ(ceiling.err, plan.err) << radius;
+    EXPECT_TRUE(ceiling_out.empty()) << ceiling_out;
+  }
+}
+
 TEST_F(Cli, MetricsScoresAHandWrittenPlan) {
   // A 4 m x 2 m wall, tool 0.2 m, no clearance needed; one 2 m pass written by hand, with only
   // the two required fields. Closed forms: |S| = 0.2 * 2 + pi * 0.1^2; R is the 4 x 2 rectangle

@@ -7,10 +7,18 @@
 #include <nlohmann/json.hpp>
 #include <sqlite3.h>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
+#include <thread>
 
 #include "coverbench/external_planner.hpp"
 #include "coverbench/registry.hpp"
@@ -29,12 +37,45 @@ namespace fs = std::filesystem;
 // takes 0.5-0.8 s to start an interpreter here) would eat into the runs' time limit. That limit
 // is 5 s: on a machine whose page faults are slow (4 GiB took 22 s to fill here), the allocating
 // planner needs over a second to pass 300 MiB, and must meet the memory limit before the clock.
-const char* const kMisbehave = R"(import json, os, signal, sys, time
+const char* const kMisbehave = R"py(import json, os, signal, subprocess, sys, time
 mode = sys.argv[1]
+def orphan():
+    # A child that leaves the process group (setsid), and every pid this planner knows of, recorded.
+    child = subprocess.Popen(["/usr/bin/python3", "-c", "import time\ntime.sleep(3600)"], start_new_session=True)
+    with open("pids.txt", "a") as f:
+        f.write("%d %d %d\n" % (os.getpid(), child.pid, os.getppid()))
 for line in sys.stdin:
     req = json.loads(line)
     if mode == "sleeps":
         time.sleep(3600)
+    if mode == "orphans-sleep":
+        orphan()
+        time.sleep(3600)
+    if mode == "orphans":
+        orphan()
+    if mode == "nested":
+        os.write(1, b"[" * (2 << 20) + b"\n")
+        continue
+    if mode == "child-hog":
+        subprocess.run(["/usr/bin/python3", "-c", "b = bytearray(600 << 20)\nfor i in range(0, len(b), 4096): b[i] = 1"])
+    if mode in ("huge", "outside"):
+        x = 1e300 if mode == "huge" else -5.0
+        print(json.dumps({"protocol": 1, "id": req["id"], "status": "ok", "waypoints": [[x, -5.0], [x + 1.0, -5.0]],
+                          "tool_on": [True]}), flush=True)
+        continue
+    if mode == "twice":
+        # A valid answer, then (once told the host has read it) a second line that would pass for
+        # the next request's answer.
+        p = req["problem"]
+        r = p["tool"]["width"] / 2 + p["tool"]["clearance"] + 0.01
+        answer = {"protocol": 1, "id": req["id"], "status": "ok", "waypoints": [[r, r], [r + 0.05, r]], "tool_on": [True]}
+        print(json.dumps(answer), flush=True)
+        while not os.path.exists("go"):
+            time.sleep(0.01)
+        answer["id"] += 1
+        print(json.dumps(answer), flush=True)
+        open("written", "w").close()
+        continue
     if mode == "garbage":
         print("this is not json", flush=True)
         continue
@@ -56,7 +97,49 @@ for line in sys.stdin:
     r = p["tool"]["width"] / 2 + p["tool"]["clearance"] + 0.01
     print(json.dumps({"protocol": 1, "id": req["id"], "status": "ok",
                       "waypoints": [[r, r], [r + 0.05, r]], "tool_on": [True]}), flush=True)
-)";
+if mode == "orphans":  # it ignores the end of its input, and SIGTERM
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    time.sleep(3600)
+)py";
+
+constexpr const char* kModes[] = {"fine",   "sleeps", "garbage",  "exits",  "signal",        "allocates",
+                                  "floods", "wrong-id", "orphans", "orphans-sleep", "nested", "child-hog",
+                                  "huge",   "outside", "twice"};
+
+/// A process is running (not a zombie).
+bool running(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t paren = stat.rfind(')');
+  return paren != std::string::npos && paren + 2 < stat.size() && stat[paren + 2] != 'Z' && stat[paren + 2] != 'X';
+}
+
+/// The pids a misbehaving planner recorded in pids.txt (itself, its setsid child, its host).
+std::vector<pid_t> recordedPids(const fs::path& file) {
+  std::vector<pid_t> pids;
+  std::ifstream in(file);
+  for (long p = 0; in >> p;) pids.push_back(static_cast<pid_t>(p));
+  return pids;
+}
+
+/// The recorded processes still running once they have had `patience_s` to go (polled; the verdict
+/// does not depend on the machine's speed, only a process that never goes fails it).
+std::vector<pid_t> survivors(const std::vector<pid_t>& pids, double patience_s, double* gone_after_s = nullptr) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<pid_t> alive;
+  for (;;) {
+    alive.clear();
+    for (pid_t p : pids)
+      if (running(p)) alive.push_back(p);
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (alive.empty() || elapsed > patience_s) {
+      if (gone_after_s) *gone_after_s = elapsed;
+      for (pid_t p : alive) ::kill(p, SIGKILL);  // not left behind by the test either
+      return alive;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
 
 class External : public test::CommandTest {
  protected:
@@ -64,7 +147,7 @@ class External : public test::CommandTest {
     CommandTest::SetUp();
     fs::create_directories(dir_ / "planners");
     std::ofstream(dir_ / "planners" / "misbehave.py") << kMisbehave;
-    for (const char* mode : {"fine", "sleeps", "garbage", "exits", "signal", "allocates", "floods", "wrong-id"})
+    for (const char* mode : kModes)
       std::ofstream(dir_ / "planners" / (std::string(mode) + ".json"))
           << R"({"coverbench_planner": 1, "name": ")" << mode << R"(", "version": "1", "summary": "s", "reference": "r",
   "command": ["/usr/bin/python3", "misbehave.py", ")" << mode << R"("], "files": ["misbehave.py"]})";
@@ -72,19 +155,30 @@ class External : public test::CommandTest {
     std::ofstream(dir_ / "walls" / "a.json") << R"({"name": "a", "width": 2, "height": 1})";
     std::ofstream(dir_ / "walls" / "b.json") << R"({"name": "b", "width": 1.5, "height": 1.2})";
   }
-  std::string config(const std::string& name, const std::string& planners) {
+  std::string config(const std::string& name, const std::string& planners, double time_s = 5) {
     return write(name + ".yaml", "name: " + name + "\noutput: " + name + "\ndatasets:\n  - folder: walls\nplanners:\n" +
-                                     planners + "limits:\n  time_s: 5\n  memory_mb: 300\nthreads: 2\n");
+                                     planners + "limits:\n  time_s: " + shortNumber(time_s) +
+                                     "\n  memory_mb: 300\nthreads: 2\n");
   }
 };
 
 TEST_F(External, EachMisbehavingPlannerGetsItsStatusAndTheOthersRunsAreUntouched) {
   std::string planners = "  - zigzag\n";
-  for (const char* mode : {"fine", "sleeps", "garbage", "exits", "signal", "allocates", "floods", "wrong-id"})
+  for (const char* mode : {"fine", "sleeps", "garbage", "exits", "signal", "wrong-id"})
     planners += std::string("  - external: planners/") + mode + ".json\n";
   const test::CommandRun bad = run("run " + config("bad", planners) + " --no-report");
   ASSERT_EQ(bad.exit_code, 0) << bad.err;
-  const ResultSet rs = ResultsDb((dir_ / "bad/results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
+  ResultSet rs = ResultsDb((dir_ / "bad/results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(rs.runs.size(), 14u);
+  // The planner that allocates 4 GiB meets the memory limit (300 MiB, its processes' cgroup) once
+  // it has touched 300 MiB, and the one that floods its output meets the 64 MiB answer limit once
+  // it has written that much, however slow the machine: they run under a time limit they cannot
+  // reach first, so which limit each meets does not depend on the machine's load.
+  const test::CommandRun slow = run("run " + config("slow", "  - external: planners/allocates.json\n"
+                                                            "  - external: planners/floods.json\n", 600) + " --no-report");
+  ASSERT_EQ(slow.exit_code, 0) << slow.err;
+  for (ResultRow& r : ResultsDb((dir_ / "slow/results.sqlite").string(), ResultsDb::Mode::ReadOnly).load().runs)
+    rs.runs.push_back(std::move(r));
   ASSERT_EQ(rs.runs.size(), 18u);
   const std::map<std::string, RunStatus> expected = {
       {"zigzag", RunStatus::Ok},          {"fine", RunStatus::Ok},          {"sleeps", RunStatus::Timeout},
@@ -293,6 +387,134 @@ TEST_F(External, ConformancePrintsAReportCardForAnyPlanner) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(out.find("| **broken** |"), std::string::npos) << out;
   EXPECT_NE(r.err.find("boastful: "), std::string::npos) << r.err;
+}
+
+// Item 16: the protocol is strict. A duplicate key (a second "status") is refused, not read as the
+// last one; nesting deeper than an answer needs is refused before the line is parsed (20 MiB of
+// '[' cost the parser 1.6 GB and 30 s).
+TEST_F(External, AnswersWithDuplicateKeysOrDeepNestingAreRefused) {
+  PlanResult r;
+  std::string why;
+  EXPECT_FALSE(external::readAnswer(
+      R"({"protocol":1,"id":7,"status":"error","reason":"gave up","status":"ok","waypoints":[[0,0],[1,0]],"tool_on":[true]})",
+      7, r, why));
+  EXPECT_NE(why.find("status: duplicate key"), std::string::npos) << why;
+  PlanResult deep;
+  const std::string nested = std::string(100000, '[') + std::string(100000, ']');
+  EXPECT_FALSE(external::readAnswer(nested, 7, deep, why));
+  EXPECT_NE(why.find("nested deeper than 16 levels"), std::string::npos) << why;
+  // Brackets inside strings are text, not nesting.
+  PlanResult quoted;
+  EXPECT_TRUE(external::readAnswer(R"({"protocol":1,"id":7,"status":"error","reason":")" + std::string(100, '[') + R"("})",
+                                   7, quoted, why))
+      << why;
+  // `plan` refuses 2 MiB of '[' as invalid_output naming the nesting, under its limits.
+  std::string out;
+  const test::CommandRun plan = run("plan --wall " + (dir_ / "walls/a.json").string() + " --planner " +
+                                        (dir_ / "planners/nested.json").string() + " --out " + (dir_ / "p.json").string(),
+                                    &out);
+  EXPECT_EQ(plan.exit_code, 3) << plan.err;
+  EXPECT_NE(out.find("invalid_output"), std::string::npos) << out;
+  EXPECT_NE(out.find("nested deeper than 16 levels"), std::string::npos) << out;
+}
+
+// Item 16: a line written after the answer was read would be read as the next request's answer
+// (here it carries the next id: it passed for it). It fails that run as invalid_output instead.
+// The planner writes its second line only once the first run is over (a file says so), so the
+// order of events does not depend on the machine's speed.
+TEST_F(External, ALineAfterTheAnswerFailsTheNextRunInsteadOfAnsweringIt) {
+  const PlannerInfo& twice = external::plannerNamed((dir_ / "planners/twice.json").string(), "test");
+  const Wall a = loadWallFile((dir_ / "walls/a.json").string()), b = loadWallFile((dir_ / "walls/b.json").string());
+  Problem pa, pb;
+  pa.wall = &a;
+  pb.wall = &b;
+  const PlanResult first = runPlanner(twice, pa, Budget(std::chrono::seconds(600)));
+  EXPECT_EQ(first.status, PlanStatus::Ok) << first.reason;
+  std::ofstream(dir_ / "planners" / "go").close();
+  for (int i = 0; i < 60000 && !fs::exists(dir_ / "planners" / "written"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(fs::exists(dir_ / "planners" / "written"));  // made after the line was written to the pipe
+  const PlanResult second = runPlanner(twice, pb, Budget(std::chrono::seconds(600)));
+  EXPECT_EQ(second.status, PlanStatus::InvalidOutput) << second.reason;
+  EXPECT_NE(second.reason.find("wrote after its previous answer"), std::string::npos) << second.reason;
+}
+
+// Item 19: an answer the metrics engine cannot score (x = 1e300) fails its row of the report card,
+// saying why, and the card goes on (it aborted with no card).
+TEST_F(External, ConformanceGivesAnUnscorableAnswerAFailingRowAndGoesOn) {
+  std::string out;
+  const test::CommandRun r = run("conformance " + (dir_ / "planners/huge.json").string() + " --walls " +
+                                     test::sourcePath("datasets/conformance") + " --format json",
+                                 &out);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const nlohmann::json card = nlohmann::json::parse(out);
+  EXPECT_EQ(card["checked"], 20);
+  EXPECT_EQ(card["passed"], 0);
+  for (const auto& row : card["walls"]) {
+    EXPECT_EQ(row["status"], "metrics_error") << row.dump();
+    EXPECT_NE(row["reason"].get<std::string>().find("could not be scored"), std::string::npos) << row.dump();
+    EXPECT_FALSE(row["passed"].get<bool>());
+  }
+}
+
+// Item 14: the memory limit holds the planner's processes together: a child that touches 600 MiB
+// under memory_mb 300 makes the run memory_limit (the planner's own resident set stays small). The
+// time limit is one the child cannot reach first on any machine.
+TEST_F(External, APlannersChildIsHeldToTheMemoryLimit) {
+  const test::CommandRun r = run("run " + config("child", "  - external: planners/child-hog.json\n", 600) + " --no-report");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const ResultSet rs = ResultsDb((dir_ / "child/results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(rs.runs.size(), 2u);
+  for (const ResultRow& row : rs.runs) {
+    EXPECT_EQ(row.status, RunStatus::MemoryLimit) << row.reason;
+    EXPECT_NE(row.reason.find("memory limit of 300 MiB"), std::string::npos) << row.reason;
+  }
+}
+
+// Item 15: every process a run started is gone when the run ends: the planner that ignores the
+// end of its input (and SIGTERM) and the child it started in a session of its own (setsid), after a
+// normal `run` and after `plan`.
+TEST_F(External, NoProcessARunStartedOutlivesIt) {
+  ASSERT_EQ(run("run " + config("orphans", "  - external: planners/orphans.json\n") + " --no-report").exit_code, 0);
+  std::vector<pid_t> pids = recordedPids(dir_ / "planners" / "pids.txt");
+  ASSERT_GE(pids.size(), 3u);
+  EXPECT_EQ(survivors(pids, 60), std::vector<pid_t>{}) << "left running after `coverbench run`";
+  fs::remove(dir_ / "planners" / "pids.txt");
+  const test::CommandRun plan = run("plan --wall " + (dir_ / "walls/a.json").string() + " --planner " +
+                                    (dir_ / "planners/orphans.json").string() + " --out " + (dir_ / "p.json").string());
+  EXPECT_EQ(plan.exit_code, 0) << plan.err;  // a valid path of 5 cm
+  pids = recordedPids(dir_ / "planners" / "pids.txt");
+  ASSERT_EQ(pids.size(), 3u);
+  EXPECT_EQ(survivors({pids[0], pids[1]}, 60), std::vector<pid_t>{}) << "left running after `coverbench plan`";
+}
+
+// Item 15: `coverbench run` killed with kill -9 while a planner (which started a child in its own
+// session) is answering: its workers, the planner and the child die too (PR_SET_PDEATHSIG for the
+// workers and the planner, the run's guardian for the rest; in 5 s here, polled for up to 60 s so
+// that a loaded machine gives the same verdict).
+TEST_F(External, KillingTheRunnerKillsEveryProcessItStarted) {
+  const std::string cfg = config("killed", "  - external: planners/orphans-sleep.json\n", 600);
+  const pid_t runner = ::fork();
+  ASSERT_GE(runner, 0);
+  if (runner == 0) {
+    ::setpgid(0, 0);
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(null, STDERR_FILENO);
+    ::chdir(dir_.c_str());
+    ::execl(COVERBENCH_BINARY, COVERBENCH_BINARY, "run", cfg.c_str(), "--no-report", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  const fs::path file = dir_ / "planners" / "pids.txt";
+  // A planner has recorded itself, its child and its worker.
+  for (int i = 0; i < 60000 && recordedPids(file).size() < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_GE(recordedPids(file).size(), 3u);
+  ASSERT_EQ(::kill(runner, SIGKILL), 0);
+  ASSERT_EQ(::waitpid(runner, nullptr, 0), runner);
+  const std::vector<pid_t> pids = recordedPids(file);  // a second planner may have recorded itself meanwhile
+  double gone_after = 0.0;
+  EXPECT_EQ(survivors(pids, 60, &gone_after), std::vector<pid_t>{}) << "left running after kill -9 of `coverbench run`";
+  std::printf("[          ] every process was gone %.2f s after kill -9 of the runner\n", gone_after);
 }
 
 }  // namespace

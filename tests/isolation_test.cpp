@@ -72,9 +72,12 @@ void registerMisbehavingPlanners() {
     volatile unsigned long spin = 0;
     for (;;) ++spin;  // ignores its budget
   }));
+  // It asks for 64 MiB at a time and touches none of it: the worker's address-space limit refuses
+  // it after a few blocks, at once, however slow the machine's page faults (filling 1 MiB blocks,
+  // it met the time limit first on a loaded machine).
   addPlannerForTesting(misbehaving("allocates-without-bound", [](const Problem&) -> PlanResult {
-    std::vector<std::vector<char>> hoard;
-    for (;;) hoard.emplace_back(1 << 20, 'x');
+    std::vector<void*> hoard;
+    for (;;) hoard.push_back(::operator new(std::size_t{64} << 20));  // a call: never elided
   }));
   addPlannerForTesting(misbehaving("throws", [](const Problem&) -> PlanResult { throw std::runtime_error("on purpose"); }));
   addPlannerForTesting(misbehaving("cheats", straightThrough));  // through the obstacle at the bottom

@@ -2,9 +2,12 @@
 // line out), and the planner's process, started once and kept for the next run.
 #include "coverbench/external_planner.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
+#include <sys/stat.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -133,15 +136,7 @@ ParamSpec readParam(const ManifestReader& r, const json& p, const std::string& w
   return s;
 }
 
-// --- the process --------------------------------------------------------------------------------
-
-/// Resident set of a process in bytes (NaN when it is gone).
-double residentBytes(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("VmRSS:", 0) == 0) return std::atof(line.c_str() + 6) * 1024.0;
-  return NAN;
-}
+// --- the process ---------------------------------------------------------------------------------
 
 std::string describeExit(int status) {
   if (WIFSIGNALED(status)) {
@@ -151,7 +146,121 @@ std::string describeExit(int status) {
   return "exited with code " + std::to_string(WEXITSTATUS(status));
 }
 
-/// One planner process: started on the first question, asked one line at a time.
+std::string mib(double bytes) { return std::to_string(static_cast<long long>(bytes / 1048576.0)); }
+
+/// Reads a small file whole ("" when it cannot be read).
+std::string readSmall(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+bool writeSmall(const std::string& path, const std::string& text) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool ok = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  ::close(fd);
+  return ok;
+}
+
+/// The processes now running (not zombies) whose environment holds `entry` ("NAME=value").
+std::vector<pid_t> processesWithEntry(const std::string& entry) {
+  std::vector<pid_t> out;
+  DIR* proc = ::opendir("/proc");
+  if (!proc) return out;
+  while (const dirent* e = ::readdir(proc)) {
+    char* end = nullptr;
+    const long pid = std::strtol(e->d_name, &end, 10);
+    if (pid <= 0 || *end != '\0' || pid == ::getpid()) continue;
+    const std::string env = readSmall("/proc/" + std::string(e->d_name) + "/environ");
+    std::size_t at = 0;
+    bool found = false;
+    while (at < env.size() && !found) {
+      const std::size_t stop = env.find('\0', at);
+      const std::size_t len = (stop == std::string::npos ? env.size() : stop) - at;
+      found = len == entry.size() && env.compare(at, len, entry) == 0;
+      if (stop == std::string::npos) break;
+      at = stop + 1;
+    }
+    if (!found) continue;
+    const std::string stat = readSmall("/proc/" + std::string(e->d_name) + "/stat");
+    const std::size_t paren = stat.rfind(')');
+    if (paren != std::string::npos && paren + 2 < stat.size() && (stat[paren + 2] == 'Z' || stat[paren + 2] == 'X')) continue;
+    out.push_back(static_cast<pid_t>(pid));
+  }
+  ::closedir(proc);
+  return out;
+}
+
+/// The pids in a cgroup ("" folder: none).
+std::vector<pid_t> cgroupPids(const std::string& folder) {
+  std::vector<pid_t> out;
+  if (folder.empty()) return out;
+  std::istringstream in(readSmall(folder + "/cgroup.procs"));
+  for (long pid = 0; in >> pid;)
+    if (pid > 0 && pid != ::getpid()) out.push_back(static_cast<pid_t>(pid));
+  return out;
+}
+
+/// The memory controller's folder of this process's cgroup (cgroup v1), where a planner's cgroup
+/// is made; "" when there is none or this process may not make cgroups there (then a planner's
+/// processes are found by their environment and their memory is their summed resident sets).
+const std::string& memoryCgroupBase() {
+  static const std::string base = [] {
+    std::istringstream in(readSmall("/proc/self/cgroup"));
+    for (std::string line; std::getline(in, line);) {
+      const std::size_t a = line.find(':'), b = line.find(':', a + 1);
+      if (a == std::string::npos || b == std::string::npos) continue;
+      std::string controllers = "," + line.substr(a + 1, b - a - 1) + ",";
+      if (controllers.find(",memory,") == std::string::npos) continue;
+      const std::string folder = "/sys/fs/cgroup/memory" + line.substr(b + 1);
+      const std::string probe = folder + "/coverbench-probe-" + std::to_string(::getpid());
+      if (::mkdir(probe.c_str(), 0755) != 0) return std::string();
+      ::rmdir(probe.c_str());
+      return folder;
+    }
+    return std::string();
+  }();
+  return base;
+}
+
+/// "oom_kill N" of a v1 memory cgroup: how many of its processes the kernel killed at its limit.
+long long oomKills(const std::string& folder) {
+  std::istringstream in(readSmall(folder + "/memory.oom_control"));
+  for (std::string key; in >> key;) {
+    long long n = 0;
+    in >> n;
+    if (key == "oom_kill") return n;
+  }
+  return 0;
+}
+
+/// Kills every process in `folder` (a cgroup, may be "") and every process whose environment holds
+/// `entry`, until none is left (a process may fork while it is being killed), then removes the cgroup.
+void killTree(const std::string& folder, const std::string& entry) {
+  for (int round = 0; round < 200; ++round) {
+    std::vector<pid_t> pids = cgroupPids(folder);
+    const std::vector<pid_t> tagged = entry.empty() ? std::vector<pid_t>() : processesWithEntry(entry);
+    pids.insert(pids.end(), tagged.begin(), tagged.end());
+    if (pids.empty()) break;
+    for (pid_t p : pids) ::kill(p, SIGKILL);
+    ::usleep(round < 10 ? 1000 : 10000);
+  }
+  for (int i = 0; !folder.empty() && i < 200 && ::rmdir(folder.c_str()) != 0 && errno == EBUSY; ++i) ::usleep(5000);
+}
+
+/// This process's sequence of planner processes (names their cgroups and tokens).
+long long nextProcessNumber() {
+  static long long n = 0;
+  return ++n;
+}
+
+/// One planner process: started on the first question, asked one line at a time. It and every
+/// process it starts (its tree) are one unit: in a cgroup of their own where the memory controller
+/// allows it (limited and accounted together), and tagged by an environment variable
+/// (COVERBENCH_PLANNER_TOKEN), so that a child that left the process group (setsid) is found and
+/// killed with the rest.
 class PlannerProcess {
  public:
   explicit PlannerProcess(Launch launch) : launch_(std::move(launch)) {}
@@ -166,27 +275,21 @@ class PlannerProcess {
     std::string reason;
   };
 
-  /// Sends `request` and reads one line back, within `timeout_s` and `memory_limit` bytes of
-  /// resident set (0: none). Any failure stops the process.
+  /// Sends `request` and reads one line back, within `timeout_s` and `memory_limit` bytes for the
+  /// planner's processes together (0: none). Any failure stops the process and its tree.
   Answer ask(const std::string& request, double timeout_s, std::size_t memory_limit) {
     Answer a;
-    if (pid_ < 0 && !start(a)) return a;
+    if (pid_ > 0 && !leftoverCheck(a)) return a;
+    if (pid_ > 0 && memory_limit != limit_ && !setLimit(memory_limit)) stop();  // restarted under the new limit
+    if (pid_ < 0 && !start(a, memory_limit)) return a;
     const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                              std::chrono::duration<double>(std::min(timeout_s, 1e9)));
     std::size_t sent = 0;
     std::string got;
     for (;;) {
       const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+      if (overMemory(a)) return a;
       if (left <= 0.0) return fail(a, PlanStatus::Timeout, "the planner's process did not answer within the time limit (killed)");
-      if (memory_limit > 0) {
-        const double rss = residentBytes(pid_);
-        if (rss > static_cast<double>(memory_limit))
-          return fail(a, PlanStatus::MemoryLimit,
-                      "the planner's process grew to " + std::to_string(static_cast<long long>(rss / 1048576.0)) +
-                          " MiB, past the memory limit of " +
-                          std::to_string(static_cast<long long>(static_cast<double>(memory_limit) / 1048576.0)) +
-                          " MiB (killed)");
-      }
       pollfd fds[2] = {{out_, POLLIN, 0}, {in_, POLLOUT, 0}};
       const int n = ::poll(fds, sent < request.size() ? 2 : 1, static_cast<int>(std::clamp(left * 1000.0, 1.0, 10.0)));
       if (n < 0 && errno != EINTR) return fail(a, PlanStatus::Crash, std::string("poll: ") + std::strerror(errno));
@@ -209,6 +312,7 @@ class PlannerProcess {
         if (nl != std::string::npos) {
           if (nl + 1 != got.size())
             return fail(a, PlanStatus::InvalidOutput, "the planner printed more than one line for one problem");
+          if (overMemory(a)) return a;  // a child killed at the limit, and the planner answered anyway
           a.ok = true;
           a.line = got.substr(0, nl);
           return a;
@@ -220,27 +324,124 @@ class PlannerProcess {
     }
   }
 
+  /// Stops the process and every process it started.
+  void stop() {
+    if (in_ >= 0) ::close(in_);
+    if (out_ >= 0) ::close(out_);
+    in_ = out_ = -1;
+    if (pid_ > 0) {
+      ::kill(-pid_, SIGKILL);
+      ::kill(pid_, SIGKILL);
+      int status = 0;
+      while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+      }
+    }
+    if (!token_.empty()) killTree(cgroup_, "COVERBENCH_PLANNER_TOKEN=" + token_);
+    pid_ = -1;
+    cgroup_.clear();
+    token_.clear();
+    limit_ = 0;
+  }
+
  private:
-  bool start(Answer& a) {
+  /// Output left over from the last answer (a second line, written after it was read) fails the
+  /// run about to be asked: it would otherwise be read as that run's answer.
+  bool leftoverCheck(Answer& a) {
+    pollfd fd{out_, POLLIN, 0};
+    if (::poll(&fd, 1, 0) <= 0 || !(fd.revents & POLLIN)) return true;
+    char buf[256];
+    const ssize_t r = ::read(out_, buf, sizeof buf);
+    if (r <= 0) return true;  // closed: the process ended between runs; asking it says how
+    fail(a, PlanStatus::InvalidOutput,
+         "the planner wrote after its previous answer ('" + std::string(buf, static_cast<std::size_t>(std::min<ssize_t>(r, 40))) +
+             "...'): one problem gets one line, and nothing follows it");
+    return false;
+  }
+
+  /// The memory limit of the planner's cgroup (0: none); false when it cannot be set.
+  bool setLimit(std::size_t memory_limit) {
+    if (!cgroup_.empty()) {
+      const std::string v = memory_limit > 0 ? std::to_string(memory_limit) : std::string("-1");
+      if (!writeSmall(cgroup_ + "/memory.limit_in_bytes", v)) return false;
+      writeSmall(cgroup_ + "/memory.memsw.limit_in_bytes", v);  // where swap is accounted: no swapping past it
+    }
+    limit_ = memory_limit;
+    return true;
+  }
+
+  /// Past the memory limit: the kernel killed one of the planner's processes at its cgroup's limit,
+  /// or (without a cgroup) their resident sets add up to more than the limit.
+  bool overMemory(Answer& a) {
+    if (limit_ == 0) return false;
+    if (!cgroup_.empty()) {
+      if (oomKills(cgroup_) == 0) return false;
+      fail(a, PlanStatus::MemoryLimit,
+           "the planner's processes grew past the memory limit of " + mib(static_cast<double>(limit_)) +
+               " MiB (the kernel stopped one at the limit; all killed)");
+      return true;
+    }
+    double rss = 0.0;
+    std::vector<pid_t> pids = processesWithEntry("COVERBENCH_PLANNER_TOKEN=" + token_);
+    for (pid_t p : pids) {
+      std::ifstream in("/proc/" + std::to_string(p) + "/status");
+      for (std::string line; std::getline(in, line);)
+        if (line.rfind("VmRSS:", 0) == 0) rss += std::atof(line.c_str() + 6) * 1024.0;
+    }
+    if (rss <= static_cast<double>(limit_)) return false;
+    fail(a, PlanStatus::MemoryLimit,
+         "the planner's processes grew to " + mib(rss) + " MiB, past the memory limit of " +
+             mib(static_cast<double>(limit_)) + " MiB (killed)");
+    return true;
+  }
+
+  bool start(Answer& a, std::size_t memory_limit) {
     int to_child[2], from_child[2];
     if (::pipe2(to_child, O_CLOEXEC) != 0 || ::pipe2(from_child, O_CLOEXEC) != 0) {
       fail(a, PlanStatus::Error, std::string("pipe: ") + std::strerror(errno));
       return false;
     }
+    const long long number = nextProcessNumber();
+    token_ = std::to_string(::getpid()) + "-" + std::to_string(number);
+    // The run's token (set by the runner) names the cgroup, so the runner's guardian finds it.
+    const char* run = std::getenv("COVERBENCH_RUN_TOKEN");
+    cgroup_.clear();
+    if (!memoryCgroupBase().empty()) {
+      const std::string folder = memoryCgroupBase() + "/coverbench-" + (run && *run ? std::string(run) : "p") + "-" + token_;
+      if (::mkdir(folder.c_str(), 0755) == 0) cgroup_ = folder;
+    }
+    if (!setLimit(memory_limit)) {  // no limit can be set on it: without a cgroup, summed resident sets
+      killTree(cgroup_, "");
+      cgroup_.clear();
+      setLimit(memory_limit);
+    }
+    const std::string procs = cgroup_.empty() ? std::string() : cgroup_ + "/cgroup.procs";
+    const std::string token_entry = token_;
     std::vector<char*> argv;
     for (std::string& s : launch_.command) argv.push_back(s.data());
     argv.push_back(nullptr);
+    const pid_t parent = ::getpid();
     const pid_t pid = ::fork();
     if (pid < 0) {
       fail(a, PlanStatus::Error, std::string("fork: ") + std::strerror(errno));
       return false;
     }
     if (pid == 0) {
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // its host died (kill -9): it dies too
+      if (::getppid() != parent) ::_exit(125);
       ::setpgid(0, 0);  // its own group: killed whole, children included
+      if (!procs.empty()) {  // into its cgroup before it can start anything
+        const int fd = ::open(procs.c_str(), O_WRONLY);
+        if (fd >= 0) {
+          const ssize_t ignored = ::write(fd, "0", 1);
+          (void)ignored;
+          ::close(fd);
+        }
+      }
+      ::setenv("COVERBENCH_PLANNER_TOKEN", token_entry.c_str(), 1);
       ::dup2(to_child[0], STDIN_FILENO);
       ::dup2(from_child[1], STDOUT_FILENO);
-      // The worker's limits were set for its own run: the planner's process is held to the run's
-      // limits here, by the host (time, resident set), not by the worker's address space.
+      // The worker's limits were set for its own run: the planner's processes are held to the run's
+      // limits here, by the host (time, their cgroup's memory), not by the worker's address space.
       const rlimit none{RLIM_INFINITY, RLIM_INFINITY};
       ::setrlimit(RLIMIT_AS, &none);
       ::setrlimit(RLIMIT_CPU, &none);
@@ -273,36 +474,27 @@ class PlannerProcess {
     return a;
   }
 
-  /// The process ended (or will): crash, with how it ended.
+  /// The process ended (or will): crash, with how it ended; memory_limit when the kernel stopped
+  /// one of its processes at the limit.
   Answer& died(Answer& a, const std::string& what) {
     int status = 0;
     pid_t r = 0;
     for (int i = 0; i < 50 && (r = ::waitpid(pid_, &status, WNOHANG)) == 0; ++i) ::usleep(2000);
     const bool reaped = r == pid_;
     if (reaped) pid_ = -1;
+    if (overMemory(a)) return a;
     std::string reason = "the planner's process " + (reaped ? describeExit(status) + " (" + what + ")" : what);
     if (reaped && WIFEXITED(status) && WEXITSTATUS(status) == 127)
       reason = "the planner's command could not be started: " + launch_.command.front();
     return fail(a, PlanStatus::Crash, reason);
   }
 
-  void stop() {
-    if (in_ >= 0) ::close(in_);
-    if (out_ >= 0) ::close(out_);
-    in_ = out_ = -1;
-    if (pid_ > 0) {
-      ::kill(-pid_, SIGKILL);
-      ::kill(pid_, SIGKILL);
-      int status = 0;
-      while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
-      }
-    }
-    pid_ = -1;
-  }
-
   Launch launch_;
   pid_t pid_ = -1;
   int in_ = -1, out_ = -1;
+  std::string cgroup_;     ///< its cgroup's folder ("" without one)
+  std::string token_;      ///< COVERBENCH_PLANNER_TOKEN of its processes
+  std::size_t limit_ = 0;  ///< the memory limit it runs under (bytes, 0: none)
 };
 
 /// The processes of this process (a worker keeps its planners' processes across runs), by manifest.
@@ -373,13 +565,76 @@ std::string requestJson(const Problem& problem, double time_limit_s, long long i
   return json{{"protocol", kProtocolVersion}, {"id", id}, {"problem", p}}.dump();
 }
 
+void stopPlannerProcesses() { processes().clear(); }
+
+void killRunProcesses(const std::string& run_token, int spare) {
+  const std::string& base = memoryCgroupBase();
+  std::vector<std::string> folders;
+  if (!base.empty())
+    if (DIR* d = ::opendir(base.c_str())) {
+      const std::string prefix = "coverbench-" + run_token + "-";
+      while (const dirent* e = ::readdir(d))
+        if (std::string(e->d_name).rfind(prefix, 0) == 0) folders.push_back(base + "/" + e->d_name);
+      ::closedir(d);
+    }
+  const std::string entry = "COVERBENCH_RUN_TOKEN=" + run_token;
+  for (int round = 0; round < 200; ++round) {
+    std::vector<pid_t> pids = processesWithEntry(entry);
+    for (const std::string& f : folders)
+      for (pid_t p : cgroupPids(f)) pids.push_back(p);
+    pids.erase(std::remove(pids.begin(), pids.end(), spare), pids.end());
+    if (pids.empty()) break;
+    for (pid_t p : pids) ::kill(p, SIGKILL);
+    ::usleep(round < 10 ? 1000 : 10000);
+  }
+  for (const std::string& f : folders) killTree(f, "");
+}
+
+static std::size_t answerProblem(const std::string& line, std::string& why) {
+  // Before any parsing: a line of 20 MiB of '[' would cost the parser gigabytes and seconds.
+  int depth = 0;
+  std::size_t arrays = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : line) {
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxAnswerDepth) {
+        why = "nested deeper than " + std::to_string(kMaxAnswerDepth) + " levels (an answer needs 3)";
+        return 1;
+      }
+      if (c == '[' && ++arrays > kMaxAnswerWaypoints + 8) {
+        why = "holds more than " + std::to_string(kMaxAnswerWaypoints) + " waypoints (the scoring limit)";
+        return 1;
+      }
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return 0;
+}
+
 bool readAnswer(const std::string& line, long long id, PlanResult& result, std::string& why) {
-  const json a = json::parse(line, nullptr, false);
   auto bad = [&](const std::string& text) {
     why = text;
     return false;
   };
-  if (a.is_discarded()) return bad("not JSON (" + std::to_string(line.size()) + " bytes: " + line.substr(0, 60) + ")");
+  if (line.size() > kMaxAnswerBytes)
+    return bad("over " + std::to_string(kMaxAnswerBytes >> 20) + " MiB");
+  if (answerProblem(line, why) != 0) return false;
+  json a;
+  try {
+    a = parseJsonStrict(line, "answer");  // no duplicate key: a second "status" is not read over the first
+  } catch (const InputError& e) {
+    if (e.field() != "(document)") return bad(e.field() + ": " + e.problem());
+    return bad("not JSON (" + std::to_string(line.size()) + " bytes: " + line.substr(0, 60) + "): " + e.problem());
+  }
   if (!a.is_object()) return bad("must be a JSON object");
   for (const auto& [key, value] : a.items())
     if (key != "protocol" && key != "id" && key != "status" && key != "reason" && key != "waypoints" &&

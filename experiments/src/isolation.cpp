@@ -2,6 +2,7 @@
 #include "isolation.hpp"
 
 #include "allocation_meter.hpp"
+#include "coverbench/external_planner.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -210,8 +211,9 @@ RunRecord measuredRun(const RunSpec& spec) {
 
 /// A worker: reads run indices, answers each with a length-prefixed record. Exits at the end of
 /// its input, and after a run that hit the memory limit (its heap may be in any state).
-[[noreturn]] void workerLoop(const std::vector<const RunSpec*>& runs, int cmd_fd, int result_fd) {
+[[noreturn]] void workerLoop(const std::vector<const RunSpec*>& runs, int cmd_fd, int result_fd, pid_t runner) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // the runner died (kill -9): stop too
+  if (::getppid() != runner) ::_exit(0);  // it died before this worker could ask for that
   // A planner that prints must not garble the runner's terminal or the results.
   const int devnull = ::open("/dev/null", O_WRONLY);
   if (devnull >= 0) {
@@ -223,12 +225,18 @@ RunRecord measuredRun(const RunSpec& spec) {
   ::setrlimit(RLIMIT_CORE, &no_core);
   for (;;) {
     std::uint64_t index = 0;
-    if (!readAll(cmd_fd, reinterpret_cast<char*>(&index), sizeof index) || index >= runs.size()) ::_exit(0);
+    if (!readAll(cmd_fd, reinterpret_cast<char*>(&index), sizeof index) || index >= runs.size()) {
+      external::stopPlannerProcesses();  // its planners' processes, and every process they started
+      ::_exit(0);
+    }
     const RunRecord rec = measuredRun(*runs[index]);
     const std::string bytes = serializeRecord(rec);
     const std::uint64_t size = bytes.size();
     writeAll(result_fd, std::string(reinterpret_cast<const char*>(&size), sizeof size) + bytes);
-    if (g_out_of_memory) ::_exit(0);
+    if (g_out_of_memory) {
+      external::stopPlannerProcesses();
+      ::_exit(0);
+    }
   }
 }
 
@@ -354,6 +362,7 @@ class Pool {
     if (::pipe2(cmd, O_CLOEXEC) != 0 || ::pipe2(result, O_CLOEXEC) != 0)
       throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
     std::fflush(nullptr);  // nothing buffered is written twice by a worker
+    const pid_t runner = ::getpid();
     const pid_t pid = ::fork();
     if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
     if (pid == 0) {
@@ -361,7 +370,7 @@ class Pool {
       ::close(result[0]);
       for (const Worker& other : workers_)
         if (other.pid > 0) ::close(other.cmd_fd), ::close(other.result_fd);
-      workerLoop(runs_, cmd[0], result[1]);
+      workerLoop(runs_, cmd[0], result[1], runner);
     }
     ::close(cmd[0]);
     ::close(result[1]);
@@ -384,6 +393,66 @@ class Pool {
 
   const std::vector<const RunSpec*>& runs_;
   std::vector<Worker> workers_;
+};
+
+/// Every process a run starts (workers, planners' processes and theirs, also those that left the
+/// process group with setsid) carries the run's token in its environment (COVERBENCH_RUN_TOKEN),
+/// and a planner's cgroup is named for it. When the run ends normally the runner kills what is
+/// left of them; when the runner is killed (kill -9), its workers die with it (PR_SET_PDEATHSIG),
+/// their planners' processes with them, and a guardian process, which holds the read end of a pipe
+/// only the runner and its workers can write to, sees the pipe close and kills the rest.
+class RunGuard {
+ public:
+  RunGuard() {
+    static long long n = 0;
+    token_ = std::to_string(::getpid()) + "-" + std::to_string(++n) + "-" +
+             std::to_string(Clock::now().time_since_epoch().count() % 1000000007);
+    if (const char* old = std::getenv("COVERBENCH_RUN_TOKEN")) old_ = old, had_old_ = true;
+    ::setenv("COVERBENCH_RUN_TOKEN", token_.c_str(), 1);
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) return;
+    std::fflush(nullptr);
+    const pid_t runner = ::getpid();
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      ::close(fds[1]);
+      ::setpgid(0, 0);  // a signal to the runner's process group does not stop the clean-up
+      for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE}) ::signal(sig, SIG_IGN);
+      char c;
+      while (::read(fds[0], &c, 1) != 0 && errno == EINTR) {
+      }
+      external::killRunProcesses(token_, runner);
+      ::_exit(0);
+    }
+    ::close(fds[0]);
+    if (pid < 0) {
+      ::close(fds[1]);
+      return;
+    }
+    guardian_ = pid;
+    pipe_ = fds[1];
+  }
+  ~RunGuard() {
+    external::killRunProcesses(token_, ::getpid());  // the guardian too: its work is done here
+    if (pipe_ >= 0) ::close(pipe_);
+    if (guardian_ > 0) {
+      ::kill(guardian_, SIGKILL);
+      while (::waitpid(guardian_, nullptr, 0) < 0 && errno == EINTR) {
+      }
+    }
+    if (had_old_)
+      ::setenv("COVERBENCH_RUN_TOKEN", old_.c_str(), 1);
+    else
+      ::unsetenv("COVERBENCH_RUN_TOKEN");
+  }
+  RunGuard(const RunGuard&) = delete;
+  RunGuard& operator=(const RunGuard&) = delete;
+
+ private:
+  std::string token_, old_;
+  bool had_old_ = false;
+  pid_t guardian_ = -1;
+  int pipe_ = -1;
 };
 
 }  // namespace
@@ -460,6 +529,7 @@ RunRecord deserializeRecord(const std::string& bytes) {
 void executeIsolated(const std::vector<const RunSpec*>& runs, unsigned workers,
                      const std::function<void(const RunSpec&, RunRecord)>& done) {
   ::signal(SIGPIPE, SIG_IGN);  // a worker that died shows as a failed write, not a dead runner
+  const RunGuard guard;       // destroyed after the pool: every process the run started is gone
   Pool pool(runs, std::max(1u, std::min<unsigned>(workers, static_cast<unsigned>(std::max<std::size_t>(runs.size(), 1)))));
   pool.run(done);
 }

@@ -248,6 +248,30 @@ std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vecto
   return runs;
 }
 
+JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, const Budget& budget) {
+  JudgedPlan j;
+  j.result = runPlanner(planner, problem, budget);
+  j.verdict = runStatusOf(j.result.status);
+  j.reason = j.result.reason;
+  try {
+    j.metrics = computeMetrics(*problem.wall, problem.tool, j.result.path, problem.vehicle);
+  } catch (const std::exception& e) {  // beyond the scoring limits (docs/metrics.md)
+    j.not_scored = "the path " + (dynamic_cast<const InputError*>(&e) ? static_cast<const InputError&>(e).problem()
+                                                                      : std::string(e.what()));
+    if (j.result.hasPath()) {
+      j.verdict = RunStatus::MetricsError;
+      j.reason = "the path could not be scored: " + j.not_scored;
+    }
+    return j;
+  }
+  if (j.result.hasPath() && !j.metrics.validity.valid) {
+    j.verdict = RunStatus::InvalidOutput;
+    j.reason = std::to_string(j.metrics.validity.violations) + " segments violate the wall or the clearance" +
+               (j.result.reason.empty() ? "" : "; the planner said: " + j.result.reason);
+  }
+  return j;
+}
+
 RunRecord executeRun(const RunSpec& spec) {
   RunRecord rec;
   rec.key = spec.key;

@@ -53,12 +53,16 @@ def planners():
     return json.loads(_native().planners())
 
 
-def plan(wall, planner, params=None, tool_width=0.1, clearance=0.02, seed=0, time_limit_s=60.0):
+def plan(wall, planner, params=None, tool_width=0.1, clearance=0.02, seed=0, time_limit_s=60.0, memory_mb=4096.0):
     """Plans `wall` (a dict, JSON text or a wall file's path) with `planner` (a registered name or an
-    external planner's manifest path): status, reason, waypoints, tool_on, stats, plan_time_ms."""
+    external planner's manifest path) and judges the path as `coverbench plan` and a run do (the same
+    code): status (what a run would store: ``invalid_output`` for a path that fails the validity
+    check, whatever the planner said), reason, planner_status (what the planner said), valid,
+    violations, not_scored, waypoints, tool_on, stats, plan_time_ms. An external planner's processes
+    are held to `time_limit_s` and `memory_mb` (all of them together)."""
     settings = [(k, json.dumps(v) if isinstance(v, bool) else str(v)) for k, v in sorted((params or {}).items())]
     return json.loads(_native().plan(_wall_text(wall), planner, settings, float(tool_width), float(clearance), int(seed),
-                                   float(time_limit_s)))
+                                   float(time_limit_s), float(memory_mb)))
 
 
 def score(wall, waypoints, tool_on, tool_width=0.1, clearance=0.02, bulge=None, judge="fast"):

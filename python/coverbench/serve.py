@@ -8,7 +8,8 @@ method ``plan(problem)`` that returns a dict: ``status`` ("ok", "partial", "no_r
 "invalid_input", "timeout" or "error"), ``reason``, and for ok and partial ``waypoints`` ([x, y]
 pairs), ``tool_on`` (one bool per segment), optionally ``bulge`` and ``stats`` (numbers). The
 process is started once and serves many problems; what the planner prints goes to stderr, so it
-cannot break the protocol; an exception becomes status error with its message.
+cannot break the protocol; an exception becomes status error with its message, and so does a plan
+JSON cannot hold (a NaN or an infinite coordinate, an object that is not a number).
 """
 import importlib
 import json
@@ -55,9 +56,16 @@ def serve(planner, stdin=None, stdout=None):
     for line in stdin:
         if not line.strip():
             continue
-        request = json.loads(line)
-        request_id = request.get("id")
-        if request.get("protocol") != PROTOCOL:
+        try:
+            request = json.loads(line)
+            request_id = request.get("id") if isinstance(request, dict) else None
+        except ValueError as e:
+            request, request_id = None, None
+            reason = f"the request is not JSON: {e}"
+        if not isinstance(request, dict):
+            reason = reason if request is None else "the request is not a JSON object"
+            answer = {"protocol": PROTOCOL, "id": request_id, "status": "error", "reason": reason}
+        elif request.get("protocol") != PROTOCOL:
             answer = {"protocol": PROTOCOL, "id": request_id, "status": "error",
                       "reason": f"this planner speaks protocol {PROTOCOL}, not {request.get('protocol')}"}
         else:
@@ -67,8 +75,20 @@ def serve(planner, stdin=None, stdout=None):
                 traceback.print_exc(file=sys.stderr)
                 answer = {"protocol": PROTOCOL, "id": request_id, "status": "error",
                           "reason": f"{type(e).__name__}: {e}"}
-        out.write(json.dumps(answer, allow_nan=False, separators=(",", ":")) + "\n")
+        out.write(_line(request_id, answer) + "\n")
         out.flush()
+
+
+def _line(request_id, answer):
+    """The answer as one line of JSON; an answer JSON cannot hold (NaN, infinity, an object that is
+    not a number, string, list or dict) is status error saying why, never a dead planner."""
+    try:
+        return json.dumps(answer, allow_nan=False, separators=(",", ":"))
+    except (ValueError, TypeError, RecursionError) as e:
+        traceback.print_exc(file=sys.stderr)
+        return json.dumps({"protocol": PROTOCOL, "id": request_id, "status": "error",
+                           "reason": f"the plan cannot be written as JSON: {type(e).__name__}: {e}"},
+                          separators=(",", ":"))
 
 
 def main(argv=None):

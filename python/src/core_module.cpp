@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "coverbench/experiment.hpp"
 #include "coverbench/external_planner.hpp"
 #include "coverbench/judge.hpp"
 #include "coverbench/limits.hpp"
@@ -68,7 +69,7 @@ Path pathOf(const std::vector<std::pair<double, double>>& waypoints, const std::
 
 std::string plan(const std::string& wall_text, const std::string& planner,
                  const std::vector<std::pair<std::string, std::string>>& settings, double tool_width, double clearance,
-                 std::uint64_t seed, double time_limit_s) {
+                 std::uint64_t seed, double time_limit_s, double memory_mb) {
   const Wall wall = wallOf(wall_text, "wall");
   const PlannerInfo& info = external::plannerNamed(planner, "planner");
   Problem problem;
@@ -78,8 +79,19 @@ std::string plan(const std::string& wall_text, const std::string& planner,
   validateTimeLimit(time_limit_s, "time_limit_s", "time_limit_s");
   problem.params = resolveParams(info, settings, "params");
   problem.seed = seed;
-  const PlanResult r = runPlanner(info, problem, Budget(std::chrono::duration<double>(time_limit_s)));
-  ordered_json out = {{"planner", info.name}, {"status", toString(r.status)}, {"reason", r.reason}};
+  if (!(memory_mb > 0.0 && memory_mb <= 1048576.0))
+    throw InputError("memory_mb", "memory_mb", "must be in (0, 1048576] MiB, got " + shortNumber(memory_mb));
+  problem.memory_limit_bytes = static_cast<std::size_t>(memory_mb * 1024.0 * 1024.0);
+  // Planned and judged as `coverbench plan` and a run judge it (one code path): a path that fails
+  // the validity check is invalid_output, one beyond the scoring limits metrics_error.
+  const JudgedPlan judged = planAndJudge(info, problem, Budget(std::chrono::duration<double>(time_limit_s)));
+  const PlanResult& r = judged.result;
+  ordered_json out = {{"planner", info.name}, {"status", toString(judged.verdict)}, {"reason", judged.reason},
+                      {"planner_status", toString(r.status)}};
+  const bool scored = r.hasPath() && judged.not_scored.empty();
+  out["valid"] = scored && judged.metrics.validity.valid;
+  out["violations"] = scored ? ordered_json(judged.metrics.validity.violations) : ordered_json(nullptr);
+  out["not_scored"] = judged.not_scored;
   ordered_json w = ordered_json::array();
   for (const Point& p : r.path.waypoints) w.push_back({p.x, p.y});
   out["waypoints"] = w;
@@ -129,7 +141,8 @@ PYBIND11_MODULE(_core, m) {
         py::arg("path"));
   m.def("planners", &coverbench::planners);
   m.def("plan", &coverbench::plan, py::arg("wall"), py::arg("planner"), py::arg("params"), py::arg("tool_width"),
-        py::arg("clearance"), py::arg("seed"), py::arg("time_limit_s"), py::call_guard<py::gil_scoped_release>());
+        py::arg("clearance"), py::arg("seed"), py::arg("time_limit_s"), py::arg("memory_mb") = 4096.0,
+        py::call_guard<py::gil_scoped_release>());
   m.def("score", &coverbench::score, py::arg("wall"), py::arg("waypoints"), py::arg("tool_on"), py::arg("bulge"),
         py::arg("tool_width"), py::arg("clearance"), py::arg("judge"), py::call_guard<py::gil_scoped_release>());
   m.def("runs", &coverbench::runs, py::arg("database"), py::arg("experiment") = 0);

@@ -58,6 +58,45 @@ class Package(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "unknown planner"):
             coverbench.plan(WALL, "nope")
 
+    def external(self, d, name, body):
+        with open(os.path.join(d, name + ".py"), "w", encoding="utf-8") as f:
+            f.write("import json, subprocess, sys\nfor line in sys.stdin:\n    req = json.loads(line)\n" + body)
+        with open(os.path.join(d, name + ".json"), "w", encoding="utf-8") as f:
+            json.dump({"coverbench_planner": 1, "name": name, "version": "1", "summary": "s", "reference": "r",
+                       "command": ["/usr/bin/python3", name + ".py"], "files": [name + ".py"]}, f)
+        return os.path.join(d, name + ".json")
+
+    def test_an_external_planners_path_is_judged_as_the_command_judges_it(self):
+        # A path entirely outside the wall, which the planner calls ok: invalid_output here, as a
+        # run stores it, and INVALID from `coverbench plan` (one code path judges both).
+        with tempfile.TemporaryDirectory() as d:
+            manifest = self.external(d, "outside", "    print(json.dumps({'protocol': 1, 'id': req['id'], 'status': 'ok', "
+                                     "'waypoints': [[-5, -5], [-4, -5]], 'tool_on': [True]}), flush=True)\n")
+            ours = coverbench.plan(WALL, manifest)
+            r = subprocess.run([BINARY, "plan", "--wall", WALL, "--planner", manifest, "--out", os.path.join(d, "p.json")],
+                               capture_output=True, text=True)
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("INVALID", r.stdout)
+        self.assertEqual(ours["status"], "invalid_output")
+        self.assertEqual(ours["planner_status"], "ok")
+        self.assertFalse(ours["valid"])
+        self.assertIn("segments violate the wall or the clearance", ours["reason"])
+        # A registered planner's valid path stays ok.
+        good = coverbench.plan(WALL, "zigzag")
+        self.assertEqual((good["status"], good["valid"]), ("ok", True))
+
+    def test_an_external_planner_is_held_to_the_memory_limit_with_its_children(self):
+        # Its child touches 600 MiB; memory_mb=300 holds the planner's processes together. The time
+        # limit is one it cannot reach first.
+        with tempfile.TemporaryDirectory() as d:
+            manifest = self.external(d, "hog", "    subprocess.run(['/usr/bin/python3', '-c', 'b = bytearray(600 << 20)\\n"
+                                     "for i in range(0, len(b), 4096): b[i] = 1'])\n"
+                                     "    print(json.dumps({'protocol': 1, 'id': req['id'], 'status': 'error', "
+                                     "'reason': 'survived'}), flush=True)\n")
+            out = coverbench.plan(WALL, manifest, memory_mb=300, time_limit_s=600)
+        self.assertEqual(out["status"], "memory_limit", out["reason"])
+        self.assertIn("memory limit of 300 MiB", out["reason"])
+
     def test_an_experiments_runs_as_dicts(self):
         with tempfile.TemporaryDirectory() as d:
             with open(os.path.join(d, "c.yaml"), "w", encoding="utf-8") as f:

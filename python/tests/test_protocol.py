@@ -71,6 +71,25 @@ class Protocol(unittest.TestCase):
         jsonschema.validate(a, ANSWER)
         self.assertEqual((a["status"], a["reason"]), ("error", "ValueError: no luck on w"))
 
+    def test_an_answer_json_cannot_hold_is_an_error_and_serving_goes_on(self):
+        class Unwritable:
+            def __init__(self):
+                self.calls = 0
+
+            def plan(self, problem):
+                self.calls += 1
+                if self.calls == 1:
+                    return {"status": "ok", "waypoints": [[float("nan"), 0.1], [1.0, 0.1]], "tool_on": [True]}
+                if self.calls == 2:
+                    return {"status": "ok", "waypoints": [[0.1, 0.1], [1.0, 0.1]], "tool_on": [True], "stats": {"x": object()}}
+                return {"status": "ok", "waypoints": [[0.1, 0.1], [1.0, 0.1]], "tool_on": [True]}
+        answers = served(Unwritable(), request(rid=1), request(rid=2), request(rid=3))
+        self.assertEqual([a["id"] for a in answers], [1, 2, 3])
+        for a in answers:
+            jsonschema.validate(a, ANSWER)
+        self.assertEqual([a["status"] for a in answers], ["error", "error", "ok"])
+        self.assertIn("cannot be written as JSON", answers[0]["reason"])
+
     def test_the_binary_writes_requests_the_schema_accepts(self):
         binary = os.environ.get("COVERBENCH_BINARY", os.path.join(ROOT, "build", "coverbench"))
         with tempfile.TemporaryDirectory() as d:

@@ -4,11 +4,13 @@
 /// identifies its code; the planner process is started once per process that plans (each worker)
 /// and answers one problem per line of JSON (protocol 1) for as many runs as it is given.
 ///
-/// It runs under the limits and statuses of every run: past the time limit its process group is
-/// killed (timeout); past the memory limit (its resident set, read every 10 ms) it is killed
-/// (memory_limit); an answer the protocol does not allow, or one over kMaxAnswerBytes, is
-/// invalid_output with the reason; a process that dies or exits is crash. After any of these the
-/// next run starts a new process. The path it returns is judged like any other.
+/// It runs under the limits and statuses of every run: past the time limit its processes are
+/// killed (timeout); past the memory limit (its processes together: their cgroup where the memory
+/// controller allows one, else their resident sets summed every 10 ms) they are killed
+/// (memory_limit); an answer the protocol does not allow, one over kMaxAnswerBytes, or output
+/// after an answer, is invalid_output with the reason; a process that dies or exits is crash.
+/// After any of these the next run starts a new process. The path it returns is judged like any
+/// other. Stopping a planner process kills every process it started (setsid ones included).
 #include <cstddef>
 #include <string>
 
@@ -20,6 +22,15 @@ namespace coverbench::external {
 inline constexpr int kProtocolVersion = 1;
 /// The longest answer read (bytes); past it the process is killed and the run is invalid_output.
 inline constexpr std::size_t kMaxAnswerBytes = std::size_t{64} << 20;
+/// The deepest nesting of arrays and objects an answer may have (it needs 3: the answer, its
+/// waypoints, a point); checked on the bytes before the line is parsed.
+inline constexpr int kMaxAnswerDepth = 16;
+/// The most waypoints an answer may hold: the scoring limit (metrics' kMaxScoredWaypoints);
+/// checked on the bytes (arrays counted) before the line is parsed.
+inline constexpr std::size_t kMaxAnswerWaypoints = 2000000;
+/// The memory limit of an external planner's processes where no experiment sets one (`plan`,
+/// `conformance`, Python's coverbench.plan): the experiments' default, limits.memory_mb 4096.
+inline constexpr std::size_t kDefaultMemoryLimitBytes = std::size_t{4096} << 20;
 
 /// Reads a planner manifest: the planner it describes, whose `make` starts (or reuses) its
 /// process. Its code identity (PlannerInfo::code_sha256) is the SHA-256 of the manifest and of
@@ -37,7 +48,16 @@ const PlannerInfo& plannerNamed(const std::string& name, const std::string& sour
 /// The request line for one problem (protocol 1; tests and benchmarks).
 std::string requestJson(const Problem& problem, double time_limit_s, long long id);
 /// Reads an answer line into `result` (status, reason, path, stats); false with the reason in
-/// `why` when the protocol does not allow it.
+/// `why` when the protocol does not allow it: not JSON, a duplicate key, nested deeper than
+/// kMaxAnswerDepth or holding more than kMaxAnswerWaypoints (both checked before parsing), ...
 bool readAnswer(const std::string& line, long long id, PlanResult& result, std::string& why);
+
+/// Stops every planner process this process started, each with every process it started (a
+/// worker does this before it exits).
+void stopPlannerProcesses();
+/// Kills every process started under the run token `run_token` (the environment variable
+/// COVERBENCH_RUN_TOKEN, which a planner's processes inherit, and the cgroups named for it),
+/// except `spare`: the runner's guardian does this when the runner ends, however it ends.
+void killRunProcesses(const std::string& run_token, int spare);
 
 }  // namespace coverbench::external
