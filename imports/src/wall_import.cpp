@@ -312,77 +312,6 @@ Eigen::Affine2d userTransform(const std::vector<TransformStep>& steps) {
   return t;
 }
 
-/// ringIsSimple's test (coverbench/geometry.hpp) without comparing every edge with every other:
-/// that took 54 s for 10^5 vertices. Edges are put in the cells (about the mean edge long) of a
-/// grid that they pass through; only edges sharing a cell, with overlapping bounding boxes, are tested,
-/// with the same predicates in the same order, so the answer is ringIsSimple's (edges whose
-/// boxes are apart cannot meet).
-bool ringIsSimpleFast(const Ring& ring) {
-  const std::size_t n = ring.size();
-  if (n < 3) return false;
-  for (std::size_t i = 0; i < n; ++i) {
-    // Adjacent edges share one vertex; they must not fold back onto each other.
-    const Point prev = ring[(i + n - 1) % n], v = ring[i], next = ring[(i + 1) % n];
-    if (v == next) return false;
-    // The same arithmetic as ringIsSimple's: at vertex 0 it orients (next, v, prev).
-    const double turn = i == 0 ? cross(v - next, prev - next) : cross(v - prev, next - prev);
-    if (turn == 0.0 && dot(prev - v, next - v) > 0.0) return false;
-  }
-  if (n <= 3) return std::fabs(signedArea(ring)) > 0.0;
-  Box box = boundingBox(ring);
-  const double w = std::max(box.width(), 1e-300), h = std::max(box.height(), 1e-300);
-  // Cells about the mean edge long: an outline meets a few edges per cell, whatever its box.
-  double perimeter = 0.0;
-  for (std::size_t i = 0; i < n; ++i) perimeter += std::hypot(ring[(i + 1) % n].x - ring[i].x, ring[(i + 1) % n].y - ring[i].y);
-  const double side = std::max(perimeter / static_cast<double>(n), 1e-300);
-  constexpr std::size_t kMaxCellsPerSide = std::size_t{1} << 20;
-  const std::size_t nx = std::clamp<std::size_t>(static_cast<std::size_t>(std::min(w / side, 1e7)) + 1, 1, kMaxCellsPerSide);
-  const std::size_t ny = std::clamp<std::size_t>(static_cast<std::size_t>(std::min(h / side, 1e7)) + 1, 1, kMaxCellsPerSide);
-  const double cw = w / static_cast<double>(nx), ch = h / static_cast<double>(ny);
-  auto cellX = [&](double x) { return std::min(nx - 1, static_cast<std::size_t>(std::max(0.0, (x - box.min_x) / cw))); };
-  auto cellY = [&](double y) { return std::min(ny - 1, static_cast<std::size_t>(std::max(0.0, (y - box.min_y) / ch))); };
-  std::vector<std::pair<std::size_t, std::uint32_t>> entries;  // (cell, edge)
-  entries.reserve(2 * n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Point a = ring[i], b = ring[(i + 1) % n];
-    const std::size_t x0 = cellX(std::min(a.x, b.x)), x1 = cellX(std::max(a.x, b.x));
-    for (std::size_t cx = x0; cx <= x1; ++cx) {
-      // The edge's y range within this column (one cell either way against rounding).
-      double ylo = std::min(a.y, b.y), yhi = std::max(a.y, b.y);
-      if (x0 != x1 && a.x != b.x) {
-        const double xl = std::max(std::min(a.x, b.x), box.min_x + static_cast<double>(cx) * cw);
-        const double xr = std::min(std::max(a.x, b.x), box.min_x + static_cast<double>(cx + 1) * cw);
-        const double yl = a.y + (b.y - a.y) * ((xl - a.x) / (b.x - a.x));
-        const double yr = a.y + (b.y - a.y) * ((xr - a.x) / (b.x - a.x));
-        ylo = std::max(ylo, std::min(yl, yr));
-        yhi = std::min(yhi, std::max(yl, yr));
-      }
-      const std::size_t y0 = cellY(ylo) > 0 ? cellY(ylo) - 1 : 0, y1 = std::min(ny - 1, cellY(yhi) + 1);
-      for (std::size_t cy = y0; cy <= y1; ++cy) entries.emplace_back(cy * nx + cx, static_cast<std::uint32_t>(i));
-    }
-  }
-  std::sort(entries.begin(), entries.end());
-  for (std::size_t lo = 0; lo < entries.size();) {
-    std::size_t hi = lo;
-    while (hi < entries.size() && entries[hi].first == entries[lo].first) ++hi;
-    for (std::size_t p = lo; p < hi; ++p) {
-      const std::size_t i = entries[p].second;
-      const Point a = ring[i], b = ring[(i + 1) % n];
-      for (std::size_t q = p + 1; q < hi; ++q) {
-        const std::size_t j = entries[q].second;  // j > i: entries sort by edge within a cell
-        if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // adjacent: checked above
-        const Point c = ring[j], d = ring[(j + 1) % n];
-        if (std::max(a.x, b.x) < std::min(c.x, d.x) || std::max(c.x, d.x) < std::min(a.x, b.x) ||
-            std::max(a.y, b.y) < std::min(c.y, d.y) || std::max(c.y, d.y) < std::min(a.y, b.y))
-          continue;
-        if (segmentsIntersect(a, b, c, d)) return false;
-      }
-    }
-    lo = hi;
-  }
-  return std::fabs(signedArea(ring)) > 0.0;
-}
-
 /// A ring as the wall model keeps it: rounded, repeated and closing vertices dropped, checked.
 Ring cleanRing(const Ring& in, const std::string& source, const std::string& field) {
   Ring ring;
@@ -397,7 +326,8 @@ Ring cleanRing(const Ring& in, const std::string& source, const std::string& fie
   }
   while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
   if (ring.size() < 3) throw InputError(source, field, "has fewer than 3 distinct points");
-  if (!ringIsSimpleFast(ring)) throw InputError(source, field, "is self-intersecting or degenerate");
+  // The wall reader's own test (an O(n log n) sweep since ecf349f): an imported wall reads back.
+  if (!ringIsSimple(ring)) throw InputError(source, field, "is self-intersecting or degenerate");
   if (signedArea(ring) < 0) std::reverse(ring.begin(), ring.end());
   return ring;
 }
@@ -519,7 +449,9 @@ void importFile(const std::string& source, const std::string& format, const Impo
     throw InputError(source, "--format", "unknown format '" + format + "'");
   if ((format == "map" || format == "yaml" || format == "yaml-polygon" || format == "wkt") && isImageFile(p))
     throw InputError(source, "--format", format == "map" ? bareImageMessage(p) : "is an image, not " + format + " text");
-  if (!fs::is_directory(p)) result.sources.push_back({source, sha256Hex(readFile(source))});
+  // Read once: hashed here, parsed from the same bytes (WKT); 20 MB twice was a tenth of the time.
+  const std::string bytes = fs::is_directory(p) ? std::string() : readFile(source);
+  if (!fs::is_directory(p)) result.sources.push_back({source, sha256Hex(bytes)});
 
   RawSet set;
   MapPlacement placement;
@@ -543,7 +475,7 @@ void importFile(const std::string& source, const std::string& format, const Impo
       throw InputError(source, "line " + std::to_string(e.mark.line + 1), e.msg);
     }
   } else if (format == "wkt") {
-    set = import_detail::readWktText(readFile(source), source, options);
+    set = import_detail::readWktText(bytes, source, options);
   } else if (format == "dxf") {
     set = import_detail::readDxfFile(source, options);
   } else {
