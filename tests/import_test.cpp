@@ -647,6 +647,16 @@ TEST_F(Import, ImagesAloneAndBadYamlGetOneClearLine) {
             multi + ": feature 1: is a multipolygon of 2 parts, refused by --refuse-multipolygons (without it each part becomes a wall)");
 }
 
+TEST_F(Import, APointOutsideLongitudeLatitudeIsNamedNotGdalsHint) {
+  // Latitude 95 in GeoJSON: GDAL's "partial is possible if you define
+  // OGR_ENABLE_PARTIAL_REPROJECTION configuration option" reached the user.
+  const std::string file = write("lat95.geojson", R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {}, "geometry": {"type": "Polygon", "coordinates": [
+      [[8.0, 47.0], [8.001, 47.0], [8.001, 95.0], [8.0, 47.001], [8.0, 47.0]]]}}]})");
+  EXPECT_EQ(test::inputError([&] { import(file); }),
+            file + ": feature 1: has a point (8.001, 95) outside longitude/latitude range for its geographic CRS EPSG:4326");
+}
+
 TEST_F(Import, FoldersOfFoldersAndPolygonTextSetsAreSearched) {
   writeBytes("eth/poly_007/outer_polygon", "0 0\n20 0\n20 10\n0 10\n");
   writeBytes("eth/poly_008/outer_polygon", "0 0\n5 0\n5 5\n");

@@ -35,6 +35,12 @@ void registerOnce() {
 
 std::string lastGdalError() {
   std::string msg = CPLGetLastErrorMsg();
+  // GDAL's hints name its configuration options ("... partial is possible if you define
+  // OGR_ENABLE_PARTIAL_REPROJECTION ..."): nothing a user of this command can set. Cut them.
+  for (const char* hint : {", but partial is possible", ". You may define", ". You may set", " if you define", " by setting"}) {
+    const std::size_t at = msg.find(hint);
+    if (at != std::string::npos) msg.resize(at);
+  }
   while (!msg.empty() && (msg.back() == '\n' || msg.back() == '.')) msg.pop_back();
   for (char& c : msg)
     if (c == '\n') c = ' ';
@@ -141,7 +147,11 @@ void refuseBareDegrees(const OGREnvelope& env, const OGRSpatialReference* srs, c
 
 /// Every coordinate finite and within kMaxImportCoordinate, checked before GEOS or PROJ sees
 /// them (GEOS hung on 1e155; NaN made GEOS report a self-intersection).
-void checkCoordinate(double x, double y, const std::string& source, const std::string& field) {
+/// `lonlat`: the name of the file's geographic CRS (its coordinates must be longitude/latitude).
+void checkCoordinate(double x, double y, const std::string& source, const std::string& field, const std::string& lonlat = "") {
+  if (!lonlat.empty() && std::isfinite(x) && std::isfinite(y) && (std::fabs(x) > 180.0 || std::fabs(y) > 90.0))
+    throw InputError(source, field, "has a point (" + shortNumber(x) + ", " + shortNumber(y) +
+                                        ") outside longitude/latitude range for its geographic CRS " + lonlat);
   if (!std::isfinite(x) || !std::isfinite(y))
     throw InputError(source, field, "has a coordinate that is not a finite number (" + shortNumber(x) + ", " + shortNumber(y) + ")");
   if (std::fabs(x) > kMaxImportCoordinate || std::fabs(y) > kMaxImportCoordinate)
@@ -149,25 +159,25 @@ void checkCoordinate(double x, double y, const std::string& source, const std::s
                                         "): no wall is drawn in such units");
 }
 
-void checkCoordinates(const OGRGeometry* g, const std::string& source, const std::string& field) {
+void checkCoordinates(const OGRGeometry* g, const std::string& source, const std::string& field, const std::string& lonlat = "") {
   if (!g || g->IsEmpty()) return;
   const OGRwkbGeometryType type = wkbFlatten(g->getGeometryType());
   if (type == wkbPoint) {
-    checkCoordinate(g->toPoint()->getX(), g->toPoint()->getY(), source, field);
+    checkCoordinate(g->toPoint()->getX(), g->toPoint()->getY(), source, field, lonlat);
   } else if (OGR_GT_IsSubClassOf(type, wkbCurvePolygon)) {
-    for (const OGRCurve* ring : *g->toCurvePolygon()) checkCoordinates(ring, source, field);
+    for (const OGRCurve* ring : *g->toCurvePolygon()) checkCoordinates(ring, source, field, lonlat);
   } else if (type == wkbCompoundCurve) {
-    for (const OGRCurve* part : *g->toCompoundCurve()) checkCoordinates(part, source, field);
+    for (const OGRCurve* part : *g->toCompoundCurve()) checkCoordinates(part, source, field, lonlat);
   } else if (OGR_GT_IsSubClassOf(type, wkbGeometryCollection)) {
-    for (const OGRGeometry* part : *g->toGeometryCollection()) checkCoordinates(part, source, field);
+    for (const OGRGeometry* part : *g->toGeometryCollection()) checkCoordinates(part, source, field, lonlat);
   } else if (type == wkbLineString || type == wkbCircularString || type == wkbLinearRing) {
     const OGRSimpleCurve* curve = g->toSimpleCurve();
-    for (int i = 0; i < curve->getNumPoints(); ++i) checkCoordinate(curve->getX(i), curve->getY(i), source, field);
+    for (int i = 0; i < curve->getNumPoints(); ++i) checkCoordinate(curve->getX(i), curve->getY(i), source, field, lonlat);
   } else {
     OGREnvelope env;  // any other type: its envelope (NaN slips past an envelope; these types are rare)
     g->getEnvelope(&env);
-    checkCoordinate(env.MinX, env.MinY, source, field);
-    checkCoordinate(env.MaxX, env.MaxY, source, field);
+    checkCoordinate(env.MinX, env.MinY, source, field, lonlat);
+    checkCoordinate(env.MaxX, env.MaxY, source, field, lonlat);
   }
 }
 
@@ -247,7 +257,7 @@ RawSet readPolygons(GDALDataset& ds, const std::string& path, const ImportOption
       const std::string where = "feature " + std::to_string(feature_number);
       OGRGeometry* g = feature->GetGeometryRef();
       if (!g) continue;
-      checkCoordinates(g, path, where);
+      checkCoordinates(g, path, where, srs && srs->IsGeographic() ? crsName(*srs) : "");
       std::vector<const OGRPolygon*> polys;
       std::vector<GeometryPtr> keep;
       GeometryPtr projected;
