@@ -56,6 +56,9 @@ for line in sys.stdin:
     if mode == "nested":
         os.write(1, b"[" * (2 << 20) + b"\n")
         continue
+    if mode == "child-holds":  # its child touches 600 MiB and keeps it; it waits for the child
+        subprocess.run(["/usr/bin/python3", "-c",
+                        "import time\nb = bytearray(600 << 20)\nfor i in range(0, len(b), 4096): b[i] = 1\ntime.sleep(3600)"])
     if mode == "child-hog":
         subprocess.run(["/usr/bin/python3", "-c", "b = bytearray(600 << 20)\nfor i in range(0, len(b), 4096): b[i] = 1"])
     if mode in ("huge", "outside"):
@@ -103,7 +106,7 @@ if mode == "orphans":  # it ignores the end of its input, and SIGTERM
 )py";
 
 constexpr const char* kModes[] = {"fine",   "sleeps", "garbage",  "exits",  "signal",        "allocates",
-                                  "floods", "wrong-id", "orphans", "orphans-sleep", "nested", "child-hog",
+                                  "floods", "wrong-id", "orphans", "orphans-sleep", "nested", "child-hog", "child-holds",
                                   "huge",   "outside", "twice"};
 
 /// A process is running (not a zombie).
@@ -468,6 +471,22 @@ TEST_F(External, APlannersChildIsHeldToTheMemoryLimit) {
   for (const ResultRow& row : rs.runs) {
     EXPECT_EQ(row.status, RunStatus::MemoryLimit) << row.reason;
     EXPECT_NE(row.reason.find("memory limit of 300 MiB"), std::string::npos) << row.reason;
+  }
+}
+
+// The same where no cgroup can be made (most machines: cgroup v2, or not root): the resident sets
+// of the planner's processes (found by their token) are summed. The child keeps its 600 MiB, so the
+// sum passes the limit whenever it is read, however loaded the machine.
+TEST_F(External, APlannersChildIsHeldToTheMemoryLimitWithoutCgroups) {
+  ::setenv("COVERBENCH_PLANNER_CGROUPS", "0", 1);
+  const test::CommandRun r = run("run " + config("child", "  - external: planners/child-holds.json\n", 600) + " --no-report");
+  ::unsetenv("COVERBENCH_PLANNER_CGROUPS");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const ResultSet rs = ResultsDb((dir_ / "child/results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(rs.runs.size(), 2u);
+  for (const ResultRow& row : rs.runs) {
+    EXPECT_EQ(row.status, RunStatus::MemoryLimit) << row.reason;
+    EXPECT_NE(row.reason.find("past the memory limit of 300 MiB"), std::string::npos) << row.reason;
   }
 }
 

@@ -204,20 +204,22 @@ std::vector<pid_t> cgroupPids(const std::string& folder) {
 }
 
 /// The memory controller's folder of this process's cgroup (cgroup v1), where a planner's cgroup
-/// is made; "" when there is none or this process may not make cgroups there (then a planner's
-/// processes are found by their environment and their memory is their summed resident sets).
+/// is made; "" when there is none. Where there is none, or a cgroup cannot be made in it, a
+/// planner's processes are found by their environment and their memory is their summed resident sets.
 const std::string& memoryCgroupBase() {
   static const std::string base = [] {
+    // COVERBENCH_PLANNER_CGROUPS=0: none (what a machine without the controller does; tests).
+    if (const char* use = std::getenv("COVERBENCH_PLANNER_CGROUPS"); use && std::string(use) == "0") return std::string();
     std::istringstream in(readSmall("/proc/self/cgroup"));
     for (std::string line; std::getline(in, line);) {
       const std::size_t a = line.find(':'), b = line.find(':', a + 1);
       if (a == std::string::npos || b == std::string::npos) continue;
       std::string controllers = "," + line.substr(a + 1, b - a - 1) + ",";
       if (controllers.find(",memory,") == std::string::npos) continue;
+      // Whether cgroups may be made there shows when a planner's is made (start()).
       const std::string folder = "/sys/fs/cgroup/memory" + line.substr(b + 1);
-      const std::string probe = folder + "/coverbench-probe-" + std::to_string(::getpid());
-      if (::mkdir(probe.c_str(), 0755) != 0) return std::string();
-      ::rmdir(probe.c_str());
+      struct stat st {};
+      if (::stat((folder + "/cgroup.procs").c_str(), &st) != 0) return std::string();
       return folder;
     }
     return std::string();
@@ -420,14 +422,19 @@ class PlannerProcess {
     for (std::string& s : launch_.command) argv.push_back(s.data());
     argv.push_back(nullptr);
     const pid_t parent = ::getpid();
+    // The parent-death signal follows the thread that forks: only the main thread's end is the
+    // host's end (a planner started from a Python thread that ends must live on for the next plan).
+    const bool main_thread = ::gettid() == parent;
     const pid_t pid = ::fork();
     if (pid < 0) {
       fail(a, PlanStatus::Error, std::string("fork: ") + std::strerror(errno));
       return false;
     }
     if (pid == 0) {
-      ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // its host died (kill -9): it dies too
-      if (::getppid() != parent) ::_exit(125);
+      if (main_thread) {
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // its host died (kill -9): it dies too
+        if (::getppid() != parent) ::_exit(125);
+      }
       ::setpgid(0, 0);  // its own group: killed whole, children included
       if (!procs.empty()) {  // into its cgroup before it can start anything
         const int fd = ::open(procs.c_str(), O_WRONLY);
