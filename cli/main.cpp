@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
   for (const std::string& f : coverbench::importFormats()) formats += (formats.empty() ? "" : ", ") + f;
   imp_cmd->add_option("--format", imp.options.format, "one of " + formats)->capture_default_str();
   imp_cmd->add_option("--crs", imp.options.crs, "CRS in metres for geographic input (default: the local UTM zone)");
-  imp_cmd->add_option("--source-crs", imp.options.source_crs, "CRS of input that names none (default: metres)");
+  imp_cmd->add_option("--source-crs", imp.options.source_crs, "CRS of input that names none, or metres (default: metres; degree-like coordinates are refused)");
   imp_cmd->add_option("--name-field", imp.options.name_field, "attribute that names each wall (default: name)");
   imp_cmd->add_flag("--refuse-multipolygons", imp.refuse_multipolygons, "refuse a multipolygon instead of one wall per part");
   imp_cmd->add_option("--boundary-layer", imp.options.dxf_boundary_layer, "DXF layer of the boundaries")->capture_default_str();
