@@ -406,6 +406,17 @@ TEST_F(External, AnswersWithDuplicateKeysOrDeepNestingAreRefused) {
   const std::string nested = std::string(100000, '[') + std::string(100000, ']');
   EXPECT_FALSE(external::readAnswer(nested, 7, deep, why));
   EXPECT_NE(why.find("nested deeper than 16 levels"), std::string::npos) << why;
+  // Keys and values past what a path at the scoring limit needs are refused before parsing too.
+  std::string stats = R"({"protocol":1,"id":7,"status":"error","reason":"x","stats":{)";
+  for (int i = 0; i < 10001; ++i) stats += (i ? ",\"k" : "\"k") + std::to_string(i) + "\":1";
+  PlanResult many;
+  EXPECT_FALSE(external::readAnswer(stats + "}}", 7, many, why));
+  EXPECT_NE(why.find("more than 10000 keys"), std::string::npos) << why;
+  std::string ones = R"({"protocol":1,"id":7,"status":"ok","tool_on":[true],"waypoints":[)";
+  for (int i = 0; i < 8010001; ++i) ones += "1,";
+  PlanResult flat;
+  EXPECT_FALSE(external::readAnswer(ones + "1]}", 7, flat, why));
+  EXPECT_NE(why.find("more than 8010000 values"), std::string::npos) << why;
   // Brackets inside strings are text, not nesting.
   PlanResult quoted;
   EXPECT_TRUE(external::readAnswer(R"({"protocol":1,"id":7,"status":"error","reason":")" + std::string(100, '[') + R"("})",

@@ -600,7 +600,7 @@ void killRunProcesses(const std::string& run_token, int spare) {
 static std::size_t answerProblem(const std::string& line, std::string& why) {
   // Before any parsing: a line of 20 MiB of '[' would cost the parser gigabytes and seconds.
   int depth = 0;
-  std::size_t arrays = 0;
+  std::size_t arrays = 0, keys = 0, values = 1;
   bool in_string = false, escaped = false;
   for (const char c : line) {
     if (in_string) {
@@ -622,6 +622,12 @@ static std::size_t answerProblem(const std::string& line, std::string& why) {
       }
     } else if (c == ']' || c == '}') {
       --depth;
+    } else if (c == ':' && ++keys > kMaxAnswerKeys) {
+      why = "holds more than " + std::to_string(kMaxAnswerKeys) + " keys";
+      return 1;
+    } else if (c == ',' && ++values > kMaxAnswerValues) {
+      why = "holds more than " + std::to_string(kMaxAnswerValues) + " values (2 per waypoint, 1 per segment's tool_on and bulge)";
+      return 1;
     }
   }
   return 0;

@@ -28,6 +28,11 @@ inline constexpr int kMaxAnswerDepth = 16;
 /// The most waypoints an answer may hold: the scoring limit (metrics' kMaxScoredWaypoints);
 /// checked on the bytes (arrays counted) before the line is parsed.
 inline constexpr std::size_t kMaxAnswerWaypoints = 2000000;
+/// The most keys (in all its objects: `stats` holds most) and values an answer may hold, checked
+/// on the bytes before parsing, so that what the parser builds stays a small multiple of a path
+/// at the scoring limit (a 64 MiB line of "1," would be 32 million values).
+inline constexpr std::size_t kMaxAnswerKeys = 10000;
+inline constexpr std::size_t kMaxAnswerValues = 4 * kMaxAnswerWaypoints + kMaxAnswerKeys;
 /// The memory limit of an external planner's processes where no experiment sets one (`plan`,
 /// `conformance`, Python's coverbench.plan): the experiments' default, limits.memory_mb 4096.
 inline constexpr std::size_t kDefaultMemoryLimitBytes = std::size_t{4096} << 20;
