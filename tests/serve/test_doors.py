@@ -330,10 +330,14 @@ class Doors(unittest.TestCase):
         p = subprocess.Popen([BIN, "serve", "--host", "0.0.0.0", "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                              text=True)
         try:
-            warning = p.stderr.readline()
-            self.assertIn("warning: listening on 0.0.0.0, not a loopback address: anyone who can reach it", warning)
+            p.stdout.readline()  # it has started: the warning comes before this line
         finally:
-            stop_server(p)
+            p.kill()
+            p.wait()
+        warning = p.stderr.read()
+        p.stdout.close()
+        p.stderr.close()
+        self.assertIn("warning: listening on 0.0.0.0, not a loopback address: anyone who can reach it", warning)
 
 
 if __name__ == "__main__":
