@@ -354,9 +354,11 @@ class PlannerProcess {
     char buf[256];
     const ssize_t r = ::read(out_, buf, sizeof buf);
     if (r <= 0) return true;  // closed: the process ended between runs; asking it says how
+    std::string start(buf, static_cast<std::size_t>(std::min<ssize_t>(r, 40)));
+    for (char& c : start)
+      if (static_cast<unsigned char>(c) < 0x20) c = ' ';  // the reason stays one line
     fail(a, PlanStatus::InvalidOutput,
-         "the planner wrote after its previous answer ('" + std::string(buf, static_cast<std::size_t>(std::min<ssize_t>(r, 40))) +
-             "...'): one problem gets one line, and nothing follows it");
+         "the planner wrote after its previous answer ('" + start + "...'): one problem gets one line, and nothing follows it");
     return false;
   }
 
