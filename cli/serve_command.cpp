@@ -66,6 +66,9 @@ constexpr std::size_t kMaxSavedNameBytes = 1000;  // what GET /api/walls/db/NAME
 constexpr int kRequestReadSeconds = 10;
 /// Connections served at once (threads); more wait for one of them.
 constexpr std::size_t kConnectionThreads = 64;
+/// The most bytes one request may bring, its line and headers included: the body limit and room
+/// for the rest (what is read past it is refused, however the body is framed).
+constexpr std::size_t kMaxRequestBytes = kMaxBodyBytes + (256 << 10);
 
 /// The page's files, by the only names they are served under.
 const std::map<std::string, std::pair<std::string, std::string>>& pageFiles() {
@@ -681,7 +684,9 @@ class DeadlineStream final : public httplib::Stream {
     timed_out_ = false;
     readTimedOut() = false;
     malformed() = false;
+    tooLarge() = false;
     written_ = 0;
+    read_ = 0;
   }
   std::size_t written() const { return written_; }
   bool timedOut() const { return timed_out_; }
@@ -691,6 +696,12 @@ class DeadlineStream final : public httplib::Stream {
   static bool& readTimedOut() {
     thread_local bool timed_out = false;
     return timed_out;
+  }
+  /// Whether this thread's request went past the bytes a request may have (a chunked body, which
+  /// httplib 0.11 reads without its payload limit): the error handler answers 413.
+  static bool& tooLarge() {
+    thread_local bool too_large = false;
+    return too_large;
   }
   /// Whether httplib refused this thread's request before any route saw it (a malformed request
   /// line or header): what follows on the connection cannot be trusted to start a request, so
@@ -705,9 +716,15 @@ class DeadlineStream final : public httplib::Stream {
       if (remainingMs() <= 0) timed_out_ = readTimedOut() = true;
       return -1;
     }
+    if (read_ >= kMaxRequestBytes) {
+      tooLarge() = true;
+      return -1;
+    }
+    size = std::min(size, kMaxRequestBytes - read_);
     for (;;) {
       const ssize_t r = ::recv(sock_, ptr, size, 0);
       if (r < 0 && errno == EINTR) continue;
+      if (r > 0) read_ += static_cast<std::size_t>(r);
       return r;
     }
   }
@@ -765,6 +782,7 @@ class DeadlineStream final : public httplib::Stream {
   std::chrono::steady_clock::time_point deadline_{};
   mutable bool timed_out_ = false;
   std::size_t written_ = 0;
+  std::size_t read_ = 0;
 };
 
 std::string readDeadlineMessage() {
@@ -775,6 +793,23 @@ std::string readDeadlineMessage() {
 /// connections served the same way (httplib's SSLServer overrides the same function).
 class DeadlineServer final : public httplib::Server {
  private:
+  /// A lingering close after a refusal: what the client still sends is read and dropped for up
+  /// to 1 s (and 8 MiB), so the answer is not lost to a reset.
+  static void linger(int sock) {
+    ::shutdown(sock, SHUT_WR);
+    char scratch[65536];
+    std::size_t dropped = 0;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+    while (dropped < (8u << 20)) {
+      const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()).count();
+      pollfd q{sock, POLLIN, 0};
+      if (ms <= 0 || ::poll(&q, 1, static_cast<int>(ms)) <= 0) break;
+      const ssize_t r = ::recv(sock, scratch, sizeof scratch, 0);
+      if (r <= 0) break;
+      dropped += static_cast<std::size_t>(r);
+    }
+  }
+
   bool process_and_close_socket(socket_t sock) override {
     DeadlineStream stream(sock);
     bool ok = false;
@@ -799,19 +834,14 @@ class DeadlineServer final : public httplib::Server {
                                    std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n";
           stream.write((head + body).data(), head.size() + body.size());
         }
-        // A lingering close: what the client still sends is read and dropped for up to 1 s, so
-        // the answer is not lost to a reset.
-        ::shutdown(sock, SHUT_WR);
-        char scratch[4096];
-        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-        for (;;) {
-          const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()).count();
-          pollfd q{sock, POLLIN, 0};
-          if (ms <= 0 || ::poll(&q, 1, static_cast<int>(ms)) <= 0 || ::recv(sock, scratch, sizeof scratch, 0) <= 0) break;
-        }
+        linger(sock);
         break;
       }
-      if (!ok || closed || DeadlineStream::malformed()) break;
+      if (DeadlineStream::malformed() || DeadlineStream::tooLarge()) {
+        linger(sock);
+        break;
+      }
+      if (!ok || closed) break;
     }
     ::shutdown(sock, SHUT_RDWR);
     ::close(sock);
@@ -1008,7 +1038,7 @@ ServeApp::ServeApp(const ServeOptions& o, const std::string& helper_exe) {
     try {
       if (DeadlineStream::readTimedOut())
         answerError(res, 408, readDeadlineMessage());
-      else if (res.status == 413)
+      else if (res.status == 413 || DeadlineStream::tooLarge())
         answerError(res, 413, "request body: over " + std::to_string(kMaxBodyBytes) + " bytes");
       else if (res.status == 404)
         answerError(res, 404, req.path + ": no such page or API (see docs/explorer.md)");

@@ -155,6 +155,24 @@ class Doors(unittest.TestCase):
                 self.assertIn("application/json", head, data)
                 self.assert_one_line_error(json.loads(body))
             self.assert_alive()
+        # A body larger than the limit in chunks (httplib's own limit counts Content-Length only).
+        c = http.client.HTTPConnection("127.0.0.1", self.port, timeout=60)
+        c.putrequest("POST", "/api/check")
+        c.putheader("Content-Type", "application/json")
+        c.putheader("Transfer-Encoding", "chunked")
+        c.endheaders()
+        try:
+            for _ in range(4):
+                chunk = b" " * (600 << 10)
+                c.send(b"%x\r\n" % len(chunk) + chunk + b"\r\n")
+            c.send(b"0\r\n\r\n")
+        except OSError:
+            pass  # the server may stop reading once it has refused
+        r = c.getresponse()
+        self.assertEqual(r.status, 413)
+        self.assert_one_line_error(json.loads(r.read()))
+        c.close()
+        self.assert_alive()
         # A saved wall whose name is not UTF-8 cannot reach the database (the body is JSON), and one
         # named with U+FFFD is listed and read back.
         status, answer = self.request("POST", "/api/walls", {"wall": json.dumps({**json.loads(self.wall), "name": "\ufffd"})},
