@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "coverbench/external_planner.hpp"
 #include "coverbench/hash.hpp"
+#include "coverbench/json_input.hpp"
 #include "coverbench/limits.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/runner.hpp"
@@ -26,7 +27,7 @@ json paramValue(const ParamValue& v) {
 double numberField(const json& body, const char* name, double fallback) {
   if (!body.contains(name)) return fallback;
   const json& v = body[name];
-  if (!v.is_number()) throw InputError(kBody, name, "must be a number, got " + v.dump());
+  if (!v.is_number()) throw InputError(kBody, name, std::string("must be a number, got ") + (v.is_string() ? "a string" : v.type_name()));
   return v.get<double>();
 }
 
@@ -49,13 +50,11 @@ json plannersJson() {
 }
 
 WorkbenchRequest readWorkbenchRequest(const std::string& text, double max_time_limit_s) {
-  json body;
-  try {
-    body = json::parse(text);
-  } catch (const json::exception& e) {  // a syntax error, or a number no double holds (1e999)
-    throw InputError(kBody, "(json)", std::string("is not JSON this server reads: ") + e.what());
-  }
-  if (!body.is_object()) throw InputError(kBody, "(json)", "must be an object");
+  // Strictly, as every file is read: no duplicate key, no nesting past kMaxJsonDepth (a value
+  // nested 100,000 deep was printed back by recursion and ended the server), no number no
+  // double holds (1e999).
+  const json body = parseJsonStrict(text, kBody);
+  if (!body.is_object()) throw InputError(kBody, "(document)", "must be an object");
   for (const auto& [key, value] : body.items())
     if (key != "wall" && key != "planner" && key != "params" && key != "tool_width" && key != "clearance" && key != "time_limit_s")
       throw InputError(kBody, key, "unknown key (wall, planner, params, tool_width, clearance, time_limit_s)");

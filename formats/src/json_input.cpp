@@ -28,10 +28,33 @@ std::string fieldPath(const std::vector<Frame>& stack) {
   return out.empty() ? "(document)" : out;
 }
 
+/// Whether arrays and objects nest deeper than `most` anywhere in `text` (read on the bytes,
+/// strings skipped), so that nothing deeper is built, printed or freed by recursion.
+bool nestsDeeperThan(const std::string& text, std::size_t most) {
+  std::size_t depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > most) return true;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 json parseJsonStrict(const std::string& text, const std::string& source) {
   requireText(text, source);
+  if (nestsDeeperThan(text, kMaxJsonDepth))
+    throw InputError(source, "(document)", "arrays and objects nest deeper than " + std::to_string(kMaxJsonDepth) + " levels");
   std::vector<Frame> stack;
   std::string duplicate;  // the path of the first duplicate key
   // A value starts inside an array: count it, so paths name the element.

@@ -224,7 +224,7 @@ class Serve(unittest.TestCase):
         self.assertEqual(status, 504, answer)
         self.assertTrue(answer["error"].startswith("time_limit_s: the plan did not finish within its time limit of 0.5 s"), answer)
         for body, message in (
-                ("{", "request body: (json): is not JSON this server reads: "),
+                ("{", "request body: (document): malformed JSON: "),
                 ({"wall": wall, "planner": "zigzag", "colour": 1}, "request body: colour: unknown key"),
                 ({"wall": wall}, "request body: planner: name a planner"),
                 ({"wall": wall, "planner": "zagzig"}, "planner: zagzig: unknown planner (registered: zigzag, "),

@@ -4,12 +4,16 @@
 /// Includes nlohmann/json.hpp: include it only from the translation units that parse JSON.
 #include <nlohmann/json.hpp>
 
+#include <cstddef>
 #include <string>
 
 namespace coverbench {
 
+/// The deepest nesting of arrays and objects any document may have (a wall file needs 5).
+inline constexpr std::size_t kMaxJsonDepth = 64;
+
 /// Parses `text` strictly. Throws InputError(source, field, problem): field "(document)" for
-/// syntax errors, NUL bytes and invalid UTF-8; the key's path (e.g. `obstacles[2].x`) for a
+/// syntax errors, NUL bytes, invalid UTF-8 and nesting deeper than kMaxJsonDepth; the key's path (e.g. `obstacles[2].x`) for a
 /// duplicate key.
 nlohmann::json parseJsonStrict(const std::string& text, const std::string& source);
 
