@@ -589,6 +589,8 @@ class WorkbenchServer {
     // The answer's deadline (docs/explorer.md): the worker's hard deadline (twice the limit plus
     // 5 s) and 5 s for the helper to read the request and score the path.
     const auto deadline = received + std::chrono::milliseconds(static_cast<long long>((2 * r.time_limit_s + 10) * 1000));
+    if (std::chrono::steady_clock::now() >= deadline)
+      throw HttpError(504, "plan: reading the request's wall took past the plan's deadline (twice its time limit plus 10 s)");
     RunRecord rec = helper_.plan(body, deadline);
     if (rec.status == RunStatus::Timeout)
       throw HttpError(504, "time_limit_s: the plan did not finish within its time limit of " + shortNumber(r.time_limit_s) + " s (" +
@@ -711,23 +713,33 @@ class DeadlineStream final : public httplib::Stream {
     return refused;
   }
   bool is_writable() const override { return wait(POLLOUT, kWriteMs); }
+  /// Bytes from a buffer of 64 KiB filled by one recv at a time: httplib reads a request's line
+  /// and headers a byte at a time (a 200 KB request line was 400,000 system calls).
   ssize_t read(char* ptr, size_t size) override {
-    if (!wait(POLLIN, remainingMs())) {
-      if (remainingMs() <= 0) timed_out_ = readTimedOut() = true;
-      return -1;
-    }
     if (read_ >= kMaxRequestBytes) {
       tooLarge() = true;
       return -1;
     }
     size = std::min(size, kMaxRequestBytes - read_);
-    for (;;) {
-      const ssize_t r = ::recv(sock_, ptr, size, 0);
-      if (r < 0 && errno == EINTR) continue;
-      if (r > 0) read_ += static_cast<std::size_t>(r);
-      return r;
+    if (begin_ == end_) {
+      if (!wait(POLLIN, remainingMs())) {
+        if (remainingMs() <= 0) timed_out_ = readTimedOut() = true;
+        return -1;
+      }
+      ssize_t r;
+      do r = ::recv(sock_, buffer_.data(), buffer_.size(), 0);
+      while (r < 0 && errno == EINTR);
+      if (r <= 0) return r;
+      begin_ = 0, end_ = static_cast<std::size_t>(r);
     }
+    const std::size_t n = std::min(size, end_ - begin_);
+    std::memcpy(ptr, buffer_.data() + begin_, n);
+    begin_ += n;
+    read_ += n;
+    return static_cast<ssize_t>(n);
   }
+  /// Bytes received and not yet read (the start of a pipelined next request).
+  bool buffered() const { return begin_ != end_; }
   ssize_t write(const char* ptr, size_t size) override {
     if (!wait(POLLOUT, kWriteMs)) return -1;
     for (;;) {
@@ -783,6 +795,8 @@ class DeadlineStream final : public httplib::Stream {
   mutable bool timed_out_ = false;
   std::size_t written_ = 0;
   std::size_t read_ = 0;
+  std::array<char, 65536> buffer_{};
+  std::size_t begin_ = 0, end_ = 0;
 };
 
 std::string readDeadlineMessage() {
@@ -814,17 +828,25 @@ class DeadlineServer final : public httplib::Server {
     DeadlineStream stream(sock);
     bool ok = false;
     for (std::size_t left = keep_alive_max_count_; left > 0 && svr_sock_ != INVALID_SOCKET; --left) {
-      // Between requests: wait for the next one's first byte up to the keep-alive timeout.
-      pollfd p{sock, POLLIN, 0};
-      int ready = 0;
-      do ready = ::poll(&p, 1, static_cast<int>(keep_alive_timeout_sec_ * 1000));
-      while (ready < 0 && errno == EINTR);
-      if (ready <= 0) break;
-      char probe;
-      if (::recv(sock, &probe, 1, MSG_PEEK | MSG_DONTWAIT) <= 0) break;  // closed by the client
+      // Between requests: wait for the next one's first byte up to the keep-alive timeout
+      // (unless it is here already, read with the last one).
+      if (!stream.buffered()) {
+        pollfd p{sock, POLLIN, 0};
+        int ready = 0;
+        do ready = ::poll(&p, 1, static_cast<int>(keep_alive_timeout_sec_ * 1000));
+        while (ready < 0 && errno == EINTR);
+        if (ready <= 0) break;
+        char probe;
+        if (::recv(sock, &probe, 1, MSG_PEEK | MSG_DONTWAIT) <= 0) break;  // closed by the client
+      }
       stream.startRequest();
       bool closed = false;
-      ok = process_request(stream, left == 1, closed, nullptr);
+      // No Range: answers are whole (httplib cut JSON answers at a Range header, and answered an
+      // unsatisfiable one with an empty 416).
+      ok = process_request(stream, left == 1, closed, [](httplib::Request& req) {
+        req.ranges.clear();
+        req.headers.erase("Range");
+      });
       if (stream.timedOut()) {
         // httplib answers a request cut off in its headers or body itself (through the error
         // handler, as 408); one cut off in its first line gets no answer from it: this one.

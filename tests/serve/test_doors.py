@@ -314,7 +314,7 @@ class Doors(unittest.TestCase):
         body = '{"wall": %s, "planner": "zigzag", "tool_width": 1e999}' % json.dumps(self.wall)
         status, answer = self.request("POST", "/api/plan", body.encode(), json_type)
         self.assertEqual(status, 400, answer)
-        self.assertTrue(answer["error"].startswith("request body: (json): is not JSON this server reads: "), answer)
+        self.assertTrue(answer["error"].startswith("request body: (document): malformed JSON: number overflow"), answer)
         status, answer = self.request("POST", "/api/check", body.encode(), json_type)
         self.assertEqual((status, answer["ok"]), (200, False), answer)
         # Names that could not be opened again are refused at save.
@@ -343,6 +343,34 @@ class Doors(unittest.TestCase):
             lock.rollback()
             lock.close()
         self.assert_alive()
+
+    def test_no_request_is_worked_on_without_bound(self):
+        json_type = {"Content-Type": "application/json"}
+        # A value nested 100,000 deep was printed back by recursion and ended the server.
+        deep = "[" * 100000 + "]" * 100000
+        for field in ("tool_width", "clearance", "time_limit_s"):
+            body = '{"wall": %s, "planner": "zigzag", "%s": %s}' % (json.dumps(self.wall), field, deep)
+            for path in ("/api/check", "/api/plan", "/api/walls"):
+                status, answer = self.request("POST", path, body.encode(), json_type)
+                self.assertIn(status, (200, 400), (path, field, answer))
+                message = answer["error"]
+                self.assertEqual(message, "request body: (document): arrays and objects nest deeper than 64 levels")
+        self.assert_alive()
+        # 100 circles of 4 km radius on a 10 km wall: 85 s of checking before (140,000 vertices a
+        # circle); now each circle is a polygon within a millionth of its radius. The bound here
+        # is the client's 60 s, not a speed.
+        circles = [{"type": "circle", "x": 5000 + 0.37 * i, "y": 5000 + 0.29 * i, "radius": 4000} for i in range(100)]
+        wall = json.dumps({"name": "big-circles", "width": 10000, "height": 10000, "obstacles": circles})
+        status, answer = self.request("POST", "/api/check", {"wall": wall, "tool_width": 1}, json_type, timeout=60)
+        self.assertEqual((status, answer["ok"]), (200, True), answer)
+
+    def test_answers_are_whole_whatever_range_is_asked(self):
+        whole = self.request("GET", "/api/walls")[1]
+        for r in ("bytes=0-10", "bytes=0-1,5-6", "bytes=999999-1000000"):
+            status, answer = self.request("GET", "/api/walls", headers={"Range": r})
+            self.assertEqual((status, answer), (200, whole), r)
+        status, answer = self.request("POST", "/api/check", {"wall": self.wall}, {"Content-Type": "application/json", "Range": "bytes=0-3"})
+        self.assertEqual((status, answer["ok"]), (200, True))
 
     def test_a_host_beyond_loopback_is_warned_of(self):
         p = subprocess.Popen([BIN, "serve", "--host", "0.0.0.0", "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
