@@ -219,6 +219,15 @@ class Doors(unittest.TestCase):
         self.assertEqual(r.stderr, f"coverbench: --port: port: cannot listen on 127.0.0.1:{self.port} (is another server on it?)\n")
         self.assert_alive()
 
+    def test_a_walls_database_that_is_no_file_is_an_error_at_start(self):
+        fifo = os.path.join(self.work, "walls-db.fifo")
+        os.mkfifo(fifo)
+        # It hung at start, on SQLite's first read of the FIFO.
+        r = subprocess.run([BIN, "serve", "--port", "0", "--walls-db", fifo], capture_output=True, text=True, timeout=30)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(r.stderr, f"coverbench: {fifo}: (database): is not a regular file (a FIFO, a device or a socket cannot be a "
+                                   "walls database)\n")
+
     def test_slow_clients_do_not_block_the_others(self):
         stop = threading.Event()
         answers = []
