@@ -23,6 +23,7 @@ PACKAGES=("${MAIN_PACKAGES[@]}"
           libgtest-dev libbenchmark-dev
           python3-jsonschema                                       # the planner protocol's schema test
           pybind11-dev python3-dev                                 # the Python package (import coverbench)
+          python3-venv python3-pip mypy python3-pandas             # its install, type and DataFrame tests
           chromium python3-websocket                               # the browser test of the report
           node-typescript                                          # type-checks the explorer's JavaScript (ctest web_types)
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
@@ -64,8 +65,5 @@ fi
 echo "== building $build (first build takes two to three minutes on 2 cores)"
 cmake --build "$build" -j 2
 
-# `import coverbench` for Debian's python3 (and any python3 of the same version): the package's
-# folder on the user's site path (python/coverbench finds its compiled part in $build/python).
-site=$(/usr/bin/python3 -m site --user-site)
-mkdir -p "$site"
-echo "$(pwd)/python" > "$site/coverbench.pth"
+# `import coverbench` anywhere: `python3 -m pip install ./python` into a virtual environment (or
+# --user), which reuses this build (README.md, "From Python").
