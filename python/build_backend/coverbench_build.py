@@ -176,9 +176,13 @@ def get_requires_for_build_editable(config_settings: Optional[Mapping[str, Any]]
 def build_wheel(wheel_directory: str, config_settings: Optional[Mapping[str, Any]] = None,
                 metadata_directory: Optional[str] = None) -> str:
     module = _compiled(config_settings)
-    with open(module, "rb") as f:
-        core = (f"{PACKAGE}/{os.path.basename(module)}", f.read(), 0o755)
-    name = _write_wheel(wheel_directory, _tag(), _package_files() + [core])
+    compiled = []
+    # The module, and the GDAL plug-in it opens from its own folder when a config imports walls
+    # (imports/src/gdal_plugin.hpp; built with the module).
+    for path in (module, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(module))), "libcoverbench_gdal.so")):
+        with open(path, "rb") as f:
+            compiled.append((f"{PACKAGE}/{os.path.basename(path)}", f.read(), 0o755))
+    name = _write_wheel(wheel_directory, _tag(), _package_files() + compiled)
     _log(f"wrote {name}")
     return name
 
