@@ -1135,6 +1135,14 @@ ServeApp::ServeApp(const ServeOptions& o, const std::string& helper_exe) {
     const bool playback = req.matches[2] == "playback.js";
     res.set_content(x.workbench.drawing(std::stoll(req.matches[1]), playback), playback ? "text/javascript; charset=utf-8" : "image/svg+xml");
   }));
+  // A client that asks before sending its body (Expect: 100-continue) hears the refusal before
+  // sending it, or 100 Continue once its headers hold (and a large body has its place).
+  server.set_expect_100_continue_handler([](const httplib::Request&, httplib::Response& res) {
+    const Refusal& r = DeadlineStream::refusal();
+    if (r.status == 0) return 100;
+    answerError(res, r.status, r.message);
+    return r.status;
+  });
   // An exception outside a route's own handling (httplib's, or a bug): 500 as JSON, never the
   // process's end.
   server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr ep) {

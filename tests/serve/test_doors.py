@@ -416,14 +416,22 @@ class Doors(unittest.TestCase):
             self.assertIn("over the 1048576 bytes this request takes", answer["error"])
         # Two large bodies being read (their clients send half and wait) hold the two places: a
         # third is refused at once, a small one is served, and the two end at the read deadline.
+        # Each asks first (Expect: 100-continue): the server's 100 Continue says it holds a place.
         held = []
         try:
             for _ in range(2):
                 s = socket.create_connection(("127.0.0.1", self.port), timeout=30)
                 s.sendall(f"POST /api/check HTTP/1.1\r\nHost: 127.0.0.1:{self.port}\r\nContent-Type: application/json\r\n"
-                          f"Content-Length: {len(body)}\r\n\r\n".encode() + body[: len(body) // 2])
+                          f"Content-Length: {len(body)}\r\nExpect: 100-continue\r\n\r\n".encode())
                 held.append(s)
-            time.sleep(0.5)
+                self.assertEqual(s.recv(65536), b"HTTP/1.1 100 Continue\r\n\r\n")
+                s.sendall(body[: len(body) // 2])
+            # A third that asks first hears the refusal before sending its body.
+            status, head, answer = raw(self.port, f"POST /api/check HTTP/1.1\r\nHost: 127.0.0.1:{self.port}\r\n"
+                                                  f"Content-Type: application/json\r\nContent-Length: {len(body)}\r\n"
+                                                  "Expect: 100-continue\r\n\r\n".encode(), timeout=30)
+            self.assertEqual(status, 503, head)
+            self.assertIn("are being read; try again", json.loads(answer)["error"])
             status, answer = self.request("POST", "/api/check", body, json_type)
             self.assertEqual(status, 503, answer)
             self.assertIn("are being read; try again", answer["error"])
