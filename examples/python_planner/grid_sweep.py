@@ -225,6 +225,22 @@ class GridSweep:
                         via = waypoints[k:-1][::-1]
                         break
             if best is None:
+                # The same to a point within a segment driven (a piece in a narrow cusp is seen from
+                # no waypoint): the points below or above a piece's ends, and a segment's quarters.
+                for k in range(len(waypoints) - 2, -1, -1):
+                    (ax, ay), (bx, by) = waypoints[k], waypoints[k + 1]
+                    ts = [0.25, 0.5, 0.75]
+                    if ax != bx:
+                        ts += [(x - ax) / (bx - ax) for i in left for x in pieces[i][1:3]]
+                    points = [(ax + t * (bx - ax), ay + t * (by - ay)) for t in sorted(set(ts)) if 0 < t < 1]
+                    found = [(reach(p, i), i, p) for p in points for i in left]
+                    found = [(r[0], i, r[1], p) for r, i, p in found if r is not None]
+                    if found:
+                        cost, i, flip, p = min(found)
+                        best = (cost, i, flip)
+                        via = waypoints[k + 1:-1][::-1] + [p]
+                        break
+            if best is None:
                 skipped = len(left)
                 break
             if best[2]:
