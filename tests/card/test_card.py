@@ -76,9 +76,10 @@ class BrokenPlannersFailTheirCards(unittest.TestCase):
 
 
 def registered_planners():
-    """The registry's planners, as `coverbench planners` lists them (a name and its summary per line)."""
+    """The registry's planners, as `coverbench planners` lists them (a name and its summary per line),
+    before the transit planners it lists after a blank line."""
     out = subprocess.run([BINARY, "planners"], capture_output=True, text=True, check=True).stdout
-    return re.findall(r"^([a-z0-9_-]+): ", out, flags=re.M)
+    return re.findall(r"^([a-z0-9_-]+): ", out.split("\n\n")[0], flags=re.M)
 
 
 class WorkingPlannersPassTheirCards(unittest.TestCase):
@@ -94,6 +95,7 @@ class WorkingPlannersPassTheirCards(unittest.TestCase):
     def test_every_in_tree_planner_passes_on_every_conformance_wall(self):
         names = registered_planners()
         self.assertIn("zigzag", names)
+        self.assertNotIn("visibility", names)
         for name in names:
             with self.subTest(planner=name):
                 j = self.assertPasses(name)
