@@ -59,16 +59,22 @@ struct HttpError : std::runtime_error {
 };
 
 constexpr std::size_t kMaxRunsPerPage = 1000;
+/// A request body's bytes: a wall file the workbench saves or plans, its settings around it.
 constexpr std::size_t kMaxBodyBytes = 1 << 20;
+/// POST /api/check's body may be larger: a wall of 10^6 vertices is about 30 MB of JSON and its
+/// check takes seconds (docs/explorer.md has the figure). At most kLargeBodiesAtOnce such bodies
+/// are read at once (each is held whole, and parsed), so memory stays bounded: about 0.6 GB.
+constexpr std::size_t kMaxCheckBodyBytes = 64u << 20;
+constexpr int kLargeBodiesAtOnce = 2;
 constexpr std::size_t kMaxSavedNameBytes = 1000;  // what GET /api/walls/db/NAME takes
 /// A request's line, headers and body must all arrive within this many seconds of its first
 /// byte; then the connection is answered 408 and closed (a slow client holds no thread longer).
 constexpr int kRequestReadSeconds = 10;
 /// Connections served at once (threads); more wait for one of them.
 constexpr std::size_t kConnectionThreads = 64;
-/// The most bytes one request may bring, its line and headers included: the body limit and room
-/// for the rest (what is read past it is refused, however the body is framed).
-constexpr std::size_t kMaxRequestBytes = kMaxBodyBytes + (256 << 10);
+/// A request's line and headers together, and the room a chunked body's framing may take beyond
+/// its body limit: what is read past these is refused, however the body is framed.
+constexpr std::size_t kMaxHeadBytes = 256 << 10;
 
 /// The page's files, by the only names they are served under.
 const std::map<std::string, std::pair<std::string, std::string>>& pageFiles() {
@@ -676,19 +682,93 @@ void answerError(httplib::Response& res, int status, const std::string& message)
   res.set_content(jsonText(json{{"error", message}}), "application/json");
 }
 
+/// What a request's headers say of its body, refused before any of it is read: a length that is
+/// no number, two lengths, a length and chunks, a body of no stated length (httplib would read it
+/// to the connection's end) or one over its route's limit. `status` 0: nothing refused.
+struct Refusal {
+  int status = 0;
+  std::string message;
+};
+
+/// Bodies over kMaxBodyBytes being read now (POST /api/check only), at most kLargeBodiesAtOnce.
+std::atomic<int> large_bodies{0};
+
 /// One request's bytes from its socket: each read waits at most until the request's deadline,
 /// so a client that sends a header line every few seconds cannot hold its thread past it.
 class DeadlineStream final : public httplib::Stream {
  public:
   explicit DeadlineStream(int sock) : sock_(sock) {}
+  ~DeadlineStream() override { endRequest(); }
   void startRequest() {
     deadline_ = std::chrono::steady_clock::now() + std::chrono::seconds(kRequestReadSeconds);
     timed_out_ = false;
     readTimedOut() = false;
     malformed() = false;
     tooLarge() = false;
+    refusal() = Refusal{};
+    bodyLimit() = kMaxBodyBytes;
     written_ = 0;
     read_ = 0;
+    cap_ = kMaxHeadBytes;
+  }
+  /// Gives back the large body's place, if this request had one.
+  void endRequest() {
+    if (large_) large_bodies.fetch_sub(1);
+    large_ = false;
+  }
+  /// Reads the request's headers for its body's framing and limit (called once they are read,
+  /// before the body is): the bytes it may still read are its body limit and the framing's room.
+  void frameBody(const httplib::Request& req) {
+    const bool check = req.method == "POST" && req.path == "/api/check";
+    const std::size_t limit = check ? kMaxCheckBodyBytes : kMaxBodyBytes;
+    bodyLimit() = limit;
+    cap_ = read_ + limit + kMaxHeadBytes;
+    const bool has_body = req.method == "POST" || req.method == "PUT" || req.method == "PATCH" || req.method == "DELETE" ||
+                          req.method == "PRI";  // the methods whose body httplib reads
+    std::string length;
+    const auto [first, last] = req.headers.equal_range("Content-Length");
+    for (auto it = first; it != last; ++it) {
+      const std::string& v = it->second;
+      if (v.empty() || v.size() > 18 || v.find_first_not_of("0123456789") != std::string::npos)
+        return refuse(400, "Content-Length: must be a whole number of bytes, got '" + v.substr(0, 40) + "'");
+      if (!length.empty() && v != length) return refuse(400, "Content-Length: given twice, as " + length + " and " + v);
+      length = v;
+    }
+    const bool chunked = req.has_header("Transfer-Encoding");
+    if (chunked && req.get_header_value("Transfer-Encoding") != "chunked")
+      return refuse(400, "Transfer-Encoding: only chunked is read, got '" + req.get_header_value("Transfer-Encoding").substr(0, 40) + "'");
+    if (chunked && !length.empty()) return refuse(400, "Transfer-Encoding and Content-Length: a request gives one or the other");
+    if (!has_body) {
+      if (chunked || (!length.empty() && std::stoull(length) > 0))
+        return refuse(400, req.method.substr(0, 10) + ": takes no body");
+      return;
+    }
+    if (!chunked && length.empty()) return refuse(411, "Content-Length: a request with a body must give its length (or be chunked)");
+    const std::uint64_t n = chunked ? 0 : std::stoull(length);
+    if (n > limit) return refuse(413, tooLargeMessage(n));
+    if (n > kMaxBodyBytes || (chunked && limit > kMaxBodyBytes)) {
+      if (large_bodies.fetch_add(1) >= kLargeBodiesAtOnce) {
+        large_bodies.fetch_sub(1);
+        return refuse(503, "request body: " + std::to_string(kLargeBodiesAtOnce) +
+                               " bodies over " + std::to_string(kMaxBodyBytes) + " bytes are being read; try again");
+      }
+      large_ = true;
+    }
+  }
+  /// The answer to a body over this request's limit, of `n` bytes (0: not known).
+  static std::string tooLargeMessage(std::uint64_t n) {
+    return "request body: " + (n > 0 ? std::to_string(n) + " bytes, " : std::string()) + "over the " + std::to_string(bodyLimit()) +
+           " bytes this request takes" + (bodyLimit() == kMaxBodyBytes ? " (POST /api/check takes " + std::to_string(kMaxCheckBodyBytes) + ")" : "");
+  }
+  /// This thread's request refused by its headers (status 0: not refused).
+  static Refusal& refusal() {
+    thread_local Refusal r;
+    return r;
+  }
+  /// The body limit of this thread's request.
+  static std::size_t& bodyLimit() {
+    thread_local std::size_t limit = kMaxBodyBytes;
+    return limit;
   }
   std::size_t written() const { return written_; }
   bool timedOut() const { return timed_out_; }
@@ -716,11 +796,11 @@ class DeadlineStream final : public httplib::Stream {
   /// Bytes from a buffer of 64 KiB filled by one recv at a time: httplib reads a request's line
   /// and headers a byte at a time (a 200 KB request line was 400,000 system calls).
   ssize_t read(char* ptr, size_t size) override {
-    if (read_ >= kMaxRequestBytes) {
-      tooLarge() = true;
+    if (read_ >= cap_) {
+      if (refusal().status == 0) tooLarge() = true;
       return -1;
     }
-    size = std::min(size, kMaxRequestBytes - read_);
+    size = std::min(size, cap_ - read_);
     if (begin_ == end_) {
       if (!wait(POLLIN, remainingMs())) {
         if (remainingMs() <= 0) timed_out_ = readTimedOut() = true;
@@ -755,6 +835,12 @@ class DeadlineStream final : public httplib::Stream {
 
  private:
   static constexpr int kWriteMs = 5000;
+  /// Refuses the request: no byte of its body is read (httplib's read fails at once) and the
+  /// answer is the refusal's; the connection is closed after it.
+  void refuse(int status, std::string message) {
+    refusal() = Refusal{status, std::move(message)};
+    cap_ = read_;
+  }
   long long remainingMs() const {
     return std::chrono::duration_cast<std::chrono::milliseconds>(deadline_ - std::chrono::steady_clock::now()).count();
   }
@@ -795,6 +881,8 @@ class DeadlineStream final : public httplib::Stream {
   mutable bool timed_out_ = false;
   std::size_t written_ = 0;
   std::size_t read_ = 0;
+  std::size_t cap_ = kMaxHeadBytes;  ///< the bytes this request may read in all
+  bool large_ = false;               ///< it holds one of the large bodies' places
   std::array<char, 65536> buffer_{};
   std::size_t begin_ = 0, end_ = 0;
 };
@@ -843,10 +931,12 @@ class DeadlineServer final : public httplib::Server {
       bool closed = false;
       // No Range: answers are whole (httplib cut JSON answers at a Range header, and answered an
       // unsatisfiable one with an empty 416).
-      ok = process_request(stream, left == 1, closed, [](httplib::Request& req) {
+      ok = process_request(stream, left == 1, closed, [&stream](httplib::Request& req) {
         req.ranges.clear();
         req.headers.erase("Range");
+        stream.frameBody(req);
       });
+      stream.endRequest();
       if (stream.timedOut()) {
         // httplib answers a request cut off in its headers or body itself (through the error
         // handler, as 408); one cut off in its first line gets no answer from it: this one.
@@ -859,7 +949,7 @@ class DeadlineServer final : public httplib::Server {
         linger(sock);
         break;
       }
-      if (DeadlineStream::malformed() || DeadlineStream::tooLarge()) {
+      if (DeadlineStream::malformed() || DeadlineStream::tooLarge() || DeadlineStream::refusal().status != 0) {
         linger(sock);
         break;
       }
@@ -959,7 +1049,10 @@ struct ServeApp::Impl {
   httplib::Server::Handler guarded(F handler) {
     return [this, handler](const httplib::Request& req, httplib::Response& res) {
       try {
+        if (const Refusal& r = DeadlineStream::refusal(); r.status != 0) throw HttpError(r.status, r.message);
         hosts.check(req);
+        // A chunked body is counted as it is read (DeadlineStream), with its framing's room.
+        if (req.body.size() > DeadlineStream::bodyLimit()) throw HttpError(413, DeadlineStream::tooLargeMessage(req.body.size()));
         handler(req, res);
       } catch (const HttpError& e) {
         answerError(res, e.status, e.what());
@@ -987,7 +1080,9 @@ ServeApp::ServeApp(const ServeOptions& o, const std::string& helper_exe) {
   Impl& x = *impl_;
   httplib::Server& server = x.server;
   server.new_task_queue = [] { return new httplib::ThreadPool(kConnectionThreads); };
-  server.set_payload_max_length(kMaxBodyBytes);
+  // Each route's own limit is held as its body is read (DeadlineStream::frameBody): httplib's is
+  // the largest of them.
+  server.set_payload_max_length(kMaxCheckBodyBytes);
   // Address reuse lets a restarted server bind at once, but not port reuse: a second server on a
   // busy port must fail at start, not share the port and split the saves between two databases.
   server.set_socket_options([](socket_t sock) {
@@ -1058,10 +1153,12 @@ ServeApp::ServeApp(const ServeOptions& o, const std::string& helper_exe) {
     if (!res.body.empty()) return;
     if (res.status == 400) DeadlineStream::malformed() = true;  // every route's own 400 has a body
     try {
-      if (DeadlineStream::readTimedOut())
+      if (const Refusal& r = DeadlineStream::refusal(); r.status != 0)
+        answerError(res, r.status, r.message);
+      else if (DeadlineStream::readTimedOut())
         answerError(res, 408, readDeadlineMessage());
       else if (res.status == 413 || DeadlineStream::tooLarge())
-        answerError(res, 413, "request body: over " + std::to_string(kMaxBodyBytes) + " bytes");
+        answerError(res, 413, DeadlineStream::tooLargeMessage(0));
       else if (res.status == 404)
         answerError(res, 404, req.path + ": no such page or API (see docs/explorer.md)");
       else

@@ -8,6 +8,6 @@
 # Running it again reuses the stored runs (no planner work) and writes the same report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh main
 ./build/coverbench run experiments/default.yaml
 echo "== open the report: results/default/report/index.html"

@@ -1,28 +1,38 @@
 #!/usr/bin/env bash
 # Installs CoverBench's build dependencies (Debian packages) when any is missing, then configures
-# and builds everything in build/ (Release). Safe to run again: it only does what is missing.
+# and builds in build/ (Release). Safe to run again: it only does what is missing.
+#   bash scripts/setup.sh        everything: the command, tests, benchmarks, the Python package
+#   bash scripts/setup.sh main   what the main job needs (scripts/run_main.sh): the command and the
+#                                report's Python packages; no test tools, TeX, browser or compilers
+#                                for the sanitizers, and only the command is built
 set -euo pipefail
 cd "$(dirname "$0")/.."
+mode="${1:-all}"
 
-PACKAGES=(g++ cmake ninja-build pkg-config ccache
+# What the command and its report need.
+MAIN_PACKAGES=(g++ cmake ninja-build pkg-config ccache
           libpolyclipping-dev nlohmann-json3-dev libcli11-dev libboost-graph-dev
           libyaml-cpp-dev libsqlite3-dev libssl-dev zlib1g-dev
           libcgal-dev libgmp-dev libmpfr-dev                       # the exact judge
-          libgtest-dev libbenchmark-dev
           python3 python3-numpy python3-scipy python3-matplotlib   # the report's statistics and plots
+          libcpp-httplib-dev                                       # coverbench serve
+          libompl-dev libeigen3-dev                                # the sampling transit planners (Eigen: import placements)
+          libgdal-dev)                                             # dataset import (GeoJSON, GML, KML, Shapefile, DXF, maps)
+# And what the tests, the gates, the benchmarks and the Python package need.
+PACKAGES=("${MAIN_PACKAGES[@]}"
+          libgtest-dev libbenchmark-dev
           python3-jsonschema                                       # the planner protocol's schema test
           pybind11-dev python3-dev                                 # the Python package (import coverbench)
+          python3-venv python3-pip mypy python3-pandas             # its install, type and DataFrame tests
           chromium python3-websocket                               # the browser test of the report
-          libcpp-httplib-dev                                       # coverbench serve
           node-typescript                                          # type-checks the explorer's JavaScript (ctest web_types)
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
-          libompl-dev libeigen3-dev                                # the sampling transit planners (Eigen: import placements)
-          libgdal-dev                                              # dataset import (GeoJSON, GML, KML, Shapefile, DXF, maps)
           ompl-demos                                               # OMPL's log parser, for the export-ompl test
           valgrind                                                 # the cost gate (callgrind)
           clang libclang-rt-14-dev)                                # the sanitizer build and the fuzz targets
 
+[ "$mode" = main ] && PACKAGES=("${MAIN_PACKAGES[@]}")
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -38,14 +48,22 @@ fi
 # first configured (the gates run on the pinned build and are skipped, with the reason, on others).
 build="${COVERBENCH_BUILD_DIR:-build}"
 export CCACHE_BASEDIR="$(cd .. && pwd)"
-if [ ! -f "$build/build.ninja" ]; then
-  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+if [ "$mode" = main ]; then
+  # The command alone: a build configured for everything keeps its settings.
+  if [ ! -f "$build/build.ninja" ]; then
+    cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOVERBENCH_BUILD_TESTS=OFF \
+      -DCOVERBENCH_BUILD_BENCHMARKS=OFF -DCOVERBENCH_BUILD_PYTHON=OFF >/dev/null
+  fi
+  echo "== building the command in $build"
+  cmake --build "$build" -j 2 --target coverbench
+  exit 0
+fi
+if [ ! -f "$build/build.ninja" ] || grep -qE '^COVERBENCH_BUILD_(TESTS|BENCHMARKS|PYTHON):BOOL=OFF' "$build/CMakeCache.txt"; then
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOVERBENCH_BUILD_TESTS=ON -DCOVERBENCH_BUILD_BENCHMARKS=ON \
+    -DCOVERBENCH_BUILD_PYTHON=ON >/dev/null
 fi
 echo "== building $build (first build takes two to three minutes on 2 cores)"
 cmake --build "$build" -j 2
 
-# `import coverbench` for Debian's python3 (and any python3 of the same version): the package's
-# folder on the user's site path (python/coverbench finds its compiled part in $build/python).
-site=$(/usr/bin/python3 -m site --user-site)
-mkdir -p "$site"
-echo "$(pwd)/python" > "$site/coverbench.pth"
+# `import coverbench` anywhere: `python3 -m pip install ./python` into a virtual environment (or
+# --user), which reuses this build (README.md, "From Python").

@@ -302,6 +302,33 @@ TEST_F(Cli, RunLimitsBecomeStatusesInTheTables) {
   EXPECT_NE(tmd.find("| timeout |"), std::string::npos) << tmd;
 }
 
+// GDAL (110 shared libraries, 0.1 s of CPU at each start) is loaded by an import only: the
+// loader's own account (LD_DEBUG=files names each library it opens) of a plan and of an import.
+TEST_F(Cli, OnlyAnImportLoadsGdal) {
+  const std::string wkt = write("w.wkt", "POLYGON ((0 0, 10 0, 10 5, 0 5, 0 0), (2 2, 3 2, 3 3, 2 3, 2 2))\n");
+  const std::string plan = (dir_ / "plan.json").string();
+  ::setenv("LD_DEBUG", "files", 1);
+  const CommandRun planned = run("plan --wall " + test::sourcePath("datasets/canonical/seed_5x5_1obs.json") +
+                                 " --planner zigzag --out " + plan);
+  const CommandRun imported = run("dataset import " + wkt + " --out " + (dir_ / "imported").string());
+  ::setenv("COVERBENCH_GDAL_PLUGIN", "/nonexistent/libcoverbench_gdal.so", 1);
+  const CommandRun refused = run("dataset import " + wkt + " --out " + (dir_ / "refused").string());
+  ::unsetenv("COVERBENCH_GDAL_PLUGIN");
+  ::unsetenv("LD_DEBUG");
+  ASSERT_EQ(planned.exit_code, 0) << planned.err;
+  ASSERT_EQ(imported.exit_code, 0) << imported.err;
+  EXPECT_EQ(planned.err.find("libgdal"), std::string::npos) << "a plan loaded GDAL";
+  EXPECT_NE(imported.err.find("libgdal"), std::string::npos) << "the import did not load GDAL through the plug-in?";
+  EXPECT_NE(imported.err.find("libcoverbench_gdal.so"), std::string::npos);
+  // A plug-in that cannot be opened: one line, exit 2, nothing written.
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("coverbench: GDAL: (plug-in): cannot be opened, so this format cannot be imported: "
+                             "/nonexistent/libcoverbench_gdal.so does not exist\n"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(dir_ / "refused"));
+}
+
 TEST_F(Cli, BadWallGivesOneLineAndNoOutput) {
   const std::string wall = write("bad.json", R"({"width": 5, "height": -1})");
   const std::string out = (dir_ / "plan.json").string();

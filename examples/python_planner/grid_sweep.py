@@ -11,6 +11,7 @@ ends inside the wall and outside every obstacle). A piece no straight move reach
 and the plan says so (status partial). Pure Python: no geometry library.
 """
 import math
+from typing import List, Tuple
 
 MARGIN = 1e-6  # spare distance on every check (m)
 
@@ -188,7 +189,9 @@ class GridSweep:
             pieces += [(k, a, b, y) for a, b in g.row_intervals(y)]
         if not pieces:
             return {"status": "no_reachable_area", "reason": "the tool fits on no row"}
-        waypoints, tool_on, left = [], [], set(range(len(pieces)))
+        waypoints: List[Tuple[float, float]] = []
+        tool_on: List[bool] = []
+        left = set(range(len(pieces)))
         rightward = True
 
         def paint(i, via=()):
@@ -242,8 +245,8 @@ class GridSweep:
                 # Back along the path already driven (its moves are free) to a waypoint that sees a
                 # piece left, then straight to it.
                 for k in range(len(waypoints) - 2, -1, -1):
-                    found = [(reach(waypoints[k], i), i) for i in left]
-                    found = [(r[0], i, r[1]) for r, i in found if r is not None]
+                    reached = [(reach(waypoints[k], i), i) for i in left]
+                    found = [(r[0], i, r[1]) for r, i in reached if r is not None]
                     if found:
                         best = min(found)
                         via = waypoints[k:-1][::-1]

@@ -20,6 +20,10 @@ WallsDb::WallsDb(const std::string& path) : file_(path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw InputError(path, "(database)", "is a folder, not a walls database file");
+  // A FIFO or a device would hang the first read, or be written to (a link the user names is
+  // followed, as for every file on the command line; what it leads to must be a file).
+  if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+    throw InputError(path, "(database)", "is not a regular file (a FIFO, a device or a socket cannot be a walls database)");
   const bool empty = !fs::exists(path, ec) || fs::file_size(path, ec) == 0;
   // SQLite makes -wal and -shm files beside a WAL database it reads: a refused file keeps only
   // what it had beside it.

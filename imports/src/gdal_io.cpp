@@ -1,5 +1,7 @@
 // GDAL/OGR for the importer: vector files, DXF, WKT, images and polygonising an occupancy mask.
-// The one translation unit that includes GDAL (gdal_io.hpp says what it offers).
+// The one translation unit that includes GDAL (gdal_io.hpp says what it offers), built as the
+// plug-in libcoverbench_gdal.so (gdal_plugin.hpp): what it needs of CoverBench's own code comes
+// through the host's functions, so it links GDAL and nothing of ours.
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal_alg.h>
@@ -18,11 +20,22 @@
 #include <memory>
 #include <mutex>
 #include <set>
+#include <stdexcept>
 
 #include "gdal_io.hpp"
+#include "gdal_plugin.hpp"
 
 namespace coverbench::import_detail {
 namespace {
+
+const GdalHost* host = nullptr;  // set when the plug-in is opened (coverbench_gdal_plugin)
+
+[[noreturn]] void fail(const std::string& source, const std::string& field, const std::string& problem) {
+  host->input_error(source, field, problem);
+  throw std::logic_error("the importer's host returned from input_error");  // it throws; never reached
+}
+std::string hostShortNumber(double v) { return host->short_number(v); }
+bool hostPointInRing(Point p, const Ring& ring) { return host->point_in_ring(p, ring); }
 
 void registerOnce() {
   static std::once_flag once;
@@ -94,21 +107,21 @@ Projection projectionFor(const OGRSpatialReference* file_srs, double cx, double 
     src = *file_srs;
   } else if (!options.source_crs.empty() && !saysMetres(options.source_crs)) {
     if (src.SetFromUserInput(options.source_crs.c_str()) != OGRERR_NONE)
-      throw InputError("--source-crs", "(value)", "'" + options.source_crs + "' is not a CRS PROJ knows");
+      fail("--source-crs", "(value)", "'" + options.source_crs + "' is not a CRS PROJ knows");
   } else {
     if (!options.crs.empty())
-      throw InputError(source, "(CRS)", "names no CRS, so --crs cannot project it: give --source-crs as well");
+      fail(source, "(CRS)", "names no CRS, so --crs cannot project it: give --source-crs as well");
     return p;  // local metres
   }
   src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   OGRSpatialReference dst;
   if (!options.crs.empty()) {
     if (dst.SetFromUserInput(options.crs.c_str()) != OGRERR_NONE)
-      throw InputError("--crs", "(value)", "'" + options.crs + "' is not a CRS PROJ knows");
-    if (dst.IsGeographic()) throw InputError("--crs", "(value)", "'" + options.crs + "' is geographic: walls need a CRS in metres");
+      fail("--crs", "(value)", "'" + options.crs + "' is not a CRS PROJ knows");
+    if (dst.IsGeographic()) fail("--crs", "(value)", "'" + options.crs + "' is geographic: walls need a CRS in metres");
   } else if (src.IsGeographic()) {
     if (!(std::fabs(cx) <= 180.0 && std::fabs(cy) <= 90.0))
-      throw InputError(source, "(coordinates)", "lie outside longitude/latitude range for its geographic CRS " + crsName(src));
+      fail(source, "(coordinates)", "lie outside longitude/latitude range for its geographic CRS " + crsName(src));
     const int zone = std::clamp(static_cast<int>(std::floor((cx + 180.0) / 6.0)) + 1, 1, 60);
     dst.importFromEPSG((cy >= 0 ? 32600 : 32700) + zone);
   } else {
@@ -117,7 +130,7 @@ Projection projectionFor(const OGRSpatialReference* file_srs, double cx, double 
   }
   dst.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   p.transform.reset(OGRCreateCoordinateTransformation(&src, &dst));
-  if (!p.transform) throw InputError(source, "(CRS)", "cannot be projected to " + crsName(dst) + ": " + lastGdalError());
+  if (!p.transform) fail(source, "(CRS)", "cannot be projected to " + crsName(dst) + ": " + lastGdalError());
   p.crs = crsName(dst);
   return p;
 }
@@ -139,7 +152,7 @@ void refuseBareDegrees(const OGREnvelope& env, const OGRSpatialReference* srs, c
                                std::fabs(env.MaxY) <= 90;
   const double width = env.MaxX - env.MinX, height = env.MaxY - env.MinY;
   if (in_degree_range && std::max(width, height) < 1.0)
-    throw InputError(source, "(CRS)",
+    fail(source, "(CRS)",
                      "names no CRS and its coordinates look like degrees (longitude/latitude; as metres it would be " +
                          roughNumber(width) + " x " + roughNumber(height) +
                          " m): give --source-crs EPSG:4326, or --source-crs metres if they are metres");
@@ -150,12 +163,12 @@ void refuseBareDegrees(const OGREnvelope& env, const OGRSpatialReference* srs, c
 /// `lonlat`: the name of the file's geographic CRS (its coordinates must be longitude/latitude).
 void checkCoordinate(double x, double y, const std::string& source, const std::string& field, const std::string& lonlat = "") {
   if (!lonlat.empty() && std::isfinite(x) && std::isfinite(y) && (std::fabs(x) > 180.0 || std::fabs(y) > 90.0))
-    throw InputError(source, field, "has a point (" + shortNumber(x) + ", " + shortNumber(y) +
+    fail(source, field, "has a point (" + hostShortNumber(x) + ", " + hostShortNumber(y) +
                                         ") outside longitude/latitude range for its geographic CRS " + lonlat);
   if (!std::isfinite(x) || !std::isfinite(y))
-    throw InputError(source, field, "has a coordinate that is not a finite number (" + shortNumber(x) + ", " + shortNumber(y) + ")");
+    fail(source, field, "has a coordinate that is not a finite number (" + hostShortNumber(x) + ", " + hostShortNumber(y) + ")");
   if (std::fabs(x) > kMaxImportCoordinate || std::fabs(y) > kMaxImportCoordinate)
-    throw InputError(source, field, "has a coordinate beyond 1e8 (" + shortNumber(x) + ", " + shortNumber(y) +
+    fail(source, field, "has a coordinate beyond 1e8 (" + hostShortNumber(x) + ", " + hostShortNumber(y) +
                                         "): no wall is drawn in such units");
 }
 
@@ -215,7 +228,7 @@ void checkValid(const OGRGeometry& g, const std::string& source, const std::stri
     const std::size_t colon = why.find(": ");
     if (why.empty()) why = "invalid polygon";
     else if (colon != std::string::npos && why.rfind("Self-intersection", 0) != 0) why = why.substr(colon + 2);
-    throw InputError(source, field, "is not a valid polygon (" + why + "): a ring crosses itself or another ring");
+    fail(source, field, "is not a valid polygon (" + why + "): a ring crosses itself or another ring");
   }
 }
 
@@ -235,11 +248,11 @@ RawSet readPolygons(GDALDataset& ds, const std::string& path, const ImportOption
     }
     layers.emplace_back(layer, layer->GetSpatialRef());
   }
-  if (!have_extent) throw InputError(path, "(features)", "holds no geometry");
+  if (!have_extent) fail(path, "(features)", "holds no geometry");
   const OGRSpatialReference* srs = layers.front().second;
   for (const auto& [layer, layer_srs] : layers)
     if ((layer_srs == nullptr) != (srs == nullptr) || (srs && !srs->IsSame(layer_srs)))
-      throw InputError(path, std::string("layer ") + layer->GetName(),
+      fail(path, std::string("layer ") + layer->GetName(),
                        "is in another CRS than the first layer: import the layers one at a time");
   refuseBareDegrees(all, srs, options, path);
   Projection projection = projectionFor(srs, (all.MinX + all.MaxX) / 2, (all.MinY + all.MaxY) / 2, options, path);
@@ -264,11 +277,11 @@ RawSet readPolygons(GDALDataset& ds, const std::string& path, const ImportOption
       if (projection.transform) {
         projected.reset(g->clone());
         if (projected->transform(projection.transform.get()) != OGRERR_NONE)
-          throw InputError(path, where, "cannot be projected to " + projection.crs + ": " + lastGdalError());
+          fail(path, where, "cannot be projected to " + projection.crs + ": " + lastGdalError());
         g = projected.get();
       }
       collectPolygons(g, polys, keep);
-      if (polys.size() > 1 && !options.split_multipolygons) throw InputError(path, where, multipolygonRefused(polys.size()));
+      if (polys.size() > 1 && !options.split_multipolygons) fail(path, where, multipolygonRefused(polys.size()));
       const std::string name =
           name_index >= 0 && feature->IsFieldSetAndNotNull(name_index) ? feature->GetFieldAsString(name_index) : "";
       for (std::size_t k = 0; k < polys.size(); ++k) {
@@ -282,9 +295,9 @@ RawSet readPolygons(GDALDataset& ds, const std::string& path, const ImportOption
     }
   }
   if (!named_field_seen)
-    throw InputError(path, "--name-field", "no attribute '" + options.name_field + "' (attributes: " +
+    fail(path, "--name-field", "no attribute '" + options.name_field + "' (attributes: " +
                                                (fields_seen.empty() ? "none" : fields_seen) + ")");
-  if (set.polygons.empty()) throw InputError(path, "(features)", "holds no polygon (lines and points are not areas)");
+  if (set.polygons.empty()) fail(path, "(features)", "holds no polygon (lines and points are not areas)");
   return set;
 }
 
@@ -296,7 +309,7 @@ GDALDatasetUniquePtr openVector(const std::string& path, const std::vector<const
                                             drivers.empty() ? nullptr : allowed.data(), nullptr, nullptr));
   if (!ds) {
     const std::string why = lastGdalError();
-    throw InputError(path, "(file)", "cannot be read as " + std::string(drivers.empty() ? "vector data" : drivers.front()) +
+    fail(path, "(file)", "cannot be read as " + std::string(drivers.empty() ? "vector data" : drivers.front()) +
                                          (why.empty() ? "" : ": " + why));
   }
   return ds;
@@ -317,9 +330,9 @@ RawSet readDxfFile(const std::string& path, const ImportOptions& options) {
   registerOnce();
   GDALDatasetUniquePtr ds = openVector(path, {"DXF"});
   OGRLayer* layer = ds->GetLayer(0);
-  if (!layer) throw InputError(path, "(entities)", "holds no entities");
+  if (!layer) fail(path, "(entities)", "holds no entities");
   OGREnvelope env;
-  if (layer->GetExtent(&env, TRUE) != OGRERR_NONE) throw InputError(path, "(entities)", "holds no geometry");
+  if (layer->GetExtent(&env, TRUE) != OGRERR_NONE) fail(path, "(entities)", "holds no geometry");
   refuseBareDegrees(env, nullptr, options, path);
   Projection projection = projectionFor(nullptr, (env.MinX + env.MaxX) / 2, (env.MinY + env.MaxY) / 2, options, path);
   const std::set<std::string> obstacle_layers(options.dxf_obstacle_layers.begin(), options.dxf_obstacle_layers.end());
@@ -366,7 +379,7 @@ RawSet readDxfFile(const std::string& path, const ImportOptions& options) {
   if (boundaries.empty()) {
     std::string known;
     for (const std::string& l : layers_seen) known += (known.empty() ? "" : ", ") + l;
-    throw InputError(path, "--boundary-layer", "no closed polyline on layer '" + options.dxf_boundary_layer +
+    fail(path, "--boundary-layer", "no closed polyline on layer '" + options.dxf_boundary_layer +
                                                    "' (layers: " + (known.empty() ? "none" : known) + ")");
   }
   // Each obstacle goes to every boundary it overlaps (an opening across the line between two
@@ -404,7 +417,7 @@ RawSet readDxfFile(const std::string& path, const ImportOptions& options) {
         const GeometryPtr common(boundary_polys[k]->Intersection(obstacle.get()));
         overlaps = common && !common->IsEmpty() && OGR_G_Area(OGRGeometry::ToHandle(common.get())) > 0.0;
       } else {  // no GEOS, or a ring the wall check refuses below anyway
-        overlaps = pointInRing(ring.front(), b.outer) || pointInRing(vertexMean(ring), b.outer);
+        overlaps = hostPointInRing(ring.front(), b.outer) || hostPointInRing(vertexMean(ring), b.outer);
       }
       if (overlaps) {
         b.holes.push_back(ring);
@@ -412,7 +425,7 @@ RawSet readDxfFile(const std::string& path, const ImportOptions& options) {
       }
     }
     if (!placed && !obstacle_layers.empty())
-      throw InputError(path, where, "is an obstacle that lies in no boundary on layer '" + options.dxf_boundary_layer + "'");
+      fail(path, where, "is an obstacle that lies in no boundary on layer '" + options.dxf_boundary_layer + "'");
   }
   RawSet set;
   set.crs = projection.crs;
@@ -421,7 +434,7 @@ RawSet readDxfFile(const std::string& path, const ImportOptions& options) {
       for (Ring* r : [&] { std::vector<Ring*> all{&b.outer}; for (Ring& h : b.holes) all.push_back(&h); return all; }())
         for (Point& p : *r)
           if (!projection.transform->Transform(1, &p.x, &p.y))
-            throw InputError(path, b.feature, "cannot be projected to " + projection.crs);
+            fail(path, b.feature, "cannot be projected to " + projection.crs);
     set.polygons.push_back(std::move(b));
   }
   return set;
@@ -432,7 +445,7 @@ RawSet readWktText(const std::string& text, const std::string& source, const Imp
   // OGR reads up to a NUL byte: the rest of the file would be dropped without a word.
   const std::size_t nul = text.find('\0');
   if (nul != std::string::npos)
-    throw InputError(source, "(text)", "contains a NUL byte at offset " + std::to_string(nul) + " (not a WKT text file)");
+    fail(source, "(text)", "contains a NUL byte at offset " + std::to_string(nul) + " (not a WKT text file)");
   std::vector<GeometryPtr> geometries;
   const char* cursor = text.c_str();
   const char* const begin = cursor;
@@ -444,7 +457,7 @@ RawSet readWktText(const std::string& text, const std::string& source, const Imp
     const std::string where = "geometry " + std::to_string(geometries.size() + 1);
     const std::size_t at = static_cast<std::size_t>(cursor - begin);
     if (OGRGeometryFactory::createFromWkt(&cursor, nullptr, &g) != OGRERR_NONE || !g)
-      throw InputError(source, where, "is not WKT (at character " + std::to_string(at + 1) + ")");
+      fail(source, where, "is not WKT (at character " + std::to_string(at + 1) + ")");
     geometries.emplace_back(g);
     checkCoordinates(g, source, where);
     OGREnvelope env;
@@ -452,7 +465,7 @@ RawSet readWktText(const std::string& text, const std::string& source, const Imp
     all.Merge(env);
     while (*cursor && (std::isspace(static_cast<unsigned char>(*cursor)) || *cursor == ';')) ++cursor;
   }
-  if (geometries.empty()) throw InputError(source, "(text)", "holds no WKT geometry");
+  if (geometries.empty()) fail(source, "(text)", "holds no WKT geometry");
   refuseBareDegrees(all, nullptr, options, source);
   Projection projection = projectionFor(nullptr, (all.MinX + all.MaxX) / 2, (all.MinY + all.MaxY) / 2, options, source);
   RawSet set;
@@ -461,12 +474,12 @@ RawSet readWktText(const std::string& text, const std::string& source, const Imp
     const std::string where = "geometry " + std::to_string(i + 1);
     OGRGeometry* g = geometries[i].get();
     if (projection.transform && g->transform(projection.transform.get()) != OGRERR_NONE)
-      throw InputError(source, where, "cannot be projected to " + projection.crs);
+      fail(source, where, "cannot be projected to " + projection.crs);
     std::vector<const OGRPolygon*> polys;
     std::vector<GeometryPtr> keep;
     collectPolygons(g, polys, keep);
-    if (polys.empty()) throw InputError(source, where, "is not a polygon (" + std::string(g->getGeometryName()) + ")");
-    if (polys.size() > 1 && !options.split_multipolygons) throw InputError(source, where, multipolygonRefused(polys.size()));
+    if (polys.empty()) fail(source, where, "is not a polygon (" + std::string(g->getGeometryName()) + ")");
+    if (polys.size() > 1 && !options.split_multipolygons) fail(source, where, multipolygonRefused(polys.size()));
     for (std::size_t k = 0; k < polys.size(); ++k) {
       const std::string field = polys.size() > 1 ? where + " part " + std::to_string(k + 1) : where;
       checkValid(*polys[k], source, field);
@@ -499,7 +512,7 @@ void placeBareSet(RawSet& set, const std::string& source, const ImportOptions& o
     for (Ring* r : rings)
       for (Point& p : *r)
         if (!projection.transform->Transform(1, &p.x, &p.y))
-          throw InputError(source, poly.feature, "cannot be projected to " + projection.crs);
+          fail(source, poly.feature, "cannot be projected to " + projection.crs);
   }
 }
 
@@ -552,31 +565,31 @@ FreeMask readFreeCells(const std::string& path, const std::string& source, const
   const PnmHeader pnm = readPnmHeader(path);
   if (pnm.is_pnm) {
     // The limits first, from the header alone: nothing is allocated for what the file lacks.
-    if (pnm.width < 1 || pnm.height < 1) throw InputError(source, field, "'" + path + "' has no pixels");
+    if (pnm.width < 1 || pnm.height < 1) fail(source, field, "'" + path + "' has no pixels");
     if (static_cast<double>(pnm.width) * static_cast<double>(pnm.height) > kMaxMapPixels)
-      throw InputError(source, field, "'" + path + "' declares " + pixelCount(pnm.width, pnm.height) +
+      fail(source, field, "'" + path + "' declares " + pixelCount(pnm.width, pnm.height) +
                                           " pixels, over the limit of 10^8");
     if (pnm.maxval < 1 || pnm.maxval > 65535)
-      throw InputError(source, field, "'" + path + "' declares a maximum value of " + std::to_string(pnm.maxval) + " (1 to 65535)");
+      fail(source, field, "'" + path + "' declares a maximum value of " + std::to_string(pnm.maxval) + " (1 to 65535)");
     std::error_code ec;
     const auto size = static_cast<long long>(std::filesystem::file_size(path, ec));
     const long long need = pnm.data_offset + pnm.width * pnm.height * pnm.channels * (pnm.maxval > 255 ? 2 : 1);
     if (!ec && size < need)
-      throw InputError(source, field, "'" + path + "' declares " + pixelCount(pnm.width, pnm.height) + " pixels (" +
+      fail(source, field, "'" + path + "' declares " + pixelCount(pnm.width, pnm.height) + " pixels (" +
                                           std::to_string(need) + " bytes) but holds " + std::to_string(size) + " bytes");
   }
   GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!ds) throw InputError(source, field, "cannot read the image '" + path + "': " + lastGdalError());
+  if (!ds) fail(source, field, "cannot read the image '" + path + "': " + lastGdalError());
   FreeMask out;
   out.width = ds->GetRasterXSize();
   out.height = ds->GetRasterYSize();
-  if (ds->GetRasterCount() < 1 || out.width < 1 || out.height < 1) throw InputError(source, field, "'" + path + "' has no pixels");
+  if (ds->GetRasterCount() < 1 || out.width < 1 || out.height < 1) fail(source, field, "'" + path + "' has no pixels");
   if (static_cast<double>(out.width) * static_cast<double>(out.height) > kMaxMapPixels)
-    throw InputError(source, field, "'" + path + "' is " + pixelCount(out.width, out.height) + " pixels, over the limit of 10^8");
+    fail(source, field, "'" + path + "' is " + pixelCount(out.width, out.height) + " pixels, over the limit of 10^8");
   const double across = resolution * std::max(out.width, out.height);
   if (across > kMaxExtent)
-    throw InputError(source, "resolution", shortNumber(resolution) + " m per pixel makes the " + pixelCount(out.width, out.height) +
-                                               " image " + shortNumber(across) + " m across, over 10 km");
+    fail(source, "resolution", hostShortNumber(resolution) + " m per pixel makes the " + pixelCount(out.width, out.height) +
+                                               " image " + hostShortNumber(across) + " m across, over 10 km");
 
   // The bands' roles: colour channels (averaged), alpha (never averaged), or a palette.
   std::vector<GDALRasterBand*> colour;
@@ -590,7 +603,7 @@ FreeMask readFreeCells(const std::string& path, const std::string& source, const
     alpha = ds->GetRasterBand(ds->GetRasterCount());
     colour.erase(std::remove(colour.begin(), colour.end(), alpha), colour.end());
   }
-  if (colour.empty()) throw InputError(source, field, "'" + path + "' has no colour or grey channel");
+  if (colour.empty()) fail(source, field, "'" + path + "' has no colour or grey channel");
   const GDALColorTable* palette =
       colour.size() == 1 && colour[0]->GetColorInterpretation() == GCI_PaletteIndex ? colour[0]->GetColorTable() : nullptr;
   // The full scale of a channel: a PGM's maximum value, else its bits (16-bit PNG: 65535).
@@ -598,7 +611,7 @@ FreeMask readFreeCells(const std::string& path, const std::string& source, const
   const GDALDataType type = colour[0]->GetRasterDataType();
   if (type == GDT_UInt16) full = 65535.0;
   else if (type != GDT_Byte)
-    throw InputError(source, field, "'" + path + "' has " + GDALGetDataTypeName(type) + " pixels: a map image has 8 or 16 bits");
+    fail(source, field, "'" + path + "' has " + GDALGetDataTypeName(type) + " pixels: a map image has 8 or 16 bits");
   if (const char* nbits = colour[0]->GetMetadataItem("NBITS", "IMAGE_STRUCTURE")) {
     const int bits = std::atoi(nbits);
     if (bits >= 1 && bits < 16) full = static_cast<double>((1 << bits) - 1);
@@ -611,7 +624,7 @@ FreeMask readFreeCells(const std::string& path, const std::string& source, const
   std::vector<std::uint16_t> alpha_row(alpha ? width : 0);
   auto read = [&](GDALRasterBand* band, int y, std::vector<std::uint16_t>& row) {
     if (band->RasterIO(GF_Read, 0, y, out.width, 1, row.data(), out.width, 1, GDT_UInt16, 0, 0) != CE_None)
-      throw InputError(source, field, "cannot read the pixels of '" + path + "': " + lastGdalError());
+      fail(source, field, "cannot read the pixels of '" + path + "': " + lastGdalError());
   };
   for (int y = 0; y < out.height; ++y) {
     for (std::size_t c = 0; c < colour.size(); ++c) read(colour[c], y, rows[c]);
@@ -662,7 +675,7 @@ Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int 
   layer->CreateField(&value_field);
   // The band as its own mask: only the non-zero (free) cells become polygons; 4-connected.
   if (GDALPolygonize(band, band, layer, 0, nullptr, nullptr, nullptr) != CE_None)
-    throw InputError(source, "image", "cannot be polygonised: " + lastGdalError());
+    fail(source, "image", "cannot be polygonised: " + lastGdalError());
   struct Found {
     double pixel_area;
     std::size_t order;
@@ -700,3 +713,11 @@ Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int 
 }
 
 }  // namespace coverbench::import_detail
+
+extern "C" __attribute__((visibility("default"))) const coverbench::import_detail::GdalApi* coverbench_gdal_plugin(
+    const coverbench::import_detail::GdalHost* h) {
+  using namespace coverbench::import_detail;
+  host = h;
+  static const GdalApi api{kGdalPluginAbi, &readVectorFile, &readDxfFile, &readWktText, &placeBareSet, &readFreeCells, &polygonizeMask};
+  return &api;
+}

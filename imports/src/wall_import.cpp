@@ -1,11 +1,15 @@
 // The importer: picks a reader per source, reads the formats that need no GDAL (polygon text,
 // YAML hull/holes, map_server YAML), places and cleans the polygons, and makes walls of them.
+// What needs GDAL is in the plug-in libcoverbench_gdal.so (gdal_plugin.hpp), opened on first use.
+#include <dlfcn.h>
+
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -15,7 +19,8 @@
 #include "coverbench/files.hpp"
 #include "coverbench/hash.hpp"
 #include "coverbench/wall_import.hpp"
-#include "gdal_io.hpp"
+#include "coverbench/geometry.hpp"
+#include "gdal_plugin.hpp"
 
 namespace coverbench {
 namespace {
@@ -30,6 +35,58 @@ using import_detail::RawSet;
 constexpr double kPerMetre = 1e4;
 
 double roundToGrid(double v) { return std::round(v * kPerMetre) / kPerMetre; }
+
+void hostInputError(const std::string& source, const std::string& field, const std::string& problem) {
+  throw InputError(source, field, problem);
+}
+bool hostPointInRing(Point p, const Ring& ring) { return pointInRing(p, ring); }
+std::string hostShortNumber(double v) { return shortNumber(v); }
+
+/// Where the GDAL plug-in is: COVERBENCH_GDAL_PLUGIN, else beside the program or library this
+/// code is in (the command, the Python module), else where the build made it.
+std::vector<std::string> gdalPluginPlaces() {
+  std::vector<std::string> places;
+  if (const char* env = std::getenv("COVERBENCH_GDAL_PLUGIN"); env && *env) return {env};
+  Dl_info info{};
+  if (::dladdr(reinterpret_cast<void*>(&hostShortNumber), &info) != 0 && info.dli_fname)
+    places.push_back((fs::path(info.dli_fname).parent_path() / "libcoverbench_gdal.so").string());
+  places.push_back(COVERBENCH_GDAL_PLUGIN_PATH);
+  return places;
+}
+
+/// The GDAL plug-in, opened once (the first import pays for GDAL's libraries; no other command
+/// loads them). Throws InputError when it cannot be opened, on every call.
+const import_detail::GdalApi& gdal() {
+  struct Opened {
+    const import_detail::GdalApi* api = nullptr;
+    std::string error;
+  };
+  static const Opened opened = [] {
+    static const import_detail::GdalHost host{&hostInputError, &hostPointInRing, &hostShortNumber};
+    Opened o;
+    for (const std::string& place : gdalPluginPlaces()) {
+      std::error_code ec;
+      if (!fs::exists(place, ec)) {
+        o.error += (o.error.empty() ? "" : "; ") + place + " does not exist";
+        continue;
+      }
+      void* lib = ::dlopen(place.c_str(), RTLD_NOW | RTLD_LOCAL);
+      const char* why = lib ? nullptr : ::dlerror();
+      auto entry = lib ? reinterpret_cast<import_detail::GdalPluginEntry>(::dlsym(lib, import_detail::kGdalPluginEntry)) : nullptr;
+      const import_detail::GdalApi* api = entry ? entry(&host) : nullptr;
+      if (api && api->abi == import_detail::kGdalPluginAbi) {
+        o.api = api;
+        return o;
+      }
+      o.error += (o.error.empty() ? "" : "; ") + place + ": " +
+                 (why ? std::string(why) : !entry ? "has no " + std::string(import_detail::kGdalPluginEntry)
+                                                  : "is of another build (its interface differs)");
+    }
+    return o;
+  }();
+  if (!opened.api) throw InputError("GDAL", "(plug-in)", "cannot be opened, so this format cannot be imported: " + opened.error);
+  return *opened.api;
+}
 
 std::string stemOf(const std::string& path) {
   fs::path p(path);
@@ -100,7 +157,7 @@ RawSet readPolygonTextFolder(const fs::path& folder, const ImportOptions& option
   raw.name = stemOf(folder.string());
   raw.feature = "outer_polygon";
   RawSet set{{std::move(raw)}, ""};
-  import_detail::placeBareSet(set, outer_path, options);
+  gdal().place_bare_set(set, outer_path, options);
   return set;
 }
 
@@ -159,7 +216,7 @@ RawSet readHullYaml(const std::string& path, const YAML::Node& doc, const Import
   raw.name = doc["name"] ? doc["name"].Scalar() : stemOf(path);
   raw.feature = "hull";
   RawSet set{{std::move(raw)}, ""};
-  import_detail::placeBareSet(set, path, options);
+  gdal().place_bare_set(set, path, options);
   return set;
 }
 
@@ -216,11 +273,11 @@ RawSet readOccupancyMap(const std::string& path, const YAML::Node& doc, const Im
 
   const fs::path image_path = fs::path(path).parent_path() / doc["image"].Scalar();
   if (!fs::is_regular_file(image_path)) throw InputError(path, "image", "'" + image_path.string() + "' is not a file");
-  const import_detail::FreeMask mask = import_detail::readFreeCells(image_path.string(), path, "image", rule, resolution);
+  const import_detail::FreeMask mask = gdal().read_free_cells(image_path.string(), path, "image", rule, resolution);
   extra_sources.push_back({image_path.string(), sha256Hex(readFile(image_path.string()))});
   if (mask.free_cells == 0) throw InputError(path, "image", "has no free cell (by free_thresh " + shortNumber(free) + ")");
   const double tolerance = options.simplify >= 0 ? options.simplify : resolution / 2;
-  import_detail::Components found = import_detail::polygonizeMask(mask.free, mask.width, mask.height, resolution, tolerance, path);
+  import_detail::Components found = gdal().polygonize_mask(mask.free, mask.width, mask.height, resolution, tolerance, path);
   if (found.polygons.empty()) throw InputError(path, "image", "has no free area left after simplification");
   std::vector<RawPolygon>& components = found.polygons;
   const std::size_t total = components.size() + found.lost;
@@ -475,11 +532,11 @@ void importFile(const std::string& source, const std::string& format, const Impo
       throw InputError(source, "line " + std::to_string(e.mark.line + 1), e.msg);
     }
   } else if (format == "wkt") {
-    set = import_detail::readWktText(bytes, source, options);
+    set = gdal().read_wkt_text(bytes, source, options);
   } else if (format == "dxf") {
-    set = import_detail::readDxfFile(source, options);
+    set = gdal().read_dxf_file(source, options);
   } else {
-    set = import_detail::readVectorFile(source, format, options);
+    set = gdal().read_vector_file(source, format, options);
     for (const std::string& c : companionFiles(p, format)) result.sources.push_back({c, sha256Hex(readFile(c))});
   }
 

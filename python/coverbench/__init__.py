@@ -1,84 +1,171 @@
-"""CoverBench from Python.
+"""CoverBench from Python: walls, planners, both judges and an experiment's runs.
 
 - Walls: ``load_wall(path)`` and ``check_wall(wall)`` (a dict in the wall-file format; bad input
   raises ValueError with the command line's one-line message).
 - Planners: ``planners()`` lists the registered ones with their parameters; ``plan(wall, planner,
   params=..., tool_width=..., clearance=...)`` runs any of them (or an external planner, by its
-  manifest's path) and returns the plan as a dict.
+  manifest's path) and judges the path as ``coverbench plan`` does.
 - Scores: ``score(wall, waypoints, tool_on, ..., judge="fast" | "exact")``: every metric of the
-  fast engine, and with the exact judge its certified verdict.
+  fast engine, ``valid`` as a bool with the violating segments, and with the exact judge its
+  certified verdict.
 - Results: ``runs(database)`` reads an experiment's runs as dicts; ``runs_dataframe(database)`` as
-  a pandas DataFrame when pandas is installed.
+  a pandas DataFrame (pandas must be installed).
 - Planners in Python: ``coverbench.serve`` serves one over the planner protocol
   (docs/external_planners.md).
 
-The compiled part (``coverbench._core``, pybind11) is built by scripts/setup.sh into build/python.
+Waypoints come back as a numpy array of shape (n, 2) when numpy is installed, else as a list of
+[x, y]; any sequence of (x, y) pairs goes in. A wall is a dict, wall-file JSON text or a wall
+file's path.
+
+Install: ``pip install ./python`` from the source tree (README.md, "From Python"); the compiled
+part, ``coverbench._core`` (pybind11), is built by CMake and ships inside the package.
 """
+from __future__ import annotations
+
+import importlib
+import importlib.machinery
 import json
 import os
+from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-__all__ = ["load_wall", "check_wall", "planners", "plan", "score", "runs", "runs_dataframe"]
+__all__ = ["load_wall", "check_wall", "planners", "plan", "score", "runs", "runs_dataframe",
+           "Wall", "Plan", "Waypoints"]
+__version__ = "0.1.0"
 
-# The compiled module lives in the build folder (COVERBENCH_BUILD_DIR, default build/).
-_build = os.environ.get("COVERBENCH_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "build"))
-__path__.append(os.path.join(os.path.abspath(_build), "python", "coverbench"))  # noqa: F821
+# In the source tree (tests, the planners CoverBench starts with python/ on PYTHONPATH) the
+# compiled module is in the build folder (COVERBENCH_BUILD_DIR, default build/); an installed
+# package holds it next to this file.
+_here = os.path.dirname(os.path.abspath(__file__))
+if not any(n == "_core" + s for n in os.listdir(_here) for s in importlib.machinery.EXTENSION_SUFFIXES):
+    _build = os.environ.get("COVERBENCH_BUILD_DIR", os.path.join(_here, "..", "..", "build"))
+    __path__.append(os.path.join(os.path.abspath(_build), "python", "coverbench"))  # noqa: F821
+
+#: A wall: a dict in the wall-file format, its JSON text, or a wall file's path.
+Wall = Union[Mapping[str, Any], str]
+#: Waypoints as they come back: a numpy array of shape (n, 2) (float64) when numpy is installed,
+#: else a list of [x, y]. Any sequence of (x, y) pairs goes in.
+Waypoints = Any
+#: A plan as ``plan()`` returns it (keys in the docstring of ``plan``).
+Plan = Dict[str, Any]
 
 
-def _native():
-    try:
-        from . import _core as core
-    except ImportError as e:
-        raise ImportError("coverbench._core is not built: run `bash scripts/setup.sh` (it builds build/python)") from e
-    return core
+class _Lazy:
+    """coverbench._core, imported on first use: coverbench.serve works without it."""
+
+    def __getattr__(self, name: str) -> Any:
+        try:
+            core = importlib.import_module(__name__ + "._core")
+        except ImportError as e:
+            raise ImportError("coverbench._core is not built: `pip install ./python` from the source tree "
+                              "(README.md), or build the target coverbench_python") from e
+        return getattr(core, name)
 
 
-def _wall_text(wall):
+if TYPE_CHECKING:  # a type checker reads the compiled part's signatures from _core.pyi
+    from . import _core
+else:
+    _core = _Lazy()
+
+
+def _wall_text(wall: Wall) -> str:
     if isinstance(wall, str) and not wall.lstrip().startswith("{"):
-        return _native().wall_file(wall)  # a path
+        return _core.wall_file(wall)  # a path
     return wall if isinstance(wall, str) else json.dumps(wall)
 
 
-def load_wall(path):
-    """The wall file at `path`, checked, as a dict (boundary as points, rects as polygons)."""
-    return json.loads(_native().wall_file(path))
+def _waypoints_out(points: List[List[float]]) -> Waypoints:
+    try:
+        import numpy
+    except ImportError:
+        return points
+    return numpy.asarray(points, dtype=numpy.float64).reshape(len(points), 2)
 
 
-def check_wall(wall):
-    """Raises ValueError (`FILE: FIELD: PROBLEM`) unless `wall` (a dict or JSON text) is a valid wall."""
-    _native().check_wall(_wall_text(wall), "wall")
+def _points_in(waypoints: Waypoints) -> List[Tuple[float, float]]:
+    if hasattr(waypoints, "tolist"):  # a numpy array
+        waypoints = waypoints.tolist()
+    out = []
+    for i, p in enumerate(waypoints):
+        if len(p) != 2:
+            raise ValueError(f"waypoints: waypoints[{i}]: must be an (x, y) pair")
+        out.append((float(p[0]), float(p[1])))
+    return out
 
 
-def planners():
-    """Every registered planner: name, version, summary, reference, params (specs), promise."""
-    return json.loads(_native().planners())
+def load_wall(path: str) -> Dict[str, Any]:
+    """The wall file at `path`, checked, as a dict (boundary as points, rects as polygons).
+
+    Raises ValueError (``FILE: FIELD: PROBLEM``) when the file is not a valid wall."""
+    result: Dict[str, Any] = json.loads(_core.wall_file(path))
+    return result
 
 
-def plan(wall, planner, params=None, tool_width=0.1, clearance=0.02, seed=0, time_limit_s=60.0, memory_mb=4096.0):
-    """Plans `wall` (a dict, JSON text or a wall file's path) with `planner` (a registered name or an
-    external planner's manifest path) and judges the path as `coverbench plan` and a run do (the same
-    code): status (what a run would store: ``invalid_output`` for a path that fails the validity
-    check, whatever the planner said), reason, planner_status (what the planner said), valid,
-    violations, not_scored, waypoints, tool_on, stats, plan_time_ms. An external planner's processes
-    are held to `time_limit_s` and `memory_mb` (all of them together)."""
+def check_wall(wall: Wall) -> None:
+    """Raises ValueError (``wall: FIELD: PROBLEM``) unless `wall` (a dict, JSON text or a wall
+    file's path) is a valid wall."""
+    _core.check_wall(_wall_text(wall), "wall")
+
+
+def planners() -> List[Dict[str, Any]]:
+    """Every registered planner: name, version, summary, reference, params (each with name,
+    type, default, unit, description and its range or choices) and min_coverage_reachable (the
+    coverage its class promises)."""
+    result: List[Dict[str, Any]] = json.loads(_core.planners())
+    return result
+
+
+def plan(wall: Wall, planner: str, params: Optional[Mapping[str, Union[bool, int, float, str]]] = None,
+         tool_width: float = 0.1, clearance: float = 0.02, seed: int = 0, time_limit_s: float = 60.0,
+         memory_mb: float = 4096.0) -> Plan:
+    """Plans `wall` with `planner` (a registered name or an external planner's manifest path) and
+    judges the path as ``coverbench plan`` and a run judge it (the same code).
+
+    Returns a dict:
+
+    - ``status``: what a run would store: ``invalid_output`` for a path that fails the validity
+      check and ``metrics_error`` for one beyond the scoring limits, whatever the planner said;
+      otherwise the planner's status (ok, partial, no_reachable_area, invalid_input, timeout,
+      memory_limit, crash, error, ...);
+    - ``reason``; ``planner_status``: what the planner itself said;
+    - ``valid`` (bool), ``violations`` (int) and ``violating_segments`` (the first violating
+      segments' indices; segment i joins waypoints i and i + 1): None when there is no path or it
+      could not be scored (``not_scored`` says why);
+    - ``waypoints`` (numpy (n, 2) array where numpy is installed), ``tool_on`` (list of bool),
+      ``bulge`` (only when the path has arcs), ``stats``, ``plan_time_ms``.
+
+    `params` are the planner's parameters by name. An external planner's processes are held to
+    `time_limit_s` and `memory_mb` (all of them together). Bad input raises ValueError."""
     settings = [(k, json.dumps(v) if isinstance(v, bool) else str(v)) for k, v in sorted((params or {}).items())]
-    return json.loads(_native().plan(_wall_text(wall), planner, settings, float(tool_width), float(clearance), int(seed),
-                                   float(time_limit_s), float(memory_mb)))
+    out: Plan = json.loads(_core.plan(_wall_text(wall), planner, settings, float(tool_width), float(clearance),
+                                          int(seed), float(time_limit_s), float(memory_mb)))
+    out["waypoints"] = _waypoints_out(out["waypoints"])
+    return out
 
 
-def score(wall, waypoints, tool_on, tool_width=0.1, clearance=0.02, bulge=None, judge="fast"):
-    """Every metric of the fast engine for a path from any source; judge="exact" adds the exact
-    judge's verdict (validity, certified coverage intervals)."""
-    return json.loads(_native().score(_wall_text(wall), [tuple(p) for p in waypoints], list(tool_on), list(bulge or []),
-                                    float(tool_width), float(clearance), judge))
+def score(wall: Wall, waypoints: Waypoints, tool_on: Sequence[bool], tool_width: float = 0.1,
+          clearance: float = 0.02, bulge: Optional[Sequence[float]] = None, judge: str = "fast") -> Dict[str, Any]:
+    """Scores a path from any source on `wall`: every metric of the fast engine by name
+    (docs/metrics.md; None where one is not finite), ``valid`` as a bool, ``violations`` and
+    ``violating_segments`` (the first violating segments' indices). ``judge="exact"`` adds
+    ``exact``: the exact judge's ``valid``, ``violations`` and certified [lower, upper] intervals
+    of ``coverage_reachable`` and ``coverage_wall``.
+
+    `waypoints`: (x, y) pairs (a numpy (n, 2) array or any sequence); `tool_on`: one bool per
+    segment; `bulge`: none, or one per segment (0 straight). Bad input raises ValueError."""
+    result: Dict[str, Any] = json.loads(_core.score(
+        _wall_text(wall), _points_in(waypoints), [bool(t) for t in tool_on], [float(b) for b in (bulge or [])],
+        float(tool_width), float(clearance), judge))
+    return result
 
 
-def runs(database, experiment=None):
-    """An experiment's runs (default: the latest) as dicts: the run export's columns."""
-    return json.loads(_native().runs(database, int(experiment or 0)))
+def runs(database: str, experiment: Optional[int] = None) -> List[Dict[str, Any]]:
+    """An experiment's runs (default: the latest) from a results database as dicts: the columns
+    of ``coverbench runs DB --format json``."""
+    result: List[Dict[str, Any]] = json.loads(_core.runs(database, int(experiment or 0)))
+    return result
 
 
-def runs_dataframe(database, experiment=None):
-    """The same as a pandas DataFrame (pandas must be installed)."""
-    import pandas  # noqa: PLC0415 - optional
+def runs_dataframe(database: str, experiment: Optional[int] = None) -> Any:
+    """The same runs as a pandas DataFrame, one row per run (pandas must be installed)."""
+    import pandas
     return pandas.DataFrame(runs(database, experiment))
-

@@ -11,51 +11,65 @@ process is started once and serves many problems; what the planner prints goes t
 cannot break the protocol; an exception becomes status error with its message, and so does a plan
 JSON cannot hold (a NaN or an infinite coordinate, an object that is not a number).
 """
+from __future__ import annotations
+
 import importlib
 import json
 import math
 import os
 import sys
 import traceback
+from typing import IO, Any, Dict, List, Optional, Protocol
 
 PROTOCOL = 1
+
+
+class Planner(Protocol):
+    """What ``serve`` needs of a planner: ``plan(problem)`` returning the plan as a dict."""
+
+    def plan(self, problem: Problem) -> Dict[str, Any]:
+        """The plan for `problem`: status, reason, and for ok and partial waypoints and tool_on."""
 
 
 class Problem:
     """One problem: the wall (as a wall file's JSON), the tool, the vehicle, the parameters."""
 
-    def __init__(self, data):
-        self.data = data
-        self.wall = data["wall"]
+    def __init__(self, data: Dict[str, Any]) -> None:
+        self.data: Dict[str, Any] = data
+        self.wall: Dict[str, Any] = data["wall"]
         self.tool_width = float(data["tool"]["width"])
         self.clearance = float(data["tool"]["clearance"])
-        self.vehicle = data["vehicle"]
-        self.params = data["params"]
-        self.seed = data["seed"]
-        self.time_limit_s = data.get("time_limit_s", math.inf)
+        self.vehicle: Dict[str, Any] = data["vehicle"]
+        self.params: Dict[str, Any] = data["params"]
+        self.seed: int = data["seed"]
+        self.time_limit_s: float = data.get("time_limit_s", math.inf)
 
     @property
-    def radius(self):
+    def radius(self) -> float:
+        """Half the tool width (m)."""
         return self.tool_width / 2.0
 
 
-def _answer(request_id, plan):
+def _answer(request_id: Any, plan: Any) -> Dict[str, Any]:
     if not isinstance(plan, dict):
         return {"protocol": PROTOCOL, "id": request_id, "status": "error",
                 "reason": f"plan() returned {type(plan).__name__}, not a dict"}
-    out = {"protocol": PROTOCOL, "id": request_id}
+    out: Dict[str, Any] = {"protocol": PROTOCOL, "id": request_id}
     out.update(plan)
     return out
 
 
-def serve(planner, stdin=None, stdout=None):
-    """Answers every problem on stdin until it closes."""
+def serve(planner: Planner, stdin: Optional[IO[str]] = None, stdout: Optional[IO[str]] = None) -> None:
+    """Answers every problem on stdin until it closes: one request per line, one answer per line
+    (docs/external_planners.md). What the planner prints goes to stderr."""
     stdin = stdin or sys.stdin
     out = stdout or sys.stdout
     sys.stdout = sys.stderr  # a print() in the planner must not break the protocol
     for line in stdin:
         if not line.strip():
             continue
+        request: Any
+        reason = ""
         try:
             request = json.loads(line)
             request_id = request.get("id") if isinstance(request, dict) else None
@@ -79,7 +93,7 @@ def serve(planner, stdin=None, stdout=None):
         out.flush()
 
 
-def _line(request_id, answer):
+def _line(request_id: Any, answer: Dict[str, Any]) -> str:
     """The answer as one line of JSON; an answer JSON cannot hold (NaN, infinity, an object that is
     not a number, string, list or dict) is status error saying why, never a dead planner."""
     try:
@@ -91,7 +105,8 @@ def _line(request_id, answer):
                           separators=(",", ":"))
 
 
-def main(argv=None):
+def main(argv: Optional[List[str]] = None) -> int:
+    """``python3 -m coverbench.serve MODULE:CLASS``: serves an instance of CLASS."""
     argv = sys.argv[1:] if argv is None else argv
     if len(argv) != 1 or ":" not in argv[0]:
         print("usage: python3 -m coverbench.serve MODULE:CLASS", file=sys.stderr)

@@ -29,6 +29,14 @@ ordered_json paramValue(const ParamValue& v) {
   return std::visit([](const auto& x) { return ordered_json(x); }, v);
 }
 
+/// The validity check's answer as plan() and score() give it: `valid` a bool, `violations` the
+/// number of violating segments, `violating_segments` the first of them (segment i joins
+/// waypoints i and i+1). The one place that turns a Validity into Python's dict: details added
+/// to Validity (the points of each violating segment, what it violates) go here, for both.
+ordered_json validityJson(const Validity& v) {
+  return {{"valid", v.valid}, {"violations", v.violations}, {"violating_segments", v.violating}};
+}
+
 /// A wall from wall-file text, checked as the command line checks it.
 Wall wallOf(const std::string& text, const std::string& source) { return parseWallJson(text, source); }
 
@@ -89,8 +97,13 @@ std::string plan(const std::string& wall_text, const std::string& planner,
   ordered_json out = {{"planner", info.name}, {"status", toString(judged.verdict)}, {"reason", judged.reason},
                       {"planner_status", toString(r.status)}};
   const bool scored = r.hasPath() && judged.not_scored.empty();
-  out["valid"] = scored && judged.metrics.validity.valid;
-  out["violations"] = scored ? ordered_json(judged.metrics.validity.violations) : ordered_json(nullptr);
+  if (scored) {
+    out.update(validityJson(judged.metrics.validity));
+  } else {  // no path, or one beyond the scoring limits: nothing was checked
+    out["valid"] = false;
+    out["violations"] = nullptr;
+    out["violating_segments"] = nullptr;
+  }
   out["not_scored"] = judged.not_scored;
   ordered_json w = ordered_json::array();
   for (const Point& p : r.path.waypoints) w.push_back({p.x, p.y});
@@ -110,7 +123,9 @@ std::string score(const std::string& wall_text, const std::vector<std::pair<doub
   validateTool(tool, "tool");
   const Path path = pathOf(waypoints, tool_on, bulge);
   ordered_json out = ordered_json::object();
-  for (const NamedMetric& m : flatten(computeMetrics(wall, tool, path))) out[m.name] = number(m.value);
+  const PathMetrics metrics = computeMetrics(wall, tool, path);
+  for (const NamedMetric& m : flatten(metrics)) out[m.name] = number(m.value);
+  out.update(validityJson(metrics.validity));  // valid as a bool, not the metric's 1 or 0
   if (judge == "exact") {
     const judge::Judgement j = judge::judgePath(wall, tool, path);
     out["exact"] = {{"valid", j.validity.valid},
@@ -136,14 +151,19 @@ PYBIND11_MODULE(_core, m) {
   // Bad input is a ValueError with the command line's one-line message.
   py::register_exception<coverbench::InputError>(m, "InputError", PyExc_ValueError);
   m.def("check_wall", [](const std::string& text, const std::string& source) { coverbench::wallOf(text, source); },
-        py::arg("text"), py::arg("source") = "wall");
+        py::arg("text"), py::arg("source") = "wall",
+        "Checks wall-file JSON text as the command line does; raises ValueError (SOURCE: FIELD: PROBLEM).");
   m.def("wall_file", [](const std::string& path) { return coverbench::wallToJson(coverbench::loadWallFile(path)); },
-        py::arg("path"));
-  m.def("planners", &coverbench::planners);
+        py::arg("path"), "The wall file at `path`, checked, as wall-file JSON text.");
+  m.def("planners", &coverbench::planners, "Every registered planner with its parameters, as JSON text.");
   m.def("plan", &coverbench::plan, py::arg("wall"), py::arg("planner"), py::arg("params"), py::arg("tool_width"),
         py::arg("clearance"), py::arg("seed"), py::arg("time_limit_s"), py::arg("memory_mb") = 4096.0,
-        py::call_guard<py::gil_scoped_release>());
+        py::call_guard<py::gil_scoped_release>(),
+        "Plans wall-file JSON text with a registered planner or an external planner's manifest and judges the "
+        "path as `coverbench plan` does; the plan as JSON text.");
   m.def("score", &coverbench::score, py::arg("wall"), py::arg("waypoints"), py::arg("tool_on"), py::arg("bulge"),
-        py::arg("tool_width"), py::arg("clearance"), py::arg("judge"), py::call_guard<py::gil_scoped_release>());
-  m.def("runs", &coverbench::runs, py::arg("database"), py::arg("experiment") = 0);
+        py::arg("tool_width"), py::arg("clearance"), py::arg("judge"), py::call_guard<py::gil_scoped_release>(),
+        "Every metric of the fast engine for a path (judge 'exact' adds the exact judge's verdict), as JSON text.");
+  m.def("runs", &coverbench::runs, py::arg("database"), py::arg("experiment") = 0,
+        "An experiment's runs (0: the latest) from a results database, as JSON text.");
 }

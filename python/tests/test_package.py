@@ -34,21 +34,30 @@ class Package(unittest.TestCase):
                             os.path.join(d, "p.json")], capture_output=True, check=True)
             with open(os.path.join(d, "p.json"), encoding="utf-8") as f:
                 theirs = json.load(f)
-        self.assertEqual(ours["waypoints"], theirs["waypoints"])
+        # Waypoints as a numpy (n, 2) array (Debian's python3 has numpy).
+        import numpy
+        self.assertIsInstance(ours["waypoints"], numpy.ndarray)
+        self.assertEqual(ours["waypoints"].shape, (len(theirs["waypoints"]), 2))
+        self.assertEqual(ours["waypoints"].tolist(), theirs["waypoints"])
         self.assertEqual(ours["tool_on"], theirs["tool_on"])
         # Where it follows F's round boundary (round the obstacles' corners) the path is arcs.
         self.assertEqual(ours["bulge"], theirs["bulge"])
         self.assertGreater(sum(b != 0 for b in ours["bulge"]), 0)
         m = coverbench.score(WALL, ours["waypoints"], ours["tool_on"], bulge=ours["bulge"], judge="exact")
-        self.assertTrue(m["valid"])
-        self.assertTrue(m["exact"]["valid"])
+        self.assertIs(m["valid"], True)  # a bool, not the metric's 1.0
+        self.assertEqual((m["violations"], m["violating_segments"]), (0, []))
+        self.assertIs(m["exact"]["valid"], True)
         lo, hi = m["exact"]["coverage_reachable"]
         self.assertLessEqual(lo, hi)
         self.assertGreater(m["coverage_reachable"], 0.99)
         # A path through the window: both judges say invalid.
         bad = coverbench.score(WALL, [[0.2, 1.0], [4.0, 1.0]], [True], judge="exact")
-        self.assertFalse(bad["valid"])
-        self.assertFalse(bad["exact"]["valid"])
+        self.assertIs(bad["valid"], False)
+        self.assertEqual((bad["violations"], bad["violating_segments"]), (1, [0]))
+        self.assertIs(bad["exact"]["valid"], False)
+        # The same from a numpy array, and the segment named among several.
+        three = numpy.array([[0.2, 0.3], [0.5, 0.3], [2.5, 1.5], [2.6, 1.5]])  # the middle one crosses the window
+        self.assertEqual(coverbench.score(WALL, three, [True, True, True])["violating_segments"], [1])
 
     def test_bad_input_is_a_value_error_with_the_one_line_message(self):
         with self.assertRaisesRegex(ValueError, "boundary: needs at least 3 distinct points"):
@@ -79,7 +88,9 @@ class Package(unittest.TestCase):
         self.assertIn("INVALID", r.stdout)
         self.assertEqual(ours["status"], "invalid_output")
         self.assertEqual(ours["planner_status"], "ok")
-        self.assertFalse(ours["valid"])
+        self.assertIs(ours["valid"], False)
+        self.assertEqual(ours["violations"], 1)
+        self.assertEqual(ours["violating_segments"], [0])
         self.assertIn("segments violate the wall or the clearance", ours["reason"])
         # A registered planner's valid path stays ok.
         good = coverbench.plan(WALL, "zigzag")
@@ -107,11 +118,12 @@ class Package(unittest.TestCase):
             for r in rows:
                 self.assertIn(r["status"], ("ok", "partial", "no_reachable_area"))
                 self.assertIn("coverage_reachable", r)
-            try:
-                import pandas  # noqa: F401
-            except ImportError:
-                return
-            self.assertEqual(len(coverbench.runs_dataframe(os.path.join(d, "out", "results.sqlite"))), len(rows))
+            # With pandas (Debian's python3-pandas, scripts/setup.sh): one row per run, the same columns.
+            frame = coverbench.runs_dataframe(os.path.join(d, "out", "results.sqlite"))
+            self.assertEqual(len(frame), len(rows))
+            self.assertEqual(list(frame.columns), list(rows[0].keys()))
+            self.assertEqual(sorted(frame["planner"].unique()), ["spiral", "zigzag"])
+            self.assertEqual(frame["coverage_reachable"].tolist(), [r["coverage_reachable"] for r in rows])
 
 
 if __name__ == "__main__":

@@ -15,6 +15,7 @@ client normalising) and then checks the server still answers.
 - a --host that is not loopback prints its warning."""
 import http.client
 import json
+import math
 import os
 import re
 import shutil
@@ -157,7 +158,7 @@ class Doors(unittest.TestCase):
             self.assert_alive()
         # A body larger than the limit in chunks (httplib's own limit counts Content-Length only).
         c = http.client.HTTPConnection("127.0.0.1", self.port, timeout=60)
-        c.putrequest("POST", "/api/check")
+        c.putrequest("POST", "/api/plan")
         c.putheader("Content-Type", "application/json")
         c.putheader("Transfer-Encoding", "chunked")
         c.endheaders()
@@ -217,6 +218,15 @@ class Doors(unittest.TestCase):
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertEqual(r.stderr, f"coverbench: --port: port: cannot listen on 127.0.0.1:{self.port} (is another server on it?)\n")
         self.assert_alive()
+
+    def test_a_walls_database_that_is_no_file_is_an_error_at_start(self):
+        fifo = os.path.join(self.work, "walls-db.fifo")
+        os.mkfifo(fifo)
+        # It hung at start, on SQLite's first read of the FIFO.
+        r = subprocess.run([BIN, "serve", "--port", "0", "--walls-db", fifo], capture_output=True, text=True, timeout=30)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(r.stderr, f"coverbench: {fifo}: (database): is not a regular file (a FIFO, a device or a socket cannot be a "
+                                   "walls database)\n")
 
     def test_slow_clients_do_not_block_the_others(self):
         stop = threading.Event()
@@ -363,6 +373,71 @@ class Doors(unittest.TestCase):
         wall = json.dumps({"name": "big-circles", "width": 10000, "height": 10000, "obstacles": circles})
         status, answer = self.request("POST", "/api/check", {"wall": wall, "tool_width": 1}, json_type, timeout=60)
         self.assertEqual((status, answer["ok"]), (200, True), answer)
+
+    def test_a_body_is_framed_one_way_and_within_its_route_limit(self):
+        head = f"Host: 127.0.0.1:{self.port}\r\nContent-Type: application/json\r\n"
+        refused = {
+            # A length that is no number was read as 2^64 - 1: the body was waited for until the
+            # read deadline (408 after 10 s); two lengths or a length and chunks are two framings.
+            f"POST /api/check HTTP/1.1\r\n{head}Content-Length: -1\r\n\r\n{{}}": (400, "Content-Length: must be a whole number"),
+            f"POST /api/check HTTP/1.1\r\n{head}Content-Length: 2\r\nContent-Length: 3\r\n\r\n{{}}": (400, "given twice, as 2 and 3"),
+            f"POST /api/plan HTTP/1.1\r\n{head}Content-Length: 2\r\nTransfer-Encoding: chunked\r\n\r\n{{}}": (400, "one or the other"),
+            f"POST /api/plan HTTP/1.1\r\n{head}Transfer-Encoding: gzip\r\n\r\n{{}}": (400, "only chunked is read"),
+            # No length: read to the connection's end before.
+            f"POST /api/walls HTTP/1.1\r\n{head}\r\n{{}}": (411, "must give its length"),
+            f"GET /api/walls HTTP/1.1\r\n{head}Content-Length: 5\r\n\r\nhello": (400, "GET: takes no body"),
+            # Over the route's limit, said by the length: refused before a byte of it is read.
+            f"POST /api/check HTTP/1.1\r\n{head}Content-Length: 100000000\r\n\r\n{{}}": (413, "over the 67108864 bytes"),
+            f"POST /api/walls HTTP/1.1\r\n{head}Content-Length: 2000000\r\n\r\n{{}}": (413, "over the 1048576 bytes"),
+        }
+        for request, (status, message) in refused.items():
+            started = time.monotonic()
+            got, _, body = raw(self.port, request.encode(), timeout=30)
+            self.assertEqual(got, status, (request, body))
+            self.assertLess(time.monotonic() - started, 5, request)  # answered at once, not at the read deadline
+            self.assertIn(message, json.loads(body)["error"], request)
+        self.assert_alive()
+
+    def test_a_large_wall_is_checked_and_large_bodies_are_few_at_once(self):
+        # A wall of 2 x 10^5 vertices (4 MB): over the body limit of the other routes, checked by
+        # POST /api/check (which takes 64 MiB; bench/serve_check.py times one of 10^6).
+        n = 200000
+        points = [[round(500 + 400 * math.cos(2 * math.pi * i / n), 4), round(500 + 400 * math.sin(2 * math.pi * i / n), 4)]
+                  for i in range(n)]
+        wall = json.dumps({"name": "polygon-2e5", "width": 1000, "height": 1000, "obstacles": [{"type": "polygon", "points": points}]})
+        body = json.dumps({"wall": wall, "tool_width": 0.5}).encode()
+        self.assertGreater(len(body), 4 << 20)
+        json_type = {"Content-Type": "application/json"}
+        status, answer = self.request("POST", "/api/check", body, json_type, timeout=60)
+        self.assertEqual((status, answer.get("ok"), answer.get("obstacles")), (200, True, 1), answer)
+        for path in ("/api/walls", "/api/plan"):
+            status, answer = self.request("POST", path, body, json_type)
+            self.assertEqual(status, 413, answer)
+            self.assertIn("over the 1048576 bytes this request takes", answer["error"])
+        # Two large bodies being read (their clients send half and wait) hold the two places: a
+        # third is refused at once, a small one is served, and the two end at the read deadline.
+        held = []
+        try:
+            for _ in range(2):
+                s = socket.create_connection(("127.0.0.1", self.port), timeout=30)
+                s.sendall(f"POST /api/check HTTP/1.1\r\nHost: 127.0.0.1:{self.port}\r\nContent-Type: application/json\r\n"
+                          f"Content-Length: {len(body)}\r\n\r\n".encode() + body[: len(body) // 2])
+                held.append(s)
+            time.sleep(0.5)
+            status, answer = self.request("POST", "/api/check", body, json_type)
+            self.assertEqual(status, 503, answer)
+            self.assertIn("are being read; try again", answer["error"])
+            status, answer = self.request("POST", "/api/check", {"wall": self.wall}, json_type)
+            self.assertEqual((status, answer["ok"]), (200, True), answer)
+            for s in held:
+                got = s.recv(65536)  # the read deadline's answer
+                self.assertTrue(got.startswith(b"HTTP/1.1 408 "), got[:100])
+        finally:
+            for s in held:
+                s.close()
+        # Their places are given back.
+        status, answer = self.request("POST", "/api/check", body, json_type, timeout=60)
+        self.assertEqual((status, answer.get("ok")), (200, True), answer)
 
     def test_answers_are_whole_whatever_range_is_asked(self):
         whole = self.request("GET", "/api/walls")[1]

@@ -279,7 +279,7 @@ class Serve(unittest.TestCase):
                          (400, "limit: must be a whole number from 0 to 1000, got '5000'"))
         self.assertEqual(self.refused("GET", e + "/runs/" + "0" * 64 + "/picture.svg")[0], 404)
         self.assertEqual(self.refused("POST", "/api/experiments", body=b"x" * (2 << 20)),
-                         (413, "request body: over 1048576 bytes"))
+                         (413, "request body: 2097152 bytes, over the 1048576 bytes this request takes (POST /api/check takes 67108864)"))
 
     def test_what_it_cannot_serve_is_one_line_and_exit_2(self):
         for args, message in ((["/nonexistent.sqlite"], "coverbench: /nonexistent.sqlite: (file): does not exist\n"),

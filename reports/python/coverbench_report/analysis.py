@@ -58,6 +58,10 @@ def usable(run):
     return run["status"] in ("ok", "partial") and run["valid"]
 
 
+# A run without a valid path where another planner has a value (analysis.Analysis.outcome).
+FAILED = "failed"
+
+
 def value(run, metric):
     v = run["metrics"].get(metric)
     return math.nan if v is None else float(v)
@@ -148,18 +152,45 @@ class Analysis:
         q1, med, q3 = np.percentile(v, [25, 50, 75])
         return {"n": len(v), "median": float(med), "q1": float(q1), "q3": float(q3)}
 
+    # --- failures --------------------------------------------------------------------------
+    def outcome(self, column, pairing, metric):
+        """A column's outcome on one wall for ranking and testing: its value (a usable run with a
+        value), FAILED (a run there without a valid path: timeout, crash, error, memory_limit,
+        invalid_output, metrics_error, no_reachable_area or invalid_input, or a path that fails the
+        check), or None (no run there, or a usable run without that metric: missing, not failed)."""
+        r = self._index.get((column, pairing))
+        if r is None:
+            return None
+        if not usable(r):
+            return FAILED
+        v = value(r, metric)
+        return v if math.isfinite(v) else None
+
+    def contested(self, columns, dataset, metric):
+        """The walls (pairing keys, sorted) of `dataset` where at least one of `columns` has a
+        value: the walls a ranking or test of those columns is over. A wall where none has one
+        tells nothing about them (every planner may rightly say no_reachable_area there)."""
+        pairings = sorted({r["pairing"] for c in columns for r in self.runs_of(c, dataset)})
+        return [p for p in pairings
+                if any(isinstance(self.outcome(c, p, metric), float) for c in columns)]
+
+    def worst(self, metric):
+        """The value a failure stands for: worse than any value in the metric's direction."""
+        return -self.specs[metric]["better"] * math.inf
+
     # --- paired comparisons -------------------------------------------------------------------
     def pairs(self, column, other, dataset, metric):
-        """Values of `column` and `other` on the walls where both have a usable run with a value."""
+        """Values of `column` and `other` on the walls where both ran and at least one has a value;
+        a run without a valid path there is the metric's worst value (``worst``: -inf for
+        coverage, +inf for length), so it loses to every value on that wall."""
         a, b = [], []
-        for r in self.runs_of(column, dataset):
-            o = self._index.get((other, r["pairing"]))
-            if o is None or not usable(r) or not usable(o):
+        worst = self.worst(metric)
+        for p in self.contested([column, other], dataset, metric):
+            x, y = self.outcome(column, p, metric), self.outcome(other, p, metric)
+            if x is None or y is None:
                 continue
-            x, y = value(r, metric), value(o, metric)
-            if math.isfinite(x) and math.isfinite(y):
-                a.append(x)
-                b.append(y)
+            a.append(worst if x is FAILED else x)
+            b.append(worst if y is FAILED else y)
         return a, b
 
     def paired_table(self, dataset, metrics):
@@ -183,22 +214,49 @@ class Analysis:
 
     # --- rankings -----------------------------------------------------------------------------
     def ranking(self, dataset, tool, metric):
-        """Columns of one tool ordered by median in the metric's direction; the leader is marked
-        best only if Holm-adjusted Wilcoxon tests against every other column say so (never for
-        measured figures)."""
+        """Columns of one tool ordered by their median over the walls where any of them has a
+        value, a run without a valid path counted as worse than every value (docs/report.md,
+        "Failures"): `median` is NaN and `failed` True when half or more of a column's walls
+        failed, and such columns share the last rank. `valid` and `walls` count the column's
+        values and its walls there. The leader is marked best only if Holm-adjusted Wilcoxon tests
+        against every other column, failures counted as losses, say so (never for measured
+        figures)."""
         spec = self.specs[metric]
         cols = self.tool_columns(tool)
-        entries = [dict(column=c, **self.summary(c, dataset, metric)) for c in cols]
-        key = (lambda e: (math.isnan(e["median"]), -spec["better"] * (0 if math.isnan(e["median"]) else e["median"])))
+        walls = self.contested(cols, dataset, metric)
+        entries = []
+        for c in cols:
+            outs = [o for o in (self.outcome(c, p, metric) for p in walls) if o is not None]
+            vals = [o for o in outs if o is not FAILED]
+            e = {"column": c, "valid": len(vals), "walls": len(outs), "median": math.nan, "failed": False}
+            if outs and spec["better"] != 0:
+                # Oriented so that smaller is better and a failure is +inf; the median of an even
+                # count is the mean of the middle two, a failure when either is one.
+                oriented = sorted([-spec["better"] * v for v in vals] + [math.inf] * (len(outs) - len(vals)))
+                k = len(oriented)
+                mid = oriented[k // 2] if k % 2 else (oriented[k // 2 - 1] + oriented[k // 2]) / 2
+                if math.isinf(mid):
+                    e["failed"] = True
+                else:
+                    e["median"] = -spec["better"] * mid
+            elif vals:
+                e["median"] = float(np.median(vals))
+            entries.append(e)
+
+        def key(e):
+            if not math.isnan(e["median"]):
+                return (0, -spec["better"] * e["median"])
+            return (1 if e["failed"] else 2, 0)
         ordered = sorted(entries, key=key)
-        # Competition ranking: medians within the metric's tie band share a rank.
+        ranked = [e for e in ordered if not math.isnan(e["median"])]
+        # Competition ranking: medians within the metric's tie band share a rank; columns whose
+        # median is a failure share the rank after every column with a median.
         for e in ordered:
             e["best"] = False
             if math.isnan(e["median"]):
-                e["rank"] = None
+                e["rank"] = 1 + len(ranked) if e["failed"] else None
                 continue
-            e["rank"] = 1 + sum(1 for o in ordered if not math.isnan(o["median"])
-                                and (o["median"] - e["median"]) * spec["better"] > 0
+            e["rank"] = 1 + sum(1 for o in ranked if (o["median"] - e["median"]) * spec["better"] > 0
                                 and not stats.tied(spec, o["median"], e["median"]))
         if len(ordered) >= 2 and not math.isnan(ordered[0]["median"]) and metric in self.compared:
             leader = ordered[0]["column"]
@@ -228,10 +286,17 @@ class Analysis:
         return self._friedman[key]
 
     def _friedman_uncached(self, dataset, tool, metric):
-        if len(self.tool_columns(tool)) < 3 or metric not in self.compared:
+        """Over the walls where every column ran and at least one has a value; a run without a
+        valid path there is the metric's worst value, so failures share the worst rank."""
+        cols = self.tool_columns(tool)
+        if len(cols) < 3 or metric not in self.compared:
             return None
-        cols, rows = self._value_table(dataset, tool, metric)
-        table = [row for row in rows if all(math.isfinite(v) for v in row)]
+        worst = self.worst(metric)
+        table = []
+        for p in self.contested(cols, dataset, metric):
+            row = [self.outcome(c, p, metric) for c in cols]
+            if all(o is not None for o in row):
+                table.append([worst if o is FAILED else o for o in row])
         if len(table) < 2:
             return None
         res = stats.friedman(self.specs[metric], table)

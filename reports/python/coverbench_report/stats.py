@@ -35,33 +35,45 @@ def tied(spec, a, b):
     """Whether two values are equal within the metric's tie band (same rule as the C++ registry)."""
     if a == b:
         return True
+    if not (math.isfinite(a) and math.isfinite(b)):  # a failure (infinite) ties nothing but a failure
+        return False
     return abs(a - b) <= spec["tie_absolute"] + spec["tie_relative"] * max(abs(a), abs(b))
 
 
 def paired(spec, values, baseline):
     """Paired comparison of `values` against `baseline` (equal-length lists, one pair per wall).
 
-    Returns pairs, wins/ties/losses (better = the metric's direction, ties within its band), the
-    median difference (values - baseline) with a percentile bootstrap 95 % interval, and the
-    two-sided Wilcoxon signed-rank p-value over the pairs that are not tied (1 when all are)."""
+    A failure (no valid path) is the metric's worst value, infinite (analysis.Analysis.pairs): it
+    loses to every value. Returns pairs, wins/ties/losses (better = the metric's direction, ties
+    within its band), `failed` and `baseline_failed` (pairs where that side failed), the median
+    difference (values - baseline) with a percentile bootstrap 95 % interval over the pairs where
+    both have a value (`both`), and the two-sided Wilcoxon signed-rank p-value over the pairs that
+    are not tied (1 when all are), a failure's difference ranked above every finite one (failures
+    share the largest rank)."""
     a = np.asarray(values, dtype=float)
     b = np.asarray(baseline, dtype=float)
     n = len(a)
-    out = {"pairs": n, "wins": 0, "ties": 0, "losses": 0, "median": math.nan, "low": math.nan,
+    out = {"pairs": n, "wins": 0, "ties": 0, "losses": 0, "failed": int((~np.isfinite(a)).sum()),
+           "baseline_failed": int((~np.isfinite(b)).sum()), "both": 0, "median": math.nan, "low": math.nan,
            "high": math.nan, "p": math.nan}
     if n == 0:
         return out
-    diff = a - b
+    finite = np.isfinite(a) & np.isfinite(b)
+    with np.errstate(invalid="ignore"):
+        diff = a - b  # +-inf where one side failed (never both: such walls are not pairs)
     tie = np.array([tied(spec, x, y) for x, y in zip(a, b)])
     better = spec["better"]
     out["ties"] = int(tie.sum())
     out["wins"] = int(((diff * better > 0) & ~tie).sum())
     out["losses"] = int(((diff * better < 0) & ~tie).sum())
-    out["median"] = float(np.median(diff))
-    if n >= 2 and np.ptp(diff) > 0:
+    both = diff[finite]
+    out["both"] = int(len(both))
+    if len(both):
+        out["median"] = float(np.median(both))
+    if len(both) >= 2 and np.ptp(both) > 0:
         # Resampled from the sorted differences: the interval is a function of the pairs, not of
         # the order they were read in (run keys, which change with a planner's version).
-        res = stats.bootstrap((np.sort(diff),), np.median, n_resamples=BOOTSTRAP_RESAMPLES, vectorized=True,
+        res = stats.bootstrap((np.sort(both),), np.median, n_resamples=BOOTSTRAP_RESAMPLES, vectorized=True,
                               method="percentile", random_state=np.random.default_rng(BOOTSTRAP_SEED))
         out["low"], out["high"] = float(res.confidence_interval.low), float(res.confidence_interval.high)
     else:
@@ -70,6 +82,9 @@ def paired(spec, values, baseline):
     if len(untied) == 0:
         out["p"] = 1.0
     else:
+        # Only the ranks of |difference| matter: a failure's stands above every finite one.
+        big = 2.0 * float(np.max(np.abs(untied[np.isfinite(untied)]), initial=0.0)) + 1.0
+        untied = np.where(np.isfinite(untied), untied, np.sign(untied) * big)
         out["p"] = float(stats.wilcoxon(untied, zero_method="wilcox", alternative="two-sided").pvalue)
     return out
 

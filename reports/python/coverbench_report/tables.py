@@ -202,18 +202,22 @@ def headline_table(a, dataset, tool, measured=False):
                 "machine: ranked, never tested, never marked best. Everything else is reproduced byte for byte.")
     else:
         title = f"{dataset}{tool_label(a, tool)}: headline metrics, median and rank"
-        note = ("Median over valid runs (ok and partial); rank 1 = best in the metric's direction, medians within its tie band share a rank. ★ and bold: "
-                "the leader is better than every other planner by a Holm-adjusted Wilcoxon signed-rank test over "
-                "the same walls (p < 0.05); without ★ the leader is not separable from the rest.")
-    t = Table(title, ["planner", "n"] + [f"{m} ({unit_label(a.specs[m])})" if unit_label(a.specs[m]) else m
+        note = ("Median over the walls where any planner here has a valid run (ok or partial), a run without a "
+                "valid path (timeout, crash, error, invalid output, ...) counted as worse than every value on its "
+                "wall; 'failed' when half or more of a planner's walls failed, ranked last. valid/walls: the "
+                "planner's valid runs and the walls it is ranked over. Rank 1 = best in the metric's direction, "
+                "medians within its tie band share a rank. ★ and bold: the leader is better than every other "
+                "planner by a Holm-adjusted Wilcoxon signed-rank test over the same walls, a failure losing to "
+                "every value (p < 0.05); without ★ the leader is not separable from the rest.")
+    t = Table(title, ["planner", "valid/walls"] + [f"{m} ({unit_label(a.specs[m])})" if unit_label(a.specs[m]) else m
                                           for m in metrics], note=note)
     ranks = {m: {e["column"]: e for e in a.ranking(dataset, tool, m)} for m in metrics}
     for c in cols:
-        n = a.summary(c, dataset, metrics[0])["n"] if metrics else 0
-        row = [c, str(n)]
+        first = ranks[metrics[0]][c] if metrics else {"valid": 0, "walls": 0}
+        row = [c, f"{first['valid']}/{first['walls']}"]
         for m in metrics:
             e = ranks[m][c]
-            text = value(a.specs[m], e["median"], with_unit=False)
+            text = "failed" if e["failed"] else value(a.specs[m], e["median"], with_unit=False)
             if e["rank"] is not None:
                 text += f" ({e['rank']})"
             row.append((text + " ★", "best") if e["best"] else text)
@@ -358,25 +362,31 @@ def success_table(a):
 def paired_table(a, dataset, metrics, title):
     rows = a.paired_table(dataset, metrics)
     t = Table(f"{dataset}: {title}",
-              ["planner", "vs", "metric", "pairs", "median difference", "95 % interval", "win/tie/loss", "p (Holm)"],
-              note="Over the walls where both runs are valid. Difference = planner - baseline; a win is better in the "
-                   "metric's direction beyond its tie band (docs/metrics.md). Interval: percentile bootstrap of the "
-                   "median (2000 resamples, fixed seed). p: two-sided Wilcoxon signed-rank over the untied pairs, "
-                   "Holm-adjusted across every comparison in this table; * p < 0.05, ** p < 0.01, *** p < 0.001.")
+              ["planner", "vs", "metric", "pairs", "failed", "median difference", "95 % interval", "win/tie/loss",
+               "p (Holm)"],
+              note="Over the walls where both ran and at least one has a valid run; a run without a valid path loses "
+                   "to every value on its wall (failed: such pairs, planner/baseline). Difference = planner - baseline "
+                   "over the pairs where both are valid; a win is better in the metric's direction beyond its tie "
+                   "band (docs/metrics.md). Interval: percentile bootstrap of the median (2000 resamples, fixed "
+                   "seed). p: two-sided Wilcoxon signed-rank over the untied pairs, a failure's difference ranked "
+                   "above every other, Holm-adjusted across every comparison in this table; * p < 0.05, "
+                   "** p < 0.01, *** p < 0.001.")
     for r in rows:
         spec = a.specs[r["metric"]]
-        t.add([r["column"], r["baseline"], r["metric"], str(r["pairs"]), difference(spec, r["median"]),
-               f"[{difference(spec, r['low'])}, {difference(spec, r['high'])}]" if r["pairs"] else "-",
+        t.add([r["column"], r["baseline"], r["metric"], str(r["pairs"]), f"{r['failed']}/{r['baseline_failed']}",
+               difference(spec, r["median"]),
+               f"[{difference(spec, r['low'])}, {difference(spec, r['high'])}]" if r["both"] else "-",
                f"{r['wins']}/{r['ties']}/{r['losses']}", (pvalue(r["p_holm"]) + " " + stars(r["p_holm"])).strip()])
     return t
 
 
 def friedman_table(a):
-    t = Table("Friedman tests over the walls every planner of a tool group solved",
+    t = Table("Friedman tests over the walls every planner of a tool group ran",
               ["dataset", "metric", "walls", "planners", "chi²", "p", "Nemenyi CD", "average ranks (1 = best)"],
               note="Friedman's test of equal ranks (scipy.stats.friedmanchisquare); critical difference of average "
                    "ranks by Nemenyi at alpha = 0.05 (Demsar 2006): two planners whose average ranks differ by more "
-                   "are different. Only walls where every planner has a valid run count.")
+                   "are different. Walls where every planner ran and one has a valid run count; "
+                   "runs without a valid path share the worst rank on their wall.")
     for d in a.datasets:
         for tool in a.tools:
             for m in a.headline_quality:

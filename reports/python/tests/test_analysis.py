@@ -13,6 +13,7 @@ import unittest
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from coverbench_report import report  # noqa: E402
+from coverbench_report import stats  # noqa: E402
 from coverbench_report import tables as T  # noqa: E402
 from coverbench_report.analysis import Analysis  # noqa: E402
 
@@ -66,7 +67,8 @@ def data(runs, columns, name="hand", dataset_label="d"):
 
 
 # b against a: w1 better coverage, shorter (win, win); w2 equal coverage, longer (tie, loss);
-# w3 worse coverage, equal length (loss, tie); w4 b timed out (no pair).
+# w3 worse coverage, equal length (loss, tie); w4 b timed out (a loss in both: a failure loses to
+# every value on its wall).
 HAND = [run("a", "w1", 0.90, 10), run("b", "w1", 0.95, 9), run("a", "w2", 0.99, 10), run("b", "w2", 0.99, 11),
         run("a", "w3", 0.99, 12), run("b", "w3", 0.98, 12), run("a", "w4", 0.99, 12),
         run("b", "w4", math.nan, math.nan, "timeout")]
@@ -77,9 +79,10 @@ class PairedByHand(unittest.TestCase):
         a = Analysis(data(HAND, ["a", "b"]))
         rows = {r["metric"]: r for r in a.paired_table("d", ["coverage_reachable", "length_total"])}
         cov, length = rows["coverage_reachable"], rows["length_total"]
-        self.assertEqual((cov["pairs"], cov["wins"], cov["ties"], cov["losses"]), (3, 1, 1, 1))
-        self.assertEqual((length["wins"], length["ties"], length["losses"]), (1, 1, 1))
-        self.assertAlmostEqual(length["median"], 0.0)  # differences -1, +1, 0
+        self.assertEqual((cov["pairs"], cov["wins"], cov["ties"], cov["losses"]), (4, 1, 1, 2))
+        self.assertEqual((cov["failed"], cov["baseline_failed"], cov["both"]), (1, 0, 3))
+        self.assertEqual((length["wins"], length["ties"], length["losses"]), (1, 1, 2))
+        self.assertAlmostEqual(length["median"], 0.0)  # over the 3 pairs both valid: differences -1, +1, 0
         # Medians over valid runs: a's lengths 10, 10, 12, 12 -> 11; b's 9, 11, 12 -> 11, q1 10, q3 11.5.
         self.assertEqual(a.summary("a", "d", "length_total")["median"], 11)
         self.assertEqual(a.summary("b", "d", "length_total"), {"n": 3, "median": 11, "q1": 10, "q3": 11.5})
@@ -101,6 +104,66 @@ class PairedByHand(unittest.TestCase):
         # On 3 walls the same difference is not significant (exact p = 0.25): no mark.
         a3 = Analysis(data(runs[:6], ["a", "b"]))
         self.assertFalse(a3.ranking("d", a3.tools[0], "length_total")[0]["best"])
+
+
+class Failures(unittest.TestCase):
+    """A run without a valid path ranks below every valid run on its wall (docs/report.md, Failures)."""
+
+    def test_a_planner_that_times_out_where_another_succeeds_is_not_ranked_first(self):
+        # x times out on w1, w2 (y: 0.90 there) and beats y on w3, w4 (0.99 against 0.95).
+        # Over its finished walls x's median is 0.99 and it ranked first. Counted as worst, x's
+        # four outcomes are 0.99, 0.99, fail, fail: the middle two are 0.99 and a failure, so its
+        # median is a failure and x ranks last; y's median (0.90, 0.90, 0.95, 0.95) is 0.925.
+        runs = [run("x", "w1", math.nan, math.nan, "timeout"), run("y", "w1", 0.90, 10),
+                run("x", "w2", math.nan, math.nan, "timeout"), run("y", "w2", 0.90, 10),
+                run("x", "w3", 0.99, 10), run("y", "w3", 0.95, 10),
+                run("x", "w4", 0.99, 10), run("y", "w4", 0.95, 10)]
+        a = Analysis(data(runs, ["x", "y"]))
+        ranking = a.ranking("d", a.tools[0], "coverage_reachable")
+        self.assertEqual([(e["column"], e["rank"]) for e in ranking], [("y", 1), ("x", 2)])
+        self.assertEqual([(e["valid"], e["walls"]) for e in ranking], [(4, 4), (2, 4)])
+        self.assertAlmostEqual(ranking[0]["median"], 0.925)
+        self.assertTrue(ranking[1]["failed"])
+        table = T.to_markdown(T.headline_table(a, "d", a.tools[0]))
+        self.assertIn("| x | 2/4 | failed (2) |", table)
+        self.assertIn("| y | 4/4 | 92.50 (1) |", table)
+        # The paired test counts the two timeouts as x's losses: 2 wins, 2 losses.
+        x, y = a.pairs("x", "y", "d", "coverage_reachable")
+        self.assertEqual(x, [-math.inf, -math.inf, 0.99, 0.99])
+        r = stats.paired(a.specs["coverage_reachable"], *a.pairs("y", "x", "d", "coverage_reachable"))
+        self.assertEqual((r["pairs"], r["wins"], r["losses"], r["failed"], r["baseline_failed"], r["both"]),
+                         (4, 2, 2, 0, 2, 2))
+        self.assertAlmostEqual(r["median"], -0.04)  # over w3, w4, where both have a path
+
+    def test_failures_below_half_count_as_the_worst_values(self):
+        # x fails on w1 only; its outcomes 1.0, 0.99, 0.98, fail (sorted best first): median
+        # (0.98 + 0.99) / 2 = 0.985, not the 0.99 of its three finished walls; y: 0.97 everywhere.
+        runs = [run("x", "w1", math.nan, math.nan, "crash"), run("x", "w2", 1.0, 10), run("x", "w3", 0.99, 10),
+                run("x", "w4", 0.98, 10)] + [run("y", w, 0.97, 10) for w in ("w1", "w2", "w3", "w4")]
+        a = Analysis(data(runs, ["x", "y"]))
+        first = a.ranking("d", a.tools[0], "coverage_reachable")[0]
+        self.assertEqual((first["column"], first["rank"], first["failed"]), ("x", 1, False))
+        self.assertAlmostEqual(first["median"], 0.985)
+        # Length (lower is better): x's failure counts as the longest path: 10, 10, 10, inf -> 10.
+        self.assertEqual([(e["column"], e["rank"]) for e in a.ranking("d", a.tools[0], "length_total")],
+                         [("x", 1), ("y", 1)])
+
+    def test_walls_where_nobody_has_a_path_do_not_count_and_failures_share_the_worst_friedman_rank(self):
+        # w0: every planner says no_reachable_area (not a failure of any of them: left out).
+        # w1..w3: x 0.99, y 0.98, z times out -> z ranks 3 on each; w4: x and z time out, y 0.98 ->
+        # x and z share ranks 2 and 3 (2.5 each). Average ranks: x (1+1+1+2.5)/4 = 1.375,
+        # y (2+2+2+1)/4 = 1.75, z (3+3+3+2.5)/4 = 2.875.
+        runs = [run(c, "w0", math.nan, math.nan, "no_reachable_area") for c in ("x", "y", "z")]
+        for w in ("w1", "w2", "w3"):
+            runs += [run("x", w, 0.99, 10), run("y", w, 0.98, 10), run("z", w, math.nan, math.nan, "timeout")]
+        runs += [run("x", "w4", math.nan, math.nan, "timeout"), run("y", "w4", 0.98, 10),
+                 run("z", "w4", math.nan, math.nan, "timeout")]
+        a = Analysis(data(runs, ["x", "y", "z"]))
+        f = a.friedman("d", a.tools[0], "coverage_reachable")
+        self.assertEqual(f["blocks"], 4)
+        self.assertEqual(f["ranks"], [1.375, 1.75, 2.875])
+        ranking = a.ranking("d", a.tools[0], "coverage_reachable")
+        self.assertEqual([(e["column"], e["rank"], e["walls"]) for e in ranking], [("x", 1, 4), ("y", 2, 4), ("z", 3, 4)])
 
 
 class Ranks(unittest.TestCase):
