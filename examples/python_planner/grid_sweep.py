@@ -260,12 +260,12 @@ class GridSweep:
                     if ax != bx:
                         ts += [(x - ax) / (bx - ax) for i in left for x in pieces[i][1:3]]
                     points = [(ax + t * (bx - ax), ay + t * (by - ay)) for t in sorted(set(ts)) if 0 < t < 1]
-                    found = [(reach(p, i), i, p) for p in points for i in left]
-                    found = [(r[0], i, r[1], p) for r, i, p in found if r is not None]
-                    if found:
-                        cost, i, flip, p = min(found)
-                        best = (cost, i, flip)
-                        via = waypoints[k + 1:-1][::-1] + [p]
+                    seen = [(reach(q, i), i, q) for q in points for i in left]
+                    options = [(r[0], i, r[1], q) for r, i, q in seen if r is not None]
+                    if options:
+                        cost, piece, flip, point = min(options)
+                        best = (cost, piece, flip)
+                        via = waypoints[k + 1:-1][::-1] + [point]
                         break
             if best is None:
                 skipped = len(left)
