@@ -5,35 +5,42 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "commands.hpp"
+#include "coverbench/conformance.hpp"
 #include "coverbench/experiment.hpp"
 #include "coverbench/external_planner.hpp"
 #include "coverbench/files.hpp"
-#include "coverbench/free_region.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/wall_file.hpp"
-#include "coverbench/workspace.hpp"
 
 namespace coverbench::cli {
 namespace {
 
 namespace fs = std::filesystem;
 
-/// One wall at one tool: what the planner did and which checks it passed.
+/// One wall at one tool: what the planner did, what a correct planner must do there
+/// (coverbench/conformance.hpp) and, for a failed row, why it failed.
 struct CardRow {
   std::string wall, file;
   ToolParams tool;
+  std::string expected;  ///< the status the wall calls for
   std::string status, reason;
-  bool contract = false;       ///< a valid path, or no path and a reason; never `error`
+  std::string cause;           ///< why the row failed ("" when it passed)
+  bool contract = false;       ///< the outcome the wall calls for: its status, a reason where one is due, a valid path
   bool valid = false;          ///< the path passes the metrics engine's exact validity check
-  bool deterministic = false;  ///< a second plan gave the same path, bit for bit
+  bool checked_twice = false;  ///< planned a second time (only a row that passed so far is)
+  bool deterministic = false;  ///< that second plan gave the same path, bit for bit
   double coverage = NAN;       ///< coverage_reachable, when there is a path
-  bool promise_applies = false;  ///< ok, one free component, default parameters
+  bool promise_applies = false;  ///< ok where F is one piece, default parameters
   bool promise_kept = true;
   double plan_ms = 0.0;        ///< the first plan's wall-clock time (measured)
-  bool passed() const { return contract && deterministic && promise_kept; }  // contract holds `valid` for a path
+  bool passed() const { return cause.empty(); }
   bool hasPathStatus() const { return status == "ok" || status == "partial"; }
 };
 
@@ -51,17 +58,76 @@ std::string cell(std::string s) {
   return out;
 }
 
-std::vector<std::string> wallFiles(const std::vector<std::string>& folders) {
-  std::vector<std::string> files;
-  for (const std::string& dir : folders) {
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) throw InputError(dir, "(folder)", "is not a folder of wall files");
-    for (const auto& e : fs::directory_iterator(dir))
-      if (e.path().extension() == ".json") files.push_back(e.path().string());
+/// The most of an external planner's stderr a row's reason quotes: its last bytes, from a line's start.
+constexpr std::size_t kStderrTailBytes = 2048;
+
+/// An external planner's stderr, kept while the card runs so that a failed row can quote its end
+/// (an import error, a traceback): the process's stderr (which the planner's processes inherit)
+/// goes to an unnamed temporary file, and what each plan added is copied on to the real stderr,
+/// so the planner's diagnostics still reach the terminal. In-tree planners are not captured.
+class StderrCapture {
+ public:
+  StderrCapture() {
+    std::fflush(stderr);
+    file_ = std::tmpfile();
+    if (!file_) return;
+    saved_ = ::dup(STDERR_FILENO);
+    if (saved_ < 0 || ::dup2(::fileno(file_), STDERR_FILENO) < 0) {
+      if (saved_ >= 0) ::close(saved_);
+      saved_ = -1;
+      std::fclose(file_);
+      file_ = nullptr;
+    }
   }
-  std::sort(files.begin(), files.end());
-  if (files.empty()) throw InputError(folders.front(), "(folder)", "holds no wall file (*.json)");
-  return files;
+  ~StderrCapture() {
+    if (!file_) return;
+    std::fflush(stderr);
+    ::dup2(saved_, STDERR_FILENO);
+    ::close(saved_);
+    std::fclose(file_);
+  }
+  StderrCapture(const StderrCapture&) = delete;
+  StderrCapture& operator=(const StderrCapture&) = delete;
+
+  /// Where the next plan's output starts.
+  off_t mark() const {
+    struct stat st {};
+    return file_ && ::fstat(::fileno(file_), &st) == 0 ? st.st_size : 0;
+  }
+  /// What was written since `from` (copied on to the real stderr), trimmed of surrounding blank
+  /// space; the last kStderrTailBytes of it, from the first whole line within them.
+  std::string since(off_t from) const {
+    const off_t end = mark();
+    if (end <= from) return "";
+    std::string text(static_cast<std::size_t>(end - from), '\0');
+    const ssize_t n = ::pread(::fileno(file_), text.data(), text.size(), from);
+    text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+    for (std::size_t done = 0; done < text.size();) {
+      const ssize_t w = ::write(saved_, text.data() + done, text.size() - done);
+      if (w <= 0) break;
+      done += static_cast<std::size_t>(w);
+    }
+    if (text.size() > kStderrTailBytes) {
+      text = text.substr(text.size() - kStderrTailBytes);
+      const std::size_t nl = text.find('\n');
+      if (nl != std::string::npos && nl + 1 < text.size()) text = "..." + text.substr(nl + 1);
+    }
+    const std::size_t a = text.find_first_not_of(" \t\r\n"), b = text.find_last_not_of(" \t\r\n");
+    return a == std::string::npos ? std::string() : text.substr(a, b - a + 1);
+  }
+
+ private:
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
+};
+
+bool samePath(const PlanResult& a, const PlanResult& b) {
+  if (a.status != b.status || a.path.waypoints.size() != b.path.waypoints.size() || a.path.tool_on != b.path.tool_on ||
+      a.path.bulge != b.path.bulge)
+    return false;
+  for (std::size_t i = 0; i < a.path.waypoints.size(); ++i)
+    if (a.path.waypoints[i].x != b.path.waypoints[i].x || a.path.waypoints[i].y != b.path.waypoints[i].y) return false;
+  return true;
 }
 
 }  // namespace
@@ -70,53 +136,62 @@ int conformanceCommand(const ConformanceOptions& o) {
   const PlannerInfo& info = external::plannerNamed(o.planner, "PLANNER");
   const std::vector<std::pair<std::string, std::string>> settings = splitSettings(o.params);
   const Params params = resolveParams(info, settings);
-  std::vector<std::string> folders = o.walls;
-  if (folders.empty()) folders = {o.source_dir + "/datasets/canonical", o.source_dir + "/datasets/conformance"};
+  const std::vector<std::string> files = wallFilesIn(o.walls.empty() ? conformanceWallFolders(o.source_dir) : o.walls);
   std::vector<CardRow> rows;
-  for (const std::string& file : wallFiles(folders))
-    for (const ToolParams& tool : {ToolParams{0.1, 0.02}, ToolParams{0.05, 0.0}}) {
+  {
+    std::optional<StderrCapture> capture;
+    if (!info.external_manifest.empty()) capture.emplace();
+    for (const std::string& file : files) {
       const Wall wall = loadWallFile(file);
-      Problem problem;
-      problem.wall = &wall;
-      problem.tool = tool;
-      problem.params = params;
-      CardRow row;
-      row.wall = wall.name;
-      row.file = fs::path(file).filename().string();
-      row.tool = tool;
-      // An external planner's processes are held to the experiments' default memory limit.
-      problem.memory_limit_bytes = external::kDefaultMemoryLimitBytes;
-      // Judged as `plan` and a run judge it: a path beyond the scoring limits fails its row with
-      // the reason (the card goes on).
-      const JudgedPlan judged = planAndJudge(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
-      const PlanResult& a = judged.result;
-      const PlanResult b = runPlanner(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
-      row.status = toString(a.status);
-      row.reason = a.reason;
-      row.plan_ms = a.plan_time_ms;
-      row.deterministic = a.status == b.status && a.path.waypoints.size() == b.path.waypoints.size() &&
-                          a.path.tool_on == b.path.tool_on && a.path.bulge == b.path.bulge;
-      for (std::size_t i = 0; row.deterministic && i < a.path.waypoints.size(); ++i)
-        row.deterministic = a.path.waypoints[i].x == b.path.waypoints[i].x && a.path.waypoints[i].y == b.path.waypoints[i].y;
-      if (a.hasPath() && !judged.not_scored.empty()) {
-        row.status = toString(judged.verdict);  // metrics_error: the row fails, saying why
+      for (const ToolParams& tool : conformanceTools()) {
+        Problem problem;
+        problem.wall = &wall;
+        problem.tool = tool;
+        problem.params = params;
+        // An external planner's processes are held to the experiments' default memory limit.
+        problem.memory_limit_bytes = external::kDefaultMemoryLimitBytes;
+        const ExpectedOutcome expected = expectedOutcome(wall, tool);
+        CardRow row;
+        row.wall = wall.name;
+        row.file = fs::path(file).filename().string();
+        row.tool = tool;
+        row.expected = toString(expected.status);
+        // Judged as `plan` and a run judge it: an invalid path is invalid_output, a path beyond
+        // the scoring limits metrics_error, each with its reason (the card goes on).
+        const off_t mark = capture ? capture->mark() : 0;
+        JudgedPlan judged = planAndJudge(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
+        const std::string tail = capture ? capture->since(mark) : std::string();
+        const PlanResult& a = judged.result;
+        // A planner that failed says why on its stderr (an import error, a traceback): its reason quotes the end.
+        const bool failed = judged.verdict == RunStatus::Crash || judged.verdict == RunStatus::Error ||
+                            judged.verdict == RunStatus::InvalidOutput || judged.verdict == RunStatus::Timeout ||
+                            judged.verdict == RunStatus::MemoryLimit;
+        if (failed && !tail.empty() && judged.reason.find(tail) == std::string::npos)
+          judged.reason += (judged.reason.empty() ? "" : "; ") + std::string("the planner's stderr ended: ") + tail;
+        const ConformanceCheck check = checkConformance(expected, judged, info.min_coverage_reachable, settings.empty());
+        row.status = toString(judged.verdict);
         row.reason = judged.reason;
-        row.contract = false;
-      } else if (a.hasPath()) {
-        const PathMetrics& m = judged.metrics;
-        row.valid = m.validity.valid;
-        row.coverage = m.coverage.coverage_reachable;
-        row.contract = row.valid && (a.status == PlanStatus::Ok || !a.reason.empty());
-        // The promise is for walls whose free region is one piece (counted here, not taken from the
-        // planner's own account, which an external planner need not give).
-        row.promise_applies =
-            settings.empty() && a.status == PlanStatus::Ok && componentsByArea(freeRegion(wall, tool)).size() <= 1;
-        row.promise_kept = !row.promise_applies || row.coverage >= info.min_coverage_reachable;
-      } else {
-        row.contract = a.status != PlanStatus::Error && !a.reason.empty() && a.path.waypoints.empty();
+        row.plan_ms = a.plan_time_ms;
+        row.valid = a.hasPath() && judged.not_scored.empty() && judged.metrics.validity.valid;
+        row.coverage = check.coverage_reachable;
+        row.contract = check.outcome;
+        row.promise_applies = check.promise_applies;
+        row.promise_kept = check.promise_kept;
+        row.cause = check.cause;
+        if (check.passed()) {  // the same problem again: the same path, bit for bit
+          const off_t again = capture ? capture->mark() : 0;
+          const PlanResult b = runPlanner(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
+          if (capture) capture->since(again);
+          row.checked_twice = true;
+          row.deterministic = samePath(a, b);
+          if (!row.deterministic)
+            row.cause = "a second plan gave " + (b.status == a.status ? std::string("a different path")
+                                                                      : toString(b.status) + " (" + b.reason + ")");
+        }
+        rows.push_back(std::move(row));
       }
-      rows.push_back(std::move(row));
     }
+  }
 
   std::size_t passed = 0;
   for (const CardRow& r : rows) passed += r.passed();
@@ -131,11 +206,12 @@ int conformanceCommand(const ConformanceOptions& o) {
     j["walls"] = nlohmann::ordered_json::array();
     for (const CardRow& r : rows)
       j["walls"].push_back({{"wall", r.wall}, {"file", r.file}, {"tool_width", r.tool.tool_width},
-                            {"clearance", r.tool.clearance}, {"status", r.status}, {"reason", r.reason},
-                            {"contract", r.contract}, {"valid", r.valid}, {"deterministic", r.deterministic},
+                            {"clearance", r.tool.clearance}, {"expected", r.expected}, {"status", r.status},
+                            {"reason", r.reason}, {"contract", r.contract}, {"valid", r.valid},
+                            {"deterministic", r.checked_twice ? nlohmann::ordered_json(r.deterministic) : nullptr},
                             {"coverage_reachable", std::isfinite(r.coverage) ? nlohmann::ordered_json(r.coverage) : nullptr},
                             {"promise_applies", r.promise_applies}, {"promise_kept", r.promise_kept},
-                            {"plan_time_ms", r.plan_ms}, {"passed", r.passed()}});
+                            {"plan_time_ms", r.plan_ms}, {"passed", r.passed()}, {"cause", r.cause}});
     j["passed"] = passed;
     j["checked"] = rows.size();
     text = j.dump(1) + "\n";
@@ -146,27 +222,37 @@ int conformanceCommand(const ConformanceOptions& o) {
     text += "Parameters: " + (p.empty() ? std::string("none") : p) + ". Promise: coverage_reachable >= " +
             fixed(info.min_coverage_reachable, 3) +
             " with default parameters on every wall whose free region is connected.\n\n"
-            "Each wall is planned twice at each tool (s = tool width, c = clearance, metres). A row passes when the "
-            "planner returns a path the metrics engine finds valid, or no path with a reason (never `error`); the "
-            "second plan is the same path bit for bit; and an `ok` path keeps the promise where it applies. "
+            "Each wall is planned at two tools (s = tool width, c = clearance, metres). A row passes when the planner "
+            "does what a correct planner must there (docs/ADDING_A_PLANNER.md, the contract): where the tool's centre "
+            "region F is one piece, a valid `ok` path; where F is in several pieces, a valid `partial` path with its "
+            "reason; where F is empty, `no_reachable_area` with its reason. `crash`, `timeout`, `memory_limit`, "
+            "`error`, `invalid_output` (an invalid path) and `metrics_error` fail. An `ok` path keeps the promise where "
+            "it applies, and a second plan gives the same path bit for bit. "
             "Plan time is the first plan's wall-clock time on this machine (measured, not checked).\n\n";
-    text += "| wall | s | c | status | valid | same path twice | coverage_reachable | promise | plan ms | passed |\n";
-    text += "|---|---|---|---|---|---|---|---|---|---|\n";
+    text += "| wall | s | c | expected | status | valid | same path twice | coverage_reachable | promise | plan ms | passed |\n";
+    text += "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const CardRow& r : rows)
-      text += "| " + cell(r.wall) + " | " + shortNumber(r.tool.tool_width) + " | " + shortNumber(r.tool.clearance) + " | " +
-              r.status + (r.reason.empty() ? "" : " (" + cell(r.reason) + ")") + " | " +
-              (r.hasPathStatus() ? (r.valid ? "yes" : "**no**") : "-") + " | " + (r.deterministic ? "yes" : "**no**") +
-              " | " + fixed(r.coverage, 4) + " | " +
+      text += "| " + cell(r.wall) + " | " + shortNumber(r.tool.tool_width) + " | " + shortNumber(r.tool.clearance) +
+              " | " + r.expected + " | " + r.status + (r.reason.empty() ? "" : " (" + cell(r.reason) + ")") + " | " +
+              (r.hasPathStatus() ? (r.valid ? "yes" : "**no**") : "-") + " | " +
+              (r.checked_twice ? (r.deterministic ? "yes" : "**no**") : "-") + " | " + fixed(r.coverage, 4) + " | " +
               (r.promise_applies ? (r.promise_kept ? "kept" : "**broken**") : "-") + " | " + fixed(r.plan_ms, 1) +
               " | " + (r.passed() ? "yes" : "**no**") + " |\n";
     text += "\n" + std::to_string(passed) + " of " + std::to_string(rows.size()) + " passed.\n";
+    if (passed < rows.size()) {
+      text += "\n## Failed rows\n\n";
+      for (const CardRow& r : rows)
+        if (!r.passed())
+          text += "- " + cell(r.wall) + " (" + r.file + ", s = " + shortNumber(r.tool.tool_width) + ", c = " +
+                  shortNumber(r.tool.clearance) + "): " + cell(r.cause) + "\n";
+    }
   }
   if (o.out.empty()) {
     std::fwrite(text.data(), 1, text.size(), stdout);
   } else {
-    OutputFiles files;
-    files.add(o.out, text);
-    files.commit();
+    OutputFiles files_out;
+    files_out.add(o.out, text);
+    files_out.commit();
   }
   std::fprintf(stderr, "%s: %zu of %zu passed\n", info.name.c_str(), passed, rows.size());
   return passed == rows.size() ? 0 : 1;

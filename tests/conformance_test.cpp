@@ -3,8 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
 
+#include "coverbench/conformance.hpp"
 #include "coverbench/datasets.hpp"
+#include "coverbench/experiment.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/wall_file.hpp"
@@ -76,9 +81,13 @@ TEST_P(Conformance, ValidOrClearFailureAndDeterministic) {
   EXPECT_EQ(first.path.tool_on, second.path.tool_on);
   EXPECT_EQ(first.unreachable_parts, 0u) << "every part of the covered component is reached: " << first.reason;
 
+  // The status the wall calls for (coverbench/conformance.hpp: the definition the report card
+  // checks), with any parameters.
+  const ExpectedOutcome expected = expectedOutcome(wall, c.tool);
+  EXPECT_EQ(first.status, expected.status) << expected.why << ": " << first.reason;
   // The declared minimum coverage, with default parameters, where the free region is connected
   // (a planner covers one component; the others cannot be reached without leaving F).
-  if (c.params.empty() && first.status == PlanStatus::Ok && first.free_components <= 1) {
+  if (c.params.empty() && first.status == PlanStatus::Ok && expected.free_components == 1) {
     const double covered = coverage(wall, c.tool, first.path).coverage_reachable;
     EXPECT_GE(covered, info.min_coverage_reachable) << c.planner << " declares this minimum";
   }
@@ -127,31 +136,119 @@ std::vector<Case> allCases() {
 INSTANTIATE_TEST_SUITE_P(AllPlanners, Conformance, testing::ValuesIn(allCases()),
                          [](const testing::TestParamInfo<Case>& param_info) { return caseName(param_info.param); });
 
+// The definition of what a correct planner must do on each conformance wall
+// (coverbench/conformance.hpp, used by `coverbench conformance` too) against outcomes worked out by
+// hand from the walls' geometry (r = s / 2; the tool's centre keeps r from the edge and r + c from
+// obstacles):
+// - exactly_tool_height (2 x 0.1 m): at s = 0.1 no room (F empty); at s = 0.05 a strip 0.05 m high.
+// - barely_wider_than_tool (2 x 0.1006 m): 0.6 mm of room at s = 0.1 (more than F's 2 x 55 um margin).
+// - narrow_gap_disconnected: a window 1.08 m high on a 1.2 m wall leaves a 0.12 m gap, which needs
+//   r + r + c = 0.12 m at s = 0.1 (F splits: zero width) and 0.05 m at s = 0.05 (one piece).
+// - narrow_passage_open: a 0.16 m gap, more than the 0.12 m needed at s = 0.1.
+// - overlapping_cluster: the pocket enclosed by the first rectangle's right edge, the second's lower
+//   edge and the circle (centre (1.9, 1), radius 0.3) fits a disc of radius at most
+//   0.124 / (1 + sqrt 2) = 0.051 m from the corner (1.6, 1.3): a second piece at s = 0.05, c = 0
+//   (needs 0.025) but not at s = 0.1, c = 0.02 (needs 0.07).
+// - rotated_polygons: the triangle crossing the boundary cuts off the corner (5.8..6, 0..0.2) whose
+//   point (5.95, 0.05) is 0.05 m from both edges and 0.0707 m from the triangle: a second piece at
+//   both tools.
+// - the canonical walls and the other conformance walls: obstacles that enclose no pocket, one piece.
+TEST(ConformanceWalls, TheDefinitionGivesTheOutcomesWorkedOutByHand) {
+  const std::map<std::string, std::pair<std::size_t, std::size_t>> pieces = {  // F's pieces at s = 0.1 and at s = 0.05
+      {"exactly_tool_height", {0, 1}},     {"barely_wider_than_tool", {1, 1}}, {"narrow_gap_disconnected", {2, 1}},
+      {"narrow_passage_open", {1, 1}},     {"overlapping_cluster", {1, 2}},    {"rotated_polygons", {2, 2}},
+      {"gable_clockwise", {1, 1}},         {"gable_counter_clockwise", {1, 1}}, {"garden_circles", {1, 1}},
+      {"stairwell", {1, 1}},               {"facade_20x9_24win", {1, 1}},      {"gable_round_window", {1, 1}},
+      {"l_shape_clockwise", {1, 1}},       {"living_room_north", {1, 1}},      {"overlapping_touching", {1, 1}},
+      {"seed_10x10_5obs", {1, 1}},         {"seed_10x8_3obs", {1, 1}},         {"seed_1x1_empty", {1, 1}},
+      {"seed_5x5_1obs", {1, 1}},           {"seed_5x5_3obs", {1, 1}}};
+  const std::vector<std::string> files = wallFilesIn(conformanceWallFolders(COVERBENCH_SOURCE_DIR));
+  ASSERT_EQ(files, test::conformanceWallFiles());
+  ASSERT_EQ(files.size(), pieces.size());
+  ASSERT_EQ(conformanceTools().size(), 2u);
+  for (const std::string& file : files) {
+    const std::string stem = std::filesystem::path(file).stem().string();
+    ASSERT_EQ(pieces.count(stem), 1u) << stem;
+    const Wall wall = loadWallFile(file);
+    for (std::size_t t = 0; t < 2; ++t) {
+      const std::size_t n = t == 0 ? pieces.at(stem).first : pieces.at(stem).second;
+      const ExpectedOutcome e = expectedOutcome(wall, conformanceTools()[t]);
+      EXPECT_EQ(e.free_components, n) << stem << " tool " << t;
+      EXPECT_EQ(e.status, n == 0 ? PlanStatus::NoReachableArea : n == 1 ? PlanStatus::Ok : PlanStatus::Partial)
+          << stem << " tool " << t;
+    }
+  }
+}
+
 TEST(ConformanceWalls, ExpectedOutcomes) {
-  // Hand-known outcomes on the edge-case walls, for every planner.
+  // Every planner on every conformance wall at both tools does what the definition calls for
+  // (checkConformance, as the report card checks it), and reports F's pieces as the definition
+  // counts them: a partial plan names the disconnected components it left out.
   for (const PlannerInfo& p : registeredPlanners()) {
     const Params params = resolveParams(p, {});
-    PlanResult r;
-    const Wall exact = loadWallFile(test::sourcePath("datasets/conformance/exactly_tool_height.json"));
-    ASSERT_TRUE(honours(p, exact, {0.1, 0.02}, params, &r));
-    EXPECT_EQ(r.status, PlanStatus::NoReachableArea) << p.name;
-
-    const Wall thin = loadWallFile(test::sourcePath("datasets/conformance/barely_wider_than_tool.json"));
-    ASSERT_TRUE(honours(p, thin, {0.1, 0.02}, params, &r));
-    EXPECT_EQ(r.status, PlanStatus::Ok) << p.name << ": " << r.reason;
-
-    const Wall split = loadWallFile(test::sourcePath("datasets/conformance/narrow_gap_disconnected.json"));
-    ASSERT_TRUE(honours(p, split, {0.1, 0.02}, params, &r));
-    EXPECT_EQ(r.status, PlanStatus::Partial) << p.name;
-    EXPECT_EQ(r.free_components, 2u) << p.name;
-    EXPECT_EQ(r.covered_components, 1u) << p.name;
-    EXPECT_NE(r.reason.find("disconnected"), std::string::npos) << p.name << " must say what it left out";
-
-    const Wall open = loadWallFile(test::sourcePath("datasets/conformance/narrow_passage_open.json"));
-    ASSERT_TRUE(honours(p, open, {0.1, 0.02}, params, &r));
-    EXPECT_EQ(r.free_components, 1u) << p.name;
-    EXPECT_EQ(r.status, PlanStatus::Ok) << p.name;
+    for (const std::string& file : test::conformanceWallFiles()) {
+      const Wall wall = loadWallFile(file);
+      for (const ToolParams& tool : conformanceTools()) {
+        Problem problem;
+        problem.wall = &wall;
+        problem.tool = tool;
+        problem.params = params;
+        const JudgedPlan judged = planAndJudge(p, problem, Budget(std::chrono::seconds(60)));
+        const ExpectedOutcome expected = expectedOutcome(wall, tool);
+        const std::string where = p.name + " on " + wall.name + " at s = " + std::to_string(tool.tool_width);
+        const ConformanceCheck check = checkConformance(expected, judged, p.min_coverage_reachable, true);
+        EXPECT_TRUE(check.passed()) << where << ": " << check.cause;
+        const PlanResult& r = judged.result;
+        if (!r.hasPath()) continue;
+        EXPECT_EQ(r.free_components, expected.free_components) << where;
+        EXPECT_EQ(r.covered_components, 1u) << where;
+        if (expected.status == PlanStatus::Partial)
+          EXPECT_NE(r.reason.find("disconnected"), std::string::npos) << where << " must say what it left out: " << r.reason;
+      }
+    }
   }
+}
+
+// The card's verdicts, each from a judged plan made by hand: a failure status fails whatever the
+// wall, naming the status and the reason; a status other than the wall's fails, naming both; a
+// promise below the declared coverage fails; the expected status with a reason passes.
+TEST(ConformanceWalls, EachVerdictNamesItsCause) {
+  const ExpectedOutcome one{PlanStatus::Ok, 1, "F is one piece"};
+  const ExpectedOutcome split{PlanStatus::Partial, 2, "F is in 2 pieces"};
+  const ExpectedOutcome none{PlanStatus::NoReachableArea, 0, "F is empty: the tool fits nowhere"};
+  auto judged = [](RunStatus verdict, PlanStatus status, const std::string& reason, double coverage) {
+    JudgedPlan j;
+    j.verdict = verdict;
+    j.result.status = status;
+    j.result.reason = j.reason = reason;
+    if (status == PlanStatus::Ok || status == PlanStatus::Partial) j.result.path.waypoints = {{0, 0}, {1, 0}};
+    j.result.path.tool_on = {true};
+    j.metrics.coverage.coverage_reachable = coverage;
+    return j;
+  };
+  const ConformanceCheck crash = checkConformance(
+      none, judged(RunStatus::Crash, PlanStatus::Crash, "the planner's process exited with code 1", NAN), 0.0, true);
+  EXPECT_FALSE(crash.passed());
+  EXPECT_EQ(crash.cause, "crash (the planner's process exited with code 1); no_reachable_area expected: F is empty: the tool fits nowhere");
+  for (RunStatus bad : {RunStatus::Timeout, RunStatus::MemoryLimit, RunStatus::Error, RunStatus::InvalidOutput,
+                        RunStatus::MetricsError})
+    EXPECT_EQ(checkConformance(one, judged(bad, PlanStatus::Ok, "why", 1.0), 0.0, true).cause,
+              std::string(toString(bad)) + " (why); ok expected: F is one piece");
+  EXPECT_EQ(checkConformance(one, judged(RunStatus::Partial, PlanStatus::Partial, "12 % covered", 0.12), 0.0, true).cause,
+            "partial (12 % covered); ok expected: F is one piece");
+  EXPECT_EQ(checkConformance(split, judged(RunStatus::Ok, PlanStatus::Ok, "", 0.6), 0.0, true).cause,
+            "ok; partial expected: F is in 2 pieces");
+  EXPECT_EQ(checkConformance(split, judged(RunStatus::Partial, PlanStatus::Partial, "", 0.6), 0.0, true).cause,
+            "partial without a reason; partial expected: F is in 2 pieces");
+  EXPECT_EQ(checkConformance(one, judged(RunStatus::Ok, PlanStatus::Ok, "", 0.5), 0.995, true).cause,
+            "ok at coverage_reachable 0.5000, below the declared 0.9950");
+  EXPECT_TRUE(checkConformance(one, judged(RunStatus::Ok, PlanStatus::Ok, "", 0.5), 0.995, false).passed())
+      << "the promise is for default parameters";
+  EXPECT_TRUE(checkConformance(split, judged(RunStatus::Partial, PlanStatus::Partial, "left one out", 0.6), 0.0, true).passed());
+  EXPECT_TRUE(
+      checkConformance(none, judged(RunStatus::NoReachableArea, PlanStatus::NoReachableArea, "no room", NAN), 0.0, true).passed());
+  EXPECT_EQ(checkConformance(none, judged(RunStatus::NoReachableArea, PlanStatus::NoReachableArea, "", NAN), 0.0, true).cause,
+            "no_reachable_area without a reason; no_reachable_area expected: F is empty: the tool fits nowhere");
 }
 
 TEST(FamilyWalls, EveryPlannerAndVariantValidOnEveryGeneratedFamily) {

@@ -1,6 +1,7 @@
 // A complete, tiny planner: one loop around every ring of the free region (wall edge and each
 // obstacle). It is the example of docs/ADDING_A_PLANNER.md and is compiled and tested by
 // tests/example_planner_test.cpp, so the guide cannot drift from the real interface.
+#include "coverbench/boundary_arcs.hpp"
 #include "coverbench/param_table.hpp"
 #include "coverbench/planner.hpp"
 #include "coverbench/region_ops.hpp"
@@ -28,15 +29,19 @@ class PerimeterPlanner final : public TypedPlanner<PerimeterParams> {
     Workspace ws(*problem.wall, problem);  // F, exact checks, transits
     if (ws.free().empty())
       return PlanResult::failure(PlanStatus::NoReachableArea, "the tool fits nowhere on this wall");
-    // The largest free component, or every one for a vehicle that lifts its tool (docs/vehicles.md).
-    const Region part = coveredPart(componentsByArea(ws.free()), problem.vehicle);
-    PathBuilder builder(ws);                          // never writes an unchecked move
-    const double inset = params.inset;
-    const Region rings = inset > 0 ? offsetRegion(part, -inset, 1e-4) : part;
-    coverRings(builder, allRings(rings), problem.tool.tool_width);
+    // F's pieces, largest first: the largest is covered, or every one for a vehicle that lifts its
+    // tool (docs/vehicles.md).
+    const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
+    const Region part = coveredPart(components, problem.vehicle);
+    PathBuilder builder(ws);  // never writes an unchecked move
+    const Region rings = params.inset > 0 ? offsetRegion(part, -params.inset, 1e-4) : part;
+    const std::size_t unreachable = coverRings(builder, allRings(rings), problem.tool.tool_width);
     PlanResult result;
     result.status = PlanStatus::Ok;
     result.path = builder.take();
+    fitBoundaryArcs(result, ws, problem);  // F's round corners as arcs, not chains of chords
+    // Partial, saying why, when pieces of F or rings were left out (the conformance walls check it).
+    recordOutcome(result, builder, components.size(), unreachable);
     return result;
   }
 };

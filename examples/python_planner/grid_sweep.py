@@ -55,6 +55,16 @@ def segment_distance(a, b, c, d):
                point_segment_distance(c, a, b), point_segment_distance(d, a, b))
 
 
+def box(a, b, d):
+    """The bounding box (x0, x1, y0, y1) of the segment ab grown by d."""
+    return (min(a[0], b[0]) - d, max(a[0], b[0]) + d, min(a[1], b[1]) - d, max(a[1], b[1]) + d)
+
+
+def box_of(ring):
+    xs, ys = [p[0] for p in ring], [p[1] for p in ring]
+    return (min(xs), max(xs), min(ys), max(ys))
+
+
 def band_interval(y, a, b, d):
     """The x interval of the row y nearer than d to the segment ab (the capsule is convex)."""
     lo, hi = math.inf, -math.inf
@@ -97,19 +107,33 @@ class Geometry:
                 self.polygons.append([tuple(p) for p in o["points"]])
         self.r = problem.radius + MARGIN
         self.keep = problem.radius + problem.clearance + MARGIN
+        # Every edge with the distance the tool's centre keeps from it, and its bounding box grown by
+        # that distance: a point or a move outside the box is far enough without computing it.
+        self.checks = [(a, b, d, box(a, b, d)) for d, rings in ((self.r, [self.boundary]), (self.keep, self.polygons))
+                       for ring in rings for a, b in edges(ring)]
+        self.boxes = [box_of(poly) for poly in self.polygons]
+        self.known = {}  # free_point's answers: the same row ends and waypoints are asked again and again
 
     def free_point(self, p):
-        if not point_in_ring(p, self.boundary) or any(point_in_ring(p, poly) for poly in self.polygons):
+        if p not in self.known:
+            self.known[p] = self.point_is_free(p)
+        return self.known[p]
+
+    def point_is_free(self, p):
+        x, y = p
+        if not point_in_ring(p, self.boundary) or any(
+                b[0] <= x <= b[1] and b[2] <= y <= b[3] and point_in_ring(p, poly) for poly, b in zip(self.polygons, self.boxes)):
             return False
-        return all(point_segment_distance(p, a, b) >= self.r for a, b in edges(self.boundary)) and \
-            all(point_segment_distance(p, a, b) >= self.keep for poly in self.polygons for a, b in edges(poly)) and \
+        return all(not (b[0] <= x <= b[1] and b[2] <= y <= b[3]) or point_segment_distance(p, a, c) >= d
+                   for a, c, d, b in self.checks) and \
             all(math.dist(p, c) >= rad + self.keep for c, rad in self.circles)
 
     def free_move(self, p, q):
         if not (self.free_point(p) and self.free_point(q)):
             return False
-        return all(segment_distance(p, q, a, b) >= self.r for a, b in edges(self.boundary)) and \
-            all(segment_distance(p, q, a, b) >= self.keep for poly in self.polygons for a, b in edges(poly)) and \
+        x0, x1, y0, y1 = min(p[0], q[0]), max(p[0], q[0]), min(p[1], q[1]), max(p[1], q[1])
+        return all(b[0] > x1 or b[1] < x0 or b[2] > y1 or b[3] < y0 or segment_distance(p, q, a, c) >= d
+                   for a, c, d, b in self.checks) and \
             all(point_segment_distance(c, p, q) >= rad + self.keep for c, rad in self.circles)
 
     def row_intervals(self, y):
@@ -226,6 +250,22 @@ class GridSweep:
                     if found:
                         best = min(found)
                         via = waypoints[k:-1][::-1]
+                        break
+            if best is None:
+                # The same to a point within a segment driven (a piece in a narrow cusp is seen from
+                # no waypoint): the points below or above a piece's ends, and a segment's quarters.
+                for k in range(len(waypoints) - 2, -1, -1):
+                    (ax, ay), (bx, by) = waypoints[k], waypoints[k + 1]
+                    ts = [0.25, 0.5, 0.75]
+                    if ax != bx:
+                        ts += [(x - ax) / (bx - ax) for i in left for x in pieces[i][1:3]]
+                    points = [(ax + t * (bx - ax), ay + t * (by - ay)) for t in sorted(set(ts)) if 0 < t < 1]
+                    seen = [(reach(q, i), i, q) for q in points for i in left]
+                    options = [(r[0], i, r[1], q) for r, i, q in seen if r is not None]
+                    if options:
+                        cost, piece, flip, point = min(options)
+                        best = (cost, piece, flip)
+                        via = waypoints[k + 1:-1][::-1] + [point]
                         break
             if best is None:
                 skipped = len(left)

@@ -1,0 +1,35 @@
+"""Five ways a planner can be broken, one per manifest beside this file (tests/card/test_card.py
+runs `coverbench conformance` on each): the argument names the way.
+
+- missing-module: imports a module no interpreter has (the manifest cannot-start needs no script);
+- segfault: dies of SIGSEGV on its first problem;
+- loops: never answers;
+- through-obstacle: answers a straight path, across the wall, through the middle of its first
+  obstacle (a rectangle).
+"""
+import json
+import os
+import signal
+import sys
+
+mode = sys.argv[1]
+if mode == "missing-module":
+    import coverbench_card_no_such_module  # noqa: F401  (ModuleNotFoundError names it on stderr)
+
+for line in sys.stdin:
+    request = json.loads(line)
+    if mode == "segfault":
+        os.kill(os.getpid(), signal.SIGSEGV)
+    if mode == "loops":
+        while True:
+            pass
+    problem = request["problem"]
+    wall = problem["wall"]
+    ys = [p[1] for p in wall["obstacles"][0]["points"]]  # a rect obstacle comes as its four corners
+    xs = [p[0] for p in wall["boundary"]]
+    r = problem["tool"]["width"] / 2
+    y = (min(ys) + max(ys)) / 2  # the obstacle's middle row: a path along it crosses the obstacle
+    answer = {"protocol": 1, "id": request["id"], "status": "ok",
+              "waypoints": [[min(xs) + r + 0.01, y], [max(xs) - r - 0.01, y]], "tool_on": [True]}
+    sys.stdout.write(json.dumps(answer) + "\n")
+    sys.stdout.flush()
