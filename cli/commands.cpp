@@ -225,7 +225,7 @@ int planCommand(const PlanOptions& options) {
   if (!o.plan.not_scored.empty())
     std::cout << "NOT SCORED: " << o.plan.not_scored;
   else
-    std::cout << (m.validity.valid ? "valid" : "INVALID: " + std::to_string(m.validity.violations) + " violating segments")
+    std::cout << (m.validity.valid ? "valid" : "INVALID: " + describeViolations(m.validity, options.tool.clearance))
               << ", coverage " << percent(m.coverage.coverage_reachable) << " of reachable";
   std::cout << ", " << r.plan_time_ms << " ms\n";
   return succeeded(o.plan) ? 0 : 3;
@@ -366,6 +366,8 @@ int metricsCommand(const MetricsOptions& options) {
   if (!options.svg.empty()) files.add(options.svg, pathPicture(wall, tool, vehicle, plan.path, wall.name + " / " + options.plan));
   ::alarm(0);
   files.commit();
+  // Where an invalid path goes wrong, on stderr (the JSON on stdout keeps its keys).
+  if (!m.validity.valid) std::fprintf(stderr, "invalid path: %s\n", describeViolations(m.validity, tool.clearance).c_str());
   if (!exact) {
     std::cout << metricsJson(m);
     return m.validity.valid ? 0 : 3;

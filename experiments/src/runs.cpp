@@ -165,7 +165,9 @@ std::vector<ReplanRecord> replanRecords(const RunSpec& spec, const PlannerInfo& 
       rec.status = !rec.valid ? "invalid_output" : left_out ? "partial" : "ok";
       rec.reason = rec.valid ? repair.reason
                              : std::to_string(before.violations) + " executed segments violate the wall, " +
-                                   std::to_string(after.violations) + " repaired segments the new wall (or the exact judge finds one)";
+                                   std::to_string(after.violations) + " repaired segments the new wall (or the exact judge finds one)" +
+                                   (before.valid ? "" : "; executed: " + describeViolations(before, spec.tool.clearance)) +
+                                   (after.valid ? "" : "; repaired: " + describeViolations(after, spec.tool.clearance));
       rec.cut_waypoint = repair.cut_waypoint;
       rec.path = std::move(repair.path);
       out.push_back(std::move(rec));
@@ -266,7 +268,7 @@ JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, cons
   }
   if (j.result.hasPath() && !j.metrics.validity.valid) {
     j.verdict = RunStatus::InvalidOutput;
-    j.reason = std::to_string(j.metrics.validity.violations) + " segments violate the wall or the clearance" +
+    j.reason = describeViolations(j.metrics.validity, problem.tool.clearance) +
                (j.result.reason.empty() ? "" : "; the planner said: " + j.result.reason);
   }
   return j;
@@ -308,7 +310,7 @@ RunRecord executeRun(const RunSpec& spec) {
       rec.uncovered_reachable_m2 = m.coverage.reachable_area * (1.0 - m.coverage.coverage_reachable);
       if (!rec.valid) {  // the planner's claim does not survive the check
         rec.status = RunStatus::InvalidOutput;
-        rec.reason = std::to_string(m.validity.violations) + " segments violate the wall or the clearance" +
+        rec.reason = describeViolations(m.validity, spec.tool.clearance) +
                      (result.reason.empty() ? "" : "; the planner said: " + result.reason);
       }
       if (spec.exact_judge) {
@@ -322,9 +324,12 @@ RunRecord executeRun(const RunSpec& spec) {
         if (rec.valid && !j.validity.valid) {
           rec.valid = false;
           rec.status = RunStatus::InvalidOutput;
+          std::string first;
+          for (std::size_t i = 0; i < std::min<std::size_t>(j.validity.violating.size(), kDescribedViolations); ++i)
+            first += (i == 0 ? ": segment " : ", ") + std::to_string(j.validity.violating[i]);
           rec.reason = "the exact judge finds " + std::to_string(j.validity.violations) +
                        " segments that violate the wall or the clearance (the fast engine, with its 1e-9 m tolerance, "
-                       "finds none)" + (result.reason.empty() ? "" : "; the planner said: " + result.reason);
+                       "finds none)" + first + (result.reason.empty() ? "" : "; the planner said: " + result.reason);
         }
       }
     } catch (const std::exception& e) {  // a path beyond the scoring limits, or a bug in the judge
