@@ -118,8 +118,11 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   const double rss_before = residentBytes();
   // Planned and judged as Python's coverbench.plan and a run judge it (planAndJudge).
   JudgedPlan judged = planAndJudge(planner, problem, Budget(std::chrono::duration<double>(time_limit_s)));
-  // The process's peak resident set grew by this much during the plan (0 if an earlier peak was higher).
-  o.plan.peak_memory_bytes = std::max(0.0, peakResidentBytes() - rss_before);
+  // The process's peak resident set grew by this much during the plan (0 if an earlier peak was
+  // higher); an external planner's: its own processes' peak.
+  o.plan.peak_memory_bytes = std::isfinite(judged.result.process_peak_bytes)
+                                 ? judged.result.process_peak_bytes
+                                 : std::max(0.0, peakResidentBytes() - rss_before);
   o.plan.result = std::move(judged.result);
   o.plan.metrics = judged.metrics;
   o.plan.not_scored = judged.not_scored;

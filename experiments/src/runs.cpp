@@ -288,11 +288,21 @@ RunRecord executeRun(const RunSpec& spec) {
   problem.seed = spec.seed;
   problem.memory_limit_bytes = spec.memory_limit_bytes;
   PlanResult result;
+  // A planner outside the tree: its own processes' CPU time (summed over the repetitions) and peak
+  // memory (the largest), not the worker's (measuredRun keeps these).
+  double process_cpu_s = NAN, process_peak_bytes = NAN;
   for (int rep = 0; rep < std::max(1, spec.repetitions); ++rep) {
     PlanResult again = runPlanner(info, problem, Budget(std::chrono::duration<double>(spec.time_limit_s)));
     rec.plan_times_ms.push_back(again.plan_time_ms);
+    if (std::isfinite(again.process_cpu_s))
+      process_cpu_s = (std::isfinite(process_cpu_s) ? process_cpu_s : 0.0) + again.process_cpu_s;
+    if (std::isfinite(again.process_peak_bytes))
+      process_peak_bytes = std::isfinite(process_peak_bytes) ? std::max(process_peak_bytes, again.process_peak_bytes)
+                                                             : again.process_peak_bytes;
     if (rep == 0) result = std::move(again);
   }
+  rec.cpu_time_s = process_cpu_s;
+  rec.peak_rss_bytes = rec.peak_memory_bytes = process_peak_bytes;
   std::vector<double> sorted = rec.plan_times_ms;
   std::sort(sorted.begin(), sorted.end());
   rec.plan_time_ms = sorted[sorted.size() / 2];
@@ -348,6 +358,9 @@ RunRecord executeRun(const RunSpec& spec) {
     }
     rec.path = std::move(result.path);
   }
+  // The end of an external planner's stderr, kept with a run that failed in a way it may explain.
+  if (rec.status == RunStatus::Crash || rec.status == RunStatus::Error || rec.status == RunStatus::InvalidOutput)
+    rec.stderr_tail = result.stderr_tail;
   return rec;
 }
 
