@@ -151,6 +151,7 @@ class Serve(unittest.TestCase):
             paths = set(yaml.safe_load(f)["paths"])
         served = {"/api/experiments", "/api/experiments/{db}/{id}/runs", "/api/experiments/{db}/{id}/runs/{key}/picture.svg",
                   "/api/experiments/{db}/{id}/runs/{key}/playback.js", "/api/experiments/{db}/{id}/runs/{key}/problem",
+                  "/api/experiments/{db}/{id}/runs/{key}/outcome",
                   "/api/planners", "/api/check", "/api/plan", "/api/plans/{id}/picture.svg", "/api/plans/{id}/playback.js",
                   "/api/walls", "/api/walls/folder/{i}", "/api/walls/db/{name}"}
         self.assertEqual(paths, served)
