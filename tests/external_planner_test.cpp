@@ -630,7 +630,9 @@ for line in sys.stdin:
   ResultSet rs = ResultsDb((dir_ / "heavy/results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
   ASSERT_EQ(rs.runs.size(), 1u);
   EXPECT_EQ(rs.runs[0].status, RunStatus::Ok) << rs.runs[0].reason;
-  EXPECT_GE(rs.runs[0].cpu_time_s, 1.5);
+  // /proc counts CPU time in clock ticks (1/100 s each for user and system time, truncated): at
+  // least 1.4 s of the 1.5 s; the worker itself, waiting on the pipe, spends a few hundredths.
+  EXPECT_GE(rs.runs[0].cpu_time_s, 1.4);
   EXPECT_GE(rs.runs[0].peak_memory_bytes, 200.0 * 1024 * 1024);
   EXPECT_GE(rs.runs[0].peak_rss_bytes, 200.0 * 1024 * 1024);
 }
