@@ -291,7 +291,7 @@ TEST(Validity, AViolationsNumbersAreToldApartFromTheLimit) {
   const Validity v = checkValidity(w, kTool, line({{1.0, 0.65 - 1e-7}, {3.0, 0.65 - 1e-7}}));
   ASSERT_FALSE(v.valid);
   EXPECT_EQ(describeViolations(v, kTool.clearance),
-            "1 segment violates the wall or the clearance: segment 0 (1, 0.65)->(3, 0.65) comes too close to "
+            "1 segments violate the wall or the clearance: segment 0 (1, 0.65)->(3, 0.65) comes too close to "
             "obstacles[0] (clearance 0.0499999 m < 0.05 m)");
   VehicleModel gantry;
   gantry.kind = VehicleModel::Kind::Gantry;
@@ -300,7 +300,7 @@ TEST(Validity, AViolationsNumbersAreToldApartFromTheLimit) {
   const Validity g = checkValidity(w, kTool, lifted, gantry);
   ASSERT_FALSE(g.valid);
   EXPECT_EQ(describeViolations(g, kTool.clearance),
-            "1 segment violates the wall or the clearance: segment 1 (1, 1)->(5, 1) leaves the wall's bounding box "
+            "1 segments violate the wall or the clearance: segment 1 (1, 1)->(5, 1) leaves the wall's bounding box "
             "(a lifted move)");
 }
 

@@ -224,8 +224,8 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
 
 std::string describeViolations(const Validity& validity, double required_clearance) {
   if (validity.valid) return std::string();
-  std::string text = std::to_string(validity.violations) + (validity.violations == 1 ? " segment violates" : " segments violate") +
-                     " the wall or the clearance";
+  // The opening as it always was ("1 segments" too): python/tests and users' scripts match it.
+  std::string text = std::to_string(validity.violations) + " segments violate the wall or the clearance";
   std::size_t shown = 0;
   for (const Violation& d : validity.described) {
     text += shown == 0 ? ": " : "; ";
