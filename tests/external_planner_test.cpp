@@ -625,16 +625,22 @@ for line in sys.stdin:
       << R"({"coverbench_planner": 1, "name": "heavy", "version": "1", "summary": "s", "reference": "r",
   "command": ["/usr/bin/python3", "heavy.py"], "files": ["heavy.py"]})";
   fs::remove(dir_ / "walls" / "b.json");  // one run: the first plan of the process
-  const test::CommandRun ran = run("run " + config("heavy", "  - external: planners/heavy.json\n", 600) + " --no-report");
-  ASSERT_EQ(ran.exit_code, 0) << ran.err;
-  ResultSet rs = ResultsDb((dir_ / "heavy/results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
-  ASSERT_EQ(rs.runs.size(), 1u);
-  EXPECT_EQ(rs.runs[0].status, RunStatus::Ok) << rs.runs[0].reason;
-  // /proc counts CPU time in clock ticks (1/100 s each for user and system time, truncated): at
-  // least 1.4 s of the 1.5 s; the worker itself, waiting on the pipe, spends a few hundredths.
-  EXPECT_GE(rs.runs[0].cpu_time_s, 1.4);
-  EXPECT_GE(rs.runs[0].peak_memory_bytes, 200.0 * 1024 * 1024);
-  EXPECT_GE(rs.runs[0].peak_rss_bytes, 200.0 * 1024 * 1024);
+  // Measured from its cgroup where one can be made, and (COVERBENCH_PLANNER_CGROUPS=0) from /proc.
+  for (const char* cgroups : {"1", "0"}) {
+    ::setenv("COVERBENCH_PLANNER_CGROUPS", cgroups, 1);
+    const std::string name = std::string("heavy") + cgroups;
+    const test::CommandRun ran = run("run " + config(name, "  - external: planners/heavy.json\n", 600) + " --no-report");
+    ::unsetenv("COVERBENCH_PLANNER_CGROUPS");
+    ASSERT_EQ(ran.exit_code, 0) << ran.err;
+    ResultSet rs = ResultsDb((dir_ / name / "results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
+    ASSERT_EQ(rs.runs.size(), 1u);
+    EXPECT_EQ(rs.runs[0].status, RunStatus::Ok) << rs.runs[0].reason;
+    // /proc counts CPU time in clock ticks (1/100 s each for user and system time, truncated): at
+    // least 1.4 s of the 1.5 s; the worker itself, waiting on the pipe, spends a few hundredths.
+    EXPECT_GE(rs.runs[0].cpu_time_s, 1.4) << name;
+    EXPECT_GE(rs.runs[0].peak_memory_bytes, 200.0 * 1024 * 1024) << name;
+    EXPECT_GE(rs.runs[0].peak_rss_bytes, 200.0 * 1024 * 1024) << name;
+  }
 }
 
 }  // namespace
