@@ -118,8 +118,11 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   const double rss_before = residentBytes();
   // Planned and judged as Python's coverbench.plan and a run judge it (planAndJudge).
   JudgedPlan judged = planAndJudge(planner, problem, Budget(std::chrono::duration<double>(time_limit_s)));
-  // The process's peak resident set grew by this much during the plan (0 if an earlier peak was higher).
-  o.plan.peak_memory_bytes = std::max(0.0, peakResidentBytes() - rss_before);
+  // The process's peak resident set grew by this much during the plan (0 if an earlier peak was
+  // higher); an external planner's: its own processes' peak.
+  o.plan.peak_memory_bytes = std::isfinite(judged.result.process_peak_bytes)
+                                 ? judged.result.process_peak_bytes
+                                 : std::max(0.0, peakResidentBytes() - rss_before);
   o.plan.result = std::move(judged.result);
   o.plan.metrics = judged.metrics;
   o.plan.not_scored = judged.not_scored;
@@ -225,7 +228,7 @@ int planCommand(const PlanOptions& options) {
   if (!o.plan.not_scored.empty())
     std::cout << "NOT SCORED: " << o.plan.not_scored;
   else
-    std::cout << (m.validity.valid ? "valid" : "INVALID: " + std::to_string(m.validity.violations) + " violating segments")
+    std::cout << (m.validity.valid ? "valid" : "INVALID: " + describeViolations(m.validity, options.tool.clearance))
               << ", coverage " << percent(m.coverage.coverage_reachable) << " of reachable";
   std::cout << ", " << r.plan_time_ms << " ms\n";
   return succeeded(o.plan) ? 0 : 3;
@@ -366,6 +369,8 @@ int metricsCommand(const MetricsOptions& options) {
   if (!options.svg.empty()) files.add(options.svg, pathPicture(wall, tool, vehicle, plan.path, wall.name + " / " + options.plan));
   ::alarm(0);
   files.commit();
+  // Where an invalid path goes wrong, on stderr (the JSON on stdout keeps its keys).
+  if (!m.validity.valid) std::fprintf(stderr, "invalid path: %s\n", describeViolations(m.validity, tool.clearance).c_str());
   if (!exact) {
     std::cout << metricsJson(m);
     return m.validity.valid ? 0 : 3;

@@ -186,6 +186,18 @@ class Explorer {
             {"tool_width", r.tool.tool_width}, {"clearance", r.tool.clearance}};
   }
 
+  /// How the run ended, in words: its status, reason and the end of an external planner's stderr
+  /// (kept for crash, error and invalid_output; valid UTF-8 as stored), with the wall and tool.
+  json outcome(std::size_t db, long long id, const std::string& key) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const Index& x = index(db, id);
+    if (!x.position.count(key))
+      throw HttpError(404, "experiment " + std::to_string(id) + " of database " + std::to_string(db) + " has no run " + key);
+    const ResultsDb::StoredRun r = dbs_[db].db->storedRun(key);
+    return {{"status", r.status}, {"reason", r.reason}, {"stderr_tail", r.stderr_tail}, {"wall_name", r.wall.name},
+            {"planner", r.planner}, {"tool_width", r.tool.tool_width}, {"clearance", r.tool.clearance}};
+  }
+
  private:
   struct Db {
     std::string file;
@@ -1108,6 +1120,11 @@ ServeApp::ServeApp(const ServeOptions& o, const std::string& helper_exe) {
   server.Get("/api/experiments/(\\d{1,6})/(\\d{1,12})/runs/([0-9a-f]{64})/problem",
              x.guarded([&x](const httplib::Request& req, httplib::Response& res) {
                res.set_content(jsonText(x.explorer.problem(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.matches[3])),
+                               "application/json");
+             }));
+  server.Get("/api/experiments/(\\d{1,6})/(\\d{1,12})/runs/([0-9a-f]{64})/outcome",
+             x.guarded([&x](const httplib::Request& req, httplib::Response& res) {
+               res.set_content(jsonText(x.explorer.outcome(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.matches[3])),
                                "application/json");
              }));
   server.Get("/api/planners", x.guarded([](const httplib::Request&, httplib::Response& res) {

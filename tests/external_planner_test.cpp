@@ -550,5 +550,98 @@ TEST_F(External, KillingTheRunnerKillsEveryProcessItStarted) {
   std::printf("[          ] every process was gone %.2f s after kill -9 of the runner\n", gone_after);
 }
 
+
+// Issue 61, acceptance 2: a planner that crashes on walls with holes (tests/data/crash_on_holes):
+// `coverbench runs DB` shows, for those runs, the reason and the end of the planner's stderr (the
+// last kStderrTailBytes, bytes that are not UTF-8 replaced), labelled by wall and tool; the runs
+// it finished keep no stderr. The CSV and JSON also carry the planner's parameters and CPU time.
+TEST_F(External, ACrashingPlannersReasonAndTheEndOfItsStderrAreShownByRuns) {
+  fs::copy(test::sourcePath("tests/data/crash_on_holes"), dir_ / "crash", fs::copy_options::recursive);
+  std::ofstream(dir_ / "walls" / "holes.json")
+      << R"({"name": "holes", "width": 2, "height": 1, "obstacles": [{"type": "rect", "x": 0.8, "y": 0.3, "width": 0.4, "height": 0.4, "label": "window"}]})";
+  const test::CommandRun ran = run("run " + config("crash", "  - external: crash/crash_on_holes.json\n", 600) + " --no-report");
+  ASSERT_EQ(ran.exit_code, 0) << ran.err;
+  const std::string db = (dir_ / "crash/results.sqlite").string();
+  std::string json_text, csv;
+  ASSERT_EQ(run("runs " + db + " --format json", &json_text).exit_code, 0);
+  ASSERT_EQ(run("runs " + db, &csv).exit_code, 0);
+  const nlohmann::json runs = nlohmann::json::parse(json_text);
+  ASSERT_EQ(runs.size(), 3u);
+  std::size_t crashed = 0;
+  for (const auto& r : runs) {
+    ASSERT_TRUE(r.contains("reason") && r.contains("stderr_tail") && r.contains("params") && r.contains("cpu_time_s")) << r.dump();
+    EXPECT_TRUE(r["params"].is_object());
+    EXPECT_TRUE(r["cpu_time_s"].is_number()) << r.dump();
+    if (r["wall"] != "holes") {
+      EXPECT_EQ(r["status"], "ok");
+      EXPECT_EQ(r["stderr_tail"], "") << "an ok run keeps no stderr";
+      continue;
+    }
+    ++crashed;
+    EXPECT_EQ(r["status"], "crash");
+    EXPECT_TRUE(r["tool_width"].is_number() && r["clearance"].is_number());  // labelled by wall and tool
+    EXPECT_NE(r["reason"].get<std::string>().find("exited with code 1"), std::string::npos) << r["reason"];
+    const std::string tail = r["stderr_tail"];
+    const std::string end = "RuntimeError: holes are not supported: 1 obstacles on holes\n";
+    ASSERT_GE(tail.size(), end.size());
+    EXPECT_EQ(tail.substr(tail.size() - end.size()), end);
+    EXPECT_NE(tail.find("Traceback (most recent call last)"), std::string::npos);
+    EXPECT_NE(tail.find("not UTF-8: \xEF\xBF\xBD\xEF\xBF\xBD <- two bytes\n"), std::string::npos) << "replaced";
+    EXPECT_EQ(tail.find("planning holes"), std::string::npos) << "written more than 4 KiB before the end";
+    EXPECT_LE(tail.size(), external::kStderrTailBytes + 4);  // two bytes replaced by three each
+    EXPECT_GT(tail.size(), external::kStderrTailBytes - 4);
+  }
+  EXPECT_EQ(crashed, 1u);
+  // The CSV: a column each, the stderr's lines in one quoted cell.
+  const std::string header = csv.substr(0, csv.find('\n'));
+  EXPECT_NE(header.find(",params,"), std::string::npos) << header;
+  EXPECT_NE(header.find(",reason,"), std::string::npos) << header;
+  EXPECT_NE(header.find(",cpu_time_s,"), std::string::npos) << header;
+  EXPECT_NE(header.find(",stderr_tail"), std::string::npos) << header;
+  EXPECT_NE(csv.find("RuntimeError: holes are not supported: 1 obstacles on holes\n\""), std::string::npos) << csv;
+  // The database keeps it as text.
+  EXPECT_NE(test::sqlRows(db, "SELECT typeof(stderr_tail) FROM runs WHERE status = 'crash'").find("text"), std::string::npos);
+}
+
+// Issue 61: an external planner's CPU time and memory are its own processes', not the worker's.
+// The planner burns at least 1.5 s of its own CPU time (by its own clock, however long that
+// takes) and touches 200 MiB before answering; the worker meanwhile only waits.
+TEST_F(External, AnExternalPlannersCpuAndMemoryAreItsOwn) {
+  std::ofstream(dir_ / "planners" / "heavy.py") << R"py(import json, sys, time
+for line in sys.stdin:
+    req = json.loads(line)
+    hog = bytearray(200 << 20)
+    for i in range(0, len(hog), 4096):
+        hog[i] = 1
+    while time.process_time() < 1.5:
+        pass
+    p = req["problem"]
+    r = p["tool"]["width"] / 2 + p["tool"]["clearance"] + 0.01
+    print(json.dumps({"protocol": 1, "id": req["id"], "status": "ok", "waypoints": [[r, r], [r + 0.05, r]],
+                      "tool_on": [True]}), flush=True)
+    del hog
+)py";
+  std::ofstream(dir_ / "planners" / "heavy.json")
+      << R"({"coverbench_planner": 1, "name": "heavy", "version": "1", "summary": "s", "reference": "r",
+  "command": ["/usr/bin/python3", "heavy.py"], "files": ["heavy.py"]})";
+  fs::remove(dir_ / "walls" / "b.json");  // one run: the first plan of the process
+  // Measured from its cgroup where one can be made, and (COVERBENCH_PLANNER_CGROUPS=0) from /proc.
+  for (const char* cgroups : {"1", "0"}) {
+    ::setenv("COVERBENCH_PLANNER_CGROUPS", cgroups, 1);
+    const std::string name = std::string("heavy") + cgroups;
+    const test::CommandRun ran = run("run " + config(name, "  - external: planners/heavy.json\n", 600) + " --no-report");
+    ::unsetenv("COVERBENCH_PLANNER_CGROUPS");
+    ASSERT_EQ(ran.exit_code, 0) << ran.err;
+    ResultSet rs = ResultsDb((dir_ / name / "results.sqlite").string(), ResultsDb::Mode::ReadOnly).load();
+    ASSERT_EQ(rs.runs.size(), 1u);
+    EXPECT_EQ(rs.runs[0].status, RunStatus::Ok) << rs.runs[0].reason;
+    // /proc counts CPU time in clock ticks (1/100 s each for user and system time, truncated): at
+    // least 1.4 s of the 1.5 s; the worker itself, waiting on the pipe, spends a few hundredths.
+    EXPECT_GE(rs.runs[0].cpu_time_s, 1.4) << name;
+    EXPECT_GE(rs.runs[0].peak_memory_bytes, 200.0 * 1024 * 1024) << name;
+    EXPECT_GE(rs.runs[0].peak_rss_bytes, 200.0 * 1024 * 1024) << name;
+  }
+}
+
 }  // namespace
 }  // namespace coverbench

@@ -23,14 +23,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Every field but the key set to a value of its own, unlike its default: text "v:NAME",
-/// status partial, true, 7 + i, 0.5 + i (exact in binary).
+/// Every field but the key set to a value of its own, unlike its default: text "v:NAME" with a
+/// comma, a quote and a newline (as a reason or a planner's stderr may have), status partial,
+/// true, 7 + i, 0.5 + i (exact in binary).
 RunFields distinctFields(const std::string& key) {
   RunFields r;
   std::size_t i = 0;
   auto set = [&](const RunField& f, auto& value) {
     using T = std::decay_t<decltype(value)>;
-    if constexpr (std::is_same_v<T, std::string>) value = std::string("v:") + f.name;
+    if constexpr (std::is_same_v<T, std::string>) value = std::string("v:") + f.name + ", \"quoted\"\nnext line";
     else if constexpr (std::is_same_v<T, RunStatus>) value = RunStatus::Partial;
     else if constexpr (std::is_same_v<T, bool>) value = true;
     else if constexpr (std::is_same_v<T, long long>) value = static_cast<long long>(7 + i);
@@ -40,6 +41,30 @@ RunFields distinctFields(const std::string& key) {
   forEachRunField(r, set);
   r.key = key;
   return r;
+}
+
+/// The records of CSV text (RFC 4180: a quoted cell may hold commas, doubled quotes, newlines).
+std::vector<std::vector<std::string>> csvRecords(const std::string& text) {
+  std::vector<std::vector<std::string>> out(1, std::vector<std::string>(1));
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') out.back().back() += '"', ++i;
+      else if (c == '"') quoted = false;
+      else out.back().back() += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.back().emplace_back();
+    } else if (c == '\n') {
+      out.emplace_back(1);
+    } else {
+      out.back().back() += c;
+    }
+  }
+  if (out.back().size() == 1 && out.back()[0].empty()) out.pop_back();
+  return out;
 }
 
 /// Each field of `a` and `b` (same type) compared, with its name on failure.
@@ -133,18 +158,16 @@ tool:
 
   // The exports: one column per exported field, each value as it was.
   const nlohmann::json json = nlohmann::json::parse(renderRuns(rs, true));
-  std::stringstream csv(renderRuns(rs, false));
-  std::string header, first;
-  std::getline(csv, header);
-  std::getline(csv, first);
-  std::vector<std::string> columns, cells;
-  for (std::stringstream h(header); std::getline(h, columns.emplace_back(), ',');) {
-  }
-  for (std::stringstream c(first); std::getline(c, cells.emplace_back(), ',');) {
-  }
+  const std::string csv = renderRuns(rs, false);
+  const std::vector<std::vector<std::string>> records = csvRecords(csv);
+  ASSERT_EQ(records.size(), rs.runs.size() + 1) << csv;
+  const std::vector<std::string>& columns = records[0];
+  const std::vector<std::string>& cells = records[1];
+  ASSERT_EQ(cells.size(), columns.size());
+  const std::string header = csv.substr(0, csv.find('\n'));
   std::size_t exported = 0;
   forEachRunField(rs.runs[0], [&](const RunField& f, const auto& value) {
-    if (!f.exported) return;
+    if (f.exported == RunExport::No) return;
     ++exported;
     ASSERT_TRUE(json[0].contains(f.name)) << f.name;
     const auto at = std::find(columns.begin(), columns.end(), f.name);
@@ -162,9 +185,10 @@ tool:
       EXPECT_EQ(std::stod(cell), value) << f.name;
     } else {
       EXPECT_EQ(json[0][f.name], value) << f.name;
+      if constexpr (std::is_same_v<T, std::string>) EXPECT_EQ(cell, value) << f.name;
     }
   });
-  EXPECT_GE(exported, 3u);
+  EXPECT_GE(exported, 6u);
 }
 
 // A database made before a field existed (its column dropped here) is read with the field
@@ -228,7 +252,7 @@ TEST(RunFields, TheReportDataDeclaresTheExportedFieldsForItsReader) {
   for (const auto& f : data["run_fields"]) declared.push_back(f["name"]);
   std::vector<std::string> exported;
   for (const RunField& f : kRunFields)
-    if (f.exported) exported.push_back(f.name);
+    if (f.exported == RunExport::RunsAndReport) exported.push_back(f.name);
   EXPECT_EQ(declared, exported);
   for (const std::string& name : declared) EXPECT_TRUE(data["runs"][0].contains(name)) << name;
   EXPECT_EQ(data["run_statuses"].size(), std::size(kRunStatuses));

@@ -1,11 +1,13 @@
 // Exact validity against hand-computed clearances; arcs in closed form against hand-computed
 // distances and against fine chords.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 
 #include "coverbench/clearance.hpp"
 #include "coverbench/metrics.hpp"
+#include "coverbench/plan_file.hpp"
 #include "coverbench/rng.hpp"
 #include "test_support.hpp"
 
@@ -215,6 +217,91 @@ TEST(ArcClearance, AgreesWithFineChordsOnRandomArcsAndWalls) {
     }
   }
   EXPECT_GT(compared, 300);
+}
+
+
+// Acceptance 3 of issue 61: an invalid path's message names its first violating segments (index,
+// points), what each breaks (the obstacle by its label, obstacles[i] without one, or the wall's
+// edge) and the gap reached. Every expectation below is worked out by hand from the coordinates.
+TEST(Validity, AnInvalidPathNamesItsFirstViolatingSegmentsAndWhatTheyHit) {
+  Obstacle socket = rect(1.0, 1.4, 0.4, 0.4);  // far from the path
+  socket.label = "socket";
+  Obstacle window = rect(2.0, 0.6, 0.5, 0.4);  // x in [2, 2.5], y in [0.6, 1]
+  window.label = "window";
+  const Wall w = rectWall(4, 2, {socket, window, circle(3.23, 1.5, 0.1)});  // the circle has no label
+  // r = 0.1, c = 0.05.
+  const Path path = line({{0.5, 0.3},     // 0: y = 0.3, 0.2 from the floor: fine
+                          {1.5, 0.3},     // 1: up x = 1.5, 0.5 left of the window: fine
+                          {1.5, 0.8},     // 2: along y = 0.8 through the window: gap 0 - r = -0.1
+                          {3.0, 0.8},     // 3: up x = 3 to y = 1.5: 0.23 - 0.1 from the circle, gap 0.03
+                          {3.0, 1.5},     // 4: along y = 1.5 through the circle (gap -0.1), to x = 3.95:
+                          {3.95, 1.5},    //    0.05 from the right edge, gap -0.05
+                          {3.95, 0.3},    // 5: down the right edge: gap -0.05, obstacles far
+                          {2.2, 0.3},     // 6: back from the edge (gap -0.05 at its start)
+                          {2.2, 0.75}});  // 7: up into the window: the sixth, only counted
+  const Validity v = checkValidity(w, kTool, path);
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.violations, 6u);
+  EXPECT_EQ(v.violating, (std::vector<std::size_t>{2, 3, 4, 5, 6, 7}));
+  ASSERT_EQ(v.described.size(), kDescribedViolations);
+  const Violation& first = v.described[0];
+  EXPECT_EQ(first.segment, 2u);
+  EXPECT_EQ(first.from.x, 1.5);
+  EXPECT_EQ(first.from.y, 0.8);
+  EXPECT_EQ(first.to.x, 3.0);
+  EXPECT_EQ(first.to.y, 0.8);
+  EXPECT_TRUE(first.too_close);
+  EXPECT_FALSE(first.outside_boundary);
+  EXPECT_EQ(first.obstacle, 1);
+  EXPECT_EQ(first.obstacle_label, "window");
+  EXPECT_NEAR(first.clearance, -0.1, 1e-12);
+  EXPECT_EQ(v.described[1].obstacle, 2);
+  EXPECT_EQ(v.described[1].obstacle_label, "");
+  EXPECT_NEAR(v.described[1].clearance, 0.03, 1e-12);
+  EXPECT_TRUE(v.described[2].outside_boundary && v.described[2].too_close);
+  EXPECT_NEAR(v.described[2].boundary_gap, -0.05, 1e-12);
+  EXPECT_EQ(v.described[3].obstacle, -1);  // 0.62 m from the circle: no obstacle named
+  EXPECT_EQ(v.described[4].segment, 6u);
+  EXPECT_EQ(describeViolations(v, kTool.clearance),
+            "6 segments violate the wall or the clearance: "
+            "segment 2 (1.5, 0.8)->(3, 0.8) enters obstacle \"window\" (clearance -0.1 m < 0.05 m); "
+            "segment 3 (3, 0.8)->(3, 1.5) comes too close to obstacles[2] (clearance 0.03 m < 0.05 m); "
+            "segment 4 (3, 1.5)->(3.95, 1.5) leaves the wall's edge (gap -0.05 m < 0 m) and enters obstacles[2] "
+            "(clearance -0.1 m < 0.05 m); "
+            "segment 5 (3.95, 1.5)->(3.95, 0.3) leaves the wall's edge (gap -0.05 m < 0 m); "
+            "segment 6 (3.95, 0.3)->(2.2, 0.3) leaves the wall's edge (gap -0.05 m < 0 m); 1 more");
+  EXPECT_EQ(describeViolations(checkValidity(w, kTool, line({{0.5, 0.3}, {1.5, 0.3}})), kTool.clearance), "");
+  // As bindings get them.
+  const nlohmann::json j = nlohmann::json::parse(violationsJson(v));
+  ASSERT_EQ(j.size(), 5u);
+  EXPECT_EQ(j[0]["segment"], 2);
+  EXPECT_EQ(j[0]["from"], nlohmann::json::parse("[1.5, 0.8]"));
+  EXPECT_EQ(j[0]["obstacle"], 1);
+  EXPECT_EQ(j[0]["obstacle_label"], "window");
+  EXPECT_TRUE(j[0]["too_close"].get<bool>());
+  EXPECT_TRUE(j[3]["obstacle"].is_null());
+  EXPECT_TRUE(j[3]["clearance"].is_null());
+}
+
+// A gap short of the clearance by less than six digits show is printed with the digits that
+// tell them apart; a gantry's lifted move is named as one.
+TEST(Validity, AViolationsNumbersAreToldApartFromTheLimit) {
+  const Wall w = rectWall(4, 2, {rect(2.0, 0.0, 0.5, 0.5)});
+  // Centre at y = 0.65 - 1e-7: 0.15 - 1e-7 from the obstacle's top (y = 0.5), gap 0.05 - 1e-7.
+  const Validity v = checkValidity(w, kTool, line({{1.0, 0.65 - 1e-7}, {3.0, 0.65 - 1e-7}}));
+  ASSERT_FALSE(v.valid);
+  EXPECT_EQ(describeViolations(v, kTool.clearance),
+            "1 segments violate the wall or the clearance: segment 0 (1, 0.65)->(3, 0.65) comes too close to "
+            "obstacles[0] (clearance 0.0499999 m < 0.05 m)");
+  VehicleModel gantry;
+  gantry.kind = VehicleModel::Kind::Gantry;
+  Path lifted = line({{0.5, 1.0}, {1.0, 1.0}});
+  lifted.moveTo({5.0, 1.0}, false);
+  const Validity g = checkValidity(w, kTool, lifted, gantry);
+  ASSERT_FALSE(g.valid);
+  EXPECT_EQ(describeViolations(g, kTool.clearance),
+            "1 segments violate the wall or the clearance: segment 1 (1, 1)->(5, 1) leaves the wall's bounding box "
+            "(a lifted move)");
 }
 
 }  // namespace

@@ -275,15 +275,55 @@ class PlannerProcess {
     std::string line;                        ///< the answer, without its newline
     PlanStatus failure = PlanStatus::Error;  ///< when not ok
     std::string reason;
+    std::string stderr_tail;  ///< the end of what its processes wrote to stderr meanwhile (UTF-8)
+    double cpu_s = NAN;       ///< their CPU time meanwhile (s)
+    double peak_bytes = NAN;  ///< their peak memory meanwhile (bytes)
   };
 
   /// Sends `request` and reads one line back, within `timeout_s` and `memory_limit` bytes for the
-  /// planner's processes together (0: none). Any failure stops the process and its tree.
+  /// planner's processes together (0: none). Any failure stops the process and its tree. The
+  /// answer carries the end of the stderr written meanwhile, and the processes' CPU and memory.
   Answer ask(const std::string& request, double timeout_s, std::size_t memory_limit) {
+    drainStderr();  // written between two questions: passed on, not this question's
+    tail_.clear();
+    measuring_ = false;
+    Answer a = askOnce(request, timeout_s, memory_limit);
+    drainStderr();
+    a.stderr_tail = stderrTail();
+    a.cpu_s = cpu_s_;
+    a.peak_bytes = peak_bytes_;
+    return a;
+  }
+
+  /// Stops the process and every process it started.
+  void stop() {
+    drainStderr();
+    if (err_ >= 0) ::close(err_);
+    err_ = -1;
+    if (in_ >= 0) ::close(in_);
+    if (out_ >= 0) ::close(out_);
+    in_ = out_ = -1;
+    if (pid_ > 0) {
+      ::kill(-pid_, SIGKILL);
+      ::kill(pid_, SIGKILL);
+      int status = 0;
+      while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+      }
+    }
+    if (!token_.empty()) killTree(cgroup_, "COVERBENCH_PLANNER_TOKEN=" + token_);
+    pid_ = -1;
+    cgroup_.clear();
+    token_.clear();
+    limit_ = 0;
+  }
+
+ private:
+  Answer askOnce(const std::string& request, double timeout_s, std::size_t memory_limit) {
     Answer a;
     if (pid_ > 0 && !leftoverCheck(a)) return a;
     if (pid_ > 0 && memory_limit != limit_ && !setLimit(memory_limit)) stop();  // restarted under the new limit
     if (pid_ < 0 && !start(a, memory_limit)) return a;
+    startMeasuring();
     const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                              std::chrono::duration<double>(std::min(timeout_s, 1e9)));
     std::size_t sent = 0;
@@ -292,10 +332,11 @@ class PlannerProcess {
       const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
       if (overMemory(a)) return a;
       if (left <= 0.0) return fail(a, PlanStatus::Timeout, "the planner's process did not answer within the time limit (killed)");
-      pollfd fds[2] = {{out_, POLLIN, 0}, {in_, POLLOUT, 0}};
-      const int n = ::poll(fds, sent < request.size() ? 2 : 1, static_cast<int>(std::clamp(left * 1000.0, 1.0, 10.0)));
+      pollfd fds[3] = {{out_, POLLIN, 0}, {err_, POLLIN, 0}, {in_, POLLOUT, 0}};
+      const int n = ::poll(fds, sent < request.size() ? 3 : 2, static_cast<int>(std::clamp(left * 1000.0, 1.0, 10.0)));
       if (n < 0 && errno != EINTR) return fail(a, PlanStatus::Crash, std::string("poll: ") + std::strerror(errno));
-      if (sent < request.size() && (fds[1].revents & (POLLOUT | POLLERR | POLLHUP))) {
+      if (fds[1].revents & (POLLIN | POLLHUP | POLLERR)) drainStderr();
+      if (sent < request.size() && (fds[2].revents & (POLLOUT | POLLERR | POLLHUP))) {
         const ssize_t w = ::write(in_, request.data() + sent, request.size() - sent);
         if (w < 0 && errno != EAGAIN && errno != EINTR) return died(a, "stopped reading its input");
         if (w > 0) sent += static_cast<std::size_t>(w);
@@ -315,6 +356,7 @@ class PlannerProcess {
           if (nl + 1 != got.size())
             return fail(a, PlanStatus::InvalidOutput, "the planner printed more than one line for one problem");
           if (overMemory(a)) return a;  // a child killed at the limit, and the planner answered anyway
+          stopMeasuring();
           a.ok = true;
           a.line = got.substr(0, nl);
           return a;
@@ -326,26 +368,110 @@ class PlannerProcess {
     }
   }
 
-  /// Stops the process and every process it started.
-  void stop() {
-    if (in_ >= 0) ::close(in_);
-    if (out_ >= 0) ::close(out_);
-    in_ = out_ = -1;
-    if (pid_ > 0) {
-      ::kill(-pid_, SIGKILL);
-      ::kill(pid_, SIGKILL);
-      int status = 0;
-      while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  /// Reads what the planner's processes wrote to stderr so far (without waiting), passes it on
+  /// to this process's stderr and keeps its end; closes the pipe at its end.
+  void drainStderr() {
+    if (err_ < 0) return;
+    static thread_local std::vector<char> buf(std::size_t{1} << 16);
+    for (std::size_t total = 0; total < (std::size_t{16} << 20);) {  // a flood waits for the next poll
+      const ssize_t r = ::read(err_, buf.data(), buf.size());
+      if (r < 0 && errno == EINTR) continue;
+      if (r == 0) {
+        ::close(err_);
+        err_ = -1;
       }
+      if (r <= 0) return;
+      const auto n = static_cast<std::size_t>(r);
+      total += n;
+      for (std::size_t off = 0; off < n;) {  // passed on as it came (best effort)
+        const ssize_t w = ::write(STDERR_FILENO, buf.data() + off, n - off);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) break;
+        off += static_cast<std::size_t>(w);
+      }
+      tail_.append(buf.data(), n);
+      if (tail_.size() > 2 * kStderrTailBytes) tail_.erase(0, tail_.size() - kStderrTailBytes);
     }
-    if (!token_.empty()) killTree(cgroup_, "COVERBENCH_PLANNER_TOKEN=" + token_);
-    pid_ = -1;
-    cgroup_.clear();
-    token_.clear();
-    limit_ = 0;
   }
 
- private:
+  /// The last kStderrTailBytes kept, from the first whole character on, as valid UTF-8.
+  std::string stderrTail() const {
+    std::size_t from = tail_.size() > kStderrTailBytes ? tail_.size() - kStderrTailBytes : 0;
+    if (from > 0)
+      for (int k = 0; k < 3 && from < tail_.size() && (static_cast<unsigned char>(tail_[from]) & 0xC0) == 0x80; ++k) ++from;
+    return toValidUtf8(tail_.substr(from));
+  }
+
+  /// The planner's processes now: its cgroup's, or those carrying its token.
+  std::vector<pid_t> treePids() const {
+    if (!cgroup_.empty()) return cgroupPids(cgroup_);
+    return processesWithEntry("COVERBENCH_PLANNER_TOKEN=" + token_);
+  }
+
+  /// A process's CPU time (s) from /proc: its own and that of its children it waited for; NaN
+  /// when it is gone.
+  static double processCpu(pid_t pid) {
+    const std::string stat = readSmall("/proc/" + std::to_string(pid) + "/stat");
+    const std::size_t paren = stat.rfind(')');
+    if (paren == std::string::npos) return NAN;
+    std::istringstream in(stat.substr(paren + 2));
+    std::string field;
+    double ticks = 0.0;
+    for (int i = 3; i <= 17 && in >> field; ++i)  // utime, stime, cutime, cstime are fields 14-17
+      if (i >= 14) ticks += std::atof(field.c_str());
+    return ticks / static_cast<double>(::sysconf(_SC_CLK_TCK));
+  }
+
+  /// The start of a question's measurement: each process's CPU time, and the peaks reset (the
+  /// cgroup's peak usage; without one, each process's peak resident set).
+  void startMeasuring() {
+    measuring_ = true;
+    cpu_s_ = peak_bytes_ = NAN;
+    reaped_cpu_s_ = reaped_peak_bytes_ = NAN;
+    cpu_before_.clear();
+    const std::vector<pid_t> pids = treePids();
+    for (pid_t p : pids) {
+      const double c = processCpu(p);
+      if (std::isfinite(c)) cpu_before_[p] = c;
+    }
+    if (!cgroup_.empty()) {
+      writeSmall(cgroup_ + "/memory.max_usage_in_bytes", "0");
+    } else {
+      for (pid_t p : pids) writeSmall("/proc/" + std::to_string(p) + "/clear_refs", "5");
+    }
+  }
+
+  /// The end of it (before the processes are stopped): CPU time since the start summed over the
+  /// processes (the planner's own from its wait status when it has ended), and the peak.
+  void stopMeasuring() {
+    if (!measuring_) return;
+    measuring_ = false;
+    const std::vector<pid_t> pids = treePids();
+    double cpu = 0.0, rss = 0.0;
+    bool root_seen = false;
+    for (pid_t p : pids) {
+      const double c = processCpu(p);
+      if (!std::isfinite(c)) continue;
+      root_seen = root_seen || p == pid_;
+      const auto before = cpu_before_.find(p);
+      cpu += std::max(0.0, c - (before == cpu_before_.end() ? 0.0 : before->second));
+      std::ifstream in("/proc/" + std::to_string(p) + "/status");
+      for (std::string line; std::getline(in, line);)
+        if (line.rfind("VmHWM:", 0) == 0) rss += std::atof(line.c_str() + 6) * 1024.0;
+    }
+    if (!root_seen && std::isfinite(reaped_cpu_s_)) {  // it ended: its wait status's rusage
+      const auto before = cpu_before_.find(reaped_pid_);
+      cpu += std::max(0.0, reaped_cpu_s_ - (before == cpu_before_.end() ? 0.0 : before->second));
+      rss += reaped_peak_bytes_;
+    }
+    cpu_s_ = cpu;
+    peak_bytes_ = rss;
+    if (!cgroup_.empty()) {
+      const double usage = std::atof(readSmall(cgroup_ + "/memory.max_usage_in_bytes").c_str());
+      if (usage > 0.0) peak_bytes_ = usage;
+    }
+  }
+
   /// Output left over from the last answer (a second line, written after it was read) fails the
   /// run about to be asked: it would otherwise be read as that run's answer.
   bool leftoverCheck(Answer& a) {
@@ -399,8 +525,8 @@ class PlannerProcess {
   }
 
   bool start(Answer& a, std::size_t memory_limit) {
-    int to_child[2], from_child[2];
-    if (::pipe2(to_child, O_CLOEXEC) != 0 || ::pipe2(from_child, O_CLOEXEC) != 0) {
+    int to_child[2], from_child[2], err_child[2];
+    if (::pipe2(to_child, O_CLOEXEC) != 0 || ::pipe2(from_child, O_CLOEXEC) != 0 || ::pipe2(err_child, O_CLOEXEC) != 0) {
       fail(a, PlanStatus::Error, std::string("pipe: ") + std::strerror(errno));
       return false;
     }
@@ -449,6 +575,7 @@ class PlannerProcess {
       ::setenv("COVERBENCH_PLANNER_TOKEN", token_entry.c_str(), 1);
       ::dup2(to_child[0], STDIN_FILENO);
       ::dup2(from_child[1], STDOUT_FILENO);
+      ::dup2(err_child[1], STDERR_FILENO);  // read by the host: passed on, and its end kept
       // The worker's limits were set for its own run: the planner's processes are held to the run's
       // limits here, by the host (time, their cgroup's memory), not by the worker's address space.
       const rlimit none{RLIM_INFINITY, RLIM_INFINITY};
@@ -467,8 +594,11 @@ class PlannerProcess {
     }
     ::close(to_child[0]);
     ::close(from_child[1]);
+    ::close(err_child[1]);
     in_ = to_child[1];
     out_ = from_child[0];
+    err_ = err_child[0];
+    ::fcntl(err_, F_SETFL, ::fcntl(err_, F_GETFL) | O_NONBLOCK);
     ::fcntl(in_, F_SETFL, ::fcntl(in_, F_GETFL) | O_NONBLOCK);
     ::fcntl(out_, F_SETFL, ::fcntl(out_, F_GETFL) | O_NONBLOCK);
     pid_ = pid;
@@ -476,6 +606,7 @@ class PlannerProcess {
   }
 
   Answer& fail(Answer& a, PlanStatus status, std::string reason) {
+    stopMeasuring();
     stop();
     a.ok = false;
     a.failure = status;
@@ -488,9 +619,16 @@ class PlannerProcess {
   Answer& died(Answer& a, const std::string& what) {
     int status = 0;
     pid_t r = 0;
-    for (int i = 0; i < 50 && (r = ::waitpid(pid_, &status, WNOHANG)) == 0; ++i) ::usleep(2000);
+    rusage usage{};
+    for (int i = 0; i < 50 && (r = ::wait4(pid_, &status, WNOHANG, &usage)) == 0; ++i) ::usleep(2000);
     const bool reaped = r == pid_;
-    if (reaped) pid_ = -1;
+    if (reaped) {
+      reaped_pid_ = pid_;
+      reaped_cpu_s_ = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                      static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) * 1e-6;
+      reaped_peak_bytes_ = static_cast<double>(usage.ru_maxrss) * 1024.0;  // its lifetime's peak
+      pid_ = -1;
+    }
     if (overMemory(a)) return a;
     std::string reason = "the planner's process " + (reaped ? describeExit(status) + " (" + what + ")" : what);
     if (reaped && WIFEXITED(status) && WEXITSTATUS(status) == 127)
@@ -500,7 +638,14 @@ class PlannerProcess {
 
   Launch launch_;
   pid_t pid_ = -1;
-  int in_ = -1, out_ = -1;
+  int in_ = -1, out_ = -1, err_ = -1;
+  std::string tail_;  ///< the end of its stderr during the current question (raw bytes)
+  // The current question's measurement (startMeasuring, stopMeasuring).
+  bool measuring_ = false;
+  std::map<pid_t, double> cpu_before_;
+  double cpu_s_ = NAN, peak_bytes_ = NAN;
+  pid_t reaped_pid_ = -1;
+  double reaped_cpu_s_ = NAN, reaped_peak_bytes_ = NAN;
   std::string cgroup_;     ///< its cgroup's folder ("" without one)
   std::string token_;      ///< COVERBENCH_PLANNER_TOKEN of its processes
   std::size_t limit_ = 0;  ///< the memory limit it runs under (bytes, 0: none)
@@ -524,14 +669,20 @@ class ExternalPlanner final : public Planner {
     const double limit = budget.remainingSeconds();
     const PlannerProcess::Answer a =
         proc->ask(requestJson(problem, limit, id) + "\n", limit, problem.memory_limit_bytes);
-    if (!a.ok) return PlanResult::failure(a.failure, a.reason);
+    auto withProcess = [&](PlanResult r) {
+      r.stderr_tail = a.stderr_tail;
+      r.process_cpu_s = a.cpu_s;
+      r.process_peak_bytes = a.peak_bytes;
+      return r;
+    };
+    if (!a.ok) return withProcess(PlanResult::failure(a.failure, a.reason));
     PlanResult result;
     std::string why;
     if (!readAnswer(a.line, id, result, why)) {
       proc.reset();  // a process that breaks the protocol is not asked again
-      return PlanResult::failure(PlanStatus::InvalidOutput, "the planner's answer: " + why);
+      return withProcess(PlanResult::failure(PlanStatus::InvalidOutput, "the planner's answer: " + why));
     }
-    return result;
+    return withProcess(std::move(result));
   }
 
  private:

@@ -167,6 +167,7 @@ void writeAll(int fd, const std::string& bytes) {
 /// One run in the worker, measured: CPU from getrusage, peak resident set from VmHWM after the
 /// kernel's peak was reset to the current resident set (clear_refs 5), and the run's own peak
 /// memory from the allocation meter (a reused worker's resident set hides what a run reuses).
+/// A run of a planner outside the tree keeps what executeRun measured of its own processes.
 RunRecord measuredRun(const RunSpec& spec) {
   if (spec.memory_limit_bytes > 0) {  // address space: what the worker has now plus the limit
     const double now = statusBytes("VmSize:");
@@ -201,6 +202,7 @@ RunRecord measuredRun(const RunSpec& spec) {
   }
   const rlimit no_limit{RLIM_INFINITY, RLIM_INFINITY};
   ::setrlimit(RLIMIT_AS, &no_limit);
+  if (std::isfinite(rec.cpu_time_s)) return rec;  // an external planner's: its own processes' (executeRun)
   rec.cpu_time_s = cpuSeconds() - cpu_before;
   rec.start_rss_bytes = start_rss;
   rec.peak_rss_bytes = statusBytes("VmHWM:");

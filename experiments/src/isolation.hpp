@@ -15,7 +15,8 @@ namespace coverbench {
 /// Executes `runs` in child processes, at most `workers` at a time, and calls `done` in this
 /// process (one at a time, in completion order) with each run's record. The record's measured
 /// fields come from the kernel, per run: CPU time from getrusage, the peak resident set from VmHWM
-/// reset at the run's start.
+/// reset at the run's start; for a planner outside the tree, its own processes' (PlanResult::
+/// process_cpu_s, process_peak_bytes).
 void executeIsolated(const std::vector<const RunSpec*>& runs, unsigned workers,
                      const std::function<void(const RunSpec&, RunRecord)>& done);
 

@@ -35,7 +35,10 @@ namespace {
 /// run's lifted moves as transits); replans and replan_figures (docs/replanning.md: a run's
 /// repairs after surprise obstacles, only for experiments with replanning; an older build ignores
 /// them and still reads every run correctly); run_car (a car's turn radius and reversing, beside
-/// its run_options row; an older build would read such a run as a holonomic one with arcs).
+/// its run_options row; an older build would read such a run as a holonomic one with arcs). Run
+/// fields added since (stderr_tail) are columns added to an older database when it is written
+/// (addMissingRunColumns; its runs read as empty) and read as empty where a database opened
+/// read-only lacks them; an older build ignores them.
 constexpr long long kApplicationId = 0x4376424e;
 constexpr long long kSchemaVersion = 2;
 
@@ -504,12 +507,16 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
     rs.config_hash = s.columnText(2);
     rs.baseline = s.columnText(3);
   }
-  std::map<std::string, std::string> label_of;
+  std::map<std::string, std::string> label_of, params_of;
   {
-    Statement s(db_, "SELECT config_id, label FROM experiment_planners WHERE experiment_id = ? ORDER BY position", file_);
+    Statement s(db_,
+                "SELECT e.config_id, e.label, p.params FROM experiment_planners e JOIN planner_configs p ON p.id = e.config_id "
+                "WHERE e.experiment_id = ? ORDER BY e.position",
+                file_);
     s.integer(1, id);
     while (s.step()) {
       label_of[s.columnText(0)] = s.columnText(1);
+      params_of[s.columnText(0)] = s.columnText(2);
       rs.planners.push_back(s.columnText(1));
     }
   }
@@ -538,6 +545,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
     while (s.step()) {
       ResultRow row;
       row.planner = label_of[s.columnText(0)];
+      row.params = params_of[s.columnText(0)];
       row.dataset = s.columnText(1);
       row.wall = s.columnText(2);
       char pairing[160];
@@ -843,7 +851,8 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
     throw InputError("--run", "run", "must be at least 6 lowercase hex digits of a run key");
   Statement s(db_,
               "SELECT r.key, w.content, w.name, p.planner, p.params, r.tool_width, r.clearance, r.status, r.reason, " +
-                  std::string(kOptionColumns) +
+                  std::string(kOptionColumns) + ", " +
+                  (runColumns().count("stderr_tail") ? "r.stderr_tail" : "''") +
                   " FROM runs r JOIN walls w ON w.hash = r.wall_hash JOIN planner_configs p ON p.id = r.config_id" +
                   std::string(kOptionJoins) +
               "WHERE r.key >= ?1 AND r.key < ?1 || 'g' ORDER BY r.key LIMIT 2",
@@ -862,6 +871,7 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
   run.reason = s.columnText(8);
   TransitSpec transit;
   storedOptions(s, 9, run.vehicle, transit);
+  run.stderr_tail = s.columnText(16);  // after the 7 option columns
   if (s.step()) throw InputError(file_, "runs", "several run keys start with " + key_prefix + ": give more digits");
   if (std::optional<Path> p = path(run.key)) run.path = std::move(*p);
   return run;

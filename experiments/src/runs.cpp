@@ -165,7 +165,9 @@ std::vector<ReplanRecord> replanRecords(const RunSpec& spec, const PlannerInfo& 
       rec.status = !rec.valid ? "invalid_output" : left_out ? "partial" : "ok";
       rec.reason = rec.valid ? repair.reason
                              : std::to_string(before.violations) + " executed segments violate the wall, " +
-                                   std::to_string(after.violations) + " repaired segments the new wall (or the exact judge finds one)";
+                                   std::to_string(after.violations) + " repaired segments the new wall (or the exact judge finds one)" +
+                                   (before.valid ? "" : "; executed: " + describeViolations(before, spec.tool.clearance)) +
+                                   (after.valid ? "" : "; repaired: " + describeViolations(after, spec.tool.clearance));
       rec.cut_waypoint = repair.cut_waypoint;
       rec.path = std::move(repair.path);
       out.push_back(std::move(rec));
@@ -266,7 +268,7 @@ JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, cons
   }
   if (j.result.hasPath() && !j.metrics.validity.valid) {
     j.verdict = RunStatus::InvalidOutput;
-    j.reason = std::to_string(j.metrics.validity.violations) + " segments violate the wall or the clearance" +
+    j.reason = describeViolations(j.metrics.validity, problem.tool.clearance) +
                (j.result.reason.empty() ? "" : "; the planner said: " + j.result.reason);
   }
   return j;
@@ -286,11 +288,21 @@ RunRecord executeRun(const RunSpec& spec) {
   problem.seed = spec.seed;
   problem.memory_limit_bytes = spec.memory_limit_bytes;
   PlanResult result;
+  // A planner outside the tree: its own processes' CPU time (summed over the repetitions) and peak
+  // memory (the largest), not the worker's (measuredRun keeps these).
+  double process_cpu_s = NAN, process_peak_bytes = NAN;
   for (int rep = 0; rep < std::max(1, spec.repetitions); ++rep) {
     PlanResult again = runPlanner(info, problem, Budget(std::chrono::duration<double>(spec.time_limit_s)));
     rec.plan_times_ms.push_back(again.plan_time_ms);
+    if (std::isfinite(again.process_cpu_s))
+      process_cpu_s = (std::isfinite(process_cpu_s) ? process_cpu_s : 0.0) + again.process_cpu_s;
+    if (std::isfinite(again.process_peak_bytes))
+      process_peak_bytes = std::isfinite(process_peak_bytes) ? std::max(process_peak_bytes, again.process_peak_bytes)
+                                                             : again.process_peak_bytes;
     if (rep == 0) result = std::move(again);
   }
+  rec.cpu_time_s = process_cpu_s;
+  rec.peak_rss_bytes = rec.peak_memory_bytes = process_peak_bytes;
   std::vector<double> sorted = rec.plan_times_ms;
   std::sort(sorted.begin(), sorted.end());
   rec.plan_time_ms = sorted[sorted.size() / 2];
@@ -308,7 +320,7 @@ RunRecord executeRun(const RunSpec& spec) {
       rec.uncovered_reachable_m2 = m.coverage.reachable_area * (1.0 - m.coverage.coverage_reachable);
       if (!rec.valid) {  // the planner's claim does not survive the check
         rec.status = RunStatus::InvalidOutput;
-        rec.reason = std::to_string(m.validity.violations) + " segments violate the wall or the clearance" +
+        rec.reason = describeViolations(m.validity, spec.tool.clearance) +
                      (result.reason.empty() ? "" : "; the planner said: " + result.reason);
       }
       if (spec.exact_judge) {
@@ -322,9 +334,12 @@ RunRecord executeRun(const RunSpec& spec) {
         if (rec.valid && !j.validity.valid) {
           rec.valid = false;
           rec.status = RunStatus::InvalidOutput;
+          std::string first;
+          for (std::size_t i = 0; i < std::min<std::size_t>(j.validity.violating.size(), kDescribedViolations); ++i)
+            first += (i == 0 ? ": segment " : ", ") + std::to_string(j.validity.violating[i]);
           rec.reason = "the exact judge finds " + std::to_string(j.validity.violations) +
                        " segments that violate the wall or the clearance (the fast engine, with its 1e-9 m tolerance, "
-                       "finds none)" + (result.reason.empty() ? "" : "; the planner said: " + result.reason);
+                       "finds none)" + first + (result.reason.empty() ? "" : "; the planner said: " + result.reason);
         }
       }
     } catch (const std::exception& e) {  // a path beyond the scoring limits, or a bug in the judge
@@ -343,6 +358,9 @@ RunRecord executeRun(const RunSpec& spec) {
     }
     rec.path = std::move(result.path);
   }
+  // The end of an external planner's stderr, kept with a run that failed in a way it may explain.
+  if (rec.status == RunStatus::Crash || rec.status == RunStatus::Error || rec.status == RunStatus::InvalidOutput)
+    rec.stderr_tail = result.stderr_tail;
   return rec;
 }
 

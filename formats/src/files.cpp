@@ -58,6 +58,34 @@ bool isValidUtf8(const std::string& text) {
   return true;
 }
 
+std::string toValidUtf8(const std::string& bytes) {
+  static const std::string kReplacement = "\xEF\xBF\xBD";
+  const auto* s = reinterpret_cast<const unsigned char*>(bytes.data());
+  const std::size_t n = bytes.size();
+  std::string out;
+  out.reserve(n);
+  for (std::size_t i = 0; i < n;) {
+    const unsigned char c = s[i];
+    if (c == 0) {
+      out += kReplacement;
+      ++i;
+      continue;
+    }
+    std::size_t len = c < 0x80 ? 1 : (c & 0xE0) == 0xC0 ? 2 : (c & 0xF0) == 0xE0 ? 3 : (c & 0xF8) == 0xF0 ? 4 : 0;
+    if (len > 1 && i + len <= n && isValidUtf8(bytes.substr(i, len))) {
+      out.append(bytes, i, len);
+      i += len;
+    } else if (len == 1) {
+      out += static_cast<char>(c);
+      ++i;
+    } else {  // one byte that starts no valid sequence here
+      out += kReplacement;
+      ++i;
+    }
+  }
+  return out;
+}
+
 void requireText(const std::string& text, const std::string& source) {
   const std::size_t nul = text.find('\0');
   if (nul != std::string::npos)

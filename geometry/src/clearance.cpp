@@ -187,13 +187,20 @@ SegmentClearance ClearanceField::measure(Point a, Point b, double obstacle_cutof
   auto maybeNearer = [&](std::size_t i) {
     return squaredBoxDistance(seg, obstacle_boxes_[i]) < best * best * (1.0 + 1e-12);
   };
+  auto visit = [&](std::size_t i) {
+    if (!maybeNearer(i)) return;
+    const double d = obstacleDistance(i, a, b);
+    if (d < best) {
+      best = d;
+      c.nearest_obstacle = static_cast<long>(i);
+    }
+  };
   if (!grid_.empty() && std::isinf(best)) {
     // Unbounded: a scan of every obstacle finds the nearest at the same cost as the grid would.
-    for (std::size_t i = 0; i < obstacle_boxes_.size(); ++i)
-      if (maybeNearer(i)) best = std::fmin(best, obstacleDistance(i, a, b));
+    for (std::size_t i = 0; i < obstacle_boxes_.size(); ++i) visit(i);
   } else {
     forObstaclesNear(seg, best, [&](std::size_t i) {
-      if (maybeNearer(i)) best = std::fmin(best, obstacleDistance(i, a, b));
+      visit(i);
       return true;
     });
   }
@@ -258,7 +265,10 @@ SegmentClearance ClearanceField::measureArc(Point a, Point b, double bulge, doub
     const Obstacle& o = wall_->obstacles[i];
     const double d = o.type == ObstacleType::Circle ? std::fmax(0.0, distancePointArc(o.center, arc) - o.radius)
                                                     : distanceArcFilledRing(arc, o.polygon);
-    nearest = std::fmin(nearest, d);
+    if (d < nearest) {
+      nearest = d;
+      c.nearest_obstacle = static_cast<long>(i);
+    }
     return true;
   };
   if (!grid_.empty() && std::isinf(nearest)) {

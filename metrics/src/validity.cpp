@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "coverbench/clearance.hpp"
@@ -19,7 +21,7 @@ std::pair<double, double> headings(const Path& path, std::size_t i) {
 
 /// A car's rules: arcs no tighter than its turn radius; the heading continuous at every waypoint
 /// (within kCarHeadingTolerance), or reversed there when the car may reverse.
-void checkDrivable(const Path& path, const VehicleModel& car, Validity& v) {
+void checkDrivable(const Path& path, const VehicleModel& car, Validity& v, std::vector<Violation>& described) {
   bool have = false;
   double end_heading = 0.0;
   for (std::size_t i = 0; i < path.segments(); ++i) {
@@ -41,7 +43,45 @@ void checkDrivable(const Path& path, const VehicleModel& car, Validity& v) {
     ++v.not_drivable;
     ++v.violations;
     if (v.violating.size() < kMaxListedViolations) v.violating.push_back(i);
+    if (described.size() < kDescribedViolations) {
+      Violation d;
+      d.segment = i;
+      d.from = path.waypoints[i];
+      d.to = path.waypoints[i + 1];
+      d.not_drivable = true;
+      described.push_back(d);
+    }
   }
+}
+
+/// `extra` (a car's undrivable segments) merged into v.described: one entry a segment, by index,
+/// the first kDescribedViolations kept.
+void mergeDescribed(Validity& v, const std::vector<Violation>& extra) {
+  for (const Violation& e : extra) {
+    auto same = std::find_if(v.described.begin(), v.described.end(), [&](const Violation& d) { return d.segment == e.segment; });
+    if (same != v.described.end())
+      same->not_drivable = true;
+    else
+      v.described.push_back(e);
+  }
+  std::stable_sort(v.described.begin(), v.described.end(),
+                   [](const Violation& a, const Violation& b) { return a.segment < b.segment; });
+  if (v.described.size() > kDescribedViolations) v.described.resize(kDescribedViolations);
+}
+
+/// A number as messages show it: `digits` significant digits, no "-0".
+std::string num(double v, int digits = 6) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v == 0.0 ? 0.0 : v);
+  return buf;
+}
+
+/// "gap m < limit m", with as many more digits as it takes for the two to differ (a gap short by
+/// a micrometre of 0.05 m is not shown as "0.05 m < 0.05 m").
+std::string shortfall(double gap, double limit) {
+  int digits = 6;
+  while (digits < 17 && num(gap, digits) == num(limit, digits)) ++digits;
+  return num(gap, digits) + " m < " + num(limit, digits) + " m";
 }
 
 }  // namespace
@@ -98,6 +138,14 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
     v.outside_boundary += outside;
     v.violations += outside;
     if (outside && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
+    if (outside && v.described.size() < kDescribedViolations) {
+      Violation d;
+      d.segment = segment;
+      d.from = a;
+      d.to = b;
+      d.outside_boundary = d.lifted = true;
+      v.described.push_back(d);
+    }
   };
   // The gaps of segment or arc i (distances in closed form, ClearanceField::measureArc).
   // The tool disk's gaps to the boundary and to the obstacles, from its centre's distances.
@@ -106,7 +154,8 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
   };
   auto check = [&](std::size_t segment, Point a, Point b) {
     const double bulge = n > 1 ? path.bulgeOf(segment) : 0.0;
-    const auto [boundary_gap, obstacle_gap] = gaps(field.measureArc(a, b, bulge, std::fmax(v.min_clearance, tool.clearance) + r));
+    const SegmentClearance c = field.measureArc(a, b, bulge, std::fmax(v.min_clearance, tool.clearance) + r);
+    const auto [boundary_gap, obstacle_gap] = gaps(c);
     v.min_boundary_gap = std::fmin(v.min_boundary_gap, boundary_gap);
     v.min_clearance = std::fmin(v.min_clearance, obstacle_gap);
     const bool outside = boundary_gap < -kValidityTolerance;
@@ -115,6 +164,23 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
     v.too_close += close;
     if ((outside || close) && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
     v.violations += outside || close;
+    if ((outside || close) && v.described.size() < kDescribedViolations) {
+      Violation d;
+      d.segment = segment;
+      d.from = a;
+      d.to = b;
+      d.outside_boundary = outside;
+      d.too_close = close;
+      d.boundary_gap = boundary_gap;
+      // The obstacle gap is exact when an obstacle came nearer than the cutoff (always so when
+      // `close`); otherwise it is only "at least the cutoff" and not shown.
+      if (c.nearest_obstacle >= 0) {
+        d.clearance = obstacle_gap;
+        d.obstacle = c.nearest_obstacle;
+        d.obstacle_label = wall.obstacles[static_cast<std::size_t>(c.nearest_obstacle)].label;
+      }
+      v.described.push_back(d);
+    }
   };
   // Approach legs (path.hpp: kApproachLegSlack): the first segment from a start outside F, the
   // last to an end outside F. A leg that breaks the rule is checked like any segment instead.
@@ -147,9 +213,44 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
       lifted(i, path.waypoints[i], path.waypoints[i + 1]);
     else
       check(i, path.waypoints[i], path.waypoints[i + 1]);
-  if (vehicle.isCar()) checkDrivable(path, vehicle, v);
+  if (vehicle.isCar()) {
+    std::vector<Violation> undrivable;
+    checkDrivable(path, vehicle, v, undrivable);
+    mergeDescribed(v, undrivable);
+  }
   v.valid = v.violations == 0;
   return v;
+}
+
+std::string describeViolations(const Validity& validity, double required_clearance) {
+  if (validity.valid) return std::string();
+  // The opening as it always was ("1 segments" too): python/tests and users' scripts match it.
+  std::string text = std::to_string(validity.violations) + " segments violate the wall or the clearance";
+  std::size_t shown = 0;
+  for (const Violation& d : validity.described) {
+    text += shown == 0 ? ": " : "; ";
+    ++shown;
+    text += "segment " + std::to_string(d.segment) + " (" + num(d.from.x) + ", " + num(d.from.y) + ")->(" + num(d.to.x) +
+            ", " + num(d.to.y) + ")";
+    std::vector<std::string> what;
+    if (d.lifted) {
+      what.push_back("leaves the wall's bounding box (a lifted move)");
+    } else if (d.outside_boundary) {
+      what.push_back("leaves the wall's edge (gap " + shortfall(d.boundary_gap, 0.0) + ")");
+    }
+    if (d.too_close) {
+      const std::string name = d.obstacle_label.empty() ? "obstacles[" + std::to_string(d.obstacle) + "]"
+                                                        : "obstacle \"" + d.obstacle_label + "\"";
+      what.push_back(std::string(d.clearance < 0.0 ? "enters " : "comes too close to ") + name + " (clearance " +
+                     shortfall(d.clearance, required_clearance) + ")");
+    }
+    if (d.not_drivable) what.push_back("cannot be driven by the car (an arc tighter than its turn radius, or a heading jump)");
+    for (std::size_t k = 0; k < what.size(); ++k) text += (k == 0 ? " " : " and ") + what[k];
+  }
+  // `violations` counts a segment once for the wall and once more when a car cannot drive it.
+  const std::size_t listed = std::min(validity.described.size(), validity.violations);
+  if (validity.violations > listed) text += "; " + std::to_string(validity.violations - listed) + " more";
+  return text;
 }
 
 Lengths pathLengths(const Path& path) {

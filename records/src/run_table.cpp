@@ -60,13 +60,14 @@ std::string renderRuns(const ResultSet& rs, bool json) {
       row["wall"] = r.wall_name;
       row["wall_hash"] = r.wall;
       row["planner"] = r.config;
+      row["params"] = nlohmann::ordered_json::parse(paramsJson(r.params));
       row["planner_version"] = r.planner_version;
       row["tool_width"] = r.tool.tool_width;
       row["clearance"] = r.tool.clearance;
       if (options.vehicle) row["vehicle"] = toString(r.vehicle.kind);
       if (options.transit) row["transit"] = r.transit.planner;
       forEachRunField(r, [&](const RunField& f, const auto& value) {
-        if (f.exported) row[f.name] = jsonValue(value);
+        if (f.exported != RunExport::No) row[f.name] = jsonValue(value);
       });
       for (const std::string& m : metricColumns(rs)) {
         const auto it = r.metrics.find(m);
@@ -76,18 +77,18 @@ std::string renderRuns(const ResultSet& rs, bool json) {
     }
     return out.dump(1) + "\n";
   }
-  std::string text = "key,dataset,wall,wall_hash,planner,planner_version,tool_width,clearance";
+  std::string text = "key,dataset,wall,wall_hash,planner,params,planner_version,tool_width,clearance";
   text += std::string(options.vehicle ? ",vehicle" : "") + (options.transit ? ",transit" : "");
   for (const RunField& f : kRunFields)
-    if (f.exported) text += std::string(",") + f.name;
+    if (f.exported != RunExport::No) text += std::string(",") + f.name;
   for (const std::string& m : metricColumns(rs)) text += "," + escapeCsv(m);
   text += "\n";
   for (const ResultRow& r : rs.runs) {
     text += r.key + "," + escapeCsv(r.dataset) + "," + escapeCsv(r.wall_name) + "," + r.wall + "," + escapeCsv(r.config) +
-            "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) +
+            "," + escapeCsv(paramsJson(r.params)) + "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) +
             (options.vehicle ? "," + toString(r.vehicle.kind) : "") + (options.transit ? "," + r.transit.planner : "");
     forEachRunField(r, [&](const RunField& f, const auto& value) {
-      if (f.exported) text += "," + csvCell(value);
+      if (f.exported != RunExport::No) text += "," + csvCell(value);
     });
     for (const std::string& m : metricColumns(rs)) {
       const auto it = r.metrics.find(m);

@@ -40,6 +40,23 @@ std::string metricsObject(const PathMetrics& metrics, const std::string& indent)
 
 std::string metricsJson(const PathMetrics& metrics) { return metricsObject(metrics, "") + "\n"; }
 
+std::string violationsJson(const Validity& validity) {
+  ordered_json out = ordered_json::array();
+  for (const Violation& v : validity.described)
+    out.push_back({{"segment", v.segment},
+                   {"from", {v.from.x, v.from.y}},
+                   {"to", {v.to.x, v.to.y}},
+                   {"outside_boundary", v.outside_boundary},
+                   {"lifted", v.lifted},
+                   {"too_close", v.too_close},
+                   {"not_drivable", v.not_drivable},
+                   {"boundary_gap", number(v.boundary_gap)},
+                   {"clearance", number(v.clearance)},
+                   {"obstacle", v.obstacle >= 0 ? ordered_json(v.obstacle) : ordered_json(nullptr)},
+                   {"obstacle_label", v.obstacle_label}});
+  return out.dump();
+}
+
 std::string planFileJson(const PlanFile& plan) {
   ordered_json doc;
   doc["planner"] = plan.planner;

@@ -135,7 +135,7 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
   // their names and types from here.
   j["run_fields"] = Json::array();
   for (const RunField& f : kRunFields)
-    if (f.exported)
+    if (f.exported == RunExport::RunsAndReport)
       j["run_fields"].push_back(
           {{"name", f.name}, {"type", typeName(f.type)}, {"unit", f.unit}, {"description", f.description}});
   j["run_statuses"] = Json::array();
@@ -176,7 +176,7 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
                 {"clearance", r->tool.clearance},
                 {"pairing", r->pairing}};
     forEachRunField(*r, [&](const RunField& f, const auto& value) {
-      if (f.exported) run[f.name] = fieldValue(value);
+      if (f.exported == RunExport::RunsAndReport) run[f.name] = fieldValue(value);
     });
     run["metrics"] = std::move(m);
     // Only a vehicle other than holonomic is named, so holonomic reports stay as they were.

@@ -188,6 +188,7 @@
       dl.append(dt, dd);
     }
     viewer.appendChild(dl);
+    if (run.status !== "ok") showOutcome(run, viewer);
     const edit = document.createElement("button");
     edit.type = "button";
     edit.id = "open-in-workbench";
@@ -200,6 +201,35 @@
       } catch (e) { showError(e); }
     });
     viewer.insertBefore(edit, figure);
+  }
+
+  // Why a run failed or left parts out, and the end of an external planner's stderr: planner
+  // output, so only ever text (textContent), never markup.
+  async function showOutcome(run, viewer) {
+    let o;
+    try {
+      o = await api(`/api/experiments/${state.db}/${state.id}/runs/${run.key}/outcome`);
+    } catch (e) { showError(e); return; }
+    if (state.chosen !== run.key || (!o.reason && !o.stderr_tail)) return;
+    const section = document.createElement("section");
+    section.className = "outcome";
+    if (o.reason) {
+      const p = document.createElement("p");
+      p.className = "reason";
+      p.textContent = `${o.status}: ${o.reason}`;
+      section.appendChild(p);
+    }
+    if (o.stderr_tail) {
+      const label = document.createElement("p");
+      label.className = "stderr-label";
+      label.textContent = `the end of the planner's stderr (${o.planner} on ${o.wall_name}, s=${o.tool_width} m, c=${o.clearance} m):`;
+      const pre = document.createElement("pre");
+      pre.className = "stderr";
+      pre.textContent = o.stderr_tail;
+      section.append(label, pre);
+    }
+    const dl = viewer.querySelector("dl.metrics");
+    if (dl) viewer.insertBefore(section, dl);
   }
 
   function showTab(name) {

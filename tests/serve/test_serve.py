@@ -151,6 +151,7 @@ class Serve(unittest.TestCase):
             paths = set(yaml.safe_load(f)["paths"])
         served = {"/api/experiments", "/api/experiments/{db}/{id}/runs", "/api/experiments/{db}/{id}/runs/{key}/picture.svg",
                   "/api/experiments/{db}/{id}/runs/{key}/playback.js", "/api/experiments/{db}/{id}/runs/{key}/problem",
+                  "/api/experiments/{db}/{id}/runs/{key}/outcome",
                   "/api/planners", "/api/check", "/api/plan", "/api/plans/{id}/picture.svg", "/api/plans/{id}/playback.js",
                   "/api/walls", "/api/walls/folder/{i}", "/api/walls/db/{name}"}
         self.assertEqual(paths, served)
@@ -497,6 +498,45 @@ class Serve(unittest.TestCase):
             print(f"workbench: {r['wall']}: {r['first']} | sweep 90: {r['second']} | a window drawn: {r2['replanned']} | "
                   f"made invalid: {r2['error']} | fixed: {fixed}")
             self.assertEqual(errors(page.events), [])
+
+
+class Outcome(unittest.TestCase):
+    """Issue 61: a run's outcome in words, for the run view: a planner that crashes on walls with
+    holes (tests/data/crash_on_holes) has its reason and the end of its stderr served as JSON
+    strings (bytes that were not UTF-8 as U+FFFD); the view shows them as text."""
+
+    def test_a_crashed_runs_reason_and_stderr_are_served(self):
+        with tempfile.TemporaryDirectory() as work:
+            os.makedirs(os.path.join(work, "walls"))
+            with open(os.path.join(work, "walls", "holes.json"), "w") as f:
+                json.dump({"name": "holes", "width": 2, "height": 1,
+                           "obstacles": [{"type": "rect", "x": 0.8, "y": 0.3, "width": 0.4, "height": 0.4}]}, f)
+            manifest = os.path.abspath(os.path.join(SOURCE, "tests", "data", "crash_on_holes", "crash_on_holes.json"))
+            with open(os.path.join(work, "c.yaml"), "w") as f:
+                f.write(f"name: crash\noutput: out\ndatasets:\n  - folder: walls\nplanners:\n  - external: {manifest}\n"
+                        "limits:\n  time_s: 600\n")
+            subprocess.run([BIN, "run", "c.yaml", "--no-report"], cwd=work, check=True, stdout=subprocess.DEVNULL)
+            server = subprocess.Popen([BIN, "serve", os.path.join(work, "out", "results.sqlite"), "--port", "0"],
+                                      stdout=subprocess.PIPE, text=True)
+            try:
+                port = re.search(r"http://127\.0\.0\.1:(\d+)/", server.stdout.readline()).group(1)
+
+                def get(path):
+                    with urllib.request.urlopen(f"http://127.0.0.1:{port}{path}", timeout=60) as r:
+                        return json.load(r)
+                exp = get("/api/experiments")["experiments"][-1]
+                runs = get(f"/api/experiments/{exp['db']}/{exp['id']}/runs")["runs"]
+                self.assertEqual([r["status"] for r in runs], ["crash"])
+                o = get(f"/api/experiments/{exp['db']}/{exp['id']}/runs/{runs[0]['key']}/outcome")
+            finally:
+                server.kill()
+                server.wait()
+                server.stdout.close()
+        self.assertEqual((o["status"], o["wall_name"]), ("crash", "holes"))
+        self.assertIn("exited with code 1", o["reason"])
+        self.assertTrue(o["stderr_tail"].endswith("RuntimeError: holes are not supported: 1 obstacles on holes\n"))
+        self.assertIn("not UTF-8: \ufffd\ufffd <- two bytes", o["stderr_tail"])
+        self.assertTrue(o["planner"].startswith("crash-on-holes"))
 
 
 if __name__ == "__main__":

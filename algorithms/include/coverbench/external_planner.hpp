@@ -33,6 +33,10 @@ inline constexpr std::size_t kMaxAnswerWaypoints = 2000000;
 /// at the scoring limit (a 64 MiB line of "1," would be 32 million values).
 inline constexpr std::size_t kMaxAnswerKeys = 10000;
 inline constexpr std::size_t kMaxAnswerValues = 4 * kMaxAnswerWaypoints + kMaxAnswerKeys;
+/// How much of the end of a planner's stderr a plan call keeps (PlanResult::stderr_tail; a run
+/// that ends in crash, error or invalid_output stores it). Everything it writes to stderr is also
+/// passed on to the host's stderr, as it comes.
+inline constexpr std::size_t kStderrTailBytes = 4096;
 /// The memory limit of an external planner's processes where no experiment sets one (`plan`,
 /// `conformance`, Python's coverbench.plan): the experiments' default, limits.memory_mb 4096.
 inline constexpr std::size_t kDefaultMemoryLimitBytes = std::size_t{4096} << 20;

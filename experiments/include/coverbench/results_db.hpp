@@ -107,6 +107,7 @@ class ResultsDb {
     ToolParams tool;
     VehicleModel vehicle;
     std::string status, reason;  ///< the run's (RunStatus's name) or the repair's
+    std::string stderr_tail;     ///< the run's (RunRecord::stderr_tail; "" in a database from before it)
     Path path;  ///< empty when the run failed
     /// A repair (storedReplan): segments before it were driven before the obstacles appeared.
     std::size_t first_judged_segment = 0;

@@ -18,6 +18,9 @@ void requireText(const std::string& text, const std::string& source);
 
 /// Whether `text` is valid UTF-8 (no overlong forms, no surrogates, nothing above U+10FFFF).
 bool isValidUtf8(const std::string& text);
+/// `bytes` as valid UTF-8 text: every byte that does not begin or continue a valid sequence, and
+/// every NUL, replaced by U+FFFD (for untrusted output kept as text: a planner's stderr).
+std::string toValidUtf8(const std::string& bytes);
 
 /// A file name made from a name taken from input (a wall's name, a planner label): letters,
 /// digits, '.', '-' and '_' are kept, every other byte becomes '_', a leading '.' becomes '_', and

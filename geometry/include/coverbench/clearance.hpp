@@ -24,6 +24,9 @@ struct SegmentClearance {
   bool inside = false;             ///< the segment lies inside the boundary polygon
   double boundary_distance = 0.0;  ///< distance from the segment to the boundary's edges
   double obstacle_distance = INFINITY;  ///< distance to the nearest obstacle (0 if it touches one)
+  /// That obstacle's index in Wall::obstacles (the first of the nearest measured); -1 when none was
+  /// measured nearer than the cutoff.
+  long nearest_obstacle = -1;
 };
 
 class ClearanceField {

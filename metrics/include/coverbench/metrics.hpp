@@ -14,6 +14,27 @@
 
 namespace coverbench {
 
+/// One violating segment, described for messages: where it is, what it breaks and by how much.
+struct Violation {
+  std::size_t segment = 0;  ///< segment i joins waypoints i and i + 1
+  Point from, to;           ///< its waypoints (an arc's ends)
+  /// The tool disk leaves the wall (`lifted`: a gantry's lifted move leaves the wall's bounding box).
+  bool outside_boundary = false;
+  bool lifted = false;
+  bool too_close = false;     ///< the disk comes closer than the clearance to an obstacle
+  bool not_drivable = false;  ///< a car cannot drive it (Validity::not_drivable)
+  /// The disk's gap (m) to the wall's edge, negative outside it (NaN for a lifted move or a
+  /// segment only a car cannot drive).
+  double boundary_gap = NAN;
+  /// The disk's gap (m) to the nearest obstacle, negative where it overlaps one (NaN where not measured).
+  double clearance = NAN;
+  /// The nearest obstacle: its index in Wall::obstacles (-1: none measured) and its label ("" if none).
+  long obstacle = -1;
+  std::string obstacle_label;
+};
+/// How many violating segments Validity::described details (the first ones, by index).
+inline constexpr std::size_t kDescribedViolations = 5;
+
 /// Validity of a path: every segment the tool is on the wall for (every segment for a holonomic
 /// vehicle; the tool-on ones for a gantry) must keep the whole tool disk inside the wall and at
 /// least `clearance` away from every obstacle. A gantry's tool-off (lifted) segments must keep the
@@ -41,8 +62,15 @@ struct Validity {
   /// Approach legs accepted (0-2; path.hpp: kApproachLegSlack): checked by their own rule and
   /// left out of min_clearance and min_boundary_gap.
   std::size_t approach_legs = 0;
+  /// The first kDescribedViolations violating segments (by index), each with what it breaks.
+  std::vector<Violation> described;
 };
 inline constexpr std::size_t kMaxListedViolations = 10000;
+
+/// An invalid path's message: "N segments violate the wall or the clearance: segment 12 (1.2, 0.4)->
+/// (1.8, 0.4) enters obstacle "window" (clearance -0.05 m < 0.02 m); ...; M more" (the described
+/// segments; docs/metrics.md). `required_clearance` is the tool's clearance c. "" for a valid path.
+std::string describeViolations(const Validity& validity, double required_clearance);
 /// The exact judge checks an arc segment as chords whose sagitta is at most this (m), each with the
 /// tool grown by a certified bound of it: an arc closer than this to its limit may be refused
 /// (planners keep kPlanningMargin to spare). The fast engine measures an arc's distances in closed

@@ -134,6 +134,15 @@ struct PlanResult {
   /// The path was planned for the problem's car itself, and is drivable by it (checked): runPlanner
   /// does not smooth it.
   bool planned_for_car = false;
+  /// A planner outside the tree (external/): the last bytes (external::kStderrTailBytes) its
+  /// processes wrote to stderr during this plan call, as valid UTF-8 (other bytes replaced by
+  /// U+FFFD); empty for in-tree planners.
+  std::string stderr_tail;
+  /// A planner outside the tree: the user + system CPU time (s) of its processes during this plan
+  /// call, and their peak memory (bytes: their cgroup's peak usage, else their summed peak resident
+  /// sets); NaN for in-tree planners, whose figures are their host process's.
+  double process_cpu_s = NAN;
+  double process_peak_bytes = NAN;
   /// A path that knowingly leaves reachable parts out.
   bool leftPartsOut() const { return covered_components < free_components || unreachable_parts > 0; }
   bool hasPath() const { return status == PlanStatus::Ok || status == PlanStatus::Partial; }

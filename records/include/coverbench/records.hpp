@@ -32,6 +32,7 @@ struct ResultRow : RunFields {
   /// configurations in the experiment, "label @ s=... m, c=... m" (never pooled across tools).
   std::string planner;
   std::string config;   ///< the planner configuration's label alone
+  std::string params;   ///< its resolved parameters as stored (paramsJson reads them)
   std::string planner_version;  ///< the planner's declared version when the run was executed
   std::string wall_name;
   ToolParams tool;
@@ -84,8 +85,10 @@ struct ExperimentRecord {
   std::vector<WallInfo> walls;  ///< in hash order
 };
 
-/// One row per run: key, dataset, wall, planner configuration and version, tool, status, valid, the uncovered
-/// reachable area and every metric as a column (what pandas or R load). `json`: an array of
+/// One row per run: key, dataset, wall, planner configuration, its parameters (a JSON object; in
+/// CSV its text) and version, tool, the exported run fields (status, reason, valid, the uncovered
+/// reachable area, CPU time, the end of an external planner's stderr) and every metric as a column
+/// (what pandas or R load). `json`: an array of
 /// objects (NaN and infinities as null); otherwise CSV. Rows in key order.
 std::string renderRuns(const ResultSet& results, bool json);
 /// A planner configuration's resolved parameters as stored, as a JSON object's text: stored so,

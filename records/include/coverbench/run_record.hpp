@@ -52,6 +52,10 @@ bool isRetryable(RunStatus s);
 
 /// The type of a field's values.
 enum class RunFieldType { Text, Status, Bool, Integer, Real };
+/// Where a field is exported: nowhere; the run exports (`coverbench runs` CSV/JSON); those and
+/// the report's run objects (a measured figure that the report shows as a metric, or not at all,
+/// stays out of them).
+enum class RunExport { No, Runs, RunsAndReport };
 
 /// One field of a run. Real fields are NaN when not measured (NULL in SQLite, null in JSON,
 /// empty in CSV).
@@ -62,39 +66,47 @@ struct RunField {
   /// Measured anew by every execution (timings, memory): not compared when the same run is
   /// stored in several shards, and not expected to repeat.
   bool measured;
-  /// A column of the run exports (CSV/JSON) and of the report's run objects, after the run's
-  /// context (dataset, wall, planner, tool). plan_time_ms and peak_memory_bytes reach both as
-  /// metrics instead (they are in the metric registry); the key leads every row.
-  bool exported;
+  /// A column of the run exports (CSV/JSON), after the run's context (dataset, wall, planner,
+  /// tool), and (RunsAndReport) of the report's run objects. plan_time_ms and peak_memory_bytes
+  /// reach both as metrics instead (they are in the metric registry); the key leads every row.
+  RunExport exported;
   const char* description;
 };
 
 /// The field table, the one place a run's fields are listed: each line gives the field's name
 /// (its member, column and key everywhere), type, C++ type, default, unit, whether it is measured,
-/// whether it is exported, and what it means. RunFields, kRunFields and forEachRunField are all
+/// where it is exported (RunExport), and what it means. RunFields, kRunFields and forEachRunField are all
 /// generated from it, so adding a field is one line here.
 #define COVERBENCH_RUN_FIELDS(X)                                                                                  \
-  X(key, Text, std::string, {}, "", false, false,                                                                \
+  X(key, Text, std::string, {}, "", false, No,                                                                   \
     "the run key: what is computed and by what code (docs/run_lifecycle.md)")                                   \
-  X(status, Status, RunStatus, RunStatus::Error, "", false, true, "how the run ended")                          \
-  X(reason, Text, std::string, {}, "", false, false, "why a run failed or left parts out; empty otherwise")      \
-  X(valid, Bool, bool, false, "", false, true, "the path passes the validity check")                            \
-  X(signal, Integer, long long, 0, "", false, false, "the signal that ended a crashed run's process; 0 otherwise") \
-  X(uncovered_reachable_m2, Real, double, NAN, "m2", false, true,                                                \
+  X(status, Status, RunStatus, RunStatus::Error, "", false, RunsAndReport, "how the run ended")                 \
+  X(reason, Text, std::string, {}, "", false, RunsAndReport,                                                     \
+    "why a run failed or left parts out (an invalid path: its first violating segments); empty otherwise")     \
+  X(valid, Bool, bool, false, "", false, RunsAndReport, "the path passes the validity check")                   \
+  X(signal, Integer, long long, 0, "", false, No, "the signal that ended a crashed run's process; 0 otherwise")  \
+  X(uncovered_reachable_m2, Real, double, NAN, "m2", false, RunsAndReport,                                       \
     "the reachable area the path did not sweep (metrics engine); NaN when not scored")                          \
-  X(plan_time_ms, Real, double, 0.0, "ms", true, false,                                                          \
+  X(plan_time_ms, Real, double, 0.0, "ms", true, No,                                                             \
     "median wall-clock time of the repetitions' plan calls; 0 when no plan call finished")                      \
-  X(cpu_time_s, Real, double, NAN, "s", true, false, "user + system CPU time of the run's process")              \
-  X(peak_rss_bytes, Real, double, NAN, "bytes", true, false, "the run's process's peak resident set")            \
-  X(peak_memory_bytes, Real, double, NAN, "bytes", true, false,                                                  \
-    "the run's own allocation peak (the worker's allocation meter; without one, peak_rss_bytes - start_rss_bytes)") \
-  X(start_rss_bytes, Real, double, NAN, "bytes", true, false,                                                    \
-    "the process's resident set when the run started (inherited from the runner)")
+  X(cpu_time_s, Real, double, NAN, "s", true, Runs,                                                              \
+    "user + system CPU time of the run: the worker's for an in-tree planner (planning and scoring); an external " \
+    "planner's own processes' during its plan calls")                                                            \
+  X(peak_rss_bytes, Real, double, NAN, "bytes", true, No,                                                        \
+    "the run's process's peak resident set (an external planner: its processes' summed peaks)")                \
+  X(peak_memory_bytes, Real, double, NAN, "bytes", true, No,                                                     \
+    "the run's own allocation peak (the worker's allocation meter; without one, peak_rss_bytes - start_rss_bytes; " \
+    "an external planner: its processes' peak)")                                                                 \
+  X(start_rss_bytes, Real, double, NAN, "bytes", true, No,                                                       \
+    "the process's resident set when the run started (inherited from the runner)")                             \
+  X(stderr_tail, Text, std::string, {}, "", true, RunsAndReport,                                                 \
+    "the last 4 KiB of an external planner's stderr during a crash, error or invalid_output run (bytes that "   \
+    "are not UTF-8 replaced by U+FFFD); empty otherwise")
 
 /// The table's fields, in its order (forEachRunField visits the members in this order).
 inline constexpr RunField kRunFields[] = {
 #define COVERBENCH_RUN_FIELD_ENTRY(name, type, cpp, init, unit, measured, exported, description) \
-  {#name, RunFieldType::type, unit, measured, exported, description},
+  {#name, RunFieldType::type, unit, measured, RunExport::exported, description},
     COVERBENCH_RUN_FIELDS(COVERBENCH_RUN_FIELD_ENTRY)
 #undef COVERBENCH_RUN_FIELD_ENTRY
 };

@@ -33,6 +33,12 @@ std::string planFileJson(const PlanFile& plan);
 /// The metrics object alone (what `coverbench metrics` prints): deterministic.
 std::string metricsJson(const PathMetrics& metrics);
 
+/// The described violations (Validity::described) as a JSON array, one object each:
+/// {"segment", "from": [x, y], "to": [x, y], "outside_boundary", "lifted", "too_close",
+/// "not_drivable", "boundary_gap", "clearance" (m; null where not measured), "obstacle" (index in
+/// the wall's obstacles, null when none is named), "obstacle_label"}. For bindings (Python's score).
+std::string violationsJson(const Validity& validity);
+
 /// A path read from a plan file of any source: only `waypoints` and `tool_on` are required;
 /// `tool_width`, `clearance` and `vehicle` are read when present.
 struct LoadedPlan {
