@@ -5,10 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "commands.hpp"
 #include "coverbench/conformance.hpp"
@@ -61,65 +58,18 @@ std::string cell(std::string s) {
 /// The most of an external planner's stderr a row's reason quotes: its last bytes, from a line's start.
 constexpr std::size_t kStderrTailBytes = 2048;
 
-/// An external planner's stderr, kept while the card runs so that a failed row can quote its end
-/// (an import error, a traceback): the process's stderr (which the planner's processes inherit)
-/// goes to an unnamed temporary file, and what each plan added is copied on to the real stderr,
-/// so the planner's diagnostics still reach the terminal. In-tree planners are not captured.
-class StderrCapture {
- public:
-  StderrCapture() {
-    std::fflush(stderr);
-    file_ = std::tmpfile();
-    if (!file_) return;
-    saved_ = ::dup(STDERR_FILENO);
-    if (saved_ < 0 || ::dup2(::fileno(file_), STDERR_FILENO) < 0) {
-      if (saved_ >= 0) ::close(saved_);
-      saved_ = -1;
-      std::fclose(file_);
-      file_ = nullptr;
-    }
+/// The end of what a failed plan's processes wrote to stderr (PlanResult::stderr_tail, kept by the
+/// external-planner host), as a row's reason quotes it: its last kStderrTailBytes, from a line's
+/// start, trimmed of surrounding blank space.
+std::string quotedStderr(std::string text) {
+  if (text.size() > kStderrTailBytes) {
+    text = text.substr(text.size() - kStderrTailBytes);
+    const std::size_t nl = text.find('\n');
+    if (nl != std::string::npos && nl + 1 < text.size()) text = "..." + text.substr(nl + 1);
   }
-  ~StderrCapture() {
-    if (!file_) return;
-    std::fflush(stderr);
-    ::dup2(saved_, STDERR_FILENO);
-    ::close(saved_);
-    std::fclose(file_);
-  }
-  StderrCapture(const StderrCapture&) = delete;
-  StderrCapture& operator=(const StderrCapture&) = delete;
-
-  /// Where the next plan's output starts.
-  off_t mark() const {
-    struct stat st {};
-    return file_ && ::fstat(::fileno(file_), &st) == 0 ? st.st_size : 0;
-  }
-  /// What was written since `from` (copied on to the real stderr), trimmed of surrounding blank
-  /// space; the last kStderrTailBytes of it, from the first whole line within them.
-  std::string since(off_t from) const {
-    const off_t end = mark();
-    if (end <= from) return "";
-    std::string text(static_cast<std::size_t>(end - from), '\0');
-    const ssize_t n = ::pread(::fileno(file_), text.data(), text.size(), from);
-    text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
-    for (std::size_t done = 0; done < text.size();) {
-      const ssize_t w = ::write(saved_, text.data() + done, text.size() - done);
-      if (w <= 0) break;
-      done += static_cast<std::size_t>(w);
-    }
-    if (text.size() > kStderrTailBytes) {
-      text = text.substr(text.size() - kStderrTailBytes);
-      const std::size_t nl = text.find('\n');
-      if (nl != std::string::npos && nl + 1 < text.size()) text = "..." + text.substr(nl + 1);
-    }
-    const std::size_t a = text.find_first_not_of(" \t\r\n"), b = text.find_last_not_of(" \t\r\n");
-    return a == std::string::npos ? std::string() : text.substr(a, b - a + 1);
-  }
-
- private:
-  std::FILE* file_ = nullptr;
-  int saved_ = -1;
-};
+  const std::size_t from = text.find_first_not_of(" \t\r\n"), to = text.find_last_not_of(" \t\r\n");
+  return from == std::string::npos ? std::string() : text.substr(from, to - from + 1);
+}
 
 bool samePath(const PlanResult& a, const PlanResult& b) {
   if (a.status != b.status || a.path.waypoints.size() != b.path.waypoints.size() || a.path.tool_on != b.path.tool_on ||
@@ -139,8 +89,6 @@ int conformanceCommand(const ConformanceOptions& o) {
   const std::vector<std::string> files = wallFilesIn(o.walls.empty() ? conformanceWallFolders(o.source_dir) : o.walls);
   std::vector<CardRow> rows;
   {
-    std::optional<StderrCapture> capture;
-    if (!info.external_manifest.empty()) capture.emplace();
     for (const std::string& file : files) {
       const Wall wall = loadWallFile(file);
       for (const ToolParams& tool : conformanceTools()) {
@@ -158,10 +106,9 @@ int conformanceCommand(const ConformanceOptions& o) {
         row.expected = toString(expected.status);
         // Judged as `plan` and a run judge it: an invalid path is invalid_output, a path beyond
         // the scoring limits metrics_error, each with its reason (the card goes on).
-        const off_t mark = capture ? capture->mark() : 0;
         JudgedPlan judged = planAndJudge(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
-        const std::string tail = capture ? capture->since(mark) : std::string();
         const PlanResult& a = judged.result;
+        const std::string tail = quotedStderr(a.stderr_tail);
         // A planner that failed says why on its stderr (an import error, a traceback): its reason quotes the end.
         const bool failed = judged.verdict == RunStatus::Crash || judged.verdict == RunStatus::Error ||
                             judged.verdict == RunStatus::InvalidOutput || judged.verdict == RunStatus::Timeout ||
@@ -179,9 +126,7 @@ int conformanceCommand(const ConformanceOptions& o) {
         row.promise_kept = check.promise_kept;
         row.cause = check.cause;
         if (check.passed()) {  // the same problem again: the same path, bit for bit
-          const off_t again = capture ? capture->mark() : 0;
           const PlanResult b = runPlanner(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
-          if (capture) capture->since(again);
           row.checked_twice = true;
           row.deterministic = samePath(a, b);
           if (!row.deterministic)

@@ -127,9 +127,11 @@ def plan(wall: Wall, planner: str, params: Optional[Mapping[str, Union[bool, int
       otherwise the planner's status (ok, partial, no_reachable_area, invalid_input, timeout,
       memory_limit, crash, error, ...);
     - ``reason``; ``planner_status``: what the planner itself said;
-    - ``valid`` (bool), ``violations`` (int) and ``violating_segments`` (the first violating
-      segments' indices; segment i joins waypoints i and i + 1): None when there is no path or it
-      could not be scored (``not_scored`` says why);
+    - ``valid`` (bool), ``violations`` (int), ``violating_segments`` (the first violating
+      segments' indices; segment i joins waypoints i and i + 1), ``violation_details`` (for the
+      first five: ``segment``, ``from``, ``to``, what it breaks, ``obstacle`` and
+      ``obstacle_label``, the gaps reached) and ``invalid_reason`` (the run's one-line message):
+      None when there is no path or it could not be scored (``not_scored`` says why);
     - ``waypoints`` (numpy (n, 2) array where numpy is installed), ``tool_on`` (list of bool),
       ``bulge`` (only when the path has arcs), ``stats``, ``plan_time_ms``.
 
@@ -145,8 +147,10 @@ def plan(wall: Wall, planner: str, params: Optional[Mapping[str, Union[bool, int
 def score(wall: Wall, waypoints: Waypoints, tool_on: Sequence[bool], tool_width: float = 0.1,
           clearance: float = 0.02, bulge: Optional[Sequence[float]] = None, judge: str = "fast") -> Dict[str, Any]:
     """Scores a path from any source on `wall`: every metric of the fast engine by name
-    (docs/metrics.md; None where one is not finite), ``valid`` as a bool, ``violations`` and
-    ``violating_segments`` (the first violating segments' indices). ``judge="exact"`` adds
+    (docs/metrics.md; None where one is not finite), ``valid`` as a bool, ``violations``,
+    ``violating_segments`` (the first violating segments' indices), ``violation_details`` (what
+    the first five hit: points, the obstacle by index and label or the wall's edge, the gaps
+    reached) and ``invalid_reason`` (the one-line message, empty when valid). ``judge="exact"`` adds
     ``exact``: the exact judge's ``valid``, ``violations`` and certified [lower, upper] intervals
     of ``coverage_reachable`` and ``coverage_wall``.
 

@@ -12,6 +12,7 @@
 #include "coverbench/judge.hpp"
 #include "coverbench/limits.hpp"
 #include "coverbench/metrics.hpp"
+#include "coverbench/plan_file.hpp"
 #include "coverbench/records.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/results_db.hpp"
@@ -33,8 +34,15 @@ ordered_json paramValue(const ParamValue& v) {
 /// number of violating segments, `violating_segments` the first of them (segment i joins
 /// waypoints i and i+1). The one place that turns a Validity into Python's dict: details added
 /// to Validity (the points of each violating segment, what it violates) go here, for both.
-ordered_json validityJson(const Validity& v) {
-  return {{"valid", v.valid}, {"violations", v.violations}, {"violating_segments", v.violating}};
+/// valid as a bool, the count, the first violating segments' indices, and what the first of them
+/// hit (`violation_details`: points, the obstacle by index and label or the wall's edge, the gap
+/// reached; the same list a plan file and a run carry) with `invalid_reason`, the run's message.
+ordered_json validityJson(const Validity& v, double clearance) {
+  return {{"valid", v.valid},
+          {"violations", v.violations},
+          {"violating_segments", v.violating},
+          {"violation_details", ordered_json::parse(violationsJson(v))},
+          {"invalid_reason", v.valid ? std::string() : describeViolations(v, clearance)}};
 }
 
 /// A wall from wall-file text, checked as the command line checks it.
@@ -98,11 +106,13 @@ std::string plan(const std::string& wall_text, const std::string& planner,
                       {"planner_status", toString(r.status)}};
   const bool scored = r.hasPath() && judged.not_scored.empty();
   if (scored) {
-    out.update(validityJson(judged.metrics.validity));
+    out.update(validityJson(judged.metrics.validity, problem.tool.clearance));
   } else {  // no path, or one beyond the scoring limits: nothing was checked
     out["valid"] = false;
     out["violations"] = nullptr;
     out["violating_segments"] = nullptr;
+    out["violation_details"] = nullptr;
+    out["invalid_reason"] = nullptr;
   }
   out["not_scored"] = judged.not_scored;
   ordered_json w = ordered_json::array();
@@ -125,7 +135,7 @@ std::string score(const std::string& wall_text, const std::vector<std::pair<doub
   ordered_json out = ordered_json::object();
   const PathMetrics metrics = computeMetrics(wall, tool, path);
   for (const NamedMetric& m : flatten(metrics)) out[m.name] = number(m.value);
-  out.update(validityJson(metrics.validity));  // valid as a bool, not the metric's 1 or 0
+  out.update(validityJson(metrics.validity, tool.clearance));  // valid as a bool, not the metric's 1 or 0
   if (judge == "exact") {
     const judge::Judgement j = judge::judgePath(wall, tool, path);
     out["exact"] = {{"valid", j.validity.valid},

@@ -54,6 +54,14 @@ class Package(unittest.TestCase):
         bad = coverbench.score(WALL, [[0.2, 1.0], [4.0, 1.0]], [True], judge="exact")
         self.assertIs(bad["valid"], False)
         self.assertEqual((bad["violations"], bad["violating_segments"]), (1, [0]))
+        # What it hit, by hand: the window (obstacle 0, x 1.0 to 2.2, y 0.9 to 2.1) holds the
+        # line y = 1 from x = 1.0 to 2.2, so the tool's centre is inside it: clearance 0 - r.
+        (hit,) = bad["violation_details"]
+        self.assertEqual((hit["segment"], hit["from"], hit["to"]), (0, [0.2, 1.0], [4.0, 1.0]))
+        self.assertEqual((hit["obstacle"], hit["obstacle_label"], hit["too_close"]), (0, "window", True))
+        self.assertAlmostEqual(hit["clearance"], -0.05, places=12)
+        self.assertIn('segment 0 (0.2, 1)->(4, 1) enters obstacle "window"', bad["invalid_reason"])
+        self.assertEqual((m["violation_details"], m["invalid_reason"]), ([], ""))
         self.assertIs(bad["exact"]["valid"], False)
         # The same from a numpy array, and the segment named among several.
         three = numpy.array([[0.2, 0.3], [0.5, 0.3], [2.5, 1.5], [2.6, 1.5]])  # the middle one crosses the window
