@@ -159,7 +159,7 @@ int conformanceCommand(const ConformanceOptions& o) {
                             {"plan_time_ms", r.plan_ms}, {"passed", r.passed()}, {"cause", r.cause}});
     j["passed"] = passed;
     j["checked"] = rows.size();
-    text = j.dump(1) + "\n";
+    text = j.dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
   } else {
     std::string p;
     for (const auto& [k, v] : params.all()) p += (p.empty() ? "" : ", ") + k + "=" + toString(v);

@@ -286,6 +286,7 @@ class PlannerProcess {
   Answer ask(const std::string& request, double timeout_s, std::size_t memory_limit) {
     drainStderr();  // written between two questions: passed on, not this question's
     tail_.clear();
+    passed_on_ = 0;
     measuring_ = false;
     Answer a = askOnce(request, timeout_s, memory_limit);
     drainStderr();
@@ -383,14 +384,36 @@ class PlannerProcess {
       if (r <= 0) return;
       const auto n = static_cast<std::size_t>(r);
       total += n;
-      for (std::size_t off = 0; off < n;) {  // passed on as it came (best effort)
-        const ssize_t w = ::write(STDERR_FILENO, buf.data() + off, n - off);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) break;
-        off += static_cast<std::size_t>(w);
-      }
+      passOn(buf.data(), n);
       tail_.append(buf.data(), n);
       if (tail_.size() > 2 * kStderrTailBytes) tail_.erase(0, tail_.size() - kStderrTailBytes);
+    }
+  }
+
+  /// Passes a planner's stderr on to ours as it came, best effort and bounded: at most
+  /// kPassedOnBytes a question (then one line says the rest is not shown), and never waiting for
+  /// a reader (a pipe nobody reads held the planner past its time limit): what ours cannot take
+  /// at once is dropped. The kept tail is not affected.
+  void passOn(const char* data, std::size_t n) {
+    if (passed_on_ >= kPassedOnBytes) return;
+    if (passed_on_ + n > kPassedOnBytes) {
+      n = kPassedOnBytes - passed_on_;
+      passed_on_ = kPassedOnBytes;
+    } else {
+      passed_on_ += n;
+    }
+    for (std::size_t off = 0; off < n;) {
+      pollfd p{STDERR_FILENO, POLLOUT, 0};
+      if (::poll(&p, 1, 0) <= 0 || !(p.revents & POLLOUT)) return;
+      const ssize_t w = ::write(STDERR_FILENO, data + off, std::min<std::size_t>(n - off, 4096));  // PIPE_BUF: no wait
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) return;
+      off += static_cast<std::size_t>(w);
+    }
+    if (passed_on_ == kPassedOnBytes) {
+      static const char kCut[] = "\n[coverbench: the planner's stderr past 1 MiB in this plan is not shown]\n";
+      pollfd p{STDERR_FILENO, POLLOUT, 0};
+      if (::poll(&p, 1, 0) > 0 && (p.revents & POLLOUT)) (void)!::write(STDERR_FILENO, kCut, sizeof kCut - 1);
     }
   }
 
@@ -640,6 +663,8 @@ class PlannerProcess {
   pid_t pid_ = -1;
   int in_ = -1, out_ = -1, err_ = -1;
   std::string tail_;  ///< the end of its stderr during the current question (raw bytes)
+  static constexpr std::size_t kPassedOnBytes = std::size_t{1} << 20;  ///< of its stderr shown, a question
+  std::size_t passed_on_ = 0;  ///< of the current question's stderr passed on
   // The current question's measurement (startMeasuring, stopMeasuring).
   bool measuring_ = false;
   std::map<pid_t, double> cpu_before_;
@@ -788,12 +813,12 @@ static std::size_t answerProblem(const std::string& line, std::string& why) {
 
 bool readAnswer(const std::string& line, long long id, PlanResult& result, std::string& why) {
   auto bad = [&](const std::string& text) {
-    why = text;
+    why = toValidUtf8(text);  // it may quote the planner's bytes
     return false;
   };
   if (line.size() > kMaxAnswerBytes)
     return bad("over " + std::to_string(kMaxAnswerBytes >> 20) + " MiB");
-  if (answerProblem(line, why) != 0) return false;
+  if (answerProblem(line, why) != 0) return bad(why);
   json a;
   try {
     a = parseJsonStrict(line, "answer");  // no duplicate key: a second "status" is not read over the first
@@ -814,11 +839,13 @@ bool readAnswer(const std::string& line, long long id, PlanResult& result, std::
   bool known = false;
   result.status = answerStatus(a["status"].get<std::string>(), known);
   if (!known)
-    return bad("status: '" + a["status"].get<std::string>() +
+    return bad("status: '" + toValidUtf8(a["status"].get<std::string>()).substr(0, 200) +
                "' is none of ok, partial, no_reachable_area, invalid_input, timeout, error");
   if (a.contains("reason")) {
     if (!a["reason"].is_string()) return bad("reason: must be a string");
-    result.reason = a["reason"].get<std::string>();
+    // A planner's own words, kept as text: bytes that are not UTF-8 and NULs become U+FFFD (a raw
+    // 0xFF ended the JSON card; a NUL cut the stored reason).
+    result.reason = toValidUtf8(a["reason"].get<std::string>());
   }
   if (a.contains("stats")) {
     if (!a["stats"].is_object()) return bad("stats: must be an object of numbers");

@@ -9,6 +9,7 @@ import os
 import re
 import subprocess
 import tempfile
+import time
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -73,6 +74,54 @@ class BrokenPlannersFailTheirCards(unittest.TestCase):
         j = self.check("through-obstacle", "invalid_output", "segments violate the wall or the clearance")
         for row in j["walls"]:
             self.assertFalse(row["valid"])
+
+    def test_a_reason_that_is_not_utf8_is_kept_as_text(self):
+        # A raw 0xFF ended the JSON card ("internal error: type_error.316", no card); a NUL cut
+        # the reason short.
+        code, j, md, err = card(os.path.join(HERE, "broken", "bad-reason.json"), "--walls", WALLS, "--time-limit", "5")
+        self.assertEqual(code, 1, err)
+        first, second = j["walls"]
+        # An answer that is not UTF-8 is no answer; the reason quotes it as text.
+        self.assertEqual(first["status"], "invalid_output")
+        self.assertIn('"reason": "bad \ufffd', first["reason"])  # its first 60 bytes
+        self.assertIn("is not valid UTF-8 text", first["reason"])
+        # A NUL the JSON spells is kept as U+FFFD, with what follows it.
+        self.assertEqual((second["status"], second["reason"]), ("error", "before \ufffd after"))
+        self.assertIn("before \ufffd after", md)
+
+    def test_endless_stderr_that_nobody_reads_holds_no_plan_past_its_limit(self):
+        # The card's stderr is a pipe no one reads: the planner's flood is passed on only while
+        # the pipe takes it at once (and 1 MiB a plan at most), so each row still ends at its
+        # 1 s limit. It ran 75 s at a 5 s limit, until the pipe was read.
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "card.json")
+            r, w = os.pipe()
+            p = subprocess.Popen([BINARY, "conformance", os.path.join(HERE, "broken", "endless-stderr.json"), "--walls",
+                                  WALLS, "--time-limit", "1", "--format", "json", "--out", out], stderr=w,
+                                 stdout=subprocess.DEVNULL)
+            os.close(w)
+            try:
+                # The card is written (two rows of 1 s each) while no one reads its stderr; before,
+                # the host waited on the full pipe and no row ended.
+                for _ in range(600):
+                    if os.path.exists(out) or p.poll() is not None:
+                        break
+                    time.sleep(0.1)
+                self.assertTrue(os.path.exists(out), "no card while the stderr pipe was not read")
+            finally:
+                # Now read: the card's own last line goes to stderr, and it ends.
+                drained = b""
+                while True:
+                    chunk = os.read(r, 1 << 16)
+                    if not chunk:
+                        break
+                    drained += chunk[-200:]
+                os.close(r)
+                code = p.wait(timeout=60)
+            self.assertEqual(code, 1)
+            with open(out, encoding="utf-8") as f:
+                j = json.load(f)
+            self.assertEqual([row["status"] for row in j["walls"]], ["timeout", "timeout"])
 
 
 def registered_planners():

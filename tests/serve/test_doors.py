@@ -386,6 +386,15 @@ class Doors(unittest.TestCase):
             # No length: read to the connection's end before.
             f"POST /api/walls HTTP/1.1\r\n{head}\r\n{{}}": (411, "must give its length"),
             f"GET /api/walls HTTP/1.1\r\n{head}Content-Length: 5\r\n\r\nhello": (400, "GET: takes no body"),
+            # What a proxy in front could read otherwise (each was answered 200).
+            f"POST /api/plan HTTP/1.1\r\n{head}Transfer-Encoding: chunked\r\nTransfer-Encoding: gzip\r\n\r\n0\r\n\r\n":
+                (400, "Transfer-Encoding: given twice"),
+            f"POST /api/check HTTP/1.1\r\n{head}Transfer-Encoding : chunked\r\nContent-Length: 2\r\n\r\n{{}}":
+                (400, "a header's name holds white space"),
+            f"POST /api/check HTTP/1.1\r\n{head}Host: other.example\r\nContent-Length: 2\r\n\r\n{{}}": (400, "Host: given twice"),
+            # Refused before the body is sent: no 100 Continue first.
+            f"POST /api/check HTTP/1.1\r\n{head}Origin: http://elsewhere.example\r\nContent-Length: 2\r\n"
+            "Expect: 100-continue\r\n\r\n": (403, "Origin: 'http://elsewhere.example' may not change anything here"),
             # Over the route's limit, said by the length: refused before a byte of it is read.
             f"POST /api/check HTTP/1.1\r\n{head}Content-Length: 100000000\r\n\r\n{{}}": (413, "over the 67108864 bytes"),
             f"POST /api/walls HTTP/1.1\r\n{head}Content-Length: 2000000\r\n\r\n{{}}": (413, "over the 1048576 bytes"),

@@ -5,7 +5,11 @@ runs `coverbench conformance` on each): the argument names the way.
 - segfault: dies of SIGSEGV on its first problem;
 - loops: never answers;
 - through-obstacle: answers a straight path, across the wall, through the middle of its first
-  obstacle (a rectangle).
+  obstacle (a rectangle);
+- bad-reason: answers `error` with a reason of bytes that are not UTF-8 (it ended the JSON card
+  with an internal error), then one with a NUL (it cut the reason);
+- endless-stderr: writes to stderr without end and never answers (nothing may wait on whoever
+  reads the card's stderr: the planner is stopped at its time limit).
 """
 import json
 import os
@@ -18,6 +22,15 @@ if mode == "missing-module":
 
 for line in sys.stdin:
     request = json.loads(line)
+    if mode == "bad-reason":
+        # The first answer is not UTF-8 (0xFF 0xFE in its reason); the second is, with a NUL.
+        reason = b"bad \xff\xfe bytes" if request["id"] == 1 else b"before \\u0000 after"
+        sys.stdout.buffer.write(b'{"protocol": 1, "id": %d, "status": "error", "reason": "%s"}\n' % (request["id"], reason))
+        sys.stdout.flush()
+        continue
+    if mode == "endless-stderr":
+        while True:
+            sys.stderr.write("x" * 65536 + "\n")
     if mode == "segfault":
         os.kill(os.getpid(), signal.SIGSEGV)
     if mode == "loops":
