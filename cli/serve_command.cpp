@@ -723,6 +723,8 @@ class DeadlineStream final : public httplib::Stream {
     written_ = 0;
     read_ = 0;
     cap_ = kMaxHeadBytes;
+    framed_ = folded_ = false;
+    line_start_ = false;
   }
   /// Gives back the large body's place, if this request had one.
   void endRequest() {
@@ -732,14 +734,17 @@ class DeadlineStream final : public httplib::Stream {
   /// Reads the request's headers for its body's framing and limit (called once they are read,
   /// before the body is): the bytes it may still read are its body limit and the framing's room.
   void frameBody(const httplib::Request& req) {
+    framed_ = true;
     const bool check = req.method == "POST" && req.path == "/api/check";
     const std::size_t limit = check ? kMaxCheckBodyBytes : kMaxBodyBytes;
     bodyLimit() = limit;
     cap_ = read_ + limit + kMaxHeadBytes;
     const bool has_body = req.method == "POST" || req.method == "PUT" || req.method == "PATCH" || req.method == "DELETE" ||
                           req.method == "PRI";  // the methods whose body httplib reads
-    // Headers a proxy in front could read otherwise: a name with white space or a control byte
-    // ("Transfer-Encoding : chunked"), two Hosts, two Transfer-Encodings.
+    // Headers a proxy in front could read otherwise: a folded line (httplib drops it), a name
+    // with white space or a control byte ("Transfer-Encoding : chunked"), two Hosts, two
+    // Transfer-Encodings.
+    if (folded_) return refuse(400, "a header line starts with white space (a folded header line)");
     for (const auto& [name, value] : req.headers)
       if (name.empty() || name.find_first_of(" \t\r\n\v\f:") != std::string::npos ||
           std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
@@ -835,6 +840,12 @@ class DeadlineStream final : public httplib::Stream {
     }
     const std::size_t n = std::min(size, end_ - begin_);
     std::memcpy(ptr, buffer_.data() + begin_, n);
+    if (!framed_)  // the line and headers (httplib reads them a byte at a time): a folded line?
+      for (std::size_t i = 0; i < n; ++i) {
+        const char c = ptr[i];
+        if (line_start_ && (c == ' ' || c == '\t')) folded_ = true;
+        line_start_ = c == '\n';
+      }
     begin_ += n;
     read_ += n;
     return static_cast<ssize_t>(n);
@@ -904,6 +915,9 @@ class DeadlineStream final : public httplib::Stream {
   std::size_t read_ = 0;
   std::size_t cap_ = kMaxHeadBytes;  ///< the bytes this request may read in all
   bool large_ = false;               ///< it holds one of the large bodies' places
+  bool framed_ = false;              ///< its headers are read (frameBody was called)
+  bool folded_ = false;              ///< a header line started with white space
+  bool line_start_ = false;          ///< the last byte read ended a line
   std::array<char, 65536> buffer_{};
   std::size_t begin_ = 0, end_ = 0;
 };
@@ -1070,7 +1084,10 @@ struct ServeApp::Impl {
   httplib::Server::Handler guarded(F handler) {
     return [this, handler](const httplib::Request& req, httplib::Response& res) {
       try {
-        if (const Refusal& r = DeadlineStream::refusal(); r.status != 0) throw HttpError(r.status, r.message);
+        if (const Refusal& r = DeadlineStream::refusal(); r.status != 0) {
+          res.set_header("Connection", "close");  // it is closed after the answer
+          throw HttpError(r.status, r.message);
+        }
         hosts.check(req);
         // A chunked body is counted as it is read (DeadlineStream), with its framing's room.
         if (req.body.size() > DeadlineStream::bodyLimit()) throw HttpError(413, DeadlineStream::tooLargeMessage(req.body.size()));
@@ -1167,6 +1184,7 @@ ServeApp::ServeApp(const ServeOptions& o, const std::string& helper_exe) {
     const Refusal& r = DeadlineStream::refusal();
     if (r.status != 0) {
       answerError(res, r.status, r.message);
+      res.set_header("Connection", "close");
       return r.status;
     }
     try {
@@ -1174,6 +1192,7 @@ ServeApp::ServeApp(const ServeOptions& o, const std::string& helper_exe) {
     } catch (const HttpError& e) {
       DeadlineStream::refusal() = Refusal{e.status, e.what()};
       answerError(res, e.status, e.what());
+      res.set_header("Connection", "close");
       return e.status;
     }
     return 100;
@@ -1196,8 +1215,10 @@ ServeApp::ServeApp(const ServeOptions& o, const std::string& helper_exe) {
     if (!res.body.empty()) return;
     if (res.status == 400) DeadlineStream::malformed() = true;  // every route's own 400 has a body
     try {
-      if (const Refusal& r = DeadlineStream::refusal(); r.status != 0)
+      if (const Refusal& r = DeadlineStream::refusal(); r.status != 0) {
         answerError(res, r.status, r.message);
+        res.set_header("Connection", "close");  // it is closed after the answer
+      }
       else if (DeadlineStream::readTimedOut())
         answerError(res, 408, readDeadlineMessage());
       else if (res.status == 413 || DeadlineStream::tooLarge())

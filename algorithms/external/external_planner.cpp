@@ -337,6 +337,12 @@ class PlannerProcess {
       const int n = ::poll(fds, sent < request.size() ? 3 : 2, static_cast<int>(std::clamp(left * 1000.0, 1.0, 10.0)));
       if (n < 0 && errno != EINTR) return fail(a, PlanStatus::Crash, std::string("poll: ") + std::strerror(errno));
       if (fds[1].revents & (POLLIN | POLLHUP | POLLERR)) drainStderr();
+      // The process it started is gone while one of its own keeps the output open (no hang-up
+      // comes): a crash with its exit, not a timeout at the limit. Once what it wrote is read.
+      if (!(fds[0].revents & (POLLIN | POLLHUP | POLLERR)) && exitedMeanwhile()) {
+        pollfd o{out_, POLLIN, 0};
+        if (::poll(&o, 1, 0) <= 0) return died(a, "before answering, while a process it started kept its output open");
+      }
       if (sent < request.size() && (fds[2].revents & (POLLOUT | POLLERR | POLLHUP))) {
         const ssize_t w = ::write(in_, request.data() + sent, request.size() - sent);
         if (w < 0 && errno != EAGAIN && errno != EINTR) return died(a, "stopped reading its input");
@@ -639,6 +645,13 @@ class PlannerProcess {
 
   /// The process ended (or will): crash, with how it ended; memory_limit when the kernel stopped
   /// one of its processes at the limit.
+  /// Whether the process it started has exited (not reaped here: died() reaps it).
+  bool exitedMeanwhile() const {
+    if (pid_ <= 0) return false;
+    siginfo_t info{};
+    return ::waitid(P_PID, static_cast<id_t>(pid_), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid_;
+  }
+
   Answer& died(Answer& a, const std::string& what) {
     int status = 0;
     pid_t r = 0;

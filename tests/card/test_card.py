@@ -66,6 +66,16 @@ class BrokenPlannersFailTheirCards(unittest.TestCase):
     def test_a_planner_that_segfaults(self):
         self.check("segfault", "crash", "died of signal 11")
 
+    def test_a_planner_that_exits_while_its_child_keeps_the_output_open(self):
+        # A crash with its exit code at once (it read "timeout" at the limit); no child is left.
+        self.check("forks-and-exits", "crash", "exited with code 4", "kept its output open", time_limit="30")
+        for _ in range(50):  # the card's end kills the tree; give the kernel a moment to reap it
+            left = subprocess.run(["pgrep", "-f", "broken.py forks-and-exits"], capture_output=True, text=True).stdout
+            if not left:
+                break
+            time.sleep(0.1)
+        self.assertEqual(left, "")
+
     def test_a_planner_that_never_answers(self):
         # A second of time limit: the row fails at the limit (no second plan is asked after a failure).
         self.check("loops", "timeout", "did not answer within the time limit", time_limit="1")

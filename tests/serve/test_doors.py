@@ -392,6 +392,9 @@ class Doors(unittest.TestCase):
             f"POST /api/check HTTP/1.1\r\n{head}Transfer-Encoding : chunked\r\nContent-Length: 2\r\n\r\n{{}}":
                 (400, "a header's name holds white space"),
             f"POST /api/check HTTP/1.1\r\n{head}Host: other.example\r\nContent-Length: 2\r\n\r\n{{}}": (400, "Host: given twice"),
+            # A folded line was dropped, and the body answered as a second request.
+            f"POST /api/walls HTTP/1.1\r\n{head}Content-Length: 0\r\n 101\r\n\r\nGET /api/walls HTTP/1.1\r\n\r\n":
+                (400, "a header line starts with white space"),
             # Refused before the body is sent: no 100 Continue first.
             f"POST /api/check HTTP/1.1\r\n{head}Origin: http://elsewhere.example\r\nContent-Length: 2\r\n"
             "Expect: 100-continue\r\n\r\n": (403, "Origin: 'http://elsewhere.example' may not change anything here"),
@@ -401,8 +404,10 @@ class Doors(unittest.TestCase):
         }
         for request, (status, message) in refused.items():
             started = time.monotonic()
-            got, _, body = raw(self.port, request.encode(), timeout=30)
+            got, head_text, body = raw(self.port, request.encode(), timeout=30)
             self.assertEqual(got, status, (request, body))
+            self.assertIn("Connection: close", head_text, request)  # and nothing after it is read
+            self.assertEqual(body.count(b"HTTP/1.1"), 0, (request, body))
             self.assertLess(time.monotonic() - started, 5, request)  # answered at once, not at the read deadline
             self.assertIn(message, json.loads(body)["error"], request)
         self.assert_alive()

@@ -8,6 +8,8 @@ runs `coverbench conformance` on each): the argument names the way.
   obstacle (a rectangle);
 - bad-reason: answers `error` with a reason of bytes that are not UTF-8 (it ended the JSON card
   with an internal error), then one with a NUL (it cut the reason);
+- forks-and-exits: starts a child that keeps stdout open and sleeps, and exits with code 4 (each
+  row read "timeout" at the limit, not the crash it is);
 - endless-stderr: writes to stderr without end and never answers (nothing may wait on whoever
   reads the card's stderr: the planner is stopped at its time limit).
 """
@@ -15,8 +17,14 @@ import json
 import os
 import signal
 import sys
+import time
 
 mode = sys.argv[1]
+if mode == "forks-and-exits":
+    if os.fork() == 0:
+        time.sleep(600)  # holds stdout open; stopped with the planner's processes
+        os._exit(0)
+    sys.exit(4)
 if mode == "missing-module":
     import coverbench_card_no_such_module  # noqa: F401  (ModuleNotFoundError names it on stderr)
 
