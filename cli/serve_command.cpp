@@ -158,11 +158,8 @@ class Explorer {
     MotionLimits motion;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      const Index& x = index(db, id);
-      if (!x.position.count(key))
-        throw HttpError(404, "experiment " + std::to_string(id) + " of database " + std::to_string(db) + " has no run " + key);
-      r = dbs_[db].db->storedRun(key);
-      motion = x.motion;
+      r = storedRun(db, id, key);
+      motion = index(db, id).motion;
     }
     if (playback) {
       if (r.path.segments() == 0) throw HttpError(404, "run " + key + " has no path to play");
@@ -173,13 +170,17 @@ class Explorer {
                        pictureLayers(r.path, r.status).layer, kGalleryOverlapStrips, 0, true);
   }
 
+  /// A run of an experiment, by its key (404 when the experiment has none). Under mutex_.
+  ResultsDb::StoredRun storedRun(std::size_t db, long long id, const std::string& key) {
+    if (!index(db, id).position.count(key))
+      throw HttpError(404, "experiment " + std::to_string(id) + " of database " + std::to_string(db) + " has no run " + key);
+    return dbs_[db].db->storedRun(key);
+  }
+
   /// What the run planned, as a workbench request: its wall file, planner, parameters and tool.
   json problem(std::size_t db, long long id, const std::string& key) {
     std::lock_guard<std::mutex> lock(mutex_);
-    const Index& x = index(db, id);
-    if (!x.position.count(key))
-      throw HttpError(404, "experiment " + std::to_string(id) + " of database " + std::to_string(db) + " has no run " + key);
-    const ResultsDb::StoredRun r = dbs_[db].db->storedRun(key);
+    const ResultsDb::StoredRun r = storedRun(db, id, key);
     json params = json::object();
     const json stored = json::parse(r.params_json);
     for (const auto& [k, v] : stored.items()) params[k] = v.is_string() ? v.get<std::string>() : v.dump();
@@ -191,10 +192,7 @@ class Explorer {
   /// (kept for crash, error and invalid_output; valid UTF-8 as stored), with the wall and tool.
   json outcome(std::size_t db, long long id, const std::string& key) {
     std::lock_guard<std::mutex> lock(mutex_);
-    const Index& x = index(db, id);
-    if (!x.position.count(key))
-      throw HttpError(404, "experiment " + std::to_string(id) + " of database " + std::to_string(db) + " has no run " + key);
-    const ResultsDb::StoredRun r = dbs_[db].db->storedRun(key);
+    const ResultsDb::StoredRun r = storedRun(db, id, key);
     return {{"status", r.status}, {"reason", r.reason}, {"stderr_tail", r.stderr_tail}, {"wall_name", r.wall.name},
             {"planner", r.planner}, {"tool_width", r.tool.tool_width}, {"clearance", r.tool.clearance}};
   }
