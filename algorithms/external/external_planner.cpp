@@ -643,8 +643,6 @@ class PlannerProcess {
     return a;
   }
 
-  /// The process ended (or will): crash, with how it ended; memory_limit when the kernel stopped
-  /// one of its processes at the limit.
   /// Whether the process it started has exited (not reaped here: died() reaps it).
   bool exitedMeanwhile() const {
     if (pid_ <= 0) return false;
@@ -652,6 +650,8 @@ class PlannerProcess {
     return ::waitid(P_PID, static_cast<id_t>(pid_), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid_;
   }
 
+  /// The process ended (or will): crash, with how it ended; memory_limit when the kernel stopped
+  /// one of its processes at the limit.
   Answer& died(Answer& a, const std::string& what) {
     int status = 0;
     pid_t r = 0;
