@@ -491,22 +491,27 @@ void ResultsDb::finishExperiment(long long id, std::size_t executed, std::size_t
   s.integer(4, static_cast<long long>(reused)).text(5, rerun_reasons).integer(6, id).run();
 }
 
+namespace {
+
+/// The experiment's row (the latest when none is named) into `rs`; its id.
+long long loadExperimentRow(sqlite3* db, const std::string& file, std::optional<long long> experiment, ResultSet& rs) {
+  Statement s(db,
+              experiment ? "SELECT id, name, config_hash, baseline FROM experiments WHERE id = ?"
+                         : "SELECT id, name, config_hash, baseline FROM experiments ORDER BY id DESC LIMIT 1",
+              file);
+  if (experiment) s.integer(1, *experiment);
+  if (!s.step()) throw InputError(file, "experiments", experiment ? "has no experiment " + std::to_string(*experiment) : "is empty");
+  rs.experiment = s.columnText(1);
+  rs.config_hash = s.columnText(2);
+  rs.baseline = s.columnText(3);
+  return s.columnInt(0);
+}
+
+}  // namespace
+
 ResultSet ResultsDb::load(std::optional<long long> experiment) {
   ResultSet rs;
-  long long id = -1;
-  {
-    Statement s(db_,
-                experiment ? "SELECT id, name, config_hash, baseline FROM experiments WHERE id = ?"
-                           : "SELECT id, name, config_hash, baseline FROM experiments ORDER BY id DESC LIMIT 1",
-                file_);
-    if (experiment) s.integer(1, *experiment);
-    if (!s.step())
-      throw InputError(file_, "experiments", experiment ? "has no experiment " + std::to_string(*experiment) : "is empty");
-    id = s.columnInt(0);
-    rs.experiment = s.columnText(1);
-    rs.config_hash = s.columnText(2);
-    rs.baseline = s.columnText(3);
-  }
+  const long long id = loadExperimentRow(db_, file_, experiment, rs);
   std::map<std::string, std::string> label_of, params_of;
   {
     Statement s(db_,
