@@ -88,55 +88,48 @@ int conformanceCommand(const ConformanceOptions& o) {
   const Params params = resolveParams(info, settings);
   const std::vector<std::string> files = wallFilesIn(o.walls.empty() ? conformanceWallFolders(o.source_dir) : o.walls);
   std::vector<CardRow> rows;
-  {
-    for (const std::string& file : files) {
-      const Wall wall = loadWallFile(file);
-      for (const ToolParams& tool : conformanceTools()) {
-        Problem problem;
-        problem.wall = &wall;
-        problem.tool = tool;
-        problem.params = params;
-        // An external planner's processes are held to the experiments' default memory limit.
-        problem.memory_limit_bytes = external::kDefaultMemoryLimitBytes;
-        const ExpectedOutcome expected = expectedOutcome(wall, tool);
-        CardRow row;
-        row.wall = wall.name;
-        row.file = fs::path(file).filename().string();
-        row.tool = tool;
-        row.expected = toString(expected.status);
-        // Judged as `plan` and a run judge it: an invalid path is invalid_output, a path beyond
-        // the scoring limits metrics_error, each with its reason (the card goes on).
-        JudgedPlan judged = planAndJudge(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
-        const PlanResult& a = judged.result;
-        const std::string tail = quotedStderr(a.stderr_tail);
-        // A planner that failed says why on its stderr (an import error, a traceback): its reason quotes the end.
-        const bool failed = judged.verdict == RunStatus::Crash || judged.verdict == RunStatus::Error ||
-                            judged.verdict == RunStatus::InvalidOutput || judged.verdict == RunStatus::Timeout ||
-                            judged.verdict == RunStatus::MemoryLimit;
-        if (failed && !tail.empty() && judged.reason.find(tail) == std::string::npos)
-          judged.reason += (judged.reason.empty() ? "" : "; ") + std::string("the planner's stderr ended: ") + tail;
-        const ConformanceCheck check = checkConformance(expected, judged, info.min_coverage_reachable, settings.empty());
-        row.status = toString(judged.verdict);
-        row.reason = judged.reason;
-        row.plan_ms = a.plan_time_ms;
-        row.valid = a.hasPath() && judged.not_scored.empty() && judged.metrics.validity.valid;
-        row.coverage = check.coverage_reachable;
-        row.contract = check.outcome;
-        row.promise_applies = check.promise_applies;
-        row.promise_kept = check.promise_kept;
-        row.cause = check.cause;
-        if (check.passed()) {  // the same problem again: the same path, bit for bit
-          const PlanResult b = runPlanner(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
-          row.checked_twice = true;
-          row.deterministic = samePath(a, b);
-          if (!row.deterministic)
-            row.cause = "a second plan gave " + (b.status == a.status ? std::string("a different path")
-                                                                      : toString(b.status) + " (" + b.reason + ")");
-        }
-        rows.push_back(std::move(row));
-      }
+  forEachConformanceProblem(files, params, [&](const std::string& file, Problem& problem) {
+    const Wall& wall = *problem.wall;
+    const ToolParams& tool = problem.tool;
+    // An external planner's processes are held to the experiments' default memory limit.
+    problem.memory_limit_bytes = external::kDefaultMemoryLimitBytes;
+    const ExpectedOutcome expected = expectedOutcome(wall, tool);
+    CardRow row;
+    row.wall = wall.name;
+    row.file = fs::path(file).filename().string();
+    row.tool = tool;
+    row.expected = toString(expected.status);
+    // Judged as `plan` and a run judge it: an invalid path is invalid_output, a path beyond
+    // the scoring limits metrics_error, each with its reason (the card goes on).
+    JudgedPlan judged = planAndJudge(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
+    const PlanResult& a = judged.result;
+    const std::string tail = quotedStderr(a.stderr_tail);
+    // A planner that failed says why on its stderr (an import error, a traceback): its reason quotes the end.
+    const bool failed = judged.verdict == RunStatus::Crash || judged.verdict == RunStatus::Error ||
+                        judged.verdict == RunStatus::InvalidOutput || judged.verdict == RunStatus::Timeout ||
+                        judged.verdict == RunStatus::MemoryLimit;
+    if (failed && !tail.empty() && judged.reason.find(tail) == std::string::npos)
+      judged.reason += (judged.reason.empty() ? "" : "; ") + std::string("the planner's stderr ended: ") + tail;
+    const ConformanceCheck check = checkConformance(expected, judged, info.min_coverage_reachable, settings.empty());
+    row.status = toString(judged.verdict);
+    row.reason = judged.reason;
+    row.plan_ms = a.plan_time_ms;
+    row.valid = a.hasPath() && judged.not_scored.empty() && judged.metrics.validity.valid;
+    row.coverage = check.coverage_reachable;
+    row.contract = check.outcome;
+    row.promise_applies = check.promise_applies;
+    row.promise_kept = check.promise_kept;
+    row.cause = check.cause;
+    if (check.passed()) {  // the same problem again: the same path, bit for bit
+      const PlanResult b = runPlanner(info, problem, Budget(std::chrono::duration<double>(o.time_limit_s)));
+      row.checked_twice = true;
+      row.deterministic = samePath(a, b);
+      if (!row.deterministic)
+        row.cause = "a second plan gave " + (b.status == a.status ? std::string("a different path")
+                                                                  : toString(b.status) + " (" + b.reason + ")");
     }
-  }
+    rows.push_back(std::move(row));
+  });
 
   std::size_t passed = 0;
   for (const CardRow& r : rows) passed += r.passed();

@@ -186,26 +186,21 @@ TEST(ConformanceWalls, ExpectedOutcomes) {
   // counts them: a partial plan names the disconnected components it left out.
   for (const PlannerInfo& p : registeredPlanners()) {
     const Params params = resolveParams(p, {});
-    for (const std::string& file : test::conformanceWallFiles()) {
-      const Wall wall = loadWallFile(file);
-      for (const ToolParams& tool : conformanceTools()) {
-        Problem problem;
-        problem.wall = &wall;
-        problem.tool = tool;
-        problem.params = params;
-        const JudgedPlan judged = planAndJudge(p, problem, Budget(std::chrono::seconds(60)));
-        const ExpectedOutcome expected = expectedOutcome(wall, tool);
-        const std::string where = p.name + " on " + wall.name + " at s = " + std::to_string(tool.tool_width);
-        const ConformanceCheck check = checkConformance(expected, judged, p.min_coverage_reachable, true);
-        EXPECT_TRUE(check.passed()) << where << ": " << check.cause;
-        const PlanResult& r = judged.result;
-        if (!r.hasPath()) continue;
-        EXPECT_EQ(r.free_components, expected.free_components) << where;
-        EXPECT_EQ(r.covered_components, 1u) << where;
-        if (expected.status == PlanStatus::Partial)
-          EXPECT_NE(r.reason.find("disconnected"), std::string::npos) << where << " must say what it left out: " << r.reason;
-      }
-    }
+    forEachConformanceProblem(test::conformanceWallFiles(), params, [&](const std::string&, Problem& problem) {
+      const Wall& wall = *problem.wall;
+      const ToolParams& tool = problem.tool;
+      const JudgedPlan judged = planAndJudge(p, problem, Budget(std::chrono::seconds(60)));
+      const ExpectedOutcome expected = expectedOutcome(wall, tool);
+      const std::string where = p.name + " on " + wall.name + " at s = " + std::to_string(tool.tool_width);
+      const ConformanceCheck check = checkConformance(expected, judged, p.min_coverage_reachable, true);
+      EXPECT_TRUE(check.passed()) << where << ": " << check.cause;
+      const PlanResult& r = judged.result;
+      if (!r.hasPath()) return;
+      EXPECT_EQ(r.free_components, expected.free_components) << where;
+      EXPECT_EQ(r.covered_components, 1u) << where;
+      if (expected.status == PlanStatus::Partial)
+        EXPECT_NE(r.reason.find("disconnected"), std::string::npos) << where << " must say what it left out: " << r.reason;
+    });
   }
 }
 

@@ -76,31 +76,26 @@ TEST(ExamplePlanner, PassesTheConformanceChecksOnEveryWall) {
   const PlannerInfo info = perimeter::info();
   const Params params = resolveParams(info, {});
   int partial = 0, none = 0;
-  for (const std::string& file : test::conformanceWallFiles()) {
-    const Wall wall = loadWallFile(file);
-    for (const ToolParams& tool : conformanceTools()) {
-      Problem problem;
-      problem.wall = &wall;
-      problem.tool = tool;
-      problem.params = params;
-      const JudgedPlan judged = planAndJudge(info, problem, Budget(std::chrono::seconds(60)));
-      const std::string where = wall.name + " at s = " + std::to_string(tool.tool_width);
-      const ExpectedOutcome expected = expectedOutcome(wall, tool);
-      const ConformanceCheck check = checkConformance(expected, judged, info.min_coverage_reachable, true);
-      EXPECT_TRUE(check.passed()) << where << ": " << check.cause;
-      const PlanResult& r = judged.result;
-      partial += r.status == PlanStatus::Partial;
-      none += r.status == PlanStatus::NoReachableArea;
-      if (!r.hasPath()) continue;
-      EXPECT_TRUE(test::isValidPath(wall, tool, r.path)) << where;
-      EXPECT_EQ(r.free_components, expected.free_components) << where;
-      EXPECT_EQ(r.unreachable_parts, 0u) << where << ": " << r.reason;
-      const PlanResult again = runPlanner(info, problem, Budget(std::chrono::seconds(60)));
-      ASSERT_EQ(again.path.waypoints.size(), r.path.waypoints.size()) << where;
-      for (std::size_t i = 0; i < r.path.waypoints.size(); ++i)
-        ASSERT_TRUE(again.path.waypoints[i] == r.path.waypoints[i]) << where << " waypoint " << i;
-    }
-  }
+  forEachConformanceProblem(test::conformanceWallFiles(), params, [&](const std::string&, Problem& problem) {
+    const Wall& wall = *problem.wall;
+    const ToolParams& tool = problem.tool;
+    const JudgedPlan judged = planAndJudge(info, problem, Budget(std::chrono::seconds(60)));
+    const std::string where = wall.name + " at s = " + std::to_string(tool.tool_width);
+    const ExpectedOutcome expected = expectedOutcome(wall, tool);
+    const ConformanceCheck check = checkConformance(expected, judged, info.min_coverage_reachable, true);
+    EXPECT_TRUE(check.passed()) << where << ": " << check.cause;
+    const PlanResult& r = judged.result;
+    partial += r.status == PlanStatus::Partial;
+    none += r.status == PlanStatus::NoReachableArea;
+    if (!r.hasPath()) return;
+    EXPECT_TRUE(test::isValidPath(wall, tool, r.path)) << where;
+    EXPECT_EQ(r.free_components, expected.free_components) << where;
+    EXPECT_EQ(r.unreachable_parts, 0u) << where << ": " << r.reason;
+    const PlanResult again = runPlanner(info, problem, Budget(std::chrono::seconds(60)));
+    ASSERT_EQ(again.path.waypoints.size(), r.path.waypoints.size()) << where;
+    for (std::size_t i = 0; i < r.path.waypoints.size(); ++i)
+      ASSERT_TRUE(again.path.waypoints[i] == r.path.waypoints[i]) << where << " waypoint " << i;
+  });
   EXPECT_EQ(partial, 4);  // narrow_gap_disconnected at s = 0.1, overlapping_cluster at 0.05, rotated_polygons at both
   EXPECT_EQ(none, 1);     // exactly_tool_height at s = 0.1
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "coverbench/files.hpp"
+#include "coverbench/wall_file.hpp"
 #include "coverbench/free_region.hpp"
 #include "coverbench/workspace.hpp"
 
@@ -103,6 +104,20 @@ ConformanceCheck checkConformance(const ExpectedOutcome& expected, const JudgedP
               fixed4(min_coverage_reachable);
   }
   return c;
+}
+
+void forEachConformanceProblem(const std::vector<std::string>& files, const Params& params,
+                               const std::function<void(const std::string& file, Problem& problem)>& visit) {
+  for (const std::string& file : files) {
+    const Wall wall = loadWallFile(file);
+    for (const ToolParams& tool : conformanceTools()) {
+      Problem problem;
+      problem.wall = &wall;
+      problem.tool = tool;
+      problem.params = params;
+      visit(file, problem);
+    }
+  }
 }
 
 }  // namespace coverbench

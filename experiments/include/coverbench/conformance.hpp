@@ -4,6 +4,7 @@
 /// conformance` (the report card, cli/conformance_command.cpp) and the C++ suite
 /// (tests/conformance_test.cpp) both use these, so a planner passes both or neither.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,11 @@ std::vector<std::string> conformanceWallFolders(const std::string& source_dir);
 std::vector<std::string> wallFilesIn(const std::vector<std::string>& folders);
 /// The two tools every wall is checked at: s = 0.1 m with c = 0.02 m, and s = 0.05 m with c = 0.
 std::vector<ToolParams> conformanceTools();
+
+/// Each wall file of `files` (loaded once) at each of conformanceTools(): `visit(file, problem)`,
+/// the problem holding the wall, the tool and `params` (the one loop of the card and the suites).
+void forEachConformanceProblem(const std::vector<std::string>& files, const Params& params,
+                               const std::function<void(const std::string& file, Problem& problem)>& visit);
 
 /// What a correct planner must do on a wall at a tool with the default (holonomic) vehicle,
 /// decided by the free centre region F the planners' toolkit computes (freeRegion with its
