@@ -12,6 +12,12 @@
 #   sanitizers. (Run once here in this build, it matched the gcc Release golden file exactly.)
 # - the car on a stress wall, for time (tens of seconds here, minutes under the sanitizers): the
 #   same code runs under them on every other family (CarFamilies).
+# - for time, the long tests of what the car's sweep achieves (rows left out, dead ends, rings,
+#   strokes, pockets, transits, the ceiling: 1-8 minutes each under the sanitizers, half of
+#   this job's test time), the runner killed mid-way, the exact-judge experiment option and the
+#   100 m field: they judge results, which the main job checks, and the code they run runs here
+#   in the other car, judge, experiment and field-scale tests (CarFamilies,
+#   CarSweep.GeneratedWallsGiveValidDrivablePlans, ExactJudge*, Isolation.*, Experiments.*).
 # The heaviest property tests take every 4th case of their sample here
 # (COVERBENCH_TEST_SAMPLE_STRIDE=4, tests/test_support.hpp): the same code paths run under the
 # sanitizers, and the main job (scripts/test.sh) runs every case.
@@ -32,8 +38,16 @@ cmake --build $build -j 2
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:allocator_may_return_null=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export COVERBENCH_TEST_SAMPLE_STRIDE=4
+slow="CarCeiling.NoDrivenPlanCoversMoreThanTheCeiling|CarSweep.RowsLeftOutAreCountedOnceAndSaidWhy"
+slow+="|CarSweep.RowsThatAreDeadEndsBothWaysHoldNoShortRowBack|CarSweep.RingsThatEndWhereNoRowIsReached"
+slow+="|CarSweep.ACarsTransitsPaintWhereTheyPassOverWhatNothingElsePaints|CarSweep.AStuckSweepTriesTheRowsTakenLastBeforeItStops"
+slow+="|CarSweep.ACarThatStartsInAPocketStartsAgainWhereItGetsOut|CarSweep.StrokesPaintOnTheWay|CarSweep.StrokesReachWhatTheRowsDoNot"
+slow+="|CarSweep.ACellOrderIsTakenCellByCell|CarSweep.RingsThatStartInAPocket|Isolation.KillingTheRunnerOrAWorkerLosesAndDuplicatesNothing"
+slow+="|Experiments.TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys|FieldScale.EveryPlannerPlansAHundredMetrePolygon"
 echo "== the tests under AddressSanitizer and UndefinedBehaviorSanitizer"
+source scripts/ctest_costs.sh
+seed_ctest_costs $build
 ctest --test-dir $build --output-on-failure -j 2 \
-  -E "RunLimitsBecomeStatusesInTheTables|EachMisbehavingPlannerYieldsItsStatusAndTheRestIsUntouched|^quality_gate$|CarStressWalls"
+  -E "RunLimitsBecomeStatusesInTheTables|EachMisbehavingPlannerYieldsItsStatusAndTheRestIsUntouched|^quality_gate$|CarStressWalls|$slow"
 echo "== fuzzing, $seconds s per target"
 COVERBENCH_SANITIZE_BUILD=$build bash scripts/fuzz.sh "$seconds"

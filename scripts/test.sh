@@ -5,4 +5,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
+source scripts/ctest_costs.sh
+seed_ctest_costs "${COVERBENCH_BUILD_DIR:-build}"
 ctest --test-dir "${COVERBENCH_BUILD_DIR:-build}" --output-on-failure -j 2
