@@ -98,10 +98,10 @@ TEST(Registry, NoPlannerLooksAParameterUpByName) {
 
 enum class Colour { Red, Blue };
 struct Typed {
-  double width = 0.0;
-  long long count = 0;
-  bool on = false;
-  Colour colour = Colour::Red;
+  double width = 0.5;
+  long long count = 3;
+  bool on = true;
+  Colour colour = Colour::Blue;
 };
 
 TEST(ParamTable, FillsEachMemberFromItsSpecAndRefusesAMismatchedDeclaration) {
@@ -133,8 +133,27 @@ TEST(ParamTable, FillsEachMemberFromItsSpecAndRefusesAMismatchedDeclaration) {
   EXPECT_THROW(ParamTable<Typed>().add({"colour", ParamType::Choice, std::string("green"), 0, 0, {}, "", "k"},
                                        &Typed::colour, {{"red", Colour::Red}}),
                std::logic_error);
+  // A declared default that is not the member's initial value: two sources of truth.
+  EXPECT_THROW(ParamTable<Typed>().add({"width", ParamType::Number, 0.6, 0.0, 1.0, {}, "m", "w"}, &Typed::width),
+               std::logic_error);
+  EXPECT_THROW(ParamTable<Typed>().add({"count", ParamType::Integer, 4LL, 0, 9, {}, "", "c"}, &Typed::count),
+               std::logic_error);
+  EXPECT_THROW(ParamTable<Typed>().add({"on", ParamType::Bool, false, 0, 0, {}, "", "o"}, &Typed::on), std::logic_error);
+  EXPECT_THROW(ParamTable<Typed>().add({"colour", ParamType::Choice, std::string("red"), 0, 0, {}, "", "k"},
+                                       &Typed::colour, {{"red", Colour::Red}, {"blue", Colour::Blue}}),
+               std::logic_error);
   // A value the experiments did not resolve is a bug, not a default.
   EXPECT_THROW(table.fill(Params{}), std::logic_error);
+}
+
+// Declared defaults are the structs' defaults: ParamTable refuses a declaration whose default is
+// not its member's initial value (the test above), so a planner with two defaults (zigzag's and the
+// decomposition planners' row_end_inset was 0.5 in their structs and 0.6 as declared) fails to
+// register, and every registered planner is built here.
+TEST(Registry, EveryPlannersDeclaredDefaultsAreItsStructsDefaults) {
+  std::size_t declared = 0;
+  ASSERT_NO_THROW(for (const PlannerInfo& info : registeredPlanners()) declared += info.params.size());
+  EXPECT_GT(declared, 30u);
 }
 
 TEST(Registry, RejectsBadParameters) {

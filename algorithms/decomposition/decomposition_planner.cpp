@@ -168,7 +168,7 @@ struct DecompositionParams {
   Order order = Order::Tsp;
   double overlap = 0.0;
   bool boundary_loop = true;
-  double row_end_inset = 0.5;
+  double row_end_inset = 0.6;
   bool fill_leftovers = false;
   CarPlan car_plan = CarPlan::Headland;
 };

@@ -71,7 +71,7 @@ struct ZigzagParams {
   SweepDirection sweep;
   double overlap = 0.0;
   long long boundary_passes = 1;
-  double row_end_inset = 0.5;
+  double row_end_inset = 0.6;
   bool fill_leftovers = false;
   CarPlan car_plan = CarPlan::Headland;
 };

@@ -4,7 +4,9 @@
 /// default, description) together with the member it fills. Experiments list, validate and sweep
 /// the specs; the planner receives the struct filled (TypedPlanner) and never looks a parameter up
 /// by name. Groups shared by several planners (the sweep direction) are structs of their own,
-/// included whole.
+/// included whole. A declared default is the struct's own: a spec whose default differs from the
+/// member's initial value is refused when the table is built (one source of truth; a planner's
+/// registration fails on it, so no registered planner can have two defaults).
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -21,16 +23,19 @@ class ParamTable {
   /// A Number parameter into `member`.
   ParamTable& add(ParamSpec spec, double P::*member) {
     expect(spec, ParamType::Number);
+    sameDefault(spec, ParamValue(P{}.*member));
     return put(std::move(spec), [member](P& p, const ParamValue& v) { p.*member = std::get<double>(v); });
   }
   /// An Integer parameter into `member`.
   ParamTable& add(ParamSpec spec, long long P::*member) {
     expect(spec, ParamType::Integer);
+    sameDefault(spec, ParamValue(P{}.*member));
     return put(std::move(spec), [member](P& p, const ParamValue& v) { p.*member = std::get<long long>(v); });
   }
   /// A Bool parameter into `member`.
   ParamTable& add(ParamSpec spec, bool P::*member) {
     expect(spec, ParamType::Bool);
+    sameDefault(spec, ParamValue(P{}.*member));
     return put(std::move(spec), [member](P& p, const ParamValue& v) { p.*member = std::get<bool>(v); });
   }
   /// A Choice parameter into the enum `member`: each choice's name with its value, in the order
@@ -43,6 +48,8 @@ class ParamTable {
     bool known_default = false;
     for (const auto& c : choices) known_default = known_default || ParamValue(c.first) == spec.default_value;
     if (!known_default) throw std::logic_error("parameter '" + spec.name + "': its default is none of its choices");
+    for (const auto& c : choices)
+      if (c.second == P{}.*member) sameDefault(spec, ParamValue(c.first));
     return put(std::move(spec), [member, choices](P& p, const ParamValue& v) {
       for (const auto& [name, value] : choices)
         if (std::get<std::string>(v) == name) {
@@ -84,6 +91,10 @@ class ParamTable {
   }
 
  private:
+  static void sameDefault(const ParamSpec& spec, const ParamValue& member_default) {
+    if (spec.default_value != member_default)
+      throw std::logic_error("parameter '" + spec.name + "': its declared default differs from its member's initial value");
+  }
   static void expect(const ParamSpec& spec, ParamType type) {
     if (spec.type != type) throw std::logic_error("parameter '" + spec.name + "' is declared with another type than its member's");
   }
