@@ -30,7 +30,10 @@ cleanup
 rm -rf "$root"
 cp -a "$work/base" "$root"
 cp /etc/resolv.conf "$root/etc/resolv.conf"
-[ -f /etc/apt/sources.list.d/debian.sources ] && cp /etc/apt/sources.list.d/debian.sources "$root/etc/apt/sources.list.d/"
+if [ -f /etc/apt/sources.list.d/debian.sources ]; then  # this machine's mirrors, as on the image
+  cp /etc/apt/sources.list.d/debian.sources "$root/etc/apt/sources.list.d/"
+  rm -f "$root/etc/apt/sources.list"
+fi
 mount -t proc proc "$root/proc"
 mount --rbind /dev "$root/dev"
 git -C "$repo" bundle create "$root/root/coverbench.bundle" HEAD > /dev/null 2>&1
@@ -38,7 +41,7 @@ echo "== fresh machine: $(git -C "$repo" rev-parse --short HEAD), $(nproc) cores
 start=$(date +%s.%N)
 chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8 bash -c '
   set -e
-  cd /root && git clone -q coverbench.bundle coverbench && cd coverbench
+  cd /root && git -c advice.detachedHead=false clone -q coverbench.bundle coverbench && cd coverbench
   bash scripts/run_main.sh' 2>&1 | while IFS= read -r line; do
   printf '%7.1f s  %s\n' "$(echo "$(date +%s.%N) - $start" | bc)" "$line"
 done
