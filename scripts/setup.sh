@@ -28,6 +28,7 @@ PACKAGES=("${MAIN_PACKAGES[@]}"
           node-typescript                                          # type-checks the explorer's JavaScript (ctest web_types)
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
+          universal-ctags                                          # the functions' sizes (scripts/unit_sizes.sh)
           ompl-demos                                               # OMPL's log parser, for the export-ompl test
           valgrind                                                 # the cost gate (callgrind)
           clang libclang-rt-14-dev)                                # the sanitizer build and the fuzz targets
