@@ -56,4 +56,6 @@ std::unique_ptr<SamplingTransit> makeSamplingTransit(const TransitSpec& spec, co
   return std::make_unique<OmplTransit>(spec, router, bounds, seed);
 }
 
+void loadSamplingTransits() { ompl(); }
+
 }  // namespace coverbench
