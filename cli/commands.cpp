@@ -215,6 +215,7 @@ int planCommand(const PlanOptions& options) {
     throw InputError("--transit-iterations", "transit.iterations", "must be from 1 to " + std::to_string(kMaxTransitIterations));
   validateTimeLimit(options.transit.time_cap_s, "--transit-time-cap", "transit.time_cap_s");
   if (options.seed > (1ULL << 53)) throw InputError("--seed", "seed", "must be from 0 to 2^53");
+  if (transit->sampling) loadSamplingTransits();
   const Outcome o = planOnce(wall, planner, options.tool, vehicle, std::move(params), options.time_limit_s,
                              !options.svg.empty(), options.transit, options.seed);
   OutputFiles files;  // both files or neither

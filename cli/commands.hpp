@@ -198,8 +198,12 @@ struct ServeOptions {
   std::string host = "127.0.0.1";
   int port = 8080;
 };
-/// Serves the explorer (docs/explorer.md) over the named databases until stopped.
+/// Serves the explorer (docs/explorer.md) over the named databases until stopped: serveHere in
+/// the plug-in libcoverbench_serve.so (serve_plugin.hpp), opened here. Throws InputError naming
+/// the plug-in when it cannot be opened.
 int serveCommand(const ServeOptions& options);
+/// serveCommand in this process (the plug-in's own code; cli/serve_command.cpp).
+int serveHere(const ServeOptions& options);
 
 /// An error whose one-line message has already been printed (by the analysis, which names the
 /// file it could not write): the command exits with 2 and prints nothing more.

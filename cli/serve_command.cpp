@@ -1,4 +1,6 @@
-// `coverbench serve`: a local web application over experiment databases (cpp-httplib). It serves
+// `coverbench serve`: a local web application over experiment databases (cpp-httplib). Built into
+// the plug-in libcoverbench_serve.so (serve_plugin.cpp), so only `serve` loads httplib and OpenSSL.
+// It serves
 // only the databases named on its command line and its own page files, each by a fixed name: no
 // part of a request reaches the file system. Errors are JSON: {"error": "one line"}.
 #include <httplib.h>
@@ -299,50 +301,6 @@ class Explorer {
   std::map<std::pair<std::size_t, long long>, Index> cache_;
   std::mutex mutex_;
 };
-
-/// Length-prefixed messages over a pipe (the plan helper's protocol).
-bool writeMessage(int fd, const std::string& text) {
-  const std::uint64_t n = text.size();
-  const std::string bytes = std::string(reinterpret_cast<const char*>(&n), sizeof n) + text;
-  for (std::size_t off = 0; off < bytes.size();) {
-    const ssize_t w = ::write(fd, bytes.data() + off, bytes.size() - off);
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) return false;
-    off += static_cast<std::size_t>(w);
-  }
-  return true;
-}
-
-/// Reads `size` bytes; with a deadline, gives up (false, *timed_out set) when it passes.
-bool readAll(int fd, char* data, std::size_t size, const std::chrono::steady_clock::time_point* deadline = nullptr,
-             bool* timed_out = nullptr) {
-  for (std::size_t off = 0; off < size;) {
-    if (deadline) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(*deadline - std::chrono::steady_clock::now()).count();
-      if (left <= 0) {
-        if (timed_out) *timed_out = true;
-        return false;
-      }
-      pollfd p{fd, POLLIN, 0};
-      const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
-      if (ready < 0 && errno != EINTR) return false;
-      if (ready <= 0) continue;
-    }
-    const ssize_t r = ::read(fd, data + off, size - off);
-    if (r < 0 && errno == EINTR) continue;
-    if (r <= 0) return false;
-    off += static_cast<std::size_t>(r);
-  }
-  return true;
-}
-
-bool readMessage(int fd, std::string& text, const std::chrono::steady_clock::time_point* deadline = nullptr,
-                 bool* timed_out = nullptr) {
-  std::uint64_t n = 0;
-  if (!readAll(fd, reinterpret_cast<char*>(&n), sizeof n, deadline, timed_out) || n > (std::uint64_t{1} << 32)) return false;
-  text.assign(static_cast<std::size_t>(n), '\0');
-  return readAll(fd, text.data(), text.size(), deadline, timed_out);
-}
 
 /// Plans in a helper process of its own: the server has threads, and a process with threads must
 /// not fork workers (a lock another thread held at the fork stays locked in the child forever),
@@ -1055,25 +1013,6 @@ class HostCheck {
 
 }  // namespace
 
-int planHelperMain(int argc, char** argv) {
-  if (argc != 3) return 2;
-  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-  const double max_time_limit_s = std::strtod(argv[2], nullptr);
-  for (;;) {
-    std::string body;
-    if (!readMessage(3, body)) return 0;
-    std::string answer;
-    try {
-      answer = "R" + serializeRecord(planInWorker(readWorkbenchRequest(body, max_time_limit_s)));
-    } catch (const InputError& e) {
-      answer = std::string("I") + e.what();
-    } catch (const std::exception& e) {
-      answer = std::string("X") + e.what();
-    }
-    if (!writeMessage(4, answer)) return 0;
-  }
-}
-
 struct ServeApp::Impl {
   Impl(const ServeOptions& o, const std::string& helper_exe) : explorer(o.databases), workbench(o, helper_exe), hosts(o.host, 0) {}
 
@@ -1240,7 +1179,7 @@ int ServeApp::port() const { return impl_->port; }
 bool ServeApp::listen() { return impl_->server.listen_after_bind(); }
 void ServeApp::stop() { impl_->server.stop(); }
 
-int serveCommand(const ServeOptions& o) {
+int serveHere(const ServeOptions& o) {
   ServeApp app(o, "/proc/self/exe");
   if (!HostCheck::isLoopback(o.host))
     std::cerr << "coverbench serve: warning: listening on " << o.host

@@ -1,8 +1,15 @@
 #include "workbench.hpp"
 
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 
 #include "commands.hpp"
+#include "serve.hpp"
 #include "coverbench/external_planner.hpp"
 #include "coverbench/hash.hpp"
 #include "coverbench/json_input.hpp"
@@ -101,6 +108,72 @@ RunRecord planInWorker(const WorkbenchRequest& request) {
   spec.base_key = runBaseKey(spec);
   spec.key = runKey(spec);
   return executeInWorker(spec);
+}
+
+namespace {
+
+/// Reads `size` bytes; with a deadline, gives up (false, *timed_out set) when it passes.
+bool readAll(int fd, char* data, std::size_t size, const std::chrono::steady_clock::time_point* deadline = nullptr,
+             bool* timed_out = nullptr) {
+  for (std::size_t off = 0; off < size;) {
+    if (deadline) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(*deadline - std::chrono::steady_clock::now()).count();
+      if (left <= 0) {
+        if (timed_out) *timed_out = true;
+        return false;
+      }
+      pollfd p{fd, POLLIN, 0};
+      const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
+      if (ready < 0 && errno != EINTR) return false;
+      if (ready <= 0) continue;
+    }
+    const ssize_t r = ::read(fd, data + off, size - off);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) return false;
+    off += static_cast<std::size_t>(r);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool writeMessage(int fd, const std::string& text) {
+  const std::uint64_t n = text.size();
+  const std::string bytes = std::string(reinterpret_cast<const char*>(&n), sizeof n) + text;
+  for (std::size_t off = 0; off < bytes.size();) {
+    const ssize_t w = ::write(fd, bytes.data() + off, bytes.size() - off);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return false;
+    off += static_cast<std::size_t>(w);
+  }
+  return true;
+}
+
+bool readMessage(int fd, std::string& text, const std::chrono::steady_clock::time_point* deadline, bool* timed_out) {
+  std::uint64_t n = 0;
+  if (!readAll(fd, reinterpret_cast<char*>(&n), sizeof n, deadline, timed_out) || n > (std::uint64_t{1} << 32)) return false;
+  text.assign(static_cast<std::size_t>(n), '\0');
+  return readAll(fd, text.data(), text.size(), deadline, timed_out);
+}
+
+
+int planHelperMain(int argc, char** argv) {
+  if (argc != 3) return 2;
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  const double max_time_limit_s = std::strtod(argv[2], nullptr);
+  for (;;) {
+    std::string body;
+    if (!readMessage(3, body)) return 0;
+    std::string answer;
+    try {
+      answer = "R" + serializeRecord(planInWorker(readWorkbenchRequest(body, max_time_limit_s)));
+    } catch (const InputError& e) {
+      answer = std::string("I") + e.what();
+    } catch (const std::exception& e) {
+      answer = std::string("X") + e.what();
+    }
+    if (!writeMessage(4, answer)) return 0;
+  }
 }
 
 }  // namespace coverbench::cli

@@ -3,6 +3,7 @@
 /// them, checked with the command line's messages, and planned in a worker process of its own
 /// under the time limit, as the runner plans.
 #include <nlohmann/json.hpp>
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -32,5 +33,12 @@ WorkbenchRequest readWorkbenchRequest(const std::string& body, double max_time_l
 /// Plans the request in a worker process (executeInWorker) and scores the path with the metrics
 /// engine, as a run of an experiment is planned and scored.
 RunRecord planInWorker(const WorkbenchRequest& request);
+
+/// Length-prefixed messages over a pipe: the protocol between `serve` and its plan helper
+/// (planHelperMain, serve.hpp). With a deadline, a read gives up when it passes (false,
+/// *timed_out set).
+bool writeMessage(int fd, const std::string& text);
+bool readMessage(int fd, std::string& text, const std::chrono::steady_clock::time_point* deadline = nullptr,
+                 bool* timed_out = nullptr);
 
 }  // namespace coverbench::cli

@@ -329,6 +329,53 @@ TEST_F(Cli, OnlyAnImportLoadsGdal) {
   EXPECT_FALSE(fs::exists(dir_ / "refused"));
 }
 
+// OMPL (with Boost's libraries, ODE, FCL) and cpp-httplib (with OpenSSL and Brotli) are loaded
+// only by what uses them, through their plug-ins: the loader's own account (LD_DEBUG=files) of
+// --version, a plan, a plan with a sampling transit and `serve`. A plug-in that cannot be opened
+// is one line naming the file.
+TEST_F(Cli, OnlyTheirCommandsLoadOmplAndHttplib) {
+  const std::string wall = test::sourcePath("datasets/canonical/seed_5x5_1obs.json");
+  const std::string plan = (dir_ / "plan.json").string(), sampled = (dir_ / "sampled.json").string();
+  ::setenv("LD_DEBUG", "files", 1);
+  const CommandRun version = run("--version");
+  const CommandRun planned = run("plan --wall " + wall + " --planner boustrophedon --out " + plan);
+  const CommandRun sampling = run("plan --wall " + wall + " --planner boustrophedon --transit rrtstar --out " + sampled);
+  const CommandRun served = run("serve --port 65536");  // the server's own check refuses the port
+  ::unsetenv("LD_DEBUG");
+  ::setenv("COVERBENCH_OMPL_PLUGIN", "/nonexistent/libcoverbench_ompl.so", 1);
+  const CommandRun no_ompl = run("plan --wall " + wall + " --planner boustrophedon --transit rrtstar --out " +
+                                 (dir_ / "no_ompl.json").string());
+  ::unsetenv("COVERBENCH_OMPL_PLUGIN");
+  ::setenv("COVERBENCH_SERVE_PLUGIN", "/nonexistent/libcoverbench_serve.so", 1);
+  const CommandRun no_server = run("serve --port 0");
+  ::unsetenv("COVERBENCH_SERVE_PLUGIN");
+
+  ASSERT_EQ(version.exit_code, 0) << version.err;
+  ASSERT_EQ(planned.exit_code, 0) << planned.err;
+  for (const CommandRun* r : {&version, &planned})
+    for (const char* lib : {"libompl", "libcoverbench_ompl", "libcpp-httplib", "libssl", "libbrotli", "libcoverbench_serve"})
+      EXPECT_EQ(r->err.find(lib), std::string::npos) << lib << " loaded by " << (r == &version ? "--version" : "plan");
+  // The sampling transit loads OMPL through its plug-in and plans.
+  ASSERT_EQ(sampling.exit_code, 0) << sampling.err;
+  EXPECT_NE(sampling.err.find("libcoverbench_ompl.so"), std::string::npos);
+  EXPECT_NE(sampling.err.find("libompl"), std::string::npos);
+  EXPECT_EQ(sampling.err.find("libcpp-httplib"), std::string::npos);
+  EXPECT_NE(slurp(sampled).find("\"status\": \"ok\""), std::string::npos);
+  // `serve` loads httplib through its plug-in, whose refusal is the command's one line and exit 2.
+  EXPECT_EQ(served.exit_code, 2) << served.err;
+  EXPECT_NE(served.err.find("libcoverbench_serve.so"), std::string::npos);
+  EXPECT_NE(served.err.find("libcpp-httplib"), std::string::npos);
+  EXPECT_NE(served.err.find("coverbench: --port: port: must be from 0 to 65535, got 65536\n"), std::string::npos) << served.err;
+  // Without the plug-ins: the file named, in one line.
+  EXPECT_EQ(no_ompl.exit_code, 2);
+  EXPECT_EQ(no_ompl.err, "coverbench: OMPL: (plug-in): cannot be opened, so the sampling transit planners cannot run: "
+                         "/nonexistent/libcoverbench_ompl.so does not exist\n");
+  EXPECT_FALSE(fs::exists(dir_ / "no_ompl.json"));
+  EXPECT_EQ(no_server.exit_code, 2);
+  EXPECT_EQ(no_server.err, "coverbench: cpp-httplib: (plug-in): cannot be opened, so the explorer cannot be served: "
+                           "/nonexistent/libcoverbench_serve.so does not exist\n");
+}
+
 TEST_F(Cli, BadWallGivesOneLineAndNoOutput) {
   const std::string wall = write("bad.json", R"({"width": 5, "height": -1})");
   const std::string out = (dir_ / "plan.json").string();

@@ -511,6 +511,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     }
     if (!sampling && (t->find("iterations") || t->find("time_cap_s")))
       r.fail(*t, "transit", "iterations and time_cap_s belong to a sampling planner; visibility has neither");
+    if (sampling) loadSamplingTransits();  // before the workers are forked: they share it
   }
 
   // Replanning: obstacles appear at fractions of every path; each repair is measured (docs/replanning.md).

@@ -714,10 +714,9 @@ Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int 
 
 }  // namespace coverbench::import_detail
 
-extern "C" __attribute__((visibility("default"))) const coverbench::import_detail::GdalApi* coverbench_gdal_plugin(
-    const coverbench::import_detail::GdalHost* h) {
+extern "C" __attribute__((visibility("default"))) const void* coverbench_gdal_plugin(const void* h) {
   using namespace coverbench::import_detail;
-  host = h;
+  host = static_cast<const GdalHost*>(h);
   static const GdalApi api{kGdalPluginAbi, &readVectorFile, &readDxfFile, &readWktText, &placeBareSet, &readFreeCells, &polygonizeMask};
   return &api;
 }

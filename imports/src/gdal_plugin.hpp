@@ -1,7 +1,7 @@
 #pragma once
 // GDAL is loaded only by the commands that import (issue: start-up in milliseconds): gdal_io.cpp
 // is built as a plug-in, libcoverbench_gdal.so, which the importer opens on first use
-// (wall_import.cpp). The plug-in asks nothing of the program that opens it but these functions,
+// (wall_import.cpp, through openPlugin: coverbench/plugin.hpp). The plug-in asks nothing of the program that opens it but these functions,
 // passed to it when it is opened, so it opens the same way in the command, the tests and the
 // Python module (whose symbols no plug-in can see).
 
@@ -36,8 +36,8 @@ struct GdalApi {
 /// is refused, not called.
 inline constexpr int kGdalPluginAbi = 1;
 
-/// The plug-in's one exported symbol.
+/// The plug-in's one exported symbol: const void* coverbench_gdal_plugin(const void* host), which
+/// takes a GdalHost and returns a GdalApi.
 inline constexpr const char* kGdalPluginEntry = "coverbench_gdal_plugin";
-using GdalPluginEntry = const GdalApi* (*)(const GdalHost* host);
 
 }  // namespace coverbench::import_detail

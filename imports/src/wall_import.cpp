@@ -1,8 +1,6 @@
 // The importer: picks a reader per source, reads the formats that need no GDAL (polygon text,
 // YAML hull/holes, map_server YAML), places and cleans the polygons, and makes walls of them.
 // What needs GDAL is in the plug-in libcoverbench_gdal.so (gdal_plugin.hpp), opened on first use.
-#include <dlfcn.h>
-
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
@@ -20,6 +18,7 @@
 #include "coverbench/hash.hpp"
 #include "coverbench/wall_import.hpp"
 #include "coverbench/geometry.hpp"
+#include "coverbench/plugin.hpp"
 #include "gdal_plugin.hpp"
 
 namespace coverbench {
@@ -42,50 +41,13 @@ void hostInputError(const std::string& source, const std::string& field, const s
 bool hostPointInRing(Point p, const Ring& ring) { return pointInRing(p, ring); }
 std::string hostShortNumber(double v) { return shortNumber(v); }
 
-/// Where the GDAL plug-in is: COVERBENCH_GDAL_PLUGIN, else beside the program or library this
-/// code is in (the command, the Python module), else where the build made it.
-std::vector<std::string> gdalPluginPlaces() {
-  std::vector<std::string> places;
-  if (const char* env = std::getenv("COVERBENCH_GDAL_PLUGIN"); env && *env) return {env};
-  Dl_info info{};
-  if (::dladdr(reinterpret_cast<void*>(&hostShortNumber), &info) != 0 && info.dli_fname)
-    places.push_back((fs::path(info.dli_fname).parent_path() / "libcoverbench_gdal.so").string());
-  places.push_back(COVERBENCH_GDAL_PLUGIN_PATH);
-  return places;
-}
-
-/// The GDAL plug-in, opened once (the first import pays for GDAL's libraries; no other command
-/// loads them). Throws InputError when it cannot be opened, on every call.
+/// The GDAL plug-in (gdal_plugin.hpp), opened by the first import: no other command loads GDAL.
 const import_detail::GdalApi& gdal() {
-  struct Opened {
-    const import_detail::GdalApi* api = nullptr;
-    std::string error;
-  };
-  static const Opened opened = [] {
-    static const import_detail::GdalHost host{&hostInputError, &hostPointInRing, &hostShortNumber};
-    Opened o;
-    for (const std::string& place : gdalPluginPlaces()) {
-      std::error_code ec;
-      if (!fs::exists(place, ec)) {
-        o.error += (o.error.empty() ? "" : "; ") + place + " does not exist";
-        continue;
-      }
-      void* lib = ::dlopen(place.c_str(), RTLD_NOW | RTLD_LOCAL);
-      const char* why = lib ? nullptr : ::dlerror();
-      auto entry = lib ? reinterpret_cast<import_detail::GdalPluginEntry>(::dlsym(lib, import_detail::kGdalPluginEntry)) : nullptr;
-      const import_detail::GdalApi* api = entry ? entry(&host) : nullptr;
-      if (api && api->abi == import_detail::kGdalPluginAbi) {
-        o.api = api;
-        return o;
-      }
-      o.error += (o.error.empty() ? "" : "; ") + place + ": " +
-                 (why ? std::string(why) : !entry ? "has no " + std::string(import_detail::kGdalPluginEntry)
-                                                  : "is of another build (its interface differs)");
-    }
-    return o;
-  }();
-  if (!opened.api) throw InputError("GDAL", "(plug-in)", "cannot be opened, so this format cannot be imported: " + opened.error);
-  return *opened.api;
+  static const import_detail::GdalHost host{&hostInputError, &hostPointInRing, &hostShortNumber};
+  static const PluginSpec spec{"GDAL", "this format cannot be imported", "libcoverbench_gdal.so", "COVERBENCH_GDAL_PLUGIN",
+                               COVERBENCH_GDAL_PLUGIN_PATH, import_detail::kGdalPluginEntry, import_detail::kGdalPluginAbi};
+  static const auto* api = static_cast<const import_detail::GdalApi*>(openPlugin(spec, &host));
+  return *api;
 }
 
 std::string stemOf(const std::string& path) {

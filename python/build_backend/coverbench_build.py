@@ -177,9 +177,11 @@ def build_wheel(wheel_directory: str, config_settings: Optional[Mapping[str, Any
                 metadata_directory: Optional[str] = None) -> str:
     module = _compiled(config_settings)
     compiled = []
-    # The module, and the GDAL plug-in it opens from its own folder when a config imports walls
-    # (imports/src/gdal_plugin.hpp; built with the module).
-    for path in (module, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(module))), "libcoverbench_gdal.so")):
+    # The module, and the plug-ins it opens from its own folder (geometry/include/coverbench/plugin.hpp;
+    # built with the module): GDAL when a config imports walls, OMPL for a sampling transit or a car
+    # that reverses.
+    build = os.path.dirname(os.path.dirname(os.path.dirname(module)))
+    for path in (module, *(os.path.join(build, f"libcoverbench_{name}.so") for name in ("gdal", "ompl"))):
         with open(path, "rb") as f:
             compiled.append((f"{PACKAGE}/{os.path.basename(path)}", f.read(), 0o755))
     name = _write_wheel(wheel_directory, _tag(), _package_files() + compiled)

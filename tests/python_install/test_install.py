@@ -123,7 +123,7 @@ class Install(unittest.TestCase):
             record = z.read("coverbench-0.1.0.dist-info/RECORD").decode()
         for n in ("coverbench/__init__.py", "coverbench/serve.py", "coverbench/_core.pyi", "coverbench/py.typed",
                   "coverbench/_core" + sysconfig.get_config_var("EXT_SUFFIX"), "coverbench/libcoverbench_gdal.so",
-                  "coverbench-0.1.0.dist-info/METADATA",
+                  "coverbench/libcoverbench_ompl.so", "coverbench-0.1.0.dist-info/METADATA",
                   "coverbench-0.1.0.dist-info/WHEEL"):
             self.assertIn(n, names)
             self.assertIn(n + ",sha256=", record)

@@ -1,5 +1,6 @@
 // OMPL's Dubins and Reeds-Shepp curves for the car: one of the two translation units that include
-// OMPL (the other is transits/src/ompl_transit.cpp; third_party_notes/ompl.md).
+// OMPL (the other is transits/src/ompl_transit.cpp; third_party_notes/ompl.md), both built into the
+// plug-in libcoverbench_ompl.so (ompl_curves_plugin.hpp), which links OMPL and nothing of ours.
 #include <ompl/base/spaces/DubinsStateSpace.h>
 #include <ompl/base/spaces/ReedsSheppStateSpace.h>
 
@@ -8,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "coverbench/car.hpp"
+#include "ompl_curves_plugin.hpp"
 
 namespace coverbench {
 
@@ -88,9 +89,7 @@ ob::ReedsSheppStateSpace::ReedsSheppPath reedsShepp(Pose from, Pose to, double r
   return slot.path;
 }
 
-}  // namespace
-
-std::vector<CurvePrimitive> reedsSheppPrimitives(Pose from, Pose to, double radius) {
+std::vector<CurvePrimitive> pluginPrimitives(Pose from, Pose to, double radius) {
   const ob::ReedsSheppStateSpace::ReedsSheppPath p = reedsShepp(from, to, radius);
   std::vector<CurvePrimitive> out;
   for (int i = 0; i < 5; ++i) {
@@ -101,12 +100,20 @@ std::vector<CurvePrimitive> reedsSheppPrimitives(Pose from, Pose to, double radi
   return out;
 }
 
-double reedsSheppLength(Pose from, Pose to, double radius) { return reedsShepp(from, to, radius).length() * radius; }
+double pluginLength(Pose from, Pose to, double radius) { return reedsShepp(from, to, radius).length() * radius; }
 
-double omplDubinsLength(Pose from, Pose to, double radius) {
+double pluginDubinsLength(Pose from, Pose to, double radius) {
   ob::DubinsStateSpace space(radius, false);
   return withStates(space, from, to, [&](auto* a, auto* b) { return space.dubins(a, b).length() * radius; });
 }
 
+}  // namespace
 }  // namespace coverbench
+
+extern "C" __attribute__((visibility("default"))) const void* coverbench_ompl_curves_plugin(const void*) {
+  using namespace coverbench;
+  static const vehicle_detail::OmplCurvesApi api{vehicle_detail::kOmplCurvesAbi, &pluginPrimitives, &pluginLength,
+                                                 &pluginDubinsLength};
+  return &api;
+}
 

@@ -61,4 +61,9 @@ class SamplingTransit {
 std::unique_ptr<SamplingTransit> makeSamplingTransit(const TransitSpec& spec, const TransitRouter& router,
                                                      const Box& bounds, std::uint64_t seed);
 
+/// Opens OMPL's plug-in (libcoverbench_ompl.so, coverbench/plugin.hpp) now, as the first sampling
+/// query would: what will plan with a sampling planner calls it before any work, so a missing
+/// plug-in is an InputError naming the file, and the worker processes forked after it share it.
+void loadSamplingTransits();
+
 }  // namespace coverbench
