@@ -21,7 +21,9 @@ struct SvgContent {
   VehicleModel vehicle;  ///< a gantry's tool-off moves are drawn as lifted
   const Region* free = nullptr;  ///< optional: the free centre region F
   const Path* path = nullptr;    ///< optional
-  const Region* uncovered = nullptr;  ///< optional coverage layer: reachable but not swept
+  /// optional coverage layer: R, drawn in red where the tool's band does not pass (an SVG mask of
+  /// the painted runs stroked at the tool's width, which is S exactly)
+  const Region* reachable = nullptr;
   const Region* overlap = nullptr;    ///< optional coverage layer: passed over twice or more
   /// optional pass-count layers over `overlap`: passed over three times or more, four or more
   const Region* three_passes = nullptr;
