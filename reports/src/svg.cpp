@@ -173,6 +173,11 @@ double pictureHeight(const View& v) { return v.top + v.box.height() * v.k + kPad
 
 }  // namespace
 
+PictureSize pictureSize(const Wall& wall, const Path* path) {
+  const View v = pictureView(wall, path);
+  return {pictureWidth(v), pictureHeight(v)};
+}
+
 std::string renderSvg(const SvgContent& c) {
   const Wall& wall = *c.wall;
   const View v = pictureView(wall, c.path);

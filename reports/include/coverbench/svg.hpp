@@ -36,6 +36,12 @@ struct SvgContent {
 
 std::string renderSvg(const SvgContent& content);
 
+/// The size in pixels of a picture of `path` (optional) on `wall`: its SVG's width and height.
+struct PictureSize {
+  double width = 0.0, height = 0.0;
+};
+PictureSize pictureSize(const Wall& wall, const Path* path);
+
 /// The picture of a path on its wall with the free region, and (with `coverage_layer`, for a
 /// path that can be scored) the coverage layer and the segments that fail the exact check.
 /// The overlap layer is drawn with at most `overlap_strips` scanline strips over the wall's
