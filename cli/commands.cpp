@@ -444,11 +444,14 @@ int showcaseCommand(const ShowcaseOptions& options) {
       table += joined(cells, escapeMarkdown, "| ", " | ", " |\n");
       csv += joined(cells, escapeCsv, "", ",", "\n");
       rows.push_back(cells);
+      const PictureSize size = pictureSize(wall, &o.plan.result.path);
       const std::string verdict = !o.plan.not_scored.empty() ? ", not scored" : m.validity.valid ? "" : ", INVALID";
       pictures.push_back({{"column", planner.name},
                           {"status", toString(o.plan.result.status) + verdict},
                           {"file", "plans/" + stem + ".svg"},
-                          {"note", "plan file: plans/" + stem + ".json"}});
+                          {"note", "plan file: plans/" + stem + ".json"},
+                          {"width", std::llround(size.width)},
+                          {"height", std::llround(size.height)}});
       if (!succeeded(o.plan)) exit_code = 3;
       std::cout << "  " << wall.name << " / " << planner.name << ": " << toString(o.plan.result.status)
                 << (!o.plan.not_scored.empty() ? ", NOT SCORED" : m.validity.valid ? ", valid" : ", INVALID")

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
@@ -148,6 +149,9 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
           pictures[i]->note = std::to_string(r.path.waypoints.size()) + " waypoints: coverage layer and failed segments " +
                               "left out (over " + std::to_string(kGalleryCoverageWaypoints) + "; `coverbench redraw` draws them)";
         svgs[i] = pathPicture(r.wall, r.tool, r.vehicle, r.path, title, layer, kGalleryOverlapStrips);
+        const PictureSize size = pictureSize(r.wall, &r.path);
+        pictures[i]->width = std::llround(size.width);
+        pictures[i]->height = std::llround(size.height);
         if (r.path.segments() > 0)
           scripts[i] = playbackScript("gallery/" + stems[i] + ".js", r.wall, r.tool, r.vehicle, r.path, motion);
       } catch (...) {

@@ -134,22 +134,31 @@ TEST(Pictures, FailedSegmentsAreMarkedAndAPathLeavingTheWallStaysInThePicture) {
   EXPECT_EQ(clean.find("class=\"violation\""), std::string::npos);
 }
 
-TEST(Pictures, AnUnpaintedPatchInsideAPaintedLoopIsDrawnAsUncovered) {
+TEST(Pictures, TheUncoveredLayerIsReachableAreaMaskedByTheToolsBand) {
   Wall wall;
   wall.name = "w";
   wall.boundary = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
   // A painted square loop 1 m across: unpainted are the rim between it and the wall's edge and
-  // the patch inside it. The patch is an island in the rim's hole; both must be red.
+  // the patch inside it. Both are red because the red is all of R, hidden only under the band the
+  // tool sweeps: the painted runs stroked at the tool's width, round caps and joins (S exactly).
   Path path;
   path.waypoints = {{0.5, 0.5}, {1.5, 0.5}, {1.5, 1.5}, {0.5, 1.5}, {0.5, 0.5}};
   path.tool_on = {true, true, true, true};
   const std::string svg = pathPicture(wall, ToolParams{0.1, 0.02}, VehicleModel{}, path, "t");
-  const std::size_t fill = svg.find("\" fill=\"#e8383d\" fill-opacity=\"0.75\"");
-  ASSERT_NE(fill, std::string::npos);
+  const std::size_t fill = svg.find("\" fill=\"#e8383d\" fill-opacity=\"0.75\" fill-rule=\"evenodd\" stroke=\"none\" mask=\"url(#unswept)\"");
+  ASSERT_NE(fill, std::string::npos) << svg;
   const std::size_t start = svg.rfind("<path d=\"", fill);
   const std::string red = svg.substr(start, fill - start);
-  // Three rings: the rim's outside, its inside (the loop's outer edge), the patch (its inner edge).
-  EXPECT_EQ(std::count(red.begin(), red.end(), 'z'), 3) << red;
+  // R of an empty 2 m square is one ring: the wall less its clearance, corners rounded by r.
+  EXPECT_EQ(std::count(red.begin(), red.end(), 'z'), 1) << red;
+  // k = min(1000 / 2, 700 / 2) = 350 px/m: the tool's 0.1 m is 35 px; the mask is the whole picture,
+  // 2 x 350 + 2 x 24 px wide and 44 + 700 + 24 + 82 px high.
+  EXPECT_NE(svg.find("<mask id=\"unswept\" maskUnits=\"userSpaceOnUse\" x=\"0\" y=\"0\" width=\"748.00\" height=\"850.00\">"
+                     "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/><use xlink:href=\"#paint\" fill=\"none\" "
+                     "stroke=\"#000000\" stroke-width=\"35.00\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/></mask>"),
+            std::string::npos)
+      << svg;
+  EXPECT_LT(svg.find("<g id=\"paint\">"), svg.find("<mask id=\"unswept\""));
 }
 
 TEST(Pictures, PathDataIsTheFirstPointAbsoluteThenStepsInHundredthsOfAPixel) {

@@ -65,15 +65,16 @@ struct GrownPolygon {
   Region outer;
   Region holes;
 };
-std::vector<GrownPolygon> grownFreeRegion(const Wall& wall, const ToolParams& tool) {
+std::vector<GrownPolygon> grownFreeRegion(const Wall& wall, const ToolParams& tool,
+                                          double arc_tolerance = kMetricArcTolerance) {
   const double r = tool.radius();
   std::vector<GrownPolygon> out;
-  for (const PolygonWithHoles& poly : freeRegion(wall, tool, 0.0, kMetricArcTolerance)) {
-    GrownPolygon g{offsetRegion({{poly.outer, {}}}, r, kMetricArcTolerance), {}};
+  for (const PolygonWithHoles& poly : freeRegion(wall, tool, 0.0, arc_tolerance)) {
+    GrownPolygon g{offsetRegion({{poly.outer, {}}}, r, arc_tolerance), {}};
     for (const Ring& hole : poly.holes) {
       Ring inside = hole;
       std::reverse(inside.begin(), inside.end());  // the hole as a polygon of its own
-      const Region shrunk = offsetRegion({{std::move(inside), {}}}, -r, kMetricArcTolerance);
+      const Region shrunk = offsetRegion({{std::move(inside), {}}}, -r, arc_tolerance);
       g.holes.insert(g.holes.end(), shrunk.begin(), shrunk.end());
     }
     out.push_back(std::move(g));
@@ -248,6 +249,10 @@ RegionAreas regionAreas(const Wall& wall, const ToolParams& tool) {
   out.reachable -= apart_reachable;
   out.paintable -= apart_paintable;
   return out;
+}
+
+Region reachableRegion(const Wall& wall, const ToolParams& tool, double arc_tolerance) {
+  return reachableRegion(grownFreeRegion(wall, tool, arc_tolerance));
 }
 
 CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const Path& path) {

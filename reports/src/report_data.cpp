@@ -208,7 +208,8 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
     for (const GalleryWall& w : s.walls) {
       Json pictures = Json::array();
       for (const GalleryPicture& p : w.pictures)
-        pictures.push_back({{"column", p.column}, {"key", p.key}, {"status", p.status}, {"file", p.file}, {"note", p.note}, {"playback", p.playback}});
+        pictures.push_back({{"column", p.column}, {"key", p.key}, {"status", p.status}, {"file", p.file}, {"note", p.note},
+                            {"playback", p.playback}, {"width", p.width}, {"height", p.height}});
       section["walls"].push_back({{"wall", w.wall}, {"wall_name", w.wall_name}, {"why", w.why}, {"pictures", pictures}});
     }
     j["gallery"].push_back(section);

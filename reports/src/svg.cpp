@@ -24,6 +24,8 @@ constexpr double kLegendPx = 82.0;
 /// many pixels: far below what a screen shows, and it drops the thousands of sub-pixel chords of
 /// their arcs that made most of a gallery picture's bytes.
 constexpr double kRegionDrawTolerancePx = 0.1;
+/// The arcs of the regions (F, R, the swept band) are made as chords within this many pixels.
+constexpr double kRegionArcTolerancePx = 0.05;
 
 std::string fmt(double v) {
   char buf[32];
@@ -171,6 +173,11 @@ double pictureHeight(const View& v) { return v.top + v.box.height() * v.k + kPad
 
 }  // namespace
 
+PictureSize pictureSize(const Wall& wall, const Path* path) {
+  const View v = pictureView(wall, path);
+  return {pictureWidth(v), pictureHeight(v)};
+}
+
 std::string renderSvg(const SvgContent& c) {
   const Wall& wall = *c.wall;
   const View v = pictureView(wall, c.path);
@@ -249,7 +256,16 @@ std::string renderSvg(const SvgContent& c) {
     s << "<defs><g id=\"paint\">\n" << on_runs << "</g></defs>\n";
     s << "<use xlink:href=\"#paint\" fill=\"none\" stroke=\"#2f6fd0\" stroke-opacity=\"0.18\" stroke-width=\"" << fmt(tool_px)
       << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>\n";
-    region(c.uncovered, "#e8383d", "0.75");
+    // R not swept: R in red under a mask that hides what the tool's band covers. The band is the
+    // painted runs stroked at the tool's width with round caps and joins: S itself (the union of
+    // the tool-on capsules), drawn by the viewer, so no polygon union of the path is computed.
+    if (c.reachable && !c.reachable->empty()) {
+      s << "<mask id=\"unswept\" maskUnits=\"userSpaceOnUse\" x=\"0\" y=\"0\" width=\"" << fmt(w_px) << "\" height=\""
+        << fmt(h_px) << "\"><rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/><use xlink:href=\"#paint\" fill=\"none\" "
+        << "stroke=\"#000000\" stroke-width=\"" << fmt(tool_px) << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/></mask>\n";
+      s << "<path d=\"" << v.regionPath(simplifyRegion(*c.reachable, draw_tolerance))
+        << "\" fill=\"#e8383d\" fill-opacity=\"0.75\" fill-rule=\"evenodd\" stroke=\"none\" mask=\"url(#unswept)\"/>\n";
+    }
     region(c.overlap, "#9b3fd1", "0.45");
     region(c.three_passes, "#6a1b9a", "0.55");
     region(c.four_passes, "#2e0854", "0.65");
@@ -293,7 +309,7 @@ std::string renderSvg(const SvgContent& c) {
     << "<circle cx=\"600\" cy=\"5\" r=\"5\" fill=\"#19a33a\"/><text x=\"610\" y=\"10\">start</text>"
     << "<rect x=\"655\" width=\"10\" height=\"10\" fill=\"#d02f2f\"/><text x=\"670\" y=\"10\">end</text>"
     << "</g>\n";
-  if (c.uncovered || c.overlap || (c.violating && !c.violating->empty())) {
+  if (c.reachable || c.overlap || (c.violating && !c.violating->empty())) {
     s << "<g transform=\"translate(0,52)\">"
       << "<rect width=\"14\" height=\"10\" fill=\"#e8383d\" fill-opacity=\"0.75\"/>"
       << "<text x=\"20\" y=\"10\">reachable, not covered</text>"
@@ -323,7 +339,9 @@ std::string renderSvg(const SvgContent& c) {
 std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle, const Path& path,
                         const std::string& title, bool coverage_layer, double overlap_strips,
                         std::size_t first_judged_segment, bool pass_counts) {
-  const Region free = freeRegion(wall, tool);
+  // The regions' arcs as chords within a fraction of the picture's pixel (finer changes no pixel).
+  const double arc_tolerance = std::max(kArcTolerance, kRegionArcTolerancePx / pictureView(wall, &path).k);
+  const Region free = freeRegion(wall, tool, kFreeSpaceMargin, arc_tolerance);
   SvgContent content;
   content.wall = &wall;
   content.tool = tool;
@@ -332,16 +350,15 @@ std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleM
   content.path = &path;
   content.title = title;
   if (!coverage_layer) return renderSvg(content);
-  const CoverageRegions regions = coverageRegions(wall, tool, path);
+  const Region reachable = reachableRegion(wall, tool, arc_tolerance);
   Validity validity = checkValidity(wall, tool, path, vehicle);
   std::erase_if(validity.violating, [&](std::size_t i) { return i < first_judged_segment; });
   content.violating = &validity.violating;
-  const Region uncovered = subtract(regions.reachable, regions.swept);
   // Draw the overlap with strips no finer than the measure's and at most `overlap_strips` over the wall.
   const Box box = boundingBox(wall.boundary);
   const double strip = std::max(tool.radius() / 10.0, box.height() / overlap_strips);
   const Region overlap = overlapRegion(path, tool.radius(), strip);
-  content.uncovered = &uncovered;
+  content.reachable = &reachable;
   content.overlap = &overlap;
   Region three, four;
   if (pass_counts) {

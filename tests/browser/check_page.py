@@ -2,6 +2,11 @@
 waits for it to load, fails on any console error or uncaught exception, checks that every image
 loaded and that the expected parts are there, and saves screenshots.
 
+With --lazy every image must be lazy (loading="lazy") with its size given (width and height, so
+the page does not jump as they load), and the first screen must be drawn with its text before
+the images below it load: the times to the first contentful paint and to the load event are
+printed (a measurement, not checked), and so is how many images had loaded by then.
+
 With --play it also plays a gallery picture's path back (the report's player): at 0.25x and at
 20x for a second each, the playhead's progress must differ by 80x within 10 %, frames must be
 drawn, and a screenshot is taken half-way through the path.
@@ -10,7 +15,7 @@ The page may load scripts only from its own files (player.js, gallery/*.js): no 
 no script from data.
 
 usage: check_page.py PAGE.html SCREENSHOT_PREFIX [--expect-text TEXT]... [--min-images N]
-       [--min-tables N] [--section ID]... [--play]
+       [--min-tables N] [--section ID]... [--play] [--lazy]
 """
 import argparse
 import base64
@@ -174,6 +179,40 @@ def play(page, shots):
     return problems
 
 
+FIRST_SCREEN = """(() => {
+    const nav = performance.getEntriesByType('navigation')[0];
+    const fcp = performance.getEntriesByType('paint').find(p => p.name === 'first-contentful-paint');
+    const imgs = [...document.images];
+    const onScreen = i => i.getBoundingClientRect().top < innerHeight;
+    return {fcp_ms: fcp ? fcp.startTime : null, load_ms: nav ? nav.loadEventEnd : null,
+            dom_ms: nav ? nav.domContentLoadedEventEnd : null,
+            images: imgs.length, loaded: imgs.filter(i => i.complete && i.naturalWidth > 0).length,
+            not_lazy: imgs.filter(i => i.getAttribute('loading') !== 'lazy').map(i => i.getAttribute('src')),
+            no_size: imgs.filter(i => !(i.getAttribute('width') > 0 && i.getAttribute('height') > 0)).map(i => i.getAttribute('src')),
+            below: imgs.filter(i => !onScreen(i)).length,
+            heading: (document.querySelector('header h1') || {}).innerText || '',
+            nav_links: document.querySelectorAll('nav a').length};
+})()"""
+
+
+def first_screen(page, shots):
+    """Right after the load event: every image lazy and sized, the first screen drawn with its
+    heading and table of contents; prints the times (from navigation start). Returns the problems."""
+    r = page.evaluate(FIRST_SCREEN)
+    page.screenshot(shots + "-first-screen.png")
+    print(f"first screen: first contentful paint {r['fcp_ms']:.0f} ms, DOMContentLoaded {r['dom_ms']:.0f} ms, "
+          f"load event {r['load_ms']:.0f} ms; {r['loaded']} of {r['images']} images loaded by then "
+          f"({r['below']} below the first screen)")
+    problems = []
+    if r["not_lazy"]:
+        problems.append(f"{len(r['not_lazy'])} images are not lazy (loading=\"lazy\"): {r['not_lazy'][:3]}")
+    if r["no_size"]:
+        problems.append(f"{len(r['no_size'])} images give no width and height: {r['no_size'][:3]}")
+    if r["fcp_ms"] is None or not r["heading"] or r["nav_links"] == 0:
+        problems.append(f"the first screen is not drawn with its heading and contents: {r}")
+    return problems
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("page")
@@ -183,10 +222,16 @@ def main():
     ap.add_argument("--min-tables", type=int, default=1)
     ap.add_argument("--section", action="append", default=[])
     ap.add_argument("--play", action="store_true")
+    ap.add_argument("--lazy", action="store_true")
     args = ap.parse_args()
+    os.makedirs(os.path.dirname(os.path.abspath(args.shots)), exist_ok=True)
     with opened(args.page) as page:
-        report = page.evaluate("""(() => {
+        problems = first_screen(page, args.shots) if args.lazy else []
+        # Every image loaded (lazy ones are asked for now) and none broken.
+        report = page.evaluate("""(async () => {
             const imgs = [...document.images];
+            for (const i of imgs) i.loading = 'eager';
+            await Promise.all(imgs.map(i => i.decode().catch(() => null)));
             return {images: imgs.length,
                     broken: imgs.filter(i => !i.complete || i.naturalWidth === 0).map(i => i.getAttribute('src')),
                     tables: document.querySelectorAll('table').length,
@@ -194,7 +239,7 @@ def main():
                     sections: [...document.querySelectorAll('section')].map(s => s.id),
                     text: document.body.innerText};
         })()""")
-        problems = errors(page.events)
+        problems += errors(page.events)
         if report["broken"]:
             problems.append(f"{len(report['broken'])} images did not load: {report['broken'][:5]}")
         if report["images"] < args.min_images:
@@ -210,7 +255,6 @@ def main():
         for t in args.expect_text:
             if t not in report["text"]:
                 problems.append(f"text not shown as text: {t!r}")
-        os.makedirs(os.path.dirname(os.path.abspath(args.shots)), exist_ok=True)
         page.screenshot(args.shots + "-top.png")
         for s in args.section:
             page.evaluate(f"document.getElementById({json.dumps(s)}).scrollIntoView()")

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The report as a user sees it: a small experiment (walls and a dataset label that hold markup
 # and quotes), its report and the showcase page opened in headless Chromium; no console error,
-# every image loaded, every section there, the markup shown as text. Screenshots are kept in
+# every image loaded (lazy, with its size), every section there, the markup shown as text; the
+# first screen drawn before the images below it load (its times printed). Screenshots are kept in
 # build/test-artifacts/browser/ to look at.
 # usage: report_browser_test.sh COVERBENCH_BINARY SOURCE_DIR ARTIFACTS_DIR
 set -euo pipefail
@@ -37,7 +38,7 @@ YAML
 python=${COVERBENCH_PYTHON:-/usr/bin/python3}
 "$python" "$src/tests/browser/check_page.py" "$work/out/report/index.html" "$shots/report" \
   --section headline --section outcomes --section paired --section plots --section galleries --section record \
-  --min-images 20 --min-tables 10 --play \
+  --min-images 20 --min-tables 10 --play --lazy \
   --expect-text '<script>alert("wall")</script> '"'q'" --expect-text '<img src=x onerror=alert(1)> "quoted"'
 "$bin" showcase --walls "$src/datasets/canonical" --out "$work/showcase" > /dev/null
-"$python" "$src/tests/browser/check_page.py" "$work/showcase/index.html" "$shots/showcase" --section walls --min-images 30
+"$python" "$src/tests/browser/check_page.py" "$work/showcase/index.html" "$shots/showcase" --section walls --min-images 30 --lazy

@@ -121,6 +121,8 @@ struct CoverageRegions {
   Region swept;      ///< S
 };
 CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const Path& path);
+/// R alone, its arcs as chords within `arc_tolerance` (a picture asks for a fraction of its pixel).
+Region reachableRegion(const Wall& wall, const ToolParams& tool, double arc_tolerance = kMetricArcTolerance);
 /// Coverage from the polygons: |S and R| and |S and P| by Clipper, S with chords (kMetricArcTolerance).
 Coverage coverage(const CoverageRegions& regions);
 /// |R| and |P| (m^2) as a valid path's coverage takes them, and how. Every obstacle that is convex,

@@ -18,6 +18,7 @@ struct GalleryPicture {
   std::string file;  ///< relative to the report folder, set when drawn
   std::string note;  ///< what the picture leaves out, if anything
   std::string playback;  ///< its path's playback data (a script), relative to the report folder; empty: none
+  long long width = 0, height = 0;  ///< the picture's size in pixels (the page reserves it before loading), set when drawn
 };
 /// One pictured wall: why it was chosen and every column's run on it.
 struct GalleryWall {

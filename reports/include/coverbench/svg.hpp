@@ -21,7 +21,9 @@ struct SvgContent {
   VehicleModel vehicle;  ///< a gantry's tool-off moves are drawn as lifted
   const Region* free = nullptr;  ///< optional: the free centre region F
   const Path* path = nullptr;    ///< optional
-  const Region* uncovered = nullptr;  ///< optional coverage layer: reachable but not swept
+  /// optional coverage layer: R, drawn in red where the tool's band does not pass (an SVG mask of
+  /// the painted runs stroked at the tool's width, which is S exactly)
+  const Region* reachable = nullptr;
   const Region* overlap = nullptr;    ///< optional coverage layer: passed over twice or more
   /// optional pass-count layers over `overlap`: passed over three times or more, four or more
   const Region* three_passes = nullptr;
@@ -33,6 +35,12 @@ struct SvgContent {
 };
 
 std::string renderSvg(const SvgContent& content);
+
+/// The size in pixels of a picture of `path` (optional) on `wall`: its SVG's width and height.
+struct PictureSize {
+  double width = 0.0, height = 0.0;
+};
+PictureSize pictureSize(const Wall& wall, const Path* path);
 
 /// The picture of a path on its wall with the free region, and (with `coverage_layer`, for a
 /// path that can be scored) the coverage layer and the segments that fail the exact check.

@@ -108,7 +108,10 @@ class Analysis:
         for r in self.runs:
             self._index[(r["column"], r["pairing"])] = r
             self._by_column_dataset.setdefault((r["column"], r["dataset"]), []).append(r)
-        self._friedman = {}  # (dataset, tool, metric) -> result: tables, diagrams and marks ask again
+        # Computed once, asked for again by the paper's tables, the page's tables and the figures:
+        self._friedman = {}  # (dataset, tool, metric) -> Friedman test
+        self._paired = {}  # (column, other, dataset, metric) -> paired comparison
+        self._ranking = {}  # (dataset, tool, metric) -> ranking
 
     # --- groups -------------------------------------------------------------------------------
     def tool_columns(self, tool):
@@ -193,6 +196,13 @@ class Analysis:
             b.append(worst if y is FAILED else y)
         return a, b
 
+    def compare(self, column, other, dataset, metric):
+        """stats.paired of `column` against `other` over their pairs (``pairs``); shared, not to be changed."""
+        key = (column, other, dataset, metric)
+        if key not in self._paired:
+            self._paired[key] = stats.paired(self.specs[metric], *self.pairs(column, other, dataset, metric))
+        return self._paired[key]
+
     def paired_table(self, dataset, metrics):
         """Every column against its tool's baseline, per metric; Holm across the whole table."""
         rows = []
@@ -204,9 +214,7 @@ class Analysis:
                 if c == base:
                     continue
                 for m in metrics:
-                    a, b = self.pairs(c, base, dataset, m)
-                    res = stats.paired(self.specs[m], a, b)
-                    res.update({"column": c, "baseline": base, "metric": m})
+                    res = dict(self.compare(c, base, dataset, m), column=c, baseline=base, metric=m)
                     rows.append(res)
         for row, adj in zip(rows, stats.holm([r["p"] if r["pairs"] else math.nan for r in rows])):
             row["p_holm"] = adj
@@ -214,6 +222,13 @@ class Analysis:
 
     # --- rankings -----------------------------------------------------------------------------
     def ranking(self, dataset, tool, metric):
+        """``_ranking``, computed once; shared, not to be changed."""
+        key = (dataset, tool, metric)
+        if key not in self._ranking:
+            self._ranking[key] = self._ranking_uncached(dataset, tool, metric)
+        return self._ranking[key]
+
+    def _ranking_uncached(self, dataset, tool, metric):
         """Columns of one tool ordered by their median over the walls where any of them has a
         value, a run without a valid path counted as worse than every value (docs/report.md,
         "Failures"): `median` is NaN and `failed` True when half or more of a column's walls
@@ -260,7 +275,7 @@ class Analysis:
                                 and not stats.tied(spec, o["median"], e["median"]))
         if len(ordered) >= 2 and not math.isnan(ordered[0]["median"]) and metric in self.compared:
             leader = ordered[0]["column"]
-            tests = [stats.paired(spec, *self.pairs(leader, e["column"], dataset, metric)) for e in ordered[1:]]
+            tests = [self.compare(leader, e["column"], dataset, metric) for e in ordered[1:]]
             adj = stats.holm([t["p"] if t["pairs"] else math.nan for t in tests])
             ordered[0]["best"] = all(t["pairs"] > 0 and p < stats.ALPHA and t["wins"] > t["losses"]
                                      for t, p in zip(tests, adj))

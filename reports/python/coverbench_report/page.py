@@ -20,6 +20,7 @@ img.figure{max-width:100%;border:1px solid #eee;margin:.4em 0}
 .gallery{display:grid;grid-template-columns:repeat(auto-fill,minmax(380px,1fr));gap:10px}
 .gallery figure{margin:0;border:1px solid #ddd;padding:4px;background:#fafafa}
 .gallery img{width:100%;height:auto}
+img.figure{height:auto}
 .gallery figcaption{font-size:12px}
 .status-bad{color:#b00020;font-weight:600}
 pre{background:#f6f6f6;padding:.6em;overflow-x:auto;font-size:12px}
@@ -30,8 +31,15 @@ def esc(text):
     return html.escape(str(text), quote=True)
 
 
-def figure(src, alt):
-    return f'<p><a href="{esc(src)}"><img class="figure" src="{esc(src)}" alt="{esc(alt)}"></a></p>'
+def size_attributes(width, height):
+    """' width="W" height="H"' of an image (the page keeps its room before it loads), or nothing."""
+    return f' width="{int(width)}" height="{int(height)}"' if width and height else ""
+
+
+def figure(src, alt, size=None):
+    """A figure, loaded when scrolled near (`size`: its (width, height) in pixels, if known)."""
+    return (f'<p><a href="{esc(src)}"><img class="figure" src="{esc(src)}" alt="{esc(alt)}" loading="lazy" '
+            f'decoding="async"{size_attributes(*(size or (0, 0)))}></a></p>')
 
 
 def gallery_html(section):
@@ -43,8 +51,11 @@ def gallery_html(section):
         for p in wall["pictures"]:
             bad = p["status"] not in ("ok",)
             play = f' data-playback="{esc(p["playback"])}"' if p.get("playback") else ""
+            # Loaded when scrolled near, its room kept meanwhile: the first screen does not wait
+            # for the hundreds of pictures below it.
             out.append(f'<figure{play}><a href="{esc(p["file"])}"><img src="{esc(p["file"])}" '
-                       f'alt="{esc(wall["wall_name"] + " / " + p["column"])}"></a>'
+                       f'alt="{esc(wall["wall_name"] + " / " + p["column"])}" loading="lazy" decoding="async"'
+                       f'{size_attributes(p.get("width"), p.get("height"))}></a>'
                        f'<figcaption>{esc(p["column"])}: <span class="{"status-bad" if bad else ""}">'
                        f'{esc(p["status"])}</span>'
                        + (f'<br><small>{esc(p["note"])}</small>' if p.get("note") else "") + "</figcaption></figure>")

@@ -3,12 +3,14 @@ LaTeX for papers."""
 import json
 import multiprocessing
 import os
+import re
 import shlex
 
 from . import plots
 from . import tables as T
 from .analysis import Analysis
-from .page import esc, figure, gallery_html, page
+from .page import esc, gallery_html, page
+from .page import figure as page_figure
 
 # Plays the gallery's paths back in place (copied into the report folder, so it works from disk).
 PLAYER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "player.js")
@@ -98,29 +100,78 @@ def write_tables(a, folder, formats):
 
 
 _ANALYSIS = None  # shared with the figure workers (forked after it is set)
+# CPU seconds of each figure kind on the default experiment, roughly (the order they are drawn in).
+FIGURE_COST = {"boxes": 0.9, "cd_diagram": 0.3, "profiles": 0.3, "parameter_plot": 0.3, "tool_plot": 0.3,
+               "scaling": 0.6, "pareto": 0.13}
+
+
+def svg_size(path):
+    """A matplotlib SVG's (width, height) in CSS pixels (it gives them in points, 72 an inch)."""
+    with open(path, encoding="utf-8") as f:
+        head = f.read(2000)
+    m = re.search(r'<svg[^>]* width="([0-9.]+)pt" height="([0-9.]+)pt"', head)
+    return (round(float(m.group(1)) * 96 / 72), round(float(m.group(2)) * 96 / 72)) if m else None
 
 
 def _draw(job):
+    """Draws one figure (the job's last argument is its file); returns its file and size."""
     name, args = job
-    return getattr(plots, name)(_ANALYSIS, *args)
+    getattr(plots, name)(_ANALYSIS, *args)
+    return args[-1], svg_size(args[-1])
 
 
-def draw_all(a, jobs):
-    """Draws the figures on every core (matplotlib is single-threaded; processes are forked)."""
-    global _ANALYSIS
-    _ANALYSIS = a
-    workers = min(len(jobs), os.cpu_count() or 1)
-    if workers <= 1:
-        return [_draw(j) for j in jobs]
-    with multiprocessing.get_context("fork").Pool(workers) as pool:
-        return pool.map(_draw, jobs, chunksize=1)
+class Drawing:
+    """Draws the figures on every core while the caller goes on (matplotlib is single-threaded;
+    the workers are forked, so they share what the analysis has computed so far); with one core,
+    when waited for."""
+
+    def __init__(self, a, jobs):
+        global _ANALYSIS
+        _ANALYSIS = a
+        # The costliest kinds first, so that no worker is left with a box plot at the end.
+        self.jobs = sorted(jobs, key=lambda j: -FIGURE_COST.get(j[0], 0))
+        workers = min(len(jobs), os.cpu_count() or 1)
+        self.pool = multiprocessing.get_context("fork").Pool(workers) if workers > 1 else None
+        self.result = self.pool.map_async(_draw, self.jobs, chunksize=1) if self.pool else None
+
+    def wait(self):
+        if self.pool is None:
+            return [_draw(j) for j in self.jobs]
+        try:
+            return self.result.get()
+        finally:
+            self.pool.close()
+            self.pool.join()
+
+    def stop(self):
+        if self.pool is not None:
+            self.pool.terminate()
+            self.pool.join()
+
+
+class Later:
+    """A part of the page made after the figures have started drawing: tables while they draw,
+    a figure's tag once it is drawn (its size known)."""
+
+    def __init__(self, make, after_figures=False):
+        self.make = make
+        self.after_figures = after_figures
+
+    def __str__(self):
+        return self.make()
+
+
+def made(parts, figures_drawn):
+    """`parts` with what can be made by now made."""
+    return [str(p) if isinstance(p, Later) and (figures_drawn or not p.after_figures) else p for p in parts]
+
 
 
 def build(data, folder, formats=("html", "md", "csv", "latex")):
     a = Analysis(data)
     e = a.experiment
-    write_tables(a, folder, [f for f in formats if f != "html"])
     if "html" not in formats:
+        write_tables(a, folder, formats)
         return None
     figs = os.path.join(folder, "figures")
     os.makedirs(figs, exist_ok=True)
@@ -128,15 +179,20 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
     def fig(name):
         return os.path.join(figs, name), "figures/" + name
 
+    sizes = {}  # figure file -> its size, once drawn
+
+    def figure(src, alt):
+        return Later(lambda: page_figure(src, alt, sizes.get(os.path.join(folder, src))), after_figures=True)
+
     headline, paired, plots_html, appendix, jobs = [], [], [], [], []
     for i, d in enumerate(a.datasets):
         for ti, tool in enumerate(a.tools):
             stem = f"d{i + 1:02d}{tool_suffix(a, ti)}"
             label = d + T.tool_label(a, tool)
             headline.append(f"<h3>{esc(label)}</h3>")
-            headline.append(T.to_html(T.headline_table(a, d, tool)))
+            headline.append(Later(lambda d=d, tool=tool: T.to_html(T.headline_table(a, d, tool))))
             if a.headline_measured:
-                headline.append(T.to_html(T.headline_table(a, d, tool, measured=True)))
+                headline.append(Later(lambda d=d, tool=tool: T.to_html(T.headline_table(a, d, tool, measured=True))))
             path, src = fig(stem + "-boxes.svg")
             jobs.append(("boxes", (d, tool, path)))
             headline.append(figure(src, f"{label}: box plots of the headline metrics"))
@@ -150,14 +206,16 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
             path, src = fig(stem + "-cd.svg")
             if plots.has_cd_diagram(a, d, tool):
                 jobs.append(("cd_diagram", (d, tool, path)))
-                paired.append(f"<h3>{esc(label)}: critical differences</h3>" + figure(src, f"{label}: critical-difference diagrams"))
-            appendix.append(T.to_html(T.summary_table(a, d, tool, a.appendix, "the other metrics")))
+                paired.append(f"<h3>{esc(label)}: critical differences</h3>")
+                paired.append(figure(src, f"{label}: critical-difference diagrams"))
+            appendix.append(Later(lambda d=d, tool=tool: T.to_html(T.summary_table(a, d, tool, a.appendix, "the other metrics"))))
         if len(a.columns) > 1:
             paired.insert(len(paired), f"<h3>{esc(d)}</h3>")
-            paired.append(T.to_html(T.paired_table(
-                a, d, [m for m in a.headline if m in a.compared], "paired comparison with the baseline, headline metrics")))
+            paired.append(Later(lambda d=d: T.to_html(T.paired_table(
+                a, d, [m for m in a.headline if m in a.compared], "paired comparison with the baseline, headline metrics"))))
             rest = [m for m in a.compared if m not in a.headline]
-            appendix.append(T.to_html(T.paired_table(a, d, rest, "paired comparison with the baseline, other metrics")))
+            appendix.append(Later(lambda d=d, rest=rest: T.to_html(
+                T.paired_table(a, d, rest, "paired comparison with the baseline, other metrics"))))
     if len(a.columns) > 1:
         ft = T.friedman_table(a)
         if ft.rows:
@@ -183,7 +241,16 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
     if not sweeps and len({t[0] for t in a.tools}) < 2:
         plots_html.append("<p>No planner parameter and no tool width was swept in this experiment.</p>")
 
-    draw_all(a, jobs)
+    # The figures draw on every core while the tables are made here.
+    drawing = Drawing(a, jobs)
+    try:
+        write_tables(a, folder, [f for f in formats if f != "html"])
+        headline, paired, appendix = (made(parts, False) for parts in (headline, paired, appendix))
+        sizes.update(drawing.wait())
+    except BaseException:
+        drawing.stop()
+        raise
+    headline, paired, plots_html, appendix = (made(parts, True) for parts in (headline, paired, plots_html, appendix))
 
     gallery = []
     for section in data["gallery"]:
