@@ -4,7 +4,9 @@
 #   bash scripts/setup.sh        everything: the command, tests, benchmarks, the Python package
 #   bash scripts/setup.sh main   what the main job needs (scripts/run_main.sh): the command and the
 #                                report's Python packages; no test tools, TeX, browser or compilers
-#                                for the sanitizers, and only the command is built
+#                                for the sanitizers, and only the command is built, without its
+#                                plug-ins (OMPL, GDAL, the server: `coverbench` says in one line
+#                                which command needs them; `bash scripts/setup.sh` adds them)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode="${1:-all}"
@@ -15,11 +17,12 @@ MAIN_PACKAGES=(g++ cmake ninja-build pkg-config ccache
           libyaml-cpp-dev libsqlite3-dev libssl-dev zlib1g-dev
           libcgal-dev libgmp-dev libmpfr-dev                       # the exact judge
           python3 python3-numpy python3-scipy python3-matplotlib   # the report's statistics and plots
-          libcpp-httplib-dev                                       # coverbench serve
-          libompl-dev libeigen3-dev                                # the sampling transit planners (Eigen: import placements)
-          libgdal-dev)                                             # dataset import (GeoJSON, GML, KML, Shapefile, DXF, maps)
-# And what the tests, the gates, the benchmarks and the Python package need.
+          libeigen3-dev)                                           # import placements
+# And the plug-ins, the tests, the gates, the benchmarks and the Python package.
 PACKAGES=("${MAIN_PACKAGES[@]}"
+          libcpp-httplib-dev                                       # coverbench serve (a plug-in)
+          libompl-dev                                              # the sampling transits and Reeds-Shepp cars (a plug-in)
+          libgdal-dev                                              # dataset import: GeoJSON, GML, KML, Shapefile, DXF, maps (a plug-in)
           libgtest-dev libbenchmark-dev
           python3-jsonschema                                       # the planner protocol's schema test
           pybind11-dev python3-dev                                 # the Python package (import coverbench)
@@ -53,15 +56,15 @@ if [ "$mode" = main ]; then
   # The command alone: a build configured for everything keeps its settings.
   if [ ! -f "$build/build.ninja" ]; then
     cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOVERBENCH_BUILD_TESTS=OFF \
-      -DCOVERBENCH_BUILD_BENCHMARKS=OFF -DCOVERBENCH_BUILD_PYTHON=OFF >/dev/null
+      -DCOVERBENCH_BUILD_BENCHMARKS=OFF -DCOVERBENCH_BUILD_PYTHON=OFF -DCOVERBENCH_PLUGINS=OFF >/dev/null
   fi
   echo "== building the command in $build"
   cmake --build "$build" -j 2 --target coverbench
   exit 0
 fi
-if [ ! -f "$build/build.ninja" ] || grep -qE '^COVERBENCH_BUILD_(TESTS|BENCHMARKS|PYTHON):BOOL=OFF' "$build/CMakeCache.txt"; then
+if [ ! -f "$build/build.ninja" ] || grep -qE '^COVERBENCH_(BUILD_TESTS|BUILD_BENCHMARKS|BUILD_PYTHON|PLUGINS):BOOL=OFF' "$build/CMakeCache.txt"; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOVERBENCH_BUILD_TESTS=ON -DCOVERBENCH_BUILD_BENCHMARKS=ON \
-    -DCOVERBENCH_BUILD_PYTHON=ON >/dev/null
+    -DCOVERBENCH_BUILD_PYTHON=ON -DCOVERBENCH_PLUGINS=ON >/dev/null
 fi
 echo "== building $build (first build takes two to three minutes on 2 cores)"
 cmake --build "$build" -j 2

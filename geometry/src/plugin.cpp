@@ -31,6 +31,7 @@ std::vector<std::string> places(const PluginSpec& spec) {
 const void* openPlugin(const PluginSpec& spec, const void* host) {
   using Entry = const void* (*)(const void*);
   std::string why;
+  bool anywhere = false;  // some place holds a file
   for (const std::string& place : places(spec)) {
     std::error_code ec;
     if (!why.empty()) why += "; ";
@@ -38,6 +39,7 @@ const void* openPlugin(const PluginSpec& spec, const void* host) {
       why += place + " does not exist";
       continue;
     }
+    anywhere = true;
     void* lib = ::dlopen(place.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!lib) {
       const char* error = ::dlerror();
@@ -49,6 +51,8 @@ const void* openPlugin(const PluginSpec& spec, const void* host) {
     if (table && *static_cast<const int*>(table) == spec.abi) return table;
     why += place + (entry ? ": is of another build (its interface differs)" : ": has no " + std::string(spec.entry));
   }
+  // None built: the main job's build (scripts/setup.sh main) leaves the plug-ins out.
+  if (!anywhere) why += " (`bash scripts/setup.sh` builds the plug-ins)";
   throw InputError(spec.library, "(plug-in)", std::string("cannot be opened, so ") + spec.purpose + ": " + why);
 }
 
