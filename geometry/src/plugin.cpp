@@ -51,8 +51,10 @@ const void* openPlugin(const PluginSpec& spec, const void* host) {
     if (table && *static_cast<const int*>(table) == spec.abi) return table;
     why += place + (entry ? ": is of another build (its interface differs)" : ": has no " + std::string(spec.entry));
   }
-  // None built: the main job's build (scripts/setup.sh main) leaves the plug-ins out.
-  if (!anywhere) why += " (`bash scripts/setup.sh` builds the plug-ins)";
+  // None built where the build puts it (no variable named another file): the main job's build
+  // (scripts/setup.sh main) leaves the plug-ins out.
+  const char* named = std::getenv(spec.variable);
+  if (!anywhere && !(named && *named)) why += " (`bash scripts/setup.sh` builds the plug-ins)";
   throw InputError(spec.library, "(plug-in)", std::string("cannot be opened, so ") + spec.purpose + ": " + why);
 }
 
