@@ -169,8 +169,10 @@ def play(page, shots):
           f"({r['fast']['frames']} frames): {ratio:.1f}x")
     if not 72.0 <= ratio <= 88.0:
         problems.append(f"playhead at 20x moved {ratio:.1f}x as far as at 0.25x, expected 80x within 10 %")
+    # It animates: frames keep coming while it plays. How many a second is the machine's (7 at
+    # 0.25x seen at load 11, 60 idle): bench/playback_fps.py measures the rate; a test must not.
     for m in (r["slow"], r["fast"]):
-        if m["frames"] < 10:
+        if m["frames"] < 3:
             problems.append(f"{m['frames']} frames drawn in a second at {m['speed']}x")
     if not r["canvas"] or abs(float(r["shown"]) - r["duration"] / 2) > 0.01:
         problems.append(f"the player did not show the middle of the path (playhead {r['shown']})")
