@@ -243,6 +243,8 @@ class LevelAreas {
       kept = snapToEarlier(points);
     }
     circles_at_.assign(points.size(), {});
+    shapes_.reserve(path.tool_on.size() + centres.size());
+    circles_.reserve(points.size() + 2 * centres.size());
     // The circle of radius rho around point `p` (an id), made on first use; `o` bounds part of it.
     auto addOwner = [&](std::uint32_t p, double rho, Owner o) {
       const std::uint32_t centre = kept[p];
