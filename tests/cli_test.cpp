@@ -289,9 +289,11 @@ TEST_F(Cli, ReportFolderIsAllOrNothingAndNeverReplacesAUsersFolder) {
 }
 
 TEST_F(Cli, RunLimitsBecomeStatusesInTheTables) {
-  // 20 KiB of heap is far below what any planner needs on these walls; a microsecond of time
-  // expires before the first budget check.
-  const std::string memory = write("m.yaml", "name: m\noutput: m\ndatasets:\n  - family: residential\n    count: 2\n    seed: 3\nplanners: [all]\nlimits:\n  memory_mb: 0.02\n");
+  // 20 KiB of address space beyond the worker's is far below what any planner needs on a facade
+  // at s = 0.05 m (megabytes; a run needing less may fit in the heap a worker inherits free from
+  // the runner, as on residential walls at 0.1 m); a microsecond of time expires before the
+  // first budget check.
+  const std::string memory = write("m.yaml", "name: m\noutput: m\ndatasets:\n  - family: facade\n    count: 2\n    seed: 3\nplanners: [all]\ntool:\n  width: 0.05\nlimits:\n  memory_mb: 0.02\n");
   ASSERT_EQ(run("run " + memory).exit_code, 0);
   const std::string md = slurp((dir_ / "m" / "report" / "report.md").string());
   EXPECT_NE(md.find("| zigzag | 2 | 0 | 2 | 0.0 % |"), std::string::npos) << md;  // runs, ok, memory_limit, success

@@ -298,6 +298,9 @@ TEST(MetricsProperties, ScanlinesOfThePicturesWithinHalfAPercentOfTheExactPassCo
   // The overlap pictures' scanlines (r / 10 apart) against the exact pass counts on real paths:
   // every histogram bin within 0.5 % of |S|; and the exact |S| against the polygon union, whose
   // 50 um chords lie inside the arcs (so it is smaller, by at most chord depth times perimeter).
+  // A path's own arcs are chords there too: the disk swept along them reaches less far on an
+  // arc's outer side and farther on its inner side, so there the union may come out larger by
+  // as much.
   const ToolParams tool{0.1, 0.02};
   forEachPlannedPath(tool, 6, [&](const Wall& wall, const std::string& what, const Path& path) {
     const Passes exact = passes(path, tool.radius());
@@ -310,7 +313,7 @@ TEST(MetricsProperties, ScanlinesOfThePicturesWithinHalfAPercentOfTheExactPassCo
     double perimeter = 0.0;
     for (const Ring& ring : allRings(regions.swept))
       for (std::size_t k = 0; k < ring.size(); ++k) perimeter += distance(ring[k], ring[(k + 1) % ring.size()]);
-    EXPECT_LE(polygons, exact.swept_area + 1e-9) << what;
+    EXPECT_LE(polygons, exact.swept_area + (path.hasArcs() ? kMetricArcTolerance * perimeter : 1e-9)) << what;
     // |R| from the closed forms and the rest's polygons, against the region itself: within R's chords.
     EXPECT_NEAR(coverage(wall, tool, path).reachable_area, area(regions.reachable),
                 kMetricArcTolerance * outlineLength(regions.reachable)) << what;

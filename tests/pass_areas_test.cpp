@@ -4,11 +4,13 @@
 // (passCount) point by point.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/wall_file.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {
@@ -28,6 +30,23 @@ Path onPath(std::vector<Point> points) {
 void add(Path& p, Point to, bool on) {
   p.waypoints.push_back(to);
   p.tool_on.push_back(on);
+  if (!p.bulge.empty()) p.bulge.push_back(0.0);
+}
+/// Appends the arc around c from the path's last point, turning by phi (radians; positive:
+/// counter-clockwise, at most a half turn).
+void arc(Path& p, Point c, double phi, bool on) {
+  p.bulge.resize(p.tool_on.size(), 0.0);
+  p.waypoints.push_back(c + rotate(p.waypoints.back() - c, phi));
+  p.tool_on.push_back(on);
+  p.bulge.push_back(std::tan(phi / 4));
+}
+/// The same path walked backwards (arcs turning the other way).
+Path reversedPath(const Path& p) {
+  Path r;
+  r.waypoints.assign(p.waypoints.rbegin(), p.waypoints.rend());
+  r.tool_on.assign(p.tool_on.rbegin(), p.tool_on.rend());
+  for (auto b = p.bulge.rbegin(); b != p.bulge.rend(); ++b) r.bulge.push_back(-*b);
+  return r;
 }
 
 double capsule(double length) { return 2 * kR * length + M_PI * kR * kR; }
@@ -164,6 +183,74 @@ TEST(PassAreas, TangentDisksAndInvariance) {
   }
 }
 
+// Arcs (Path::bulge) are shapes of their own: the set within r of an arc of radius R >= r turning
+// by phi is a ring sector of area 2 |phi| R r plus two half disks.
+double arcCapsule(double radius, double phi) { return 2 * std::fabs(phi) * radius * kR + M_PI * kR * kR; }
+
+TEST(PassAreas, OneArcPass) {
+  for (const double phi : {M_PI / 2, -M_PI / 2, M_PI, -M_PI, 0.2, 2.5})
+    for (const double radius : {0.3, kR, 2.0}) {
+      Path p = onPath({{1 + radius, 1}});
+      arc(p, {1, 1}, phi, true);
+      const std::vector<double> a = passLevelAreas(p, kR, 2);
+      EXPECT_NEAR(a[0], arcCapsule(radius, phi), kExact) << "phi " << phi << ", R " << radius;
+      EXPECT_NEAR(a[1], 0.0, kExact) << "phi " << phi << ", R " << radius;
+    }
+}
+
+TEST(PassAreas, ArcTighterThanTheTool) {
+  // R < r: the sector of radius R + r over the arc's angles and the disks around its ends, which
+  // overlap beyond the centre. A half turn: half a disk of radius R + r, and the other halves of
+  // the two end disks, less half their lens. Twice: the tool leaves the half of the lens beyond
+  // the centre and comes back to it, but for the points within r - R of the centre, which it never leaves.
+  for (const double radius : {0.05, 0.01, 0.099}) {
+    for (const double phi : {M_PI, -M_PI}) {
+      Path p = onPath({{1 + radius, 1}});
+      arc(p, {1, 1}, phi, true);
+      const std::vector<double> a = passLevelAreas(p, kR, 3);
+      const double expected = M_PI * (radius + kR) * (radius + kR) / 2 + M_PI * kR * kR - lens(2 * radius) / 2;
+      EXPECT_NEAR(a[0], expected, kExact) << "R " << radius;
+      EXPECT_NEAR(a[1], lens(2 * radius) / 2 - M_PI * (kR - radius) * (kR - radius) / 2, kExact) << "R " << radius;
+      EXPECT_NEAR(a[2], 0.0, kExact) << "R " << radius;
+    }
+  }
+}
+
+TEST(PassAreas, ArcThenItsTangentThenBackAlongTheArc) {
+  // A quarter turn of radius 0.3 continued by its tangent: one pass, no overlap at the joint.
+  Path p = onPath({{1.3, 1}});
+  arc(p, {1, 1}, M_PI / 2, true);
+  add(p, {0, 1.3}, true);
+  std::vector<double> a = passLevelAreas(p, kR, 3);
+  EXPECT_NEAR(a[0], arcCapsule(0.3, M_PI / 2) + 2 * kR * 1.0, kExact);
+  EXPECT_NEAR(a[1], 0.0, kExact);
+  // Back along the line and the arc: everything twice but the disk where the path turns back.
+  add(p, {1, 1.3}, true);
+  arc(p, {1, 1}, -M_PI / 2, true);
+  a = passLevelAreas(p, kR, 3);
+  EXPECT_NEAR(a[0], arcCapsule(0.3, M_PI / 2) + 2 * kR * 1.0, kExact);
+  EXPECT_NEAR(a[1], arcCapsule(0.3, M_PI / 2) + 2 * kR * 1.0 - M_PI * kR * kR, kExact);
+  EXPECT_NEAR(a[2], 0.0, kExact);
+}
+
+TEST(PassAreas, ConcentricArcsOneToolWidthApartTouchWithoutOverlap) {
+  // Rings of radius 0.3 and 0.5: the first's outer circle is the second's inner one.
+  Path p = onPath({{1.3, 1}});
+  arc(p, {1, 1}, M_PI / 2, true);
+  add(p, {1, 1.5}, false);
+  arc(p, {1, 1}, -M_PI / 2, true);
+  std::vector<double> a = passLevelAreas(p, kR, 2);
+  EXPECT_NEAR(a[0], arcCapsule(0.3, M_PI / 2) + arcCapsule(0.5, M_PI / 2), kExact);
+  EXPECT_NEAR(a[1], 0.0, kExact);
+  // The same arc again in another run: everything twice.
+  add(p, {1.3, 1}, false);
+  arc(p, {1, 1}, M_PI / 2, true);
+  a = passLevelAreas(p, kR, 3);
+  EXPECT_NEAR(a[0], arcCapsule(0.3, M_PI / 2) + arcCapsule(0.5, M_PI / 2), kExact);
+  EXPECT_NEAR(a[1], arcCapsule(0.3, M_PI / 2), kExact);
+  EXPECT_NEAR(a[2], 0.0, kExact);
+}
+
 TEST(PassAreas, NoToolOnNothing) {
   Path p = onPath({{0, 0}, {1, 0}});
   p.tool_on[0] = false;
@@ -211,6 +298,114 @@ TEST(PassAreasProperties, AgreeWithVeryFineScanlinesOnRandomPaths) {
       double share = 0.0;
       for (std::size_t j = k; j < 4; ++j) share += s.histogram[j];
       EXPECT_NEAR(a[k], share * s.swept_area, scan_error) << "trial " << trial << ", level " << k + 1;
+    }
+  }
+}
+
+/// Random paths with arcs: quarter and half turns and small ones, of radii above, at and below r
+/// (down to a hundredth of it), tangents after them, concentric arcs one tool width apart, arcs
+/// walked back, tool on and off.
+Path randomArcPath(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Path p;
+  p.waypoints.push_back({u(rng), u(rng)});
+  const int n = 2 + static_cast<int>(rng() % 10);
+  Point centre{u(rng), u(rng)};
+  for (int i = 0; i < n; ++i) {
+    const Point last = p.waypoints.back();
+    const bool on = rng() % 4 != 0;
+    const double phi = (rng() % 2 ? 1.0 : -1.0) * std::array<double, 4>{M_PI / 2, M_PI, 0.3, 2.0 * u(rng)}[rng() % 4];
+    switch (rng() % 7) {
+      case 0: {  // a new centre at a radius of 0.01 to 3 r, or exactly r
+        static constexpr double kRadii[] = {0.01, 0.05, 0.1, 0.1, 0.15, 0.3};
+        const double radius = kRadii[rng() % 6];
+        const double angle = 2 * M_PI * u(rng);
+        centre = last - Point{std::cos(angle), std::sin(angle)} * radius;
+        arc(p, centre, phi, on);
+        break;
+      }
+      case 1:  // around the last centre
+        arc(p, centre, phi, on);
+        break;
+      case 2: {  // one tool width farther out, around the same centre
+        const Point out = last - centre;
+        add(p, centre + out * ((norm(out) + 2 * kR) / norm(out)), false);
+        arc(p, centre, phi, on);
+        break;
+      }
+      case 3: {  // the tangent at the end of the last arc
+        const Point radial = last - centre;
+        const double turn = !p.bulge.empty() && p.bulge.back() < 0 ? -1.0 : 1.0;
+        add(p, last + Point{-radial.y, radial.x} * (turn * 0.3 / norm(radial)), on);
+        break;
+      }
+      case 4:  // back along the last segment
+        if (p.waypoints.size() > 1) {
+          const double back = p.bulge.empty() ? 0.0 : -p.bulge.back();
+          p.bulge.resize(p.tool_on.size(), 0.0);
+          p.waypoints.push_back(p.waypoints[p.waypoints.size() - 2]);
+          p.tool_on.push_back(on);
+          p.bulge.push_back(back);
+        }
+        break;
+      default:
+        add(p, {u(rng), u(rng)}, on);
+        break;
+    }
+  }
+  return p;
+}
+
+/// How far a level's boundary reaches at most: the capsules' sides (twice the tool-on length, plus
+/// r times the arcs' angles, at most pi r each) and their ends.
+double boundaryBound(const Path& p) {
+  return 2 * pathLengths(p).cover + 3 * M_PI * kR * static_cast<double>(p.segments() + 1);
+}
+
+TEST(PassAreasProperties, ArcsAgreeWithFineChords) {
+  // The same paths with every arc cut into chords within 2e-6 m of it: each level's boundary moves
+  // by at most that, so its area by at most 2e-6 m times the boundary's length (measured: under
+  // a tenth of it). Chords much finer are no better reference: their nearly parallel sides cross
+  // where rounding cannot place them.
+  std::mt19937 rng(63);
+  const double sagitta = 2e-6;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Path p = randomArcPath(rng);
+    const std::vector<double> a = passLevelAreas(p, kR, 4), b = passLevelAreas(chordalPath(p, sagitta), kR, 4);
+    for (std::size_t k = 0; k < 4; ++k)
+      EXPECT_NEAR(a[k], b[k], sagitta * boundaryBound(p)) << "trial " << trial << ", level " << k + 1;
+  }
+}
+
+TEST(PassAreasProperties, PlannedRoundCornersAgreeWithFineChords) {
+  // Every planner's path (round corners as arcs) on a wall with obstacles, at the tool's width.
+  const Wall wall = loadWallFile(test::sourcePath("datasets/canonical/seed_5x5_3obs.json"));
+  const ToolParams tool{2 * kR, 0.02};
+  const double sagitta = 2e-6;
+  int with_arcs = 0;
+  for (const std::string& planner : test::plannerNames()) {
+    const PlanResult r = test::planWith(planner, wall, tool);
+    ASSERT_TRUE(r.hasPath()) << planner;
+    with_arcs += r.path.hasArcs();
+    const std::vector<double> a = passLevelAreas(r.path, kR, 4), b = passLevelAreas(chordalPath(r.path, sagitta), kR, 4);
+    for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(a[k], b[k], sagitta * boundaryBound(r.path)) << planner << ", level " << k + 1;
+  }
+  EXPECT_GE(with_arcs, 3);
+}
+
+TEST(PassAreasProperties, ArcsReversedAndMovedHaveTheSameAreas) {
+  // An arc's centre comes from its ends and bulge, rounded anew when reversed or moved: the areas
+  // agree within 1e-11 m^2 (measured: 1e-12 on 3000 paths).
+  std::mt19937 rng(64);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Path p = randomArcPath(rng);
+    Path moved = p;
+    for (Point& w : moved.waypoints) w = w + Point{1000.5, -250.25};
+    const std::vector<double> a = passLevelAreas(p, kR, 4), b = passLevelAreas(reversedPath(p), kR, 4),
+                              c = passLevelAreas(moved, kR, 4);
+    for (std::size_t k = 0; k < 4; ++k) {
+      EXPECT_NEAR(a[k], b[k], 1e-11) << "trial " << trial << ", level " << k + 1;
+      EXPECT_NEAR(a[k], c[k], 1e-11) << "trial " << trial << ", level " << k + 1;
     }
   }
 }

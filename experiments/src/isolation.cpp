@@ -507,7 +507,7 @@ RunRecord deserializeRecord(const std::string& bytes) {
   r.stats = in.map();
   r.timings_ms = in.map();
   const std::string path = in.str();
-  if (!path.empty()) r.path = decodePath(path);
+  if (!path.empty()) r.path = decodePath(path), r.path_blob = path;
   for (std::uint64_t n = in.count(); n > 0; --n) {
     ReplanRecord p;
     p.fraction = in.f64();

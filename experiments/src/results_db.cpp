@@ -472,7 +472,7 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
     if (!rec.path.waypoints.empty()) {
       Statement p(db_, "INSERT INTO paths (run_key, encoding, waypoints, data) VALUES (?,?,?,?)", file_);
       p.text(1, rec.key).text(2, "zlib-f64le-1").integer(3, static_cast<long long>(rec.path.waypoints.size()));
-      p.blob(4, encodePath(rec.path)).run();
+      p.blob(4, rec.path_blob.empty() ? encodePath(rec.path) : rec.path_blob).run();
     }
     exec("COMMIT");
   } catch (...) {

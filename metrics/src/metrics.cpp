@@ -42,11 +42,9 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
   PathMetrics m;
   m.validity = checkValidity(wall, tool, path, vehicle);
   m.lengths = pathLengths(path);
-  // Arcs are swept as chords within the coverage engine's arc tolerance, made once for both.
-  Path chords;
-  const Path& swept = measuredPath(path, chords);
-  m.passes = passes(swept, tool.radius());
-  m.coverage = coverage(wall, tool, swept, m.validity, m.passes.swept_area);
+  // The pass counts take arcs as arcs; an invalid path's coverage polygons take them as chords.
+  m.passes = passes(path, tool.radius());
+  m.coverage = coverage(wall, tool, path, m.validity, m.passes.swept_area);
   m.motion = motion(path, limits, vehicle);
   m.waypoints = path.waypoints.size();
   const double ideal = m.coverage.reachable_area / tool.tool_width;

@@ -80,9 +80,11 @@ inline constexpr double kArcCheckSagitta = 1e-7;
 /// `sagitta` (m); a path without arcs is returned as it is. Coverage and passes measure arcs on
 /// these chords with kMetricArcTolerance.
 Path chordalPath(const Path& path, double sagitta);
-/// The path as coverage, passes and the pictures' regions measure it: the path itself when it has
-/// no arcs, else chordalPath(path, kMetricArcTolerance), made in `storage`. Every function of this
-/// header that takes a path measures this one, so none reads an arc as its chord.
+/// The path as the coverage polygons (an invalid path's coverage, coverageRegions), the scanline
+/// pass counts and the pictures' regions measure it: the path itself when it has no arcs, else
+/// chordalPath(path, kMetricArcTolerance), made in `storage`. Every function of this header that
+/// takes a path measures this one, so none reads an arc as its chord, except passes() and
+/// passLevelAreas(), which take arcs as arcs (exact, no chords).
 const Path& measuredPath(const Path& path, Path& storage);
 /// How many chords of at most `sagitta` (m) chordalPath cuts an arc into.
 double arcChords(const ArcGeometry& arc, double sagitta);
@@ -157,7 +159,8 @@ inline double fastErrorBound(double tool_width) { return kFastErrorTimesToolWidt
 
 /// Pass counts over the swept area, exact: the areas of the sets {q : passes(q) >= k} are line
 /// integrals over the boundary of the arrangement of capsules and continuation disks (straight
-/// pieces and circular arcs in closed form; docs/metrics.md, "Passes and overlap").
+/// pieces and circular arcs in closed form; an arc segment is one shape, not chords;
+/// docs/metrics.md, "Passes and overlap").
 struct Passes {
   double overlap = 0.0;           ///< |{q in S : passes(q) >= 2}| / |S|
   std::vector<double> histogram;  ///< histogram[k-1] = |{passes == k}| / |S|; last bin is ">= k"

@@ -161,6 +161,9 @@ struct RunRecord : RunFields {
   std::map<std::string, double> stats;       ///< the planner's deterministic statistics
   std::map<std::string, double> timings_ms;  ///< the planner's own sub-timings (measured, first repetition)
   Path path;
+  /// `path` as encodePath wrote it, when the record came encoded (from a worker process): the
+  /// store writes these bytes instead of compressing the path again. Empty otherwise.
+  std::string path_blob;
   std::vector<ReplanRecord> replans;   ///< with replanning: one per fraction and repair, in that order
   std::vector<double> plan_times_ms;   ///< measured: wall-clock of every repetition's plan call
 };
