@@ -200,10 +200,13 @@ FIRST_SCREEN = """(() => {
 def first_screen(page, shots):
     """Right after the load event: every image lazy and sized, the first screen drawn with its
     heading and table of contents; prints the times (from navigation start). Returns the problems."""
-    r = page.evaluate(FIRST_SCREEN)
+    # The screenshot first: it waits for a frame, so the page has painted (a busy machine can reach
+    # the load event before the first paint is recorded).
     page.screenshot(shots + "-first-screen.png")
-    print(f"first screen: first contentful paint {r['fcp_ms']:.0f} ms, DOMContentLoaded {r['dom_ms']:.0f} ms, "
-          f"load event {r['load_ms']:.0f} ms; {r['loaded']} of {r['images']} images loaded by then "
+    r = page.evaluate(FIRST_SCREEN)
+    ms = lambda v: "-" if v is None else f"{v:.0f}"  # noqa: E731
+    print(f"first screen: first contentful paint {ms(r['fcp_ms'])} ms, DOMContentLoaded {ms(r['dom_ms'])} ms, "
+          f"load event {ms(r['load_ms'])} ms; {r['loaded']} of {r['images']} images loaded by then "
           f"({r['below']} below the first screen)")
     problems = []
     if r["not_lazy"]:
