@@ -17,7 +17,8 @@
 #   this job's test time), the runner killed mid-way, the exact-judge experiment option and the
 #   100 m field: they judge results, which the main job checks, and the code they run runs here
 #   in the other car, judge, experiment and field-scale tests (CarFamilies,
-#   CarSweep.GeneratedWallsGiveValidDrivablePlans, ExactJudge*, Isolation.*, Experiments.*).
+#   CarSweep.GeneratedWallsGiveValidDrivablePlans, ExactJudge*, Isolation.*, Experiments.*); and
+#   the same checks on further walls of the car's families and of the repairs (below).
 # The heaviest property tests take every 4th case of their sample here
 # (COVERBENCH_TEST_SAMPLE_STRIDE=4, tests/test_support.hpp): the same code paths run under the
 # sanitizers, and the main job (scripts/test.sh) runs every case.
@@ -44,6 +45,10 @@ slow+="|CarSweep.ACarsTransitsPaintWhereTheyPassOverWhatNothingElsePaints|CarSwe
 slow+="|CarSweep.ACarThatStartsInAPocketStartsAgainWhereItGetsOut|CarSweep.StrokesPaintOnTheWay|CarSweep.StrokesReachWhatTheRowsDoNot"
 slow+="|CarSweep.ACellOrderIsTakenCellByCell|CarSweep.RingsThatStartInAPocket|Isolation.KillingTheRunnerOrAWorkerLosesAndDuplicatesNothing"
 slow+="|Experiments.TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys|FieldScale.EveryPlannerPlansAHundredMetrePolygon"
+# Every planner smoothed for a car on 4 of the 9 families (the other 5 run here, residential with
+# the exact judge), and repairs of the two slowest planners' paths (the other 5 run here).
+slow+="|CarFamilies.EveryPlannersSmoothedPathIsValidAndDrivable/(gable|industrial|stairwell|facade) "
+slow+="|ReplanningPlanners.EveryRepairedPathIsValid/(trapezoidal|spiral) "
 echo "== the tests under AddressSanitizer and UndefinedBehaviorSanitizer"
 source scripts/ctest_costs.sh
 seed_ctest_costs $build
