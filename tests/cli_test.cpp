@@ -1,6 +1,7 @@
 // The command line: bad input gives one line naming file, field and problem, a non-zero exit and
 // no output file; good input gives a plan file and a picture.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -350,6 +351,11 @@ TEST_F(Cli, OnlyTheirCommandsLoadOmplAndHttplib) {
   ::unsetenv("COVERBENCH_OMPL_PLUGIN");
   ::setenv("COVERBENCH_SERVE_PLUGIN", "/nonexistent/libcoverbench_serve.so", 1);
   const CommandRun no_server = run("serve --port 0");
+  // A FIFO in its place is refused, not read (dlopen would wait for a writer for ever).
+  const std::string fifo = (dir_ / "libcoverbench_serve.so").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  ::setenv("COVERBENCH_SERVE_PLUGIN", fifo.c_str(), 1);
+  const CommandRun fifo_server = run("serve --port 0");
   ::unsetenv("COVERBENCH_SERVE_PLUGIN");
 
   ASSERT_EQ(version.exit_code, 0) << version.err;
@@ -376,6 +382,9 @@ TEST_F(Cli, OnlyTheirCommandsLoadOmplAndHttplib) {
   EXPECT_EQ(no_server.exit_code, 2);
   EXPECT_EQ(no_server.err, "coverbench: cpp-httplib: (plug-in): cannot be opened, so the explorer cannot be served: "
                            "/nonexistent/libcoverbench_serve.so does not exist\n");
+  EXPECT_EQ(fifo_server.exit_code, 2);
+  EXPECT_EQ(fifo_server.err, "coverbench: cpp-httplib: (plug-in): cannot be opened, so the explorer cannot be served: " + fifo +
+                                 " is not a regular file\n");
 }
 
 TEST_F(Cli, BadWallGivesOneLineAndNoOutput) {

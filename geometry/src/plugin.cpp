@@ -40,6 +40,10 @@ const void* openPlugin(const PluginSpec& spec, const void* host) {
       continue;
     }
     anywhere = true;
+    if (!fs::is_regular_file(place, ec)) {  // a FIFO or device would block dlopen's read
+      why += place + " is not a regular file";
+      continue;
+    }
     void* lib = ::dlopen(place.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!lib) {
       const char* error = ::dlerror();
