@@ -178,6 +178,56 @@ PictureSize pictureSize(const Wall& wall, const Path* path) {
   return {pictureWidth(v), pictureHeight(v)};
 }
 
+namespace {
+
+/// The picture's legend and scale bar, below the wall.
+std::string legendSvg(const SvgContent& c, const View& v) {
+  std::ostringstream s;
+  const double ly = v.top + v.box.height() * v.k + kPadPx + 8;
+  const double bar = niceLength(v.box.width());
+  s << "<g transform=\"translate(" << fmt(kPadPx) << "," << fmt(ly) << ")\">\n"
+    << "<line x1=\"0\" y1=\"0\" x2=\"" << fmt(bar * v.k) << "\" y2=\"0\" stroke=\"#000\" stroke-width=\"2\"/>"
+    << "<text x=\"0\" y=\"16\">" << toString(bar) << " m</text>\n"
+    << "<g transform=\"translate(0,34)\">"
+    << "<rect width=\"14\" height=\"10\" fill=\"#cfe8cf\" stroke=\"#7fb27f\"/><text x=\"20\" y=\"10\">free region F</text>"
+    << "<rect x=\"120\" width=\"14\" height=\"10\" fill=\"#9a9a9a\"/><text x=\"140\" y=\"10\">obstacle</text>"
+    << "<line x1=\"220\" y1=\"5\" x2=\"250\" y2=\"5\" stroke=\"#1f4f9f\" stroke-width=\"2\"/>"
+    << "<text x=\"256\" y=\"10\">tool on (band = tool width)</text>"
+    << (c.vehicle.liftsTool()
+            ? "<line x1=\"440\" y1=\"5\" x2=\"470\" y2=\"5\" stroke=\"#8e44ad\" stroke-width=\"2\" "
+              "stroke-dasharray=\"1.5,3\" stroke-linecap=\"round\"/><text x=\"476\" y=\"10\">lifted (tool off)</text>"
+            : "<line x1=\"440\" y1=\"5\" x2=\"470\" y2=\"5\" stroke=\"#e07b00\" stroke-width=\"2\" "
+              "stroke-dasharray=\"5,3\"/><text x=\"476\" y=\"10\">transit (tool off)</text>")
+    << "<circle cx=\"600\" cy=\"5\" r=\"5\" fill=\"#19a33a\"/><text x=\"610\" y=\"10\">start</text>"
+    << "<rect x=\"655\" width=\"10\" height=\"10\" fill=\"#d02f2f\"/><text x=\"670\" y=\"10\">end</text>"
+    << "</g>\n";
+  if (c.reachable || c.overlap || (c.violating && !c.violating->empty())) {
+    s << "<g transform=\"translate(0,52)\">"
+      << "<rect width=\"14\" height=\"10\" fill=\"#e8383d\" fill-opacity=\"0.75\"/>"
+      << "<text x=\"20\" y=\"10\">reachable, not covered</text>"
+      << "<rect x=\"180\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>";
+    const double x = 360;
+    if (c.three_passes)  // the shades stack: 3 passes is the first and second drawn over each other
+      s << "<text x=\"200\" y=\"10\">2 passes</text>"
+        << "<rect x=\"262\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>"
+        << "<rect x=\"262\" width=\"14\" height=\"10\" fill=\"#6a1b9a\" fill-opacity=\"0.55\"/><text x=\"282\" y=\"10\">3</text>"
+        << "<rect x=\"300\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>"
+        << "<rect x=\"300\" width=\"14\" height=\"10\" fill=\"#6a1b9a\" fill-opacity=\"0.55\"/>"
+        << "<rect x=\"300\" width=\"14\" height=\"10\" fill=\"#2e0854\" fill-opacity=\"0.65\"/><text x=\"320\" y=\"10\">4+</text>";
+    else
+      s << "<text x=\"200\" y=\"10\">covered twice or more</text>";
+    if (c.violating && !c.violating->empty())
+      s << "<line x1=\"" << fmt(x) << "\" y1=\"5\" x2=\"" << fmt(x + 30) << "\" y2=\"5\" stroke=\"#ff0000\" stroke-width=\"4\"/>"
+        << "<text x=\"" << fmt(x + 36) << "\" y=\"10\">fails the exact check (" << c.violating->size() << " segments"
+        << (c.violating->size() >= kMaxListedViolations ? " or more" : "") << ")</text>";
+    s << "</g>\n";
+  }
+  s << "</g>\n";
+  return s.str();
+}
+
+}  // namespace
+
 std::string renderSvg(const SvgContent& c) {
   const Wall& wall = *c.wall;
   const View v = pictureView(wall, c.path);
@@ -290,47 +340,7 @@ std::string renderSvg(const SvgContent& c) {
     s << "<rect x=\"" << fmt(v.px(b.x) - 5) << "\" y=\"" << fmt(v.py(b.y) - 5)
       << "\" width=\"10\" height=\"10\" fill=\"#d02f2f\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>\n";
   }
-  // Legend and scale bar.
-  const double ly = v.top + v.box.height() * v.k + kPadPx + 8;
-  const double bar = niceLength(v.box.width());
-  s << "<g transform=\"translate(" << fmt(kPadPx) << "," << fmt(ly) << ")\">\n"
-    << "<line x1=\"0\" y1=\"0\" x2=\"" << fmt(bar * v.k) << "\" y2=\"0\" stroke=\"#000\" stroke-width=\"2\"/>"
-    << "<text x=\"0\" y=\"16\">" << toString(bar) << " m</text>\n"
-    << "<g transform=\"translate(0,34)\">"
-    << "<rect width=\"14\" height=\"10\" fill=\"#cfe8cf\" stroke=\"#7fb27f\"/><text x=\"20\" y=\"10\">free region F</text>"
-    << "<rect x=\"120\" width=\"14\" height=\"10\" fill=\"#9a9a9a\"/><text x=\"140\" y=\"10\">obstacle</text>"
-    << "<line x1=\"220\" y1=\"5\" x2=\"250\" y2=\"5\" stroke=\"#1f4f9f\" stroke-width=\"2\"/>"
-    << "<text x=\"256\" y=\"10\">tool on (band = tool width)</text>"
-    << (c.vehicle.liftsTool()
-            ? "<line x1=\"440\" y1=\"5\" x2=\"470\" y2=\"5\" stroke=\"#8e44ad\" stroke-width=\"2\" "
-              "stroke-dasharray=\"1.5,3\" stroke-linecap=\"round\"/><text x=\"476\" y=\"10\">lifted (tool off)</text>"
-            : "<line x1=\"440\" y1=\"5\" x2=\"470\" y2=\"5\" stroke=\"#e07b00\" stroke-width=\"2\" "
-              "stroke-dasharray=\"5,3\"/><text x=\"476\" y=\"10\">transit (tool off)</text>")
-    << "<circle cx=\"600\" cy=\"5\" r=\"5\" fill=\"#19a33a\"/><text x=\"610\" y=\"10\">start</text>"
-    << "<rect x=\"655\" width=\"10\" height=\"10\" fill=\"#d02f2f\"/><text x=\"670\" y=\"10\">end</text>"
-    << "</g>\n";
-  if (c.reachable || c.overlap || (c.violating && !c.violating->empty())) {
-    s << "<g transform=\"translate(0,52)\">"
-      << "<rect width=\"14\" height=\"10\" fill=\"#e8383d\" fill-opacity=\"0.75\"/>"
-      << "<text x=\"20\" y=\"10\">reachable, not covered</text>"
-      << "<rect x=\"180\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>";
-    const double x = 360;
-    if (c.three_passes)  // the shades stack: 3 passes is the first and second drawn over each other
-      s << "<text x=\"200\" y=\"10\">2 passes</text>"
-        << "<rect x=\"262\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>"
-        << "<rect x=\"262\" width=\"14\" height=\"10\" fill=\"#6a1b9a\" fill-opacity=\"0.55\"/><text x=\"282\" y=\"10\">3</text>"
-        << "<rect x=\"300\" width=\"14\" height=\"10\" fill=\"#9b3fd1\" fill-opacity=\"0.45\"/>"
-        << "<rect x=\"300\" width=\"14\" height=\"10\" fill=\"#6a1b9a\" fill-opacity=\"0.55\"/>"
-        << "<rect x=\"300\" width=\"14\" height=\"10\" fill=\"#2e0854\" fill-opacity=\"0.65\"/><text x=\"320\" y=\"10\">4+</text>";
-    else
-      s << "<text x=\"200\" y=\"10\">covered twice or more</text>";
-    if (c.violating && !c.violating->empty())
-      s << "<line x1=\"" << fmt(x) << "\" y1=\"5\" x2=\"" << fmt(x + 30) << "\" y2=\"5\" stroke=\"#ff0000\" stroke-width=\"4\"/>"
-        << "<text x=\"" << fmt(x + 36) << "\" y=\"10\">fails the exact check (" << c.violating->size() << " segments"
-        << (c.violating->size() >= kMaxListedViolations ? " or more" : "") << ")</text>";
-    s << "</g>\n";
-  }
-  s << "</g>\n";
+  s << legendSvg(c, v);
   s << "</svg>\n";
   return s.str();
 }
