@@ -22,6 +22,7 @@
 #include "coverbench/car.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/wall.hpp"
 #include "coverbench/wall_file.hpp"
 

@@ -8,6 +8,7 @@
 
 #include "coverbench/external_planner.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/wall_file.hpp"
 
 namespace {

@@ -6,6 +6,7 @@
 
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/wall.hpp"
 #include "coverbench/wall_file.hpp"
 

@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/wall.hpp"
 #include "coverbench/wall_file.hpp"
 

@@ -23,7 +23,9 @@
 #include "coverbench/limits.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/plan_file.hpp"
+#include "coverbench/problem_builder.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/svg.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/wall_file.hpp"
@@ -41,15 +43,6 @@ std::vector<std::pair<std::string, std::string>> splitSettings(const std::vector
   return out;
 }
 
-std::string typeName(ParamType t) {
-  switch (t) {
-    case ParamType::Number: return "number";
-    case ParamType::Integer: return "integer";
-    case ParamType::Bool: return "bool";
-    case ParamType::Choice: return "choice";
-  }
-  return "?";
-}
 
 namespace {
 
@@ -98,13 +91,16 @@ double peakResidentBytes() {
 Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams& tool, const VehicleModel& vehicle,
                  Params params, double time_limit_s, bool with_picture, const TransitSpec& transit = {},
                  std::uint64_t seed = 0) {
-  Problem problem;
-  problem.wall = &wall;
-  problem.tool = tool;
-  problem.vehicle = vehicle;
-  problem.transit = transit;
-  problem.seed = seed;
-  problem.params = params;
+  ProblemInputs inputs;
+  inputs.wall = &wall;
+  inputs.tool = tool;
+  inputs.vehicle = vehicle;
+  inputs.transit = transit;
+  inputs.seed = seed;
+  inputs.params = params;
+  // An external planner's processes are held to the experiments' default memory limit here.
+  inputs.memory_limit_bytes = external::kDefaultMemoryLimitBytes;
+  const Problem problem = buildProblem(planner, std::move(inputs), "command line");
   Outcome o;
   o.plan.planner = planner.name;
   o.plan.wall = wall.name;
@@ -113,8 +109,6 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   o.plan.transit = transit;
   o.plan.seed = seed;
   o.plan.params = std::move(params);
-  // An external planner's processes are held to the experiments' default memory limit here.
-  problem.memory_limit_bytes = external::kDefaultMemoryLimitBytes;
   const double rss_before = residentBytes();
   // Planned and judged as Python's coverbench.plan and a run judge it (planAndJudge).
   JudgedPlan judged = planAndJudge(planner, problem, Budget(std::chrono::duration<double>(time_limit_s)));
@@ -128,13 +122,12 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   o.plan.not_scored = judged.not_scored;
   o.plan_json = planFileJson(o.plan);
   const bool scored = o.plan.not_scored.empty();
-  char title[256];
-  std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s%s", wall.name.c_str(), planner.name.c_str(),
-                tool.tool_width, tool.clearance, toString(o.plan.result.status).c_str(),
-                !o.plan.result.hasPath()               ? ""
-                : !scored                              ? ", NOT SCORED"
-                : o.plan.metrics.validity.valid        ? ", valid"
-                                                       : ", INVALID");
+  const std::string title = wall.name + " / " + planner.name + "  (" + toolLabel(tool) + ")  " +
+                            toString(o.plan.result.status) +
+                            (!o.plan.result.hasPath()          ? ""
+                             : !scored                         ? ", NOT SCORED"
+                             : o.plan.metrics.validity.valid   ? ", valid"
+                                                               : ", INVALID");
   if (with_picture) o.svg = pathPicture(wall, tool, vehicle, o.plan.result.path, title, scored);
   return o;
 }
@@ -162,9 +155,9 @@ void listPlanners(std::ostream& out) {
     out << p.name << ": " << p.summary << "\n";
     out << "  reference: " << p.reference << "\n";
     for (const ParamSpec& s : p.params) {
-      out << "  --param " << s.name << "=<" << typeName(s.type) << ">  default " << toString(s.default_value);
+      out << "  --param " << s.name << "=<" << paramTypeName(s.type) << ">  default " << paramText(s.default_value);
       if (s.type == ParamType::Number || s.type == ParamType::Integer)
-        out << ", range [" << toString(s.min) << ", " << toString(s.max) << "]";
+        out << ", range [" << paramText(s.min) << ", " << paramText(s.max) << "]";
       if (!s.unit.empty()) out << " " << s.unit;
       out << "  " << s.description << "\n";
     }
@@ -203,7 +196,6 @@ int planCommand(const PlanOptions& options) {
     wall.end = pointOption(options.end, "--end");
   }
   if (!options.start.empty() || !options.end.empty()) validateWall(wall, "--start/--end");
-  validateToolForWall(options.tool, wall, "command line");
   const PlannerInfo& planner = external::plannerNamed(options.planner, "--planner");
   Params params = resolveParams(planner, splitSettings(options.params));
   const VehicleModel vehicle = resolveVehicle(options.vehicle, VehicleModel{});
@@ -436,7 +428,7 @@ int showcaseCommand(const ShowcaseOptions& options) {
       const double mc = m.validity.min_clearance;
       const std::vector<std::string> cells = {
           wall.name, planner.name, toString(o.plan.result.status), !o.plan.not_scored.empty() ? "not scored" : m.validity.valid ? "yes" : "NO",
-          std::to_string(m.validity.violations), std::isfinite(mc) ? toString(mc) : "-",
+          std::to_string(m.validity.violations), std::isfinite(mc) ? shortNumber(mc) : "-",
           formatted("%.4f", m.coverage.coverage_reachable), formatted("%.4f", m.coverage.coverage_wall),
           formatted("%.4f", m.passes.overlap), formatted("%.2f", m.lengths.total), formatted("%.2f", m.lengths.transit),
           formatted("%.3f", m.length_ratio), std::to_string(m.motion.turns), formatted("%.1f", m.motion.duration_s),
@@ -460,12 +452,12 @@ int showcaseCommand(const ShowcaseOptions& options) {
     walls_json.push_back({{"wall_name", wall.name}, {"why", "every planner, default parameters"}, {"pictures", pictures}});
   }
   outputs.add((out / "summary.md").string(),
-              "# CoverBench showcase\n\nTool width " + toString(options.tool.tool_width) + " m, clearance " +
-                  toString(options.tool.clearance) +
+              "# CoverBench showcase\n\nTool width " + shortNumber(options.tool.tool_width) + " m, clearance " +
+                  shortNumber(options.tool.clearance) +
                   " m, default planner parameters. Pictures and plan files are in `plans/`.\n\n" + table);
   outputs.add((out / "summary.csv").string(), csv);
-  const std::string tool_text = "tool width " + toString(options.tool.tool_width) + " m, clearance " +
-                                toString(options.tool.clearance) + " m";
+  const std::string tool_text = "tool width " + shortNumber(options.tool.tool_width) + " m, clearance " +
+                                shortNumber(options.tool.clearance) + " m";
   const nlohmann::ordered_json page = {
       {"format", "coverbench-showcase"},
       {"title", "CoverBench showcase"},

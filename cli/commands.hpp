@@ -14,8 +14,6 @@
 namespace coverbench::cli {
 
 void listPlanners(std::ostream& out);
-/// A parameter type as `coverbench planners` and the workbench name it: number, integer, bool, choice.
-std::string typeName(ParamType t);
 
 /// A vehicle as the command line gives it (--vehicle, --lift-s, --lower-s); unset: the default's
 /// (or, for `metrics`, the plan file's).

@@ -14,6 +14,7 @@
 #include "coverbench/files.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/wall_file.hpp"
 
 namespace coverbench::cli {
@@ -88,7 +89,7 @@ int conformanceCommand(const ConformanceOptions& o) {
   const Params params = resolveParams(info, settings);
   const std::vector<std::string> files = wallFilesIn(o.walls.empty() ? conformanceWallFolders(o.source_dir) : o.walls);
   std::vector<CardRow> rows;
-  forEachConformanceProblem(files, params, [&](const std::string& file, Problem& problem) {
+  forEachConformanceProblem(info, files, params, [&](const std::string& file, Problem& problem) {
     const Wall& wall = *problem.wall;
     const ToolParams& tool = problem.tool;
     // An external planner's processes are held to the experiments' default memory limit.
@@ -154,8 +155,7 @@ int conformanceCommand(const ConformanceOptions& o) {
     j["checked"] = rows.size();
     text = j.dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
   } else {
-    std::string p;
-    for (const auto& [k, v] : params.all()) p += (p.empty() ? "" : ", ") + k + "=" + toString(v);
+    const std::string p = paramsList(params);
     text = "# Conformance: " + info.name + " (version " + info.version + ")\n\n";
     text += "Parameters: " + (p.empty() ? std::string("none") : p) + ". Promise: coverage_reachable >= " +
             fixed(info.min_coverage_reachable, 3) +
@@ -181,8 +181,7 @@ int conformanceCommand(const ConformanceOptions& o) {
       text += "\n## Failed rows\n\n";
       for (const CardRow& r : rows)
         if (!r.passed())
-          text += "- " + cell(r.wall) + " (" + r.file + ", s = " + shortNumber(r.tool.tool_width) + ", c = " +
-                  shortNumber(r.tool.clearance) + "): " + cell(r.cause) + "\n";
+          text += "- " + cell(r.wall) + " (" + r.file + ", " + toolLabel(r.tool) + "): " + cell(r.cause) + "\n";
     }
   }
   if (o.out.empty()) {

@@ -218,10 +218,6 @@ class Explorer {
     MotionLimits motion;
   };
 
-  static std::string toolText(const ToolParams& t) {
-    return "s=" + shortNumber(t.tool_width) + " m, c=" + shortNumber(t.clearance) + " m";
-  }
-
   /// The runs in the order of `column` (none: key order), runs without a value last either way.
   const std::vector<std::uint32_t>& sorted(Index& x, std::size_t db, long long id, const std::string& column, bool desc) {
     const auto k = std::make_pair(column, desc);
@@ -285,7 +281,7 @@ class Explorer {
     for (std::uint32_t i = 0; i < x.runs.size(); ++i) {
       const ResultsDb::RunSummary& r = x.runs[i];
       x.position.emplace(r.key, i);
-      const std::string values[kFacets] = {r.planner, r.dataset, toString(r.status), toolText(r.tool)};
+      const std::string values[kFacets] = {r.planner, r.dataset, toString(r.status), toolLabel(r.tool)};
       for (std::size_t f = 0; f < kFacets; ++f) {
         const auto [it, added] = seen[f].emplace(values[f], static_cast<std::uint32_t>(x.facet_values[f].size()));
         if (added) x.facet_values[f].push_back(values[f]);

@@ -26,10 +26,6 @@ namespace {
 
 constexpr const char* kBody = "request body";
 
-json paramValue(const ParamValue& v) {
-  return std::visit([](const auto& x) { return json(x); }, v);
-}
-
 /// A number field of the body: absent gives `fallback`.
 double numberField(const json& body, const char* name, double fallback) {
   if (!body.contains(name)) return fallback;
@@ -44,13 +40,7 @@ json plannersJson() {
   json out = json::array();
   for (const PlannerInfo& p : registeredPlanners()) {
     json params = json::array();
-    for (const ParamSpec& s : p.params) {
-      json spec = {{"name", s.name}, {"type", typeName(s.type)}, {"default", paramValue(s.default_value)},
-                   {"unit", s.unit}, {"description", s.description}};
-      if (s.type == ParamType::Number || s.type == ParamType::Integer) spec["min"] = s.min, spec["max"] = s.max;
-      if (s.type == ParamType::Choice) spec["choices"] = s.choices;
-      params.push_back(spec);
-    }
+    for (const ParamSpec& s : p.params) params.push_back(json(paramSpecJson(s)));
     out.push_back({{"name", p.name}, {"version", p.version}, {"summary", p.summary}, {"reference", p.reference}, {"params", params}});
   }
   return {{"planners", out}};
@@ -84,15 +74,14 @@ WorkbenchRequest readWorkbenchRequest(const std::string& text, double max_time_l
   if (!body.contains("planner")) return r;
   if (!body["planner"].is_string()) throw InputError(kBody, "planner", "must be a planner's name");
   r.planner = &findPlanner(body["planner"].get<std::string>(), "planner");
-  std::vector<std::pair<std::string, std::string>> settings;
+  ParamSettings settings;
   if (body.contains("params")) {
     if (!body["params"].is_object()) throw InputError(kBody, "params", "must be an object of name: value");
-    for (const auto& [key, value] : body["params"].items())
-      settings.emplace_back(key, value.is_string() ? value.get<std::string>() : value.dump());
+    settings = parseSettings(*r.planner, body["params"], "params");
   }
   r.config.planner = r.planner->name;
-  r.config.settings = settings;
-  r.config.params = resolveParams(*r.planner, settings, "params");
+  r.config.params = withDefaults(*r.planner, settings);
+  r.config.settings = std::move(settings);
   r.config.label = r.planner->name;
   return r;
 }

@@ -16,7 +16,7 @@ if [ ! -f $build/build.ninja ]; then
 fi
 echo "== building every library shared, with -Wl,--no-undefined ($build)"
 cmake --build $build -j 2
-libs="geometry formats transits planning vehicles metrics judge datasets imports algorithms records reports experiments"
+libs="geometry formats transits planning vehicles metrics judge datasets imports algorithms records runner reports experiments"
 for lib in $libs; do
   test -f "$build/libcoverbench_$lib.so" || { echo "layers: libcoverbench_$lib.so was not built" >&2; exit 1; }
 done
@@ -31,8 +31,9 @@ allowed() {
     vehicles) echo "geometry planning transits" ;;
     datasets|imports) echo "formats geometry" ;;
     algorithms) echo "formats geometry planning transits vehicles" ;;
+    runner) echo "algorithms formats geometry metrics planning records transits vehicles" ;;
     reports) echo "formats geometry metrics planning records transits" ;;
-    experiments) echo "algorithms datasets formats geometry imports judge metrics planning records transits vehicles" ;;
+    experiments) echo "algorithms datasets formats geometry imports judge metrics planning records runner transits vehicles" ;;
   esac
 }
 for lib in $libs; do
@@ -46,4 +47,4 @@ trap 'rm -rf "$out"' EXIT
 "$build/coverbench" plan --wall datasets/canonical/living_room_north.json --planner zigzag --out "$out/plan.json"
 "$build/coverbench" metrics --wall datasets/canonical/living_room_north.json --plan "$out/plan.json" --judge exact \
   --arc-vertices 32 > /dev/null
-echo "layers: 13 shared libraries linked with no undefined symbol, each only to the layers below it; the command ran on them"
+echo "layers: 14 shared libraries linked with no undefined symbol, each only to the layers below it; the command ran on them"

@@ -10,6 +10,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/motion.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/workspace.hpp"
 #include "test_support.hpp"
 

@@ -10,6 +10,7 @@
 #include "coverbench/limits.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {

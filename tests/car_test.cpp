@@ -18,6 +18,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/plan_file.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/workspace.hpp"
 #include "coverbench/wall_file.hpp"

@@ -12,6 +12,7 @@
 #include "coverbench/experiment.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/wall_file.hpp"
 #include "coverbench/workspace.hpp"
 #include "test_support.hpp"
@@ -186,7 +187,7 @@ TEST(ConformanceWalls, ExpectedOutcomes) {
   // counts them: a partial plan names the disconnected components it left out.
   for (const PlannerInfo& p : registeredPlanners()) {
     const Params params = resolveParams(p, {});
-    forEachConformanceProblem(test::conformanceWallFiles(), params, [&](const std::string&, Problem& problem) {
+    forEachConformanceProblem(p, test::conformanceWallFiles(), params, [&](const std::string&, Problem& problem) {
       const Wall& wall = *problem.wall;
       const ToolParams& tool = problem.tool;
       const JudgedPlan judged = planAndJudge(p, problem, Budget(std::chrono::seconds(60)));

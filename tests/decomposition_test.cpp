@@ -8,6 +8,7 @@
 
 #include "coverbench/datasets.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/wall_file.hpp"
 #include "coverbench/workspace.hpp"

@@ -10,6 +10,7 @@
 #include "coverbench/conformance.hpp"
 #include "coverbench/experiment.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/wall_file.hpp"
 #include "test_support.hpp"
 
@@ -76,7 +77,7 @@ TEST(ExamplePlanner, PassesTheConformanceChecksOnEveryWall) {
   const PlannerInfo info = perimeter::info();
   const Params params = resolveParams(info, {});
   int partial = 0, none = 0;
-  forEachConformanceProblem(test::conformanceWallFiles(), params, [&](const std::string&, Problem& problem) {
+  forEachConformanceProblem(info, test::conformanceWallFiles(), params, [&](const std::string&, Problem& problem) {
     const Wall& wall = *problem.wall;
     const ToolParams& tool = problem.tool;
     const JudgedPlan judged = planAndJudge(info, problem, Budget(std::chrono::seconds(60)));

@@ -22,6 +22,7 @@
 
 #include "coverbench/external_planner.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/runner.hpp"
 #include "coverbench/wall_file.hpp"

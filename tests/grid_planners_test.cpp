@@ -12,6 +12,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/sweep_search.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/wall_file.hpp"
 #include "test_support.hpp"
 

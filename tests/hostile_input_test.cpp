@@ -696,7 +696,7 @@ TEST(RunList, NamesWithNewlinesAndControlCharactersStayOnTheirLine) {
   EXPECT_EQ(std::count(list.begin(), list.end(), '\n'), 2) << list;
   EXPECT_EQ(list.find('\r'), std::string::npos);
   EXPECT_EQ(list.find('\x1b'), std::string::npos);
-  EXPECT_NE(list.find("zig\\\\zag  s=0.1 c=0.02  d\\r/two\\nlines\\x1b[31m\n"), std::string::npos) << list;
+  EXPECT_NE(list.find("zig\\\\zag  s=0.1 m, c=0.02 m  d\\r/two\\nlines\\x1b[31m\n"), std::string::npos) << list;
 }
 
 // A misspelt planner code folder, run through an experiment, is an error, not an empty hash.

@@ -6,6 +6,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {

@@ -10,6 +10,7 @@
 #include "coverbench/param_table.hpp"
 #include "coverbench/limits.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "test_support.hpp"
 
 namespace coverbench {

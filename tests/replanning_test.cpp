@@ -13,6 +13,7 @@
 #include "coverbench/judge.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/replanning.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/wall_file.hpp"

@@ -20,6 +20,7 @@
 #include "coverbench/clearance.hpp"
 #include "coverbench/judge.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 
 namespace coverbench::test {
 

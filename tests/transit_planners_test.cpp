@@ -9,6 +9,7 @@
 
 #include "coverbench/experiment.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/wall_file.hpp"
 #include "coverbench/workspace.hpp"
 #include "test_support.hpp"

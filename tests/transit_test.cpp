@@ -8,6 +8,7 @@
 #include "coverbench/limits.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/wall_file.hpp"
 #include "coverbench/workspace.hpp"
 #include "test_support.hpp"

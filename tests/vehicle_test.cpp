@@ -13,6 +13,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/plan_file.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/svg.hpp"
 #include "coverbench/wall_file.hpp"
 #include "coverbench/workspace.hpp"

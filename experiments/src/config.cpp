@@ -132,7 +132,7 @@ class Reader {
     }
     if (used != t.size() || t.empty() || !std::isfinite(v)) fail(n, field, "must be a number, got '" + t + "'");
     if (v < lo || v > hi || (open_lo && v == lo) || (open_hi && v == hi))
-      fail(n, field, "must be in " + std::string(open_lo ? "(" : "[") + toString(lo) + ", " + toString(hi) + (open_hi ? ")" : "]") +
+      fail(n, field, "must be in " + std::string(open_lo ? "(" : "[") + shortNumber(lo) + ", " + shortNumber(hi) + (open_hi ? ")" : "]") +
                          ", got " + t);
     return v;
   }
@@ -166,23 +166,14 @@ class Reader {
   std::size_t nodes_ = 0;
 };
 
-std::string join(const std::vector<std::pair<std::string, std::string>>& settings) {
-  std::string out;
-  for (const auto& [k, v] : settings) out += (out.empty() ? "" : ", ") + k + "=" + v;
-  return out;
-}
-
 /// One planner configuration: resolved parameters, its label, and its content hash.
-PlannerConfig makeConfig(const PlannerInfo& info, std::vector<std::pair<std::string, std::string>> settings,
-                         const std::string& where) {
+PlannerConfig makeConfig(const PlannerInfo& info, ParamSettings settings) {
   PlannerConfig pc;
   pc.planner = info.name;
-  pc.params = resolveParams(info, settings, where);
-  pc.label = settings.empty() ? info.name : info.name + "(" + join(settings) + ")";
+  pc.params = withDefaults(info, settings);
+  pc.label = configLabel(info.name, settings);
   pc.settings = std::move(settings);
-  std::string canonical = "planner=" + info.name;
-  for (const auto& [k, v] : pc.params.all()) canonical += "\n" + k + "=" + toString(v);
-  pc.id = sha256Hex(canonical);
+  pc.id = sha256Hex("planner=" + info.name + paramsIdentity(pc.params, ""));
   return pc;
 }
 
@@ -377,7 +368,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
     const std::string where = "planners[" + std::to_string(i) + "]";
     const Yaml& p = planners.items[i];
     if (p.isScalar() && p.scalar == "all") {  // every registered planner, default parameters
-      for (const PlannerInfo& info : registeredPlanners()) add(makeConfig(info, {}, where), p, where);
+      for (const PlannerInfo& info : registeredPlanners()) add(makeConfig(info, {}), p, where);
       continue;
     }
     // "- zigzag" is short for "- name: zigzag"; "- external: FILE" names a planner outside the
@@ -407,7 +398,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
       for (const PlannerInfo& candidate : registeredPlanners()) known += (known.empty() ? "" : ", ") + candidate.name;
       r.fail(*name_node, where + ".name", "unknown planner '" + name + "' (registered: " + known + ")");
     }
-    std::vector<std::vector<std::pair<std::string, std::string>>> combos{{}};
+    std::vector<ParamSettings> combos{{}};
     if (params) {
       std::vector<std::string> declared;
       for (const ParamSpec& s : info->params) declared.push_back(s.name);
@@ -418,11 +409,12 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
       std::sort(sorted.begin(), sorted.end(), [](const YamlEntry* a, const YamlEntry* b) { return a->key < b->key; });
       for (const YamlEntry* entry : sorted) {
         const std::string field = where + ".params." + entry->key;
-        std::vector<std::vector<std::pair<std::string, std::string>>> next;
+        std::vector<ParamSettings> next;
+        const ParamSpec& spec = paramSpec(*info, entry->key, field);
         for (const Yaml* v : r.values(entry->value, field)) {
-          const std::string value = r.text(*v, field);
+          ParamValue value;
           try {
-            resolveParams(*info, {{entry->key, value}}, "");
+            value = parseParam(spec, r.text(*v, field), "");
           } catch (const InputError& e) {
             r.fail(*v, field, e.problem());
           }
@@ -434,7 +426,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
         combos = std::move(next);
       }
     }
-    for (auto& settings : combos) add(makeConfig(*info, std::move(settings), where), p, where);
+    for (auto& settings : combos) add(makeConfig(*info, std::move(settings)), p, where);
   }
 
   // Tool: width and clearance, each a value or a list.
@@ -446,7 +438,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
       for (const Yaml* v : r.values(*w, "tool.width")) {
         widths.push_back(r.number(*v, "tool.width", kMinToolWidth, kMaxToolWidth));
         for (std::size_t k = 0; k + 1 < widths.size(); ++k)
-          if (widths[k] == widths.back()) r.fail(*v, "tool.width", "lists " + toString(widths.back()) + " twice");
+          if (widths[k] == widths.back()) r.fail(*v, "tool.width", "lists " + shortNumber(widths.back()) + " twice");
       }
     }
     if (const Yaml* cl = t->find("clearance")) {
@@ -455,7 +447,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
         clearances.push_back(r.number(*v, "tool.clearance", 0.0, kMaxClearance));
         for (std::size_t k = 0; k + 1 < clearances.size(); ++k)
           if (clearances[k] == clearances.back())
-            r.fail(*v, "tool.clearance", "lists " + toString(clearances.back()) + " twice");
+            r.fail(*v, "tool.clearance", "lists " + shortNumber(clearances.back()) + " twice");
       }
     }
   }

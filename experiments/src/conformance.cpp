@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "coverbench/files.hpp"
+#include "coverbench/problem_builder.hpp"
 #include "coverbench/wall_file.hpp"
 #include "coverbench/free_region.hpp"
 #include "coverbench/workspace.hpp"
@@ -106,15 +107,16 @@ ConformanceCheck checkConformance(const ExpectedOutcome& expected, const JudgedP
   return c;
 }
 
-void forEachConformanceProblem(const std::vector<std::string>& files, const Params& params,
+void forEachConformanceProblem(const PlannerInfo& planner, const std::vector<std::string>& files, const Params& params,
                                const std::function<void(const std::string& file, Problem& problem)>& visit) {
   for (const std::string& file : files) {
     const Wall wall = loadWallFile(file);
     for (const ToolParams& tool : conformanceTools()) {
-      Problem problem;
-      problem.wall = &wall;
-      problem.tool = tool;
-      problem.params = params;
+      ProblemInputs inputs;
+      inputs.wall = &wall;
+      inputs.tool = tool;
+      inputs.params = params;
+      Problem problem = buildProblem(planner, std::move(inputs), file);
       visit(file, problem);
     }
   }

@@ -150,9 +150,7 @@ std::string gibibytes(double bytes) {
 
 /// The resolved parameters as a JSON object, numbers with full precision (paramsJson reads it).
 std::string paramsText(const PlannerConfig& pc) {
-  nlohmann::ordered_json out = nlohmann::ordered_json::object();
-  for (const auto& [k, v] : pc.params.all()) std::visit([&, name = k](const auto& x) { out[name] = x; }, v);
-  return out.dump();
+  return paramsJson(pc.params).dump();
 }
 
 }  // namespace
@@ -575,7 +573,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   std::set<std::pair<double, double>> tools;
   for (const ResultRow& r : rs.runs) tools.insert({r.tool.tool_width, r.tool.clearance});
   if (tools.size() > 1) {
-    auto suffix = [](double w, double c) { return " @ s=" + shortNumber(w) + " m, c=" + shortNumber(c) + " m"; };
+    auto suffix = [](double w, double c) { return " @ " + toolLabel(ToolParams{w, c}); };
     std::vector<std::string> columns;
     for (const std::string& label : rs.planners)
       for (const auto& [w, c] : tools) columns.push_back(label + suffix(w, c));

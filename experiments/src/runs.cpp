@@ -15,6 +15,7 @@
 #include "coverbench/hash.hpp"
 #include "coverbench/judge.hpp"
 #include "coverbench/metric_spec.hpp"
+#include "coverbench/problem_builder.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/wall_file.hpp"
 
@@ -62,22 +63,6 @@ std::vector<WallEntry> loadWalls(const ExperimentConfig& config) {
 }
 
 namespace {
-
-/// A planner's status as the run's (the run adds what only an execution can end in).
-RunStatus runStatusOf(PlanStatus status) {
-  switch (status) {
-    case PlanStatus::Ok: return RunStatus::Ok;
-    case PlanStatus::Partial: return RunStatus::Partial;
-    case PlanStatus::NoReachableArea: return RunStatus::NoReachableArea;
-    case PlanStatus::InvalidInput: return RunStatus::InvalidInput;
-    case PlanStatus::Timeout: return RunStatus::Timeout;
-    case PlanStatus::Error: return RunStatus::Error;
-    case PlanStatus::Crash: return RunStatus::Crash;
-    case PlanStatus::MemoryLimit: return RunStatus::MemoryLimit;
-    case PlanStatus::InvalidOutput: return RunStatus::InvalidOutput;
-  }
-  return RunStatus::Error;
-}
 
 std::string exact(double v) {
   char buf[40];
@@ -180,7 +165,7 @@ std::vector<ReplanRecord> replanRecords(const RunSpec& spec, const PlannerInfo& 
 
 std::string runBaseKey(const RunSpec& spec) {
   std::string text = "coverbench-run/1\nwall=" + spec.wall->hash + "\nplanner=" + spec.planner->planner;
-  for (const auto& [k, v] : spec.planner->params.all()) text += "\nparam." + k + "=" + toString(v);
+  text += paramsIdentity(spec.planner->params, "param.");
   text += "\ntool_width=" + exact(spec.tool.tool_width) + "\nclearance=" + exact(spec.tool.clearance) +
           "\nseed=" + std::to_string(spec.seed);
   if (spec.exact_judge) text += "\njudge=exact";
@@ -250,43 +235,20 @@ std::vector<RunSpec> expandRuns(const ExperimentConfig& config, const std::vecto
   return runs;
 }
 
-JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, const Budget& budget) {
-  JudgedPlan j;
-  j.result = runPlanner(planner, problem, budget);
-  j.verdict = runStatusOf(j.result.status);
-  j.reason = j.result.reason;
-  try {
-    j.metrics = computeMetrics(*problem.wall, problem.tool, j.result.path, problem.vehicle);
-  } catch (const std::exception& e) {  // beyond the scoring limits (docs/metrics.md)
-    j.not_scored = "the path " + (dynamic_cast<const InputError*>(&e) ? static_cast<const InputError&>(e).problem()
-                                                                      : std::string(e.what()));
-    if (j.result.hasPath()) {
-      j.verdict = RunStatus::MetricsError;
-      j.reason = "the path could not be scored: " + j.not_scored;
-    }
-    return j;
-  }
-  if (j.result.hasPath() && !j.metrics.validity.valid) {
-    j.verdict = RunStatus::InvalidOutput;
-    j.reason = describeViolations(j.metrics.validity, problem.tool.clearance) +
-               (j.result.reason.empty() ? "" : "; the planner said: " + j.result.reason);
-  }
-  return j;
-}
-
 RunRecord executeRun(const RunSpec& spec) {
   RunRecord rec;
   rec.key = spec.key;
   const PlannerInfo& info = findPlanner(spec.planner->planner);
-  Problem problem;
-  problem.wall = &spec.wall->wall;
-  problem.tool = spec.tool;
-  problem.vehicle = spec.vehicle;
-  problem.motion = spec.motion;
-  problem.transit = spec.transit;
-  problem.params = spec.planner->params;
-  problem.seed = spec.seed;
-  problem.memory_limit_bytes = spec.memory_limit_bytes;
+  ProblemInputs inputs;
+  inputs.wall = &spec.wall->wall;
+  inputs.tool = spec.tool;
+  inputs.vehicle = spec.vehicle;
+  inputs.motion = spec.motion;
+  inputs.transit = spec.transit;
+  inputs.params = spec.planner->params;
+  inputs.seed = spec.seed;
+  inputs.memory_limit_bytes = spec.memory_limit_bytes;
+  const Problem problem = buildProblem(info, std::move(inputs), "run " + spec.key);
   PlanResult result;
   // A planner outside the tree: its own processes' CPU time (summed over the repetitions) and peak
   // memory (the largest), not the worker's (measuredRun keeps these).

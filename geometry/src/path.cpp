@@ -1,5 +1,7 @@
 #include "coverbench/path.hpp"
 
+#include "coverbench/wall.hpp"
+
 #include <cmath>
 
 namespace coverbench {
@@ -57,6 +59,10 @@ double segmentLength(const Path& path, std::size_t i) {
   if (bulge == 0.0) return distance(a, b);
   const ArcGeometry g = arcGeometry(a, b, bulge);
   return g.radius * std::fabs(g.sweep);
+}
+
+std::string toolLabel(const ToolParams& tool) {
+  return "s=" + shortNumber(tool.tool_width) + " m, c=" + shortNumber(tool.clearance) + " m";
 }
 
 std::string toString(VehicleModel::Kind kind) {

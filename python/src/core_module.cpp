@@ -14,7 +14,9 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/plan_file.hpp"
 #include "coverbench/records.hpp"
+#include "coverbench/problem_builder.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/wall_file.hpp"
 
@@ -25,10 +27,6 @@ namespace coverbench {
 namespace {
 
 ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
-
-ordered_json paramValue(const ParamValue& v) {
-  return std::visit([](const auto& x) { return ordered_json(x); }, v);
-}
 
 /// The validity check's answer as plan() and score() give it: `valid` a bool, `violations` the
 /// number of violating segments, `violating_segments` the first of them (segment i joins
@@ -52,15 +50,7 @@ std::string planners() {
   ordered_json out = ordered_json::array();
   for (const PlannerInfo& p : registeredPlanners()) {
     ordered_json params = ordered_json::array();
-    for (const ParamSpec& s : p.params) {
-      ordered_json spec = {{"name", s.name}, {"default", paramValue(s.default_value)}, {"unit", s.unit},
-                           {"description", s.description}};
-      const char* types[] = {"number", "integer", "bool", "choice"};
-      spec["type"] = types[static_cast<int>(s.type)];
-      if (s.type == ParamType::Number || s.type == ParamType::Integer) spec["min"] = s.min, spec["max"] = s.max;
-      if (s.type == ParamType::Choice) spec["choices"] = s.choices;
-      params.push_back(spec);
-    }
+    for (const ParamSpec& s : p.params) params.push_back(paramSpecJson(s));
     out.push_back({{"name", p.name}, {"version", p.version}, {"summary", p.summary}, {"reference", p.reference},
                    {"params", params}, {"min_coverage_reachable", p.min_coverage_reachable}});
   }
@@ -88,16 +78,16 @@ std::string plan(const std::string& wall_text, const std::string& planner,
                  std::uint64_t seed, double time_limit_s, double memory_mb) {
   const Wall wall = wallOf(wall_text, "wall");
   const PlannerInfo& info = external::plannerNamed(planner, "planner");
-  Problem problem;
-  problem.wall = &wall;
-  problem.tool = ToolParams{tool_width, clearance};
-  validateToolForWall(problem.tool, wall, "tool");
   validateTimeLimit(time_limit_s, "time_limit_s", "time_limit_s");
-  problem.params = resolveParams(info, settings, "params");
-  problem.seed = seed;
   if (!(memory_mb > 0.0 && memory_mb <= 1048576.0))
     throw InputError("memory_mb", "memory_mb", "must be in (0, 1048576] MiB, got " + shortNumber(memory_mb));
-  problem.memory_limit_bytes = static_cast<std::size_t>(memory_mb * 1024.0 * 1024.0);
+  ProblemInputs inputs;
+  inputs.wall = &wall;
+  inputs.tool = ToolParams{tool_width, clearance};
+  inputs.params = resolveParams(info, settings, "params");
+  inputs.seed = seed;
+  inputs.memory_limit_bytes = static_cast<std::size_t>(memory_mb * 1024.0 * 1024.0);
+  const Problem problem = buildProblem(info, std::move(inputs), "tool");
   // Planned and judged as `coverbench plan` and a run judge it (one code path): a path that fails
   // the validity check is invalid_output, one beyond the scoring limits metrics_error.
   const JudgedPlan judged = planAndJudge(info, problem, Budget(std::chrono::duration<double>(time_limit_s)));
@@ -130,7 +120,7 @@ std::string score(const std::string& wall_text, const std::vector<std::pair<doub
                   const std::string& judge) {
   const Wall wall = wallOf(wall_text, "wall");
   const ToolParams tool{tool_width, clearance};
-  validateTool(tool, "tool");
+  validateToolForWall(tool, wall, "tool");  // the same check a plan's problem gets (buildProblem)
   const Path path = pathOf(waypoints, tool_on, bulge);
   ordered_json out = ordered_json::object();
   const PathMetrics metrics = computeMetrics(wall, tool, path);

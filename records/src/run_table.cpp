@@ -123,9 +123,7 @@ std::string oneLine(const std::string& name) {
 std::string listRuns(const ResultSet& rs) {
   std::string text;
   for (const ResultRow& r : rs.runs) {
-    char tool[96];
-    std::snprintf(tool, sizeof tool, "s=%g c=%g", r.tool.tool_width, r.tool.clearance);
-    text += r.key + "  " + toString(r.status) + "  " + oneLine(r.config) + "  " + tool + "  " + oneLine(r.dataset) + "/" +
+    text += r.key + "  " + toString(r.status) + "  " + oneLine(r.config) + "  " + toolLabel(r.tool) + "  " + oneLine(r.dataset) + "/" +
             oneLine(r.wall_name) + "\n";
   }
   return text;

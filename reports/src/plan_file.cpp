@@ -1,5 +1,7 @@
 #include "coverbench/plan_file.hpp"
 
+#include "coverbench/param_codec.hpp"
+
 #include <cmath>
 #include <cstdio>
 
@@ -12,10 +14,6 @@ namespace {
 using nlohmann::ordered_json;
 
 ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
-
-ordered_json paramJson(const ParamValue& value) {
-  return std::visit([](const auto& v) { return ordered_json(v); }, value);
-}
 
 /// Counts print as integers, `valid` as a boolean, infinities as null.
 ordered_json metricValue(const std::string& name, double v) {
@@ -67,9 +65,7 @@ std::string planFileJson(const PlanFile& plan) {
   if (!plan.transit.isDefault())
     doc["transit"] = {{"planner", plan.transit.planner}, {"iterations", plan.transit.iterations},
                       {"time_cap_s", plan.transit.time_cap_s}, {"seed", plan.seed}};
-  ordered_json params = ordered_json::object();
-  for (const auto& [name, value] : plan.params.all()) params[name] = paramJson(value);
-  doc["params"] = params;
+  doc["params"] = paramsJson(plan.params);
   doc["status"] = toString(plan.result.status);
   doc["reason"] = plan.result.reason;
   ordered_json waypoints = ordered_json::array();

@@ -187,7 +187,7 @@ std::string legendSvg(const SvgContent& c, const View& v) {
   const double bar = niceLength(v.box.width());
   s << "<g transform=\"translate(" << fmt(kPadPx) << "," << fmt(ly) << ")\">\n"
     << "<line x1=\"0\" y1=\"0\" x2=\"" << fmt(bar * v.k) << "\" y2=\"0\" stroke=\"#000\" stroke-width=\"2\"/>"
-    << "<text x=\"0\" y=\"16\">" << toString(bar) << " m</text>\n"
+    << "<text x=\"0\" y=\"16\">" << shortNumber(bar) << " m</text>\n"
     << "<g transform=\"translate(0,34)\">"
     << "<rect width=\"14\" height=\"10\" fill=\"#cfe8cf\" stroke=\"#7fb27f\"/><text x=\"20\" y=\"10\">free region F</text>"
     << "<rect x=\"120\" width=\"14\" height=\"10\" fill=\"#9a9a9a\"/><text x=\"140\" y=\"10\">obstacle</text>"

@@ -13,6 +13,7 @@
 
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/wall.hpp"
 #include "fuzz_support.hpp"
 

@@ -1,10 +1,11 @@
 #pragma once
-/// The planner registry: every planner by name, and parameter resolution against its
-/// declarations. The list itself lives in algorithms/registry.cpp.
+/// The planner registry: every planner by name (the list itself is algorithms/registry.cpp; a
+/// planner's parameters are read and written by param_codec.hpp, run by runner/run_planner.hpp).
 
 #include <string>
 #include <vector>
 
+#include "coverbench/param_codec.hpp"
 #include "coverbench/planner.hpp"
 
 namespace coverbench {
@@ -28,15 +29,5 @@ const PlannerInfo& addPlanner(PlannerInfo info, const std::string& source);
 
 /// The planner called `name`; throws InputError (naming `source`) if there is none.
 const PlannerInfo& findPlanner(const std::string& name, const std::string& source = "--planner");
-
-/// Resolves `key=value` settings against the planner's declared parameters: unknown keys,
-/// unparsable values and values out of range throw InputError naming `source` and the key.
-/// Parameters not given take their defaults.
-Params resolveParams(const PlannerInfo& planner, const std::vector<std::pair<std::string, std::string>>& settings,
-                     const std::string& source = "--param");
-
-/// Runs one planner on one problem, catching every exception at this boundary and turning it
-/// into an Error status; fills `plan_time_ms` with the wall-clock time of the call.
-PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const Budget& budget);
 
 }  // namespace coverbench

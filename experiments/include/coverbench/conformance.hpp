@@ -23,8 +23,9 @@ std::vector<std::string> wallFilesIn(const std::vector<std::string>& folders);
 std::vector<ToolParams> conformanceTools();
 
 /// Each wall file of `files` (loaded once) at each of conformanceTools(): `visit(file, problem)`,
-/// the problem holding the wall, the tool and `params` (the one loop of the card and the suites).
-void forEachConformanceProblem(const std::vector<std::string>& files, const Params& params,
+/// `planner`'s problem holding the wall, the tool and `params` (the one loop of the card and the
+/// suites).
+void forEachConformanceProblem(const PlannerInfo& planner, const std::vector<std::string>& files, const Params& params,
                                const std::function<void(const std::string& file, Problem& problem)>& visit);
 
 /// What a correct planner must do on a wall at a tool with the default (holonomic) vehicle,

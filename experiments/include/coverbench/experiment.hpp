@@ -12,8 +12,10 @@
 #include <vector>
 
 #include "coverbench/metrics.hpp"
+#include "coverbench/param_codec.hpp"
 #include "coverbench/planner.hpp"
 #include "coverbench/replanning.hpp"
+#include "coverbench/run_planner.hpp"
 #include "coverbench/run_record.hpp"
 #include "coverbench/wall.hpp"
 #include "coverbench/wall_import.hpp"
@@ -40,7 +42,7 @@ struct DatasetSpec {
 /// One planner with one set of parameter values (sweeps are expanded into several of these).
 struct PlannerConfig {
   std::string planner;
-  std::vector<std::pair<std::string, std::string>> settings;  ///< as given, in key order
+  ParamSettings settings;  ///< as given (each read once), in key order
   Params params;      ///< resolved, with defaults
   std::string label;  ///< "zigzag" or "zigzag(sweep_angle=90)": names it in tables
   std::string id;     ///< content hash of planner name and resolved parameters
@@ -163,20 +165,6 @@ inline constexpr const char* kReplanFigures[] = {
 /// calls it in a child process per run (hard limits, rusage); tests may call it directly.
 RunRecord executeRun(const RunSpec& spec);
 
-/// One plan judged the one way every command judges a plan (`coverbench plan`, `conformance`,
-/// Python's coverbench.plan; a run's record says the same): the planner's result, the metrics
-/// engine's score of its path (with its validity), and the verdict, the status a run would store:
-/// the planner's status, or invalid_output for a path that fails the validity check, or
-/// metrics_error for a path beyond the scoring limits (then `not_scored` says why).
-struct JudgedPlan {
-  PlanResult result;
-  PathMetrics metrics;
-  std::string not_scored;
-  RunStatus verdict = RunStatus::Error;
-  std::string reason;  ///< the verdict's reason
-  bool succeeded() const { return verdict == RunStatus::Ok; }
-};
-JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, const Budget& budget);
 
 /// Path storage: little-endian doubles and tool flags, then (only for a path with arcs) one bulge
 /// per segment, zlib-compressed ("zlib-f64le-1").

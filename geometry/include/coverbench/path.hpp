@@ -65,6 +65,8 @@ struct ToolParams {
   double clearance = 0.02;  ///< c: minimum gap between the tool disk and any obstacle
   double radius() const { return tool_width / 2.0; }
 };
+/// The tool as every table, column, title and message names it: "s=0.1 m, c=0.02 m".
+std::string toolLabel(const ToolParams& tool);
 
 /// An approach leg: where the wall's start lies outside F (the tool there overlaps the wall's edge
 /// or an obstacle's clearance, as at a dock), the path's first segment may be the straight

@@ -43,7 +43,7 @@ struct ParamSpec {
 };
 
 /// Resolved parameter values (every declared parameter present), by name: what experiments
-/// resolve, key, store and sweep. A planner does not read them: it declares a parameter struct
+/// resolve, key, store and sweep (their text and JSON: param_codec.hpp). A planner does not read them: it declares a parameter struct
 /// (param_table.hpp) and receives it filled.
 class Params {
  public:
@@ -53,10 +53,6 @@ class Params {
  private:
   std::map<std::string, ParamValue> values_;
 };
-
-/// Formats a value as text (for plan files, tables, messages and run keys): numbers in the fewest
-/// digits (at least ten) that read back as the same double.
-std::string toString(const ParamValue& value);
 
 /// One planning problem: a wall, the tool, the vehicle, and the planner's resolved parameters.
 struct Problem {

@@ -83,59 +83,6 @@ class ManifestReader {
   std::string source_;
 };
 
-ParamSpec readParam(const ManifestReader& r, const json& p, const std::string& where) {
-  if (!p.is_object()) r.fail(where, "must be an object");
-  r.onlyKeys(p, where, {"name", "type", "default", "min", "max", "choices", "unit", "description"});
-  ParamSpec s;
-  s.name = r.text(p, "name", where + ".name");
-  if (s.name.empty() || s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos)
-    r.fail(where + ".name", "must be lower-case letters, digits and _");
-  const std::string type = r.text(p, "type", where + ".type");
-  s.unit = r.text(p, "unit", where + ".unit", false);
-  s.description = r.text(p, "description", where + ".description");
-  if (!p.contains("default")) r.fail(where + ".default", "missing");
-  const json& d = p["default"];
-  auto range = [&] {
-    for (const char* k : {"min", "max"})
-      if (!p.contains(k)) r.fail(where + "." + k, "missing (a number needs its range)");
-    s.min = r.number(p["min"], where + ".min");
-    s.max = r.number(p["max"], where + ".max");
-    if (s.min > s.max) r.fail(where + ".max", "is below min");
-  };
-  if (type == "number") {
-    s.type = ParamType::Number;
-    range();
-    const double v = r.number(d, where + ".default");
-    if (v < s.min || v > s.max) r.fail(where + ".default", "is outside [min, max]");
-    s.default_value = v;
-  } else if (type == "integer") {
-    s.type = ParamType::Integer;
-    range();
-    if (!d.is_number_integer()) r.fail(where + ".default", "must be an integer");
-    const auto v = d.get<long long>();
-    if (static_cast<double>(v) < s.min || static_cast<double>(v) > s.max) r.fail(where + ".default", "is outside [min, max]");
-    s.default_value = v;
-  } else if (type == "bool") {
-    s.type = ParamType::Bool;
-    if (!d.is_boolean()) r.fail(where + ".default", "must be true or false");
-    s.default_value = d.get<bool>();
-  } else if (type == "choice") {
-    s.type = ParamType::Choice;
-    if (!p.contains("choices") || !p["choices"].is_array() || p["choices"].empty())
-      r.fail(where + ".choices", "must be a non-empty list of strings");
-    for (const json& c : p["choices"]) {
-      if (!c.is_string()) r.fail(where + ".choices", "must be a non-empty list of strings");
-      s.choices.push_back(c.get<std::string>());
-    }
-    if (!d.is_string() || std::find(s.choices.begin(), s.choices.end(), d.get<std::string>()) == s.choices.end())
-      r.fail(where + ".default", "must be one of the choices");
-    s.default_value = d.get<std::string>();
-  } else {
-    r.fail(where + ".type", "must be number, integer, bool or choice, not '" + type + "'");
-  }
-  return s;
-}
-
 // --- the process ---------------------------------------------------------------------------------
 
 std::string describeExit(int status) {
@@ -727,10 +674,6 @@ class ExternalPlanner final : public Planner {
   Launch launch_;
 };
 
-json paramJson(const ParamValue& v) {
-  return std::visit([](const auto& x) { return json(x); }, v);
-}
-
 PlanStatus answerStatus(const std::string& s, bool& known) {
   known = true;
   for (PlanStatus p : {PlanStatus::Ok, PlanStatus::Partial, PlanStatus::NoReachableArea, PlanStatus::InvalidInput,
@@ -755,9 +698,7 @@ std::string requestJson(const Problem& problem, double time_limit_s, long long i
     vehicle["lower_s"] = problem.vehicle.lower_s;
   }
   p["vehicle"] = vehicle;
-  json params = json::object();
-  for (const auto& [name, value] : problem.params.all()) params[name] = paramJson(value);
-  p["params"] = params;
+  p["params"] = paramsJson(problem.params);
   p["seed"] = problem.seed;
   if (std::isfinite(time_limit_s)) p["time_limit_s"] = time_limit_s;
   return json{{"protocol", kProtocolVersion}, {"id", id}, {"problem", p}}.dump();
@@ -948,12 +889,12 @@ PlannerInfo loadManifest(const std::string& path) {
     identity += f.get<std::string>() + " " + sha256Hex(slurp(p.string(), path, field)) + "\n";
   }
   info.code_sha256 = sha256Hex(identity);
-  info.code_folders = {"external"};  // the host's code too: a changed protocol runs it again
+  info.code_folders = {};  // the host's side of the protocol (runner/) is in every run's shared code identity
   if (doc.contains("params")) {
     if (!doc["params"].is_array()) r.fail("params", "must be a list");
     std::set<std::string> names;
     for (std::size_t i = 0; i < doc["params"].size(); ++i) {
-      ParamSpec s = readParam(r, doc["params"][i], "params[" + std::to_string(i) + "]");
+      ParamSpec s = paramSpecFromJson(doc["params"][i], path, "params[" + std::to_string(i) + "]");
       if (!names.insert(s.name).second) r.fail("params[" + std::to_string(i) + "].name", "'" + s.name + "' is declared twice");
       info.params.push_back(std::move(s));
     }
