@@ -120,7 +120,7 @@ std::string otherValue(const ParamSpec& spec, std::mt19937& rng) {
     case ParamType::Number: {
       for (;;) {  // three decimals, so the YAML text is exact
         const double v = std::round((spec.min + (spec.max - spec.min) * u(rng)) * 1000.0) / 1000.0;
-        if (v >= spec.min && v <= spec.max && v != std::get<double>(spec.default_value)) return toString(v);
+        if (v >= spec.min && v <= spec.max && v != std::get<double>(spec.default_value)) return paramText(v);
       }
     }
     case ParamType::Integer: {
@@ -171,8 +171,8 @@ TEST_F(Hostile, PropertyEveryPlannerStoresExactlyTheParameterValuesWrittenInAnyO
     for (std::size_t i = 0; i < expected.size(); ++i) {
       std::string row;
       for (const auto& [name, value] : c.planners[i].params.all()) {
-        EXPECT_EQ(toString(value), expected[i].at(name)) << c.planners[i].planner << "." << name << " in\n" << yaml;
-        row += (row.empty() ? "" : ", ") + name + "=" + toString(value);
+        EXPECT_EQ(paramText(value), expected[i].at(name)) << c.planners[i].planner << "." << name << " in\n" << yaml;
+        row += (row.empty() ? "" : ", ") + name + "=" + paramText(value);
       }
       expected_rows.push_back(row);
     }
