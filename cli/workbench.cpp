@@ -77,7 +77,7 @@ WorkbenchRequest readWorkbenchRequest(const std::string& text, double max_time_l
   ParamSettings settings;
   if (body.contains("params")) {
     if (!body["params"].is_object()) throw InputError(kBody, "params", "must be an object of name: value");
-    settings = parseSettings(*r.planner, body["params"], "params");
+    settings = parseSettingsJson(*r.planner, body["params"], "params");
   }
   r.config.planner = r.planner->name;
   r.config.params = withDefaults(*r.planner, settings);

@@ -232,7 +232,7 @@ ParamSpec paramSpecFromJson(const json& p, const std::string& source, const std:
   return s;
 }
 
-ParamSettings parseSettings(const PlannerInfo& planner, const json& object, const std::string& source) {
+ParamSettings parseSettingsJson(const PlannerInfo& planner, const json& object, const std::string& source) {
   if (!object.is_object()) throw InputError(source, "(value)", "must be an object of name: value");
   std::vector<std::pair<std::string, std::string>> texts;
   for (const auto& [key, value] : object.items()) texts.emplace_back(key, value.is_string() ? value.get<std::string>() : value.dump());

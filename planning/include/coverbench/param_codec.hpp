@@ -63,6 +63,6 @@ nlohmann::ordered_json paramSpecJson(const ParamSpec& spec);
 ParamSpec paramSpecFromJson(const nlohmann::json& spec, const std::string& source, const std::string& where);
 /// Values given as a JSON object of name: value (a value a string or a JSON scalar, read as its
 /// text), resolved against the planner's declarations as resolveParams does.
-ParamSettings parseSettings(const PlannerInfo& planner, const nlohmann::json& object, const std::string& source);
+ParamSettings parseSettingsJson(const PlannerInfo& planner, const nlohmann::json& object, const std::string& source);
 
 }  // namespace coverbench
