@@ -9,6 +9,7 @@
 #include "cell_ordering.hpp"
 #include "coverbench/headland.hpp"
 #include "coverbench/param_table.hpp"
+#include "coverbench/plan_frame.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/sweep_search.hpp"
 #include "coverbench/boundary_arcs.hpp"
@@ -191,6 +192,241 @@ const ParamTable<DecompositionParams>& paramTable() {
   return table;
 }
 
+/// The non-car plan of one sweep direction once F is known, in the working frame (passes run along
+/// +y): the headland and the cells (decompose), every cell's passes and the loops as stops of one
+/// tour (prepare), then, for an order found under a move cost, the passes and loops in that order
+/// (plan).
+class CellSweep {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  CellSweep(PlanFrame& frame, const DecompositionParams& params, const Budget& budget, double angle_deg)
+      : frame_(&frame), params_(&params), budget_(&budget), angle_deg_(angle_deg),
+        spacing_(frame.problem().tool.tool_width * (1.0 - params.overlap)) {}
+
+  /// With the boundary loop, passes keep one spacing clear of it across their direction and end
+  /// half a spacing from it along it (headland.hpp); without, they run from edge to edge of F
+  /// drawn with coarser arcs (fewer vertices, fewer slabs), 2 mm inside F. `decomposition_ms`
+  /// counts from `t_start`.
+  void decompose(Kind kind, Clock::time_point t_start) {
+    const Problem& problem = frame_->problem();
+    const Region& main = frame_->covered();
+    const bool boundary_loop = params_->boundary_loop;
+    HeadlandOptions layout;
+    layout.spacing = spacing_;
+    layout.radius = problem.tool.tool_width / 2.0;
+    layout.end_inset = params_->row_end_inset;
+    layout.arc_tolerance = kCellArcTolerance;
+    layout.along_x = false;
+    layout.with_unpainted = params_->fill_leftovers;
+    if (boundary_loop) h_ = headland(frame_->ws(), main, layout);
+    const Region cell_region = boundary_loop ? h_.ends
+                                             : freeRegion(frame_->ws().wall(), problem.tool,
+                                                          kCellArcTolerance + kFreeSpaceMargin, kCellArcTolerance);
+    // The headland comes from the part of F covered; the coarser F lies inside F, so each of its
+    // parts lies in one part of F, and a vertex tells which.
+    cells_ = decomposeParts(cell_region, kind, [&](const PolygonWithHoles& poly) {
+      return boundary_loop || std::any_of(main.begin(), main.end(), [&](const PolygonWithHoles& part) {
+               return pointInPolygon(part, poly.outer.front());
+             });
+    });
+    decomposition_ms_ = msSince(t_start);
+  }
+
+  /// Passes per cell, on one grid of positions for all cells; the cells' ends and links for the
+  /// ordering, with the boundary loops as stops of the same tour.
+  void prepare() {
+    const auto t_order = Clock::now();
+    PassGrid grid;
+    passes_ = cellPasses(cells_, h_.row_span, spacing_, params_->boundary_loop, grid);
+    passless_cells_ = dropCellsWithoutPasses(cells_, passes_);
+    ends_.resize(cells_.cells.size());
+    for (std::size_t i = 0; i < cells_.cells.size(); ++i) {
+      ends_[i] = cellEnds(cells_.cells[i], passes_[i]);
+      pass_count_ += passes_[i].size();
+    }
+    for (const Contact& c : cells_.contacts) links_.push_back({c.left, c.right});
+    addLoopStops();
+    for (std::size_t k = 0; k < cells_.contacts.size(); ++k) {
+      const Contact& c = cells_.contacts[k];
+      contacts_between_[std::minmax(c.left, c.right)].push_back(k);
+    }
+    preparation_ms_ = msSince(t_order);
+  }
+
+  /// The plan for one cell order, found under `move_cost`.
+  PlanResult plan(const MoveCost& move_cost) const {
+    const auto t_ordering = Clock::now();
+    // With a start or an end, the order knows them: its cost includes the moves from the start
+    // to the first cell and from the last cell to the end.
+    const Wall& wall = frame_->ws().wall();
+    const Budget& budget = *budget_;
+    Ordering ordering =
+        orderCells(ends_, links_, params_->order, [&] { return !budget.expired(); }, TourCost{move_cost, wall.start, wall.end});
+    const double ordering_ms = preparation_ms_ + msSince(t_ordering);
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the cell ordering");
+
+    const auto t_synthesis = Clock::now();
+    PathBuilder builder(frame_->ws());
+    Moves moves;
+    if (!cover(ordering.visits, builder, moves))
+      return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the passes");
+    // What the passes and loops left inside the loops (when asked: see fillLeftoversParam).
+    Leftovers left;
+    const bool fill = params_->boundary_loop && params_->fill_leftovers;
+    if (fill) {
+      left = coverLeftovers(frame_->ws(), builder, h_.unpainted, 0, spacing_, frame_->problem().tool.tool_width / 2.0, false);
+      moves.unreachable += left.unreachable;
+    }
+    const double synthesis_ms = msSince(t_synthesis);
+
+    if (builder.empty())
+      return PlanResult::failure(PlanStatus::NoReachableArea,
+                                 "no cell: F drawn 1 mm inside itself is empty (F is thinner than 2 mm); enable "
+                                 "boundary_loop to cover F's boundary instead");
+    PlanResult result = frame_->finish(builder, moves.unreachable);
+    result.stats["cells"] = static_cast<double>(cells_.cells.size());
+    result.stats["cells_without_pass"] = static_cast<double>(passless_cells_);
+    result.stats["cell_contacts"] = static_cast<double>(cells_.contacts.size());
+    result.stats["contact_transits"] = static_cast<double>(moves.contact);
+    result.stats["slabs"] = static_cast<double>(cells_.slabs);
+    result.stats["passes"] = static_cast<double>(pass_count_);
+    result.stats["sweep_angle_deg"] = angle_deg_;
+    result.stats[std::string("order_estimate_") + move_cost.unit()] = ordering.estimated_cost;
+    if (fill) recordLeftovers(result, left);
+    result.timings_ms["decomposition"] = decomposition_ms_;
+    result.timings_ms["ordering"] = ordering_ms;
+    result.timings_ms["synthesis"] = synthesis_ms;
+    result.stats["routed_transits"] += static_cast<double>(moves.routed);  // followed, not built by moveTo
+    return result;
+  }
+
+ private:
+  /// What covering the visits counted.
+  struct Moves {
+    std::size_t unreachable = 0;  ///< cells and loops no move reached
+    std::size_t contact = 0;      ///< moves into a touching cell through the side they share
+    std::size_t routed = 0;       ///< moves into a touching cell along a shorter routed transit
+  };
+
+  /// The boundary loops are stops of the same tour, so each is painted between the cells nearest
+  /// to it instead of after all of them: entered and left at one of its four extreme vertices
+  /// (lowest, rightmost, highest, leftmost: the loop's four "orientations").
+  void addLoopStops() {
+    for (const Ring& ring : h_.loops) {
+      std::array<std::size_t, 4> at{0, 0, 0, 0};  // lowest, rightmost, highest, leftmost
+      for (std::size_t k = 1; k < ring.size(); ++k) {
+        if (ring[k].y < ring[at[0]].y) at[0] = k;
+        if (ring[k].x > ring[at[1]].x) at[1] = k;
+        if (ring[k].y > ring[at[2]].y) at[2] = k;
+        if (ring[k].x < ring[at[3]].x) at[3] = k;
+      }
+      CellEnds e;
+      for (int o = 0; o < 4; ++o) e.entry[o] = e.exit[o] = ring[at[o]], e.reverse[o] = o;
+      const Box b = boundingBox(ring);
+      e.centre = {(b.min_x + b.max_x) / 2.0, (b.min_y + b.max_y) / 2.0};
+      ends_.push_back(e);
+      loop_starts_.push_back(at);
+    }
+  }
+
+  /// Covers the cells and loops in the order of `visits`. False: the budget ran out.
+  bool cover(const std::vector<Visit>& visits, PathBuilder& builder, Moves& moves) const {
+    const std::size_t cell_count = cells_.cells.size();
+    std::size_t previous = cell_count;
+    for (const Visit& visit : visits) {
+      if (budget_->expired()) return false;
+      if (visit.cell >= cell_count) {  // a boundary loop
+        const Ring& ring = h_.loops[visit.cell - cell_count];
+        const std::size_t start = loop_starts_[visit.cell - cell_count][static_cast<std::size_t>(visit.orientation)];
+        if (!builder.moveTo(ring[start], !builder.empty() && distance(builder.current(), ring[start]) <= 1.01 * spacing_)) {
+          ++moves.unreachable;
+          continue;
+        }
+        std::vector<Point> loop;
+        for (std::size_t k = 1; k <= ring.size(); ++k) loop.push_back(ring[(start + k) % ring.size()]);
+        builder.follow(loop, true);
+        previous = cell_count;
+        continue;
+      }
+      if (!enter(visit, previous, builder, moves)) {
+        ++moves.unreachable;
+        continue;
+      }
+      previous = visit.cell;
+      const Cell& cell = cells_.cells[visit.cell];
+      std::vector<double> xs = passes_[visit.cell];
+      if ((visit.orientation & 1) != 0) std::reverse(xs.begin(), xs.end());  // leftward
+      bool up = (visit.orientation & 2) == 0;
+      for (std::size_t k = 0; k < xs.size(); ++k) {
+        // Step over along the side the last pass ended on, then run the pass.
+        if (k > 0) builder.follow(cell.boundaryWalk(xs[k - 1], xs[k], !up), true);
+        const Span span = cell.spanAt(xs[k]);
+        builder.follow({{xs[k], up ? span.bottom : span.top}, {xs[k], up ? span.top : span.bottom}}, true);
+        up = !up;
+      }
+    }
+    return true;
+  }
+
+  /// Moves to the entry of the visit's cell: into a touching cell (the `previous` one) through
+  /// the segment they share when a straight move is not free, or along the shortest route when
+  /// that is shorter; else by PathBuilder::moveTo. False: the entry is unreachable.
+  bool enter(const Visit& visit, std::size_t previous, PathBuilder& builder, Moves& moves) const {
+    Workspace& ws = frame_->ws();
+    const Point entry = ends_[visit.cell].entry[visit.orientation];
+    const auto touching = previous < cells_.cells.size() ? contacts_between_.find(std::minmax(previous, visit.cell))
+                                                         : contacts_between_.end();
+    // (A vehicle that lifts its tool crosses straight instead: PathBuilder::moveTo.)
+    if (touching == contacts_between_.end() || ws.vehicle().liftsTool() || ws.router().isFree(builder.current(), entry))
+      return builder.moveTo(entry, !builder.empty() && distance(builder.current(), entry) <= 1.01 * spacing_);
+    std::vector<Point> best;
+    for (std::size_t k : touching->second) {
+      std::vector<Point> walk =
+          throughContact(cells_.cells[previous], builder.current(), cells_.cells[visit.cell], entry, cells_.contacts[k]);
+      if (best.empty() || polylineLength(walk) < polylineLength(best)) best = std::move(walk);
+    }
+    // The shortest collision-free route when it is shorter than the walk through the cells.
+    const auto route = ws.route(builder.current(), entry);
+    if (route && polylineLength(*route) < polylineLength(best)) {
+      builder.follow(*route, false);
+      ++moves.routed;
+    } else {
+      builder.follow(best, false);
+      ++moves.contact;
+    }
+    return true;
+  }
+
+  PlanFrame* frame_;
+  const DecompositionParams* params_;
+  const Budget* budget_;
+  double angle_deg_, spacing_;
+  Headland h_;
+  Decomposition cells_;
+  std::vector<std::vector<double>> passes_;
+  std::size_t passless_cells_ = 0, pass_count_ = 0;
+  std::vector<CellEnds> ends_;  ///< the cells', then the boundary loops'
+  std::vector<CellLink> links_;
+  std::vector<std::array<std::size_t, 4>> loop_starts_;
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> contacts_between_;  ///< contact indices
+  double decomposition_ms_ = 0.0, preparation_ms_ = 0.0;
+};
+
+/// Of two plans of one direction, each from its own cell order (under length and under the time
+/// model), the one the clock rates faster, provided it paints the same parts; both plans' timings.
+PlanResult fasterOf(PlanResult by_length, PlanResult by_time, const Problem& problem, const SweepDirection& sweep) {
+  const bool take_timed = by_time.hasPath() && by_time.status == by_length.status &&
+                          by_time.unreachable_parts == by_length.unreachable_parts &&
+                          objectiveCost(by_time.path, problem, sweep) < objectiveCost(by_length.path, problem, sweep);
+  PlanResult& other = take_timed ? by_length : by_time;
+  PlanResult& kept = take_timed ? by_time : by_length;
+  for (const auto& [name, ms] : other.timings_ms) kept.timings_ms[name] += ms;  // both were planned
+  kept.stats["order_plans"] = 2.0;
+  kept.stats["order_by_time"] = take_timed ? 1.0 : 0.0;
+  return std::move(kept);
+}
+
 class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
  public:
   explicit DecompositionPlanner(Kind kind) : TypedPlanner(paramTable()), kind_(kind) {}
@@ -209,10 +445,11 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
   /// (car_sweep.hpp, CarRow::cell): the car takes the first cell of the tour it has passes left in
   /// (each stack of passes in its block order) before the others, as long as it reaches it.
   PlanResult planForCar(const Problem& problem, const DecompositionParams& params, const Budget& budget, double turn,
-                        double angle_deg, Workspace& ws, const Region& main, std::size_t free_components) {
+                        double angle_deg, PlanFrame& frame) {
+    Workspace& ws = frame.ws();
     const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
     const HeadlandOptions layout = carHeadlandOptions(problem, spacing, 1, params.row_end_inset, kCellArcTolerance, false);
-    Headland h = headland(ws, main, layout);
+    Headland h = headland(ws, frame.covered(), layout);
     std::vector<CarRow> rows = carHolePasses(ws, h.loops, spacing);
     Decomposition cells = decomposeParts(h.ends, kind_, [](const PolygonWithHoles&) { return true; });
     if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the decomposition");
@@ -237,7 +474,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
     }
     PathBuilder builder(ws);
     const CarSweep sweep = carSweep(ws, builder, h.loops, rows, spacing, budget, params.car_plan == CarPlan::Headland);
-    PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), turn, angle_deg, free_components);
+    PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), turn, angle_deg, frame.components().size());
     result.stats["cells"] = static_cast<double>(cells.cells.size());
     result.stats["cells_without_pass"] = static_cast<double>(passless_cells);
     result.stats["cell_contacts"] = static_cast<double>(cells.contacts.size());
@@ -247,202 +484,25 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
   }
 
   PlanResult planAt(const Problem& problem, const DecompositionParams& params, const Budget& budget, double angle_deg) {
-    using Clock = std::chrono::steady_clock;
-    const auto t_start = Clock::now();
-    const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
-    const Order order = params.order;
-    const bool boundary_loop = params.boundary_loop;
+    const auto t_start = CellSweep::Clock::now();
     // Passes run along `angle_deg`; in the working frame they are vertical (along +y), so the
     // working frame is the world turned by 90 - angle degrees.
     const double turn = (angle_deg - 90.0) * M_PI / 180.0;
-    const Wall wall = rotateWall(*problem.wall, -turn);
-
-    Workspace ws(wall, problem);
-    const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
-    if (components.empty())
-      return PlanResult::failure(PlanStatus::NoReachableArea,
-                                 "the tool fits nowhere: the free region F is empty for this tool and clearance");
-    const Region main = coveredPart(components, problem.vehicle);
-    if (problem.vehicle.isCar()) return planForCar(problem, params, budget, turn, angle_deg, ws, main, components.size());
-    // With the boundary loop, passes keep one spacing clear of it across their direction and end
-    // half a spacing from it along it (headland.hpp); without, they run from edge to edge of F
-    // drawn with coarser arcs (fewer vertices, fewer slabs), 2 mm inside F.
-    HeadlandOptions layout;
-    layout.spacing = spacing;
-    layout.radius = problem.tool.tool_width / 2.0;
-    layout.end_inset = params.row_end_inset;
-    layout.arc_tolerance = kCellArcTolerance;
-    layout.along_x = false;
-    layout.with_unpainted = params.fill_leftovers;
-    const Headland h = boundary_loop ? headland(ws, main, layout) : Headland{};
-    const Region cell_region =
-        boundary_loop ? h.ends : freeRegion(wall, problem.tool, kCellArcTolerance + kFreeSpaceMargin, kCellArcTolerance);
-    // The headland comes from the part of F covered; the coarser F lies inside F, so each of its
-    // parts lies in one part of F, and a vertex tells which.
-    Decomposition cells = decomposeParts(cell_region, kind_, [&](const PolygonWithHoles& poly) {
-      return boundary_loop || std::any_of(main.begin(), main.end(), [&](const PolygonWithHoles& part) {
-               return pointInPolygon(part, poly.outer.front());
-             });
-    });
-    const double decomposition_ms = msSince(t_start);
+    PlanFrame frame(problem, turn);
+    if (frame.empty()) return PlanFrame::fitsNowhere();
+    if (problem.vehicle.isCar()) return planForCar(problem, params, budget, turn, angle_deg, frame);
+    CellSweep sweep(frame, params, budget, angle_deg);
+    sweep.decompose(kind_, t_start);
     if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the decomposition");
-
-    // Passes per cell, on one grid of positions for all cells.
-    const auto t_order = Clock::now();
-    PassGrid grid;
-    std::vector<std::vector<double>> passes = cellPasses(cells, h.row_span, spacing, boundary_loop, grid);
-    const std::size_t passless_cells = dropCellsWithoutPasses(cells, passes);
-    std::vector<CellEnds> ends(cells.cells.size());
-    std::size_t pass_count = 0;
-    for (std::size_t i = 0; i < cells.cells.size(); ++i) {
-      ends[i] = cellEnds(cells.cells[i], passes[i]);
-      pass_count += passes[i].size();
-    }
-    std::vector<CellLink> links;
-    for (const Contact& c : cells.contacts) links.push_back({c.left, c.right});
-    // The boundary loops are stops of the same tour, so each is painted between the cells nearest
-    // to it instead of after all of them: entered and left at one of its four extreme vertices
-    // (lowest, rightmost, highest, leftmost: the loop's four "orientations").
-    const std::size_t cell_count = cells.cells.size();
-    std::vector<std::array<std::size_t, 4>> loop_starts;
-    for (const Ring& ring : h.loops) {
-      std::array<std::size_t, 4> at{0, 0, 0, 0};  // lowest, rightmost, highest, leftmost
-      for (std::size_t k = 1; k < ring.size(); ++k) {
-        if (ring[k].y < ring[at[0]].y) at[0] = k;
-        if (ring[k].x > ring[at[1]].x) at[1] = k;
-        if (ring[k].y > ring[at[2]].y) at[2] = k;
-        if (ring[k].x < ring[at[3]].x) at[3] = k;
-      }
-      CellEnds e;
-      for (int o = 0; o < 4; ++o) e.entry[o] = e.exit[o] = ring[at[o]], e.reverse[o] = o;
-      const Box b = boundingBox(ring);
-      e.centre = {(b.min_x + b.max_x) / 2.0, (b.min_y + b.max_y) / 2.0};
-      ends.push_back(e);
-      loop_starts.push_back(at);
-    }
-    std::map<std::pair<std::size_t, std::size_t>, std::vector<const Contact*>> contacts_between;
-    for (const Contact& c : cells.contacts) contacts_between[std::minmax(c.left, c.right)].push_back(&c);
-    const double preparation_ms = msSince(t_order);
-
-    // The plan for one cell order, found under `move_cost`.
-    auto planOrder = [&](const MoveCost& move_cost) {
-      const auto t_ordering = Clock::now();
-      // With a start or an end, the order knows them: its cost includes the moves from the start
-      // to the first cell and from the last cell to the end.
-      Ordering ordering = orderCells(ends, links, order, [&] { return !budget.expired(); }, TourCost{move_cost, wall.start, wall.end});
-      const double ordering_ms = preparation_ms + msSince(t_ordering);
-      if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the cell ordering");
-
-      const auto t_synthesis = Clock::now();
-      PathBuilder builder(ws);
-      std::size_t unreachable = 0, contact_moves = 0, routed_between_cells = 0;
-      std::size_t previous = cells.cells.size();
-      for (const Visit& visit : ordering.visits) {
-        if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the passes");
-        if (visit.cell >= cell_count) {  // a boundary loop
-          const Ring& ring = h.loops[visit.cell - cell_count];
-          const std::size_t start = loop_starts[visit.cell - cell_count][static_cast<std::size_t>(visit.orientation)];
-          if (!builder.moveTo(ring[start], !builder.empty() && distance(builder.current(), ring[start]) <= 1.01 * spacing)) {
-            ++unreachable;
-            continue;
-          }
-          std::vector<Point> loop;
-          for (std::size_t k = 1; k <= ring.size(); ++k) loop.push_back(ring[(start + k) % ring.size()]);
-          builder.follow(loop, true);
-          previous = cell_count;
-          continue;
-        }
-        const Cell& cell = cells.cells[visit.cell];
-        std::vector<double> xs = passes[visit.cell];
-        const bool leftward = (visit.orientation & 1) != 0;
-        bool up = (visit.orientation & 2) == 0;
-        if (leftward) std::reverse(xs.begin(), xs.end());
-        const Point entry = ends[visit.cell].entry[visit.orientation];
-        // Into a touching cell through the shared segment when a straight move is not free.
-        const auto touching = previous < cells.cells.size()
-                                  ? contacts_between.find(std::minmax(previous, visit.cell))
-                                  : contacts_between.end();
-        // (A vehicle that lifts its tool crosses straight instead: PathBuilder::moveTo.)
-        if (touching != contacts_between.end() && !ws.vehicle().liftsTool() &&
-            !ws.router().isFree(builder.current(), entry)) {
-          std::vector<Point> best;
-          for (const Contact* c : touching->second) {
-            std::vector<Point> walk = throughContact(cells.cells[previous], builder.current(), cell, entry, *c);
-            if (best.empty() || polylineLength(walk) < polylineLength(best)) best = std::move(walk);
-          }
-          // The shortest collision-free route when it is shorter than the walk through the cells.
-          const auto route = ws.route(builder.current(), entry);
-          if (route && polylineLength(*route) < polylineLength(best)) {
-            builder.follow(*route, false);
-            ++routed_between_cells;
-          } else {
-            builder.follow(best, false);
-            ++contact_moves;
-          }
-        } else if (!builder.moveTo(entry, !builder.empty() && distance(builder.current(), entry) <= 1.01 * spacing)) {
-          ++unreachable;
-          continue;
-        }
-        previous = visit.cell;
-        for (std::size_t k = 0; k < xs.size(); ++k) {
-          // Step over along the side the last pass ended on, then run the pass.
-          if (k > 0) builder.follow(cell.boundaryWalk(xs[k - 1], xs[k], !up), true);
-          const Span span = cell.spanAt(xs[k]);
-          builder.follow({{xs[k], up ? span.bottom : span.top}, {xs[k], up ? span.top : span.bottom}}, true);
-          up = !up;
-        }
-      }
-      // What the passes and loops left inside the loops (when asked: see fillLeftoversParam).
-      Leftovers left;
-      const bool fill = boundary_loop && params.fill_leftovers;
-      if (fill) {
-        left = coverLeftovers(ws, builder, h.unpainted, 0, spacing, problem.tool.tool_width / 2.0, false);
-        unreachable += left.unreachable;
-      }
-      const double synthesis_ms = msSince(t_synthesis);
-
-      PlanResult result;
-      result.status = PlanStatus::Ok;
-      if (builder.empty())
-        return PlanResult::failure(PlanStatus::NoReachableArea,
-                                   "no cell: F drawn 1 mm inside itself is empty (F is thinner than 2 mm); enable "
-                                   "boundary_loop to cover F's boundary instead");
-      result.path = builder.take();
-      fitBoundaryArcs(result, ws, problem);
-      rotatePoints(result.path.waypoints, turn);
-      result.stats["cells"] = static_cast<double>(cells.cells.size());
-      result.stats["cells_without_pass"] = static_cast<double>(passless_cells);
-      result.stats["cell_contacts"] = static_cast<double>(cells.contacts.size());
-      result.stats["contact_transits"] = static_cast<double>(contact_moves);
-      result.stats["slabs"] = static_cast<double>(cells.slabs);
-      result.stats["passes"] = static_cast<double>(pass_count);
-      result.stats["sweep_angle_deg"] = angle_deg;
-      result.stats[std::string("order_estimate_") + move_cost.unit()] = ordering.estimated_cost;
-      if (fill) recordLeftovers(result, left);
-      result.timings_ms["decomposition"] = decomposition_ms;
-      result.timings_ms["ordering"] = ordering_ms;
-      result.timings_ms["synthesis"] = synthesis_ms;
-      recordOutcome(result, builder, components.size(), unreachable);
-      result.stats["routed_transits"] += static_cast<double>(routed_between_cells);  // followed, not built by moveTo
-      return result;
-    };
-    PlanResult result = planOrder(MoveCost{});
+    sweep.prepare();
+    PlanResult result = sweep.plan(MoveCost{});
     if (params.sweep.objective != SweepDirection::Objective::Time || !result.hasPath()) return result;
     // For the clock: the order found under the time model's move costs is planned too, and the
     // plan the clock rates faster kept, provided it paints the same parts (the moves' straight
     // estimates miss their routes' stops, so the clock, not the estimate, decides).
     MoveCost by_time;
     by_time.clock = problem.motion;
-    PlanResult timed = planOrder(by_time);
-    const bool take_timed = timed.hasPath() && timed.status == result.status &&
-                            timed.unreachable_parts == result.unreachable_parts &&
-                            objectiveCost(timed.path, problem, params.sweep) < objectiveCost(result.path, problem, params.sweep);
-    PlanResult& other = take_timed ? result : timed;
-    PlanResult& kept = take_timed ? timed : result;
-    for (const auto& [name, ms] : other.timings_ms) kept.timings_ms[name] += ms;  // both were planned
-    kept.stats["order_plans"] = 2.0;
-    kept.stats["order_by_time"] = take_timed ? 1.0 : 0.0;
-    return std::move(kept);
+    return fasterOf(std::move(result), sweep.plan(by_time), problem, params.sweep);
   }
 
   Kind kind_;
@@ -450,13 +510,10 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
 
 }  // namespace
 
-PlannerInfo plannerInfo(Kind kind) {
-  PlannerInfo info;
-  info.params = paramTable().specs();
+PlannerInfo plannerInfo(Kind kind, PlannerInfo info) {
   info.min_coverage_reachable = 0.99;
   info.plans_for_car = true;
-  info.make = [kind] { return std::make_unique<DecompositionPlanner>(kind); };
-  return info;
+  return typedPlannerInfo<DecompositionPlanner>(std::move(info), paramTable(), kind);
 }
 
 }  // namespace coverbench::decomposition

@@ -8,7 +8,8 @@
 
 namespace coverbench::decomposition {
 
-/// Everything but name, summary and reference, which each planner's folder sets.
-PlannerInfo plannerInfo(Kind kind);
+/// The PlannerInfo of the planner of `kind`: `info` (the name, version, code folders, summary
+/// and reference each planner's folder sets) with the parameters, promise and maker they share.
+PlannerInfo plannerInfo(Kind kind, PlannerInfo info);
 
 }  // namespace coverbench::decomposition

@@ -12,6 +12,7 @@
 #include "coverbench/limits.hpp"
 #include "coverbench/clearance.hpp"
 #include "coverbench/param_table.hpp"
+#include "coverbench/plan_frame.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/boundary_arcs.hpp"
 #include "coverbench/workspace.hpp"
@@ -451,6 +452,134 @@ const ParamTable<SpanningTreeParams>& paramTable() {
   return table;
 }
 
+/// Covers cells with trees, counting what it did: builds each part's tree, moves to its root and
+/// walks it (coverParts), or, for Spiral-STC, circumnavigates the trees of mega-cells first
+/// (spiralStc).
+class TreeCover {
+ public:
+  TreeCover(PathBuilder& builder, const SpanningTreeParams& params, const Budget& budget)
+      : builder_(&builder), budget_(&budget), mst_(params.tree == Tree::Mst), every_cell_(params.waypoint_per_cell),
+        order_(params.neighbour_order) {}
+
+  std::size_t parts = 0, unreachable = 0, tree_cells = 0, leftover_cells = 0, mega_cells = 0;
+
+  /// Covers a set of cells (`open` marks them) part by part with trees of `variant`, lowest row
+  /// first, then leftmost. False: the budget ran out.
+  bool coverParts(const Grid& g, const std::vector<char>& open, Variant variant) {
+    Forest forest(g, open, variant == Variant::ShortBranchesFirst, mst_);
+    for (int root = 0; root < g.size(); ++root) {
+      if (forest.taken(root)) continue;
+      if (budget_->expired()) return false;
+      ++parts;
+      tree_cells += grow(g, root, forest);
+      if (!builder_->moveTo(g.centre(root), false)) {
+        ++unreachable;
+        continue;
+      }
+      // One follow per run of equal tool state (the walk alternates new cells and returns),
+      // and a waypoint only where the walk turns: cells in a straight line are one segment.
+      CellRun run(g, every_cell_);
+      run.start(root);
+      bool run_tool = true;
+      walk(root, forest, variant, [&](int cell, bool first) {
+        if (first != run_tool && !run.empty()) run.flush(*builder_, run_tool);
+        run_tool = first;
+        run.add(cell);
+      });
+      run.flush(*builder_, run_tool);
+    }
+    return true;
+  }
+
+  /// Spiral-STC: mega-cells of 2 x 2 sub-cells of `grid`, all four free and joined, neighbours
+  /// joined on both rows or columns they share; each tree of mega-cells circumnavigated, then the
+  /// free sub-cells of partially blocked mega-cells covered by ordinary trees. False: the budget
+  /// ran out.
+  bool spiralStc(const Grid& grid) {
+    Grid mega;
+    mega.cols = grid.cols / 2;
+    mega.rows = grid.rows / 2;
+    mega.x0 = grid.x0 + grid.dx / 2.0;
+    mega.y0 = grid.y0 + grid.dy / 2.0;
+    mega.dx = 2.0 * grid.dx;
+    mega.dy = 2.0 * grid.dy;
+    mega.cell.assign(mega.size(), 0);
+    mega.links.assign(mega.size(), 0);
+    auto sub = [&](int m, int corner) {  // 0 BL, 1 BR, 2 TR, 3 TL
+      const int c = 2 * (m % mega.cols) + (corner == 1 || corner == 2), r = 2 * (m / mega.cols) + (corner >= 2);
+      return r * grid.cols + c;
+    };
+    for (int m = 0; m < mega.size(); ++m) {
+      const int bl = sub(m, 0), br = sub(m, 1), tl = sub(m, 3);
+      mega.cell[m] = grid.cell[bl] && grid.cell[br] && grid.cell[sub(m, 2)] && grid.cell[tl] && grid.right(bl) &&
+                     grid.right(tl) && grid.up(bl) && grid.up(br);
+      mega_cells += mega.cell[m];
+    }
+    for (int m = 0; m < mega.size(); ++m) {
+      if (!mega.cell[m]) continue;
+      const int c = m % mega.cols, r = m / mega.cols;
+      if (c + 1 < mega.cols && mega.cell[m + 1] && grid.right(sub(m, 1)) && grid.right(sub(m, 2))) mega.join(m, true);
+      if (r + 1 < mega.rows && mega.cell[m + mega.cols] && grid.up(sub(m, 3)) && grid.up(sub(m, 2))) mega.join(m, false);
+    }
+    // Circumnavigate each mega-cell tree: every mega-cell's four sub-cells form a
+    // counter-clockwise cycle; each tree edge splices its two cycles into one.
+    // The cycle's successor of each sub-cell, always a neighbour: its direction, a byte a cell.
+    std::vector<unsigned char> next(grid.size(), 0);
+    auto precede = [&](int from, int to) { next[from] = static_cast<unsigned char>(grid.direction(from, to)); };
+    auto successor = [&](int cell) { return cell + grid.step(next[cell]); };
+    for (int m = 0; m < mega.size(); ++m)
+      if (mega.cell[m])
+        for (int k = 0; k < 4; ++k) precede(sub(m, k), sub(m, (k + 1) % 4));
+    Forest forest(mega, mega.cell, false, mst_);
+    for (int root = 0; root < mega.size(); ++root) {
+      if (forest.taken(root)) continue;
+      if (budget_->expired()) return false;
+      ++parts;
+      tree_cells += 4 * grow(mega, root, forest);
+      walk(root, forest, Variant::Stop, [&](int child, bool first) {  // every tree edge once
+        if (!first) return;
+        const int parent = forest.parent(child);
+        if (child == parent + 1 || child == parent - 1) {  // side by side
+          const int left = std::min(parent, child), right = std::max(parent, child);
+          precede(sub(left, 1), sub(right, 0));
+          precede(sub(right, 3), sub(left, 2));
+        } else {  // one above the other
+          const int low = std::min(parent, child), high = std::max(parent, child);
+          precede(sub(low, 2), sub(high, 1));
+          precede(sub(high, 0), sub(low, 3));
+        }
+      });
+      const int start = sub(root, 0);
+      if (!builder_->moveTo(grid.centre(start), false)) {
+        ++unreachable;
+        continue;
+      }
+      CellRun cycle(grid, every_cell_);
+      cycle.start(start);
+      for (int cell = successor(start); cell != start; cell = successor(cell)) cycle.add(cell);
+      cycle.flush(*builder_, true);
+    }
+    // Free sub-cells of partially blocked mega-cells: ordinary trees over what is left.
+    std::vector<char> left = grid.cell;
+    for (int m = 0; m < mega.size(); ++m)
+      if (mega.cell[m])
+        for (int k = 0; k < 4; ++k) left[sub(m, k)] = 0;
+    for (char c : left) leftover_cells += c;
+    return coverParts(grid, left, Variant::ShortBranchesFirst);
+  }
+
+ private:
+  /// The tree of the part around `root` (dfsTree or mstTree); its number of nodes.
+  std::size_t grow(const Grid& g, int root, Forest& forest) const {
+    return mst_ ? mstTree(g, root, order_, forest) : dfsTree(g, root, order_, forest);
+  }
+
+  PathBuilder* builder_;
+  const Budget* budget_;
+  bool mst_, every_cell_;
+  std::array<int, 4> order_;
+};
+
 class SpanningTreePlanner final : public TypedPlanner<SpanningTreeParams> {
  public:
   SpanningTreePlanner() : TypedPlanner(paramTable()) {}
@@ -458,32 +587,24 @@ class SpanningTreePlanner final : public TypedPlanner<SpanningTreeParams> {
  protected:
   PlanResult planWith(const Problem& problem, const SpanningTreeParams& params, const Budget& budget) override {
     const Variant variant = params.variant;
-    const bool mst = params.tree == Tree::Mst;
-    const bool every_cell = params.waypoint_per_cell;
-    const std::array<int, 4> order = params.neighbour_order;
     const double s = problem.tool.tool_width;
     const bool loop = params.boundary_loop;
 
     if (const std::string why = gridCellsProblem(problem.tool, *problem.wall); !why.empty())
       return PlanResult::failure(PlanStatus::InvalidInput, why);
-    Workspace ws(*problem.wall, problem);
-    const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
-    if (components.empty())
-      return PlanResult::failure(PlanStatus::NoReachableArea,
-                                 "the tool fits nowhere: the free region F is empty for this tool and clearance");
-    // Like every planner here: the largest free component (the others cannot be reached), or all
-    // of them for a vehicle that lifts its tool across.
+    PlanFrame frame(problem);
+    if (frame.empty()) return PlanFrame::fitsNowhere();
     // With the boundary loop, the cells start one tool width inside F's extent, where the loop's
     // band ends. Without it, two planning margins inside F's exact edge where the wall's edge is
     // straight (such cells are measured). A centre one cell-multiple from there lies outside the opposite
     // edge of a part exactly that wide, and is dropped: a grid of pitch exactly s cannot keep a
     // margin from both edges of it. The loop paints that strip.
-    const Region part = coveredPart(components, problem.vehicle);
+    const Region& part = frame.covered();
     const Box box = boundingBox(part);
     const Box wall_box = boundingBox(problem.wall->boundary);
     const double reach = problem.tool.radius() + problem.tool.clearance + 2.0 * kPlanningMargin;
     const Point origin = loop ? Point{box.min_x + s, box.min_y + s} : Point{wall_box.min_x + reach, wall_box.min_y + reach};
-    const EdgeCheck edge{&ws.field(), problem.tool.radius(), problem.tool.clearance};
+    const EdgeCheck edge{&frame.ws().field(), problem.tool.radius(), problem.tool.clearance};
     const Grid grid = buildGrid(part, origin, box, s, variant == Variant::SpiralStc, loop ? kLoopMargin * s : 0.0,
                                 loop ? nullptr : &edge);
     int free_cells = 0;
@@ -492,140 +613,30 @@ class SpanningTreePlanner final : public TypedPlanner<SpanningTreeParams> {
       return PlanResult::failure(PlanStatus::NoReachableArea,
                                  "no grid cell centre lies in F: the free region is narrower than the grid spacing");
 
-    PathBuilder builder(ws);
-    std::size_t parts = 0, unreachable = 0, tree_cells = 0, leftover_cells = 0, mega_cells = 0;
+    PathBuilder builder(frame.ws());
+    TreeCover cover(builder, params, budget);
     // The loop first: one pass along every ring of F paints the band the cells leave along F's
     // edge (partially blocked cells, slanted edges, rounded corners).
-    if (loop) unreachable += coverRings(builder, allRings(part), 1.01 * s);
-    // Covers a set of cells (`open` marks them) part by part with trees of `variant`.
-    auto coverParts = [&](const Grid& g, const std::vector<char>& open, Variant v) {
-      Forest forest(g, open, v == Variant::ShortBranchesFirst, mst);
-      for (int root = 0; root < g.size(); ++root) {  // lowest row first, then leftmost
-        if (forest.taken(root)) continue;
-        if (budget.expired()) return false;
-        ++parts;
-        tree_cells += mst ? mstTree(g, root, order, forest) : dfsTree(g, root, order, forest);
-        if (!builder.moveTo(g.centre(root), false)) {
-          ++unreachable;
-          continue;
-        }
-        // One follow per run of equal tool state (the walk alternates new cells and returns),
-        // and a waypoint only where the walk turns: cells in a straight line are one segment.
-        CellRun run(g, every_cell);
-        run.start(root);
-        bool run_tool = true;
-        walk(root, forest, v, [&](int cell, bool first) {
-          if (first != run_tool && !run.empty()) run.flush(builder, run_tool);
-          run_tool = first;
-          run.add(cell);
-        });
-        run.flush(builder, run_tool);
-      }
-      return true;
-    };
-
-    bool finished = true;
-    if (variant != Variant::SpiralStc) {
-      finished = coverParts(grid, grid.cell, variant);
-    } else {
-      // Mega-cells: 2 x 2 sub-cells, all four free and joined; neighbours joined on both rows or
-      // columns they share.
-      Grid mega;
-      mega.cols = grid.cols / 2;
-      mega.rows = grid.rows / 2;
-      mega.x0 = grid.x0 + grid.dx / 2.0;
-      mega.y0 = grid.y0 + grid.dy / 2.0;
-      mega.dx = 2.0 * grid.dx;
-      mega.dy = 2.0 * grid.dy;
-      mega.cell.assign(mega.size(), 0);
-      mega.links.assign(mega.size(), 0);
-      auto sub = [&](int m, int corner) {  // 0 BL, 1 BR, 2 TR, 3 TL
-        const int c = 2 * (m % mega.cols) + (corner == 1 || corner == 2), r = 2 * (m / mega.cols) + (corner >= 2);
-        return r * grid.cols + c;
-      };
-      for (int m = 0; m < mega.size(); ++m) {
-        const int bl = sub(m, 0), br = sub(m, 1), tl = sub(m, 3);
-        mega.cell[m] = grid.cell[bl] && grid.cell[br] && grid.cell[sub(m, 2)] && grid.cell[tl] && grid.right(bl) &&
-                       grid.right(tl) && grid.up(bl) && grid.up(br);
-        mega_cells += mega.cell[m];
-      }
-      for (int m = 0; m < mega.size(); ++m) {
-        if (!mega.cell[m]) continue;
-        const int c = m % mega.cols, r = m / mega.cols;
-        if (c + 1 < mega.cols && mega.cell[m + 1] && grid.right(sub(m, 1)) && grid.right(sub(m, 2))) mega.join(m, true);
-        if (r + 1 < mega.rows && mega.cell[m + mega.cols] && grid.up(sub(m, 3)) && grid.up(sub(m, 2))) mega.join(m, false);
-      }
-      // Circumnavigate each mega-cell tree: every mega-cell's four sub-cells form a
-      // counter-clockwise cycle; each tree edge splices its two cycles into one.
-      // The cycle's successor of each sub-cell, always a neighbour: its direction, a byte a cell.
-      std::vector<unsigned char> next(grid.size(), 0);
-      auto precede = [&](int from, int to) { next[from] = static_cast<unsigned char>(grid.direction(from, to)); };
-      auto successor = [&](int cell) { return cell + grid.step(next[cell]); };
-      for (int m = 0; m < mega.size(); ++m)
-        if (mega.cell[m])
-          for (int k = 0; k < 4; ++k) precede(sub(m, k), sub(m, (k + 1) % 4));
-      Forest forest(mega, mega.cell, false, mst);
-      for (int root = 0; root < mega.size(); ++root) {
-        if (forest.taken(root)) continue;
-        if (budget.expired()) {
-          finished = false;
-          break;
-        }
-        ++parts;
-        tree_cells += 4 * (mst ? mstTree(mega, root, order, forest) : dfsTree(mega, root, order, forest));
-        walk(root, forest, Variant::Stop, [&](int child, bool first) {  // every tree edge once
-          if (!first) return;
-          const int parent = forest.parent(child);
-          if (child == parent + 1 || child == parent - 1) {  // side by side
-            const int left = std::min(parent, child), right = std::max(parent, child);
-            precede(sub(left, 1), sub(right, 0));
-            precede(sub(right, 3), sub(left, 2));
-          } else {  // one above the other
-            const int low = std::min(parent, child), high = std::max(parent, child);
-            precede(sub(low, 2), sub(high, 1));
-            precede(sub(high, 0), sub(low, 3));
-          }
-        });
-        const int start = sub(root, 0);
-        if (!builder.moveTo(grid.centre(start), false)) {
-          ++unreachable;
-          continue;
-        }
-        CellRun cycle(grid, every_cell);
-        cycle.start(start);
-        for (int cell = successor(start); cell != start; cell = successor(cell)) cycle.add(cell);
-        cycle.flush(builder, true);
-      }
-      // Free sub-cells of partially blocked mega-cells: ordinary trees over what is left.
-      std::vector<char> left = grid.cell;
-      for (int m = 0; m < mega.size(); ++m)
-        if (mega.cell[m])
-          for (int k = 0; k < 4; ++k) left[sub(m, k)] = 0;
-      for (char c : left) leftover_cells += c;
-      if (finished) finished = coverParts(grid, left, Variant::ShortBranchesFirst);
-    }
+    if (loop) cover.unreachable += coverRings(builder, allRings(part), 1.01 * s);
+    const bool finished =
+        variant == Variant::SpiralStc ? cover.spiralStc(grid) : cover.coverParts(grid, grid.cell, variant);
     if (!finished) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out");
 
-    PlanResult result;
-    result.status = PlanStatus::Ok;
-    result.path = builder.take();
-    if (params.corner_spurs) {
-      std::size_t spurs = 0;
-      result.path = withCornerSpurs(result.path, problem.tool.radius(), ws.router(), spurs);
-      result.stats["corner_spurs"] = static_cast<double>(spurs);
-    }
-    fitBoundaryArcs(result, ws, problem);
+    Path path = builder.take();
+    std::size_t spurs = 0;
+    if (params.corner_spurs) path = withCornerSpurs(path, problem.tool.radius(), frame.ws().router(), spurs);
+    PlanResult result = frame.finish(builder, std::move(path), cover.unreachable);
+    if (params.corner_spurs) result.stats["corner_spurs"] = static_cast<double>(spurs);
     result.stats["grid_cells"] = static_cast<double>(grid.size());
     result.stats["free_cells"] = static_cast<double>(free_cells);
     result.stats["grid_spacing_x"] = grid.dx;
     result.stats["grid_spacing_y"] = grid.dy;
-    result.stats["trees"] = static_cast<double>(parts);
-    result.stats["tree_cells"] = static_cast<double>(tree_cells);
+    result.stats["trees"] = static_cast<double>(cover.parts);
+    result.stats["tree_cells"] = static_cast<double>(cover.tree_cells);
     if (variant == Variant::SpiralStc) {
-      result.stats["mega_cells"] = static_cast<double>(mega_cells);
-      result.stats["partially_blocked_sub_cells"] = static_cast<double>(leftover_cells);
+      result.stats["mega_cells"] = static_cast<double>(cover.mega_cells);
+      result.stats["partially_blocked_sub_cells"] = static_cast<double>(cover.leftover_cells);
     }
-    recordOutcome(result, builder, components.size(), unreachable);
     return result;
   }
 };
@@ -633,18 +644,15 @@ class SpanningTreePlanner final : public TypedPlanner<SpanningTreeParams> {
 }  // namespace
 
 PlannerInfo info() {
-  PlannerInfo info;
-  info.name = "spanning-tree";
-  info.version = std::string("5");  // not = "5": GCC 12 warns falsely (-Wrestrict) on that assignment here
-  info.code_folders = {"spanning_tree"};
-  info.summary = "A loop along F's boundary, then spanning-tree coverage of a grid of tool-sized cells; return, stop, short-branches-first or Spiral-STC";
-  info.reference = "Gabriely & Rimon, Spanning-tree based coverage of continuous areas by a mobile robot, AMAI 31, 2001";
-  info.params = paramTable().specs();
   // The loop paints what the cells leave along F's edge; a round tool still leaves the outer corner
   // of each turn of the walk (lowest on the conformance walls: 0.988, gable walls at s = 0.1 m).
-  info.min_coverage_reachable = 0.98;
-  info.make = [] { return std::make_unique<SpanningTreePlanner>(); };
-  return info;
+  return typedPlannerInfo<SpanningTreePlanner>(
+      {.name = "spanning-tree", .version = "5", .code_folders = {"spanning_tree"},
+       .summary = "A loop along F's boundary, then spanning-tree coverage of a grid of tool-sized cells; return, stop, "
+                  "short-branches-first or Spiral-STC",
+       .reference = "Gabriely & Rimon, Spanning-tree based coverage of continuous areas by a mobile robot, AMAI 31, 2001",
+       .min_coverage_reachable = 0.98},
+      paramTable());
 }
 
 }  // namespace coverbench::spanning_tree

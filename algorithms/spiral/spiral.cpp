@@ -5,6 +5,7 @@
 
 #include "coverbench/edge_index.hpp"
 #include "coverbench/param_table.hpp"
+#include "coverbench/plan_frame.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/boundary_arcs.hpp"
 #include "coverbench/car_sweep.hpp"
@@ -101,10 +102,10 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
   /// the car, from the outermost, and what their smoothing skips (corners tighter than it turns,
   /// the innermost rings) as passes taken in a turn-aware order with the obstacles' passes, then
   /// (`fill`, car_plan: headland) the sweep's fill rounds.
-  PlanResult planForCar(const Budget& budget, double spacing, double tolerance, Workspace& ws, const Region& main,
-                        std::size_t free_components, bool fill) {
-    const Region base = simplifyRegion(main, tolerance);
-    std::vector<Ring> loops = allRings(main);
+  PlanResult planForCar(const Budget& budget, double spacing, double tolerance, PlanFrame& frame, bool fill) {
+    Workspace& ws = frame.ws();
+    const Region base = simplifyRegion(frame.covered(), tolerance);
+    std::vector<Ring> loops = allRings(frame.covered());
     std::size_t levels = 1;
     for (std::size_t j = 1;; ++j, ++levels) {
       if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out");
@@ -115,7 +116,7 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
     const std::vector<CarRow> passes = carHolePasses(ws, loops, spacing);
     PathBuilder builder(ws);
     const CarSweep sweep = carSweep(ws, builder, loops, passes, spacing, budget, fill);
-    PlanResult result = carSweepPlan(sweep, builder, loops.size(), 0.0, std::nullopt, free_components);
+    PlanResult result = carSweepPlan(sweep, builder, loops.size(), 0.0, std::nullopt, frame.components().size());
     result.stats["levels"] = static_cast<double>(levels);
     return result;
   }
@@ -134,14 +135,10 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
     const double tolerance = std::clamp(s / 10.0, kArcTolerance, 1e-2);
     const double coarse = s / 5.0;
 
-    Workspace ws(*problem.wall, problem);
-    const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
-    if (components.empty())
-      return PlanResult::failure(PlanStatus::NoReachableArea,
-                                 "the tool fits nowhere: the free region F is empty for this tool and clearance");
-    const Region main = coveredPart(components, problem.vehicle);
-    if (problem.vehicle.isCar())
-      return planForCar(budget, spacing, tolerance, ws, main, components.size(), params.car_plan == CarPlan::Headland);
+    PlanFrame frame(problem);
+    if (frame.empty()) return PlanFrame::fitsNowhere();
+    if (problem.vehicle.isCar()) return planForCar(budget, spacing, tolerance, frame, params.car_plan == CarPlan::Headland);
+    const Region& main = frame.covered();
 
     // Ring j is the boundary of F eroded by j * spacing (outer rings shrink, rings around
     // obstacles grow, until they meet).
@@ -173,25 +170,21 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
         }
       }
       if (inner.empty()) break;
-      for (const Ring& ring : inner_rings) rings.push_back(withCornerSpurs(ring, r, ws.router(), spurs));
+      for (const Ring& ring : inner_rings) rings.push_back(withCornerSpurs(ring, r, frame.ws().router(), spurs));
       previous = inner_rings;
       ++levels;
     }
 
     // Greedy nearest ring next: the rings chain inward from the wall and outward from each
     // obstacle one step at a time, so most links are a single tool-on step of `spacing`.
-    PathBuilder builder(ws);
+    PathBuilder builder(frame.ws());
     const std::size_t unreachable = coverRings(builder, std::move(rings), 2.0 * spacing);
 
-    PlanResult result;
-    result.status = PlanStatus::Ok;
-    result.path = builder.take();
-    fitBoundaryArcs(result, ws, problem);
+    PlanResult result = frame.finish(builder, unreachable);
     result.stats["levels"] = static_cast<double>(levels);
     result.stats["centre_loops"] = static_cast<double>(centres);
     result.stats["leftover_checks"] = static_cast<double>(leftover_checks);
     result.stats["corner_spurs"] = static_cast<double>(spurs);
-    recordOutcome(result, builder, components.size(), unreachable);
     return result;
   }
 };
@@ -199,17 +192,12 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
 }  // namespace
 
 PlannerInfo info() {
-  PlannerInfo info;
-  info.name = "spiral";
-  info.version = "9";
-  info.code_folders = {"spiral"};
-  info.summary = "Concentric passes offset inward from the free region's boundary, around obstacles, centre covered";
-  info.reference = "Held, On the Computational Geometry of Pocket Machining, LNCS 500, 1991";
-  info.params = paramTable().specs();
-  info.min_coverage_reachable = 0.995;
-  info.plans_for_car = true;
-  info.make = [] { return std::make_unique<SpiralPlanner>(); };
-  return info;
+  return typedPlannerInfo<SpiralPlanner>(
+      {.name = "spiral", .version = "9", .code_folders = {"spiral"},
+       .summary = "Concentric passes offset inward from the free region's boundary, around obstacles, centre covered",
+       .reference = "Held, On the Computational Geometry of Pocket Machining, LNCS 500, 1991",
+       .min_coverage_reachable = 0.995, .plans_for_car = true},
+      paramTable());
 }
 
 }  // namespace coverbench::spiral

@@ -5,14 +5,12 @@
 namespace coverbench::trapezoidal {
 
 PlannerInfo info() {
-  PlannerInfo info = decomposition::plannerInfo(decomposition::Kind::Trapezoidal);
-  info.name = "trapezoidal";
-  info.version = std::string("12");  // not = "12": GCC 12 warns falsely (-Wrestrict) on that assignment here
-  info.code_folders = {"trapezoidal", "decomposition"};
-  info.summary = "Trapezoidal decomposition of the free region (a cell boundary through every corner), cells ordered "
-                 "by a TSP tour and covered by back-and-forth passes";
-  info.reference = "Choset et al., Principles of Robot Motion, MIT Press 2005, sec. 6.1";
-  return info;
+  return decomposition::plannerInfo(
+      decomposition::Kind::Trapezoidal,
+      {.name = "trapezoidal", .version = "12", .code_folders = {"trapezoidal", "decomposition"},
+       .summary = "Trapezoidal decomposition of the free region (a cell boundary through every corner), cells ordered "
+                  "by a TSP tour and covered by back-and-forth passes",
+       .reference = "Choset et al., Principles of Robot Motion, MIT Press 2005, sec. 6.1"});
 }
 
 }  // namespace coverbench::trapezoidal

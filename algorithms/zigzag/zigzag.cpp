@@ -5,6 +5,7 @@
 
 #include "coverbench/headland.hpp"
 #include "coverbench/param_table.hpp"
+#include "coverbench/plan_frame.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/sweep_search.hpp"
 #include "coverbench/boundary_arcs.hpp"
@@ -107,9 +108,10 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
   /// For a car (car_plan: headland): as many rings as its turns need, then the rows in an order
   /// its curves link (car_sweep.hpp).
   PlanResult planForCar(const Problem& problem, const ZigzagParams& params, const Budget& budget, double angle,
-                        double angle_deg, Workspace& ws, const Region& main, std::size_t free_components) {
+                        double angle_deg, PlanFrame& frame) {
     const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
-    Headland h = headland(ws, main,
+    Workspace& ws = frame.ws();
+    Headland h = headland(ws, frame.covered(),
                           carHeadlandOptions(problem, spacing, static_cast<std::size_t>(params.boundary_passes),
                                              params.row_end_inset, kRowArcTolerance, true));
     std::vector<CarRow> rows = carHolePasses(ws, h.loops, spacing);
@@ -120,7 +122,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
         for (const Interval& iv : line) rows.push_back({iv.lowEnd(), iv.highEnd(), iv.row});
     PathBuilder builder(ws);
     const CarSweep sweep = carSweep(ws, builder, h.loops, rows, spacing, budget, params.car_plan == CarPlan::Headland);
-    PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), angle, angle_deg, free_components);
+    PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), angle, angle_deg, frame.components().size());
     result.stats["rows"] = static_cast<double>(heights.size());
     result.stats["row_spacing"] = heights.size() > 1 ? heights[1] - heights[0] : 0.0;
     result.stats["intervals"] = static_cast<double>(rows.size());
@@ -132,14 +134,11 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
     const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
     const auto passes = static_cast<std::size_t>(params.boundary_passes);
 
-    // Work in a frame where rows are horizontal; rotate the result back at the end.
-    Workspace ws(rotateWall(*problem.wall, -angle), problem);
-    const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
-    if (components.empty())
-      return PlanResult::failure(PlanStatus::NoReachableArea,
-                                 "the tool fits nowhere: the free region F is empty for this tool and clearance");
-    const Region main = coveredPart(components, problem.vehicle);
-    if (problem.vehicle.isCar()) return planForCar(problem, params, budget, angle, angle_deg, ws, main, components.size());
+    // Work in a frame where rows are horizontal; the result is turned back at the end.
+    PlanFrame frame(problem, angle);
+    if (frame.empty()) return PlanFrame::fitsNowhere();
+    if (problem.vehicle.isCar()) return planForCar(problem, params, budget, angle, angle_deg, frame);
+    Workspace& ws = frame.ws();
 
     // Loops along F's boundary first, then rows clear of their paint (headland.hpp), then, with
     // fill_leftovers, a pass for each piece both left.
@@ -150,7 +149,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
     layout.end_inset = params.row_end_inset;
     layout.arc_tolerance = kRowArcTolerance;
     layout.with_unpainted = params.fill_leftovers;
-    const Headland h = headland(ws, main, layout);
+    const Headland h = headland(ws, frame.covered(), layout);
     PathBuilder builder(ws);
     std::size_t unreachable = coverRings(builder, h.loops, 1.01 * spacing);
     if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in boundary passes");
@@ -241,18 +240,13 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
              : Leftovers{};
     unreachable += left.unreachable;
 
-    PlanResult result;
-    result.status = PlanStatus::Ok;
-    result.path = builder.take();
-    fitBoundaryArcs(result, ws, problem);
-    rotatePoints(result.path.waypoints, angle);
+    PlanResult result = frame.finish(builder, unreachable);
     result.stats["rows"] = static_cast<double>(rows.size());
     result.stats["row_spacing"] = row_gap;
     result.stats["intervals"] = static_cast<double>(interval_count);
     result.stats["pieces"] = static_cast<double>(pieces);
     if (fill) recordLeftovers(result, left);
     result.stats["sweep_angle_deg"] = angle_deg;
-    recordOutcome(result, builder, components.size(), unreachable);
     return result;
   }
 };
@@ -260,17 +254,12 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
 }  // namespace
 
 PlannerInfo info() {
-  PlannerInfo info;
-  info.name = "zigzag";
-  info.version = std::string("15");  // not = "15": GCC 12 warns falsely (-Wrestrict) on that assignment here
-  info.code_folders = {"zigzag"};
-  info.summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes";
-  info.reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013";
-  info.params = paramTable().specs();
-  info.min_coverage_reachable = 0.995;
-  info.plans_for_car = true;
-  info.make = [] { return std::make_unique<ZigzagPlanner>(); };
-  return info;
+  return typedPlannerInfo<ZigzagPlanner>(
+      {.name = "zigzag", .version = "15", .code_folders = {"zigzag"},
+       .summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes",
+       .reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013",
+       .min_coverage_reachable = 0.995, .plans_for_car = true},
+      paramTable());
 }
 
 }  // namespace coverbench::zigzag

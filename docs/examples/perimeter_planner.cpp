@@ -1,11 +1,10 @@
 // A complete, tiny planner: one loop around every ring of the free region (wall edge and each
 // obstacle). It is the example of docs/ADDING_A_PLANNER.md and is compiled and tested by
 // tests/example_planner_test.cpp, so the guide cannot drift from the real interface.
-#include "coverbench/boundary_arcs.hpp"
 #include "coverbench/param_table.hpp"
+#include "coverbench/plan_frame.hpp"
 #include "coverbench/planner.hpp"
 #include "coverbench/region_ops.hpp"
-#include "coverbench/workspace.hpp"
 
 namespace coverbench::perimeter {
 
@@ -26,36 +25,27 @@ class PerimeterPlanner final : public TypedPlanner<PerimeterParams> {
 
  protected:
   PlanResult planWith(const Problem& problem, const PerimeterParams& params, const Budget& /*budget*/) override {
-    Workspace ws(*problem.wall, problem);  // F, exact checks, transits
-    if (ws.free().empty())
-      return PlanResult::failure(PlanStatus::NoReachableArea, "the tool fits nowhere on this wall");
-    // F's pieces, largest first: the largest is covered, or every one for a vehicle that lifts its
-    // tool (docs/vehicles.md).
-    const std::vector<PolygonWithHoles> components = componentsByArea(ws.free());
-    const Region part = coveredPart(components, problem.vehicle);
-    PathBuilder builder(ws);  // never writes an unchecked move
+    // F (exact checks, transits) and its pieces, largest first: the largest is covered, or every
+    // one for a vehicle that lifts its tool (docs/vehicles.md).
+    PlanFrame frame(problem);
+    if (frame.empty()) return PlanFrame::fitsNowhere();
+    PathBuilder builder(frame.ws());  // never writes an unchecked move
+    const Region& part = frame.covered();
     const Region rings = params.inset > 0 ? offsetRegion(part, -params.inset, 1e-4) : part;
     const std::size_t unreachable = coverRings(builder, allRings(rings), problem.tool.tool_width);
-    PlanResult result;
-    result.status = PlanStatus::Ok;
-    result.path = builder.take();
-    fitBoundaryArcs(result, ws, problem);  // F's round corners as arcs, not chains of chords
-    // Partial, saying why, when pieces of F or rings were left out (the conformance walls check it).
-    recordOutcome(result, builder, components.size(), unreachable);
-    return result;
+    // F's round corners as arcs, not chains of chords; Partial, saying why, when pieces of F or
+    // rings were left out (the conformance walls check it).
+    return frame.finish(builder, unreachable);
   }
 };
 
 PlannerInfo info() {
-  PlannerInfo info;
-  info.name = "perimeter";
-  info.version = "1";  // change it when the results change on purpose
-  info.code_folders = {"perimeter"};  // algorithms/perimeter/: its code's hash is in every run key
-  info.summary = "One loop around the wall edge and around each obstacle";
-  info.reference = "docs/ADDING_A_PLANNER.md";
-  info.params = paramTable().specs();
-  info.make = [] { return std::make_unique<PerimeterPlanner>(); };
-  return info;
+  // version: change it when the results change on purpose; code_folders: algorithms/perimeter/,
+  // whose code's hash is in every run key.
+  return typedPlannerInfo<PerimeterPlanner>({.name = "perimeter", .version = "1", .code_folders = {"perimeter"},
+                                             .summary = "One loop around the wall edge and around each obstacle",
+                                             .reference = "docs/ADDING_A_PLANNER.md"},
+                                            paramTable());
 }
 
 }  // namespace coverbench::perimeter

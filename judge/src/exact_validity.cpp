@@ -114,50 +114,46 @@ void drivable(const Path& path, const VehicleModel& car, const std::vector<P2>& 
   }
 }
 
-}  // namespace
+/// A round obstacle: its centre and radius rho, exactly.
+struct Round {
+  P2 centre;
+  FT radius;  ///< rho
+  Box box;
+};
 
-ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle) {
-  ExactValidity v;
-  const std::size_t n = path.waypoints.size();
-  if (n == 0) return v;
-  const double r = tool.radius(), c = tool.clearance;
-  const FT r_exact = FT(tool.tool_width) / 2;
-  const FT r2 = r_exact * r_exact;
-  const FT rc = r_exact + FT(c);
-  const FT rc2 = rc * rc;
-
-  const PolygonShape boundary = polygonShape(wall.boundary);
-  std::vector<PolygonShape> polygons;
-  struct Round {
-    P2 centre;
-    FT radius;  ///< rho
-    Box box;
-  };
-  std::vector<Round> rounds;
-  for (const Obstacle& o : wall.obstacles) {
-    if (o.type == ObstacleType::Circle) {
-      rounds.push_back({exactPoint(o.center), FT(o.radius), boxAround(o.center, o.center, o.radius)});
-    } else {
-      polygons.push_back(polygonShape(o.polygon));
+/// The wall and the tool, exactly: what every check of a path compares against.
+class Scene {
+ public:
+  Scene(const Wall& wall, const ToolParams& tool)
+      : r_(tool.radius()), c_(tool.clearance), r_exact_(FT(tool.tool_width) / 2), rc_(r_exact_ + FT(c_)),
+        boundary_(polygonShape(wall.boundary)) {
+    for (const Obstacle& o : wall.obstacles) {
+      if (o.type == ObstacleType::Circle) {
+        rounds_.push_back({exactPoint(o.center), FT(o.radius), boxAround(o.center, o.center, o.radius)});
+      } else {
+        polygons_.push_back(polygonShape(o.polygon));
+      }
+    }
+    for (Point p : wall.boundary) {
+      lo_x_ = std::min(lo_x_, p.x);
+      lo_y_ = std::min(lo_y_, p.y);
+      hi_x_ = std::max(hi_x_, p.x);
+      hi_y_ = std::max(hi_y_, p.y);
     }
   }
 
-  // Where each waypoint lies: inside the wall, and not strictly inside any polygon obstacle.
-  // A segment that keeps its distances below crosses no edge, so its first waypoint decides.
-  std::vector<P2> points;
-  points.reserve(n);
-  for (Point p : path.waypoints) points.push_back(exactPoint(p));
-
-  // The piece [ea, eb] of a segment with the disk grown by `grow` (0, or an arc's stray from its
-  // chords): whether it leaves the wall or comes too close to an obstacle.
-  auto piece = [&](const P2& ea, const P2& eb, const FT& grow, bool& outside, bool& close) {
+  /// The piece [ea, eb] of a segment with the disk grown by `grow` (0, or an arc's stray from its
+  /// chords): whether it leaves the wall (`outside`) or comes too close to an obstacle (`close`).
+  /// Where each end lies: inside the wall, and not strictly inside any polygon obstacle. A piece
+  /// that keeps its distances crosses no edge, so its first end decides.
+  void piece(const P2& ea, const P2& eb, const FT& grow, bool& outside, bool& close) const {
     const Point a{CGAL::to_double(ea.x()), CGAL::to_double(ea.y())}, b{CGAL::to_double(eb.x()), CGAL::to_double(eb.y())};
     const double g = CGAL::to_interval(grow).second;
-    const FT rr = r_exact + grow, rr2 = rr * rr, rrc = rr + FT(c), rrc2 = rrc * rrc;
-    if (!outside) outside = !inside(boundary, ea);
+    const FT rr = r_exact_ + grow, rr2 = rr * rr, rrc = rr + FT(c_), rrc2 = rrc * rrc;
+    if (!outside) outside = !inside(boundary_, ea);
     if (!outside) {
-      const Box reach = boxAround(a, b, r + g);
-      for (const Edge& e : boundary.edges) {
+      const Box reach = boxAround(a, b, r_ + g);
+      for (const Edge& e : boundary_.edges) {
         if (!reach.meets(e.box)) continue;
         if (squaredDistance(ea, eb, e.segment) < rr2) {
           outside = true;
@@ -165,8 +161,8 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
         }
       }
     }
-    const Box reach = boxAround(a, b, r + c + g);
-    for (const PolygonShape& o : polygons) {
+    const Box reach = boxAround(a, b, r_ + c_ + g);
+    for (const PolygonShape& o : polygons_) {
       if (close) break;
       if (!reach.meets(o.box)) continue;
       if (strictlyInside(o, ea)) {
@@ -181,73 +177,59 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
         }
       }
     }
-    for (const Round& o : rounds) {
+    for (const Round& o : rounds_) {
       if (close) break;
       if (!reach.meets(o.box)) continue;
       const FT limit = o.radius + rrc;
       if (squaredDistance(ea, eb, o.centre) < limit * limit) close = true;
     }
-  };
-  auto check = [&](std::size_t segment, std::size_t ia, std::size_t ib) {
-    bool outside = false, close = false;
+  }
+
+  /// Segment `segment` of the path, from points[ia] to points[ib] (ia == ib: a point): whether
+  /// the tool leaves the wall (`outside`) or comes too close to an obstacle (`close`).
+  void segment(const Path& path, const std::vector<P2>& points, std::size_t segment, std::size_t ia, std::size_t ib,
+               bool& outside, bool& close) const {
+    outside = close = false;
     const double bulge = path.bulge.empty() || ia == ib ? 0.0 : path.bulge[segment];
     if (bulge == 0.0) {
       piece(points[ia], points[ib], FT(0), outside, close);
-    } else {
-      // Chords of 1e-3 m, then 1e-5 m, then kArcChordSagitta (1e-7 m): each try is a certified
-      // verdict when it passes (the disk grown by the chords' stray holds the arc's), so only an
-      // arc near its limit is cut finely, and only a failing one as finely as ever. A step of 100
-      // in sagitta is 10 times the chords; finer steps cost a failing arc more tries than they save.
-      for (double sagitta = std::fmax(1e-3, kArcChordSagitta);; sagitta = std::fmax(sagitta / 100.0, kArcChordSagitta)) {
-        outside = close = false;
-        const ExactArc arc = exactArc(path.waypoints[ia], path.waypoints[ib], bulge, sagitta);
-        if (!arc.ordered) outside = true;  // no certified bound: refused
-        for (std::size_t k = 0; k + 1 < arc.points.size() && !(outside && close); ++k)
-          piece(arc.points[k], arc.points[k + 1], arc.stray, outside, close);
-        if ((!outside && !close) || sagitta <= kArcChordSagitta) break;
-      }
+      return;
     }
-    v.outside_boundary += outside;
-    v.too_close += close;
-    if (outside || close) {
-      ++v.violations;
-      if (v.violating.size() < ExactValidity::kMaxListed) v.violating.push_back(segment);
+    // Chords of 1e-3 m, then 1e-5 m, then kArcChordSagitta (1e-7 m): each try is a certified
+    // verdict when it passes (the disk grown by the chords' stray holds the arc's), so only an
+    // arc near its limit is cut finely, and only a failing one as finely as ever. A step of 100
+    // in sagitta is 10 times the chords; finer steps cost a failing arc more tries than they save.
+    for (double sagitta = std::fmax(1e-3, kArcChordSagitta);; sagitta = std::fmax(sagitta / 100.0, kArcChordSagitta)) {
+      outside = close = false;
+      const ExactArc arc = exactArc(path.waypoints[ia], path.waypoints[ib], bulge, sagitta);
+      if (!arc.ordered) outside = true;  // no certified bound: refused
+      for (std::size_t k = 0; k + 1 < arc.points.size() && !(outside && close); ++k)
+        piece(arc.points[k], arc.points[k + 1], arc.stray, outside, close);
+      if ((!outside && !close) || sagitta <= kArcChordSagitta) break;
     }
-  };
-  // A gantry's lifted segment: the disk at both ends within the wall's bounding box, compared
-  // exactly (the box is convex, so the whole segment's disks are then inside it).
-  double lo_x = INFINITY, lo_y = INFINITY, hi_x = -INFINITY, hi_y = -INFINITY;
-  for (Point p : wall.boundary) {
-    lo_x = std::min(lo_x, p.x);
-    lo_y = std::min(lo_y, p.y);
-    hi_x = std::max(hi_x, p.x);
-    hi_y = std::max(hi_y, p.y);
   }
-  auto inFrame = [&](std::size_t i) {
-    const FT x(path.waypoints[i].x), y(path.waypoints[i].y);
-    return x - r_exact >= FT(lo_x) && x + r_exact <= FT(hi_x) && y - r_exact >= FT(lo_y) && y + r_exact <= FT(hi_y);
-  };
-  auto lifted = [&](std::size_t segment) {
-    if (inFrame(segment) && inFrame(segment + 1)) return;
-    ++v.outside_boundary;
-    ++v.violations;
-    if (v.violating.size() < ExactValidity::kMaxListed) v.violating.push_back(segment);
-  };
-  // Approach legs (path.hpp: kApproachLegSlack), exactly: the first segment from a start outside
-  // F, the last to an end outside F. A leg that breaks the rule is checked like any segment.
-  auto outsideF = [&](const P2& p) {
+
+  /// A gantry's lifted segment from a to b: the disk at both ends within the wall's bounding box,
+  /// compared exactly (the box is convex, so the whole segment's disks are then inside it).
+  bool liftedInFrame(Point a, Point b) const { return inFrame(a) && inFrame(b); }
+
+  /// Whether p, taken as a point of the path, breaks either rule (it lies outside F).
+  bool outsideF(const P2& p) const {
     bool outside = false, close = false;
     piece(p, p, FT(0), outside, close);
     return outside || close;
-  };
-  auto approachLeg = [&](std::size_t i, const P2& out, const P2& in) {
+  }
+
+  /// Whether segment i of the path, between `out` (outside F) and `in`, is an approach leg by
+  /// its own rule (path.hpp: kApproachLegSlack), exactly.
+  bool approachLeg(const Path& path, std::size_t i, const P2& out, const P2& in) const {
     if (path.tool_on[i] || (!path.bulge.empty() && path.bulge[i] != 0.0) || out == in) return false;
-    const FT reach = rc + FT(kApproachLegSlack);
+    const FT reach = rc_ + FT(kApproachLegSlack);
     if (CGAL::squared_distance(out, in) > reach * reach) return false;
     // The centre line in the wall: its ends inside or on the boundary, no edge crossed properly and
     // no vertex of the boundary inside it (so it cannot leave through a corner).
-    if (!inside(boundary, out) || !inside(boundary, in)) return false;
-    for (const Edge& e : boundary.edges) {
+    if (!inside(boundary_, out) || !inside(boundary_, in)) return false;
+    for (const Edge& e : boundary_.edges) {
       const P2 &p = e.segment.source(), &q = e.segment.target();
       const int o1 = CGAL::orientation(out, in, p), o2 = CGAL::orientation(out, in, q);
       const int o3 = CGAL::orientation(p, q, out), o4 = CGAL::orientation(p, q, in);
@@ -256,26 +238,70 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
     }
     // Off every obstacle: no point in common with any.
     const S2 leg(out, in);
-    for (const PolygonShape& o : polygons) {
+    for (const PolygonShape& o : polygons_) {
       if (strictlyInside(o, out)) return false;
       for (const Edge& e : o.edges)
         if (CGAL::do_intersect(leg, e.segment)) return false;
     }
-    for (const Round& o : rounds)
+    for (const Round& o : rounds_)
       if (CGAL::squared_distance(leg, o.centre) <= o.radius * o.radius) return false;
     return true;
+  }
+
+ private:
+  bool inFrame(Point p) const {
+    const FT x(p.x), y(p.y);
+    return x - r_exact_ >= FT(lo_x_) && x + r_exact_ <= FT(hi_x_) && y - r_exact_ >= FT(lo_y_) &&
+           y + r_exact_ <= FT(hi_y_);
+  }
+
+  double r_, c_;
+  FT r_exact_, rc_;
+  PolygonShape boundary_;
+  std::vector<PolygonShape> polygons_;
+  std::vector<Round> rounds_;
+  double lo_x_ = INFINITY, lo_y_ = INFINITY, hi_x_ = -INFINITY, hi_y_ = -INFINITY;
+};
+
+/// Counts a violating segment in `v`: leaving the wall (`outside`), too close to an obstacle
+/// (`close`), or both.
+void flag(ExactValidity& v, std::size_t segment, bool outside, bool close) {
+  v.outside_boundary += outside;
+  v.too_close += close;
+  if (!outside && !close) return;
+  ++v.violations;
+  if (v.violating.size() < ExactValidity::kMaxListed) v.violating.push_back(segment);
+}
+
+}  // namespace
+
+ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle) {
+  ExactValidity v;
+  const std::size_t n = path.waypoints.size();
+  if (n == 0) return v;
+  const Scene scene(wall, tool);
+  std::vector<P2> points;
+  points.reserve(n);
+  for (Point p : path.waypoints) points.push_back(exactPoint(p));
+  auto check = [&](std::size_t segment, std::size_t ia, std::size_t ib) {
+    bool outside = false, close = false;
+    scene.segment(path, points, segment, ia, ib, outside, close);
+    flag(v, segment, outside, close);
   };
+  // Approach legs (path.hpp: kApproachLegSlack), exactly: the first segment from a start outside
+  // F, the last to an end outside F. A leg that breaks the rule is checked like any segment.
   auto at = [&](const std::optional<Point>& p, std::size_t k) { return p && path.waypoints[k] == *p; };
-  const bool lead_in = n >= 2 && at(wall.start, 0) && outsideF(points[0]) && approachLeg(0, points[0], points[1]);
-  const bool lead_out = n >= 2 && at(wall.end, n - 1) && !(lead_in && n == 2) && outsideF(points[n - 1]) &&
-                        approachLeg(n - 2, points[n - 1], points[n - 2]);
+  const bool lead_in =
+      n >= 2 && at(wall.start, 0) && scene.outsideF(points[0]) && scene.approachLeg(path, 0, points[0], points[1]);
+  const bool lead_out = n >= 2 && at(wall.end, n - 1) && !(lead_in && n == 2) && scene.outsideF(points[n - 1]) &&
+                        scene.approachLeg(path, n - 2, points[n - 1], points[n - 2]);
   v.approach_legs = static_cast<std::size_t>(lead_in) + static_cast<std::size_t>(lead_out);
   if (n == 1) check(0, 0, 0);
   for (std::size_t i = 0; i + 1 < n; ++i)
     if ((i == 0 && lead_in) || (i + 2 == n && lead_out))
       continue;
     else if (vehicle.liftsTool() && !path.tool_on[i])
-      lifted(i);
+      flag(v, i, !scene.liftedInFrame(path.waypoints[i], path.waypoints[i + 1]), false);
     else
       check(i, i, i + 1);
   if (vehicle.isCar()) drivable(path, vehicle, points, v);

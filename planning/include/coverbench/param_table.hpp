@@ -8,6 +8,7 @@
 /// member's initial value is refused when the table is built (one source of truth; a planner's
 /// registration fails on it, so no registered planner can have two defaults).
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -125,5 +126,15 @@ class TypedPlanner : public Planner {
  private:
   const ParamTable<P>* table_;
 };
+
+/// The PlannerInfo of an in-tree planner T, a TypedPlanner of the parameters `table` declares:
+/// `info` (its name, version, code folders, summary, reference and promise, written with
+/// designated initializers) with the table's specs and a maker of T(args...).
+template <class T, class P, class... Args>
+PlannerInfo typedPlannerInfo(PlannerInfo info, const ParamTable<P>& table, Args... args) {
+  info.params = table.specs();
+  info.make = [args...] { return std::make_unique<T>(args...); };
+  return info;
+}
 
 }  // namespace coverbench

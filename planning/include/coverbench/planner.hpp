@@ -158,7 +158,9 @@ class Planner {
   virtual PlanResult plan(const Problem& problem, const Budget& budget) = 0;
 };
 
-/// A registered planner: its name, what it does, its parameters and how to make one.
+/// A registered planner: its name, what it does, its parameters and how to make one. In-tree
+/// planners write it with designated initializers (typedPlannerInfo, param_table.hpp); the members
+/// they may leave out have default initializers (GCC 12 warns of a left-out member without one).
 struct PlannerInfo {
   std::string name;
   /// The planner's version: change it when the planner's results change on purpose. It is part of
@@ -169,19 +171,19 @@ struct PlannerInfo {
   std::vector<std::string> code_folders;
   /// A planner outside the tree (external): the SHA-256 of its manifest and declared files, part
   /// of every run key beside the code folders; empty for in-tree planners.
-  std::string code_sha256;
+  std::string code_sha256{};
   /// A planner outside the tree: its manifest's absolute path; empty for in-tree planners.
-  std::string external_manifest;
+  std::string external_manifest{};
   std::string summary;
   std::string reference;  ///< the paper or document the algorithm comes from
-  std::vector<ParamSpec> params;
+  std::vector<ParamSpec> params{};
   /// The planner's promise, checked by the conformance suite: with default parameters, the
   /// coverage_reachable it reaches on every conformance wall whose free region is connected.
   double min_coverage_reachable = 0.0;
   /// The planner is given the problem's car (not a holonomic tool) and may plan for it itself
   /// (PlanResult::planned_for_car); else runPlanner plans it holonomic and smooths the path.
   bool plans_for_car = false;
-  std::function<std::unique_ptr<Planner>()> make;
+  std::function<std::unique_ptr<Planner>()> make{};
 };
 
 }  // namespace coverbench
