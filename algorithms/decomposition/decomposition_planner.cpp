@@ -432,9 +432,9 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
   explicit DecompositionPlanner(Kind kind) : TypedPlanner(paramTable()), kind_(kind) {}
 
  protected:
-  PlanResult planWith(const Problem& given, const DecompositionParams& params, const Budget& budget) override {
-    // car_plan: smoothed plans for a tool that turns on the spot; runPlanner smooths the path.
-    const Problem problem = given.vehicle.isCar() && params.car_plan == CarPlan::Smoothed ? asHolonomic(given) : given;
+  PlanResult planWith(const Problem& problem, const DecompositionParams& params, const Budget& budget) override {
+    // A car comes only with car_plan headland or headland_no_fill: for smoothed, runPlanner gives
+    // a tool that turns on the spot and smooths the path.
     return planSweep(problem, params.sweep, budget,
                      [&](double angle_deg) { return planAt(problem, params, budget, angle_deg); });
   }

@@ -122,9 +122,9 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
   }
 
  protected:
-  PlanResult planWith(const Problem& given, const SpiralParams& params, const Budget& budget) override {
-    // car_plan: smoothed plans for a tool that turns on the spot; runPlanner smooths the path.
-    const Problem problem = given.vehicle.isCar() && params.car_plan == CarPlan::Smoothed ? asHolonomic(given) : given;
+  PlanResult planWith(const Problem& problem, const SpiralParams& params, const Budget& budget) override {
+    // A car comes only with car_plan headland or headland_no_fill: for smoothed, runPlanner gives
+    // a tool that turns on the spot and smooths the path.
     const double s = problem.tool.tool_width;
     const double r = problem.tool.radius();
     const double spacing = s * (1.0 - params.overlap);
