@@ -22,6 +22,7 @@
 #include "coverbench/files.hpp"
 #include "coverbench/json_input.hpp"
 #include "coverbench/limits.hpp"
+#include "coverbench/param_codec.hpp"
 #include "coverbench/records.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/results_db.hpp"
@@ -120,7 +121,7 @@ std::string otherValue(const ParamSpec& spec, std::mt19937& rng) {
     case ParamType::Number: {
       for (;;) {  // three decimals, so the YAML text is exact
         const double v = std::round((spec.min + (spec.max - spec.min) * u(rng)) * 1000.0) / 1000.0;
-        if (v >= spec.min && v <= spec.max && v != std::get<double>(spec.default_value)) return toString(v);
+        if (v >= spec.min && v <= spec.max && v != std::get<double>(spec.default_value)) return paramText(ParamValue{v});
       }
     }
     case ParamType::Integer: {
@@ -171,8 +172,8 @@ TEST_F(Hostile, PropertyEveryPlannerStoresExactlyTheParameterValuesWrittenInAnyO
     for (std::size_t i = 0; i < expected.size(); ++i) {
       std::string row;
       for (const auto& [name, value] : c.planners[i].params.all()) {
-        EXPECT_EQ(toString(value), expected[i].at(name)) << c.planners[i].planner << "." << name << " in\n" << yaml;
-        row += (row.empty() ? "" : ", ") + name + "=" + toString(value);
+        EXPECT_EQ(paramText(value), expected[i].at(name)) << c.planners[i].planner << "." << name << " in\n" << yaml;
+        row += (row.empty() ? "" : ", ") + name + "=" + paramText(value);
       }
       expected_rows.push_back(row);
     }
