@@ -52,23 +52,39 @@ void readValuesOneWay(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) readValuesOneWay(*sub);
 }
 
-}  // namespace
+namespace cli = coverbench::cli;
 
-int main(int argc, char** argv) {
-  // The workbench's plan helper, which `coverbench serve` starts as this executable.
-  if (argc >= 2 && std::string(argv[1]) == coverbench::cli::kPlanHelperArgument) return coverbench::cli::planHelperMain(argc, argv);
-  CLI::App app{"CoverBench: benchmark 2-D coverage path planners"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "coverbench 0.1.0");
+/// Every command's options, filled in by CLI11 as it parses the command line, and the exit code
+/// of the command that ran. The commands' callbacks hold references into it.
+struct Commands {
+  int exit_code = 0;
+  cli::PlanOptions plan;
+  cli::ConformanceOptions conformance;
+  cli::MetricsOptions metrics;
+  cli::CarCeilingCommandOptions ceiling;
+  cli::ShowcaseOptions showcase;
+  cli::DatasetGenerateOptions dataset_generate;
+  cli::DatasetImportOptions dataset_import;
+  std::string show_dir;
+  cli::RunOptions run;
+  cli::MergeCommandOptions merge;
+  cli::SlurmCommandOptions slurm;
+  cli::ReportOptions report;
+  cli::RunsOptions runs;
+  cli::ExportOmplOptions export_ompl;
+  cli::RedrawOptions redraw;
+  cli::ServeOptions serve;
+};
 
-  int plan_exit = 0;
+/// `planners`, `metric-specs` and `plan`: what can plan, what is measured, and one plan.
+void addPlanCommands(CLI::App& app, Commands& o) {
   app.add_subcommand("planners", "List the registered planners and their parameters")
-      ->callback([] { coverbench::cli::listPlanners(std::cout); });
+      ->callback([] { cli::listPlanners(std::cout); });
 
   app.add_subcommand("metric-specs", "The metric registry as a Markdown table (unit, direction, tie band, ...)")
       ->callback([] { std::cout << coverbench::metricSpecsMarkdown(); });
 
-  coverbench::cli::PlanOptions plan;
+  cli::PlanOptions& plan = o.plan;
   CLI::App* plan_cmd = app.add_subcommand("plan", "Plan one wall with one planner and write a plan file");
   plan_cmd->add_option("--wall", plan.wall, "wall file (JSON)")->required();
   plan_cmd->add_option("--start", plan.start, "X,Y where the path begins (over the wall file's start)");
@@ -96,12 +112,15 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   plan_cmd->add_option("--out", plan.out, "plan file to write (JSON)")->required();
   plan_cmd->add_option("--svg", plan.svg, "picture to write (SVG)");
-  plan_cmd->callback([&] {
-    plan.transit_options_given = transit_iterations->count() > 0 || transit_cap->count() > 0;
-    plan_exit = coverbench::cli::planCommand(plan);
+  plan_cmd->callback([&o, transit_iterations, transit_cap] {
+    o.plan.transit_options_given = transit_iterations->count() > 0 || transit_cap->count() > 0;
+    o.exit_code = cli::planCommand(o.plan);
   });
+}
 
-  coverbench::cli::ConformanceOptions conformance;
+/// `conformance`, `metrics`, `car-ceiling` and `showcase`: planners and plans checked and scored.
+void addCheckCommands(CLI::App& app, Commands& o) {
+  cli::ConformanceOptions& conformance = o.conformance;
   conformance.source_dir = COVERBENCH_SOURCE_DIR;
   CLI::App* conformance_cmd = app.add_subcommand(
       "conformance", "The conformance checks for one planner (in-tree or external) on every conformance wall, as a report card");
@@ -113,9 +132,9 @@ int main(int argc, char** argv) {
   conformance_cmd->add_option("--format", conformance.format, "md or json")->capture_default_str()->check(CLI::IsMember({"md", "json"}));
   conformance_cmd->add_option("--out", conformance.out, "file to write (default: standard output)");
   conformance_cmd->add_option("--time-limit", conformance.time_limit_s, "seconds per plan")->capture_default_str();
-  conformance_cmd->callback([&] { plan_exit = coverbench::cli::conformanceCommand(conformance); });
+  conformance_cmd->callback([&o] { o.exit_code = cli::conformanceCommand(o.conformance); });
 
-  coverbench::cli::MetricsOptions metrics;
+  cli::MetricsOptions& metrics = o.metrics;
   CLI::App* metrics_cmd =
       app.add_subcommand("metrics", "Score a plan file from any source against a wall; prints JSON");
   metrics_cmd->add_option("--wall", metrics.wall, "wall file (JSON)")->required();
@@ -146,9 +165,9 @@ int main(int argc, char** argv) {
   metrics_cmd->add_option("--arc-vertices", metrics.arc_vertices,
                           "vertices of the exact judge's inscribed and circumscribed disk polygons (multiple of 8)")
       ->capture_default_str();
-  metrics_cmd->callback([&] { plan_exit = coverbench::cli::metricsCommand(metrics); });
+  metrics_cmd->callback([&o] { o.exit_code = cli::metricsCommand(o.metrics); });
 
-  coverbench::cli::CarCeilingCommandOptions ceiling;
+  cli::CarCeilingCommandOptions& ceiling = o.ceiling;
   CLI::App* ceiling_cmd = app.add_subcommand(
       "car-ceiling", "What a forward-only car could paint at best on a wall: an estimate on a lattice of poses (docs/metrics.md); prints JSON");
   ceiling_cmd->add_option("--wall", ceiling.wall, "wall file (JSON)")->required();
@@ -158,27 +177,30 @@ int main(int argc, char** argv) {
   ceiling_cmd->add_option("--resolution", ceiling.resolution, "the lattice's cell, m (raised for walls that would need too many poses)")
       ->capture_default_str();
   ceiling_cmd->add_option("--headings", ceiling.headings, "headings per cell")->capture_default_str();
-  ceiling_cmd->callback([&] { plan_exit = coverbench::cli::carCeilingCommand(ceiling); });
+  ceiling_cmd->callback([&o] { o.exit_code = cli::carCeilingCommand(o.ceiling); });
 
-  coverbench::cli::ShowcaseOptions showcase;
+  cli::ShowcaseOptions& showcase = o.showcase;
   CLI::App* show_cmd = app.add_subcommand(
       "showcase", "Plan every wall of a folder with every planner: plan files, pictures and a summary table");
   show_cmd->add_option("--walls", showcase.walls, "folder of wall files")->required();
   show_cmd->add_option("--out", showcase.out, "output folder")->required();
   show_cmd->add_option("--tool-width", showcase.tool.tool_width, "tool diameter s in metres")->capture_default_str();
   show_cmd->add_option("--clearance", showcase.tool.clearance, "gap c in metres")->capture_default_str();
-  show_cmd->callback([&] { plan_exit = coverbench::cli::showcaseCommand(showcase); });
+  show_cmd->callback([&o] { o.exit_code = cli::showcaseCommand(o.showcase); });
+}
 
+/// `dataset generate|import|show|families`: wall datasets made, imported and inspected.
+void addDatasetCommands(CLI::App& app, Commands& o) {
   CLI::App* dataset_cmd = app.add_subcommand("dataset", "Generate and inspect wall datasets");
   dataset_cmd->require_subcommand(1);
-  coverbench::cli::DatasetGenerateOptions gen;
+  cli::DatasetGenerateOptions& gen = o.dataset_generate;
   CLI::App* gen_cmd = dataset_cmd->add_subcommand("generate", "Write N walls of a family (or a suite) and a manifest");
   gen_cmd->add_option("--family", gen.family, "family or suite (see `coverbench dataset families`)")->required();
   gen_cmd->add_option("--count", gen.count, "number of walls (a suite: default all)");
   gen_cmd->add_option("--seed", gen.seed, "seed: same family, count and seed give the same bytes")->capture_default_str();
   gen_cmd->add_option("--out", gen.out, "output folder (new or empty)")->required();
-  gen_cmd->callback([&] { plan_exit = coverbench::cli::datasetGenerateCommand(gen); });
-  coverbench::cli::DatasetImportOptions imp;
+  gen_cmd->callback([&o] { o.exit_code = cli::datasetGenerateCommand(o.dataset_generate); });
+  cli::DatasetImportOptions& imp = o.dataset_import;
   CLI::App* imp_cmd = dataset_cmd->add_subcommand(
       "import", "Import maps and polygons (GeoJSON, GML, KML, Shapefile, GeoPackage, DXF, WKT, polygon text, YAML, "
                 "map_server maps) into a dataset folder");
@@ -199,15 +221,18 @@ int main(int argc, char** argv) {
   imp_cmd->add_option("--transform", imp.transform, "placement, in order: translate=X,Y rotate=DEG scale=S");
   imp_cmd->add_option("--origin", imp.options.origin, "keep, corner (each wall's lower-left at 0,0) or auto (corner beyond 10 km)")
       ->capture_default_str();
-  imp_cmd->callback([&] { plan_exit = coverbench::cli::datasetImportCommand(imp); });
-  std::string show_dir;
+  imp_cmd->callback([&o] { o.exit_code = cli::datasetImportCommand(o.dataset_import); });
   CLI::App* dshow_cmd = dataset_cmd->add_subcommand("show", "Summarise a dataset folder (checks the manifest's hashes)");
-  dshow_cmd->add_option("dir", show_dir, "dataset folder")->required();
-  dshow_cmd->callback([&] { plan_exit = coverbench::cli::datasetShowCommand(show_dir); });
+  dshow_cmd->add_option("dir", o.show_dir, "dataset folder")->required();
+  dshow_cmd->callback([&o] { o.exit_code = cli::datasetShowCommand(o.show_dir); });
   dataset_cmd->add_subcommand("families", "List the generator families and suites")
-      ->callback([&] { plan_exit = coverbench::cli::datasetFamiliesCommand(); });
+      ->callback([&o] { o.exit_code = cli::datasetFamiliesCommand(); });
+}
 
-  coverbench::cli::RunOptions run;
+/// `run`, `merge` and `slurm`: experiments run here, in shards, or as Slurm jobs. `command_line`
+/// is what the experiment's provenance records.
+void addExperimentCommands(CLI::App& app, Commands& o, const std::string& command_line) {
+  cli::RunOptions& run = o.run;
   CLI::App* run_cmd = app.add_subcommand("run", "Run an experiment config; results in SQLite, the report (OUTPUT/report/index.html) next to them");
   run_cmd->add_option("config", run.config, "experiment config (YAML)")->required();
   run_cmd->add_option("--threads", run.threads, "worker threads (default: the config's, else every core)");
@@ -219,18 +244,18 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--no-report", run.no_report, "store the runs only; `coverbench report` writes the report later");
   run_cmd->add_option("--shard", run.shard,
                       "I/N: run only shard I (0 to N-1) of N, into OUTPUT/shards/shard-I-of-N.sqlite; `coverbench merge` joins them");
-  for (int i = 0; i < argc; ++i) run.command_line += (i ? " " : "") + std::string(argv[i]);
-  run_cmd->callback([&] { plan_exit = coverbench::cli::runCommand(run); });
+  run.command_line = command_line;
+  run_cmd->callback([&o] { o.exit_code = cli::runCommand(o.run); });
 
-  coverbench::cli::MergeCommandOptions merge;
+  cli::MergeCommandOptions& merge = o.merge;
   CLI::App* merge_cmd = app.add_subcommand(
       "merge", "Merge shard databases (run --shard) into one, on run key; refuses missing or mismatched shards");
   merge_cmd->add_option("out", merge.out, "the merged database (e.g. OUTPUT/results.sqlite)")->required();
   merge_cmd->add_option("shards", merge.shards, "shard databases (OUTPUT/shards/shard-I-of-N.sqlite)")->required();
-  merge.command_line = run.command_line;
-  merge_cmd->callback([&] { plan_exit = coverbench::cli::mergeCommand(merge); });
+  merge.command_line = command_line;
+  merge_cmd->callback([&o] { o.exit_code = cli::mergeCommand(o.merge); });
 
-  coverbench::cli::SlurmCommandOptions slurm;
+  cli::SlurmCommandOptions& slurm = o.slurm;
   CLI::App* slurm_cmd = app.add_subcommand(
       "slurm", "Write Slurm job scripts for an experiment: a job array of shards and a merge-and-report job after it");
   slurm_cmd->add_option("config", slurm.config, "experiment config (YAML)")->required();
@@ -244,43 +269,49 @@ int main(int argc, char** argv) {
   slurm_cmd->add_flag("--no-report", slurm.no_report, "the merge job only merges");
   slurm_cmd->add_flag("--submit", slurm.submit, "submit both jobs with sbatch (the merge after the array)");
   slurm_cmd->add_flag("--yes", slurm.yes, "confirm an experiment of more than 100000 runs");
-  slurm_cmd->callback([&] { plan_exit = coverbench::cli::slurmCommand(slurm); });
+  slurm_cmd->callback([&o] { o.exit_code = cli::slurmCommand(o.slurm); });
+}
 
-  coverbench::cli::ReportOptions report;
+/// `report`, `runs`, `export-ompl` and `redraw`: what an experiment's database holds, read out.
+void addResultCommands(CLI::App& app, Commands& o) {
+  cli::ReportOptions& report = o.report;
   CLI::App* report_cmd = app.add_subcommand("report", "An experiment's report: --format html writes a folder (page, figures, tables); md, csv, latex print its tables");
   report_cmd->add_option("database", report.database, "results.sqlite of an experiment")->required();
   report_cmd->add_option("--format", report.format, "html, md, csv or latex")->capture_default_str();
   report_cmd->add_option("--out", report.out, "html: the report folder; otherwise the file to write (default: standard output)");
   report_cmd->add_option("--experiment", report.experiment, "experiment id in the database (default: the latest)");
   report_cmd->add_option("--baseline", report.baseline, "planner label to compare against (default: the config's)");
-  report_cmd->callback([&] { plan_exit = coverbench::cli::reportCommand(report); });
+  report_cmd->callback([&o] { o.exit_code = cli::reportCommand(o.report); });
 
-  coverbench::cli::RunsOptions runs;
+  cli::RunsOptions& runs = o.runs;
   CLI::App* runs_cmd = app.add_subcommand("runs", "Every run of an experiment, one row each (CSV or JSON), or --list");
   runs_cmd->add_option("database", runs.database, "results.sqlite of an experiment")->required();
   runs_cmd->add_option("--format", runs.format, "csv or json")->capture_default_str();
   runs_cmd->add_option("--experiment", runs.experiment, "experiment id in the database (default: the latest)");
   runs_cmd->add_flag("--list", runs.list, "one line per run: key, status, planner, tool, wall");
-  runs_cmd->callback([&] { plan_exit = coverbench::cli::runsCommand(runs); });
+  runs_cmd->callback([&o] { o.exit_code = cli::runsCommand(o.runs); });
 
-  coverbench::cli::ExportOmplOptions export_ompl;
+  cli::ExportOmplOptions& export_ompl = o.export_ompl;
   CLI::App* export_cmd = app.add_subcommand(
       "export-ompl", "Write an experiment's runs as OMPL benchmark logs (one per dataset) for ompl_benchmark_statistics and Planner Arena");
   export_cmd->add_option("database", export_ompl.database, "results.sqlite of an experiment")->required();
   export_cmd->add_option("--out", export_ompl.out, "folder for the .log files")->required();
   export_cmd->add_option("--experiment", export_ompl.experiment, "experiment id in the database (default: the latest)");
-  export_cmd->callback([&] { plan_exit = coverbench::cli::exportOmplCommand(export_ompl); });
+  export_cmd->callback([&o] { o.exit_code = cli::exportOmplCommand(o.export_ompl); });
 
-  coverbench::cli::RedrawOptions redraw;
+  cli::RedrawOptions& redraw = o.redraw;
   CLI::App* redraw_cmd = app.add_subcommand("redraw", "Draw a stored run of an experiment (wall, path, coverage)");
   redraw_cmd->add_option("database", redraw.database, "results.sqlite of an experiment")->required();
   redraw_cmd->add_option("--run", redraw.run, "run key, or its first 6 or more hex digits")->required();
   redraw_cmd->add_option("--svg", redraw.svg, "picture to write")->required();
   redraw_cmd->add_option("--replan", redraw.replan,
                          "draw the run's repair number N after surprise obstacles (0-based; docs/replanning.md)");
-  redraw_cmd->callback([&] { plan_exit = coverbench::cli::redrawCommand(redraw); });
+  redraw_cmd->callback([&o] { o.exit_code = cli::redrawCommand(o.redraw); });
+}
 
-  coverbench::cli::ServeOptions serve;
+/// `serve`: experiments explored in a browser, and the workbench.
+void addServeCommand(CLI::App& app, Commands& o) {
+  cli::ServeOptions& serve = o.serve;
   CLI::App* serve_cmd = app.add_subcommand("serve", "Explore experiments in a browser: runs table, path playback (docs/explorer.md)");
   serve_cmd->add_option("database", serve.databases, "results.sqlite files to serve (nothing else is served)");
   serve_cmd->add_option("--walls", serve.wall_folders, "folders of wall files the workbench can open");
@@ -289,7 +320,27 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   serve_cmd->add_option("--host", serve.host, "address to listen on")->capture_default_str();
   serve_cmd->add_option("--port", serve.port, "port (0: any free one, printed)")->capture_default_str();
-  serve_cmd->callback([&] { plan_exit = coverbench::cli::serveCommand(serve); });
+  serve_cmd->callback([&o] { o.exit_code = cli::serveCommand(o.serve); });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // The workbench's plan helper, which `coverbench serve` starts as this executable.
+  if (argc >= 2 && std::string(argv[1]) == cli::kPlanHelperArgument) return cli::planHelperMain(argc, argv);
+  CLI::App app{"CoverBench: benchmark 2-D coverage path planners"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "coverbench 0.1.0");
+
+  Commands commands;
+  std::string command_line;
+  for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
+  addPlanCommands(app, commands);
+  addCheckCommands(app, commands);
+  addDatasetCommands(app, commands);
+  addExperimentCommands(app, commands, command_line);
+  addResultCommands(app, commands);
+  addServeCommand(app, commands);
 
   readValuesOneWay(app);
   try {
@@ -306,11 +357,11 @@ int main(int argc, char** argv) {
   } catch (const coverbench::InputError& e) {
     std::cerr << "coverbench: " << e.what() << "\n";
     return 2;
-  } catch (const coverbench::cli::AlreadyReported&) {
+  } catch (const cli::AlreadyReported&) {
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "coverbench: internal error: " << e.what() << "\n";
     return 70;
   }
-  return plan_exit;
+  return commands.exit_code;
 }
