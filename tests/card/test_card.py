@@ -54,7 +54,7 @@ class BrokenPlannersFailTheirCards(unittest.TestCase):
                 self.assertIn(text, row["reason"])
                 self.assertIn(text, row["cause"])
             # The Markdown card lists the failed row with the same cause.
-            line = f"- card-window (window.json, s = {row['tool_width']:g}, c = {row['clearance']:g}): "
+            line = f"- card-window (window.json, s={row['tool_width']:g} m, c={row['clearance']:g} m): "
             self.assertIn(line + row["cause"].replace("|", "\\|").replace("\n", " "), failed)
         return j
 
