@@ -186,12 +186,11 @@ std::vector<std::vector<std::uint32_t>> viableComponents(const Lattice& lat, std
   return out;
 }
 
-}  // namespace
-
-CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const CarCeilingOptions& options) {
-  if (!(options.turn_radius > 0.0) || !(options.resolution > 0.0) || options.headings < 8)
-    throw std::invalid_argument("car ceiling: turn radius and resolution must be positive, and headings at least 8");
-  if (wall.boundary.size() < 3) throw std::invalid_argument("car ceiling: the wall has no boundary");
+/// The lattice for `wall` (cells of options.resolution, raised where the wall would need more
+/// than options.max_states poses), F on it (cells whose centre a tool of radius r may be on), and
+/// the motions (arcs of one length turning by -turns..turns heading steps, the sharpest at the
+/// turn radius, each rounded to the lattice at its samples). `step`: the motions' length.
+Lattice makeLattice(const Wall& wall, const ToolParams& tool, const CarCeilingOptions& options, double r, double& step) {
   Lattice lat;
   double x1 = wall.boundary.front().x, y1 = wall.boundary.front().y;
   lat.x0 = x1;
@@ -210,7 +209,6 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
   lat.ny = static_cast<long>(std::ceil((y1 - lat.y0) / lat.g)) + 1;
   if (static_cast<double>(lat.nx) * static_cast<double>(lat.ny) * static_cast<double>(lat.h) >= 4.0e9)
     throw std::invalid_argument("car ceiling: the wall needs too many poses");
-  const double r = tool.tool_width / 2.0;
   auto centre = [&](long x, long y) { return Point{lat.x0 + (static_cast<double>(x) + 0.5) * lat.g, lat.y0 + (static_cast<double>(y) + 0.5) * lat.g}; };
 
   // F on the lattice: cells whose centre a tool may be on.
@@ -227,7 +225,7 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
   // radius, each rounded to the lattice at its samples.
   const double dh = 2.0 * M_PI / static_cast<double>(lat.h);
   lat.turns = std::max(1L, std::lround(kStepCells * lat.g / (dh * options.turn_radius)));
-  const double step = static_cast<double>(lat.turns) * dh * options.turn_radius;
+  step = static_cast<double>(lat.turns) * dh * options.turn_radius;
   lat.offsets.resize(lat.h * lat.motions() * kSamples);
   for (std::size_t j = 0; j < lat.h; ++j)
     for (long k = -lat.turns; k <= lat.turns; ++k)
@@ -244,6 +242,189 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
         lat.offsets[(j * lat.motions() + static_cast<std::size_t>(k + lat.turns)) * kSamples + q] = {
             static_cast<int>(std::lround(wx / lat.g)), static_cast<int>(std::lround(wy / lat.g))};
       }
+  return lat;
+}
+
+/// What a dead end adds to the paint, and what a path's head or tail there can add: at most
+/// what its longest chain paints.
+struct End {
+  double added = 0.0, head = 0.0, tail = 0.0;
+};
+
+/// The most a head and a tail add in dead ends: the head in one dead end and the tail in another
+/// (the best two of each suffice), or both in one.
+double bestEnds(const std::vector<End>& ends) {
+  double extra = 0.0;
+  std::array<std::size_t, 2> heads{ends.size(), ends.size()}, tails{ends.size(), ends.size()};
+  auto keepBest = [&](std::array<std::size_t, 2>& top, std::size_t i, double End::*v) {
+    if (top[0] == ends.size() || ends[i].*v > ends[top[0]].*v) top = {i, top[0]};
+    else if (top[1] == ends.size() || ends[i].*v > ends[top[1]].*v) top[1] = i;
+  };
+  for (std::size_t i = 0; i < ends.size(); ++i) {
+    extra = std::max(extra, std::min(ends[i].added, ends[i].head + ends[i].tail));
+    keepBest(heads, i, &End::head);
+    keepBest(tails, i, &End::tail);
+  }
+  for (std::size_t h : heads)
+    for (std::size_t t : tails)
+      if (h != ends.size() && t != ends.size() && h != t) extra = std::max(extra, ends[h].head + ends[t].tail);
+  return extra;
+}
+
+/// What the tool paints on the lattice (cells whose centre lies within r of a centre the tool is
+/// on), and the estimate's search over F's pieces: a path never leaves F, so it stays in one of
+/// F's pieces (8-connected free cells), and its viable poses in one component: the estimate is the
+/// best piece's, with the best component there. For a candidate (the cells of a component, or of
+/// several: an interior), what the tool paints from them (marked with a fresh `base`), and the
+/// dead ends (pieces of the piece of F outside the interior, each with a mark of its own) where a
+/// head and a tail paint more.
+class PieceSearch {
+ public:
+  /// `tail_here`, `head_here`: per cell, the longest tail and head chain from (up to) a pose there.
+  PieceSearch(const Lattice& lat, double r, double step, std::vector<std::uint8_t> tail_here, std::vector<std::uint8_t> head_here)
+      : lat_(lat), r_(r), step_(step), cells_(static_cast<std::size_t>(lat.nx * lat.ny)), tail_here_(std::move(tail_here)),
+        head_here_(std::move(head_here)) {
+    const long reach = static_cast<long>(std::ceil(r / lat.g));
+    for (long dy = -reach; dy <= reach; ++dy)
+      for (long dx = -reach; dx <= reach; ++dx)
+        if (static_cast<double>(dx * dx + dy * dy) * lat.g * lat.g <= r * r * (1.0 + 1e-12)) disk_.push_back({static_cast<int>(dx), static_cast<int>(dy)});
+  }
+
+  /// The cells the tool paints from every free cell (R on the lattice).
+  std::size_t reachable() const {
+    std::size_t count = 0;
+    std::vector<int> all(cells_, 0);
+    for (std::size_t c = 0; c < cells_; ++c)
+      if (lat_.free[c]) stamp(all, static_cast<long>(c) % lat_.nx, static_cast<long>(c) / lat_.nx, 1, 1, count);
+    return count;
+  }
+
+  /// Each piece of F, with the viable components in it (`components`, the most cells first), as
+  /// candidates; counts the pieces in out.pieces.
+  void searchPieces(const std::vector<std::vector<std::uint32_t>>& components, CarCeiling& out) {
+    paint_.assign(cells_, 0);
+    piece_of_f_.assign(cells_, 0);
+    dead_end_.assign(cells_, 0);
+    piece_reach_.assign(cells_, 0);
+    interior_.assign(cells_, 0);
+    for (std::size_t c0 = 0; c0 < cells_; ++c0) {
+      if (!lat_.free[c0] || piece_of_f_[c0]) continue;
+      ++out.pieces;
+      const int piece = static_cast<int>(out.pieces);
+      const std::vector<std::size_t> here = flood(c0, piece_of_f_, piece, [](std::size_t) { return true; });
+      std::size_t piece_r = 0;
+      for (const std::size_t c : here) stamp(piece_reach_, static_cast<long>(c) % lat_.nx, static_cast<long>(c) / lat_.nx, piece, piece, piece_r);
+      best_piece = std::max(best_piece, piece_r);
+      // The piece's components, the largest first: the first kComponents each alone, the rest
+      // together (their union bounds each of them); none (a piece without a viable pose).
+      std::vector<const std::vector<std::uint32_t>*> mine;
+      for (const auto& comp : components)
+        if (piece_of_f_[comp.front()] == piece) mine.push_back(&comp);
+      for (std::size_t i = 0; i < std::min(mine.size(), kComponents); ++i) candidate(here, {mine[i]});
+      if (mine.size() > kComponents) candidate(here, std::vector<const std::vector<std::uint32_t>*>(mine.begin() + static_cast<std::ptrdiff_t>(kComponents), mine.end()));
+      if (mine.empty()) candidate(here, {});
+    }
+  }
+
+  std::size_t best_interior = 0;  ///< cells the best candidate's interior paints
+  std::size_t best_piece = 0;     ///< R of the piece of F that holds the most of it, in cells
+  double best_with_ends = 0.0;    ///< the best candidate's interior and ends, in cells
+
+ private:
+  /// Marks the cells the tool paints about cell (x, y) with `mark`; counts those it marks anew
+  /// (those not marked `mark` or `base` already).
+  void stamp(std::vector<int>& paint, long x, long y, int mark, int base, std::size_t& added) const {
+    for (const auto& d : disk_) {
+      const long px = x + d[0], py = y + d[1];
+      if (px < 0 || py < 0 || px >= lat_.nx || py >= lat_.ny) continue;
+      int& v = paint[static_cast<std::size_t>(py * lat_.nx + px)];
+      if (v == base || v == mark) continue;
+      v = mark;
+      ++added;
+    }
+  }
+  /// What a chain of `poses` poses paints at most, in cells: a tool's disk, and a band of its
+  /// width along each motion (the band's rasters counted a cell wide and long more); nothing
+  /// without a pose (a piece with no pose of a head, or of a tail); no bound for chains of
+  /// kLongChain poses or more.
+  double chainPaint(unsigned poses) const {
+    if (poses == 0) return 0.0;
+    if (poses >= kLongChain) return static_cast<double>(cells_);
+    const double length = static_cast<double>(poses - 1) * step_;
+    return static_cast<double>(disk_.size()) + (2.0 * r_ + lat_.g) * (length + lat_.g) / (lat_.g * lat_.g);
+  }
+  /// The free cells 8-connected to c that `admit` admits and `label` has not labelled, labelled
+  /// `mark`, c first.
+  template <class Admit>
+  std::vector<std::size_t> flood(std::size_t c0, std::vector<int>& label, int mark, Admit admit) const {
+    std::vector<std::size_t> found{c0}, todo{c0};
+    label[c0] = mark;
+    while (!todo.empty()) {
+      const std::size_t c = todo.back();
+      todo.pop_back();
+      const long x = static_cast<long>(c) % lat_.nx, y = static_cast<long>(c) / lat_.nx;
+      for (long dy = -1; dy <= 1; ++dy)
+        for (long dx = -1; dx <= 1; ++dx) {
+          const long nx = x + dx, ny = y + dy;
+          if (!lat_.freeAt(nx, ny)) continue;
+          const std::size_t n = static_cast<std::size_t>(ny * lat_.nx + nx);
+          if (label[n] || !admit(n)) continue;
+          label[n] = mark;
+          todo.push_back(n);
+          found.push_back(n);
+        }
+    }
+    return found;
+  }
+  /// The candidate whose interior is the cells of `parts`, in the piece of F whose cells are `here`.
+  void candidate(const std::vector<std::size_t>& here, const std::vector<const std::vector<std::uint32_t>*>& parts) {
+    for (const auto* part : parts)
+      for (const std::uint32_t c : *part) interior_[c] = 1;
+    const int base = ++mark_;
+    std::size_t painted = 0;
+    for (const std::size_t c : here) {
+      dead_end_[c] = 0;
+      if (interior_[c]) stamp(paint_, static_cast<long>(c) % lat_.nx, static_cast<long>(c) / lat_.nx, base, base, painted);
+    }
+    std::vector<End> ends;
+    for (const std::size_t d0 : here) {
+      if (interior_[d0] || dead_end_[d0]) continue;
+      ++mark_;
+      std::size_t added = 0;
+      unsigned head = 0, tail = 0;
+      for (const std::size_t c : flood(d0, dead_end_, mark_, [&](std::size_t n) { return !interior_[n]; })) {
+        stamp(paint_, static_cast<long>(c) % lat_.nx, static_cast<long>(c) / lat_.nx, mark_, base, added);
+        head = std::max<unsigned>(head, head_here_[c]);
+        tail = std::max<unsigned>(tail, tail_here_[c]);
+      }
+      const double a = static_cast<double>(added);
+      ends.push_back({a, std::min(a, chainPaint(head)), std::min(a, chainPaint(tail))});
+    }
+    for (const auto* part : parts)
+      for (const std::uint32_t c : *part) interior_[c] = 0;
+    best_interior = std::max(best_interior, painted);
+    best_with_ends = std::max(best_with_ends, static_cast<double>(painted) + bestEnds(ends));
+  }
+
+  const Lattice& lat_;
+  const double r_, step_;
+  const std::size_t cells_;
+  const std::vector<std::uint8_t> tail_here_, head_here_;
+  std::vector<std::array<int, 2>> disk_;  // the cells the tool paints about a cell, as offsets
+  std::vector<int> paint_, piece_of_f_, dead_end_, piece_reach_;
+  std::vector<char> interior_;
+  int mark_ = 0;
+};
+
+}  // namespace
+
+CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const CarCeilingOptions& options) {
+  if (!(options.turn_radius > 0.0) || !(options.resolution > 0.0) || options.headings < 8)
+    throw std::invalid_argument("car ceiling: turn radius and resolution must be positive, and headings at least 8");
+  if (wall.boundary.size() < 3) throw std::invalid_argument("car ceiling: the wall has no boundary");
+  const double r = tool.tool_width / 2.0;
+  double step = 0.0;
+  const Lattice lat = makeLattice(wall, tool, options, r, step);
 
   const std::size_t cells = static_cast<std::size_t>(lat.nx * lat.ny);
   std::vector<std::uint8_t> alive(cells * lat.h, 0);
@@ -258,24 +439,6 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
   viable(lat, alive, 1, true, tail_chain);
   viable(lat, alive, 2, false, head_chain);
 
-  // Paint on the lattice: cells whose centre lies within r of a centre the tool is on.
-  std::vector<std::array<int, 2>> disk;
-  const long reach = static_cast<long>(std::ceil(r / lat.g));
-  for (long dy = -reach; dy <= reach; ++dy)
-    for (long dx = -reach; dx <= reach; ++dx)
-      if (static_cast<double>(dx * dx + dy * dy) * lat.g * lat.g <= r * r * (1.0 + 1e-12)) disk.push_back({static_cast<int>(dx), static_cast<int>(dy)});
-  // Marks the cells the tool paints about cell (x, y) with `mark`; counts those it marks anew
-  // (those not marked `mark` or `base` already).
-  auto stamp = [&](std::vector<int>& paint, long x, long y, int mark, int base, std::size_t& added) {
-    for (const auto& d : disk) {
-      const long px = x + d[0], py = y + d[1];
-      if (px < 0 || py < 0 || px >= lat.nx || py >= lat.ny) continue;
-      int& v = paint[static_cast<std::size_t>(py * lat.nx + px)];
-      if (v == base || v == mark) continue;
-      v = mark;
-      ++added;
-    }
-  };
   // Per cell, the longest tail and head chain from (up to) a pose there.
   std::vector<std::uint8_t> tail_here(cells, 0), head_here(cells, 0);
   for (std::size_t c = 0; c < cells; ++c)
@@ -291,134 +454,21 @@ CarCeiling forwardCarCeiling(const Wall& wall, const ToolParams& tool, const Car
   tail_chain = {};
   head_chain = {};
 
-  std::size_t reachable = 0;
-  {
-    std::vector<int> all(cells, 0);
-    for (std::size_t c = 0; c < cells; ++c)
-      if (lat.free[c]) stamp(all, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, 1, 1, reachable);
-  }
-  // What a chain of `poses` poses paints at most, in cells: a tool's disk, and a band of its
-  // width along each motion (the band's rasters counted a cell wide and long more); nothing
-  // without a pose (a piece with no pose of a head, or of a tail); no bound for chains of
-  // kLongChain poses or more.
-  auto chainPaint = [&](unsigned poses) {
-    if (poses == 0) return 0.0;
-    if (poses >= kLongChain) return static_cast<double>(cells);
-    const double length = static_cast<double>(poses - 1) * step;
-    return static_cast<double>(disk.size()) + (2.0 * r + lat.g) * (length + lat.g) / (lat.g * lat.g);
-  };
-  // What a dead end adds to the paint, and what a path's head or tail there can add: at most
-  // what its longest chain paints.
-  struct End {
-    double added = 0.0, head = 0.0, tail = 0.0;
-  };
-  // The head in one dead end and the tail in another (the best two of each suffice), or both in one.
-  auto bestEnds = [](const std::vector<End>& ends) {
-    double extra = 0.0;
-    std::array<std::size_t, 2> heads{ends.size(), ends.size()}, tails{ends.size(), ends.size()};
-    auto keepBest = [&](std::array<std::size_t, 2>& top, std::size_t i, double End::*v) {
-      if (top[0] == ends.size() || ends[i].*v > ends[top[0]].*v) top = {i, top[0]};
-      else if (top[1] == ends.size() || ends[i].*v > ends[top[1]].*v) top[1] = i;
-    };
-    for (std::size_t i = 0; i < ends.size(); ++i) {
-      extra = std::max(extra, std::min(ends[i].added, ends[i].head + ends[i].tail));
-      keepBest(heads, i, &End::head);
-      keepBest(tails, i, &End::tail);
-    }
-    for (std::size_t h : heads)
-      for (std::size_t t : tails)
-        if (h != ends.size() && t != ends.size() && h != t) extra = std::max(extra, ends[h].head + ends[t].tail);
-    return extra;
-  };
-  // The free cells 8-connected to c that `admit` admits and `label` has not labelled, labelled
-  // `mark`, c first.
-  auto flood = [&](std::size_t c0, std::vector<int>& label, int mark, auto admit) {
-    std::vector<std::size_t> found{c0}, todo{c0};
-    label[c0] = mark;
-    while (!todo.empty()) {
-      const std::size_t c = todo.back();
-      todo.pop_back();
-      const long x = static_cast<long>(c) % lat.nx, y = static_cast<long>(c) / lat.nx;
-      for (long dy = -1; dy <= 1; ++dy)
-        for (long dx = -1; dx <= 1; ++dx) {
-          const long nx = x + dx, ny = y + dy;
-          if (!lat.freeAt(nx, ny)) continue;
-          const std::size_t n = static_cast<std::size_t>(ny * lat.nx + nx);
-          if (label[n] || !admit(n)) continue;
-          label[n] = mark;
-          todo.push_back(n);
-          found.push_back(n);
-        }
-    }
-    return found;
-  };
-  // A path never leaves F, so it stays in one of F's pieces (8-connected free cells), and its viable
-  // poses in one component: the estimate is the best piece's, with the best component there. For
-  // a candidate (the cells of a component, or of several: an interior), what the tool paints from
-  // them (marked with a fresh `base`), and the dead ends (pieces of the piece of F outside the
-  // interior, each with a mark of its own) where a head and a tail paint more.
-  std::vector<int> paint(cells, 0), piece_of_f(cells, 0), dead_end(cells, 0), piece_reach(cells, 0);
-  std::vector<char> interior(cells, 0);
-  int mark = 0;
-  std::size_t best_interior = 0, best_piece = 0;
-  double best_with_ends = 0.0;
-  auto candidate = [&](const std::vector<std::size_t>& here, const std::vector<const std::vector<std::uint32_t>*>& parts) {
-    for (const auto* part : parts)
-      for (const std::uint32_t c : *part) interior[c] = 1;
-    const int base = ++mark;
-    std::size_t painted = 0;
-    for (const std::size_t c : here) {
-      dead_end[c] = 0;
-      if (interior[c]) stamp(paint, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, base, base, painted);
-    }
-    std::vector<End> ends;
-    for (const std::size_t d0 : here) {
-      if (interior[d0] || dead_end[d0]) continue;
-      ++mark;
-      std::size_t added = 0;
-      unsigned head = 0, tail = 0;
-      for (const std::size_t c : flood(d0, dead_end, mark, [&](std::size_t n) { return !interior[n]; })) {
-        stamp(paint, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, mark, base, added);
-        head = std::max<unsigned>(head, head_here[c]);
-        tail = std::max<unsigned>(tail, tail_here[c]);
-      }
-      const double a = static_cast<double>(added);
-      ends.push_back({a, std::min(a, chainPaint(head)), std::min(a, chainPaint(tail))});
-    }
-    for (const auto* part : parts)
-      for (const std::uint32_t c : *part) interior[c] = 0;
-    best_interior = std::max(best_interior, painted);
-    best_with_ends = std::max(best_with_ends, static_cast<double>(painted) + bestEnds(ends));
-  };
-  for (std::size_t c0 = 0; c0 < cells; ++c0) {
-    if (!lat.free[c0] || piece_of_f[c0]) continue;
-    ++out.pieces;
-    const int piece = static_cast<int>(out.pieces);
-    const std::vector<std::size_t> here = flood(c0, piece_of_f, piece, [](std::size_t) { return true; });
-    std::size_t piece_r = 0;
-    for (const std::size_t c : here) stamp(piece_reach, static_cast<long>(c) % lat.nx, static_cast<long>(c) / lat.nx, piece, piece, piece_r);
-    best_piece = std::max(best_piece, piece_r);
-    // The piece's components, the largest first: the first kComponents each alone, the rest
-    // together (their union bounds each of them); none (a piece without a viable pose).
-    std::vector<const std::vector<std::uint32_t>*> mine;
-    for (const auto& comp : components)
-      if (piece_of_f[comp.front()] == piece) mine.push_back(&comp);
-    for (std::size_t i = 0; i < std::min(mine.size(), kComponents); ++i) candidate(here, {mine[i]});
-    if (mine.size() > kComponents) candidate(here, std::vector<const std::vector<std::uint32_t>*>(mine.begin() + static_cast<std::ptrdiff_t>(kComponents), mine.end()));
-    if (mine.empty()) candidate(here, {});
-  }
+  PieceSearch search(lat, r, step, std::move(tail_here), std::move(head_here));
+  const std::size_t reachable = search.reachable();
+  search.searchPieces(components, out);
   const double cell_area = lat.g * lat.g;
   out.resolution = lat.g;
   out.headings = lat.h;
   out.step = step;
   out.reachable_area = static_cast<double>(reachable) * cell_area;
-  out.interior_area = static_cast<double>(best_interior) * cell_area;
-  out.with_ends_area = best_with_ends * cell_area;
-  out.largest_piece_area = static_cast<double>(best_piece) * cell_area;
+  out.interior_area = static_cast<double>(search.best_interior) * cell_area;
+  out.with_ends_area = search.best_with_ends * cell_area;
+  out.largest_piece_area = static_cast<double>(search.best_piece) * cell_area;
   if (reachable > 0) {
-    out.interior = static_cast<double>(best_interior) / static_cast<double>(reachable);
-    out.with_ends = std::min(1.0, best_with_ends / static_cast<double>(reachable));
-    out.largest_piece = static_cast<double>(best_piece) / static_cast<double>(reachable);
+    out.interior = static_cast<double>(search.best_interior) / static_cast<double>(reachable);
+    out.with_ends = std::min(1.0, search.best_with_ends / static_cast<double>(reachable));
+    out.largest_piece = static_cast<double>(search.best_piece) / static_cast<double>(reachable);
   }
   return out;
 }
