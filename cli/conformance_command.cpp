@@ -139,8 +139,7 @@ int conformanceCommand(const ConformanceOptions& o) {
     nlohmann::ordered_json j;
     j["planner"] = info.name;
     j["version"] = info.version;
-    j["params"] = nlohmann::ordered_json::object();
-    for (const auto& [k, v] : params.all()) std::visit([&, name = k](const auto& x) { j["params"][name] = x; }, v);
+    j["params"] = paramsJson(params);
     j["promise_min_coverage_reachable"] = info.min_coverage_reachable;
     j["walls"] = nlohmann::ordered_json::array();
     for (const CardRow& r : rows)

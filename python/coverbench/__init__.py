@@ -137,7 +137,10 @@ def plan(wall: Wall, planner: str, params: Optional[Mapping[str, Union[bool, int
 
     `params` are the planner's parameters by name. An external planner's processes are held to
     `time_limit_s` and `memory_mb` (all of them together). Bad input raises ValueError."""
-    settings = [(k, json.dumps(v) if isinstance(v, bool) else str(v)) for k, v in sorted((params or {}).items())]
+    try:  # read by the parameter codec, as the server reads a request's params
+        settings = json.dumps(dict(params or {}), allow_nan=False)
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"params: {e}") from None
     out: Plan = json.loads(_core.plan(_wall_text(wall), planner, settings, float(tool_width), float(clearance),
                                           int(seed), float(time_limit_s), float(memory_mb)))
     out["waypoints"] = _waypoints_out(out["waypoints"])

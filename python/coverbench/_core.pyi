@@ -14,7 +14,7 @@ def wall_file(path: str) -> str:
 def planners() -> str:
     """Every registered planner with its parameters, as JSON text."""
 
-def plan(wall: str, planner: str, params: Sequence[Tuple[str, str]], tool_width: float, clearance: float, seed: int,
+def plan(wall: str, planner: str, params: str, tool_width: float, clearance: float, seed: int,
          time_limit_s: float, memory_mb: float = 4096.0) -> str:
     """Plans and judges as `coverbench plan` does; the plan as JSON text."""
 

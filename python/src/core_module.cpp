@@ -10,6 +10,7 @@
 #include "coverbench/experiment.hpp"
 #include "coverbench/external_planner.hpp"
 #include "coverbench/judge.hpp"
+#include "coverbench/json_input.hpp"
 #include "coverbench/limits.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/plan_file.hpp"
@@ -73,9 +74,8 @@ Path pathOf(const std::vector<std::pair<double, double>>& waypoints, const std::
   return p;
 }
 
-std::string plan(const std::string& wall_text, const std::string& planner,
-                 const std::vector<std::pair<std::string, std::string>>& settings, double tool_width, double clearance,
-                 std::uint64_t seed, double time_limit_s, double memory_mb) {
+std::string plan(const std::string& wall_text, const std::string& planner, const std::string& params_json, double tool_width,
+                 double clearance, std::uint64_t seed, double time_limit_s, double memory_mb) {
   const Wall wall = wallOf(wall_text, "wall");
   const PlannerInfo& info = external::plannerNamed(planner, "planner");
   validateTimeLimit(time_limit_s, "time_limit_s", "time_limit_s");
@@ -84,7 +84,9 @@ std::string plan(const std::string& wall_text, const std::string& planner,
   ProblemInputs inputs;
   inputs.wall = &wall;
   inputs.tool = ToolParams{tool_width, clearance};
-  inputs.params = resolveParams(info, settings, "params");
+  const nlohmann::json params = parseJsonStrict(params_json, "params");
+  if (!params.is_object()) throw InputError("params", "(document)", "must be a mapping of name: value");
+  inputs.params = withDefaults(info, parseSettingsJson(info, params, "params"));
   inputs.seed = seed;
   inputs.memory_limit_bytes = static_cast<std::size_t>(memory_mb * 1024.0 * 1024.0);
   const Problem problem = buildProblem(info, std::move(inputs), "tool");

@@ -74,6 +74,18 @@ class Package(unittest.TestCase):
             coverbench.plan(WALL, "zigzag", {"overlap": 2})
         with self.assertRaisesRegex(ValueError, "unknown planner"):
             coverbench.plan(WALL, "nope")
+        with self.assertRaisesRegex(ValueError, "params: "):
+            coverbench.plan(WALL, "zigzag", {"overlap": float("nan")})
+        with self.assertRaisesRegex(ValueError, "params: overlap: 'x' is not a finite number"):
+            coverbench.plan(WALL, "zigzag", {"overlap": "x"})
+
+    def test_params_of_any_python_type_are_read_as_their_text(self):
+        # The parameter codec reads them (as it reads the server's): 0.1 and "0.1" are one value.
+        a = coverbench.plan(WALL, "zigzag", {"overlap": 0.1, "boundary_passes": 2})
+        b = coverbench.plan(WALL, "zigzag", {"overlap": "0.1", "boundary_passes": "2"})
+        self.assertEqual(a["waypoints"].tolist() if hasattr(a["waypoints"], "tolist") else a["waypoints"],
+                         b["waypoints"].tolist() if hasattr(b["waypoints"], "tolist") else b["waypoints"])
+        self.assertNotEqual(len(a["tool_on"]), len(coverbench.plan(WALL, "zigzag", {"boundary_passes": 0})["tool_on"]))
 
     def external(self, d, name, body):
         with open(os.path.join(d, name + ".py"), "w", encoding="utf-8") as f:
