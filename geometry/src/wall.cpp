@@ -12,23 +12,6 @@
 
 namespace coverbench {
 
-InputError::InputError(std::string source, std::string field, std::string problem)
-    : std::runtime_error(source + ": " + field + ": " + problem),
-      source_(std::move(source)),
-      field_(std::move(field)),
-      problem_(std::move(problem)) {}
-
-std::string shortNumber(double v) {
-  // Six significant digits, or as many more as it takes to read back as v: 3600.0000001 is not
-  // printed as the bound 3600 it exceeds, and 0.1 stays 0.1.
-  char buf[64];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    if (std::strtod(buf, nullptr) == v || !std::isfinite(v)) break;
-  }
-  return buf;
-}
-
 namespace {
 
 /// Whether `p` lies inside `ring` and not on its edges.

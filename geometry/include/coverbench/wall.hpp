@@ -1,6 +1,6 @@
 #pragma once
-/// The wall model: a boundary polygon and obstacles (windows, doors, sockets, pipes), the one-line
-/// input error, and the check of a wall's geometric sense. Wall files are read in formats/
+/// The wall model: a boundary polygon and obstacles (windows, doors, sockets, pipes), and the check
+/// of a wall's geometric sense (bad input is an InputError, base/input_error.hpp). Wall files are read in formats/
 /// (coverbench/wall_file.hpp).
 
 #include <optional>
@@ -9,25 +9,9 @@
 #include <vector>
 
 #include "coverbench/geometry.hpp"
+#include "coverbench/input_error.hpp"
 
 namespace coverbench {
-
-/// Bad input from a user: carries the file (or flag), the field and the problem, and formats them
-/// as one line: `FILE: FIELD: PROBLEM`.
-class InputError : public std::runtime_error {
- public:
-  InputError(std::string source, std::string field, std::string problem);
-  const std::string& source() const { return source_; }
-  const std::string& field() const { return field_; }
-  const std::string& problem() const { return problem_; }
-
- private:
-  std::string source_, field_, problem_;
-};
-
-/// A number as messages show it: six significant digits, or as many more as read back as it
-/// ("0.1", "1e-09", "3600.0000001").
-std::string shortNumber(double v);
 
 enum class ObstacleType { Rect, Polygon, Circle };
 

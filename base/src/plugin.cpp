@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "coverbench/wall.hpp"  // InputError
+#include "coverbench/input_error.hpp"  // InputError
 
 namespace coverbench {
 namespace {
