@@ -181,7 +181,7 @@ bool PaintGrid::nearPiece(Point p, const std::vector<int>& piece, int id, int ne
   return false;
 }
 
-void PaintGrid::mark(int j, double x0, double x1, std::uint8_t bit) {
+inline void PaintGrid::mark(int j, double x0, double x1, std::uint8_t bit) {
   const int i0 = std::max(0, static_cast<int>(std::ceil((x0 - origin_.x) / h_ - 0.5)));
   const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((x1 - origin_.x) / h_ - 0.5)));
   for (int i = i0; i <= i1; ++i) cells_[index(i, j)] |= bit;
