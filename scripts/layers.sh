@@ -28,8 +28,8 @@ allowed() {
     base|judge) echo "" ;;
     geometry) echo "base" ;;
     formats|transits|metrics|records) echo "base geometry" ;;
-    planning) echo "base geometry transits" ;;
-    vehicles) echo "base geometry planning transits" ;;
+    planning) echo "base formats geometry transits" ;;
+    vehicles) echo "base formats geometry planning transits" ;;
     datasets|imports) echo "base formats geometry" ;;
     algorithms) echo "base formats geometry planning transits vehicles" ;;
     runner) echo "algorithms base formats geometry metrics planning records transits vehicles" ;;

@@ -1,5 +1,6 @@
 #include "coverbench/json_input.hpp"
 
+#include <cmath>
 #include <set>
 #include <vector>
 
@@ -114,6 +115,29 @@ json parseJsonStrict(const std::string& text, const std::string& source) {
   json::sax_parse(text, &keys);
   if (!keys.duplicate().empty()) throw InputError(source, keys.duplicate(), "duplicate key (each key may appear once)");
   return doc;
+}
+
+void JsonFields::fail(const std::string& field, const std::string& problem) const { throw InputError(source_, field, problem); }
+
+void JsonFields::onlyKeys(const nlohmann::json& obj, const std::string& where, const std::set<std::string>& allowed) const {
+  for (const auto& [key, value] : obj.items())
+    if (!allowed.count(key)) fail(where.empty() ? key : where + "." + key, "unknown key");
+}
+
+std::string JsonFields::text(const nlohmann::json& obj, const std::string& key, const std::string& field, bool required) const {
+  if (!obj.contains(key)) {
+    if (required) fail(field, "missing");
+    return "";
+  }
+  if (!obj[key].is_string()) fail(field, "must be a string");
+  return obj[key].get<std::string>();
+}
+
+double JsonFields::number(const nlohmann::json& v, const std::string& field) const {
+  if (!v.is_number()) fail(field, "must be a number");
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) fail(field, "must be finite");
+  return d;
 }
 
 }  // namespace coverbench

@@ -1,7 +1,7 @@
 // The one codec of planner parameters (param_codec.hpp): values and specs to and from text and JSON.
 #include "coverbench/param_codec.hpp"
 
-#include <nlohmann/json.hpp>
+#include "coverbench/json_input.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -145,97 +145,66 @@ ordered_json paramSpecJson(const ParamSpec& s) {
   return spec;
 }
 
-namespace {
-
-/// Reads a spec's fields, each failure an InputError naming the source and the field.
-class SpecReader {
- public:
-  SpecReader(const std::string& source, const std::string& where) : source_(source), where_(where) {}
-  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
-    throw InputError(source_, where_ + field, problem);
-  }
-  std::string text(const json& obj, const std::string& key, bool required = true) const {
-    if (!obj.contains(key)) {
-      if (required) fail("." + key, "missing");
-      return "";
-    }
-    if (!obj[key].is_string()) fail("." + key, "must be a string");
-    return obj[key].get<std::string>();
-  }
-  double number(const json& v, const std::string& field) const {
-    if (!v.is_number()) fail(field, "must be a number");
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail(field, "must be finite");
-    return d;
-  }
-
- private:
-  const std::string& source_;
-  const std::string& where_;
-};
-
-}  // namespace
-
 ParamSpec paramSpecFromJson(const json& p, const std::string& source, const std::string& where) {
-  const SpecReader r(source, where);
-  if (!p.is_object()) r.fail("", "must be an object");
-  static const std::set<std::string> kKeys = {"name", "type", "default", "min", "max", "choices", "unit", "description"};
-  for (const auto& [key, value] : p.items())
-    if (!kKeys.count(key)) r.fail("." + key, "unknown key");
+  const JsonFields r(source);
+  if (!p.is_object()) r.fail(where, "must be an object");
+  r.onlyKeys(p, where, {"name", "type", "default", "min", "max", "choices", "unit", "description"});
   ParamSpec s;
-  s.name = r.text(p, "name");
+  s.name = r.text(p, "name", where + ".name");
   if (s.name.empty() || s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos)
-    r.fail(".name", "must be lower-case letters, digits and _");
-  const std::string type = r.text(p, "type");
-  s.unit = r.text(p, "unit", false);
-  s.description = r.text(p, "description");
-  if (!p.contains("default")) r.fail(".default", "missing");
+    r.fail(where + ".name", "must be lower-case letters, digits and _");
+  const std::string type = r.text(p, "type", where + ".type");
+  s.unit = r.text(p, "unit", where + ".unit", false);
+  s.description = r.text(p, "description", where + ".description");
+  if (!p.contains("default")) r.fail(where + ".default", "missing");
   const json& d = p["default"];
   auto range = [&] {
     for (const char* k : {"min", "max"})
-      if (!p.contains(k)) r.fail(std::string(".") + k, "missing (a number needs its range)");
-    s.min = r.number(p["min"], ".min");
-    s.max = r.number(p["max"], ".max");
-    if (s.min > s.max) r.fail(".max", "is below min");
+      if (!p.contains(k)) r.fail(where + "." + k, "missing (a number needs its range)");
+    s.min = r.number(p["min"], where + ".min");
+    s.max = r.number(p["max"], where + ".max");
+    if (s.min > s.max) r.fail(where + ".max", "is below min");
   };
   if (type == "number") {
     s.type = ParamType::Number;
     range();
-    const double v = r.number(d, ".default");
-    if (v < s.min || v > s.max) r.fail(".default", "is outside [min, max]");
+    const double v = r.number(d, where + ".default");
+    if (v < s.min || v > s.max) r.fail(where + ".default", "is outside [min, max]");
     s.default_value = v;
   } else if (type == "integer") {
     s.type = ParamType::Integer;
     range();
-    if (!d.is_number_integer()) r.fail(".default", "must be an integer");
+    if (!d.is_number_integer()) r.fail(where + ".default", "must be an integer");
     const auto v = d.get<long long>();
-    if (static_cast<double>(v) < s.min || static_cast<double>(v) > s.max) r.fail(".default", "is outside [min, max]");
+    if (static_cast<double>(v) < s.min || static_cast<double>(v) > s.max) r.fail(where + ".default", "is outside [min, max]");
     s.default_value = v;
   } else if (type == "bool") {
     s.type = ParamType::Bool;
-    if (!d.is_boolean()) r.fail(".default", "must be true or false");
+    if (!d.is_boolean()) r.fail(where + ".default", "must be true or false");
     s.default_value = d.get<bool>();
   } else if (type == "choice") {
     s.type = ParamType::Choice;
     if (!p.contains("choices") || !p["choices"].is_array() || p["choices"].empty())
-      r.fail(".choices", "must be a non-empty list of strings");
+      r.fail(where + ".choices", "must be a non-empty list of strings");
     for (const json& c : p["choices"]) {
-      if (!c.is_string()) r.fail(".choices", "must be a non-empty list of strings");
+      if (!c.is_string()) r.fail(where + ".choices", "must be a non-empty list of strings");
       s.choices.push_back(c.get<std::string>());
     }
     if (!d.is_string() || std::find(s.choices.begin(), s.choices.end(), d.get<std::string>()) == s.choices.end())
-      r.fail(".default", "must be one of the choices");
+      r.fail(where + ".default", "must be one of the choices");
     s.default_value = d.get<std::string>();
   } else {
-    r.fail(".type", "must be number, integer, bool or choice, not '" + type + "'");
+    r.fail(where + ".type", "must be number, integer, bool or choice, not '" + type + "'");
   }
   return s;
 }
 
+std::string paramTextOfJson(const json& value) { return value.is_string() ? value.get<std::string>() : value.dump(); }
+
 ParamSettings parseSettingsJson(const PlannerInfo& planner, const json& object, const std::string& source) {
   if (!object.is_object()) throw InputError(source, "(value)", "must be an object of name: value");
   std::vector<std::pair<std::string, std::string>> texts;
-  for (const auto& [key, value] : object.items()) texts.emplace_back(key, value.is_string() ? value.get<std::string>() : value.dump());
+  for (const auto& [key, value] : object.items()) texts.emplace_back(key, paramTextOfJson(value));
   return parseSettings(planner, texts, source);
 }
 

@@ -34,34 +34,7 @@ std::string slurp(const std::string& path, const std::string& source, const std:
 // --- the manifest -------------------------------------------------------------------------------
 
 /// Reads a manifest's fields; every error names the manifest and the field.
-class ManifestReader {
- public:
-  explicit ManifestReader(std::string source) : source_(std::move(source)) {}
-  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
-    throw InputError(source_, field, problem);
-  }
-  void onlyKeys(const json& obj, const std::string& where, const std::set<std::string>& allowed) const {
-    for (const auto& [key, value] : obj.items())
-      if (!allowed.count(key)) fail(where.empty() ? key : where + "." + key, "unknown key");
-  }
-  std::string text(const json& obj, const std::string& key, const std::string& field, bool required = true) const {
-    if (!obj.contains(key)) {
-      if (required) fail(field, "missing");
-      return "";
-    }
-    if (!obj[key].is_string()) fail(field, "must be a string");
-    return obj[key].get<std::string>();
-  }
-  double number(const json& v, const std::string& field) const {
-    if (!v.is_number()) fail(field, "must be a number");
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail(field, "must be finite");
-    return d;
-  }
-
- private:
-  std::string source_;
-};
+using ManifestReader = JsonFields;
 
 // --- the planner ---------------------------------------------------------------------------------
 

@@ -61,6 +61,9 @@ nlohmann::ordered_json paramSpecJson(const ParamSpec& spec);
 /// A spec read from JSON as paramSpecJson writes it (a manifest's `params[i]`, at `where`):
 /// InputError naming `source` and the field for anything else.
 ParamSpec paramSpecFromJson(const nlohmann::json& spec, const std::string& source, const std::string& where);
+/// A value given as JSON (a request's, a stored run's) as the text parseParam reads: a string as
+/// it is, any other scalar as JSON writes it.
+std::string paramTextOfJson(const nlohmann::json& value);
 /// Values given as a JSON object of name: value (a value a string or a JSON scalar, read as its
 /// text), resolved against the planner's declarations as resolveParams does.
 ParamSettings parseSettingsJson(const PlannerInfo& planner, const nlohmann::json& object, const std::string& source);
