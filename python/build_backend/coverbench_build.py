@@ -177,7 +177,7 @@ def build_wheel(wheel_directory: str, config_settings: Optional[Mapping[str, Any
                 metadata_directory: Optional[str] = None) -> str:
     module = _compiled(config_settings)
     compiled = []
-    # The module, and the plug-ins it opens from its own folder (geometry/include/coverbench/plugin.hpp;
+    # The module, and the plug-ins it opens from its own folder (base/include/coverbench/plugin.hpp;
     # built with the module): GDAL when a config imports walls, OMPL for a sampling transit or a car
     # that reverses.
     build = os.path.dirname(os.path.dirname(os.path.dirname(module)))
