@@ -97,9 +97,7 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   inputs.vehicle = vehicle;
   inputs.transit = transit;
   inputs.seed = seed;
-  inputs.params = params;
-  // An external planner's processes are held to the experiments' default memory limit here.
-  inputs.memory_limit_bytes = external::kDefaultMemoryLimitBytes;
+  inputs.params = params;  // an external planner's processes: the default memory limit (ProblemInputs)
   const Problem problem = buildProblem(planner, std::move(inputs), "command line");
   Outcome o;
   o.plan.planner = planner.name;
