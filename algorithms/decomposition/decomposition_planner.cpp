@@ -200,8 +200,8 @@ class CellSweep {
  public:
   using Clock = std::chrono::steady_clock;
 
-  CellSweep(PlanFrame& frame, const DecompositionParams& params, const Budget& budget, double angle_deg)
-      : frame_(&frame), params_(&params), budget_(&budget), angle_deg_(angle_deg),
+  CellSweep(PlanFrame& frame, const DecompositionParams& params, const Budget& budget)
+      : frame_(&frame), params_(&params), budget_(&budget),
         spacing_(frame.problem().tool.tool_width * (1.0 - params.overlap)) {}
 
   /// With the boundary loop, passes keep one spacing clear of it across their direction and end
@@ -291,7 +291,6 @@ class CellSweep {
     result.stats["contact_transits"] = static_cast<double>(moves.contact);
     result.stats["slabs"] = static_cast<double>(cells_.slabs);
     result.stats["passes"] = static_cast<double>(pass_count_);
-    result.stats["sweep_angle_deg"] = angle_deg_;
     result.stats[std::string("order_estimate_") + move_cost.unit()] = ordering.estimated_cost;
     if (fill) recordLeftovers(result, left);
     result.timings_ms["decomposition"] = decomposition_ms_;
@@ -401,7 +400,7 @@ class CellSweep {
   PlanFrame* frame_;
   const DecompositionParams* params_;
   const Budget* budget_;
-  double angle_deg_, spacing_;
+  double spacing_;
   Headland h_;
   Decomposition cells_;
   std::vector<std::vector<double>> passes_;
@@ -445,7 +444,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
   /// (car_sweep.hpp, CarRow::cell): the car takes the first cell of the tour it has passes left in
   /// (each stack of passes in its block order) before the others, as long as it reaches it.
   PlanResult planForCar(const Problem& problem, const DecompositionParams& params, const Budget& budget, double turn,
-                        double angle_deg, PlanFrame& frame) {
+                        PlanFrame& frame) {
     Workspace& ws = frame.ws();
     const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
     const HeadlandOptions layout = carHeadlandOptions(problem, spacing, 1, params.row_end_inset, kCellArcTolerance, false);
@@ -474,7 +473,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
     }
     PathBuilder builder(ws);
     const CarSweep sweep = carSweep(ws, builder, h.loops, rows, spacing, budget, params.car_plan == CarPlan::Headland);
-    PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), turn, angle_deg, frame.components().size());
+    PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), turn, frame.components().size());
     result.stats["cells"] = static_cast<double>(cells.cells.size());
     result.stats["cells_without_pass"] = static_cast<double>(passless_cells);
     result.stats["cell_contacts"] = static_cast<double>(cells.contacts.size());
@@ -490,8 +489,8 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
     const double turn = (angle_deg - 90.0) * M_PI / 180.0;
     PlanFrame frame(problem, turn);
     if (frame.empty()) return PlanFrame::fitsNowhere();
-    if (problem.vehicle.isCar()) return planForCar(problem, params, budget, turn, angle_deg, frame);
-    CellSweep sweep(frame, params, budget, angle_deg);
+    if (problem.vehicle.isCar()) return planForCar(problem, params, budget, turn, frame);
+    CellSweep sweep(frame, params, budget);
     sweep.decompose(kind_, t_start);
     if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the decomposition");
     sweep.prepare();

@@ -116,7 +116,7 @@ class SpiralPlanner final : public TypedPlanner<SpiralParams> {
     const std::vector<CarRow> passes = carHolePasses(ws, loops, spacing);
     PathBuilder builder(ws);
     const CarSweep sweep = carSweep(ws, builder, loops, passes, spacing, budget, fill);
-    PlanResult result = carSweepPlan(sweep, builder, loops.size(), 0.0, std::nullopt, frame.components().size());
+    PlanResult result = carSweepPlan(sweep, builder, loops.size(), 0.0, frame.components().size());
     result.stats["levels"] = static_cast<double>(levels);
     return result;
   }

@@ -108,7 +108,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
   /// For a car (car_plan: headland): as many rings as its turns need, then the rows in an order
   /// its curves link (car_sweep.hpp).
   PlanResult planForCar(const Problem& problem, const ZigzagParams& params, const Budget& budget, double angle,
-                        double angle_deg, PlanFrame& frame) {
+                        PlanFrame& frame) {
     const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
     Workspace& ws = frame.ws();
     Headland h = headland(ws, frame.covered(),
@@ -122,7 +122,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
         for (const Interval& iv : line) rows.push_back({iv.lowEnd(), iv.highEnd(), iv.row});
     PathBuilder builder(ws);
     const CarSweep sweep = carSweep(ws, builder, h.loops, rows, spacing, budget, params.car_plan == CarPlan::Headland);
-    PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), angle, angle_deg, frame.components().size());
+    PlanResult result = carSweepPlan(sweep, builder, h.loops.size(), angle, frame.components().size());
     result.stats["rows"] = static_cast<double>(heights.size());
     result.stats["row_spacing"] = heights.size() > 1 ? heights[1] - heights[0] : 0.0;
     result.stats["intervals"] = static_cast<double>(rows.size());
@@ -137,7 +137,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
     // Work in a frame where rows are horizontal; the result is turned back at the end.
     PlanFrame frame(problem, angle);
     if (frame.empty()) return PlanFrame::fitsNowhere();
-    if (problem.vehicle.isCar()) return planForCar(problem, params, budget, angle, angle_deg, frame);
+    if (problem.vehicle.isCar()) return planForCar(problem, params, budget, angle, frame);
     Workspace& ws = frame.ws();
 
     // Loops along F's boundary first, then rows clear of their paint (headland.hpp), then, with
@@ -246,7 +246,6 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
     result.stats["intervals"] = static_cast<double>(interval_count);
     result.stats["pieces"] = static_cast<double>(pieces);
     if (fill) recordLeftovers(result, left);
-    result.stats["sweep_angle_deg"] = angle_deg;
     return result;
   }
 };

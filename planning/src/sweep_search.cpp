@@ -193,7 +193,13 @@ const ParamTable<SweepDirection>& sweepDirectionParams() {
 }
 
 PlanResult planSweep(const Problem& problem, const SweepDirection& sweep, const Budget& budget,
-                     const std::function<PlanResult(double)>& plan_at) {
+                     const std::function<PlanResult(double)>& plan_at_angle) {
+  // Every plan with a path says which direction it swept: the search's choice or sweep_angle.
+  const auto plan_at = [&](double angle_deg) {
+    PlanResult r = plan_at_angle(angle_deg);
+    if (r.hasPath()) r.stats["sweep_angle_deg"] = angle_deg;
+    return r;
+  };
   if (!sweep.search) return plan_at(sweep.angle_deg);
   // Two stages: every direction of the search is ranked by its estimated cost (rows over the wall,
   // no planning), and only the best few are planned; the cheapest plan by sweepCost wins. Planning

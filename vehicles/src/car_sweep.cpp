@@ -330,13 +330,12 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
 }
 
 PlanResult carSweepPlan(const CarSweep& sweep, const PathBuilder& rings, std::size_t headland_rings, double angle,
-                        std::optional<double> angle_deg, std::size_t free_components) {
+                        std::size_t free_components) {
   PlanResult result;
   result.status = PlanStatus::Ok;
   result.path = sweep.path;
   rotatePoints(result.path.waypoints, angle);
   result.stats["headland_rings"] = static_cast<double>(headland_rings);
-  if (angle_deg) result.stats["sweep_angle_deg"] = *angle_deg;
   recordOutcome(result, rings, free_components, sweep.unreached_rings);
   recordCarSweep(result, sweep);
   result.planned_for_car = true;

@@ -47,7 +47,8 @@ inline constexpr std::size_t kPlannedDirections = 2;
 /// (the wall minus its obstacles cut into rows a tool width apart, each row its length, a
 /// connection and two turns), plans the kPlannedDirections best, and returns the plan of lower
 /// sweepCost (its statistics gain `direction_evaluations`, `direction_plans` and
-/// `direction_cost`). `plan_at(angle_deg)` plans at one direction.
+/// `direction_cost`). `plan_at(angle_deg)` plans at one direction. Every plan returned with a
+/// path carries the direction it swept as the statistic `sweep_angle_deg`: planners do not write it.
 PlanResult planSweep(const Problem& problem, const SweepDirection& sweep, const Budget& budget,
                      const std::function<PlanResult(double)>& plan_at);
 

@@ -154,11 +154,10 @@ CarSweep carSweep(Workspace& ws, PathBuilder& rings, const std::vector<Ring>& lo
                   double spacing, const Budget& budget, bool fill = true, double line_penalty = 0.5);
 
 /// A sweep planner's plan for a car from its sweep (carSweep, whose rings `rings` built): the path
-/// turned back into the wall's frame by `angle` (radians), `headland_rings` and
-/// `sweep_angle_deg` (none without a sweep direction), the outcome (recordOutcome), the sweep's statistics, status and reason
-/// (recordCarSweep), and planned_for_car.
+/// turned back into the wall's frame by `angle` (radians), `headland_rings`, the outcome
+/// (recordOutcome), the sweep's statistics, status and reason (recordCarSweep), and planned_for_car.
 PlanResult carSweepPlan(const CarSweep& sweep, const PathBuilder& rings, std::size_t headland_rings, double angle,
-                        std::optional<double> angle_deg, std::size_t free_components);
+                        std::size_t free_components);
 
 /// The plan's statistics (car_rows, car_rows_unreached, car_rows_dead_both_ways, car_links, car_routed_links,
 /// car_searched_links, car_ends_in_dead_end, car_rings_stopped, car_cusps, car_backtracks,
