@@ -112,7 +112,7 @@ json Explorer::problem(std::size_t db, long long id, const std::string& key) {
   std::lock_guard<std::mutex> lock(mutex_);
   const ResultsDb::StoredRun r = storedRun(db, id, key);
   json params = json::object();
-  const json stored = json::parse(r.params_json);
+  const nlohmann::ordered_json stored = storedParamsJson(r.params_json);
   for (const auto& [k, v] : stored.items()) params[k] = paramTextOfJson(v);  // the text the workbench form shows and sends back
   return {{"wall", wallToJson(r.wall)}, {"planner", r.planner_name}, {"params", params},
           {"tool_width", r.tool.tool_width}, {"clearance", r.tool.clearance}};

@@ -27,7 +27,8 @@ allowed() {
   case $1 in
     base|judge) echo "" ;;
     geometry) echo "base" ;;
-    formats|transits|metrics|records) echo "base geometry" ;;
+    formats|transits|metrics) echo "base geometry" ;;
+    records) echo "base formats geometry metrics planning transits" ;;
     planning) echo "base formats geometry transits" ;;
     vehicles) echo "base formats geometry planning transits" ;;
     datasets|imports) echo "base formats geometry" ;;

@@ -22,6 +22,7 @@
 #include "coverbench/files.hpp"
 #include "coverbench/json_input.hpp"
 #include "coverbench/limits.hpp"
+#include "coverbench/param_codec.hpp"
 #include "coverbench/records.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/results_db.hpp"
@@ -57,7 +58,7 @@ class Hostile : public test::CommandTest {
     sqlite3_prepare_v2(db, "SELECT params FROM planner_configs ORDER BY params", -1, &s, nullptr);
     std::vector<std::string> out;
     // Stored as a JSON object (full precision); compared as "name=value, ..." lines.
-    while (sqlite3_step(s) == SQLITE_ROW) out.push_back(paramsLine(reinterpret_cast<const char*>(sqlite3_column_text(s, 0))));
+    while (sqlite3_step(s) == SQLITE_ROW) out.push_back(storedParamsLine(reinterpret_cast<const char*>(sqlite3_column_text(s, 0))));
     std::sort(out.begin(), out.end());
     sqlite3_finalize(s);
     sqlite3_close(db);

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "../experiments/src/isolation.hpp"
+#include "coverbench/param_codec.hpp"
 #include "coverbench/records.hpp"
 #include "coverbench/report_data.hpp"
 #include "coverbench/results_db.hpp"
@@ -223,21 +224,21 @@ TEST_F(RunRecordStorage, ParametersAreStoredAsAJsonObjectWithFullPrecision) {
   ASSERT_EQ(run("run " + cfg + " --no-report").exit_code, 0);
   const ExperimentRecord record = ResultsDb((dir_ / "out/results.sqlite").string(), ResultsDb::Mode::ReadOnly).record();
   ASSERT_EQ(record.planners.size(), 2u);
-  const nlohmann::json a = nlohmann::json::parse(paramsJson(record.planners[0].params));
-  const nlohmann::json b = nlohmann::json::parse(paramsJson(record.planners[1].params));
+  const nlohmann::json a = storedParamsJson(record.planners[0].params);
+  const nlohmann::json b = storedParamsJson(record.planners[1].params);
   EXPECT_EQ(a["overlap"].get<double>(), 0.123456789012345);
   EXPECT_EQ(b["overlap"].get<double>(), 0.123456789012346);
   EXPECT_EQ(a["boundary_passes"], 1);
   EXPECT_EQ(a["direction_search"], false);
   EXPECT_NE(record.planners[0].label, record.planners[1].label);
-  EXPECT_NE(paramsLine(record.planners[0].params).find("overlap=0.123456789012345"), std::string::npos);
+  EXPECT_NE(storedParamsLine(record.planners[0].params).find("overlap=0.123456789012345"), std::string::npos);
 }
 
 TEST(RunFields, ParametersStoredAsTextByOlderBuildsReadAsTypedValues) {
-  EXPECT_EQ(nlohmann::json::parse(paramsJson("boundary_passes=1, direction_search=false, order=tsp, overlap=0.2")),
-            nlohmann::json::parse(R"({"boundary_passes":1,"direction_search":false,"order":"tsp","overlap":0.2})"));
-  EXPECT_EQ(paramsLine(R"({"order":"tsp","overlap":0.1,"loop":true})"), "order=tsp, overlap=0.1, loop=true");
-  EXPECT_EQ(paramsJson(""), "{}");
+  EXPECT_EQ(storedParamsJson("boundary_passes=1, direction_search=false, order=tsp, overlap=0.2"),
+            nlohmann::ordered_json::parse(R"({"boundary_passes":1,"direction_search":false,"order":"tsp","overlap":0.2})"));
+  EXPECT_EQ(storedParamsLine(R"({"order":"tsp","overlap":0.1,"loop":true})"), "order=tsp, overlap=0.1, loop=true");
+  EXPECT_EQ(storedParamsJson("").dump(), "{}");
 }
 
 TEST(RunFields, TheReportDataDeclaresTheExportedFieldsForItsReader) {

@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "coverbench/param_codec.hpp"
 #include "coverbench/results_db.hpp"
 #include "coverbench/wall_file.hpp"
 #include "run_columns.hpp"
@@ -430,7 +431,7 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
   StoredRun run;
   run.key = s.columnText(0);
   run.wall = parseWallJson(s.columnText(1), file_ + " (wall " + s.columnText(2) + ")");
-  const std::string params = paramsLine(s.columnText(4));
+  const std::string params = storedParamsLine(s.columnText(4));
   run.planner = s.columnText(3) + (params.empty() ? "" : " (" + params + ")");
   run.planner_name = s.columnText(3);
   run.params_json = s.columnText(4);

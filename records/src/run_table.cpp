@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "coverbench/escape.hpp"
+#include "coverbench/param_codec.hpp"
 #include "coverbench/records.hpp"
 #include "coverbench/wall.hpp"
 
@@ -60,7 +61,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
       row["wall"] = r.wall_name;
       row["wall_hash"] = r.wall;
       row["planner"] = r.config;
-      row["params"] = nlohmann::ordered_json::parse(paramsJson(r.params));
+      row["params"] = storedParamsJson(r.params);
       row["planner_version"] = r.planner_version;
       row["tool_width"] = r.tool.tool_width;
       row["clearance"] = r.tool.clearance;
@@ -85,7 +86,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
   text += "\n";
   for (const ResultRow& r : rs.runs) {
     text += r.key + "," + escapeCsv(r.dataset) + "," + escapeCsv(r.wall_name) + "," + r.wall + "," + escapeCsv(r.config) +
-            "," + escapeCsv(paramsJson(r.params)) + "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) +
+            "," + escapeCsv(storedParamsJson(r.params).dump()) + "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) +
             (options.vehicle ? "," + toString(r.vehicle.kind) : "") + (options.transit ? "," + r.transit.planner : "");
     forEachRunField(r, [&](const RunField& f, const auto& value) {
       if (f.exported != RunExport::No) text += "," + csvCell(value);

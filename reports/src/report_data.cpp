@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "coverbench/metric_spec.hpp"
+#include "coverbench/param_codec.hpp"
 
 namespace coverbench {
 namespace {
@@ -127,7 +128,7 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
     e["datasets"].push_back({{"label", d.label}, {"source", d.source}, {"walls", d.walls}, {"sha256", d.sha256}});
   e["planners"] = Json::array();
   for (const auto& p : record.planners)
-    e["planners"].push_back({{"label", p.label}, {"planner", p.planner}, {"params", Json::parse(paramsJson(p.params))}});
+    e["planners"].push_back({{"label", p.label}, {"planner", p.planner}, {"params", storedParamsJson(p.params)}});
   e["columns"] = rs.planners;
   j["experiment"] = e;
 

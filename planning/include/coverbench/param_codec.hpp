@@ -64,6 +64,12 @@ ParamSpec paramSpecFromJson(const nlohmann::json& spec, const std::string& sourc
 /// A value given as JSON (a request's, a stored run's) as the text parseParam reads: a string as
 /// it is, any other scalar as JSON writes it.
 std::string paramTextOfJson(const nlohmann::json& value);
+/// A planner configuration's resolved parameters as a results database stores them, as a JSON
+/// object: stored as one (full precision); databases before that stored "key=value, ..." text at
+/// ten significant digits, read here as numbers, true/false or text.
+nlohmann::ordered_json storedParamsJson(const std::string& stored);
+/// The same as one line for people: "key=value, ..." (each value as paramTextOfJson gives it).
+std::string storedParamsLine(const std::string& stored);
 /// Values given as a JSON object of name: value (a value a string or a JSON scalar, read as its
 /// text), resolved against the planner's declarations as resolveParams does.
 ParamSettings parseSettingsJson(const PlannerInfo& planner, const nlohmann::json& object, const std::string& source);

@@ -32,7 +32,7 @@ struct ResultRow : RunFields {
   /// configurations in the experiment, "label @ s=... m, c=... m" (never pooled across tools).
   std::string planner;
   std::string config;   ///< the planner configuration's label alone
-  std::string params;   ///< its resolved parameters as stored (paramsJson reads them)
+  std::string params;   ///< its resolved parameters as stored (storedParamsJson reads them)
   std::string planner_version;  ///< the planner's declared version when the run was executed
   std::string wall_name;
   ToolParams tool;
@@ -74,7 +74,7 @@ struct ExperimentRecord {
   std::vector<Dataset> datasets;
   struct Config {
     std::string label, planner;
-    std::string params;  ///< resolved, defaults included, as stored (paramsJson reads it)
+    std::string params;  ///< resolved, defaults included, as stored (storedParamsJson reads it)
   };
   std::vector<Config> planners;
   struct WallInfo {
@@ -91,12 +91,6 @@ struct ExperimentRecord {
 /// (what pandas or R load). `json`: an array of
 /// objects (NaN and infinities as null); otherwise CSV. Rows in key order.
 std::string renderRuns(const ResultSet& results, bool json);
-/// A planner configuration's resolved parameters as stored, as a JSON object's text: stored so,
-/// with full precision; databases before that stored "key=value, ..." text at ten significant
-/// digits, read here as numbers, true/false or text.
-std::string paramsJson(const std::string& stored);
-/// The same as one line for people: "key=value, ..." (numbers in the fewest digits that read back).
-std::string paramsLine(const std::string& stored);
 
 /// One line per run: key, planner configuration, wall, status (for picking a run to redraw).
 std::string listRuns(const ResultSet& results);
