@@ -1,4 +1,4 @@
-# Writes the build identity (formats/include/coverbench/build_identity.hpp) as a C++ source, at every
+# Writes the build identity (identity/include/coverbench/build_identity.hpp) as a C++ source, at every
 # build, and rewrites the file only when something changed (so an unchanged tree rebuilds nothing).
 #   cmake -DSRC=<source dir> -DOUT=<file.cpp> -DCOMPILER=... -DBUILD_TYPE=... -DFLAGS=... -P build_identity.cmake
 # Code identities are SHA-256 hashes of file contents (not of git revisions), so they follow the
@@ -34,12 +34,13 @@ if(GIT_EXECUTABLE AND EXISTS "${SRC}/.git")
   endif()
 endif()
 
-# Code every planner's results depend on: the layers under the planners (base, geometry, formats,
+# Code every planner's results depend on: the layers under the planners (base, identity, files, geometry, formats,
 # transits, planning, vehicles), the metrics engine (it scores every run), the registry and lookup
 # of algorithms/, the runner (a wall's ends, the car's smoothing, the external-planner protocol),
 # and the experiments' run execution and replanning. (Compiler, build type and
 # flags are recorded apart.)
-hash_files(shared "base/*.cpp" "base/*.hpp" "geometry/*.cpp" "geometry/*.hpp" "formats/*.cpp" "formats/*.hpp" "transits/*.cpp"
+hash_files(shared "base/*.cpp" "base/*.hpp" "identity/*.cpp" "identity/*.hpp" "files/*.cpp" "files/*.hpp"
+           "geometry/*.cpp" "geometry/*.hpp" "formats/*.cpp" "formats/*.hpp" "transits/*.cpp"
            "transits/*.hpp" "planning/*.cpp" "planning/*.hpp" "vehicles/*.cpp" "vehicles/*.hpp"
            "metrics/*.cpp" "metrics/*.hpp" "algorithms/*.cpp" "runner/*.cpp" "runner/*.hpp" "experiments/src/runs.cpp"
            "experiments/src/isolation.cpp" "experiments/src/replanning.cpp"

@@ -14,8 +14,9 @@ struct BuildIdentity {
   std::string compiler;           ///< id and version, e.g. "GNU 12.2.0"
   std::string build_type;         ///< e.g. "Release"
   std::string flags;              ///< the C++ flags of that build type
-  /// SHA-256 over the code every run depends on: geometry/, formats/, transits/, planning/,
-  /// vehicles/, metrics/, algorithms/*.cpp, the run execution and replanning in experiments/
+  /// SHA-256 over the code every run depends on: base/, identity/, files/, geometry/, formats/,
+  /// transits/, planning/, vehicles/, metrics/, algorithms/*.cpp, runner/, the run execution and
+  /// replanning in experiments/
   /// (runs.cpp, isolation.cpp, replanning.cpp); cmake/build_identity.cmake lists them.
   std::string shared_code_sha256;
   /// SHA-256 over each algorithms/<folder>'s .cpp and .hpp files, and over the exact judge's

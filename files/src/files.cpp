@@ -12,7 +12,7 @@
 #include <set>
 #include <sstream>
 
-#include "coverbench/wall.hpp"
+#include "coverbench/input_error.hpp"
 
 namespace coverbench {
 
