@@ -1,6 +1,6 @@
 // A complete, tiny planner: one loop around every ring of the free region (wall edge and each
 // obstacle). It is the example of docs/ADDING_A_PLANNER.md and is compiled and tested by
-// tests/example_planner_test.cpp, so the guide cannot drift from the real interface.
+// tests/algorithms/example_planner_test.cpp, so the guide cannot drift from the real interface.
 #include "coverbench/param_table.hpp"
 #include "coverbench/plan_frame.hpp"
 #include "coverbench/planner.hpp"

@@ -12,7 +12,7 @@
 // lies between the two counts, and adds its line integral
 // 1/2 (x dy - y dx) to their areas (a straight piece exactly, an arc in closed form). No chords,
 // no scanlines: the error is floating-point rounding, plus the three rules below (each moves a
-// boundary by at most about kSnap; tests/pass_areas_test.cpp finds reversed and translated random
+// boundary by at most about kSnap; tests/metrics/pass_areas_test.cpp finds reversed and translated random
 // paths within 1e-12 m^2 of each other).
 //
 // - Waypoints closer than kSnap are one point (otherwise two almost equal circles would cross at

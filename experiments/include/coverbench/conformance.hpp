@@ -2,7 +2,7 @@
 /// The conformance checks, defined once: which walls and tools they use, what a correct planner
 /// must do on each (the expected outcome), and whether one judged plan did it. `coverbench
 /// conformance` (the report card, cli/conformance_command.cpp) and the C++ suite
-/// (tests/conformance_test.cpp) both use these, so a planner passes both or neither.
+/// (tests/experiments/conformance_test.cpp) both use these, so a planner passes both or neither.
 
 #include <functional>
 #include <string>

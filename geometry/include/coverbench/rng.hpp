@@ -10,7 +10,7 @@ namespace coverbench {
 /// Draws happen in statement order only: never two draws among one call's arguments, whose order
 /// C++ leaves to the compiler (gcc evaluates them right to left, clang left to right, so a clang
 /// build once generated other walls). The hoisted draws keep the order in which the golden hashes
-/// (tests/datasets_test.cpp) were pinned.
+/// (tests/datasets/datasets_test.cpp) were pinned.
 class Rng {
  public:
   explicit Rng(std::uint64_t seed) {

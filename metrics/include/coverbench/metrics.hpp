@@ -149,7 +149,7 @@ Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path);
 
 /// The fast engine's error against the exact judge (judge/), measured on the default experiment's
 /// walls, every planner and tool widths 0.05, 0.1 and 0.2 m (docs/metrics.md, "The fast engine's
-/// error bounds"; tests/judge_test.cpp keeps it): coverage ratios within kFastErrorTimesToolWidth / s
+/// error bounds"; tests/judge/judge_test.cpp keeps it): coverage ratios within kFastErrorTimesToolWidth / s
 /// of the judge's certified interval, and areas within kFastErrorTimesToolWidth / s of it relative
 /// to the area. Set when |S| had 50 um chords (an error growing as 1 / s, measured up to
 /// 8.5e-7 m / s); with |S| exact, what is left are R's and P's chords (measured: coverage within

@@ -1,4 +1,4 @@
-# A planner that crashes on walls with holes (tests/external_planner_test.cpp, issue 61): on a wall
+# A planner that crashes on walls with holes (tests/runner/external_planner_test.cpp, issue 61): on a wall
 # without obstacles it answers a short valid path; on one with obstacles it writes 5000 bytes of
 # chatter to stderr, then bytes that are not UTF-8, then dies of an uncaught exception (exit
 # code 1, Python's traceback on stderr). The run's record keeps the end of that stderr.

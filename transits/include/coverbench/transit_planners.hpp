@@ -25,7 +25,7 @@ namespace coverbench {
 class TransitRouter;
 
 /// What every sampling planner's route stays within, as a multiple of the visibility route, on
-/// the conformance walls at the default iterations (tests/transit_planners_test.cpp; measured
+/// the conformance walls at the default iterations (tests/transits/transit_planners_test.cpp; measured
 /// factors per planner in docs/transits.md).
 inline constexpr double kSamplingTransitFactor = 1.3;
 
