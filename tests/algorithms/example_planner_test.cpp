@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "../docs/examples/perimeter_planner.cpp"
+#include "../../docs/examples/perimeter_planner.cpp"
 #include "coverbench/conformance.hpp"
 #include "coverbench/experiment.hpp"
 #include "coverbench/registry.hpp"
