@@ -336,8 +336,8 @@ int metricsCommand(const MetricsOptions& options) {
   limits.speed = options.speed;
   limits.acceleration = options.acceleration;
   if (!(limits.speed > 0.0) || !std::isfinite(limits.speed)) throw InputError("--speed", "speed", "must be positive and finite");
-  if (!(limits.acceleration > 0.0) || !std::isfinite(limits.acceleration))
-    throw InputError("--acceleration", "acceleration", "must be positive and finite");
+  if (!(limits.acceleration > 0.0) || std::isnan(limits.acceleration))
+    throw InputError("--acceleration", "acceleration", "must be positive (inf: no ramp)");
   if (options.stops != "turns" && options.stops != "waypoints")
     throw InputError("--stops", "stops", "must be turns or waypoints, got '" + options.stops + "'");
   limits.stops = options.stops == "waypoints" ? MotionLimits::Stops::Waypoints : MotionLimits::Stops::Turns;
@@ -347,6 +347,9 @@ int metricsCommand(const MetricsOptions& options) {
   limits.turn_cost_s = options.turn_cost;
   if (!(limits.turn_cost_s >= 0.0 && limits.turn_cost_s <= 3600.0))
     throw InputError("--turn-cost", "turn_cost_s", "must be in [0, 3600] s, got " + shortNumber(options.turn_cost));
+  limits.rotation_speed = options.rotation_speed;
+  if (!(limits.rotation_speed >= 0.0 && limits.rotation_speed <= 100.0))
+    throw InputError("--rotation-speed", "rotation_speed", "must be in [0, 100] rad/s, got " + shortNumber(options.rotation_speed));
   limitScoringTime(options.plan, options.time_limit_s);
   const VehicleModel vehicle = resolveVehicle(options.vehicle, plan.vehicle.value_or(VehicleModel{}));
   const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits);

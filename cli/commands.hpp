@@ -61,7 +61,7 @@ struct MetricsOptions {
   VehicleOptions vehicle;  ///< default: the plan file's, else holonomic
   double speed = 0.3, acceleration = 0.5;
   std::string stops = "turns";  ///< the time model's stops: turns or waypoints
-  double stop_angle = 30.0, turn_cost = 0.0;
+  double stop_angle = 30.0, turn_cost = 0.0, rotation_speed = 0.0;
   double time_limit_s = 600.0;  ///< scoring (and picture) past it: a one-line error, exit 2
   std::string judge = "fast";   ///< "fast", or "exact": also the exact judge, side by side
   int arc_vertices = 128;       ///< the exact judge's disk polygons

@@ -18,10 +18,12 @@ namespace {
 
 /// Every option's value, read one way before CLI11 converts it: an empty value is refused (CLI11
 /// keeps the default for `--turn-radius ""`), and a number must be one its option's type holds
-/// (CLI11 saturates `--experiment 99999999999999999999` to the largest long long) and finite.
-CLI::Validator valueReader(const std::string& type) {
+/// (CLI11 saturates `--experiment 99999999999999999999` to the largest long long) and finite,
+/// except `inf` where `infinity` names what it means (`--acceleration inf`: no ramp).
+CLI::Validator valueReader(const std::string& type, const std::string& infinity = "") {
   return CLI::Validator(
-      [type](std::string& value) -> std::string {
+      [type, infinity](std::string& value) -> std::string {
+        if (!infinity.empty() && value == "inf") return std::string();
         if (value.empty()) return "must not be empty";
         if (type == "INT" || type == "UINT") {
           const char* first = value.data();
@@ -39,7 +41,9 @@ CLI::Validator valueReader(const std::string& type) {
         } else if (type == "FLOAT") {
           char* end = nullptr;
           const double v = std::strtod(value.c_str(), &end);
-          if (end != value.c_str() + value.size() || !std::isfinite(v)) return "must be a finite number, got '" + value + "'";
+          if (end != value.c_str() + value.size() || !std::isfinite(v))
+            return "must be a finite number" + (infinity.empty() ? std::string() : " or inf (" + infinity + ")") + ", got '" +
+                   value + "'";
         }
         return std::string();
       },
@@ -48,7 +52,8 @@ CLI::Validator valueReader(const std::string& type) {
 
 void readValuesOneWay(CLI::App& app) {
   for (CLI::Option* option : app.get_options())
-    if (option->get_type_size_max() > 0) option->check(valueReader(option->get_type_name()));
+    if (option->get_type_size_max() > 0)
+      option->check(valueReader(option->get_type_name(), option->get_name() == "--acceleration" ? "no ramp" : ""));
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) readValuesOneWay(*sub);
 }
 
@@ -147,13 +152,16 @@ void addCheckCommands(CLI::App& app, Commands& o) {
   metrics_cmd->add_option("--lift-s", metrics.vehicle.lift_s, "gantry: seconds to lift the tool (default: the plan's, else 1)");
   metrics_cmd->add_option("--lower-s", metrics.vehicle.lower_s, "gantry: seconds to lower the tool (default: the plan's, else 1)");
   metrics_cmd->add_option("--speed", metrics.speed, "tool speed v for duration_s, m/s")->capture_default_str();
-  metrics_cmd->add_option("--acceleration", metrics.acceleration, "acceleration a for duration_s, m/s^2")
+  metrics_cmd->add_option("--acceleration", metrics.acceleration, "acceleration a for duration_s, m/s^2 (inf: no ramp)")
       ->capture_default_str();
   metrics_cmd->add_option("--stops", metrics.stops, "where duration_s stops: turns (over --stop-angle) or waypoints (every one)")
       ->capture_default_str();
   metrics_cmd->add_option("--stop-angle", metrics.stop_angle, "with --stops turns: stop at heading changes over this, degrees")
       ->capture_default_str();
   metrics_cmd->add_option("--turn-cost", metrics.turn_cost, "seconds per turn over 1 degree, reported as turn_cost_s (0: none)")
+      ->capture_default_str();
+  metrics_cmd->add_option("--rotation-speed", metrics.rotation_speed,
+                          "rad/s: stop and rotate in place at every heading change, angle / this (0: none)")
       ->capture_default_str();
   metrics_cmd->add_option("--svg", metrics.svg, "picture with the coverage layer (SVG)");
   metrics_cmd->add_option("--time-limit", metrics.time_limit_s, "seconds scoring may take before it is abandoned")

@@ -411,7 +411,10 @@ Ordering greedyOrder(const std::vector<CellEnds>& cells, const TourCost& cost) {
 
 }  // namespace
 
-double MoveCost::timed(double length) const { return straightRunTime(length, *clock) + 2.0 * clock->turn_cost_s; }
+double MoveCost::timed(double length) const {
+  // A move between two passes: a run between two quarter turns.
+  return straightRunTime(length, *clock) + 2.0 * (clock->turn_cost_s + rotationTime(M_PI / 2.0, *clock));
+}
 
 Ordering orderCells(const std::vector<CellEnds>& cells, const std::vector<CellLink>& links, Order order,
                     const std::function<bool()>& keep_going, const TourCost& cost) {

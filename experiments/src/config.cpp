@@ -179,10 +179,12 @@ PlannerConfig makeConfig(const PlannerInfo& info, ParamSettings settings) {
 
 /// The `motion:` section: the time model of duration_s (docs/metrics.md#time-models).
 MotionLimits readMotion(Reader& r, const Yaml& m) {
-  r.onlyKeys(m, "motion", {"speed", "acceleration", "stops", "stop_angle", "turn_cost_s"});
+  r.onlyKeys(m, "motion", {"speed", "acceleration", "stops", "stop_angle", "turn_cost_s", "rotation_speed"});
   MotionLimits limits;
   if (const Yaml* v = m.find("speed")) limits.speed = r.number(*v, "motion.speed", 0, 1000, true);
-  if (const Yaml* v = m.find("acceleration")) limits.acceleration = r.number(*v, "motion.acceleration", 0, 1000, true);
+  if (const Yaml* v = m.find("acceleration"))  // "inf": no ramp
+    limits.acceleration = r.text(*v, "motion.acceleration") == "inf" ? HUGE_VAL : r.number(*v, "motion.acceleration", 0, 1000, true);
+  if (const Yaml* v = m.find("rotation_speed")) limits.rotation_speed = r.number(*v, "motion.rotation_speed", 0, 100);
   if (const Yaml* v = m.find("stops")) {
     const std::string stops = r.text(*v, "motion.stops");
     if (stops == "waypoints") limits.stops = MotionLimits::Stops::Waypoints;
@@ -397,7 +399,44 @@ std::vector<ParamSettings> paramCombos(Reader& r, const PlannerInfo& info, const
   return combos;
 }
 
-/// One entry of `planners:`: "all", a name, {name, params} or {external: MANIFEST, params}.
+/// An entry's `label:`: a name for its configurations in every table, plot and the explorer. One
+/// line of at most 80 printable characters, and not another planner's name (it would read as that
+/// planner). Empty when the entry has none.
+std::string readLabel(Reader& r, const Yaml& p, const std::string& where, const std::string& planner) {
+  const Yaml* node = p.isScalar() ? nullptr : p.find("label");
+  if (!node) return "";
+  const std::string field = where + ".label";
+  const std::string label = r.text(*node, field);
+  if (label.empty() || label.size() > 80) r.fail(*node, field, "must be 1 to 80 characters");
+  for (unsigned char ch : label)
+    if (ch < 0x20 || ch == 0x7f) r.fail(*node, field, "must be one line of printable characters");
+  if (label.front() == ' ' || label.back() == ' ') r.fail(*node, field, "must not begin or end with a space");
+  if (label != planner && lookupPlanner(label))
+    r.fail(*node, field, "'" + label + "' is the name of another planner; a label must not read as one");
+  return label;
+}
+
+/// The entry's configurations' labels: each its own (configLabel) without `label:`; with it, the
+/// label alone when the entry makes one configuration, else the label and the settings its lists
+/// sweep, in brackets: "fine(sweep_angle=45)".
+void applyLabel(std::vector<PlannerConfig>& configs, const std::string& label, const Yaml* params) {
+  if (label.empty()) return;
+  if (configs.size() == 1) {
+    configs.front().label = label;
+    return;
+  }
+  for (PlannerConfig& pc : configs) {
+    ParamSettings swept;
+    for (const auto& [name, value] : pc.settings) {
+      const Yaml* given = params ? params->find(name) : nullptr;
+      if (given && given->isList() && given->items.size() > 1) swept.push_back({name, value});
+    }
+    pc.label = configLabel(label, swept);
+  }
+}
+
+/// One entry of `planners:`: "all", a name, {name, params, label} or {external: MANIFEST, params,
+/// label}.
 void readPlanner(const ConfigFile& f, const Yaml& p, const std::string& where, PlannerList& list, ExperimentConfig& c) {
   Reader& r = f.r;
   if (p.isScalar() && p.scalar == "all") {  // every registered planner, default parameters
@@ -411,14 +450,14 @@ void readPlanner(const ConfigFile& f, const Yaml& p, const std::string& where, P
   const PlannerInfo* info = nullptr;
   if (!p.isScalar()) {
     if (const Yaml* ext = p.find("external")) {
-      r.onlyKeys(p, where, {"external", "params"});
+      r.onlyKeys(p, where, {"external", "params", "label"});
       const std::string file = r.text(*ext, where + ".external");
       const fs::path manifest = fs::path(file).is_absolute() ? fs::path(file) : fs::path(f.path).parent_path() / file;
       if (!fs::is_regular_file(manifest)) r.fail(*ext, where + ".external", "no manifest at " + manifest.string());
       info = &external::addFromManifest(manifest.lexically_normal().string());
       name_node = ext;
     } else {
-      r.onlyKeys(p, where, {"name", "params"});
+      r.onlyKeys(p, where, {"name", "params", "label"});
       name_node = p.find("name");
       if (!name_node) r.fail(p, where + ".name", "missing");
     }
@@ -431,7 +470,11 @@ void readPlanner(const ConfigFile& f, const Yaml& p, const std::string& where, P
     for (const PlannerInfo& candidate : registeredPlanners()) known += (known.empty() ? "" : ", ") + candidate.name;
     r.fail(*name_node, where + ".name", "unknown planner '" + name + "' (registered: " + known + ")");
   }
-  for (auto& settings : paramCombos(r, *info, params, where)) list.add(r, c, makeConfig(*info, std::move(settings)), p, where);
+  const std::string label = readLabel(r, p, where, info->name);
+  std::vector<PlannerConfig> configs;
+  for (auto& settings : paramCombos(r, *info, params, where)) configs.push_back(makeConfig(*info, std::move(settings)));
+  applyLabel(configs, label, params);
+  for (PlannerConfig& pc : configs) list.add(r, c, std::move(pc), p, where);
 }
 
 /// The `planners:` section, with sweeps expanded; the labels listed, by where they were.

@@ -180,7 +180,8 @@ std::string runBaseKey(const RunSpec& spec) {
   if (!spec.motion.isDefault())
     text += "\nmotion.speed=" + exact(spec.motion.speed) + "\nmotion.acceleration=" + exact(spec.motion.acceleration) +
             "\nmotion.stops=" + (spec.motion.stops == MotionLimits::Stops::Waypoints ? "waypoints" : "turns") +
-            "\nmotion.stop_angle=" + exact(spec.motion.stop_angle_deg) + "\nmotion.turn_cost_s=" + exact(spec.motion.turn_cost_s);
+            "\nmotion.stop_angle=" + exact(spec.motion.stop_angle_deg) + "\nmotion.turn_cost_s=" + exact(spec.motion.turn_cost_s) +
+            (spec.motion.rotates() ? "\nmotion.rotation_speed=" + exact(spec.motion.rotation_speed) : std::string());
   return sha256Hex(text);
 }
 

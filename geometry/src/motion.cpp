@@ -28,6 +28,7 @@ std::string number(double v) {
 double runTime(double length, const MotionLimits& m) {
   if (length <= 0.0) return 0.0;
   const double v = m.speed, a = m.acceleration;
+  if (std::isinf(a)) return length / v;  // no ramp
   if (length >= v * v / a) return length / v + v / a;
   return 2.0 * std::sqrt(length / a);
 }
@@ -41,6 +42,10 @@ std::vector<double> profileTimes(const std::vector<std::pair<double, double>>& p
   const std::size_t n = pieces.size();
   std::vector<double> times(n, 0.0);
   if (n == 0) return times;
+  if (std::isinf(a)) {  // no ramp: every piece at its cap
+    for (std::size_t k = 0; k < n; ++k) times[k] = pieces[k].first > 0.0 ? pieces[k].first / pieces[k].second : 0.0;
+    return times;
+  }
   std::vector<double> u(n + 1, 0.0);  // speed at junction k (before piece k)
   for (std::size_t k = 1; k < n; ++k)
     u[k] = std::fmin(std::fmin(pieces[k - 1].second, pieces[k].second), std::sqrt(u[k - 1] * u[k - 1] + 2.0 * a * pieces[k - 1].first));
@@ -116,9 +121,14 @@ Motion analyse(const Path& path, const MotionLimits& limits, const VehicleModel&
       m.turning_angle += change;
       if (change > kTurnThreshold) ++m.turns;
       if (change > kThirtyDegrees) ++m.turns_30;
-      if (stop_everywhere || change > stop_threshold) {
+      const bool rotate = limits.rotates() && change > kAngleTie;
+      if (stop_everywhere || change > stop_threshold || rotate) {
         endRun();
         if (trace) trace->run[i] = run_index;
+      }
+      if (rotate) {  // in place, standing: θ / ω
+        m.duration_s += rotationTime(change, limits);
+        if (trace) trace->wait_s[i] += rotationTime(change, limits);
       }
     }
     heading = h + half;
@@ -131,6 +141,7 @@ Motion analyse(const Path& path, const MotionLimits& limits, const VehicleModel&
       const ArcGeometry g = arcGeometry(path.waypoints[i], path.waypoints[i + 1], bulge);
       m.turning_angle += std::fabs(g.sweep);
       pieces.emplace_back(g.radius * std::fabs(g.sweep), std::fmin(limits.speed, std::sqrt(limits.acceleration * g.radius)));
+      // (With no ramp, sqrt(inf R) is inf: the arc is driven at v.)
       if (trace) trace->piece[i] = pieces.back();
     }
   }
@@ -145,20 +156,23 @@ Motion analyse(const Path& path, const MotionLimits& limits, const VehicleModel&
 double straightRunTime(double length, const MotionLimits& limits) { return runTime(length, limits); }
 
 std::string MotionLimits::describe() const {
-  std::string out = "v " + number(speed) + " m/s, a " + number(acceleration) + " m/s2, " +
+  std::string out = "v " + number(speed) + " m/s, " + (std::isinf(acceleration) ? std::string("no ramp") : "a " + number(acceleration) + " m/s2") + ", " +
                     (stops == Stops::Waypoints ? std::string("stops at every waypoint")
                                                : "stops at turns over " + number(stop_angle_deg) + " degrees");
   if (turn_cost_s > 0.0) out += ", " + number(turn_cost_s) + " s per turn (turn_cost_s)";
+  if (rotates()) out += ", rotates in place at " + number(rotation_speed) + " rad/s";
   return out;
 }
 
 void MotionLimits::check() const {
   if (!(speed > 0.0) || !std::isfinite(speed) || speed > 1000.0) throw std::invalid_argument("speed: must be in (0, 1000] m/s");
-  if (!(acceleration > 0.0) || !std::isfinite(acceleration) || acceleration > 1000.0)
-    throw std::invalid_argument("acceleration: must be in (0, 1000] m/s2");
+  if (!(acceleration > 0.0) || (acceleration > 1000.0 && !std::isinf(acceleration)))
+    throw std::invalid_argument("acceleration: must be in (0, 1000] m/s2, or inf (no ramp)");
   if (!(stop_angle_deg > 0.0) || !(stop_angle_deg < 180.0)) throw std::invalid_argument("stop_angle: must be in (0, 180) degrees");
   if (!(turn_cost_s >= 0.0) || !std::isfinite(turn_cost_s) || turn_cost_s > 3600.0)
     throw std::invalid_argument("turn_cost_s: must be in [0, 3600] s");
+  if (!(rotation_speed >= 0.0) || !std::isfinite(rotation_speed) || rotation_speed > 100.0)
+    throw std::invalid_argument("rotation_speed: must be in [0, 100] rad/s (0: no rotation in place)");
 }
 
 Motion motion(const Path& path, const MotionLimits& limits, const VehicleModel& vehicle) {

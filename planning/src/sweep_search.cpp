@@ -91,7 +91,9 @@ double estimatedSweepCost(const Problem& problem, const SweepDirection& sweep, d
   const double rows = static_cast<double>(intervals);
   switch (sweep.objective) {
     case SweepDirection::Objective::Time:
-      return time + rows * (straightRunTime(spacing, problem.motion) + 2.0 * problem.motion.turn_cost_s);
+      // A row's end: a move of one spacing between two quarter turns.
+      return time + rows * (straightRunTime(spacing, problem.motion) +
+                            2.0 * (problem.motion.turn_cost_s + rotationTime(M_PI / 2.0, problem.motion)));
     case SweepDirection::Objective::Turns:
       return 2.0 * rows + 1e-9 * length;
     case SweepDirection::Objective::Length:

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -199,6 +200,27 @@ TEST_F(Cli, ATimeModelChangesDurationsTheRunKeysAndTheReportsFirstLine) {
   const CommandRun bad = run("run " + config("bad", "motion: {stops: everywhere}\n"));
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("bad.yaml:7: motion.stops: must be turns or waypoints, got 'everywhere'"), std::string::npos) << bad.err;
+
+  // The clock that turns (docs/metrics.md): stored durations equal the metrics command's, and
+  // exceed the same path's length / v by its turning at omega.
+  ASSERT_EQ(run("run " + config("ipa", "motion: {speed: 0.3, acceleration: inf, rotation_speed: 0.52}\n") + " --no-report").exit_code, 0);
+  const std::string ipa_db = (dir_ / "ipa" / "results.sqlite").string();
+  EXPECT_NE(test::sqlRows(plain_db, "SELECT key FROM runs"), test::sqlRows(ipa_db, "SELECT key FROM runs"));
+  ASSERT_EQ(run("metrics --wall " + wall + " --plan " + (dir_ / "p.json").string() +
+                " --speed 0.3 --acceleration inf --rotation-speed 0.52", &out).exit_code, 0) << out;
+  EXPECT_NEAR(std::stod(test::sqlRows(ipa_db, duration)), jsonNumber(out, "duration_s"), 1e-9);
+  // By hand: three sides of a 2 x 1 m rectangle, 5 m and two quarter turns.
+  const std::string box = write("box.json", R"({"waypoints": [[0.2, 0.2], [2.2, 0.2], [2.2, 1.2], [0.2, 1.2]],
+    "tool_on": [true, true, true]})");
+  ASSERT_EQ(run("metrics --wall " + wall + " --plan " + box + " --speed 0.3 --acceleration inf --rotation-speed 0.52", &out)
+                .exit_code, 0) << out;
+  EXPECT_NEAR(jsonNumber(out, "duration_s"), 5.0 / 0.3 + M_PI / 0.52, 1e-9) << out;
+  ASSERT_EQ(run("report " + ipa_db + " --format md", &out).exit_code, 0);
+  EXPECT_NE(out.find("v 0.3 m/s, no ramp, stops at turns over 30 degrees, rotates in place at 0.52 rad/s."), std::string::npos)
+      << out.substr(0, 600);
+  const CommandRun fast = run("run " + config("fast", "motion: {rotation_speed: 101}\n"));
+  EXPECT_EQ(fast.exit_code, 2);
+  EXPECT_NE(fast.err.find("fast.yaml:7: motion.rotation_speed: must be in [0, 100], got 101"), std::string::npos) << fast.err;
 }
 
 TEST_F(Cli, DatasetGenerateIsByteIdenticalAcrossInvocations) {

@@ -114,6 +114,49 @@ TEST_F(Hostile, DuplicateConfigurationsAreReportedAtTheirOwnLine) {
       << e;
 }
 
+TEST_F(Hostile, ALabelNamesItsConfigurationAndASweepKeepsWhatItSweeps) {
+  const ExperimentConfig c = loadExperimentConfig(write(
+      "c.yaml", std::string(kHead) + "planners:\n  - name: zigzag\n    label: fine rows\n    params: {overlap: 0.3}\n"
+                                     "  - name: boustrophedon\n    label: bcd\n"
+                                     "    params: {sweep_angle: [0, 90], overlap: 0.1}\nbaseline: fine rows\n"));
+  ASSERT_EQ(c.planners.size(), 3u);
+  EXPECT_EQ(c.planners[0].label, "fine rows");
+  EXPECT_EQ(test::param<double>(c.planners[0].params, "overlap"), 0.3);
+  // A sweep's labels keep the swept setting only; the fixed overlap is the label's to say.
+  EXPECT_EQ(c.planners[1].label, "bcd(sweep_angle=0)");
+  EXPECT_EQ(c.planners[2].label, "bcd(sweep_angle=90)");
+  EXPECT_EQ(c.baseline, "fine rows");
+  // The same configurations without labels have the same identities: a label names, it does not change a run.
+  const ExperimentConfig plain = loadExperimentConfig(write(
+      "p.yaml", std::string(kHead) + "planners:\n  - name: zigzag\n    params: {overlap: 0.3}\n"));
+  EXPECT_EQ(plain.planners[0].id, c.planners[0].id);
+  // The labels are the tables' columns.
+  std::string out;
+  ASSERT_EQ(run("run " + (dir_ / "c.yaml").string() + " --no-report", &out).exit_code, 0) << out;
+  ASSERT_EQ(run("report " + (dir_ / "out" / "results.sqlite").string() + " --format md", &out).exit_code, 0) << out;
+  for (const char* column : {"| fine rows |", "bcd(sweep\\_angle=0)", "bcd(sweep\\_angle=90)"})
+    EXPECT_NE(out.find(column), std::string::npos) << column << "\n" << out.substr(0, 3000);
+}
+
+TEST_F(Hostile, LabelsThatWouldMisleadAreRefusedAtTheirLine) {
+  const std::string file = fs::path(dir_ / "c.yaml").string();
+  const auto entry = [](const std::string& label) {
+    return std::string(kHead) + "planners:\n  - name: zigzag\n    label: " + label + "\n";
+  };
+  EXPECT_EQ(configError(entry("spiral")),
+            file + ":7: planners[0].label: 'spiral' is the name of another planner; a label must not read as one");
+  EXPECT_EQ(configError(entry("\"\"")), file + ":7: planners[0].label: must be 1 to 80 characters");
+  EXPECT_EQ(configError(entry("\"a\\nb\"")), file + ":7: planners[0].label: must be one line of printable characters");
+  EXPECT_EQ(configError(entry(std::string(81, 'x'))), file + ":7: planners[0].label: must be 1 to 80 characters");
+  // Two entries under one label: the second is refused, naming the first.
+  const std::string twice = configError(std::string(kHead) + "planners:\n  - name: zigzag\n    label: mine\n"
+                                        "  - name: spiral\n    label: mine\n");
+  EXPECT_NE(twice.find(":8: planners[1]: configuration 'mine' is listed twice (also at planners[0])"), std::string::npos) << twice;
+  // "all" is a list of planners, not one configuration: it takes no label.
+  EXPECT_NE(configError(std::string(kHead) + "planners:\n  - {name: all, label: x}\n").find("planners[0].name"),
+            std::string::npos);
+}
+
 /// A value of a declared parameter that differs from its default, drawn from `rng`.
 std::string otherValue(const ParamSpec& spec, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -414,6 +414,39 @@ TEST(TimeModels, TheVelocityRampByHandOnThreeSegments) {
   EXPECT_FALSE(motion(p, eth).turn_cost_s.has_value());  // no cost per turn set: no such metric
 }
 
+// The clock that turns (Bormann et al., ICRA 2018: v 0.3 m/s, omega 0.52 rad/s, no ramp): length / v
+// plus every heading change / omega, by hand on three paths.
+TEST(TimeModels, TheRotationClockByHandOnThreePaths) {
+  MotionLimits ipa;
+  ipa.speed = 0.3;
+  ipa.acceleration = HUGE_VAL;
+  ipa.rotation_speed = 0.52;
+  EXPECT_EQ(ipa.describe(), "v 0.3 m/s, no ramp, stops at turns over 30 degrees, rotates in place at 0.52 rad/s");
+  // 1. Three sides of a 2 x 1 m rectangle: 5 m and two quarter turns.
+  const Path box = makePath({0, 0}, {{{2, 0}, true}, {{2, 1}, true}, {{0, 1}, true}});
+  EXPECT_NEAR(motion(box, ipa).duration_s, 5.0 / 0.3 + M_PI / 0.52, 1e-12);
+  const Timeline t = timeline(box, ipa);  // the rotations are waits, standing
+  EXPECT_NEAR(t.wait_s[1], (M_PI / 2.0) / 0.52, 1e-12);
+  EXPECT_NEAR(t.arrive_s[2], 2.0 / 0.3 + (M_PI / 2.0) / 0.52 + 1.0 / 0.3, 1e-12);
+  EXPECT_NEAR(t.end_s, motion(box, ipa).duration_s, 1e-12);
+  // 2. Turns of 135 and 45 degrees (whatever the stop angle): 3 + sqrt 2 m and half a turn.
+  const Path zig = makePath({0, 0}, {{{1, 0}, true}, {{0, 1}, false}, {{0, 3}, true}});
+  EXPECT_NEAR(motion(zig, ipa).duration_s, (3.0 + std::sqrt(2.0)) / 0.3 + M_PI / 0.52, 1e-12);
+  // 3. With a ramp (v 1 m/s, a 1 m/s2, omega 0.5 rad/s): a heading change of atan(0.01), far under
+  // the stop angle, is still a stop and a rotation; the straight-through waypoint after it is not.
+  MotionLimits ramp;
+  ramp.speed = 1.0;
+  ramp.acceleration = 1.0;
+  ramp.rotation_speed = 0.5;
+  const Path kink = makePath({0, 0}, {{{4, 0}, true}, {{8, 0.04}, true}, {{12, 0.08}, true}});
+  const double leg = std::sqrt(16.0 + 0.0016);  // each of the last two segments
+  // Runs of 4 m and 2 * leg m, each d / v + v / a (longer than v^2 / a = 1 m), and the rotation.
+  EXPECT_NEAR(motion(kink, ramp).duration_s, (4.0 + 1.0) + (2.0 * leg + 1.0) + std::atan(0.01) / 0.5, 1e-9);
+  // Without the rotation the kink is driven through: one run.
+  ramp.rotation_speed = 0.0;
+  EXPECT_NEAR(motion(kink, ramp).duration_s, (4.0 + 2.0 * leg) + 1.0, 1e-9);
+}
+
 // The same three segments, scheduled: when the tool reaches each waypoint.
 TEST(TimeModels, TheTimelineByHandOnThreeSegments) {
   const Path p = makePath({0, 0}, {{{4, 0}, true}, {{13, 0}, true}, {{29, 0}, true}});

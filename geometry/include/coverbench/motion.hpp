@@ -15,19 +15,27 @@ namespace coverbench {
 /// The time model of duration_s: a trapezoidal speed profile (accelerate at a up to v, brake at a)
 /// that comes to a stop at every waypoint, or only at heading changes over `stop_angle_deg`. On
 /// an arc of radius R the speed is at most sqrt(a R) (the lateral acceleration a) in either
-/// model. A fixed cost per turn is reported apart, as turn_cost_s.
+/// model. A fixed cost per turn is reported apart, as turn_cost_s. With a rotation speed ω the
+/// clock turns: the vehicle stops at every heading change θ at a waypoint and rotates in place for
+/// θ / ω (a robot with a differential drive; Bormann et al., ICRA 2018 time their robot so, with
+/// v 0.3 m/s, ω 0.52 rad/s and no ramp). An acceleration of infinity is no ramp: every run takes
+/// its length / v, and arcs are driven at v.
 struct MotionLimits {
   enum class Stops { Turns, Waypoints };
   double speed = 0.3;         ///< v, m/s
-  double acceleration = 0.5;  ///< a, m/s^2
+  double acceleration = 0.5;  ///< a, m/s^2; infinity: no ramp
   Stops stops = Stops::Turns;
   double stop_angle_deg = 30.0;  ///< with Stops::Turns: stop where the heading changes by more
   double turn_cost_s = 0.0;      ///< seconds per turn (heading change over 1 degree); 0: not reported
+  double rotation_speed = 0.0;   ///< ω, rad/s: rotations in place at every heading change; 0: none
 
   bool isDefault() const {
-    return speed == 0.3 && acceleration == 0.5 && stops == Stops::Turns && stop_angle_deg == 30.0 && turn_cost_s == 0.0;
+    return speed == 0.3 && acceleration == 0.5 && stops == Stops::Turns && stop_angle_deg == 30.0 && turn_cost_s == 0.0 &&
+           rotation_speed == 0.0;
   }
-  /// "v 0.3 m/s, a 0.5 m/s2, stops at turns over 30 degrees" (", 2 s per turn" when set).
+  bool rotates() const { return rotation_speed > 0.0; }
+  /// "v 0.3 m/s, a 0.5 m/s2, stops at turns over 30 degrees" (", 2 s per turn" and ", rotates in
+  /// place at 0.52 rad/s" when set; "no ramp" for an infinite acceleration).
   std::string describe() const;
   /// Throws std::invalid_argument naming the first value out of range (field names as in configs).
   void check() const;
@@ -48,6 +56,12 @@ struct Motion {
 };
 
 Motion motion(const Path& path, const MotionLimits& limits = {}, const VehicleModel& vehicle = {});
+
+/// What a turn by `angle` radians at a waypoint adds to the clock besides its stop: a rotation in
+/// place, angle / ω, when the time model rotates; else 0 (for planners' estimates of the clock).
+inline double rotationTime(double angle, const MotionLimits& limits) {
+  return limits.rotates() ? angle / limits.rotation_speed : 0.0;
+}
 
 /// When the time model has the tool where: the schedule a playback follows. Every run (standstill
 /// to standstill) is profiled as pieces, one per segment, so the time of a run of straight
