@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <string_view>
 
 #include "coverbench/limits.hpp"
 #include "coverbench/runner.hpp"
@@ -28,6 +29,23 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 constexpr std::size_t kMaxSavedNameBytes = 1000;  // what GET /api/walls/db/NAME takes
+
+/// Whether a name (valid UTF-8) is empty or only white space: the page's `!/\S/.test(name)`, so
+/// that both refuse the same names (ASCII space, no-break and typographic spaces, the line and
+/// paragraph separators, the ideographic space and the byte order mark; the control characters
+/// among JavaScript's white space are refused on their own).
+bool isBlank(const std::string& name) {
+  static const std::string_view kBlanks[] = {" ",      "\u00a0", "\u1680", "\u2000", "\u2001", "\u2002", "\u2003",
+                                             "\u2004", "\u2005", "\u2006", "\u2007", "\u2008", "\u2009", "\u200a",
+                                             "\u2028", "\u2029", "\u202f", "\u205f", "\u3000", "\ufeff"};
+  std::string_view rest(name);
+  while (!rest.empty()) {
+    const auto blank = std::find_if(std::begin(kBlanks), std::end(kBlanks), [&](std::string_view b) { return rest.substr(0, b.size()) == b; });
+    if (blank == std::end(kBlanks)) return false;
+    rest.remove_prefix(blank->size());
+  }
+  return true;
+}
 
 /// A walls database's own failure (locked, unwritable, corrupt) is the server's, not the
 /// request's: 503 with the reason. Other refusals keep `status`.
@@ -237,7 +255,8 @@ json WorkbenchServer::save(const std::string& body) {
 }
 
 void WorkbenchServer::checkSavedName(const std::string& name) {
-  if (name.empty()) throw InputError("request body", "wall.name", "a saved wall needs a name (it is how it is opened again)");
+  if (isBlank(name))
+    throw InputError("request body", "wall.name", "a saved wall needs a name that is not blank (it is how it is opened again)");
   if (name.size() > kMaxSavedNameBytes)
     throw InputError("request body", "wall.name",
                      "is " + std::to_string(name.size()) + " bytes; a saved wall's name has at most " + std::to_string(kMaxSavedNameBytes));

@@ -13,7 +13,11 @@
    */
   const $ = id => document.getElementById(id);
   const SVG = "http://www.w3.org/2000/svg";
-  const state = {wall: null, planners: [], checkTimer: 0, checkSeq: 0, drag: null};
+  // checking: a check of the current request is due or under way; checkError: the last check's
+  // message (null: it passed); planning: a plan is under way; planned: what the plan shown was
+  // asked for (its wall text and the rest of its request), to mark it stale when either changes.
+  const state = {wall: null, planners: [], checkTimer: 0, checkSeq: 0, drag: null,
+    checking: false, checkError: null, planning: false, planned: null};
 
   async function call(method, url, body) {
     // The server changes nothing for a POST that is not application/json (a page elsewhere can
@@ -97,9 +101,31 @@
     }
     return body;
   }
+  // Every change comes here: the plan button is off until the changed request has been checked,
+  // and the plan shown is marked stale at once.
   function scheduleCheck() {
     clearTimeout(state.checkTimer);
+    state.checking = true;
+    updatePlanButton();
+    markStale();
     state.checkTimer = setTimeout(check, 150);
+  }
+  // The plan button is on only for a request that has been checked and passed, while no plan runs;
+  // beside it, why it is off.
+  function updatePlanButton() {
+    const reason = state.planning ? "" : state.checkError ? state.checkError : state.checking ? "checking\u2026"
+      : !$("wb-planner").value ? "choose a planner" : "";
+    $("wb-plan").disabled = state.planning || state.checking || state.checkError !== null || !$("wb-planner").value;
+    $("wb-plan-reason").textContent = reason;
+    $("wb-plan-reason").className = state.checkError && !state.planning ? "error" : "";
+  }
+  function markStale() {
+    const p = state.planned;
+    const {wall, ...rest} = request(true);
+    const why = !p ? "" : p.wall !== wall ? "the wall" : p.rest !== JSON.stringify(rest) ? "the parameters" : "";
+    $("wb-result").classList.toggle("stale", why !== "");
+    $("wb-stale").hidden = why === "";
+    $("wb-stale").textContent = why ? `stale: ${why} changed since this plan` : "";
   }
   async function check() {
     const seq = ++state.checkSeq;
@@ -111,29 +137,39 @@
       if (!r.ok) throw new Error(r.error);
       line.className = "ok";
       line.textContent = `\u2713 ${r.name}: a valid wall with ${r.obstacles} obstacle${r.obstacles === 1 ? "" : "s"}; planner and parameters accepted`;
-      $("wb-plan").disabled = !$("wb-planner").value;
+      state.checkError = null;
     } catch (e) {
       if (seq !== state.checkSeq) return;
       line.className = "error";
       line.textContent = e.message;
-      $("wb-plan").disabled = true;
+      state.checkError = e.message;
       // Mark the parameter the message names ("params: overlap: ...").
       const m = /^params: ([^:]+):/.exec(e.message);
       const input = m && $("wb-params").querySelector(`[data-param="${CSS.escape(m[1])}"]`);
       if (input) input.classList.add("invalid");
       else if (/^wall: /.test(e.message)) $("wb-text").classList.add("invalid");
     }
+    state.checking = false;
+    updatePlanButton();
   }
 
   // --- the form ------------------------------------------------------------------------------------
   const FIELDS = {rect: ["x", "y", "width", "height"], circle: ["x", "y", "radius"], polygon: []};
+  // A number field of the form: one that is empty or not a number is marked, and its value is NaN
+  // in the wall (null in its text: the check names it; the drawing leaves it out).
   function numberInput(value, onchange, cls) {
     const input = document.createElement("input");
     input.type = "number";
     input.step = "any";
-    input.value = String(value);
+    const mark = v => input.setAttribute("aria-invalid", String(!Number.isFinite(v)));
+    input.value = Number.isFinite(value) ? String(value) : "";
+    mark(value);
     if (cls) input.className = cls;
-    input.addEventListener("input", () => onchange(input.value === "" ? NaN : Number(input.value)));
+    input.addEventListener("input", () => {
+      const v = input.value === "" ? NaN : Number(input.value);
+      mark(v);
+      onchange(v);
+    });
     return input;
   }
   function changed() {
@@ -151,7 +187,7 @@
     const name = document.createElement("input");
     name.value = w.name || "";
     name.id = "wb-name";
-    name.addEventListener("input", () => { w.name = name.value; changed(); });
+    name.addEventListener("input", () => { w.name = name.value; name.removeAttribute("aria-invalid"); changed(); });
     const lab = document.createElement("label");
     lab.append("name ", name);
     top.append(lab);
@@ -191,7 +227,10 @@
       del.addEventListener("click", () => { w.obstacles.splice(i, 1); renderForm(); changed(); });
       row.insertCell().appendChild(del);
     });
-    form.append(table);
+    const wrap = document.createElement("div");
+    wrap.className = "wb-table-wrap";  // a table wider than its column scrolls within it
+    wrap.append(table);
+    form.append(wrap);
   }
 
   // --- the drawing: drag on free space to add a window, drag an obstacle to move it ----------------
@@ -202,12 +241,14 @@
     const b = {x0: Math.min(...xs), x1: Math.max(...xs), y0: Math.min(...ys), y1: Math.max(...ys)};
     return b.x1 > b.x0 && b.y1 > b.y0 ? b : null;
   }
+  const finite = (...vs) => vs.every(Number.isFinite);
+  const finitePoints = ps => Array.isArray(ps) && ps.every(p => Array.isArray(p) && finite(p[0], p[1]));
   function renderDrawing() {
     const svg = $("wb-drawing");
-    svg.textContent = "";
     const w = state.wall;
     const b = w && bounds(w);
-    if (!b) return;
+    if (!b || (w.boundary && !finitePoints(w.boundary))) return;  // the last wall drawn stays
+    svg.textContent = "";
     const pad = 0.04 * Math.max(b.x1 - b.x0, b.y1 - b.y0);
     svg.setAttribute("viewBox", `${b.x0 - pad} ${-(b.y1 + pad)} ${b.x1 - b.x0 + 2 * pad} ${b.y1 - b.y0 + 2 * pad}`);
     const add = (tag, attrs, parent) => {
@@ -220,15 +261,17 @@
     add("polygon", {points: pts.map(p => `${p[0]},${-p[1]}`).join(" "), class: "wb-wall"});
     (w.obstacles || []).forEach((o, i) => {
       let el;
-      if (o.type === "rect") el = add("rect", {x: o.x, y: -(o.y + o.height), width: Math.max(o.width, 0), height: Math.max(o.height, 0)});
-      else if (o.type === "circle") el = add("circle", {cx: o.x, cy: -o.y, r: Math.max(o.radius, 0)});
-      else if (o.type === "polygon" && Array.isArray(o.points)) el = add("polygon", {points: o.points.map(p => `${p[0]},${-p[1]}`).join(" ")});
+      // An obstacle with a field that is not a number is left out until it has one.
+      if (o.type === "rect" && finite(o.x, o.y, o.width, o.height))
+        el = add("rect", {x: o.x, y: -(o.y + o.height), width: Math.max(o.width, 0), height: Math.max(o.height, 0)});
+      else if (o.type === "circle" && finite(o.x, o.y, o.radius)) el = add("circle", {cx: o.x, cy: -o.y, r: Math.max(o.radius, 0)});
+      else if (o.type === "polygon" && finitePoints(o.points)) el = add("polygon", {points: o.points.map(p => `${p[0]},${-p[1]}`).join(" ")});
       if (!el) return;
       el.setAttribute("class", "wb-obstacle");
       el.dataset.index = String(i);
     });
     for (const [k, colour] of [["start", "#1a7f37"], ["end", "#b00020"]])
-      if (Array.isArray(w[k])) add("circle", {cx: w[k][0], cy: -w[k][1], r: pad / 3, fill: colour});
+      if (finitePoints([w[k]])) add("circle", {cx: w[k][0], cy: -w[k][1], r: pad / 3, fill: colour});
   }
   function wallPoint(svg, e) {
     const p = new DOMPoint(e.clientX, e.clientY).matrixTransform(svg.getScreenCTM().inverse());
@@ -266,6 +309,7 @@
     }
     renderDrawing();
     $("wb-text").value = wallText(state.wall);
+    markStale();
   }
   function endDrag() {
     const d = state.drag;
@@ -326,9 +370,15 @@
   async function plan() {
     const out = $("wb-result");
     out.textContent = "planning\u2026";
-    $("wb-plan").disabled = true;
+    const body = request(true);
+    const {wall, ...rest} = body;
+    state.planning = true;
+    state.planned = null;
+    markStale();
+    updatePlanButton();
     try {
-      const r = await call("POST", "/api/plan", request(true));
+      const r = await call("POST", "/api/plan", body);
+      state.planned = {wall, rest: JSON.stringify(rest)};
       out.textContent = "";
       const line = document.createElement("p");
       line.id = "wb-outcome";
@@ -362,11 +412,25 @@
       p.id = "wb-outcome";
       p.textContent = e.message;
       out.appendChild(p);
+      p.scrollIntoView({block: "nearest"});
     } finally {
-      $("wb-plan").disabled = false;
+      state.planning = false;
+      markStale();
+      updatePlanButton();
     }
   }
+  // A wall is saved under its name, and opened again by it: a blank one is refused here as the
+  // server refuses it.
   async function save() {
+    let wall = null;
+    try { wall = JSON.parse($("wb-text").value); } catch (e) { /* the server names the problem */ }
+    const name = wall && typeof wall === "object" ? wall.name : null;
+    if (name === undefined || (typeof name === "string" && !/\S/.test(name))) {
+      $("wb-saved").className = "error";
+      $("wb-saved").textContent = "name: a saved wall needs a name that is not blank (it is how it is opened again)";
+      if ($("wb-name")) $("wb-name").setAttribute("aria-invalid", "true");
+      return;
+    }
     try {
       const r = await call("POST", "/api/walls", request(false));
       $("wb-saved").className = "ok";

@@ -256,6 +256,12 @@ class Serve(unittest.TestCase):
         self.assertEqual(self.refused("GET", "/api/walls/folder/5"), (404, "no wall file 5 (serving 1)"))
         self.assertEqual(self.refused("GET", "/api/walls/db/nothing")[0], 404)
         self.assertEqual(self.post("/api/walls", {"wall": "{}"})[0], 400)
+        # A blank name (empty, or only spaces of any kind) is refused with one error naming the field.
+        for name in ("", "   ", "\u00a0\u3000 "):
+            status, answer = self.post("/api/walls", {"wall": edited.replace('"my wall/../x"', json.dumps(name))})
+            self.assertEqual((status, answer), (400, {"error": "request body: wall.name: a saved wall needs a name that is not blank "
+                                                               "(it is how it is opened again)"}), repr(name))
+        self.assertEqual([w["name"] for w in self.get("/api/walls")["walls"] if w["source"] == "database"], names)
 
     def test_a_runs_picture_and_playback(self):
         key = self.runs("planner=spiral&status=ok&limit=1")["runs"][0]["key"]
