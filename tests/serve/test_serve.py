@@ -275,7 +275,7 @@ class Serve(unittest.TestCase):
         self.assertEqual(self.refused("GET", f"/api/experiments/7/{self.exp['id']}/runs"), (404, "no database 7 (serving 1)"))
         self.assertEqual(self.refused("GET", f"/api/experiments/{self.exp['db']}/999/runs")[0], 404)
         self.assertEqual(self.refused("GET", e + "/runs?sort=nonsense"),
-                         (400, "sort: unknown column 'nonsense' (a metric, wall_name, planner, dataset, status or tool)"))
+                         (400, "sort: unknown column 'nonsense' (a metric, param.NAME, wall_name, planner, dataset, status or tool)"))
         self.assertEqual(self.refused("GET", e + "/runs?limit=5000"),
                          (400, "limit: must be a whole number from 0 to 1000, got '5000'"))
         self.assertEqual(self.refused("GET", e + "/runs/" + "0" * 64 + "/picture.svg")[0], 404)
