@@ -208,6 +208,8 @@ void ServeApp::Impl::addRefusalHandlers() {
         answerError(res, 408, readDeadlineMessage());
       else if (res.status == 413 || DeadlineStream::tooLarge())
         answerError(res, 413, DeadlineStream::tooLargeMessage(0));
+      else if (res.status == 414)
+        answerError(res, 414, "request: its address (path and query) is over " + std::to_string(CPPHTTPLIB_REQUEST_URI_MAX_LENGTH) + " bytes");
       else if (res.status == 404)
         answerError(res, 404, req.path + ": no such page or API (see docs/explorer.md)");
       else

@@ -213,7 +213,8 @@ json Explorer::metricSpecsJson() {
   json out = json::array();
   for (const MetricSpec& s : metricSpecs())
     out.push_back({{"name", s.name}, {"unit", s.unit}, {"better", s.better}, {"kind", toString(s.kind)}, {"headline", s.headline},
-                   {"description", s.description}, {"format", displayFormat(s)}});
+                   {"tie_absolute", s.tie_absolute}, {"tie_relative", s.tie_relative}, {"description", s.description},
+                   {"format", displayFormat(s)}});
   return {{"metrics", out}};
 }
 

@@ -63,7 +63,7 @@
     if (v === 0) return "0";
     const mag = Math.floor(Math.log10(Math.abs(v)));
     if (mag >= 2) return v.toFixed(0);
-    if (mag < -4) return v.toExponential(2);
+    if (mag < -4) return v.toExponential(2).replace(/e([+-])(\d)$/, "e$10$2");  // 5.50e-05, as Python writes it
     return v.toFixed(2 - mag);
   }
   function unitLabel(name) {
@@ -234,7 +234,7 @@
     const chosen = view.cols || metrics.filter(m => state.specs.get(m)?.headline);
     const sort = view.query.get("sort") || "";
     const out = chosen.filter(m => metrics.includes(m));
-    if (metrics.includes(sort) && !out.includes(sort)) out.push(sort);  // the sorted column is always shown
+    if (metrics.includes(sort) && !out.includes(sort)) out.unshift(sort);  // the sorted column is always shown, first
     return out;
   }
   function showColumnChoice(view, metrics) {

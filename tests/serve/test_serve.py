@@ -149,7 +149,8 @@ class Serve(unittest.TestCase):
         import yaml
         with open(os.path.join(SOURCE, "docs", "openapi.yaml")) as f:
             paths = set(yaml.safe_load(f)["paths"])
-        served = {"/api/experiments", "/api/experiments/{db}/{id}/runs", "/api/experiments/{db}/{id}/runs/{key}/picture.svg",
+        served = {"/api/experiments", "/api/experiments/{db}/{id}/runs", "/api/experiments/{db}/{id}/runs.csv", "/api/metrics",
+                  "/api/experiments/{db}/{id}/runs/{key}/picture.svg",
                   "/api/experiments/{db}/{id}/runs/{key}/playback.js", "/api/experiments/{db}/{id}/runs/{key}/problem",
                   "/api/experiments/{db}/{id}/runs/{key}/outcome",
                   "/api/planners", "/api/check", "/api/plan", "/api/plans/{id}/picture.svg", "/api/plans/{id}/playback.js",
