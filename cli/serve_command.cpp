@@ -93,6 +93,29 @@ void ServeApp::Impl::addExplorerRoutes() {
   server.Get(R"(/api/experiments/(\d{1,6})/(\d{1,12})/runs)", guarded([this](const httplib::Request& req, httplib::Response& res) {
     res.set_content(jsonText(explorer.runs(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.params)), "application/json");
   }));
+  // Every run the query selects, as CSV: made a piece at a time (the lock held for each piece
+  // only), sent in chunks, so the server holds one piece however many runs there are.
+  server.Get(R"(/api/experiments/(\d{1,6})/(\d{1,12})/runs\.csv)", guarded([this](const httplib::Request& req, httplib::Response& res) {
+    const auto selection = std::make_shared<Explorer::Selection>(explorer.select(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.params));
+    res.set_header("Content-Disposition", "attachment; filename=\"experiment-" + req.matches[2].str() + "-runs.csv\"");
+    res.set_chunked_content_provider("text/csv; charset=utf-8", [this, selection, next = std::make_shared<std::size_t>(0)](
+                                                                     std::size_t, httplib::DataSink& sink) {
+      try {
+        const std::size_t from = *next;
+        std::string text = from == 0 ? explorer.csvHeader(*selection) : std::string();
+        text += explorer.csvRows(*selection, from, Explorer::kMaxRunsPerPage);
+        *next = from + Explorer::kMaxRunsPerPage;
+        if (!sink.write(text.data(), text.size())) return false;
+        if (*next >= selection->runs.size()) sink.done();
+        return true;
+      } catch (const std::exception&) {
+        return false;  // the answer is cut off: its chunked framing never ends, so no client takes it as whole
+      }
+    });
+  }));
+  server.Get("/api/metrics", guarded([](const httplib::Request&, httplib::Response& res) {
+    res.set_content(jsonText(Explorer::metricSpecsJson()), "application/json");
+  }));
   server.Get(R"(/api/experiments/(\d{1,6})/(\d{1,12})/runs/([0-9a-f]{64})/(picture\.svg|playback\.js))",
              guarded([this](const httplib::Request& req, httplib::Response& res) {
                const bool playback = req.matches[4] == "playback.js";
@@ -185,6 +208,8 @@ void ServeApp::Impl::addRefusalHandlers() {
         answerError(res, 408, readDeadlineMessage());
       else if (res.status == 413 || DeadlineStream::tooLarge())
         answerError(res, 413, DeadlineStream::tooLargeMessage(0));
+      else if (res.status == 414)
+        answerError(res, 414, "request: its address (path and query) is over " + std::to_string(CPPHTTPLIB_REQUEST_URI_MAX_LENGTH) + " bytes");
       else if (res.status == 404)
         answerError(res, 404, req.path + ": no such page or API (see docs/explorer.md)");
       else

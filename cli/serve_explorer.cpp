@@ -1,8 +1,10 @@
 // The explorer's side of `coverbench serve` (serve_parts.hpp): each served experiment's runs as an
-// index of facets (planner, dataset, status, tool) and sort orders, read once and kept.
+// index of facets (planner, dataset, status, tool) and planner parameters, read once and kept;
+// each run's drawings, problem and outcome. The runs table's queries are in serve_runs.cpp.
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <set>
 #include <string>
 
 #include "commands.hpp"
@@ -12,13 +14,7 @@
 #include "serve_parts.hpp"
 
 namespace coverbench::cli::serve_internal {
-namespace {
-
 using nlohmann::json;
-
-constexpr std::size_t kMaxRunsPerPage = 1000;
-
-}  // namespace
 
 Explorer::Explorer(const std::vector<std::string>& databases) {
   for (const std::string& file : databases) {
@@ -34,55 +30,6 @@ json Explorer::experiments() {
     for (const ResultsDb::ExperimentEntry& e : dbs_[i].db->experiments())
       out.push_back({{"db", i}, {"file", dbs_[i].file}, {"id", e.id}, {"name", e.name}, {"runs", e.runs}});
   return {{"experiments", out}};
-}
-
-json Explorer::runs(std::size_t db, long long id, const Params& query) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  Index& x = index(db, id);
-  // A parameter's first value, as httplib's get_param_value gives it ("" when it is not given).
-  auto param = [&](const char* name) {
-    const auto it = query.lower_bound(name);
-    return it != query.end() && it->first == name ? it->second : std::string();
-  };
-  const std::string sort = param("sort");
-  const std::string order = param("order").empty() ? "asc" : param("order");
-  if (order != "asc" && order != "desc") throw HttpError(400, "order: must be asc or desc, got '" + order + "'");
-  const std::size_t offset = number(param("offset"), "offset", 0, 1u << 30);
-  const std::size_t limit = number(param("limit"), "limit", 100, kMaxRunsPerPage);
-  // A filter names a value of its facet; one that names none matches no run.
-  std::array<long long, kFacets> wanted;  // -1: any; -2: a value no run has; else its index
-  for (std::size_t f = 0; f < kFacets; ++f) {
-    const std::string v = param(kFacetNames[f]);
-    const auto& values = x.facet_values[f];
-    const auto it = std::find(values.begin(), values.end(), v);
-    wanted[f] = v.empty() ? -1 : it == values.end() ? -2 : static_cast<long long>(it - values.begin());
-  }
-  const std::vector<std::uint32_t>& order_of = sorted(x, db, id, sort, order == "desc");
-  std::size_t total = 0;
-  std::vector<std::uint32_t> page;
-  for (const std::uint32_t i : order_of) {
-    bool match = true;
-    for (std::size_t f = 0; f < kFacets && match; ++f) match = wanted[f] == -1 || wanted[f] == static_cast<long long>(x.facet_of[f][i]);
-    if (!match) continue;
-    if (total >= offset && page.size() < limit) page.push_back(i);
-    ++total;
-  }
-  std::vector<std::string> keys;
-  for (const std::uint32_t i : page) keys.push_back(x.runs[i].key);
-  const auto metrics = dbs_[db].db->metricsOf(keys);
-  json out = json::array();
-  for (const std::uint32_t i : page) {
-    const ResultsDb::RunSummary& r = x.runs[i];
-    json m = json::object();
-    for (const auto& [k, v] : metrics.at(r.key))
-      if (std::isfinite(v)) m[k] = v;
-    out.push_back({{"key", r.key}, {"planner", r.planner}, {"dataset", r.dataset}, {"wall", r.wall}, {"wall_name", r.wall_name},
-                   {"status", toString(r.status)}, {"tool", x.facet_values[3][x.facet_of[3][i]]}, {"tool_width", r.tool.tool_width},
-                   {"clearance", r.tool.clearance}, {"metrics", m}});
-  }
-  json facets = json::object();
-  for (std::size_t f = 0; f < kFacets; ++f) facets[kFacetNames[f]] = x.facet_values[f];
-  return {{"total", total}, {"offset", offset}, {"metrics", x.metric_names}, {"facets", facets}, {"runs", out}};
 }
 
 std::string Explorer::drawing(std::size_t db, long long id, const std::string& key, bool playback) {
@@ -125,54 +72,6 @@ json Explorer::outcome(std::size_t db, long long id, const std::string& key) {
           {"planner", r.planner}, {"tool_width", r.tool.tool_width}, {"clearance", r.tool.clearance}};
 }
 
-const std::vector<std::uint32_t>& Explorer::sorted(Index& x, std::size_t db, long long id, const std::string& column, bool desc) {
-  const auto k = std::make_pair(column, desc);
-  if (const auto it = x.orders.find(k); it != x.orders.end()) return it->second;
-  std::vector<std::uint32_t> order(x.runs.size());
-  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  const auto& names = x.metric_names;
-  if (std::find(names.begin(), names.end(), column) != names.end()) {
-    std::vector<double> v;
-    if (column == "plan_time_ms" || column == "peak_memory_bytes")
-      for (const auto& r : x.runs) v.push_back(column == "plan_time_ms" ? r.plan_time_ms : r.peak_memory_bytes);
-    else
-      v = dbs_[db].db->metricColumn(id, column);
-    if (v.size() != x.runs.size()) throw HttpError(500, "the runs of experiment " + std::to_string(id) + " changed while served");
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-      const bool ha = std::isfinite(v[a]), hb = std::isfinite(v[b]);
-      if (ha != hb) return ha;
-      return ha && (desc ? v[b] < v[a] : v[a] < v[b]);
-    });
-  } else if (!column.empty()) {
-    const auto f = std::find_if(std::begin(kFacetNames), std::end(kFacetNames), [&](const char* n) { return column == n; });
-    if (column != "wall_name" && f == std::end(kFacetNames))
-      throw HttpError(400, "sort: unknown column '" + column + "' (a metric, wall_name, planner, dataset, status or tool)");
-    auto text = [&](std::uint32_t i) -> const std::string& {
-      if (f == std::end(kFacetNames)) return x.runs[i].wall_name;
-      const std::size_t facet = static_cast<std::size_t>(f - std::begin(kFacetNames));
-      return x.facet_values[facet][x.facet_of[facet][i]];
-    };
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return desc ? text(b) < text(a) : text(a) < text(b);
-    });
-  }
-  return x.orders.emplace(k, std::move(order)).first->second;
-}
-
-std::size_t Explorer::number(const std::string& text, const char* name, std::size_t fallback, std::size_t most) {
-  if (text.empty()) return fallback;
-  std::size_t used = 0;
-  unsigned long long v = 0;
-  try {
-    v = std::stoull(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || text[0] == '-' || v > most)
-    throw HttpError(400, std::string(name) + ": must be a whole number from 0 to " + std::to_string(most) + ", got '" + text + "'");
-  return static_cast<std::size_t>(v);
-}
-
 Explorer::Index& Explorer::index(std::size_t db, long long id) {
   if (db >= dbs_.size()) throw HttpError(404, "no database " + std::to_string(db) + " (serving " + std::to_string(dbs_.size()) + ")");
   const auto k = std::make_pair(db, id);
@@ -195,6 +94,21 @@ Explorer::Index& Explorer::index(std::size_t db, long long id) {
     }
   }
   const ExperimentRecord record = dbs_[db].db->record(id);
+  // Each planner column's parameters, as text (the workbench's) and as stored JSON (the CSV's).
+  std::map<std::string, std::set<std::string>> values;
+  for (const std::string& label : x.facet_values[0]) {
+    std::map<std::string, std::string> params;
+    std::string stored = "{}";
+    for (const ExperimentRecord::Config& c : record.planners)
+      if (c.label == label) {
+        const nlohmann::ordered_json j = storedParamsJson(c.params);
+        stored = j.dump();
+        for (const auto& [name, v] : j.items()) values[name].insert(params[name] = paramTextOfJson(v));
+      }
+    x.params_of_planner.push_back(std::move(params));
+    x.params_json_of_planner.push_back(std::move(stored));
+  }
+  for (const auto& [name, v] : values) x.param_values[name].assign(v.begin(), v.end());
   x.motion = configMotion(record.config_text, dbs_[db].file + ": experiments.config_text");
   return cache_.emplace(k, std::move(x)).first->second;
 }

@@ -39,18 +39,37 @@ struct HttpError : std::runtime_error {
 constexpr std::size_t kMaxBodyBytes = 1 << 20;
 
 /// The explorer's side of the server: the experiments of the databases named on the command
-/// line, their runs as a table (filtered by facet, sorted, paged), and each run's picture,
-/// playback, problem and outcome.
+/// line, their runs as a table (filtered by facet, wall, planner parameter and metric range,
+/// sorted by any column, paged, or whole as CSV), and each run's picture, playback, problem and
+/// outcome. The runs' query is read in serve_runs.cpp, the rest in serve_explorer.cpp.
 class Explorer {
  public:
   /// A request's query parameters (httplib::Params).
   using Params = std::multimap<std::string, std::string>;
+  /// The most runs a page holds (`limit`), and the rows of the CSV made at a time.
+  static constexpr std::size_t kMaxRunsPerPage = 1000;
 
   explicit Explorer(const std::vector<std::string>& databases);
 
   nlohmann::json experiments();
-  /// A page of the experiment's runs, as the query asks: filters by facet, sort, order, offset, limit.
+  /// A page of the experiment's runs, as the query asks (docs/explorer.md#api): filters, sort,
+  /// order, offset, limit. A parameter it does not know, one given twice, or a bad value: 400
+  /// naming the parameter.
   nlohmann::json runs(std::size_t db, long long id, const Params& query);
+  /// The runs a query selects, in its order, for the CSV (every one: no paging), read in pieces
+  /// of at most kMaxRunsPerPage rows so the server holds one piece at a time.
+  struct Selection {
+    std::size_t db = 0;
+    long long id = 0;
+    std::vector<std::uint32_t> runs;  ///< positions in the experiment's index
+  };
+  Selection select(std::size_t db, long long id, const Params& query);
+  /// The CSV's header line, and the rows of runs [from, from + n) of the selection.
+  std::string csvHeader(const Selection& s);
+  std::string csvRows(const Selection& s, std::size_t from, std::size_t n);
+  /// The metric registry as the page formats it: each metric's unit, direction, kind, description
+  /// and display format (percent, count, bytes or number).
+  static nlohmann::json metricSpecsJson();
   /// The run's picture, or the script that plays it back under the experiment's time model. The
   /// run is read under the lock; it is drawn outside it, so other requests do not wait for it.
   std::string drawing(std::size_t db, long long id, const std::string& key, bool playback);
@@ -68,23 +87,47 @@ class Explorer {
   static constexpr std::size_t kFacets = 4;
   static constexpr const char* kFacetNames[kFacets] = {"planner", "dataset", "status", "tool"};
   /// An experiment's runs as the table browses them: summaries in key order, each run's facet
-  /// values as indices, metric columns read when first sorted by, and sort orders kept.
+  /// values as indices, each planner's parameters (by the planner facet's index), metric columns
+  /// read when first asked for, and sort orders kept.
   struct Index {
     std::vector<ResultsDb::RunSummary> runs;
     std::map<std::string, std::uint32_t> position;
     std::vector<std::string> metric_names;
     std::array<std::vector<std::string>, kFacets> facet_values;
     std::array<std::vector<std::uint32_t>, kFacets> facet_of;
+    std::vector<std::map<std::string, std::string>> params_of_planner;  ///< name -> value as text
+    std::vector<std::string> params_json_of_planner;                   ///< as stored, read as JSON
+    std::map<std::string, std::vector<std::string>> param_values;      ///< every value of each
+    std::map<std::string, std::vector<double>> columns;
     std::map<std::pair<std::string, bool>, std::vector<std::uint32_t>> orders;
     MotionLimits motion;
+  };
+  /// A runs query read and checked against the experiment (serve_runs.cpp).
+  struct Query {
+    std::array<long long, kFacets> facet{};  ///< -1: any; -2: a value no run has; else its index
+    std::string wall, key;                   ///< "": any
+    std::vector<std::pair<std::string, std::string>> params;  ///< name, value as text
+    struct Range {
+      std::string metric;
+      double low, high;
+    };
+    std::vector<Range> ranges;
+    std::string sort;
+    bool desc = false;
+    std::size_t offset = 0, limit = 100;
   };
 
   /// A run of an experiment, by its key (404 when the experiment has none). Under mutex_.
   ResultsDb::StoredRun storedRun(std::size_t db, long long id, const std::string& key);
-  /// The runs in the order of `column` (none: key order), runs without a value last either way.
+  /// The query's parameters read and checked; `paged`: offset and limit are taken.
+  Query readQuery(Index& x, const Params& query, bool paged);
+  /// The runs the query's filters pass, in its order. Under mutex_.
+  std::vector<std::uint32_t> matching(Index& x, std::size_t db, long long id, const Query& q);
+  /// A metric of every run, in key order (NaN where a run has none): read once, then kept.
+  const std::vector<double>& column(Index& x, std::size_t db, long long id, const std::string& metric);
+  /// The runs in the order of `column` (none: key order), runs without a value last either way;
+  /// ties in key order.
   const std::vector<std::uint32_t>& sorted(Index& x, std::size_t db, long long id, const std::string& column, bool desc);
-  /// A query parameter's whole number from 0 to `most` (`fallback` when it is not given).
-  static std::size_t number(const std::string& text, const char* name, std::size_t fallback, std::size_t most);
   /// The experiment's index, made when first asked for (404 for a database or experiment not served).
   Index& index(std::size_t db, long long id);
 

@@ -72,6 +72,14 @@ std::string toString(MetricKind kind) {
   throw std::logic_error("unknown MetricKind");
 }
 
+std::string displayFormat(const MetricSpec& spec) {
+  const auto starts = [&](const char* prefix) { return spec.name.rfind(prefix, 0) == 0; };
+  if (spec.unit == "1" && (starts("coverage") || starts("overlap") || starts("passes"))) return "percent";
+  if (spec.unit == "B") return "bytes";
+  if ((spec.unit == "1" || spec.unit == "segments") && spec.tie_absolute == 0.5) return "count";
+  return "number";
+}
+
 bool tied(const MetricSpec& spec, double a, double b) {
   if (a == b) return true;  // also equal infinities
   return std::fabs(a - b) <= spec.tie_absolute + spec.tie_relative * std::fmax(std::fabs(a), std::fabs(b));

@@ -1,11 +1,33 @@
-// The explorer's page (`coverbench serve`): experiments, their runs in a table with filters and
-// sorting by any metric, a run's picture that plays back (player.js), and two to four runs on
-// one wall side by side, played in step. Everything shown from
-// data is set as text, never as markup.
+// The explorer's page (`coverbench serve`): experiments, their runs in a table paged by the
+// server, filtered by facet, wall, planner parameter and metric range, sorted by any column; a
+// run's picture that plays back (player.js); and two to four runs on one wall side by side,
+// played in step. The view (experiment, filters, sort, page, columns, the open run and its
+// playback time, the tab) is the page's address: every change is a history entry, back and
+// forward return to it, and a copied address shows the same view. An answer is shown only if it
+// answers the latest request. Everything shown from data is set as text, never as markup.
 "use strict";
 (function () {
-  const COLUMNS = ["coverage_reachable", "overlap", "length_ratio", "duration_s", "turns", "plan_time_ms"];
-  const state = {db: 0, id: 0, sort: "", order: "asc", chosen: "", picked: new Map()};  // picked: key -> run
+  const FACETS = [["planner", "planner"], ["dataset", "dataset"], ["status", "status-filter"], ["tool", "tool"]];
+  const TEXT_COLUMNS = ["wall_name", "planner", "dataset", "status"];
+  const PAGE_SIZES = [50, 100, 200, 500, 1000];
+  /** The address's names that are not the runs API's. */
+  const PAGE_NAMES = ["exp", "cols", "run", "t", "tab"];
+  /**
+   * @typedef {{exp: string, query: URLSearchParams, cols: string[] | null, run: string, t: number | null, tab: string}} View
+   */
+  const state = {
+    /** @type {View | null} */ view: null,
+    /** @type {any[]} */ experiments: [],
+    /** @type {Map<string, any>} */ specs: new Map(),
+    /** @type {any} */ answer: null,  // the runs answer the table shows
+    shown: "",                       // its experiment and query
+    requested: 0,                    // the latest runs request's number
+    /** @type {AbortController | null} */ pending: null,
+    opened: 0,                       // the latest opened run's number
+    chosen: "",                      // the key of the run in the viewer
+    picked: new Map(),               // key -> run, for the comparison
+    restoring: false,                // a player being held at the address's time
+  };
   /**
    * An element of the page by id (any: each is used as the element it is).
    * @param {string} id
@@ -13,43 +35,239 @@
    */
   const $ = id => document.getElementById(id);
 
-  async function api(url) {
-    const res = await fetch(url);
+  async function api(url, signal) {
+    const res = await fetch(url, {signal});
     const body = await res.json();
     if (!res.ok) throw new Error(body.error || res.statusText);
     return body;
   }
   function showError(e) {
+    if (e && e.name === "AbortError") return;  // a request replaced by a newer one
     $("status").className = "error";
     $("status").textContent = String(e.message || e);
   }
-  function fill(select, values, keep) {
-    const current = select.value;
-    select.length = 1;
-    for (const v of values) select.add(new Option(v, v));
-    if (keep && values.includes(current)) select.value = current;
+  function clearError() {
+    if ($("status").className === "error") { $("status").className = ""; $("status").textContent = ""; }
   }
-  function cell(row, text, cls) {
+  function cell(row, text, cls, title) {
     const td = row.insertCell();
     td.textContent = text;
     if (cls) td.className = cls;
-  }
-  function number(v) {
-    if (v === undefined) return "-";
-    return Math.abs(v) >= 1000 || Number.isInteger(v) ? String(Math.round(v * 100) / 100) : v.toPrecision(4);
+    if (title) td.title = title;
   }
 
-  async function loadRuns() {
-    const q = new URLSearchParams({limit: "500"});
-    for (const [k, id] of [["planner", "planner"], ["dataset", "dataset"], ["status", "status-filter"], ["tool", "tool"]])
-      if ($(id).value) q.set(k, $(id).value);
-    if (state.sort) { q.set("sort", state.sort); q.set("order", state.order); }
-    const r = await api(`/api/experiments/${state.db}/${state.id}/runs?${q}`);
-    fill($("planner"), r.facets.planner, true);
-    fill($("dataset"), r.facets.dataset, true);
-    fill($("status-filter"), r.facets.status, true);
-    fill($("tool"), r.facets.tool, true);
-    $("count").textContent = `${r.total} runs` + (r.total > r.runs.length ? ` (first ${r.runs.length} shown)` : "");
+  // --- numbers as the report shows them (the metric registry's format, GET /api/metrics) ------
+
+  /** Three significant digits without exponent for everyday magnitudes (the report's `number`). */
+  function significant(v) {
+    if (v === 0) return "0";
+    const mag = Math.floor(Math.log10(Math.abs(v)));
+    if (mag >= 2) return v.toFixed(0);
+    if (mag < -4) return v.toExponential(2).replace(/e([+-])(\d)$/, "e$10$2");  // 5.50e-05, as Python writes it
+    return v.toFixed(2 - mag);
+  }
+  function unitLabel(name) {
+    const s = state.specs.get(name);
+    if (!s) return "";
+    if (s.format === "percent") return "%";
+    if (s.format === "bytes") return "MiB";
+    return s.unit === "1" ? "" : s.unit.replace("m2", "m\u00b2");
+  }
+  /** A metric's value with its unit: shares in percent, bytes in MiB, counts whole. */
+  function formatted(name, v) {
+    if (v === undefined || v === null) return "-";
+    const s = state.specs.get(name);
+    if (!s) return significant(v);
+    if (s.format === "percent") return (100 * v).toFixed(2) + " %";
+    if (s.format === "bytes") return significant(v / 1048576) + " MiB";
+    if (s.format === "count") return Number.isInteger(v) ? String(v) : significant(v);
+    const unit = unitLabel(name);
+    return significant(v) + (unit ? " " + unit : "");
+  }
+  /** A value typed in the metric's shown unit, as the API takes it. */
+  function fromShown(name, text) {
+    const s = state.specs.get(name), v = Number(text);
+    return !s ? v : s.format === "percent" ? v / 100 : s.format === "bytes" ? v * 1048576 : v;
+  }
+
+  // --- the view and the address ---------------------------------------------------------------
+
+  /** @returns {View} */
+  function readAddress() {
+    const all = new URLSearchParams(location.search);
+    const query = new URLSearchParams();
+    for (const [k, v] of all) if (!PAGE_NAMES.includes(k)) query.append(k, v);
+    const t = all.get("t");
+    return {exp: all.get("exp") || "", query, cols: all.has("cols") ? all.get("cols").split(",").filter(Boolean) : null,
+            run: all.get("run") || "", t: t !== null && t !== "" && Number.isFinite(Number(t)) ? Number(t) : null,
+            tab: all.get("tab") || ""};
+  }
+  /** @param {View} v */
+  function addressOf(v) {
+    const out = new URLSearchParams({exp: v.exp});
+    for (const [k, value] of v.query) out.append(k, value);
+    if (v.cols) out.set("cols", v.cols.join(","));
+    if (v.run) out.set("run", v.run);
+    if (v.run && v.t !== null) out.set("t", v.t.toFixed(3));
+    if (v.tab) out.set("tab", v.tab);
+    return "?" + out.toString();
+  }
+  /**
+   * The view changed as `change` says, made a history entry (or the current one, `replace`) and shown.
+   * @param {{exp?: string, query?: URLSearchParams, cols?: string[] | null, run?: string, t?: number | null, tab?: string}} change
+   */
+  function go(change, replace = false) {
+    const view = {...state.view, ...change};
+    history[replace ? "replaceState" : "pushState"](null, "", addressOf(view));
+    show(view).catch(showError);
+  }
+  /** The current query with `set` ({name: value, "" or null to drop}) applied and, for a filter, page 1. */
+  function changedQuery(set, keepPage = false) {
+    const q = new URLSearchParams(state.view.query);
+    for (const [k, v] of Object.entries(set)) { if (v === null || v === "") q.delete(k); else q.set(k, String(v)); }
+    if (!keepPage) q.delete("offset");
+    return q;
+  }
+  const limitOf = q => Number(q.get("limit") || 100);
+
+  /** Shows `view`: its controls at once, its table when the answer to it comes, its run. @param {View} view */
+  async function show(view) {
+    state.view = view;
+    showTab(view.tab === "workbench" ? "workbench" : "experiments");
+    $("experiment").value = view.exp;
+    setControls(view, state.answer);
+    const key = view.exp + "?" + view.query;
+    const table = key === state.shown ? null : loadRuns(view, key);
+    if (view.run !== state.chosen) openRun(view).catch(showError);
+    else if (view.run) seekTo(view.t);
+    if (!view.run) closeRun();
+    await table;
+  }
+
+  /** The table's request for `view`: its answer is shown only if no newer request was made. */
+  async function loadRuns(view, key) {
+    const seq = ++state.requested;
+    if (state.pending) state.pending.abort();
+    const controller = state.pending = new AbortController();
+    $("runs").dataset.loading = "1";
+    const [db, id] = view.exp.split("/");
+    let r;
+    try {
+      r = await api(`/api/experiments/${db}/${id}/runs?${view.query}`, controller.signal);
+    } catch (e) {
+      if (seq === state.requested) { delete $("runs").dataset.loading; showError(e); }
+      return;
+    }
+    if (seq !== state.requested) return;  // an older answer, come after a newer request
+    delete $("runs").dataset.loading;
+    clearError();
+    state.answer = r;
+    state.shown = key;
+    setControls(view, r);
+    renderTable(view, r);
+    $("runs").dataset.shown = key;
+  }
+
+  // --- controls -------------------------------------------------------------------------------
+
+  function options(select, values, value, first) {
+    select.length = 0;
+    if (first !== undefined) select.add(new Option(first, ""));
+    for (const [v, text] of values) select.add(new Option(text, v));
+    if (value && ![...select.options].some(o => o.value === value)) select.add(new Option(value + " (none)", value));
+    select.value = value;
+  }
+  /** The controls as `view` says (the facets and names from `r`, the latest answer). @param {View} view */
+  function setControls(view, r) {
+    const q = view.query;
+    for (const [name, id] of FACETS) options($(id), r ? r.facets[name].map(v => [v, v]) : [], q.get(name) || "", "all");
+    $("wall").value = q.get("wall") || "";
+    const metrics = r ? r.metrics : [];
+    const params = r ? Object.keys(r.params) : [];
+    const columns = [...TEXT_COLUMNS, "tool", ...metrics, ...params.map(p => "param." + p)];
+    options($("sort"), columns.map(c => [c, c + (unitLabel(c) ? ` (${unitLabel(c)})` : "")]), q.get("sort") || "", "run key");
+    $("order").value = q.get("order") === "desc" ? "desc" : "asc";
+    options($("page-size"), PAGE_SIZES.map(n => [String(n), n + " a page"]), String(limitOf(q)));
+    const pname = $("param-name").value;
+    options($("param-name"), params.map(p => [p, p]), params.includes(pname) ? pname : "", "parameter");
+    fillParamValues();
+    const rname = $("range-metric").value;
+    options($("range-metric"), metrics.map(m => [m, m + (unitLabel(m) ? ` (${unitLabel(m)})` : "")]), metrics.includes(rname) ? rname : "", "metric");
+    showChips(q);
+    showColumnChoice(view, metrics);
+    const [db, id] = view.exp.split("/");
+    const csv = new URLSearchParams(q);
+    csv.delete("offset");
+    csv.delete("limit");
+    $("csv").href = `/api/experiments/${db}/${id}/runs.csv?${csv}`;
+  }
+  function fillParamValues() {
+    const name = $("param-name").value, r = state.answer;
+    options($("param-value"), name && r ? r.params[name].map(v => [v, v]) : [], "", "value");
+  }
+  /** The filters that are not a select's: wall, parameters and metric ranges, each with its × button. */
+  function showChips(q) {
+    const chips = $("chips");
+    chips.textContent = "";
+    for (const [k, v] of q) {
+      let text = "";
+      if (k === "wall") text = `wall = ${v}`;
+      else if (k.startsWith("param.")) text = `${k.slice(6)} = ${v}`;
+      else if (k.startsWith("min.")) text = `${k.slice(4)} \u2265 ${formatted(k.slice(4), Number(v))}`;
+      else if (k.startsWith("max.")) text = `${k.slice(4)} \u2264 ${formatted(k.slice(4), Number(v))}`;
+      else continue;
+      const chip = document.createElement("span");
+      chip.className = "chip";
+      chip.dataset.filter = k;
+      chip.textContent = text + " ";
+      const x = document.createElement("button");
+      x.type = "button";
+      x.textContent = "\u00d7";
+      x.title = "remove this filter";
+      x.addEventListener("click", () => go({query: changedQuery({[k]: null})}));
+      chip.appendChild(x);
+      chips.appendChild(chip);
+    }
+  }
+  /** The metric columns shown: the view's, or the registry's headline metrics. @param {View} view */
+  function shownColumns(view, metrics) {
+    const chosen = view.cols || metrics.filter(m => state.specs.get(m)?.headline);
+    const sort = view.query.get("sort") || "";
+    const out = chosen.filter(m => metrics.includes(m));
+    if (metrics.includes(sort) && !out.includes(sort)) out.unshift(sort);  // the sorted column is always shown, first
+    return out;
+  }
+  function showColumnChoice(view, metrics) {
+    const box = $("column-choice");
+    box.textContent = "";
+    const shown = shownColumns(view, metrics);
+    for (const m of metrics) {
+      const label = document.createElement("label");
+      const tick = document.createElement("input");
+      tick.type = "checkbox";
+      tick.value = m;
+      tick.checked = shown.includes(m);
+      tick.addEventListener("change", () => {
+        const cols = [...box.querySelectorAll("input")].filter(i => i.checked).map(i => i.value);
+        go({cols});
+      });
+      label.append(tick, " " + m);
+      label.title = state.specs.get(m)?.description || "";
+      box.appendChild(label);
+    }
+  }
+
+  // --- the table ------------------------------------------------------------------------------
+
+  /** @param {View} view */
+  function renderTable(view, r) {
+    const q = view.query, sort = q.get("sort") || "", order = q.get("order") || "asc";
+    const columns = shownColumns(view, r.metrics);
+    const offset = r.offset, n = r.runs.length;
+    $("count").textContent = r.total === 0 ? "no runs match" : n === 0 ? `no rows past ${r.total} runs`
+      : `rows ${offset + 1}\u2013${offset + n} of ${r.total}`;
+    $("first").disabled = $("previous").disabled = offset === 0;
+    $("next").disabled = $("last").disabled = offset + r.limit >= r.total;
     const head = $("runs").tHead;
     head.textContent = "";
     const hr = head.insertRow();
@@ -57,16 +275,14 @@
     pickHead.textContent = "compare";
     pickHead.className = "text";
     hr.appendChild(pickHead);
-    for (const c of ["wall_name", "planner", "dataset", "status", ...COLUMNS]) {
+    for (const c of [...TEXT_COLUMNS, ...columns]) {
       const th = document.createElement("th");
-      th.textContent = c + (state.sort === c ? (state.order === "asc" ? " \u25b2" : " \u25bc") : "");
+      const unit = unitLabel(c);
+      th.textContent = c + (unit ? ` (${unit})` : "") + (sort === c ? (order === "asc" ? " \u25b2" : " \u25bc") : "");
       th.dataset.column = c;
-      if (!COLUMNS.includes(c)) th.className = "text";
-      th.addEventListener("click", () => {
-        state.order = state.sort === c && state.order === "asc" ? "desc" : "asc";
-        state.sort = c;
-        loadRuns().catch(showError);
-      });
+      th.title = (state.specs.get(c)?.description || c) + ": click to sort";
+      if (TEXT_COLUMNS.includes(c)) th.className = "text";
+      th.addEventListener("click", () => go({query: changedQuery({sort: c, order: sort === c && order === "asc" ? "desc" : "asc"})}));
       hr.appendChild(th);
     }
     const body = $("runs").tBodies[0];
@@ -86,12 +302,21 @@
       });
       row.insertCell().appendChild(pick);
       cell(row, run.wall_name, "text");
-      cell(row, run.planner, "text");
+      cell(row, run.planner, "text", Object.entries(run.params).map(([k, v]) => `${k}=${v}`).join(", "));
       cell(row, run.dataset, "text");
       cell(row, run.status, "text");
-      for (const c of COLUMNS) cell(row, number(run.metrics[c]));
-      row.addEventListener("click", () => view(run, row));
+      for (const c of columns) cell(row, formatted(c, run.metrics[c]), "", run.metrics[c] === undefined ? "" : String(run.metrics[c]));
+      row.addEventListener("click", () => go({run: run.key, t: null}));
     }
+  }
+
+  /** A page: `to` is "first", "previous", "next" or "last". */
+  function page(to) {
+    const r = state.answer, q = state.view.query, limit = limitOf(q);
+    const offset = Number(q.get("offset") || 0);
+    const last = Math.max(0, Math.floor((r.total - 1) / limit) * limit);
+    const at = {first: 0, previous: Math.max(0, offset - limit), next: offset + limit, last}[to];
+    go({query: changedQuery({offset: at || null}, true)});
   }
 
   // Two to four runs on one wall can be compared.
@@ -104,7 +329,8 @@
   }
 
   function figureFor(run) {
-    const base = `/api/experiments/${state.db}/${state.id}/runs/${run.key}`;
+    const [db, id] = state.view.exp.split("/");
+    const base = `/api/experiments/${db}/${id}/runs/${run.key}`;
     const figure = document.createElement("figure");
     const img = document.createElement("img");
     img.src = base + "/picture.svg";
@@ -120,6 +346,11 @@
   // The picked runs side by side, played in step: one clock (the time models' seconds) for all.
   async function compare() {
     const runs = [...state.picked.values()];
+    // No run is open: the address says so (this entry), and the viewer holds the comparison.
+    state.chosen = "";
+    ++state.opened;
+    state.view = {...state.view, run: "", t: null};
+    history.replaceState(null, "", addressOf(state.view));
     const viewer = $("viewer");
     viewer.textContent = "";
     const grid = document.createElement("div");
@@ -171,9 +402,77 @@
     return all;
   }
 
-  function view(run, row) {
+  // --- the run in the viewer ------------------------------------------------------------------
+
+  /** Opens the view's run: from the table's answer at once, else asked for by its key. @param {View} view */
+  async function openRun(view) {
+    const seq = ++state.opened;
+    if (!view.run) return;
+    let run = state.answer && state.shown.startsWith(view.exp + "?") ? state.answer.runs.find(r => r.key === view.run) : undefined;
+    if (!run) {
+      const [db, id] = view.exp.split("/");
+      const r = await api(`/api/experiments/${db}/${id}/runs?key=${encodeURIComponent(view.run)}&limit=1`);
+      if (seq !== state.opened) return;
+      run = r.runs[0];
+      if (!run) throw new Error(`experiment ${view.exp} has no run ${view.run}`);
+    }
+    showRun(run);
+    if (view.t !== null) await startAt(view.t, seq);
+  }
+  function closeRun() {
+    if (!state.chosen) return;
+    state.chosen = "";
+    ++state.opened;
+    for (const r of $("runs").tBodies[0].rows) r.className = "";
+    const p = document.createElement("p");
+    p.textContent = "Choose a run to see its path and play it back.";
+    $("viewer").replaceChildren(p);
+  }
+  /** Starts the open run's player and holds it at `t` s. */
+  async function startAt(t, seq) {
+    const figure = $("viewer").querySelector("figure[data-playback]");
+    if (!figure) return;
+    state.restoring = true;
+    try {
+      await startPlayer(figure, seq);
+    } finally {
+      state.restoring = false;
+    }
+    if (seq !== state.opened || !figure.coverbenchPlayer) return;
+    figure.coverbenchPlayer.pause();
+    figure.coverbenchPlayer.seek(t);
+    figure.dataset.restored = t.toFixed(3);
+  }
+  async function startPlayer(figure, seq) {
+    if (!figure.coverbenchPlayer) {
+      const start = figure.querySelector(".player-start");
+      if (start && !start.disabled) start.click();
+      for (let k = 0; k < 800 && !figure.coverbenchPlayer && seq === state.opened; ++k) await new Promise(r => setTimeout(r, 25));
+    }
+    // Held at once: the player starts playing as it is made.
+    if (seq === state.opened && figure.coverbenchPlayer) figure.coverbenchPlayer.pause();
+  }
+  function seekTo(t) {
+    const player = $("viewer").querySelector("figure[data-playback]")?.coverbenchPlayer;
+    if (t === null || !player || Math.abs(player.time() - t) < 0.0005) return;
+    player.pause();
+    player.seek(t);
+  }
+  // The open run's playback time, kept in the address (the current entry) as it changes.
+  function followPlayback() {
+    const player = $("viewer").querySelector("figure[data-playback]")?.coverbenchPlayer;
+    const v = state.view;
+    if (!player || !v || !v.run || state.chosen !== v.run || state.restoring) return;
+    const t = Math.round(player.time() * 1000) / 1000;
+    if (v.t === null ? t > 0 : Math.abs(t - v.t) >= 0.0005) {
+      state.view = {...v, t};
+      history.replaceState(null, "", addressOf(state.view));
+    }
+  }
+
+  function showRun(run) {
     state.chosen = run.key;
-    for (const r of $("runs").tBodies[0].rows) r.className = r === row ? "chosen" : "";
+    for (const r of $("runs").tBodies[0].rows) r.className = r.dataset.key === run.key ? "chosen" : "";
     const viewer = $("viewer");
     viewer.textContent = "";
     const figure = figureFor(run);
@@ -181,26 +480,41 @@
     if (figure.dataset.playback) window.coverbenchAttachPlayer(figure);
     const dl = document.createElement("dl");
     dl.className = "metrics";
-    for (const [k, v] of Object.entries(run.metrics)) {
+    const add = (k, text, title) => {
       const dt = document.createElement("dt"), dd = document.createElement("dd");
       dt.textContent = k;
-      dd.textContent = number(v);
+      dd.textContent = text;
+      if (title) dd.title = title;
       dl.append(dt, dd);
-    }
+    };
+    add("wall", `${run.wall_name} (${run.dataset})`);
+    add("planner", run.planner + (Object.keys(run.params).length ? ": " + Object.entries(run.params).map(([k, v]) => `${k}=${v}`).join(", ") : ""));
+    add("tool", run.tool);
+    // In the registry's order, then any the registry does not know.
+    const names = [...state.specs.keys()].filter(k => k in run.metrics);
+    for (const k of [...names, ...Object.keys(run.metrics).filter(k => !state.specs.has(k))]) add(k, formatted(k, run.metrics[k]), String(run.metrics[k]));
     viewer.appendChild(dl);
     if (run.status !== "ok") showOutcome(run, viewer);
-    const edit = document.createElement("button");
-    edit.type = "button";
-    edit.id = "open-in-workbench";
-    edit.textContent = "open this wall and planner in the workbench";
-    edit.addEventListener("click", async () => {
+    const tools = document.createElement("div");
+    tools.className = "run-tools";
+    const button = (id, text, f) => {
+      const b = document.createElement("button");
+      b.type = "button";
+      b.id = id;
+      b.textContent = text;
+      b.addEventListener("click", f);
+      tools.appendChild(b);
+    };
+    button("open-in-workbench", "open this wall and planner in the workbench", async () => {
       try {
-        const p = await api(`/api/experiments/${state.db}/${state.id}/runs/${run.key}/problem`);
-        showTab("workbench");
+        const [db, id] = state.view.exp.split("/");
+        const p = await api(`/api/experiments/${db}/${id}/runs/${run.key}/problem`);
+        go({tab: "workbench"});
         window.coverbenchWorkbench.setProblem(p);
       } catch (e) { showError(e); }
     });
-    viewer.insertBefore(edit, figure);
+    button("same-wall", "other planners on this wall", () => go({query: changedQuery({wall: run.wall_name, planner: null})}));
+    viewer.insertBefore(tools, figure);
   }
 
   // Why a run failed or left parts out, and the end of an external planner's stderr: planner
@@ -208,7 +522,8 @@
   async function showOutcome(run, viewer) {
     let o;
     try {
-      o = await api(`/api/experiments/${state.db}/${state.id}/runs/${run.key}/outcome`);
+      const [db, id] = state.view.exp.split("/");
+      o = await api(`/api/experiments/${db}/${id}/runs/${run.key}/outcome`);
     } catch (e) { showError(e); return; }
     if (state.chosen !== run.key || (!o.reason && !o.stderr_tail)) return;
     const section = document.createElement("section");
@@ -239,26 +554,57 @@
     }
   }
 
+  // --- wiring ---------------------------------------------------------------------------------
+
+  function listen() {
+    $("experiment").addEventListener("change", () => go({exp: $("experiment").value, query: new URLSearchParams(), run: "", t: null}));
+    for (const [name, id] of FACETS) $(id).addEventListener("change", () => go({query: changedQuery({[name]: $(id).value})}));
+    $("wall").addEventListener("change", () => go({query: changedQuery({wall: $("wall").value.trim()})}));
+    $("sort").addEventListener("change", () => go({query: changedQuery({sort: $("sort").value, order: $("sort").value ? $("order").value : null})}));
+    $("order").addEventListener("change", () => go({query: changedQuery({order: $("order").value})}));
+    $("page-size").addEventListener("change", () => go({query: changedQuery({limit: $("page-size").value})}));
+    $("param-name").addEventListener("change", fillParamValues);
+    $("param-add").addEventListener("click", () => {
+      if ($("param-name").value && $("param-value").value) go({query: changedQuery({["param." + $("param-name").value]: $("param-value").value})});
+    });
+    $("range-add").addEventListener("click", () => {
+      const m = $("range-metric").value, set = {};
+      if (!m) return;
+      for (const side of ["min", "max"]) {
+        const text = $("range-" + side).value.trim();
+        if (text !== "" && Number.isFinite(Number(text))) set[`${side}.${m}`] = fromShown(m, text);
+      }
+      if (Object.keys(set).length) go({query: changedQuery(set)});
+    });
+    for (const to of ["first", "previous", "next", "last"]) $(to).addEventListener("click", () => page(to));
+    for (const t of ["experiments", "workbench"]) $("tab-" + t).addEventListener("click", () => go({tab: t === "workbench" ? t : ""}));
+    $("compare").addEventListener("click", () => compare().catch(showError));
+    window.addEventListener("popstate", () => show(readAddress()).catch(showError));
+    setInterval(followPlayback, 250);
+  }
+
   async function start() {
-    const r = await api("/api/experiments");
+    const [r, m] = await Promise.all([api("/api/experiments"), api("/api/metrics")]);
+    for (const s of m.metrics) state.specs.set(s.name, s);
+    state.experiments = r.experiments;
     const select = $("experiment");
     for (const e of r.experiments)
       select.add(new Option(`${e.name} (${e.runs} runs; ${e.file}, id ${e.id})`, `${e.db}/${e.id}`));
-    for (const t of ["experiments", "workbench"]) $("tab-" + t).addEventListener("click", () => showTab(t));
+    listen();
+    updateCompare();
+    const view = readAddress();
     if (!r.experiments.length) {
       $("count").textContent = "no experiment databases are served: the workbench is open";
       showTab("workbench");
       document.body.dataset.ready = "1";
       return;
     }
-    select.value = `${r.experiments.at(-1).db}/${r.experiments.at(-1).id}`;
-    const pick = () => { [state.db, state.id] = select.value.split("/").map(Number); return loadRuns(); };
-    select.addEventListener("change", () => pick().catch(showError));
-    for (const id of ["planner", "dataset", "status-filter", "tool"])
-      $(id).addEventListener("change", () => loadRuns().catch(showError));
-    $("compare").addEventListener("click", () => compare().catch(showError));
-    updateCompare();
-    await pick();
+    if (!r.experiments.some(e => `${e.db}/${e.id}` === view.exp)) {
+      const last = r.experiments.at(-1);
+      view.exp = `${last.db}/${last.id}`;
+      history.replaceState(null, "", addressOf(view));
+    }
+    await show(view);
     document.body.dataset.ready = "1";
   }
   start().catch(showError);

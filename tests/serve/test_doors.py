@@ -89,9 +89,9 @@ class Doors(unittest.TestCase):
         stop_server(cls.server)
         shutil.rmtree(cls.work, ignore_errors=True)
 
-    def request(self, method, path, body=None, headers=None, timeout=60):
-        """(status, JSON answer) of a request sent as is."""
-        c = http.client.HTTPConnection("127.0.0.1", self.port, timeout=timeout)
+    def request(self, method, path, body=None, headers=None, timeout=60, port=None):
+        """(status, JSON answer) of a request sent as is (to the class's server, or to `port`)."""
+        c = http.client.HTTPConnection("127.0.0.1", port or self.port, timeout=timeout)
         c.putrequest(method, path, skip_host="Host" in (headers or {}), skip_accept_encoding=True)
         for k, v in (headers or {}).items():
             c.putheader(k, v)
@@ -353,6 +353,45 @@ class Doors(unittest.TestCase):
             lock.rollback()
             lock.close()
         self.assert_alive()
+
+    def test_the_runs_tables_parameters_are_refused_by_name(self):
+        """The runs' query (filters, ranges, sort, paging) and runs.csv: each bad value a one-line 400
+        naming its parameter; a page is at most 1000 runs; nothing ends the server."""
+        with tempfile.TemporaryDirectory(prefix="coverbench-doors-runs-") as work:
+            os.makedirs(os.path.join(work, "walls"))
+            shutil.copy(WALL, os.path.join(work, "walls", "w.json"))
+            with open(os.path.join(work, "c.yaml"), "w") as f:
+                f.write("name: doors\noutput: out\ndatasets:\n  - folder: walls\nplanners: [zigzag, spiral]\n")
+            subprocess.run([BIN, "run", "c.yaml", "--no-report"], cwd=work, check=True, capture_output=True)
+            server, port = start_server(os.path.join(work, "out", "results.sqlite"))
+            try:
+                runs = "/api/experiments/0/1/runs"
+                for query, name in (("offset=-1", "offset"), ("offset=1e3", "offset"), ("offset=%201", "offset"), ("offset=", "offset"),
+                                    ("offset=" + "9" * 2000, "offset"), ("offset=1073741825", "offset"), ("offset=0x10", "offset"),
+                                    ("limit=1001", "limit"), ("limit=-0", "limit"), ("limit=NaN", "limit"), ("limit=+5", "limit"),
+                                    ("min.overlap=1e999", "min.overlap"), ("max.overlap=inf", "max.overlap"), ("min.overlap=", "min.overlap"),
+                                    ("min.overlap=0.1%00", "min.overlap"), ("max.%FF%FE=1", "max.\ufffd\ufffd"), ("param.a%0Ab=1", "param.a\\x0ab"),
+                                    ("sort=param.%FF", "sort"), ("order=%FF", "order"), ("limit=1&limit=2", "limit"),
+                                    ("&".join(f"p{i}=1" for i in range(700)), "p0"), ("x" * 5000 + "=1", "x" * 60 + "...")):
+                    for path in (runs, runs + ".csv"):
+                        status, answer = self.request("GET", f"{path}?{query}", port=port)
+                        self.assertEqual(status, 400, (path, query[:80], answer))
+                        self.assert_one_line_error(answer)
+                        self.assertTrue(answer["error"].startswith(name + ": "), (path, query[:80], answer))
+                # An address over httplib's 8192 bytes: 414, as JSON.
+                for query in ("&".join(f"p{i}=1" for i in range(2000)), "offset=" + "9" * 10000):
+                    status, answer = self.request("GET", f"{runs}?{query}", port=port)
+                    self.assertEqual((status, answer), (414, {"error": "request: its address (path and query) is over 8192 bytes"}))
+                # The limit is a cap, the offset any place: past the end is an empty page that says how many there are.
+                status, page = self.request("GET", runs + "?limit=1000&offset=1073741824", port=port)
+                self.assertEqual((status, page["total"], page["runs"]), (200, 2, []))
+                status, page = self.request("GET", runs + "?limit=1000", port=port)
+                self.assertEqual((status, len(page["runs"]), page["limit"]), (200, 2, 1000))
+                status, text = self.request("GET", runs + ".csv?sort=overlap&order=desc", port=port)
+                self.assertEqual((status, len(text.decode().splitlines())), (200, 3))
+                self.assertIsNone(server.poll(), "the server ended")
+            finally:
+                stop_server(server)
 
     def test_no_request_is_worked_on_without_bound(self):
         json_type = {"Content-Type": "application/json"}

@@ -149,7 +149,8 @@ class Serve(unittest.TestCase):
         import yaml
         with open(os.path.join(SOURCE, "docs", "openapi.yaml")) as f:
             paths = set(yaml.safe_load(f)["paths"])
-        served = {"/api/experiments", "/api/experiments/{db}/{id}/runs", "/api/experiments/{db}/{id}/runs/{key}/picture.svg",
+        served = {"/api/experiments", "/api/experiments/{db}/{id}/runs", "/api/experiments/{db}/{id}/runs.csv", "/api/metrics",
+                  "/api/experiments/{db}/{id}/runs/{key}/picture.svg",
                   "/api/experiments/{db}/{id}/runs/{key}/playback.js", "/api/experiments/{db}/{id}/runs/{key}/problem",
                   "/api/experiments/{db}/{id}/runs/{key}/outcome",
                   "/api/planners", "/api/check", "/api/plan", "/api/plans/{id}/picture.svg", "/api/plans/{id}/playback.js",
@@ -281,7 +282,7 @@ class Serve(unittest.TestCase):
         self.assertEqual(self.refused("GET", f"/api/experiments/7/{self.exp['id']}/runs"), (404, "no database 7 (serving 1)"))
         self.assertEqual(self.refused("GET", f"/api/experiments/{self.exp['db']}/999/runs")[0], 404)
         self.assertEqual(self.refused("GET", e + "/runs?sort=nonsense"),
-                         (400, "sort: unknown column 'nonsense' (a metric, wall_name, planner, dataset, status or tool)"))
+                         (400, "sort: unknown column 'nonsense' (a metric, param.NAME, wall_name, planner, dataset, status or tool)"))
         self.assertEqual(self.refused("GET", e + "/runs?limit=5000"),
                          (400, "limit: must be a whole number from 0 to 1000, got '5000'"))
         self.assertEqual(self.refused("GET", e + "/runs/" + "0" * 64 + "/picture.svg")[0], 404)

@@ -38,6 +38,12 @@ const std::vector<MetricSpec>& metricSpecs();
 /// The spec of `name`, or nullptr.
 const MetricSpec* findMetricSpec(const std::string& name);
 std::string toString(MetricKind kind);
+/// How tables show a value of `spec`, as the report's tables do
+/// (reports/python/coverbench_report/tables.py, `value`): "percent" (a share of unit 1 named
+/// coverage..., overlap... or passes...: times 100, two decimals, " %"), "count" (a whole
+/// number: unit 1 or segments, equal within 0.5), "bytes" (unit B, shown in MiB) or "number"
+/// (three significant digits and the unit).
+std::string displayFormat(const MetricSpec& spec);
 /// Whether two values of `spec` are equal within its tie band.
 bool tied(const MetricSpec& spec, double a, double b);
 /// The registry as a Markdown table (docs/metrics.md holds exactly this text).
