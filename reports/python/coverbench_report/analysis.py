@@ -53,8 +53,8 @@ def read_runs(data):
 
 
 def usable(run):
-    """A run whose metrics are summarised: a valid path covering everything reachable (ok) or
-    knowingly leaving parts out (partial)."""
+    """A run whose metrics are summarised: a valid path that leaves no reachable part out (ok) or
+    knowingly leaves parts out (partial)."""
     return run["status"] in ("ok", "partial") and run["valid"]
 
 
@@ -143,9 +143,14 @@ class Analysis:
         low, high = stats.wilson(ok, len(rs))
         uncovered = [r["uncovered_reachable_m2"] for r in rs
                      if r["status"] == "partial" and math.isfinite(r["uncovered_reachable_m2"])]
+        # What an ok run still leaves of R (slivers a round tool's finite path cannot reach): the
+        # least coverage_reachable among the valid ok runs.
+        ok_coverage = [value(r, "coverage_reachable") for r in rs if r["status"] == "ok" and r["valid"]]
+        ok_coverage = [v for v in ok_coverage if math.isfinite(v)]
         return {"runs": len(rs), "counts": counts, "ok": ok, "rate": ok / len(rs) if rs else math.nan,
                 "low": low, "high": high,
-                "partial_uncovered_median": float(np.median(uncovered)) if uncovered else math.nan}
+                "partial_uncovered_median": float(np.median(uncovered)) if uncovered else math.nan,
+                "ok_coverage_min": min(ok_coverage) if ok_coverage else math.nan}
 
     # --- summaries ----------------------------------------------------------------------------
     def summary(self, column, dataset, metric):

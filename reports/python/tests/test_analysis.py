@@ -88,6 +88,12 @@ class PairedByHand(unittest.TestCase):
         self.assertEqual(a.summary("b", "d", "length_total"), {"n": 3, "median": 11, "q1": 10, "q3": 11.5})
         o = a.outcomes("b")
         self.assertEqual((o["runs"], o["ok"], o["counts"]["timeout"]), (4, 3, 1))
+        # What ok still leaves, as a number a reader can check: b's ok runs cover 0.95, 0.99, 0.98.
+        self.assertEqual(o["ok_coverage_min"], 0.95)
+        self.assertEqual(a.outcomes("a")["ok_coverage_min"], 0.90)
+        table = T.outcome_table(a)
+        self.assertIn("ok: least coverage of R", table.header)
+        self.assertEqual(table.rows[1][table.header.index("ok: least coverage of R")], "95.00 %")
         # Measured figures are ranked but never tested.
         self.assertNotIn("plan_time_ms", a.compared)
         ranking = a.ranking("d", a.tools[0], "plan_time_ms")
