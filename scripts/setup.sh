@@ -29,6 +29,7 @@ PACKAGES=("${MAIN_PACKAGES[@]}"
           python3-venv python3-pip mypy python3-pandas             # its install, type and DataFrame tests
           chromium python3-websocket                               # the browser test of the report
           node-typescript                                          # type-checks the explorer's JavaScript (ctest web_types)
+          npm                                                      # installs the explorer's charting library (below)
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
           universal-ctags                                          # the functions' sizes (scripts/unit_sizes.sh)
@@ -68,6 +69,15 @@ if [ ! -f "$build/build.ninja" ] || grep -qE '^COVERBENCH_(BUILD_TESTS|BUILD_BEN
 fi
 echo "== building $build (first build takes two to three minutes on 2 cores)"
 cmake --build "$build" -j 2
+
+# The explorer's plots (reports/web/plots.js) draw with Observable Plot on d3, pinned here and
+# installed into the build, which `coverbench serve` serves them from (the page needs no network).
+vendor="$build/web-vendor"
+if [ ! -f "$vendor/node_modules/@observablehq/plot/dist/plot.umd.min.js" ] || [ ! -f "$vendor/node_modules/d3/dist/d3.min.js" ]; then
+  echo "== installing the explorer's charting library into $vendor"
+  mkdir -p "$vendor"
+  npm install --prefix "$vendor" --no-audit --no-fund --no-save --ignore-scripts @observablehq/plot@0.6.17 d3@7.9.0 >/dev/null
+fi
 
 # `import coverbench` anywhere: `python3 -m pip install ./python` into a virtual environment (or
 # --user), which reuses this build (README.md, "From Python").
