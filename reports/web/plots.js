@@ -115,6 +115,7 @@
 
   /** Asks for the values the plot needs (when they are not those held), then draws. */
   async function refresh() {
+    if (!state.exp || !$("plots-metric").value) return;  // the experiment's metrics are not known yet
     const kind = $("plots-kind").value;
     $("plots-versus-label").hidden = kind !== "scatter";
     $("plots-param-label").hidden = kind !== "sweep";
