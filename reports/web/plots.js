@@ -351,7 +351,7 @@
         const rect = document.createElementNS(ns, "rect");
         for (const [a, v] of Object.entries({x: 20, y, width: 12, height: 12, fill: fig.scale("color").apply(name)})) rect.setAttribute(a, String(v));
         const text = document.createElementNS(ns, "text");
-        for (const [a, v] of Object.entries({x: 38, y: y + 10, "font-size": 12, "font-family": "sans-serif"})) text.setAttribute(a, String(v));
+        for (const [a, v] of Object.entries({x: 38, y: y + 10, "font-size": 12, "font-family": "sans-serif", "text-anchor": "start"})) text.setAttribute(a, String(v));
         text.textContent = name;
         svg.append(rect, text);
         height = y + 18;
