@@ -171,13 +171,16 @@
     return {label: s.unit === "1" ? name + arrow : `${name} (${s.unit})${arrow}`};
   }
 
+  /** The chart's width: its column's, so its text is shown at its own size (at least 480 px). */
+  const chartWidth = () => Math.max(480, Math.floor($("plots-chart").clientWidth) || 760);
+
   // --- the plots --------------------------------------------------------------------------------
 
   function boxPlot(runs, metric) {
     const values = summarised(runs), configs = configsOf(runs);
     const drawn = configs.map(c => ({config: c, values: values.filter(r => r.config === c).map(r => r.value)}));
     const plot = window.Plot.plot({
-      marginBottom: 90, marginLeft: 70, width: 760, height: 440, y: {...axis(metric), grid: true},
+      marginBottom: 90, marginLeft: 70, width: chartWidth(), height: 440, y: {...axis(metric), grid: true},
       x: {domain: configs, label: null, tickRotate: -25},
       marks: [window.Plot.boxY(values, {x: "config", y: "value", fill: "config"})],
       color: {domain: configs},
@@ -196,7 +199,7 @@
       drawn.push({config: c, values: v});
     }
     const plot = window.Plot.plot({
-      marginLeft: 60, width: 760, height: 440, x: {...axis(metric), grid: true},
+      marginLeft: 60, width: chartWidth(), height: 440, x: {...axis(metric), grid: true},
       y: {label: "share of the configuration's usable runs", domain: [0, 1], grid: true},
       color: {domain: configs, legend: true},
       marks: [window.Plot.line(points, {x: "value", y: "share", z: "config", stroke: "config", curve: "step-after"})],
@@ -238,7 +241,7 @@
     if (!p.walls) return {message: "No wall here has a run of every configuration: there is nothing to profile."};
     const points = p.series.flatMap(s => s.rho.map((rho, k) => ({config: s.config, tau: p.taus[k], rho})));
     const plot = window.Plot.plot({
-      marginLeft: 60, width: 760, height: 440, x: {type: "log", base: 2, label: "\u03c4 (within \u03c4 \u00d7 best)", grid: true},
+      marginLeft: 60, width: chartWidth(), height: 440, x: {type: "log", base: 2, label: "\u03c4 (within \u03c4 \u00d7 best)", grid: true},
       y: {label: `share of the ${p.walls} walls every configuration ran on`, domain: [0, 1.02], grid: true},
       color: {domain: p.configs, legend: true},
       marks: [window.Plot.line(points, {x: "tau", y: "rho", z: "config", stroke: "config", curve: "step-after"})],
@@ -285,7 +288,7 @@
     if (!s.points.length) return {message: `No planner here has configurations that differ in ${param} alone.`};
     const lines = [...new Set(s.points.map(p => p.line))];
     const plot = window.Plot.plot({
-      marginLeft: 70, width: 760, height: 440, x: {label: param, ...(s.numeric ? {} : {type: "point"}), grid: true},
+      marginLeft: 70, width: chartWidth(), height: 440, x: {label: param, ...(s.numeric ? {} : {type: "point"}), grid: true},
       y: {...axis(metric), grid: true}, color: {domain: lines, legend: true},
       marks: [
         window.Plot.ruleX(s.points, {x: "x", y1: "q1", y2: "q3", stroke: "line", strokeWidth: 2, strokeOpacity: 0.5}),
@@ -300,7 +303,7 @@
     const versus = $("plots-versus").value;
     const points = runs.filter(r => r.usable && r.value !== null && r.versus !== null), configs = configsOf(runs);
     const plot = window.Plot.plot({
-      marginLeft: 70, width: 760, height: 440, x: {...axis(versus), grid: true}, y: {...axis(metric), grid: true},
+      marginLeft: 70, width: chartWidth(), height: 440, x: {...axis(versus), grid: true}, y: {...axis(metric), grid: true},
       color: {domain: configs, legend: true},
       marks: [window.Plot.dot(points, {x: "versus", y: "value", fill: "config", r: 3, fillOpacity: 0.8, title: "config"})],
     });
