@@ -29,7 +29,6 @@ PACKAGES=("${MAIN_PACKAGES[@]}"
           python3-venv python3-pip mypy python3-pandas             # its install, type and DataFrame tests
           chromium python3-websocket                               # the browser test of the report
           node-typescript                                          # type-checks the explorer's JavaScript (ctest web_types)
-          npm                                                      # installs the explorer's charting library (below)
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
           universal-ctags                                          # the functions' sizes (scripts/unit_sizes.sh)
@@ -75,6 +74,10 @@ cmake --build "$build" -j 2
 vendor="$build/web-vendor"
 if [ ! -f "$vendor/node_modules/@observablehq/plot/dist/plot.umd.min.js" ] || [ ! -f "$vendor/node_modules/d3/dist/d3.min.js" ]; then
   echo "== installing the explorer's charting library into $vendor"
+  if ! command -v npm >/dev/null; then  # Debian's npm, unless the Node.js installed brings its own
+    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+    $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq -o DPkg::Lock::Timeout=300 npm >/dev/null
+  fi
   mkdir -p "$vendor"
   npm install --prefix "$vendor" --no-audit --no-fund --no-save --ignore-scripts @observablehq/plot@0.6.17 d3@7.9.0 >/dev/null
 fi
