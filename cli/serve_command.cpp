@@ -34,7 +34,18 @@ const std::map<std::string, std::pair<std::string, std::string>>& pageFiles() {
       {"/", {COVERBENCH_WEB_DIR "/index.html", "text/html; charset=utf-8"}},
       {"/explorer.js", {COVERBENCH_WEB_DIR "/explorer.js", "text/javascript; charset=utf-8"}},
       {"/workbench.js", {COVERBENCH_WEB_DIR "/workbench.js", "text/javascript; charset=utf-8"}},
+      {"/plots.js", {COVERBENCH_WEB_DIR "/plots.js", "text/javascript; charset=utf-8"}},
       {"/player.js", {COVERBENCH_REPORT_PYTHONPATH "/coverbench_report/player.js", "text/javascript; charset=utf-8"}},
+  };
+  return files;
+}
+
+/// The charting library the Plots tab draws with (reports/web/plots.js), from the build, where
+/// scripts/setup.sh installs it.
+const std::map<std::string, std::string>& vendorFiles() {
+  static const std::map<std::string, std::string> files = {
+      {"/vendor/d3.min.js", COVERBENCH_WEB_VENDOR_DIR "/d3/dist/d3.min.js"},
+      {"/vendor/plot.umd.min.js", COVERBENCH_WEB_VENDOR_DIR "/@observablehq/plot/dist/plot.umd.min.js"},
   };
   return files;
 }
@@ -87,6 +98,13 @@ void ServeApp::Impl::addExplorerRoutes() {
     const std::string path = file.first, type = file.second;
     server.Get(route, guarded([path, type](const httplib::Request&, httplib::Response& res) { res.set_content(readFile(path), type); }));
   }
+  for (const auto& [route, path] : vendorFiles())
+    server.Get(route, guarded([path](const httplib::Request&, httplib::Response& res) {
+      std::error_code ec;
+      if (!fs::is_regular_file(path, ec))
+        throw HttpError(404, "the plots' charting library is not installed: run `bash scripts/setup.sh` (it installs it into the build)");
+      res.set_content(readFile(path), "text/javascript; charset=utf-8");
+    }));
   server.Get("/api/experiments", guarded([this](const httplib::Request&, httplib::Response& res) {
     res.set_content(jsonText(explorer.experiments()), "application/json");
   }));
@@ -112,6 +130,9 @@ void ServeApp::Impl::addExplorerRoutes() {
         return false;  // the answer is cut off: its chunked framing never ends, so no client takes it as whole
       }
     });
+  }));
+  server.Get(R"(/api/experiments/(\d{1,6})/(\d{1,12})/values)", guarded([this](const httplib::Request& req, httplib::Response& res) {
+    res.set_content(jsonText(explorer.values(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.params)), "application/json");
   }));
   server.Get("/api/metrics", guarded([](const httplib::Request&, httplib::Response& res) {
     res.set_content(jsonText(Explorer::metricSpecsJson()), "application/json");

@@ -98,15 +98,17 @@ Explorer::Index& Explorer::index(std::size_t db, long long id) {
   std::map<std::string, std::set<std::string>> values;
   for (const std::string& label : x.facet_values[0]) {
     std::map<std::string, std::string> params;
-    std::string stored = "{}";
+    std::string stored = "{}", family = label;
     for (const ExperimentRecord::Config& c : record.planners)
       if (c.label == label) {
+        family = c.planner;
         const nlohmann::ordered_json j = storedParamsJson(c.params);
         stored = j.dump();
         for (const auto& [name, v] : j.items()) values[name].insert(params[name] = paramTextOfJson(v));
       }
     x.params_of_planner.push_back(std::move(params));
     x.params_json_of_planner.push_back(std::move(stored));
+    x.family_of_planner.push_back(std::move(family));
   }
   for (const auto& [name, v] : values) x.param_values[name].assign(v.begin(), v.end());
   x.motion = configMotion(record.config_text, dbs_[db].file + ": experiments.config_text");

@@ -67,6 +67,12 @@ class Explorer {
   /// The CSV's header line, and the rows of runs [from, from + n) of the selection.
   std::string csvHeader(const Selection& s);
   std::string csvRows(const Selection& s, std::size_t from, std::size_t n);
+  /// The values of one metric (`metric`), and of a second (`versus`) when asked, of every run the
+  /// filters select, for the Plots tab: each run's wall, dataset, configuration, tool, status and
+  /// whether it is usable (ok or partial with a valid path), by column, with each configuration's
+  /// planner and parameters. At most kMaxPlotRuns runs (400 beyond, naming the filters).
+  nlohmann::json values(std::size_t db, long long id, const Params& query);
+  static constexpr std::size_t kMaxPlotRuns = 200000;
   /// The metric registry as the page formats it: each metric's unit, direction, kind, description
   /// and display format (percent, count, bytes or number).
   static nlohmann::json metricSpecsJson();
@@ -97,6 +103,7 @@ class Explorer {
     std::array<std::vector<std::uint32_t>, kFacets> facet_of;
     std::vector<std::map<std::string, std::string>> params_of_planner;  ///< name -> value as text
     std::vector<std::string> params_json_of_planner;                   ///< as stored, read as JSON
+    std::vector<std::string> family_of_planner;                        ///< the planner a label configures
     std::map<std::string, std::vector<std::string>> param_values;      ///< every value of each
     std::map<std::string, std::vector<double>> columns;
     std::map<std::pair<std::string, bool>, std::vector<std::uint32_t>> orders;

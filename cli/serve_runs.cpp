@@ -209,6 +209,65 @@ std::string Explorer::csvRows(const Selection& s, std::size_t from, std::size_t 
   return text;
 }
 
+json Explorer::values(std::size_t db, long long id, const Params& query) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Index& x = index(db, id);
+  Params filters;
+  std::string names[2];  // metric, versus
+  for (const auto& [name, value] : query) {
+    const int which = name == "metric" ? 0 : name == "versus" ? 1 : -1;
+    if (which < 0) {
+      if (name == "offset" || name == "limit") throw HttpError(400, name + ": plots take every run the filters pass (no paging)");
+      filters.emplace(name, value);
+      continue;
+    }
+    if (!names[which].empty() || query.count(name) > 1) throw HttpError(400, name + ": given twice (each parameter is given once)");
+    if (std::find(x.metric_names.begin(), x.metric_names.end(), value) == x.metric_names.end())
+      throw HttpError(400, name + ": this experiment has no metric '" + shown(value) + "'");
+    names[which] = value;
+  }
+  if (names[0].empty()) throw HttpError(400, "metric: missing (the metric to plot)");
+  const Query q = readQuery(x, filters, false);
+  const std::vector<std::uint32_t> selected = matching(x, db, id, q);
+  if (selected.size() > kMaxPlotRuns)
+    throw HttpError(400, "metric: the filters select " + std::to_string(selected.size()) + " runs; plots take at most " +
+                             std::to_string(kMaxPlotRuns) + " (narrow the filters)");
+  const std::vector<double>& value = column(x, db, id, names[0]);
+  const std::vector<double>* versus = names[1].empty() ? nullptr : &column(x, db, id, names[1]);
+  const bool has_valid = std::find(x.metric_names.begin(), x.metric_names.end(), "valid") != x.metric_names.end();
+  const std::vector<double>* valid = has_valid ? &column(x, db, id, "valid") : nullptr;
+  // Walls by their position in `walls` (a hash is 64 bytes; a run names its wall by a number).
+  std::map<std::string, std::size_t> wall_of;
+  json walls = json::array(), wall_names = json::array();
+  json wall = json::array(), dataset = json::array(), config = json::array(), tool = json::array(), status = json::array(),
+       usable = json::array(), v = json::array(), w = json::array();
+  const auto number = [](double d) { return std::isfinite(d) ? json(d) : json(nullptr); };
+  for (const std::uint32_t i : selected) {
+    const ResultsDb::RunSummary& r = x.runs[i];
+    const auto [it, added] = wall_of.emplace(r.wall, wall_of.size());
+    if (added) {
+      walls.push_back(r.wall);
+      wall_names.push_back(r.wall_name);
+    }
+    wall.push_back(it->second);
+    dataset.push_back(x.facet_of[1][i]);
+    config.push_back(x.facet_of[0][i]);
+    tool.push_back(x.facet_of[3][i]);
+    status.push_back(toString(r.status));
+    usable.push_back((r.status == RunStatus::Ok || r.status == RunStatus::Partial) && (!valid || (*valid)[i] == 1.0));
+    v.push_back(number(value[i]));
+    if (versus) w.push_back(number((*versus)[i]));
+  }
+  json out = {{"metric", names[0]}, {"versus", names[1].empty() ? json(nullptr) : json(names[1])},
+              {"total", selected.size()}, {"configurations", x.facet_values[0]}, {"families", x.family_of_planner},
+              {"params", x.params_of_planner}, {"datasets", x.facet_values[1]}, {"tools", x.facet_values[3]},
+              {"walls", walls}, {"wall_names", wall_names}};
+  out["runs"] = {{"wall", wall}, {"dataset", dataset}, {"configuration", config}, {"tool", tool}, {"status", status},
+                 {"usable", usable}, {"value", v}};
+  if (versus) out["runs"]["versus"] = w;
+  return out;
+}
+
 json Explorer::metricSpecsJson() {
   json out = json::array();
   for (const MetricSpec& s : metricSpecs())

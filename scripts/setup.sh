@@ -69,5 +69,18 @@ fi
 echo "== building $build (first build takes two to three minutes on 2 cores)"
 cmake --build "$build" -j 2
 
+# The explorer's plots (reports/web/plots.js) draw with Observable Plot on d3, pinned here and
+# installed into the build, which `coverbench serve` serves them from (the page needs no network).
+vendor="$build/web-vendor"
+if [ ! -f "$vendor/node_modules/@observablehq/plot/dist/plot.umd.min.js" ] || [ ! -f "$vendor/node_modules/d3/dist/d3.min.js" ]; then
+  echo "== installing the explorer's charting library into $vendor"
+  if ! command -v npm >/dev/null; then  # Debian's npm, unless the Node.js installed brings its own
+    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+    $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq -o DPkg::Lock::Timeout=300 npm >/dev/null
+  fi
+  mkdir -p "$vendor"
+  npm install --prefix "$vendor" --no-audit --no-fund --no-save --ignore-scripts @observablehq/plot@0.6.17 d3@7.9.0 >/dev/null
+fi
+
 # `import coverbench` anywhere: `python3 -m pip install ./python` into a virtual environment (or
 # --user), which reuses this build (README.md, "From Python").

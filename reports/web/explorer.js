@@ -134,6 +134,7 @@
   async function show(view) {
     state.view = view;
     showTab(view.tab === "workbench" ? "workbench" : "experiments");
+    showPlots(view);
     $("experiment").value = view.exp;
     setControls(view, state.answer);
     const key = view.exp + "?" + view.query;
@@ -554,6 +555,16 @@
     }
   }
 
+  /** The Plots tab (plots.js): in place of the run viewer, over the table's filters. @param {View} view */
+  function showPlots(view) {
+    const on = view.tab === "plots";
+    $("plots").hidden = !on;
+    $("viewer").hidden = on;
+    $("tab-plots").setAttribute("aria-selected", String(on));
+    if (on) $("tab-experiments").setAttribute("aria-selected", "false");
+    if (on && view.exp) window.coverbenchPlots.show(view.exp, view.query).catch(showError);
+  }
+
   // --- wiring ---------------------------------------------------------------------------------
 
   function listen() {
@@ -577,7 +588,7 @@
       if (Object.keys(set).length) go({query: changedQuery(set)});
     });
     for (const to of ["first", "previous", "next", "last"]) $(to).addEventListener("click", () => page(to));
-    for (const t of ["experiments", "workbench"]) $("tab-" + t).addEventListener("click", () => go({tab: t === "workbench" ? t : ""}));
+    for (const t of ["experiments", "workbench", "plots"]) $("tab-" + t).addEventListener("click", () => go({tab: t === "experiments" ? "" : t}));
     $("compare").addEventListener("click", () => compare().catch(showError));
     window.addEventListener("popstate", () => show(readAddress()).catch(showError));
     setInterval(followPlayback, 250);

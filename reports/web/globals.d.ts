@@ -1,5 +1,5 @@
 // What the page's scripts add to the browser's objects, for `tsc --checkJs` (ctest web_types):
-// the player (player.js), the explorer's comparison (explorer.js) and the workbench (workbench.js).
+// the player (player.js), the explorer's comparison (explorer.js), the workbench (workbench.js) and the plots (plots.js).
 interface CoverbenchPlayer {
   play(): void; pause(): void; seek(s: number): void; setSpeed(s: number): void; rescale(zoom: number): void;
   time(): number; speed(): number; duration(): number; frames(): number; drawMs(): number; waypoints(): number; marked(): number;
@@ -16,5 +16,8 @@ interface HTMLElement {
 interface Window {
   coverbenchPlayback(raw: any): void;
   coverbenchAttachPlayer(figure: HTMLElement): void;
+  coverbenchPlots: { show(exp: string, query: URLSearchParams): Promise<void>; drawn(): any; figure(): any; svgText(): string; pngBlob(): Promise<Blob> };
+  Plot?: any;  // Observable Plot and d3, loaded by plots.js from /vendor/
+  d3?: any;
   coverbenchWorkbench: { setProblem(problem: object): void; plan(): Promise<void>; check(): Promise<void> };
 }

@@ -355,7 +355,7 @@ class Doors(unittest.TestCase):
         self.assert_alive()
 
     def test_the_runs_tables_parameters_are_refused_by_name(self):
-        """The runs' query (filters, ranges, sort, paging) and runs.csv: each bad value a one-line 400
+        """The runs' query (filters, ranges, sort, paging), runs.csv and the plots' values: each bad value a one-line 400
         naming its parameter; a page is at most 1000 runs; nothing ends the server."""
         with tempfile.TemporaryDirectory(prefix="coverbench-doors-runs-") as work:
             os.makedirs(os.path.join(work, "walls"))
@@ -378,6 +378,18 @@ class Doors(unittest.TestCase):
                         self.assertEqual(status, 400, (path, query[:80], answer))
                         self.assert_one_line_error(answer)
                         self.assertTrue(answer["error"].startswith(name + ": "), (path, query[:80], answer))
+                # The plots' values: the same filters, and the metrics by name.
+                values = "/api/experiments/0/1/values"
+                for query, name in (("", "metric"), ("metric=%FF%FE%00", "metric"), ("metric=overlap&metric=turns", "metric"),
+                                    ("metric=overlap&versus=" + "x" * 5000, "versus"), ("metric=overlap&versus=%0A", "versus"),
+                                    ("metric=overlap&max.overlap=inf", "max.overlap"), ("metric=overlap&offset=0", "offset"),
+                                    ("versus=overlap", "metric"), ("metric=overlap&sort=%FF", "sort")):
+                    status, answer = self.request("GET", f"{values}?{query}", port=port)
+                    self.assertEqual(status, 400, (query[:80], answer))
+                    self.assert_one_line_error(answer)
+                    self.assertTrue(answer["error"].startswith(name + ": "), (query[:80], answer))
+                status, answer = self.request("GET", f"{values}?metric=overlap&versus=turns&planner=spiral", port=port)
+                self.assertEqual((status, answer["total"], len(answer["runs"]["versus"])), (200, 1, 1))
                 # An address over httplib's 8192 bytes: 414, as JSON.
                 for query in ("&".join(f"p{i}=1" for i in range(2000)), "offset=" + "9" * 10000):
                     status, answer = self.request("GET", f"{runs}?{query}", port=port)

@@ -150,6 +150,7 @@ class Serve(unittest.TestCase):
         with open(os.path.join(SOURCE, "docs", "openapi.yaml")) as f:
             paths = set(yaml.safe_load(f)["paths"])
         served = {"/api/experiments", "/api/experiments/{db}/{id}/runs", "/api/experiments/{db}/{id}/runs.csv", "/api/metrics",
+                  "/api/experiments/{db}/{id}/values",
                   "/api/experiments/{db}/{id}/runs/{key}/picture.svg",
                   "/api/experiments/{db}/{id}/runs/{key}/playback.js", "/api/experiments/{db}/{id}/runs/{key}/problem",
                   "/api/experiments/{db}/{id}/runs/{key}/outcome",
