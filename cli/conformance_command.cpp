@@ -164,7 +164,10 @@ int conformanceCommand(const ConformanceOptions& o) {
             "region F is one piece, a valid `ok` path; where F is in several pieces, a valid `partial` path with its "
             "reason; where F is empty, `no_reachable_area` with its reason. `crash`, `timeout`, `memory_limit`, "
             "`error`, `invalid_output` (an invalid path) and `metrics_error` fail. An `ok` path keeps the promise where "
-            "it applies, and a second plan gives the same path bit for bit. "
+            "it applies, and a second plan gives the same path bit for bit. `ok` means no reachable part left out, not "
+            "100 % of the reachable area R: a round tool's finite path leaves slivers at the ends of rows and in F's "
+            "corners, and the promise is the least coverage_reachable the planner claims (docs/run_lifecycle.md, "
+            "\"What ok leaves\"). "
             "Plan time is the first plan's wall-clock time on this machine (measured, not checked).\n\n";
     text += "| wall | s | c | expected | status | valid | same path twice | coverage_reachable | promise | plan ms | passed |\n";
     text += "|---|---|---|---|---|---|---|---|---|---|---|\n";

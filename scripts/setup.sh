@@ -70,8 +70,9 @@ echo "== building $build (first build takes two to three minutes on 2 cores)"
 cmake --build "$build" -j 2
 
 # The explorer's plots (reports/web/plots.js) draw with Observable Plot on d3, pinned here and
-# installed into the build, which `coverbench serve` serves them from (the page needs no network).
-vendor="$build/web-vendor"
+# installed into reports/web/vendor (not in git), which `coverbench serve` serves them from, in
+# every build (the page needs no network).
+vendor="reports/web/vendor"
 if [ ! -f "$vendor/node_modules/@observablehq/plot/dist/plot.umd.min.js" ] || [ ! -f "$vendor/node_modules/d3/dist/d3.min.js" ]; then
   echo "== installing the explorer's charting library into $vendor"
   if ! command -v npm >/dev/null; then  # Debian's npm, unless the Node.js installed brings its own
