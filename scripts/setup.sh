@@ -29,6 +29,7 @@ PACKAGES=("${MAIN_PACKAGES[@]}"
           python3-venv python3-pip mypy python3-pandas             # its install, type and DataFrame tests
           chromium python3-websocket                               # the browser test of the report
           node-typescript                                          # type-checks the explorer's JavaScript (ctest web_types)
+          npm                                                      # installs axe-core for the accessibility check (below)
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
           universal-ctags                                          # the functions' sizes (scripts/unit_sizes.sh)
@@ -68,6 +69,16 @@ if [ ! -f "$build/build.ninja" ] || grep -qE '^COVERBENCH_(BUILD_TESTS|BUILD_BEN
 fi
 echo "== building $build (first build takes two to three minutes on 2 cores)"
 cmake --build "$build" -j 2
+
+# axe-core, the accessibility check of the explorer's page (ctest serve_a11y): Debian has no
+# package of it, so npm's, at a pinned version, into $build/node (the test reads axe.min.js from
+# there and injects it into the page; nothing is fetched while the tests run).
+AXE_VERSION=4.14.1
+axe="$build/node/node_modules/axe-core"
+if [ ! -f "$axe/axe.min.js" ] || ! grep -q "\"version\": \"$AXE_VERSION\"" "$axe/package.json"; then
+  echo "== installing axe-core $AXE_VERSION into $build/node"
+  npm install --prefix "$build/node" --no-save --no-audit --no-fund --loglevel=error "axe-core@$AXE_VERSION" >/dev/null
+fi
 
 # `import coverbench` anywhere: `python3 -m pip install ./python` into a virtual environment (or
 # --user), which reuses this build (README.md, "From Python").

@@ -6,7 +6,7 @@
 // tool moves at the mean speed the time model gives that segment.
 //
 // Each player is reachable as figure.coverbenchPlayer (play, pause, seek, setSpeed, time,
-// duration, frames, drawMs) for the browser tests and bench/playback_fps.py, and each picture's
+// playing, duration, frames, drawMs) for the browser tests and bench/playback_fps.py, and each picture's
 // pan and zoom as figure.coverbenchZoom (set, zoom, view).
 "use strict";
 (function () {
@@ -254,7 +254,8 @@
     let raf = 0;  // the one pending animation frame, so that a pause and a play never leave two
     function tick(now) {
       if (!playing) return;
-      time = Math.min(d.end, anchorTime + (now - anchorClock) / 1000 * rate);
+      // A frame's time stamp may be earlier than the moment play was pressed: never before it.
+      time = Math.min(d.end, anchorTime + Math.max(0, now - anchorClock) / 1000 * rate);
       if (time >= d.end) playing = false;
       draw();
       if (playing) raf = requestAnimationFrame(tick);
@@ -287,6 +288,7 @@
         speed.value = String(s);
       },
       time: () => time,
+      playing: () => playing,
       speed: () => rate,
       duration: () => d.end,
       frames: () => frames,
@@ -387,8 +389,11 @@
       start.disabled = true;
       const src = figure.dataset.playback;
       load(src, () => {
+        const focused = document.activeElement === start;
         start.remove();
         makePlayer(figure, loaded.get(src)).play();
+        // The focus stays where it was: on the play button that took the start button's place.
+        if (focused) figure.querySelector(".player-bar button")?.focus();
       }, () => {
         start.textContent = "playback data missing: " + src;
       });
