@@ -125,6 +125,7 @@
     button.type = "button";
     const speed = document.createElement("select");
     speed.title = "speed, times the time model's";
+    speed.setAttribute("aria-label", "speed");
     for (const s of SPEEDS) speed.add(new Option(s + "x", String(s), s === DEFAULT_SPEED, s === DEFAULT_SPEED));
     const scrub = document.createElement("input");
     scrub.type = "range";
@@ -133,6 +134,7 @@
     scrub.step = "any";
     scrub.value = "0";
     scrub.title = "time";
+    scrub.setAttribute("aria-label", "time");
     const clock = document.createElement("span");
     clock.className = "player-clock";
     bar.append(button, speed, scrub, clock);
