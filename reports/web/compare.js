@@ -2,7 +2,7 @@
 // pictures played on one clock (the time models' seconds) with one play button, one speed and one
 // time slider for all, a readout of the time and its share of the longest run, and the runs'
 // metrics in one table with the better value of each marked (the metric registry's `better`:
-// +1 higher, -1 lower, 0 not compared). Each picture's own player is held paused and set to the
+// +1 higher, -1 lower, 0 not compared; values within its tie tolerances count as equal). Each picture's own player is held paused and set to the
 // clock's time on every frame, so all the playheads show the same moment.
 "use strict";
 (function () {
@@ -145,14 +145,16 @@
       row.appendChild(th);
       const values = runs.map(r => r.metrics[name]);
       const known = values.filter(v => v !== undefined && v !== null);
-      const better = specs.get(name)?.better || 0;
+      const spec = specs.get(name), better = spec?.better || 0;
       const best = better > 0 ? Math.max(...known) : Math.min(...known);
-      const marked = better !== 0 && known.length >= 2 && known.some(v => v !== best);
+      // Equal as the report's statistics say (stats.py): within the registry's tie tolerances.
+      const tied = v => Math.abs(v - best) <= (spec?.tie_absolute || 0) + (spec?.tie_relative || 0) * Math.max(Math.abs(v), Math.abs(best));
+      const marked = better !== 0 && known.length >= 2 && !known.every(tied);
       for (const v of values) {
         const td = row.insertCell();
         td.textContent = formatted(name, v);
         if (v !== undefined && v !== null) td.title = String(v);
-        if (marked && v === best) {
+        if (marked && v !== undefined && v !== null && tied(v)) {
           td.className = "better";
           td.append(" \u2605");
         }

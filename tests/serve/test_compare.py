@@ -5,7 +5,7 @@
   with the same tool: one play button, one time slider and one clock readout for all, no picture
   with a play button of its own; the clock reads 0.0 s at first; after play and after a seek every
   picture's playhead is at the clock's time (within a frame); the metrics table marks the better
-  value as the registry's direction says; the pictures are at least 600 px wide, two a row at
+  value as the registry's direction says; Space on a table row plays and pauses the clock; the pictures are at least 600 px wide, two a row at
   1280 px; the address holds the compared runs and the time, and reopens them;
 - the keys: Tab reaches the "skip to the player" link first and Enter on it takes the focus to
   the play button; Enter on a focused row opens that run and the focus stays on the row; Space
@@ -27,7 +27,9 @@ import urllib.request
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "browser"))
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "..", "reports", "python"))
 from check_page import errors, opened  # noqa: E402
+from coverbench_report import stats  # noqa: E402
 from test_table import BIN, CONFIG, HELPERS, SHOTS, start_server, stop_server  # noqa: E402
 
 FRAME = 1 / 60
@@ -106,7 +108,24 @@ class Compare(unittest.TestCase):
                 return {first, playing, paused, seeked, href: location.href};
             })()""")
             page.screenshot(os.path.join(SHOTS, "compare-from-run.png"))
+            # Space, with the focus on a row of the table, plays and pauses the shared clock.
+            page.evaluate("document.querySelector('#runs tbody tr').focus()")
+            press(page, " ")
+            spaced = page.evaluate("(async () => {" + HELPERS + """
+                const all = $('viewer').coverbenchCompare, t0 = all.time();
+                await until(() => all.playing() && all.time() > t0, 'Space playing the clock');
+                return t0;
+            })()""")
+            press(page, " ")
+            space_paused = page.evaluate("""(() => { const all = document.getElementById('viewer').coverbenchCompare;
+                return {playing: all.playing(), after: all.time(),
+                        apart: Math.max(...all.players.map(p => Math.abs(p.time() - Math.min(all.time(), p.duration()))))}; })()""")
+            page.evaluate("document.querySelector('table.compare-metrics').scrollIntoView()")
+            page.screenshot(os.path.join(SHOTS, "compare-metrics.png"))
             self.assertEqual(errors(page.events), [])
+        self.assertFalse(space_paused["playing"])
+        self.assertGreater(space_paused["after"], spaced)
+        self.assertLessEqual(space_paused["apart"], FRAME)
         f = r["first"]
         # Every planner's run on that wall with that tool, each once.
         wall_runs = self.get(self.runs_path + "?key=" + f["keys"][0])["runs"][0]
@@ -132,12 +151,13 @@ class Compare(unittest.TestCase):
         for metric, marks in f["marked"].items():
             values = [by_key[k]["metrics"].get(metric) for k in f["keys"]]
             known = [v for v in values if v is not None]
-            better = self.specs.get(metric, {}).get("better", 0)
-            if better == 0 or len(known) < 2 or len(set(known)) == 1:
+            spec = self.specs.get(metric, {"better": 0, "tie_absolute": 0, "tie_relative": 0})
+            best = (max(known) if spec["better"] > 0 else min(known)) if known else None
+            tied = [v is not None and stats.tied(spec, v, best) for v in values]  # equal as the report's statistics say
+            if spec["better"] == 0 or len(known) < 2 or all(t for t, v in zip(tied, values) if v is not None):
                 self.assertEqual(marks, [False] * len(values), metric)
                 continue
-            best = max(known) if better > 0 else min(known)
-            self.assertEqual(marks, [v == best for v in values], metric)
+            self.assertEqual(marks, tied, metric)
             checked += 1
         self.assertGreater(checked, 5)
         # In step: while playing, paused and after a seek, every playhead at the clock's time.
