@@ -2,8 +2,8 @@
 // server, filtered by facet, wall, planner parameter and metric range, sorted by any column; a
 // run's picture that plays back (player.js); and runs on one wall side by side, played on one
 // clock (compare.js). The view (experiment, filters, sort, page, columns, the open run or the
-// compared runs and the playback time, the tab) is the page's address: every change is a history entry, back and
-// forward return to it, and a copied address shows the same view. An answer is shown only if it
+// compared runs and the playback time, the tab) is the page's address: every change is a
+// history entry, back and forward return to it, and a copied address shows the same view. An answer is shown only if it
 // answers the latest request. Everything shown from data is set as text, never as markup.
 "use strict";
 (function () {

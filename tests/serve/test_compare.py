@@ -229,7 +229,8 @@ class Compare(unittest.TestCase):
             page.events = [e for e in page.events if e.get("method") != "Page.loadEventFired"]
             page.call("Page.navigate", url=href)
             page.wait_for("Page.loadEventFired")
-            page.evaluate("(async () => {" + HELPERS + "await ready(); await until(() => document.querySelector('#viewer figure[data-playback]'), 'the run'); })()")
+            page.evaluate("(async () => {" + HELPERS + "await ready(); const fig = () => document.querySelector('#viewer figure[data-playback]'); "
+                          "await until(() => fig() && fig().dataset.restored, 'the player held at the address time'); })()")
             tabs = 0
             while tabs < 5 and page.evaluate(focus) != "skip-player":
                 press(page, "Tab")
