@@ -202,6 +202,11 @@ class Compare(unittest.TestCase):
                 return {run: new URLSearchParams(location.search).get('run'), focus: document.activeElement.dataset.key || document.activeElement.tagName};
             })()""")
             # Space plays (starting the player), Space again pauses: the focus never leaves the row.
+            # Every time the player shows is watched: none may be before 0 s.
+            page.evaluate("""(() => { window.negative = [];
+                new MutationObserver(ms => { for (const m of ms) { const t = m.target.dataset.playhead;
+                    if (t !== undefined && Number(t) < 0) window.negative.push(t); } })
+                  .observe(document.getElementById('viewer'), {subtree: true, attributes: true, attributeFilter: ['data-playhead']}); })()""")
             press(page, " ")
             played = page.evaluate("(async () => {" + HELPERS + """
                 const fig = document.querySelector('#viewer figure[data-playback]');
@@ -211,6 +216,7 @@ class Compare(unittest.TestCase):
             press(page, " ")
             paused = page.evaluate("""(() => { const p = document.querySelector('#viewer figure[data-playback]').coverbenchPlayer;
                 return {playing: p.playing(), focus: document.activeElement.dataset.key || document.activeElement.tagName}; })()""")
+            negative = page.evaluate("window.negative")
             page.evaluate("document.querySelector('#viewer figure[data-playback]').coverbenchPlayer.seek(20)")
             steps = []
             for arrow, shift in (("ArrowRight", False), ("ArrowRight", True), ("ArrowLeft", False), ("ArrowLeft", True)):
@@ -258,6 +264,7 @@ class Compare(unittest.TestCase):
         self.assertEqual(opened_run, {"run": key, "focus": key})
         self.assertEqual(played, key)
         self.assertEqual(paused, {"playing": False, "focus": key})
+        self.assertEqual(negative, [])  # the player's clock never reads before 0 s (it read -0.3 s)
         self.assertEqual([round(t, 9) for t in steps], [21, 31, 30, 20])
         self.assertTrue(replay)
         self.assertLessEqual(tabs, 1)
