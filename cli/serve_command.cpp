@@ -35,6 +35,8 @@ const std::map<std::string, std::pair<std::string, std::string>>& pageFiles() {
       {"/explorer.js", {COVERBENCH_WEB_DIR "/explorer.js", "text/javascript; charset=utf-8"}},
       {"/workbench.js", {COVERBENCH_WEB_DIR "/workbench.js", "text/javascript; charset=utf-8"}},
       {"/plots.js", {COVERBENCH_WEB_DIR "/plots.js", "text/javascript; charset=utf-8"}},
+      {"/compare.js", {COVERBENCH_WEB_DIR "/compare.js", "text/javascript; charset=utf-8"}},
+      {"/keyboard.js", {COVERBENCH_WEB_DIR "/keyboard.js", "text/javascript; charset=utf-8"}},
       {"/player.js", {COVERBENCH_REPORT_PYTHONPATH "/coverbench_report/player.js", "text/javascript; charset=utf-8"}},
   };
   return files;

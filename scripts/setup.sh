@@ -29,6 +29,7 @@ PACKAGES=("${MAIN_PACKAGES[@]}"
           python3-venv python3-pip mypy python3-pandas             # its install, type and DataFrame tests
           chromium python3-websocket                               # the browser test of the report
           node-typescript                                          # type-checks the explorer's JavaScript (ctest web_types)
+          npm                                                      # installs axe-core for the accessibility check (below)
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
           universal-ctags                                          # the functions' sizes (scripts/unit_sizes.sh)
@@ -69,18 +70,27 @@ fi
 echo "== building $build (first build takes two to three minutes on 2 cores)"
 cmake --build "$build" -j 2
 
-# The explorer's plots (reports/web/plots.js) draw with Observable Plot on d3, pinned here and
-# installed into reports/web/vendor (not in git), which `coverbench serve` serves them from, in
-# every build (the page needs no network).
+# The explorer's front-end packages from the npm registry, pinned, into reports/web/vendor (not in
+# git; one install for every build): Observable Plot on d3, which the Plots tab draws with and
+# `coverbench serve` serves (the page needs no network), and axe-core, which the accessibility
+# test (ctest serve_a11y) injects into the page (Debian packages none of them).
 vendor="reports/web/vendor"
-if [ ! -f "$vendor/node_modules/@observablehq/plot/dist/plot.umd.min.js" ] || [ ! -f "$vendor/node_modules/d3/dist/d3.min.js" ]; then
-  echo "== installing the explorer's charting library into $vendor"
+npm_packages=(@observablehq/plot@0.6.17 d3@7.9.0 axe-core@4.14.1)
+installed() {
+  local p
+  for p in "${npm_packages[@]}"; do
+    local name="${p%@*}" version="${p##*@}"
+    grep -q "\"version\": \"$version\"" "$vendor/node_modules/$name/package.json" 2>/dev/null || return 1
+  done
+}
+if ! installed; then
+  echo "== installing the explorer's npm packages into $vendor: ${npm_packages[*]}"
   if ! command -v npm >/dev/null; then  # Debian's npm, unless the Node.js installed brings its own
     SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
     $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq -o DPkg::Lock::Timeout=300 npm >/dev/null
   fi
   mkdir -p "$vendor"
-  npm install --prefix "$vendor" --no-audit --no-fund --no-save --ignore-scripts @observablehq/plot@0.6.17 d3@7.9.0 >/dev/null
+  npm install --prefix "$vendor" --no-audit --no-fund --no-save --ignore-scripts --loglevel=error "${npm_packages[@]}" >/dev/null
 fi
 
 # `import coverbench` anywhere: `python3 -m pip install ./python` into a virtual environment (or

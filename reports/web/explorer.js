@@ -1,9 +1,9 @@
 // The explorer's page (`coverbench serve`): experiments, their runs in a table paged by the
 // server, filtered by facet, wall, planner parameter and metric range, sorted by any column; a
-// run's picture that plays back (player.js); and two to four runs on one wall side by side,
-// played in step. The view (experiment, filters, sort, page, columns, the open run and its
-// playback time, the tab) is the page's address: every change is a history entry, back and
-// forward return to it, and a copied address shows the same view. An answer is shown only if it
+// run's picture that plays back (player.js); and runs on one wall side by side, played on one
+// clock (compare.js). The view (experiment, filters, sort, page, columns, the open run or the
+// compared runs and the playback time, the tab) is the page's address: every change is a
+// history entry, back and forward return to it, and a copied address shows the same view. An answer is shown only if it
 // answers the latest request. Everything shown from data is set as text, never as markup.
 "use strict";
 (function () {
@@ -11,9 +11,9 @@
   const TEXT_COLUMNS = ["wall_name", "planner", "dataset", "status"];
   const PAGE_SIZES = [50, 100, 200, 500, 1000];
   /** The address's names that are not the runs API's. */
-  const PAGE_NAMES = ["exp", "cols", "run", "t", "tab"];
+  const PAGE_NAMES = ["exp", "cols", "run", "cmp", "t", "tab"];
   /**
-   * @typedef {{exp: string, query: URLSearchParams, cols: string[] | null, run: string, t: number | null, tab: string}} View
+   * @typedef {{exp: string, query: URLSearchParams, cols: string[] | null, run: string, cmp: string[], t: number | null, tab: string}} View
    */
   const state = {
     /** @type {View | null} */ view: null,
@@ -25,6 +25,7 @@
     /** @type {AbortController | null} */ pending: null,
     opened: 0,                       // the latest opened run's number
     chosen: "",                      // the key of the run in the viewer
+    comparing: "",                   // the keys of the compared runs in the viewer, comma-separated
     picked: new Map(),               // key -> run, for the comparison
     restoring: false,                // a player being held at the address's time
   };
@@ -99,7 +100,8 @@
     for (const [k, v] of all) if (!PAGE_NAMES.includes(k)) query.append(k, v);
     const t = all.get("t");
     return {exp: all.get("exp") || "", query, cols: all.has("cols") ? all.get("cols").split(",").filter(Boolean) : null,
-            run: all.get("run") || "", t: t !== null && t !== "" && Number.isFinite(Number(t)) ? Number(t) : null,
+            run: all.get("run") || "", cmp: (all.get("cmp") || "").split(",").filter(k => /^[0-9a-f]{64}$/.test(k)),
+            t: t !== null && t !== "" && Number.isFinite(Number(t)) ? Number(t) : null,
             tab: all.get("tab") || ""};
   }
   /** @param {View} v */
@@ -108,13 +110,14 @@
     for (const [k, value] of v.query) out.append(k, value);
     if (v.cols) out.set("cols", v.cols.join(","));
     if (v.run) out.set("run", v.run);
-    if (v.run && v.t !== null) out.set("t", v.t.toFixed(3));
+    if (v.cmp.length) out.set("cmp", v.cmp.join(","));
+    if ((v.run || v.cmp.length) && v.t !== null) out.set("t", v.t.toFixed(3));
     if (v.tab) out.set("tab", v.tab);
     return "?" + out.toString();
   }
   /**
    * The view changed as `change` says, made a history entry (or the current one, `replace`) and shown.
-   * @param {{exp?: string, query?: URLSearchParams, cols?: string[] | null, run?: string, t?: number | null, tab?: string}} change
+   * @param {{exp?: string, query?: URLSearchParams, cols?: string[] | null, run?: string, cmp?: string[], t?: number | null, tab?: string}} change
    */
   function go(change, replace = false) {
     const view = {...state.view, ...change};
@@ -139,9 +142,16 @@
     setControls(view, state.answer);
     const key = view.exp + "?" + view.query;
     const table = key === state.shown ? null : loadRuns(view, key);
-    if (view.run !== state.chosen) openRun(view).catch(showError);
-    else if (view.run) seekTo(view.t);
-    if (!view.run) closeRun();
+    const cmp = view.cmp.join(",");
+    if (cmp) {
+      if (cmp !== state.comparing) openCompare(view).catch(showError);
+      else seekCompare(view.t);
+    } else {
+      if (state.comparing) closeCompare();
+      if (view.run !== state.chosen) openRun(view).catch(showError);
+      else if (view.run) seekTo(view.t);
+      if (!view.run) closeRun();
+    }
     await table;
   }
 
@@ -279,9 +289,16 @@
     for (const c of [...TEXT_COLUMNS, ...columns]) {
       const th = document.createElement("th");
       const unit = unitLabel(c);
-      th.textContent = c + (unit ? ` (${unit})` : "") + (sort === c ? (order === "asc" ? " \u25b2" : " \u25bc") : "");
+      // A button in the heading, so that the keyboard sorts too (Enter or Space).
+      const sorter = document.createElement("button");
+      sorter.type = "button";
+      sorter.className = "sort";
+      sorter.textContent = c + (unit ? ` (${unit})` : "") + (sort === c ? (order === "asc" ? " \u25b2" : " \u25bc") : "");
+      sorter.title = (state.specs.get(c)?.description || c) + ": sort by it";
+      th.appendChild(sorter);
       th.dataset.column = c;
-      th.title = (state.specs.get(c)?.description || c) + ": click to sort";
+      th.scope = "col";
+      if (sort === c) th.setAttribute("aria-sort", order === "asc" ? "ascending" : "descending");
       if (TEXT_COLUMNS.includes(c)) th.className = "text";
       th.addEventListener("click", () => go({query: changedQuery({sort: c, order: sort === c && order === "asc" ? "desc" : "asc"})}));
       hr.appendChild(th);
@@ -291,10 +308,12 @@
     for (const run of r.runs) {
       const row = body.insertRow();
       row.dataset.key = run.key;
+      row.tabIndex = 0;  // reached by Tab, opened with Enter
       if (run.key === state.chosen) row.className = "chosen";
       const pick = document.createElement("input");
       pick.type = "checkbox";
       pick.className = "pick";
+      pick.setAttribute("aria-label", `compare ${run.planner} on ${run.wall_name}`);
       pick.checked = state.picked.has(run.key);
       pick.addEventListener("click", e => e.stopPropagation());
       pick.addEventListener("change", () => {
@@ -307,7 +326,10 @@
       cell(row, run.dataset, "text");
       cell(row, run.status, "text");
       for (const c of columns) cell(row, formatted(c, run.metrics[c]), "", run.metrics[c] === undefined ? "" : String(run.metrics[c]));
-      row.addEventListener("click", () => go({run: run.key, t: null}));
+      row.addEventListener("click", () => go({run: run.key, cmp: [], t: null}));
+      row.addEventListener("keydown", e => {
+        if (e.key === "Enter" && e.target === row) { e.preventDefault(); go({run: run.key, cmp: [], t: null}); }
+      });
     }
   }
 
@@ -344,63 +366,58 @@
     return figure;
   }
 
-  // The picked runs side by side, played in step: one clock (the time models' seconds) for all.
-  async function compare() {
-    const runs = [...state.picked.values()];
-    // No run is open: the address says so (this entry), and the viewer holds the comparison.
+  /** The runs of `keys`: from the table's answer where it has them, else asked for by key. */
+  async function runsByKey(exp, keys) {
+    const [db, id] = exp.split("/");
+    const have = state.answer && state.shown.startsWith(exp + "?") ? state.answer.runs : [];
+    return Promise.all(keys.map(async key => {
+      const run = have.find(r => r.key === key) || (await api(`/api/experiments/${db}/${id}/runs?key=${key}&limit=1`)).runs[0];
+      if (!run) throw new Error(`experiment ${exp} has no run ${key}`);
+      return run;
+    }));
+  }
+
+  // The view's compared runs side by side on one clock (compare.js), across the page's width.
+  /** @param {View} view */
+  async function openCompare(view) {
+    const seq = ++state.opened, cmp = view.cmp.join(",");
+    const hadFocus = $("viewer").contains(document.activeElement) || document.activeElement === document.body;
     state.chosen = "";
+    state.comparing = cmp;
+    for (const r of $("runs").tBodies[0].rows) r.className = "";
+    const runs = await runsByKey(view.exp, view.cmp);
+    if (seq !== state.opened) return;
+    $("experiments").classList.add("comparing");
+    const all = await window.coverbenchCompareView.open($("viewer"), runs, {
+      figureFor, formatted, specs: state.specs, t: view.t, alive: () => seq === state.opened});
+    if (all && hadFocus) /** @type {HTMLElement} */ ($("viewer").querySelector(".compare-play")).focus();
+  }
+  function closeCompare() {
+    state.comparing = "";
     ++state.opened;
-    state.view = {...state.view, run: "", t: null};
-    history.replaceState(null, "", addressOf(state.view));
-    const viewer = $("viewer");
-    viewer.textContent = "";
-    const grid = document.createElement("div");
-    grid.className = "compare";
-    const figures = runs.map(figureFor);
-    grid.append(...figures);
-    const bar = document.createElement("div");
-    bar.className = "player-bar";
-    const button = document.createElement("button");
-    button.type = "button";
-    button.textContent = "\u25b6 play all";
-    const speed = document.createElement("select");
-    for (const s of [0.25, 0.5, 1, 2, 5, 10, 20]) speed.add(new Option(s + "x", String(s), s === 5, s === 5));
-    const scrub = document.createElement("input");
-    scrub.type = "range";
-    scrub.min = "0";
-    scrub.step = "any";
-    scrub.value = "0";
-    bar.append(button, speed, scrub);
-    viewer.append(bar, grid);
-    const players = [];
-    for (const f of figures) {
-      if (!f.dataset.playback) continue;
-      window.coverbenchAttachPlayer(f);
-      /** @type {HTMLButtonElement} */ (f.querySelector(".player-start")).click();
-    }
-    for (let k = 0; k < 400 && figures.some(f => f.dataset.playback && !f.coverbenchPlayer); ++k)
-      await new Promise(r => setTimeout(r, 25));
-    for (const f of figures) if (f.coverbenchPlayer) { f.coverbenchPlayer.pause(); players.push(f.coverbenchPlayer); }
-    scrub.max = String(Math.max(0, ...players.map(p => p.duration())));
-    let playing = false;
-    const all = {
-      players,
-      play() { playing = true; const t = Number(scrub.value); for (const p of players) { p.setSpeed(Number(speed.value)); p.seek(t); p.play(); } button.textContent = "\u275a\u275a pause all"; },
-      pause() { playing = false; for (const p of players) p.pause(); button.textContent = "\u25b6 play all"; },
-      seek(t) { scrub.value = String(t); for (const p of players) p.seek(t); },
-      setSpeed(s) { speed.value = String(s); for (const p of players) p.setSpeed(s); },
-      times: () => players.map(p => p.time()),
-    };
-    button.addEventListener("click", () => (playing ? all.pause() : all.play()));
-    speed.addEventListener("change", () => all.setSpeed(Number(speed.value)));
-    scrub.addEventListener("input", () => all.seek(Number(scrub.value)));
-    const follow = () => {
-      if (playing) scrub.value = String(Math.max(...players.map(p => p.time())));
-      if (viewer.contains(bar)) requestAnimationFrame(follow);
-    };
-    requestAnimationFrame(follow);
-    viewer.coverbenchCompare = all;
-    return all;
+    $("experiments").classList.remove("comparing");
+    const p = document.createElement("p");
+    p.textContent = "Choose a run to see its path and play it back.";
+    $("viewer").replaceChildren(p);
+    stopCompare();
+  }
+  function stopCompare() {
+    $("viewer").coverbenchCompare?.pause();
+    delete $("viewer").coverbenchCompare;
+  }
+  function seekCompare(t) {
+    const all = $("viewer").coverbenchCompare;
+    if (t === null || !all || Math.abs(all.time() - t) < 0.0005) return;
+    all.pause();
+    all.seek(t);
+  }
+  /** Every planner configuration's run on `run`'s wall with its tool: the table filtered to them, and compared. */
+  async function compareWall(run) {
+    const [db, id] = state.view.exp.split("/");
+    const q = new URLSearchParams({wall: run.wall_name, tool: run.tool, dataset: run.dataset, limit: "1000"});
+    const r = await api(`/api/experiments/${db}/${id}/runs?${q}`);
+    const keys = r.runs.filter(o => o.wall === run.wall).map(o => o.key);
+    go({query: changedQuery({wall: run.wall_name, tool: run.tool, dataset: run.dataset, planner: null}), run: "", cmp: keys, t: null});
   }
 
   // --- the run in the viewer ------------------------------------------------------------------
@@ -461,8 +478,17 @@
   }
   // The open run's playback time, kept in the address (the current entry) as it changes.
   function followPlayback() {
-    const player = $("viewer").querySelector("figure[data-playback]")?.coverbenchPlayer;
     const v = state.view;
+    const all = $("viewer").coverbenchCompare;
+    if (v && v.cmp.length && all && state.comparing === v.cmp.join(",")) {
+      const t = Math.round(all.time() * 1000) / 1000;
+      if (v.t === null ? t > 0 : Math.abs(t - v.t) >= 0.0005) {
+        state.view = {...v, t};
+        history.replaceState(null, "", addressOf(state.view));
+      }
+      return;
+    }
+    const player = $("viewer").querySelector("figure[data-playback]")?.coverbenchPlayer;
     if (!player || !v || !v.run || state.chosen !== v.run || state.restoring) return;
     const t = Math.round(player.time() * 1000) / 1000;
     if (v.t === null ? t > 0 : Math.abs(t - v.t) >= 0.0005) {
@@ -473,6 +499,8 @@
 
   function showRun(run) {
     state.chosen = run.key;
+    $("experiments").classList.remove("comparing");
+    stopCompare();
     for (const r of $("runs").tBodies[0].rows) r.className = r.dataset.key === run.key ? "chosen" : "";
     const viewer = $("viewer");
     viewer.textContent = "";
@@ -514,7 +542,7 @@
         window.coverbenchWorkbench.setProblem(p);
       } catch (e) { showError(e); }
     });
-    button("same-wall", "other planners on this wall", () => go({query: changedQuery({wall: run.wall_name, planner: null})}));
+    button("same-wall", "other planners on this wall", () => compareWall(run).catch(showError));
     viewer.insertBefore(tools, figure);
   }
 
@@ -568,7 +596,7 @@
   // --- wiring ---------------------------------------------------------------------------------
 
   function listen() {
-    $("experiment").addEventListener("change", () => go({exp: $("experiment").value, query: new URLSearchParams(), run: "", t: null}));
+    $("experiment").addEventListener("change", () => go({exp: $("experiment").value, query: new URLSearchParams(), run: "", cmp: [], t: null}));
     for (const [name, id] of FACETS) $(id).addEventListener("change", () => go({query: changedQuery({[name]: $(id).value})}));
     $("wall").addEventListener("change", () => go({query: changedQuery({wall: $("wall").value.trim()})}));
     $("sort").addEventListener("change", () => go({query: changedQuery({sort: $("sort").value, order: $("sort").value ? $("order").value : null})}));
@@ -589,7 +617,7 @@
     });
     for (const to of ["first", "previous", "next", "last"]) $(to).addEventListener("click", () => page(to));
     for (const t of ["experiments", "workbench", "plots"]) $("tab-" + t).addEventListener("click", () => go({tab: t === "experiments" ? "" : t}));
-    $("compare").addEventListener("click", () => compare().catch(showError));
+    $("compare").addEventListener("click", () => go({run: "", cmp: [...state.picked.keys()], t: null}));
     window.addEventListener("popstate", () => show(readAddress()).catch(showError));
     setInterval(followPlayback, 250);
   }

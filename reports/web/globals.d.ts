@@ -1,12 +1,13 @@
 // What the page's scripts add to the browser's objects, for `tsc --checkJs` (ctest web_types):
-// the player (player.js), the explorer's comparison (explorer.js), the workbench (workbench.js) and the plots (plots.js).
+// the player (player.js), the explorer's comparison (compare.js), the workbench (workbench.js) and the plots (plots.js).
 interface CoverbenchPlayer {
   play(): void; pause(): void; seek(s: number): void; setSpeed(s: number): void; rescale(zoom: number): void;
-  time(): number; speed(): number; duration(): number; frames(): number; drawMs(): number; waypoints(): number; marked(): number;
+  time(): number; playing(): boolean; speed(): number; duration(): number; frames(): number; drawMs(): number; waypoints(): number; marked(): number;
 }
 interface CoverbenchZoom { set(zoom: number, cx?: number, cy?: number): void; zoom(): number; view: HTMLDivElement }
 interface CoverbenchCompare {
-  players: CoverbenchPlayer[]; play(): void; pause(): void; seek(t: number): void; setSpeed(s: number): void; times(): number[];
+  players: CoverbenchPlayer[]; play(): void; pause(): void; toggle(): void; seek(t: number): void; setSpeed(s: number): void;
+  time(): number; duration(): number; playing(): boolean; times(): number[];
 }
 interface HTMLElement {
   coverbenchPlayer?: CoverbenchPlayer;
@@ -19,5 +20,6 @@ interface Window {
   coverbenchPlots: { show(exp: string, query: URLSearchParams): Promise<void>; drawn(): any; figure(): any; svgText(): string; pngBlob(): Promise<Blob> };
   Plot?: any;  // Observable Plot and d3, loaded by plots.js from /vendor/
   d3?: any;
+  coverbenchCompareView: { open(viewer: HTMLElement, runs: any[], ctx: object): Promise<CoverbenchCompare | null> };
   coverbenchWorkbench: { setProblem(problem: object): void; plan(): Promise<void>; check(): Promise<void> };
 }

@@ -216,9 +216,14 @@
       const label = document.createElement("input");
       label.value = o.label || "";
       label.size = 8;
+      label.setAttribute("aria-label", `obstacle ${i + 1}: label`);
       label.addEventListener("input", () => { if (label.value) o.label = label.value; else delete o.label; changed(); });
       row.insertCell().appendChild(label);
-      for (const k of FIELDS[o.type] || []) row.insertCell().appendChild(numberInput(o[k], v => { o[k] = v; changed(); }));
+      for (const k of FIELDS[o.type] || []) {
+        const field = numberInput(o[k], v => { o[k] = v; changed(); });
+        field.setAttribute("aria-label", `obstacle ${i + 1}: ${k} (m)`);
+        row.insertCell().appendChild(field);
+      }
       for (let k = (FIELDS[o.type] || []).length; k < 4; ++k) row.insertCell().textContent = o.type === "polygon" && k === 0 ? `${(o.points || []).length} points` : "";
       const del = document.createElement("button");
       del.type = "button";

@@ -163,12 +163,17 @@ def play(page, shots):
     if "error" in r:
         return [r["error"]]
     problems = []
-    ratio = r["fast"]["progress"] / r["slow"]["progress"] if r["slow"]["progress"] > 0 else float("inf")
+    # Playhead seconds per second of the page's own clock at each speed: a busy machine that starts
+    # one measurement late or draws fewer frames changes both figures alike, not their ratio.
+    rate = {k: r[k]["progress"] / r[k]["seconds"] if r[k]["seconds"] > 0 else 0.0 for k in ("slow", "fast")}
+    ratio = rate["fast"] / rate["slow"] if rate["slow"] > 0 else float("inf")
     print(f"playback {r['file']} ({r['waypoints']} waypoints, {r['duration']:.1f} s): after about one second "
           f"{r['slow']['progress']:.3f} s at 0.25x ({r['slow']['frames']} frames), {r['fast']['progress']:.3f} s at 20x "
           f"({r['fast']['frames']} frames): {ratio:.1f}x")
-    if not 72.0 <= ratio <= 88.0:
-        problems.append(f"playhead at 20x moved {ratio:.1f}x as far as at 0.25x, expected 80x within 10 %")
+    # 80x within 20 %: a speed ignored (1x) or misread (40x, 160x) is far outside; frame timing on a
+    # loaded machine (a first frame 100 ms late in a one-second window) is inside.
+    if not 64.0 <= ratio <= 96.0:
+        problems.append(f"playhead at 20x moved {ratio:.1f}x as fast as at 0.25x, expected 80x within 20 %")
     # It animates: frames keep coming while it plays. How many a second is the machine's (7 at
     # 0.25x seen at load 11, 60 idle): bench/playback_fps.py measures the rate; a test must not.
     for m in (r["slow"], r["fast"]):

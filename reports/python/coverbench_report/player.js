@@ -6,7 +6,7 @@
 // tool moves at the mean speed the time model gives that segment.
 //
 // Each player is reachable as figure.coverbenchPlayer (play, pause, seek, setSpeed, time,
-// duration, frames, drawMs) for the browser tests and bench/playback_fps.py, and each picture's
+// playing, duration, frames, drawMs) for the browser tests and bench/playback_fps.py, and each picture's
 // pan and zoom as figure.coverbenchZoom (set, zoom, view).
 "use strict";
 (function () {
@@ -125,6 +125,7 @@
     button.type = "button";
     const speed = document.createElement("select");
     speed.title = "speed, times the time model's";
+    speed.setAttribute("aria-label", "speed");
     for (const s of SPEEDS) speed.add(new Option(s + "x", String(s), s === DEFAULT_SPEED, s === DEFAULT_SPEED));
     const scrub = document.createElement("input");
     scrub.type = "range";
@@ -133,6 +134,7 @@
     scrub.step = "any";
     scrub.value = "0";
     scrub.title = "time";
+    scrub.setAttribute("aria-label", "time");
     const clock = document.createElement("span");
     clock.className = "player-clock";
     bar.append(button, speed, scrub, clock);
@@ -254,7 +256,8 @@
     let raf = 0;  // the one pending animation frame, so that a pause and a play never leave two
     function tick(now) {
       if (!playing) return;
-      time = Math.min(d.end, anchorTime + (now - anchorClock) / 1000 * rate);
+      // A frame's time stamp may be earlier than the moment play was pressed: never before it.
+      time = Math.min(d.end, anchorTime + Math.max(0, now - anchorClock) / 1000 * rate);
       if (time >= d.end) playing = false;
       draw();
       if (playing) raf = requestAnimationFrame(tick);
@@ -287,6 +290,7 @@
         speed.value = String(s);
       },
       time: () => time,
+      playing: () => playing,
       speed: () => rate,
       duration: () => d.end,
       frames: () => frames,
@@ -387,8 +391,11 @@
       start.disabled = true;
       const src = figure.dataset.playback;
       load(src, () => {
+        const focused = document.activeElement === start;
         start.remove();
         makePlayer(figure, loaded.get(src)).play();
+        // The focus stays where it was: on the play button that took the start button's place.
+        if (focused) figure.querySelector(".player-bar button")?.focus();
       }, () => {
         start.textContent = "playback data missing: " + src;
       });
