@@ -100,13 +100,15 @@ void ServeApp::Impl::addExplorerRoutes() {
     const std::string path = file.first, type = file.second;
     server.Get(route, guarded([path, type](const httplib::Request&, httplib::Response& res) { res.set_content(readFile(path), type); }));
   }
-  for (const auto& [route, path] : vendorFiles())
+  for (const auto& [route, file] : vendorFiles()) {
+    const std::string path = file;  // a lambda may not capture a structured binding (C++17; clang refuses it)
     server.Get(route, guarded([path](const httplib::Request&, httplib::Response& res) {
       std::error_code ec;
       if (!fs::is_regular_file(path, ec))
-        throw HttpError(404, "the plots' charting library is not installed: run `bash scripts/setup.sh` (it installs it into the build)");
+        throw HttpError(404, "the plots' charting library is not installed: run `bash scripts/setup.sh` (it installs it into reports/web/vendor)");
       res.set_content(readFile(path), "text/javascript; charset=utf-8");
     }));
+  }
   server.Get("/api/experiments", guarded([this](const httplib::Request&, httplib::Response& res) {
     res.set_content(jsonText(explorer.experiments()), "application/json");
   }));

@@ -83,7 +83,8 @@ Explorer::Query Explorer::readQuery(Index& x, const Params& query, bool paged) {
   const auto hasMetric = [&](const std::string& m) { return std::find(x.metric_names.begin(), x.metric_names.end(), m) != x.metric_names.end(); };
   for (const auto& [name, value] : query) {
     if (!seen.insert(name).second) throw HttpError(400, shown(name) + ": given twice (each parameter is given once)");
-    const auto facet = std::find_if(std::begin(kFacetNames), std::end(kFacetNames), [&](const char* n) { return name == n; });
+    const std::string& key = name;  // a lambda may not capture a structured binding (C++17; clang refuses it)
+    const auto facet = std::find_if(std::begin(kFacetNames), std::end(kFacetNames), [&](const char* n) { return key == n; });
     if (facet != std::end(kFacetNames)) {
       const std::size_t f = static_cast<std::size_t>(facet - std::begin(kFacetNames));
       const auto& values = x.facet_values[f];

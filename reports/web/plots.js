@@ -10,7 +10,7 @@
   const KINDS = [["box", "distribution: box plot"], ["ecdf", "distribution: empirical CDF"], ["profile", "performance profile"],
                  ["sweep", "against a swept parameter"], ["scatter", "against another metric"]];
   const LIBRARY = ["/vendor/d3.min.js", "/vendor/plot.umd.min.js"];
-  const INSTALL = "The plots' charting library is not installed: run `bash scripts/setup.sh` (it installs Observable Plot into the build), then reload.";
+  const INSTALL = "The plots' charting library is not installed: run `bash scripts/setup.sh` (it installs Observable Plot into reports/web/vendor), then reload.";
   const state = {
     exp: "", filters: "",
     /** @type {Map<string, any>} */ specs: new Map(),
