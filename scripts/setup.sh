@@ -29,7 +29,6 @@ PACKAGES=("${MAIN_PACKAGES[@]}"
           python3-venv python3-pip mypy python3-pandas             # its install, type and DataFrame tests
           chromium python3-websocket                               # the browser test of the report
           node-typescript                                          # type-checks the explorer's JavaScript (ctest web_types)
-          npm                                                      # installs axe-core for the accessibility check (below)
           texlive-latex-base texlive-latex-recommended             # the test that the LaTeX tables compile
           time                                                     # peak memory in the wall-time report
           universal-ctags                                          # the functions' sizes (scripts/unit_sizes.sh)
