@@ -49,6 +49,10 @@ slow+="|Experiments.TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys|FieldScal
 # the exact judge), and repairs of the two slowest planners' paths (the other 5 run here).
 slow+="|CarFamilies.EveryPlannersSmoothedPathIsValidAndDrivable/(gable|industrial|stairwell|facade) "
 slow+="|ReplanningPlanners.EveryRepairedPathIsValid/(trapezoidal|spiral) "
+# The explorer's page tests (its table, plots, compare view, keys, accessibility and workbench in
+# headless Chromium): they check the page's behaviour; the server code they reach runs here in
+# serve and serve_doors, whose hostile requests cover the runs, values and CSV routes.
+slow+="|^serve_(table|plots|compare|a11y|workbench)$"
 echo "== the tests under AddressSanitizer and UndefinedBehaviorSanitizer"
 source scripts/ctest_costs.sh
 seed_ctest_costs $build
