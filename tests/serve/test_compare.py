@@ -14,9 +14,7 @@
 
 Every wait is for a condition with a deadline of a minute; no assertion is on a time taken.
 Screenshots in ARTIFACTS (env COVERBENCH_ARTIFACTS)."""
-import json
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -30,7 +28,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "..", "reports", "python"))
 from check_page import errors, opened  # noqa: E402
 from coverbench_report import stats  # noqa: E402
-from test_table import BIN, CONFIG, HELPERS, SHOTS, start_server, stop_server  # noqa: E402
+from test_table import Served, BIN, CONFIG, HELPERS, SHOTS, start_server  # noqa: E402
 
 FRAME = 1 / 60
 
@@ -46,7 +44,7 @@ def press(page, key, shift=False):
     page.call("Input.dispatchKeyEvent", type="keyUp", **common)
 
 
-class Compare(unittest.TestCase):
+class Compare(Served):
     @classmethod
     def setUpClass(cls):
         cls.work = tempfile.mkdtemp(prefix="coverbench-compare-")
@@ -58,15 +56,6 @@ class Compare(unittest.TestCase):
         cls.runs_path = f"/api/experiments/{cls.exp['db']}/{cls.exp['id']}/runs"
         cls.specs = {s["name"]: s for s in cls.get("/api/metrics")["metrics"]}
 
-    @classmethod
-    def tearDownClass(cls):
-        stop_server(cls.server)
-        shutil.rmtree(cls.work, ignore_errors=True)
-
-    @classmethod
-    def get(cls, path):
-        with urllib.request.urlopen(cls.base + path, timeout=60) as r:
-            return json.load(r)
 
     def test_other_planners_on_a_wall_play_on_one_clock(self):
         with opened(self.base + "/?planner=zigzag&dataset=residential", width=1280, height=1000) as page:

@@ -17,7 +17,6 @@ so the failure rules are checked. Screenshots in ARTIFACTS (env COVERBENCH_ARTIF
 import base64
 import json
 import os
-import shutil
 import sqlite3
 import statistics
 import struct
@@ -34,7 +33,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "browser"))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "reports", "python"))
 sys.path.insert(0, HERE)
 from check_page import errors, opened  # noqa: E402
-from test_table import start_server, stop_server  # noqa: E402
+from test_table import Served, start_server  # noqa: E402
 
 BIN = os.environ.get("COVERBENCH_BINARY", "build/coverbench")
 SHOTS = os.environ.get("COVERBENCH_ARTIFACTS", tempfile.gettempdir())
@@ -74,7 +73,7 @@ const yOf = el => { const m = ctm(el); return m.f + m.d * el.y1.baseVal.value; }
 """
 
 
-class Plots(unittest.TestCase):
+class Plots(Served):
     @classmethod
     def setUpClass(cls):
         cls.work = tempfile.mkdtemp(prefix="coverbench-plots-")
@@ -97,15 +96,6 @@ class Plots(unittest.TestCase):
         cls.exp = f"{exp['db']}/{exp['id']}"
         cls.values_path = f"/api/experiments/{exp['db']}/{exp['id']}/values"
 
-    @classmethod
-    def tearDownClass(cls):
-        stop_server(cls.server)
-        shutil.rmtree(cls.work, ignore_errors=True)
-
-    @classmethod
-    def get(cls, path):
-        with urllib.request.urlopen(cls.base + path, timeout=60) as r:
-            return json.load(r)
 
     @classmethod
     def stored(cls, con, metric, dataset=DATASET):

@@ -112,7 +112,22 @@ def synthesise(source, target, runs):
     return experiment
 
 
-class Table(unittest.TestCase):
+class Served(unittest.TestCase):
+    """A test class over one experiment served by `coverbench serve`: its setUpClass sets cls.work (a
+    temporary folder), cls.server and cls.base (start_server); this stops both and reads the API."""
+
+    @classmethod
+    def tearDownClass(cls):
+        stop_server(cls.server)
+        shutil.rmtree(cls.work, ignore_errors=True)
+
+    @classmethod
+    def get(cls, path):
+        with urllib.request.urlopen(cls.base + path, timeout=60) as r:
+            return json.load(r)
+
+
+class Table(Served):
     @classmethod
     def setUpClass(cls):
         cls.work = tempfile.mkdtemp(prefix="coverbench-table-")
@@ -125,15 +140,6 @@ class Table(unittest.TestCase):
         cls.runs_path = f"/api/experiments/{cls.exp['db']}/{cls.exp['id']}/runs"
         cls.specs = {s["name"]: s for s in cls.get("/api/metrics")["metrics"]}
 
-    @classmethod
-    def tearDownClass(cls):
-        stop_server(cls.server)
-        shutil.rmtree(cls.work, ignore_errors=True)
-
-    @classmethod
-    def get(cls, path):
-        with urllib.request.urlopen(cls.base + path, timeout=60) as r:
-            return json.load(r)
 
     def sql(self, query, *args):
         con = sqlite3.connect(f"file:{self.db}?mode=ro", uri=True)
