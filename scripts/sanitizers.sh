@@ -36,7 +36,13 @@ if [ ! -f $build/build.ninja ]; then
 fi
 echo "== building the sanitizer build ($build)"
 cmake --build $build -j 2
-export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:allocator_may_return_null=1
+# intercept_tls_get_addr=0: clang 14's LeakSanitizer misreads glibc 2.36's dynamic TLS blocks (it
+# guesses the glibc layout from a block's address; google/sanitizers#1322) and its tracer then
+# crashes at exit scanning a bogus range ("Tracer caught signal 11", in ScanRangeForPointers),
+# depending on where blocks happen to land: 3 of 3 runs of one car test on 2026-12-02, 0 with this
+# option. Static TLS, stacks, globals and the heap are still scanned; dynamic TLS (plug-ins'
+# thread-locals) is not, so a pointer held only there would be reported as a leak, not hidden.
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:allocator_may_return_null=1:intercept_tls_get_addr=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export COVERBENCH_TEST_SAMPLE_STRIDE=4
 slow="CarCeiling.NoDrivenPlanCoversMoreThanTheCeiling|CarSweep.RowsLeftOutAreCountedOnceAndSaidWhy"
@@ -53,11 +59,6 @@ slow+="|ReplanningPlanners.EveryRepairedPathIsValid/(trapezoidal|spiral) "
 # headless Chromium): they check the page's behaviour; the server code they reach runs here in
 # serve and serve_doors, whose hostile requests cover the runs, values and CSV routes.
 slow+="|^serve_(table|plots|compare|a11y|workbench)$"
-# Not for time: on the open family at the smallest turn radius the test passes, then
-# LeakSanitizer's own tracer crashes at the process's exit ("Tracer caught signal 11 ...
-# LeakSanitizer has encountered a fatal error"), every time on 2026-12-02 (cause not yet found;
-# the other families at that radius pass here, and the main job runs this one).
-slow+="|CarFamilies.AtTheSmallestTurnRadiusEveryPlannerPlans/open "
 echo "== the tests under AddressSanitizer and UndefinedBehaviorSanitizer"
 source scripts/ctest_costs.sh
 seed_ctest_costs $build
