@@ -24,7 +24,7 @@
     fetched: "",                          // its request
     requested: 0,
     /** @type {Promise<boolean> | null} */ library: null,
-    /** @type {any} */ drawn: null,       // what the plot shows, for the tests: {kind, series...}
+    /** @type {any} */ drawn: null,       // what the plot shows, for the tests: {kind, metric, dataset, tool, series...}
     /** @type {any} */ figure: null,
   };
   /** @param {string} id @returns {any} */
@@ -368,7 +368,7 @@
          (r.caption ? `; ${r.caption}` : ""));
     chart.append(r.plot);
     state.figure = r.plot;
-    state.drawn = r.drawn;
+    state.drawn = {...r.drawn, dataset: $("plots-dataset").value, tool: $("plots-tool").value};
   }
 
   // --- downloads ----------------------------------------------------------------------------------
