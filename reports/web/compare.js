@@ -3,10 +3,13 @@
 // time slider for all, a readout of the time and its share of the longest run, and the runs'
 // metrics in one table with the better value of each marked (the metric registry's `better`:
 // +1 higher, -1 lower, 0 not compared; values within its tie tolerances count as equal). Each picture's own player is held paused and set to the
-// clock's time on every frame, so all the playheads show the same moment.
+// clock's time on every frame, so all the playheads show the same moment. The user's change of
+// the speed is sent from the viewer as the event "coverbench:speed" ({speed}), as the player
+// sends its own (player.js). A run with no other on its wall is shown with a line saying so.
 "use strict";
 (function () {
   const SPEEDS = [0.25, 0.5, 1, 2, 5, 10, 20];
+  const DEFAULT_SPEED = 5;
 
   function fmt(s) {
     return s < 60 ? s.toFixed(1) + " s" : Math.floor(s / 60) + " min " + String(Math.floor(s % 60)).padStart(2, "0") + " s";
@@ -30,9 +33,11 @@
    * The shared clock over `players`: its bar (play, speed, slider, readout) and its controls.
    * @param {CoverbenchPlayer[]} players
    * @param {HTMLElement} viewer
+   * @param {number | null} initial the speed it starts at (null: the default)
    * @returns {{bar: HTMLElement, all: CoverbenchCompare}}
    */
-  function clockFor(players, viewer) {
+  function clockFor(players, viewer, initial) {
+    const start = initial !== null && SPEEDS.includes(initial) ? initial : DEFAULT_SPEED;
     const longest = Math.max(0, ...players.map(p => p.duration()));
     const bar = document.createElement("div");
     bar.className = "player-bar compare-bar";
@@ -42,7 +47,7 @@
     const speed = document.createElement("select");
     speed.title = "speed, times the time models'";
     speed.setAttribute("aria-label", "speed");
-    for (const s of SPEEDS) speed.add(new Option(s + "x", String(s), s === 5, s === 5));
+    for (const s of SPEEDS) speed.add(new Option(s + "x", String(s), s === start, s === start));
     const scrub = document.createElement("input");
     scrub.type = "range";
     scrub.min = "0";
@@ -55,7 +60,7 @@
     clock.setAttribute("aria-live", "off");
     bar.append(button, speed, scrub, clock);
 
-    let time = 0, rate = 5, playing = false, anchorTime = 0, anchorClock = 0, raf = 0;
+    let time = 0, rate = start, playing = false, anchorTime = 0, anchorClock = 0, raf = 0;
     function draw() {
       for (const p of players) p.seek(time);
       scrub.value = String(time);
@@ -88,12 +93,16 @@
       seek(t) { time = Math.max(0, Math.min(longest, t)); anchor(); draw(); },
       setSpeed(s) { anchor(); rate = s; speed.value = String(s); },
       time: () => time,
+      speed: () => rate,
       duration: () => longest,
       playing: () => playing,
       times: () => players.map(p => p.time()),
     };
     button.addEventListener("click", () => all.toggle());
-    speed.addEventListener("change", () => all.setSpeed(Number(speed.value)));
+    speed.addEventListener("change", () => {
+      all.setSpeed(Number(speed.value));
+      viewer.dispatchEvent(new CustomEvent("coverbench:speed", {bubbles: true, detail: {speed: rate}}));
+    });
     scrub.addEventListener("input", () => all.seek(Number(scrub.value)));
     draw();
     return {bar, all};
@@ -164,18 +173,18 @@
   }
 
   /**
-   * Opens the comparison of `runs` in `viewer`, held at `t` s: resolves with its controls once
-   * every picture's player is ready (or with null when `alive()` turns false first).
+   * Opens the comparison of `runs` in `viewer`, held at `t` s and played at `speed`: resolves with
+   * its controls once every picture's player is ready (or with null when `alive()` turns false first).
    * @param {HTMLElement} viewer
    * @param {any[]} runs
-   * @param {{figureFor: (run: any) => HTMLElement, formatted: (name: string, v: number) => string, specs: Map<string, any>, t: number | null, alive: () => boolean}} ctx
+   * @param {{figureFor: (run: any) => HTMLElement, formatted: (name: string, v: number) => string, specs: Map<string, any>, t: number | null, speed: number | null, alive: () => boolean}} ctx
    * @returns {Promise<CoverbenchCompare | null>}
    */
   async function open(viewer, runs, ctx) {
     viewer.textContent = "";
     const title = document.createElement("h2");
     title.className = "compare-title";
-    title.textContent = `${runs.length} runs on ${runs[0].wall_name} (${runs[0].dataset}), tool ${runs[0].tool}`;
+    title.textContent = `${runs.length} run${runs.length === 1 ? "" : "s"} on ${runs[0].wall_name} (${runs[0].dataset}), tool ${runs[0].tool}`;
     const grid = document.createElement("div");
     grid.className = "compare";
     const figures = runs.map(ctx.figureFor);
@@ -183,10 +192,18 @@
     const wait = document.createElement("p");
     wait.className = "compare-wait";
     wait.textContent = "loading the paths\u2026";
-    viewer.append(title, wait, grid, metricsTable(runs, ctx.specs, ctx.formatted));
+    viewer.append(title);
+    if (runs.length === 1) {
+      const none = document.createElement("p");
+      none.className = "compare-none";
+      none.setAttribute("role", "status");
+      none.textContent = `No other planner ran on this wall in this experiment with tool ${runs[0].tool}: there is nothing to compare this run with.`;
+      viewer.append(none);
+    }
+    viewer.append(wait, grid, metricsTable(runs, ctx.specs, ctx.formatted));
     const players = await startPlayers(figures, ctx.alive);
     if (!ctx.alive()) return null;
-    const {bar, all} = clockFor(players, viewer);
+    const {bar, all} = clockFor(players, viewer, ctx.speed);
     wait.replaceWith(bar);
     if (ctx.t !== null) all.seek(ctx.t);
     viewer.coverbenchCompare = all;

@@ -2,18 +2,26 @@
 // server, filtered by facet, wall, planner parameter and metric range, sorted by any column; a
 // run's picture that plays back (player.js); and runs on one wall side by side, played on one
 // clock (compare.js). The view (experiment, filters, sort, page, columns, the open run or the
-// compared runs and the playback time, the tab) is the page's address: every change is a
-// history entry, back and forward return to it, and a copied address shows the same view. An answer is shown only if it
-// answers the latest request. Everything shown from data is set as text, never as markup.
+// compared runs, their playback time, speed and pictures' zoom, the tab, the plot's controls) is
+// the page's address: every change is a history entry (the playback time, and a wheel's run of
+// zoom steps, change the current one), back and forward return to it, and a copied address shows
+// the same view. An answer is shown only if it answers the latest request. Everything shown from data is set as text, never as markup.
 "use strict";
 (function () {
   const FACETS = [["planner", "planner"], ["dataset", "dataset"], ["status", "status-filter"], ["tool", "tool"]];
   const TEXT_COLUMNS = ["wall_name", "planner", "dataset", "status"];
   const PAGE_SIZES = [50, 100, 200, 500, 1000];
-  /** The address's names that are not the runs API's. */
-  const PAGE_NAMES = ["exp", "cols", "run", "cmp", "t", "tab"];
+  /** The address's names that are not the runs API's (and those that start with "plot."). */
+  const PAGE_NAMES = ["exp", "cols", "run", "cmp", "t", "zoom", "speed", "tab", "plot"];
+  /** The plot's controls (plots.js) other than its kind, each in the address as "plot." + name. */
+  const PLOT_NAMES = ["metric", "versus", "param", "dataset", "tool"];
+  /** The players' speeds (player.js, compare.js) and the one they start at. */
+  const SPEEDS = [0.25, 0.5, 1, 2, 5, 10, 20], DEFAULT_SPEED = 5;
   /**
-   * @typedef {{exp: string, query: URLSearchParams, cols: string[] | null, run: string, cmp: string[], t: number | null, tab: string}} View
+   * A view: `zoom` holds each shown picture's zoom in order (none: all fit), `speed` the players'
+   * speed (null: the default), `plot` the plot's controls by name ("kind" and PLOT_NAMES; none: the defaults).
+   * @typedef {{exp: string, query: URLSearchParams, cols: string[] | null, run: string, cmp: string[], t: number | null,
+   *            zoom: number[], speed: number | null, tab: string, plot: Record<string, string>}} View
    */
   const state = {
     /** @type {View | null} */ view: null,
@@ -28,6 +36,7 @@
     comparing: "",                   // the keys of the compared runs in the viewer, comma-separated
     picked: new Map(),               // key -> run, for the comparison
     restoring: false,                // a player being held at the address's time
+    zoomGesture: false,              // the current entry was made by a wheel's zoom
   };
   /**
    * An element of the page by id (any: each is used as the element it is).
@@ -97,12 +106,19 @@
   function readAddress() {
     const all = new URLSearchParams(location.search);
     const query = new URLSearchParams();
-    for (const [k, v] of all) if (!PAGE_NAMES.includes(k)) query.append(k, v);
-    const t = all.get("t");
+    for (const [k, v] of all) if (!PAGE_NAMES.includes(k) && !k.startsWith("plot.")) query.append(k, v);
+    const t = all.get("t"), speed = Number(all.get("speed"));
+    /** @type {Record<string, string>} */
+    const plot = {};
+    if (all.get("plot")) plot.kind = all.get("plot");
+    for (const name of PLOT_NAMES) if (all.get("plot." + name)) plot[name] = all.get("plot." + name);
+    // A zoom the pictures cannot take is a picture at fit.
+    const zoom = (all.get("zoom") || "").split(",").filter(Boolean).map(z => Number(z) >= 1 && Number(z) <= 32 ? Number(z) : 1);
     return {exp: all.get("exp") || "", query, cols: all.has("cols") ? all.get("cols").split(",").filter(Boolean) : null,
             run: all.get("run") || "", cmp: (all.get("cmp") || "").split(",").filter(k => /^[0-9a-f]{64}$/.test(k)),
             t: t !== null && t !== "" && Number.isFinite(Number(t)) ? Number(t) : null,
-            tab: all.get("tab") || ""};
+            zoom: zoom.some(z => z !== 1) ? zoom : [], speed: SPEEDS.includes(speed) ? speed : null,
+            tab: all.get("tab") || "", plot};
   }
   /** @param {View} v */
   function addressOf(v) {
@@ -112,15 +128,24 @@
     if (v.run) out.set("run", v.run);
     if (v.cmp.length) out.set("cmp", v.cmp.join(","));
     if ((v.run || v.cmp.length) && v.t !== null) out.set("t", v.t.toFixed(3));
+    if ((v.run || v.cmp.length) && v.zoom.length) out.set("zoom", v.zoom.map(z => String(Number(z.toFixed(3)))).join(","));
+    if (v.speed !== null) out.set("speed", String(v.speed));
     if (v.tab) out.set("tab", v.tab);
+    if (v.plot.kind) out.set("plot", v.plot.kind);
+    for (const name of PLOT_NAMES) if (v.plot[name]) out.set("plot." + name, v.plot[name]);
     return "?" + out.toString();
   }
   /**
-   * The view changed as `change` says, made a history entry (or the current one, `replace`) and shown.
-   * @param {{exp?: string, query?: URLSearchParams, cols?: string[] | null, run?: string, cmp?: string[], t?: number | null, tab?: string}} change
+   * The view changed as `change` says, made a history entry (or the current one, `replace`) and
+   * shown. Other pictures shown (another run, other runs compared) start at fit.
+   * @param {{exp?: string, query?: URLSearchParams, cols?: string[] | null, run?: string, cmp?: string[], t?: number | null,
+   *          zoom?: number[], speed?: number | null, tab?: string, plot?: Record<string, string>}} change
    */
   function go(change, replace = false) {
-    const view = {...state.view, ...change};
+    const old = state.view;
+    if (!("zoom" in change) && ((change.run !== undefined && change.run !== old.run) || (change.cmp && change.cmp.join() !== old.cmp.join()))) change = {...change, zoom: []};
+    state.zoomGesture = false;
+    const view = {...old, ...change};
     history[replace ? "replaceState" : "pushState"](null, "", addressOf(view));
     show(view).catch(showError);
   }
@@ -145,11 +170,11 @@
     const cmp = view.cmp.join(",");
     if (cmp) {
       if (cmp !== state.comparing) openCompare(view).catch(showError);
-      else seekCompare(view.t);
+      else { seekCompare(view.t); applyViewer(view); }
     } else {
       if (state.comparing) closeCompare();
       if (view.run !== state.chosen) openRun(view).catch(showError);
-      else if (view.run) seekTo(view.t);
+      else if (view.run) { seekTo(view.t); applyViewer(view); }
       if (!view.run) closeRun();
     }
     await table;
@@ -363,6 +388,7 @@
     caption.textContent = `${run.wall_name} / ${run.planner}: ${run.status}`;
     figure.appendChild(caption);
     if (run.status !== "error" && run.metrics.waypoints > 1) figure.dataset.playback = base + "/playback.js";
+    figure.dataset.speed = String(state.view.speed ?? DEFAULT_SPEED);  // the speed its player starts at
     return figure;
   }
 
@@ -389,7 +415,8 @@
     if (seq !== state.opened) return;
     $("experiments").classList.add("comparing");
     const all = await window.coverbenchCompareView.open($("viewer"), runs, {
-      figureFor, formatted, specs: state.specs, t: view.t, alive: () => seq === state.opened});
+      figureFor, formatted, specs: state.specs, t: view.t, speed: view.speed, alive: () => seq === state.opened});
+    if (all) await zoomPictures(view, seq);
     if (all && hadFocus) /** @type {HTMLElement} */ ($("viewer").querySelector(".compare-play")).focus();
   }
   function closeCompare() {
@@ -435,7 +462,31 @@
       if (!run) throw new Error(`experiment ${view.exp} has no run ${view.run}`);
     }
     showRun(run);
+    const zoomed = zoomPictures(view, seq);
     if (view.t !== null) await startAt(view.t, seq);
+    await zoomed;
+  }
+  /** The viewer's pictures: the open run's, or the compared runs' in order. @returns {HTMLElement[]} */
+  const pictures = () => [...$("viewer").querySelectorAll("figure")];
+  /** Each picture at the view's zoom, once it has loaded (its size is known then). @param {View} view */
+  async function zoomPictures(view, seq) {
+    await Promise.all(pictures().map(async (f, i) => {
+      const z = view.zoom[i] || 1, img = f.querySelector("img");
+      if (!f.coverbenchZoom || f.coverbenchZoom.zoom() === z) return;
+      if (img) await img.decode().catch(() => null);
+      // Unless another run was opened, or the view's zoom changed, meanwhile.
+      if (seq === state.opened && (state.view.zoom[i] || 1) === z && f.coverbenchZoom.zoom() !== z) f.coverbenchZoom.set(z);
+    }));
+  }
+  /** The shown viewer's zoom and speed as `view` says (back, forward). @param {View} view */
+  function applyViewer(view) {
+    zoomPictures(view, state.opened).catch(showError);
+    const speed = view.speed ?? DEFAULT_SPEED, all = $("viewer").coverbenchCompare;
+    if (all && all.speed() !== speed) all.setSpeed(speed);
+    for (const f of pictures()) {
+      f.dataset.speed = String(speed);
+      if (!all && f.coverbenchPlayer && f.coverbenchPlayer.speed() !== speed) f.coverbenchPlayer.setSpeed(speed);
+    }
   }
   function closeRun() {
     if (!state.chosen) return;
@@ -590,7 +641,7 @@
     $("viewer").hidden = on;
     $("tab-plots").setAttribute("aria-selected", String(on));
     if (on) $("tab-experiments").setAttribute("aria-selected", "false");
-    if (on && view.exp) window.coverbenchPlots.show(view.exp, view.query).catch(showError);
+    if (on && view.exp) window.coverbenchPlots.show(view.exp, view.query, view.plot, plot => go({plot})).catch(showError);
   }
 
   // --- wiring ---------------------------------------------------------------------------------
@@ -619,6 +670,14 @@
     for (const t of ["experiments", "workbench", "plots"]) $("tab-" + t).addEventListener("click", () => go({tab: t === "experiments" ? "" : t}));
     $("compare").addEventListener("click", () => go({run: "", cmp: [...state.picked.keys()], t: null}));
     window.addEventListener("popstate", () => show(readAddress()).catch(showError));
+    // The user's speed and zoom (player.js, compare.js): a history entry each, but a wheel's run
+    // of zoom steps is one.
+    $("viewer").addEventListener("coverbench:speed", e => go({speed: e.detail.speed}));
+    $("viewer").addEventListener("coverbench:zoom", e => {
+      const zoom = pictures().map(f => Number(f.dataset.zoom || 1));
+      go({zoom: zoom.some(z => z !== 1) ? zoom : []}, e.detail.gesture && state.zoomGesture);
+      state.zoomGesture = Boolean(e.detail.gesture);
+    });
     setInterval(followPlayback, 250);
   }
 

@@ -7,7 +7,7 @@ interface CoverbenchPlayer {
 interface CoverbenchZoom { set(zoom: number, cx?: number, cy?: number): void; zoom(): number; view: HTMLDivElement }
 interface CoverbenchCompare {
   players: CoverbenchPlayer[]; play(): void; pause(): void; toggle(): void; seek(t: number): void; setSpeed(s: number): void;
-  time(): number; duration(): number; playing(): boolean; times(): number[];
+  time(): number; speed(): number; duration(): number; playing(): boolean; times(): number[];
 }
 interface HTMLElement {
   coverbenchPlayer?: CoverbenchPlayer;
@@ -17,7 +17,7 @@ interface HTMLElement {
 interface Window {
   coverbenchPlayback(raw: any): void;
   coverbenchAttachPlayer(figure: HTMLElement): void;
-  coverbenchPlots: { show(exp: string, query: URLSearchParams): Promise<void>; drawn(): any; figure(): any; svgText(): string; pngBlob(): Promise<Blob> };
+  coverbenchPlots: { show(exp: string, query: URLSearchParams, choice?: Record<string, string>, onChange?: (choice: Record<string, string>) => void): Promise<void>; drawn(): any; figure(): any; svgText(): string; pngBlob(): Promise<Blob> };
   Plot?: any;  // Observable Plot and d3, loaded by plots.js from /vendor/
   d3?: any;
   coverbenchCompareView: { open(viewer: HTMLElement, runs: any[], ctx: object): Promise<CoverbenchCompare | null> };

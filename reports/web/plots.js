@@ -5,7 +5,10 @@
 // and interquartile range per planner family) and against another metric (every run). Always one
 // dataset and one tool at a time: the report never pools tools, and pools datasets only in its
 // size plots, which are not drawn here. Each plot downloads as SVG and PNG.
-// explorer.js calls window.coverbenchPlots.show(experiment, query) when the tab shows.
+// explorer.js calls window.coverbenchPlots.show(experiment, query, choice, onChange) when the tab
+// shows: `choice` holds the controls' values from the page's address (kind, metric, versus,
+// param, dataset, tool; a missing or unknown one takes its default), and a control the user
+// changes is handed to `onChange` with the others, to become the address, which shows it.
 (function () {
   const KINDS = [["box", "distribution: box plot"], ["ecdf", "distribution: empirical CDF"], ["profile", "performance profile"],
                  ["sweep", "against a swept parameter"], ["scatter", "against another metric"]];
@@ -13,13 +16,15 @@
   const INSTALL = "The plots' charting library is not installed: run `bash scripts/setup.sh` (it installs Observable Plot into reports/web/vendor), then reload.";
   const state = {
     exp: "", filters: "",
+    /** @type {Record<string, string>} */ choice: {},  // the controls' values asked for
+    /** @type {((choice: Record<string, string>) => void) | null} */ onChange: null,
     /** @type {Map<string, any>} */ specs: new Map(),
     /** @type {any} */ experiment: null,  // the runs API's answer with no run: metrics and parameters
     /** @type {any} */ data: null,        // the values answer the plot is drawn from
     fetched: "",                          // its request
     requested: 0,
     /** @type {Promise<boolean> | null} */ library: null,
-    /** @type {any} */ drawn: null,       // what the plot shows, for the tests: {kind, series...}
+    /** @type {any} */ drawn: null,       // what the plot shows, for the tests: {kind, metric, dataset, tool, series...}
     /** @type {any} */ figure: null,
   };
   /** @param {string} id @returns {any} */
@@ -71,12 +76,33 @@
       <button type="button" id="plots-png">download PNG</button><span id="plots-note" role="status"></span></div>
       <div id="plots-chart"></div>`;
     for (const [value, text] of KINDS) $("plots-kind").add(new Option(text, value));
-    for (const id of ["plots-kind", "plots-metric", "plots-versus", "plots-param"]) $(id).addEventListener("change", () => refresh().catch(failed));
-    for (const id of ["plots-dataset", "plots-tool"]) $(id).addEventListener("change", () => draw());
+    for (const id of ["plots-kind", "plots-metric", "plots-versus", "plots-param", "plots-dataset", "plots-tool"]) $(id).addEventListener("change", changed);
     $("plots-svg").addEventListener("click", () => save(new Blob([svgText()], {type: "image/svg+xml"}), "svg"));
     $("plots-png").addEventListener("click", () => pngBlob().then(b => save(b, "png")).catch(failed));
   }
   function failed(e) { note(String(e.message || e), true); }
+
+  /** The controls' values: the versus metric for a scatter plot, the parameter for a sweep. */
+  function currentChoice() {
+    const kind = $("plots-kind").value;
+    /** @type {Record<string, string>} */
+    const c = {kind, metric: $("plots-metric").value};
+    if (kind === "scatter") c.versus = $("plots-versus").value;
+    if (kind === "sweep" && $("plots-param").value) c.param = $("plots-param").value;
+    for (const k of ["dataset", "tool"]) if ($("plots-" + k).value) c[k] = $("plots-" + k).value;
+    return c;
+  }
+  /** A control the user changed: handed to the page with the others, or drawn at once. */
+  function changed() {
+    if (state.onChange) { state.onChange(currentChoice()); return; }
+    state.choice = currentChoice();
+    refresh().catch(failed);
+  }
+  /** Sets `select` to `value`, or when it has no such option to `fallback`, or else to its first. */
+  function choose(select, value, fallback) {
+    const has = v => v && [...select.options].some(o => o.value === v);
+    select.value = has(value) ? value : has(fallback) ? fallback : select.options[0]?.value ?? "";
+  }
 
   function fill(select, values, keep) {
     const old = keep ? select.value : "";
@@ -84,9 +110,17 @@
     if (values.some(([v]) => v === old)) select.value = old;
   }
 
-  /** Shows the plot of the experiment's runs that `query` (the table's filters) selects. */
-  async function show(exp, query) {
+  /**
+   * Shows the plot of the experiment's runs that `query` (the table's filters) selects, as `choice` says.
+   * @param {string} exp
+   * @param {URLSearchParams} query
+   * @param {Record<string, string>} [choice]
+   * @param {(choice: Record<string, string>) => void} [onChange]
+   */
+  async function show(exp, query, choice = {}, onChange = undefined) {
     if (!$("plots-kind")) build();
+    state.choice = choice;
+    state.onChange = onChange || null;
     const filters = new URLSearchParams(query);
     for (const k of ["sort", "order", "offset", "limit"]) filters.delete(k);
     if (!(await loadLibrary())) {
@@ -101,14 +135,13 @@
       const metrics = state.experiment.metrics.filter(m => m !== "valid").map(m => [m, m]);
       fill($("plots-metric"), metrics, true);
       fill($("plots-versus"), metrics, true);
-      if (!$("plots-versus").dataset.chosen && state.experiment.metrics.includes("coverage_reachable")) {
-        $("plots-metric").value = state.experiment.metrics.includes("length_total") ? "length_total" : $("plots-metric").value;
-        $("plots-versus").value = "coverage_reachable";
-        $("plots-versus").dataset.chosen = "1";
-      }
       const swept = Object.entries(state.experiment.params).filter(([, v]) => v.length > 1).map(([p]) => [p, p]);
       fill($("plots-param"), swept, true);
     }
+    choose($("plots-kind"), choice.kind, "box");
+    choose($("plots-metric"), choice.metric, "length_total");
+    choose($("plots-versus"), choice.versus, "coverage_reachable");
+    choose($("plots-param"), choice.param, "");
     state.filters = filters.toString();
     await refresh();
   }
@@ -141,6 +174,8 @@
       fill($("plots-dataset"), datasets, true);
       fill($("plots-tool"), tools, true);
     }
+    choose($("plots-dataset"), state.choice.dataset, "");
+    choose($("plots-tool"), state.choice.tool, "");
     draw();
   }
 
@@ -333,7 +368,7 @@
          (r.caption ? `; ${r.caption}` : ""));
     chart.append(r.plot);
     state.figure = r.plot;
-    state.drawn = r.drawn;
+    state.drawn = {...r.drawn, dataset: $("plots-dataset").value, tool: $("plots-tool").value};
   }
 
   // --- downloads ----------------------------------------------------------------------------------

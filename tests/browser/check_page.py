@@ -242,6 +242,9 @@ def main():
             const imgs = [...document.images];
             for (const i of imgs) i.loading = 'eager';
             await Promise.all(imgs.map(i => i.decode().catch(() => null)));
+            // Every section drawn, as a reader scrolling through sees it (the report lays out its
+            // sections only near the screen, content-visibility: auto), so innerText holds them all.
+            for (const s of document.querySelectorAll('section')) s.style.contentVisibility = 'visible';
             return {images: imgs.length,
                     broken: imgs.filter(i => !i.complete || i.naturalWidth === 0).map(i => i.getAttribute('src')),
                     tables: document.querySelectorAll('table').length,

@@ -7,6 +7,11 @@
   picture's playhead is at the clock's time (within a frame); the metrics table marks the better
   value as the registry's direction says; Space on a table row plays and pauses the clock; the pictures are at least 600 px wide, two a row at
   1280 px; the address holds the compared runs and the time, and reopens them;
+- the address holds the player's speed and the pictures' zoom, of one run and of compared runs:
+  a copied address reopens them, back and forward return to each earlier one, and a wheel's run
+  of zoom steps is one history entry;
+- a run whose wall no other planner ran on (in its experiment, with its tool) opens a compare
+  that says so;
 - the keys: Tab reaches the "skip to the player" link first and Enter on it takes the focus to
   the play button; Enter on a focused row opens that run and the focus stays on the row; Space
   plays and pauses; the arrows move the time by 1 s and, with Shift, 10 s; Enter on a heading's
@@ -32,6 +37,28 @@ from test_table import Served, BIN, CONFIG, HELPERS, SHOTS, start_server  # noqa
 
 FRAME = 1 / 60
 
+# An experiment of one planner on one wall, made before the main one (so that the page opens the
+# main one, the latest): its run's wall has no other planner's run.
+LONE = """name: lone-check
+output: out
+datasets:
+  - family: facade
+    count: 1
+    seed: 2
+planners: [zigzag]
+"""
+
+# In the page: the viewer's pictures, their zoom and their players' speed.
+VIEWER = """
+const figs = () => [...document.querySelectorAll('#viewer figure')];
+const query = () => new URLSearchParams(location.search);
+const loaded = () => until(() => figs().length && figs().every(f => { const i = f.querySelector('img'); return i.complete && i.naturalWidth > 0; }), 'the pictures');
+const shown = () => ({zoom: figs().map(f => f.coverbenchZoom ? f.coverbenchZoom.zoom() : null),
+                      laid: figs().map(f => { const v = f.querySelector('.zoom-view'), i = f.querySelector('.zoom-inner'); return v && i ? i.offsetWidth / v.clientWidth : null; }),
+                      canvas: figs().map(f => { const c = f.querySelector('.player-canvas'); return c ? c.width : null; }),
+                      address: {zoom: query().get('zoom'), speed: query().get('speed')}});
+"""
+
 KEYS = {"Tab": ("Tab", 9, ""), "Enter": ("Enter", 13, "\r"), " ": ("Space", 32, " "),
         "ArrowLeft": ("ArrowLeft", 37, ""), "ArrowRight": ("ArrowRight", 39, "")}
 
@@ -50,9 +77,13 @@ class Compare(Served):
         cls.work = tempfile.mkdtemp(prefix="coverbench-compare-")
         with open(os.path.join(cls.work, "c.yaml"), "w") as f:
             f.write(CONFIG)
+        with open(os.path.join(cls.work, "lone.yaml"), "w") as f:
+            f.write(LONE)
+        subprocess.run([BIN, "run", os.path.join(cls.work, "lone.yaml"), "--no-report"], check=True, capture_output=True)
         subprocess.run([BIN, "run", os.path.join(cls.work, "c.yaml"), "--no-report"], check=True, capture_output=True)
         cls.server, cls.base = start_server(os.path.join(cls.work, "out", "results.sqlite"))
-        cls.exp = cls.get("/api/experiments")["experiments"][-1]
+        experiments = cls.get("/api/experiments")["experiments"]
+        cls.exp, cls.lone = experiments[-1], next(e for e in experiments if e["name"] == "lone-check")
         cls.runs_path = f"/api/experiments/{cls.exp['db']}/{cls.exp['id']}/runs"
         cls.specs = {s["name"]: s for s in cls.get("/api/metrics")["metrics"]}
 
@@ -175,6 +206,159 @@ class Compare(Served):
         self.assertLessEqual(abs(again["t"] - s["t"]), FRAME)
         for t, end in zip(again["times"], again["ends"]):
             self.assertLessEqual(abs(t - min(again["t"], end)), FRAME)
+
+    def test_a_run_alone_on_its_wall_says_so(self):
+        with opened(f"{self.base}/?exp={self.lone['db']}/{self.lone['id']}", width=1280, height=1000) as page:
+            r = page.evaluate("(async () => {" + HELPERS + """
+                await ready();
+                rows()[0].click();
+                await until(() => $('same-wall'), 'the run');
+                $('same-wall').click();
+                const viewer = $('viewer');
+                await until(() => viewer.coverbenchCompare, 'the compare view');
+                const none = viewer.querySelector('.compare-none');
+                return {text: none && none.textContent, visible: !!none && none.getClientRects().length > 0, role: none && none.getAttribute('role'),
+                        title: viewer.querySelector('.compare-title').textContent, figures: viewer.querySelectorAll('.compare figure').length,
+                        cmp: new URLSearchParams(location.search).get('cmp'), key: rows()[0].dataset.key};
+            })()""")
+            page.screenshot(os.path.join(SHOTS, "compare-alone.png"))
+            self.assertEqual(errors(page.events), [])
+        self.assertTrue(r["visible"])
+        self.assertTrue(r["text"].startswith("No other planner ran on this wall in this experiment"), r["text"])
+        self.assertEqual(r["role"], "status")
+        self.assertTrue(r["title"].startswith("1 run on "), r["title"])
+        self.assertEqual((r["figures"], r["cmp"]), (1, r["key"]))
+        # A wall with other planners' runs says nothing of the kind.
+        with opened(f"{self.base}/?planner=zigzag", width=1280, height=1000) as page:
+            others = page.evaluate("(async () => {" + HELPERS + """
+                await ready();
+                rows()[0].click();
+                await until(() => $('same-wall'), 'the run');
+                $('same-wall').click();
+                await until(() => $('viewer').coverbenchCompare, 'the compare view');
+                return {none: !!$('viewer').querySelector('.compare-none'), figures: $('viewer').querySelectorAll('.compare figure').length};
+            })()""")
+        self.assertEqual(others, {"none": False, "figures": 3})
+
+    def test_speed_and_zoom_are_in_the_address(self):
+        """A run at 20x zoomed 4x, then its wall's runs compared at 0.5x with the second picture
+        zoomed 2x (a button) and the third 2x (three wheel steps): each copied address reopens
+        that speed and zoom; back and forward step through them."""
+        with opened(self.base + "/?planner=spiral", width=1280, height=1000) as page:
+            r = page.evaluate("(async () => {" + HELPERS + VIEWER + """
+                await ready();
+                rows()[0].click();
+                await until(() => figs().length === 1 && figs()[0].coverbenchZoom, 'the run');
+                await loaded();
+                const fig = figs()[0];
+                fig.querySelector('.player-start').click();
+                await until(() => fig.coverbenchPlayer, 'the player');
+                const p = fig.coverbenchPlayer;
+                p.pause();
+                p.seek(p.duration() * 0.3);
+                await until(() => query().get('t') === p.time().toFixed(3), 'the time in the address');
+                const entries = history.length;
+                const speed = fig.querySelector('.player-bar select');
+                speed.value = '20';
+                speed.dispatchEvent(new Event('change'));
+                await until(() => query().get('speed') === '20', 'the speed in the address');
+                fig.querySelector('.zoom-in').click();
+                await until(() => query().get('zoom') === '2', 'zoom 2 in the address');
+                fig.querySelector('.zoom-in').click();
+                await until(() => query().get('zoom') === '4', 'zoom 4 in the address');
+                const run = {...shown(), speed: p.speed(), select: speed.value, t: p.time(), href: location.href, entries: history.length - entries};
+                history.back();
+                await until(() => fig.coverbenchZoom.zoom() === 2 && query().get('zoom') === '2', 'back to zoom 2');
+                const back1 = {...shown(), speed: p.speed()};
+                history.back();
+                await until(() => fig.coverbenchZoom.zoom() === 1 && !query().has('zoom'), 'back to fit');
+                const back2 = {...shown(), speed: p.speed()};
+                history.back();
+                await until(() => p.speed() === 5 && !query().has('speed'), 'back to the first speed');
+                const back3 = {...shown(), speed: p.speed(), select: speed.value};
+                history.go(3);
+                await until(() => fig.coverbenchZoom.zoom() === 4 && p.speed() === 20, 'forward to 20x and zoom 4');
+                const forward = {...shown(), speed: p.speed(), select: speed.value};
+                // The wall's runs compared: the speed stays, the pictures start at fit.
+                $('same-wall').click();
+                const viewer = $('viewer');
+                await until(() => viewer.coverbenchCompare && figs().length === 3, 'the compare view');
+                await loaded();
+                const all = viewer.coverbenchCompare;
+                const opened = {...shown(), speed: all.speed()};
+                const cmpSpeed = viewer.querySelector('.compare-bar select');
+                cmpSpeed.value = '0.5';
+                cmpSpeed.dispatchEvent(new Event('change'));
+                await until(() => query().get('speed') === '0.5', 'the compare speed in the address');
+                figs()[1].querySelector('.zoom-in').click();
+                await until(() => query().get('zoom') === '1,2,1', 'the second picture zoomed');
+                const before = history.length;
+                const view = figs()[2].querySelector('.zoom-view'), box = view.getBoundingClientRect();
+                for (let k = 0; k < 3; ++k)
+                    view.dispatchEvent(new WheelEvent('wheel', {deltaY: -100, ctrlKey: true, bubbles: true, cancelable: true,
+                                                                clientX: box.left + box.width / 2, clientY: box.top + box.height / 2}));
+                await until(() => query().get('zoom') === '1,2,2', 'the third picture zoomed by the wheel');
+                const compared = {...shown(), speed: all.speed(), select: cmpSpeed.value, href: location.href, wheelEntries: history.length - before};
+                history.back();
+                await until(() => query().get('zoom') === '1,2,1' && figs()[2].coverbenchZoom.zoom() === 1, 'back before the wheel');
+                const cmpBack1 = {...shown(), speed: all.speed()};
+                history.back();
+                await until(() => !query().has('zoom') && figs()[1].coverbenchZoom.zoom() === 1, 'back to fit');
+                history.back();
+                await until(() => all.speed() === 20, 'back to 20x');
+                const cmpBack3 = {...shown(), speed: all.speed(), select: cmpSpeed.value};
+                history.go(3);
+                await until(() => all.speed() === 0.5 && query().get('zoom') === '1,2,2', 'forward again');
+                await until(() => figs()[2].coverbenchZoom.zoom() > 1.99, 'the wheel zoom again');
+                return {run, back1, back2, back3, forward, opened, compared, cmpBack1, cmpBack3, cmpForward: {...shown(), speed: all.speed()}};
+            })()""")
+            page.screenshot(os.path.join(SHOTS, "compare-zoom-speed.png"))
+            self.assertEqual(errors(page.events), [])
+        run = r["run"]
+        self.assertEqual(run["address"], {"zoom": "4", "speed": "20"})
+        self.assertEqual((run["zoom"], run["speed"], run["select"], run["entries"]), ([4], 20, "20", 3))
+        self.assertAlmostEqual(run["laid"][0], 4, delta=0.01)
+        self.assertEqual((r["back1"]["zoom"], r["back1"]["speed"], r["back1"]["address"]), ([2], 20, {"zoom": "2", "speed": "20"}))
+        self.assertAlmostEqual(r["back1"]["laid"][0], 2, delta=0.01)
+        self.assertEqual((r["back2"]["zoom"], r["back2"]["speed"], r["back2"]["address"]), ([1], 20, {"zoom": None, "speed": "20"}))
+        self.assertEqual((r["back3"]["zoom"], r["back3"]["speed"], r["back3"]["select"]), ([1], 5, "5"))
+        self.assertEqual((r["forward"]["zoom"], r["forward"]["speed"], r["forward"]["select"], r["forward"]["canvas"]),
+                         ([4], 20, "20", run["canvas"]))
+        self.assertEqual((r["opened"]["zoom"], r["opened"]["speed"], r["opened"]["address"]), ([1, 1, 1], 20, {"zoom": None, "speed": "20"}))
+        c = r["compared"]
+        self.assertEqual((c["address"], c["speed"], c["select"], c["wheelEntries"]), ({"zoom": "1,2,2", "speed": "0.5"}, 0.5, "0.5", 1))
+        self.assertEqual(c["zoom"][:2], [1, 2])
+        self.assertAlmostEqual(c["zoom"][2], 2, delta=1e-9)
+        self.assertEqual((r["cmpBack1"]["zoom"], r["cmpBack1"]["speed"]), ([1, 2, 1], 0.5))
+        self.assertEqual((r["cmpBack3"]["zoom"], r["cmpBack3"]["speed"], r["cmpBack3"]["select"]), ([1, 1, 1], 20, "20"))
+        self.assertEqual(r["cmpForward"]["speed"], 0.5)
+        self.assertAlmostEqual(r["cmpForward"]["zoom"][2], 2, delta=1e-9)
+        # Each copied address, opened afresh: the same run, time, speed and zoom; the same compare.
+        with opened(run["href"], width=1280, height=1000) as fresh:
+            again = fresh.evaluate("(async () => {" + HELPERS + VIEWER + """
+                await ready();
+                await until(() => figs().length === 1 && figs()[0].dataset.restored && figs()[0].coverbenchZoom.zoom() === 4, 'the run, held and zoomed');
+                const p = figs()[0].coverbenchPlayer;
+                return {...shown(), speed: p.speed(), select: figs()[0].querySelector('.player-bar select').value, t: p.time()};
+            })()""")
+            fresh.screenshot(os.path.join(SHOTS, "run-zoom-speed-reopened.png"))
+            self.assertEqual(errors(fresh.events), [])
+        self.assertEqual((again["zoom"], again["speed"], again["select"], again["canvas"]), ([4], 20, "20", run["canvas"]))
+        self.assertAlmostEqual(again["laid"][0], 4, delta=0.01)
+        self.assertLessEqual(abs(again["t"] - run["t"]), FRAME)
+        with opened(c["href"], width=1280, height=1000) as fresh:
+            again = fresh.evaluate("(async () => {" + HELPERS + VIEWER + """
+                await ready();
+                await until(() => $('viewer').coverbenchCompare && figs().length === 3 && figs()[1].coverbenchZoom.zoom() === 2
+                                  && figs()[2].coverbenchZoom.zoom() === 2, 'the compare, zoomed');
+                const all = $('viewer').coverbenchCompare;
+                return {...shown(), speed: all.speed(), select: $('viewer').querySelector('.compare-bar select').value};
+            })()""")
+            fresh.screenshot(os.path.join(SHOTS, "compare-zoom-speed-reopened.png"))
+            self.assertEqual(errors(fresh.events), [])
+        self.assertEqual((again["zoom"], again["speed"], again["select"], again["address"]), ([1, 2, 2], 0.5, "0.5", c["address"]))
+        for got, want in zip(again["laid"], c["laid"]):
+            self.assertAlmostEqual(got, want, delta=0.01)
 
     def test_the_keyboard_opens_plays_scrubs_and_sorts(self):
         with opened(self.base + "/?planner=spiral", width=1280, height=1000) as page:

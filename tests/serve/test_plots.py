@@ -9,6 +9,8 @@
   costs, failures infinite); the zigzag sweep over sweep_angle, one point per configuration at
   SQLite's median; one scatter point per usable run with both metrics;
 - a table filter redraws the plot over the new selection;
+- the plot's controls are in the page's address: a copied address draws the same plot, back and
+  forward return to each earlier choice;
 - the SVG download parses as SVG with the legend, the PNG download is a PNG of twice its size;
 - without the charting library the tab says in one line how to install it.
 
@@ -109,10 +111,10 @@ class Plots(Served):
             "WHERE e.experiment_id = ? AND w.dataset = ?", (metric, cls.exp_id, dataset)).fetchall()
         return {k: {"wall": w, "config": c, "usable": s in ("ok", "partial") and v == 1, "value": x} for k, w, c, s, v, x in rows}
 
-    def sql_runs(self, metric):
+    def sql_runs(self, metric, dataset=DATASET):
         con = sqlite3.connect(f"file:{self.db}?mode=ro", uri=True)
         try:
-            return self.stored(con, metric)
+            return self.stored(con, metric, dataset)
         finally:
             con.close()
 
@@ -261,6 +263,78 @@ class Plots(Served):
         self.assertEqual(struct.unpack(">I", png[16:20])[0], 2 * int(r["width"]))
         with open(os.path.join(SHOTS, "plots-scatter-download.png"), "wb") as f:
             f.write(png)
+
+    def test_the_plots_controls_are_in_the_address(self):
+        """The plot's kind, metrics, dataset and tool in the address: a copied address opened in a
+        fresh browser shows the same controls and draws the same marks; back and forward return to
+        each earlier choice and what it drew."""
+        controls = "(() => Object.fromEntries(['kind', 'metric', 'versus', 'param', 'dataset', 'tool'].map(k => [k, $('plots-' + k).value])))()"
+        drawn_with = """const drawnWith = (want, what) => until(() => !$('plots').dataset.loading && P().drawn()
+                            && Object.entries(want).every(([k, v]) => P().drawn()[k] === v), what);
+            const seen = () => ({drawn: P().drawn(), controls: """ + controls + """, dots: main().querySelectorAll('circle').length,
+                                 query: Object.fromEntries([...new URLSearchParams(location.search)].filter(([k]) => k.startsWith('plot')))});"""
+        with opened(f"{self.base}/?exp={self.exp}&tab=plots") as page:
+            r = page.evaluate("(async () => {" + HELPERS + drawn_with + f"""
+                await until(() => document.body.dataset.ready && $('plots-kind') && P().drawn(), 'the first plot');
+                const first = seen();
+                choose('plots-kind', 'sweep');
+                await drawnWith({{kind: 'sweep', param: 'sweep_angle'}}, 'the sweep');
+                const sweep = seen();
+                choose('plots-kind', 'scatter');
+                await drawnWith({{kind: 'scatter'}}, 'the scatter');
+                choose('plots-metric', '{VERSUS}');
+                await drawnWith({{kind: 'scatter', metric: '{VERSUS}'}}, 'the scatter of {VERSUS}');
+                choose('plots-versus', '{METRIC}');
+                await drawnWith({{metric: '{VERSUS}', versus: '{METRIC}'}}, 'the scatter against {METRIC}');
+                const residential = seen();
+                choose('plots-dataset', 'facade');
+                await drawnWith({{dataset: 'facade', versus: '{METRIC}'}}, 'the facade walls');
+                const last = {{...seen(), href: location.href}};
+                history.back();
+                await drawnWith({{dataset: residential.drawn.dataset, versus: '{METRIC}'}}, 'back to the first dataset');
+                const back = seen();
+                history.go(-3);
+                await drawnWith({{kind: 'sweep'}}, 'back to the sweep');
+                const backToSweep = seen();
+                history.back();
+                await drawnWith({{kind: 'box'}}, 'back to the first plot');
+                const backToFirst = seen();
+                history.go(5);
+                await drawnWith({{dataset: 'facade', kind: 'scatter'}}, 'forward to the facade walls');
+                return {{first, sweep, residential, last, back, backToSweep, backToFirst, forward: seen()}};
+            }})()""")
+            page.screenshot(os.path.join(SHOTS, "plots-address-forward.png"))
+            self.assertEqual(errors(page.events), [])
+        with opened(r["last"]["href"]) as fresh:
+            again = fresh.evaluate("(async () => {" + HELPERS + drawn_with + f"""
+                await until(() => document.body.dataset.ready && $('plots-kind'), 'the page');
+                await drawnWith({{kind: 'scatter', dataset: 'facade', versus: '{METRIC}'}}, 'the scatter from the address');
+                return seen();
+            }})()""")
+            fresh.screenshot(os.path.join(SHOTS, "plots-address-reopened.png"))
+            self.assertEqual(errors(fresh.events), [])
+        last = r["last"]
+        self.assertEqual(last["query"], {"plot": "scatter", "plot.metric": VERSUS, "plot.versus": METRIC,
+                                         "plot.dataset": "facade", "plot.tool": last["controls"]["tool"]})
+        self.assertEqual(last["controls"]["kind"], "scatter")
+        self.assertNotEqual(r["residential"]["drawn"]["dataset"], "facade")
+        # The reopened page: the same controls, the same marks, one dot per usable facade run with both values.
+        self.assertEqual(again["controls"], last["controls"])
+        self.assertEqual(again["drawn"], last["drawn"])
+        self.assertEqual(again["query"], last["query"])
+        first, second = self.sql_runs(VERSUS, "facade"), self.sql_runs(METRIC, "facade")
+        want = [k for k, x in first.items() if x["usable"] and x["value"] is not None and second[k]["value"] is not None]
+        self.assertEqual(again["dots"], len(want))
+        self.assertEqual(last["dots"], len(want))
+        # Back and forward: each earlier choice, drawn as it was.
+        for got, was in ((r["back"], r["residential"]), (r["backToSweep"], r["sweep"]), (r["backToFirst"], r["first"]),
+                         (r["forward"], last)):
+            self.assertEqual(got["drawn"], was["drawn"])
+            self.assertEqual(got["query"], was["query"])
+            self.assertEqual({k: got["controls"][k] for k in ("kind", "metric", "dataset", "tool")},
+                             {k: was["controls"][k] for k in ("kind", "metric", "dataset", "tool")})
+        self.assertEqual(r["first"]["query"], {})
+        self.assertEqual(r["first"]["drawn"]["kind"], "box")
 
     def test_without_the_library_the_tab_says_how_to_install_it(self):
         with opened(f"{self.base}/?exp={self.exp}") as page:  # the Experiments tab: no plot, no library asked for

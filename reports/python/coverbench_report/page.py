@@ -2,6 +2,8 @@
 contents, tables and side-by-side galleries. Everything from data is escaped."""
 import html
 
+# The sections are laid out only as they come near the screen (content-visibility), so a large
+# report's first screen is drawn, and its load event comes, before its long tables are laid out.
 STYLE = """
 body{font-family:system-ui,sans-serif;margin:0;color:#222;background:#fff}
 header{padding:1em 2em;background:#f4f1ea;border-bottom:1px solid #ddd}
@@ -24,6 +26,7 @@ img.figure{height:auto}
 .gallery figcaption{font-size:12px}
 .status-bad{color:#b00020;font-weight:600}
 pre{background:#f6f6f6;padding:.6em;overflow-x:auto;font-size:12px}
+main>section{content-visibility:auto;contain-intrinsic-size:auto 1500px}
 """
 
 

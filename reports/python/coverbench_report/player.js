@@ -7,7 +7,10 @@
 //
 // Each player is reachable as figure.coverbenchPlayer (play, pause, seek, setSpeed, time,
 // playing, duration, frames, drawMs) for the browser tests and bench/playback_fps.py, and each picture's
-// pan and zoom as figure.coverbenchZoom (set, zoom, view).
+// pan and zoom as figure.coverbenchZoom (set, zoom, view). A page that keeps these in its address
+// (the explorer) sets the speed a player starts at with figure.dataset.speed, and hears the
+// user's own changes as the events "coverbench:speed" ({speed}) and "coverbench:zoom" ({zoom,
+// gesture: true for the wheel}), sent from the figure; changes made through the API send none.
 "use strict";
 (function () {
   const SPEEDS = [0.25, 0.5, 1, 2, 5, 10, 20];
@@ -126,7 +129,8 @@
     const speed = document.createElement("select");
     speed.title = "speed, times the time model's";
     speed.setAttribute("aria-label", "speed");
-    for (const s of SPEEDS) speed.add(new Option(s + "x", String(s), s === DEFAULT_SPEED, s === DEFAULT_SPEED));
+    const initial = SPEEDS.includes(Number(figure.dataset.speed)) ? Number(figure.dataset.speed) : DEFAULT_SPEED;
+    for (const s of SPEEDS) speed.add(new Option(s + "x", String(s), s === initial, s === initial));
     const scrub = document.createElement("input");
     scrub.type = "range";
     scrub.min = "0";
@@ -156,7 +160,7 @@
       pctx.setTransform(k, 0, 0, k, 0, 0);
       drawn = 0;
     }
-    let time = 0, rate = DEFAULT_SPEED, playing = false, anchorTime = 0, anchorClock = 0;
+    let time = 0, rate = initial, playing = false, anchorTime = 0, anchorClock = 0;
     let drawn = 0;  // segments painted onto `paint`
     let frames = 0;
 
@@ -300,7 +304,10 @@
       rescale(zoom) { rescale(zoom); draw(); },
     };
     button.addEventListener("click", () => (playing ? api.pause() : api.play()));
-    speed.addEventListener("change", () => api.setSpeed(Number(speed.value)));
+    speed.addEventListener("change", () => {
+      api.setSpeed(Number(speed.value));
+      figure.dispatchEvent(new CustomEvent("coverbench:speed", {bubbles: true, detail: {speed: rate}}));
+    });
     scrub.addEventListener("input", () => api.seek(Number(scrub.value)));
     figure.coverbenchPlayer = api;
     rescale(Number(figure.dataset.zoom || 1));
@@ -340,6 +347,12 @@
       if (figure.coverbenchPlayer) figure.coverbenchPlayer.rescale(z);
       label.textContent = z === 1 ? "" : z.toFixed(z < 10 ? 1 : 0) + "x";
     }
+    /** The user's zoom: set, and told to the page when it changed. */
+    function userZoom(z, cx, cy, gesture) {
+      const before = zoom;
+      setZoom(z, cx, cy);
+      if (zoom !== before) figure.dispatchEvent(new CustomEvent("coverbench:zoom", {bubbles: true, detail: {zoom, gesture}}));
+    }
     const button = (text, title, f) => {
       const b = document.createElement("button");
       b.type = "button";
@@ -349,9 +362,9 @@
       tools.appendChild(b);
       return b;
     };
-    button("+", "zoom in (or Ctrl + wheel)", () => setZoom(zoom * 2)).className = "zoom-in";
-    button("\u2212", "zoom out", () => setZoom(zoom / 2)).className = "zoom-out";
-    button("fit", "the whole picture", () => setZoom(1)).className = "zoom-fit";
+    button("+", "zoom in (or Ctrl + wheel)", () => userZoom(zoom * 2)).className = "zoom-in";
+    button("\u2212", "zoom out", () => userZoom(zoom / 2)).className = "zoom-out";
+    button("fit", "the whole picture", () => userZoom(1)).className = "zoom-fit";
     const label = document.createElement("span");
     tools.appendChild(label);
     view.before(tools);
@@ -359,7 +372,7 @@
       if (!e.ctrlKey) return;
       e.preventDefault();
       const r = view.getBoundingClientRect();
-      setZoom(zoom * Math.pow(2, -e.deltaY / 300), e.clientX - r.left, e.clientY - r.top);
+      userZoom(zoom * Math.pow(2, -e.deltaY / 300), e.clientX - r.left, e.clientY - r.top, true);
     }, {passive: false});
     let drag = null, moved = false;
     view.addEventListener("pointerdown", e => {
