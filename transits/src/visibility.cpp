@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <queue>
 #include <tuple>
@@ -26,6 +27,33 @@ inline double length(Point a, Point b) {
   const double dx = a.x - b.x, dy = a.y - b.y;
   return std::sqrt(dx * dx + dy * dy);
 }
+
+/// Per-thread storage for the A* search's per-node heaps, kept between searches. Capacity beyond
+/// kKeepBytes is given back after a search that needed it, so one huge search does not pin memory.
+template <class T>
+class SearchScratch {
+ public:
+  void reset() {
+    std::size_t bytes = 0;
+    for (const std::vector<T>& h : heaps_) bytes += h.capacity() * sizeof(T);
+    if (bytes > kKeepBytes) heaps_.clear();
+    for (std::size_t i = 0; i < std::min(used_, heaps_.size()); ++i) heaps_[i].clear();
+    used_ = 0;
+  }
+  /// The heap of closing rank r, empty when first asked for (ranks are asked for in order).
+  std::vector<T>& heap(std::size_t r) {
+    if (r == used_) {
+      if (used_ == heaps_.size()) heaps_.emplace_back();
+      ++used_;
+    }
+    return heaps_[r];
+  }
+
+ private:
+  static constexpr std::size_t kKeepBytes = std::size_t{16} << 20;
+  std::vector<std::vector<T>> heaps_;
+  std::size_t used_ = 0;
+};
 
 Point unit(double angle) { return {std::cos(angle), std::sin(angle)}; }
 double angleOf(Point v) { return std::atan2(v.y, v.x); }
@@ -192,30 +220,48 @@ std::optional<std::vector<Point>> TransitRouter::searchWithin(const std::vector<
   // Moves into one node at one cost are tried fewest hops first, then from the node closed first:
   // of equal routes (through collinear nodes) the one with the fewest points.
   const std::size_t none = pos.size();
+  // A move waiting in the search's heap: its start's closing rank `from`, its end v and the
+  // hops to v along it.
   struct Move {
     double f, g;
-    std::size_t v, hops, from;  // hops to v along the move; from: its start's closing rank
+    std::size_t v, hops, from;
     bool operator>(const Move& o) const {
       return std::tie(f, v, hops, from) > std::tie(o.f, o.v, o.hops, o.from);
     }
   };
+  // A move not yet tried from one closed node: only its cost and its end (the start, its g and
+  // hops are the node's). Within one node's heap, the order by (f, v) is the search heap's order.
+  struct Waiting {
+    double f;
+    std::uint32_t v;
+    bool operator>(const Waiting& o) const { return std::tie(f, v) > std::tie(o.f, o.v); }
+  };
+  // Every closed node keeps a heap of up to pos.size() moves: one allocation per search, reused
+  // by this thread's next search (a fresh vector per closed node cost more in page faults than
+  // the search itself on walls with thousands of nodes).
+  thread_local SearchScratch<Waiting> scratch;
+  scratch.reset();
   const Point b = pos[1];
   std::vector<double> to_b(pos.size());
   for (std::size_t i = 0; i < pos.size(); ++i) to_b[i] = length(pos[i], b);
   std::vector<bool> closed(pos.size(), false);
   std::vector<std::size_t> pred(pos.size(), none);
-  std::vector<std::size_t> order;                     // closed nodes, in closing order
-  std::vector<std::vector<Move>> moves;               // per closing rank: its moves not yet tried (a min-heap)
+  struct Closed {
+    std::size_t v, hops;
+    double g;
+  };
+  std::vector<Closed> order;  // closed nodes, in closing order (their rank)
   std::priority_queue<Move, std::vector<Move>, std::greater<>> open;
   // The next move worth trying (into a node still open) from the node of closing rank r.
   auto offerNext = [&](std::size_t r) {
-    std::vector<Move>& heap = moves[r];
+    std::vector<Waiting>& heap = scratch.heap(r);
     while (!heap.empty()) {
       std::pop_heap(heap.begin(), heap.end(), std::greater<>{});
-      const Move m = heap.back();
+      const Waiting w = heap.back();
       heap.pop_back();
-      if (!closed[m.v]) {
-        open.push(m);
+      if (!closed[w.v]) {
+        const Closed& u = order[r];
+        open.push({w.f, u.g + length(pos[u.v], pos[w.v]), w.v, u.hops + 1, r});
         return;
       }
     }
@@ -230,9 +276,9 @@ std::optional<std::vector<Point>> TransitRouter::searchWithin(const std::vector<
     if (m.from != none) offerNext(m.from);
     if (m.f > bound) break;
     if (closed[m.v]) continue;
-    if (m.from != none && !moveFree(order[m.from], m.v)) continue;
+    if (m.from != none && !moveFree(order[m.from].v, m.v)) continue;
     closed[m.v] = true;
-    pred[m.v] = m.from == none ? none : order[m.from];
+    pred[m.v] = m.from == none ? none : order[m.from].v;
     if (m.v == 1) {
       std::vector<Point> points;
       for (std::size_t v = 1; v != none; v = pred[v]) points.push_back(pos[v]);
@@ -240,18 +286,16 @@ std::optional<std::vector<Point>> TransitRouter::searchWithin(const std::vector<
       return points;
     }
     const std::size_t rank = order.size();
-    order.push_back(m.v);
-    std::vector<Move>& out = moves.emplace_back();
+    order.push_back({m.v, m.hops, m.g});
+    std::vector<Waiting>& out = scratch.heap(rank);
     // A move an earlier query found blocked would be tried and fail: it is not offered.
     const std::vector<bool>& blocked = graph_->blocked;
     const bool memo = node[m.v] != kNoNode && !blocked.empty();
     const std::size_t row = memo ? node[m.v] * graph_->nodes.size() : 0;
-    out.reserve(pos.size());
     for (std::size_t w = 1; w < pos.size(); ++w) {
       if (closed[w] || (memo && node[w] != kNoNode && blocked[row + node[w]])) continue;
-      const double g = m.g + length(pos[m.v], pos[w]);
-      const double f = g + to_b[w];
-      if (f <= bound) out.push_back({f, g, w, m.hops + 1, rank});
+      const double f = m.g + length(pos[m.v], pos[w]) + to_b[w];
+      if (f <= bound) out.push_back({f, static_cast<std::uint32_t>(w)});
     }
     std::make_heap(out.begin(), out.end(), std::greater<>{});
     offerNext(rank);
