@@ -152,6 +152,8 @@ int exportOmplCommand(const ExportOmplOptions& options);
 
 struct ReportOptions {
   std::string database, format = "md", out, baseline;
+  /// A published table (CSV) and its clock, instead of the one the config names (docs/report.md).
+  std::string published, published_clock;
   std::optional<long long> experiment;
 };
 
