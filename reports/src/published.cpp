@@ -112,7 +112,6 @@ PublishedTable readPublishedTable(const std::string& path, std::optional<MotionL
   std::string text = readFile(path);  // names a missing file or a folder
   if (text.size() > kMaxPublishedBytes)  // grew since it was measured
     throw InputError(path, "(file)", "over the limit of " + std::to_string(kMaxPublishedBytes) + " bytes for a published table");
-  requireText(text, path + ":1");
   PublishedTable table;
   table.file = path;
   table.sha256 = sha256Hex(text);
@@ -131,6 +130,8 @@ PublishedTable readPublishedTable(const std::string& path, std::optional<MotionL
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const std::string source = path + ":" + std::to_string(line_no);
+    if (line.find('\0') != std::string::npos) throw InputError(source, "(row)", "holds a NUL byte (not a text file)");
+    if (!isValidUtf8(line)) throw InputError(source, "(row)", "is not valid UTF-8 text");
     if (line_no == 1) {
       if (line != kHeader)
         throw InputError(source, "(header)", std::string("must be exactly '") + kHeader + "'");
