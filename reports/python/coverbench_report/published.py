@@ -9,6 +9,7 @@ from .analysis import usable, value
 
 TIME_UNIT = "s"  # metrics in seconds are the clock's (duration_s, turn_cost_s)
 NOT_SOLVED = "not solved"
+INSTANCE_TITLE = "Published results per instance"
 
 
 class Published:
@@ -159,7 +160,7 @@ def summary_table(p):
 
 
 def instance_table(p):
-    t = T.Table("Published results per instance", ["planner", "published", "metric", "instance", "ours", "theirs",
+    t = T.Table(INSTANCE_TITLE, ["planner", "published", "metric", "instance", "ours", "theirs",
                                                    "ours / theirs"],
                 note="Every matched instance; ratio where both solved it with positive values.")
     for c in p.a.columns:

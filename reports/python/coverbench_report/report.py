@@ -289,7 +289,8 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
                 f'papers: <a href="report.md">Markdown</a>, <a href="report.csv">CSV</a>, '
                 f'<a href="report.tex">LaTeX</a>; every run: <a href="report_data.json">report_data.json</a>.</p>')
     replanning = [T.to_html(t) for t in T.replanning_tables(a) + T.replanning_tables(a, measured=True)]
-    published = [T.to_html(t) for t in P.tables(a)]
+    published = [f"<details><summary>{esc(t.title)} ({len(t.rows)} rows)</summary>{T.to_html(t)}</details>"
+                 if t.title == P.INSTANCE_TITLE else T.to_html(t) for t in P.tables(a)]
     sections = [("headline", "Headline", "\n".join(headline)), ("outcomes", "Outcomes", "\n".join(outcomes)),
                 *([("replanning", "Replanning", "\n".join(replanning))] if replanning else []),
                 ("paired", "Paired statistics", "\n".join(paired)),
