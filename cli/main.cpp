@@ -295,6 +295,8 @@ void addResultCommands(CLI::App& app, Commands& o) {
   report_cmd->add_option("--published-clock", report.published_clock,
                          "the time model the published times were measured with: unknown, or '{speed: 0.3, ...}' "
                          "(the keys of motion:)");
+  report_cmd->add_flag("--no-published", report.no_published,
+                       "leave out the published table the config names (one that has moved, say)");
   report_cmd->callback([&o] { o.exit_code = cli::reportCommand(o.report); });
 
   cli::RunsOptions& runs = o.runs;

@@ -191,11 +191,15 @@ ResultSet loadResults(ResultsDb& db, const ReportOptions& o) {
 }
 
 /// The published table the report sets beside the planners: --published's, else the one the
-/// stored config names (none without either), with whether its clock is the experiment's.
+/// stored config names (none without either, or with --no-published), with whether its clock is
+/// the experiment's.
 std::optional<PublishedTable> loadPublished(const ReportOptions& o, const ExperimentRecord& record) {
   if (o.published.empty() && !o.published_clock.empty())
     throw InputError("--published-clock", "published_clock", "needs --published");
+  if (o.no_published && !o.published.empty())
+    throw InputError("--no-published", "no_published", "cannot be given with --published");
   std::optional<PublishedTable> table;
+  if (o.no_published) return table;
   if (!o.published.empty()) {
     if (o.published_clock.empty())
       throw InputError("--published", "published", "needs --published-clock: unknown, or a time model such as '{speed: 0.3}'");

@@ -82,6 +82,11 @@ TEST_F(PublishedReport, TwentyTwoWallsGiveTheSectionInEveryFormatTheSameBytesTwi
   ASSERT_NE(at, std::string::npos) << same_clock;
   const std::string row = same_clock.substr(at, same_clock.find('\n', at) - at);
   EXPECT_EQ(row.substr(row.size() - 13), "| 1 | 0 | 0 |") << row;  // one duration the paper did not give
+  // Left out on request; refused beside --published.
+  std::string left_out;
+  ASSERT_EQ(run("report " + db + " --format md --no-published", &left_out).exit_code, 0);
+  EXPECT_EQ(left_out.find("Published"), std::string::npos);
+  EXPECT_EQ(run("report " + db + " --format md --no-published --published " + table + " --published-clock unknown").exit_code, 2);
   // The experiment without published: no section.
   ASSERT_EQ(run("report " + db + " --format md --experiment 1", &plain).exit_code, 0);
   EXPECT_EQ(plain.find("Published"), std::string::npos);
