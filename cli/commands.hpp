@@ -152,6 +152,9 @@ int exportOmplCommand(const ExportOmplOptions& options);
 
 struct ReportOptions {
   std::string database, format = "md", out, baseline;
+  /// A published table (CSV) and its clock, instead of the one the config names (docs/report.md).
+  std::string published, published_clock;
+  bool no_published = false;  ///< leave out the table the stored config names
   std::optional<long long> experiment;
 };
 

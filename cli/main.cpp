@@ -289,6 +289,14 @@ void addResultCommands(CLI::App& app, Commands& o) {
   report_cmd->add_option("--out", report.out, "html: the report folder; otherwise the file to write (default: standard output)");
   report_cmd->add_option("--experiment", report.experiment, "experiment id in the database (default: the latest)");
   report_cmd->add_option("--baseline", report.baseline, "planner label to compare against (default: the config's)");
+  report_cmd->add_option("--published", report.published,
+                         "a table of published values (instance,method,metric,value) to set beside the planners "
+                         "(default: the config's published:)");
+  report_cmd->add_option("--published-clock", report.published_clock,
+                         "the time model the published times were measured with: unknown, or '{speed: 0.3, ...}' "
+                         "(the keys of motion:)");
+  report_cmd->add_flag("--no-published", report.no_published,
+                       "leave out the published table the config names (one that has moved, say)");
   report_cmd->callback([&o] { o.exit_code = cli::reportCommand(o.report); });
 
   cli::RunsOptions& runs = o.runs;

@@ -190,6 +190,28 @@ ResultSet loadResults(ResultsDb& db, const ReportOptions& o) {
   return results;
 }
 
+/// The published table the report sets beside the planners: --published's, else the one the
+/// stored config names (none without either, or with --no-published), with whether its clock is
+/// the experiment's.
+std::optional<PublishedTable> loadPublished(const ReportOptions& o, const ExperimentRecord& record) {
+  if (o.published.empty() && !o.published_clock.empty())
+    throw InputError("--published-clock", "published_clock", "needs --published");
+  if (o.no_published && !o.published.empty())
+    throw InputError("--no-published", "no_published", "cannot be given with --published");
+  std::optional<PublishedTable> table;
+  if (o.no_published) return table;
+  if (!o.published.empty()) {
+    if (o.published_clock.empty())
+      throw InputError("--published", "published", "needs --published-clock: unknown, or a time model such as '{speed: 0.3}'");
+    table = publishedTable(o.published, o.published_clock);
+  } else {
+    table = configPublished(record.config_text, record.config_path);
+  }
+  if (table && table->clock)
+    table->clock_matches = sameClock(*table->clock, configMotion(record.config_text, record.config_path));
+  return table;
+}
+
 }  // namespace
 
 void runAnalysis(const std::string& data, const std::string& folder, const std::string& formats) {
@@ -249,6 +271,7 @@ std::string writeReport(const ReportOptions& o) {
   ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
   const ResultSet results = loadResults(db, o);
   const ExperimentRecord record = db.record(o.experiment);
+  const std::optional<PublishedTable> published = loadPublished(o, record);
   std::vector<std::string> datasets;
   for (const auto& d : record.datasets)
     if (std::find(datasets.begin(), datasets.end(), d.label) == datasets.end()) datasets.push_back(d.label);
@@ -258,7 +281,7 @@ std::string writeReport(const ReportOptions& o) {
   const fs::path data = staging.path() / "report_data.json";
   {
     std::ofstream out(data, std::ios::binary);
-    out << reportDataJson(results, record, gallery);
+    out << reportDataJson(results, record, gallery, published ? &*published : nullptr);
     out.flush();
     if (!out) throw InputError(data.string(), "report", std::string("cannot be written: ") + std::strerror(errno));
   }
@@ -290,13 +313,14 @@ int reportCommand(const ReportOptions& o) {
   ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
   const ResultSet results = loadResults(db, o);
   const ExperimentRecord record = db.record(o.experiment);
+  const std::optional<PublishedTable> published = loadPublished(o, record);
   // The tables alone: the analysis writes them into a scratch folder, read back here.
   const fs::path scratch_target = fs::temp_directory_path() / ("coverbench-report-" + std::to_string(::getpid()));
   Staging scratch(scratch_target);
   const fs::path data = scratch.path() / "report_data.json";
   {
     std::ofstream out(data, std::ios::binary);
-    out << reportDataJson(results, record, {});
+    out << reportDataJson(results, record, {}, published ? &*published : nullptr);
   }
   runAnalysis(data.string(), scratch.path().string(), f->second.first);
   const std::string text = readFile((scratch.path() / f->second.second).string());

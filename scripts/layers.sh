@@ -35,7 +35,7 @@ allowed() {
     vehicles) echo "base files formats geometry planning transits" ;;
     datasets|imports) echo "base files formats geometry identity" ;;
     algorithms) echo "base files formats geometry planning transits vehicles" ;;
-    records) echo "base files formats geometry metrics planning transits" ;;
+    records) echo "base files formats geometry identity metrics planning transits" ;;
     runner) echo "algorithms base files formats geometry identity metrics planning records transits vehicles" ;;
     reports) echo "base files formats geometry metrics planning records transits" ;;
     experiments) echo "algorithms base datasets files formats geometry identity imports judge metrics planning records runner transits vehicles" ;;

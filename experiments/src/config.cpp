@@ -178,23 +178,23 @@ PlannerConfig makeConfig(const PlannerInfo& info, ParamSettings settings) {
 }
 
 /// The `motion:` section: the time model of duration_s (docs/metrics.md#time-models).
-MotionLimits readMotion(Reader& r, const Yaml& m) {
-  r.onlyKeys(m, "motion", {"speed", "acceleration", "stops", "stop_angle", "turn_cost_s", "rotation_speed"});
+MotionLimits readMotion(Reader& r, const Yaml& m, const std::string& where = "motion") {
+  r.onlyKeys(m, where, {"speed", "acceleration", "stops", "stop_angle", "turn_cost_s", "rotation_speed"});
   MotionLimits limits;
-  if (const Yaml* v = m.find("speed")) limits.speed = r.number(*v, "motion.speed", 0, 1000, true);
+  if (const Yaml* v = m.find("speed")) limits.speed = r.number(*v, where + ".speed", 0, 1000, true);
   if (const Yaml* v = m.find("acceleration"))  // "inf": no ramp
-    limits.acceleration = r.text(*v, "motion.acceleration") == "inf" ? HUGE_VAL : r.number(*v, "motion.acceleration", 0, 1000, true);
-  if (const Yaml* v = m.find("rotation_speed")) limits.rotation_speed = r.number(*v, "motion.rotation_speed", 0, 100);
+    limits.acceleration = r.text(*v, where + ".acceleration") == "inf" ? HUGE_VAL : r.number(*v, where + ".acceleration", 0, 1000, true);
+  if (const Yaml* v = m.find("rotation_speed")) limits.rotation_speed = r.number(*v, where + ".rotation_speed", 0, 100);
   if (const Yaml* v = m.find("stops")) {
-    const std::string stops = r.text(*v, "motion.stops");
+    const std::string stops = r.text(*v, where + ".stops");
     if (stops == "waypoints") limits.stops = MotionLimits::Stops::Waypoints;
-    else if (stops != "turns") r.fail(*v, "motion.stops", "must be turns or waypoints, got '" + stops + "'");
+    else if (stops != "turns") r.fail(*v, where + ".stops", "must be turns or waypoints, got '" + stops + "'");
   }
   if (const Yaml* v = m.find("stop_angle")) {
-    if (limits.stops == MotionLimits::Stops::Waypoints) r.fail(*v, "motion.stop_angle", "applies to stops: turns only");
-    limits.stop_angle_deg = r.number(*v, "motion.stop_angle", 0, 180, true, true);
+    if (limits.stops == MotionLimits::Stops::Waypoints) r.fail(*v, where + ".stop_angle", "applies to stops: turns only");
+    limits.stop_angle_deg = r.number(*v, where + ".stop_angle", 0, 180, true, true);
   }
-  if (const Yaml* v = m.find("turn_cost_s")) limits.turn_cost_s = r.number(*v, "motion.turn_cost_s", 0, 3600);
+  if (const Yaml* v = m.find("turn_cost_s")) limits.turn_cost_s = r.number(*v, where + ".turn_cost_s", 0, 3600);
   return limits;
 }
 
@@ -628,7 +628,56 @@ void readBaseline(Reader& r, const Yaml& doc, const PlannerList& list, Experimen
   }
 }
 
+/// A published table's clock: `unknown`, or a time model with the keys of `motion:` (`{}` is the
+/// default one).
+std::optional<MotionLimits> readClock(Reader& r, const Yaml& n, const std::string& field) {
+  if (n.isScalar() && n.scalar == "unknown") return std::nullopt;
+  if (!n.isMap()) r.fail(n, field, "must be unknown or a time model with the keys of motion: ({} is the default one)");
+  return readMotion(r, n, field);
+}
+
+/// The `published:` section: a table of published values (`table:`, a CSV, docs/report.md) and
+/// the clock its times were measured with (`clock:`), both required. The table is read and
+/// checked here, so a bad one stops the config before any run.
+PublishedTable readPublished(Reader& r, const Yaml& p, const fs::path& base) {
+  r.onlyKeys(p, "published", {"table", "clock"});
+  for (const char* required : {"table", "clock"})
+    if (!p.find(required)) r.fail(p, std::string("published.") + required, "missing");
+  const Yaml& t = *p.find("table");
+  std::string table = r.text(t, "published.table");
+  if (table.empty()) r.fail(t, "published.table", "must not be empty");
+  table = fs::path(table).is_absolute() ? table : (base / table).lexically_normal().string();
+  std::error_code ec;
+  if (!fs::exists(table, ec)) r.fail(t, "published.table", "no such file: " + table);
+  const std::optional<MotionLimits> clock = readClock(r, *p.find("clock"), "published.clock");
+  return readPublishedTable(table, clock);
+}
+
 }  // namespace
+
+std::optional<PublishedTable> configPublished(const std::string& config_text, const std::string& source) {
+  Reader r(source);
+  try {
+    const Yaml doc = r.copy(YAML::Load(config_text), "", 0);
+    if (const Yaml* p = doc.isMap() ? doc.find("published") : nullptr)
+      return readPublished(r, *p, fs::path(source).parent_path());
+  } catch (const YAML::Exception& e) {
+    throw InputError(source + ":" + std::to_string(e.mark.line + 1), "(document)", "YAML syntax: " + e.msg);
+  }
+  return std::nullopt;
+}
+
+PublishedTable publishedTable(const std::string& table, const std::string& clock) {
+  Reader r("--published-clock");
+  Yaml n;
+  try {
+    n = r.copy(YAML::Load(clock), "", 0);
+  } catch (const YAML::Exception& e) {
+    throw InputError("--published-clock", "published_clock", "YAML syntax: " + e.msg);
+  }
+  if (n.kind == Yaml::Kind::Null) r.fail(n, "published_clock", "missing: unknown, or a time model such as '{speed: 0.3}'");
+  return readPublishedTable(table, readClock(r, n, "published_clock"));
+}
 
 MotionLimits configMotion(const std::string& config_text, const std::string& source) {
   Reader r(source);
@@ -656,7 +705,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   }
   if (!doc.isMap()) r.fail(doc, "(document)", "must be a mapping (name, datasets, planners, ...)");
   r.onlyKeys(doc, "", {"name", "output", "datasets", "planners", "tool", "repetitions", "limits", "baseline", "threads",
-                       "seed", "allow_large", "judge", "vehicle", "transit", "replanning", "motion"});
+                       "seed", "allow_large", "judge", "vehicle", "transit", "replanning", "motion", "published"});
   const ConfigFile file{r, path, fs::path(path).parent_path()};
 
   for (const char* required : {"name", "output", "datasets", "planners"})
@@ -680,6 +729,7 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
            "is not built for a car yet: its repairs are straight moves a car cannot drive (docs/replanning.md)");
   readRunSettings(r, doc, c);
   readBaseline(r, doc, planners, c);
+  if (const Yaml* p = doc.find("published")) c.published = readPublished(r, *p, file.base);
   return c;
 }
 

@@ -109,7 +109,8 @@ std::vector<GallerySection> selectGallery(const ResultSet& rs, const std::vector
   return out;
 }
 
-std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, const std::vector<GallerySection>& gallery) {
+std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, const std::vector<GallerySection>& gallery,
+                           const PublishedTable* published) {
   Json j;
   j["format"] = "coverbench-report-data";
   j["version"] = 1;
@@ -214,6 +215,17 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
       section["walls"].push_back({{"wall", w.wall}, {"wall_name", w.wall_name}, {"why", w.why}, {"pictures", pictures}});
     }
     j["gallery"].push_back(section);
+  }
+  if (published) {  // only when given, so other reports stay as they were
+    Json rows = Json::array();
+    for (const PublishedValue& v : published->values)
+      rows.push_back({v.instance, v.method, v.metric, v.value ? Json(*v.value) : Json(nullptr), v.line});
+    j["published"] = {{"file", published->file},
+                      {"sha256", published->sha256},
+                      {"clock", published->clock ? Json(published->clock->describe()) : Json(nullptr)},
+                      {"clock_matches", published->clock_matches},
+                      {"columns", {"instance", "method", "metric", "value", "line"}},
+                      {"rows", std::move(rows)}};
   }
   return j.dump() + "\n";  // compact: it is most of a report folder's text
 }

@@ -14,6 +14,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/param_codec.hpp"
 #include "coverbench/planner.hpp"
+#include "coverbench/published.hpp"
 #include "coverbench/replanning.hpp"
 #include "coverbench/run_planner.hpp"
 #include "coverbench/run_record.hpp"
@@ -82,6 +83,9 @@ struct ExperimentConfig {
   /// and certified coverage intervals are stored as the exact_* metrics, and a path only it finds
   /// invalid is `invalid_output`.
   bool exact_judge = false;
+  /// Published values to set beside the planners in the report (config section `published:`;
+  /// none when absent): read and checked with the config.
+  std::optional<PublishedTable> published;
 };
 
 /// The number of runs a config asks for (walls counted before loading, duplicates included, times
@@ -96,6 +100,14 @@ ExperimentConfig loadExperimentConfig(const std::string& path);
 /// The time model a config's text sets (its `motion:` section; the default without one), for
 /// readers of a stored experiment. `source` names it in errors.
 MotionLimits configMotion(const std::string& config_text, const std::string& source);
+
+/// The published table a config's text names (its `published:` section, the table's path
+/// relative to `source`'s folder), read and checked; none without one. For the report of a stored
+/// experiment.
+std::optional<PublishedTable> configPublished(const std::string& config_text, const std::string& source);
+/// The published table `table` with the clock `clock` as `coverbench report --published-clock`
+/// gives it: `unknown`, or a YAML mapping with the keys of `motion:` ('{speed: 0.3}').
+PublishedTable publishedTable(const std::string& table, const std::string& clock);
 
 /// A wall as a run sees it: its content (canonical JSON) and hash, and the dataset it came from.
 struct WallEntry {

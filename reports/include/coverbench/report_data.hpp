@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "coverbench/published.hpp"
 #include "coverbench/records.hpp"
 
 namespace coverbench {
@@ -37,7 +38,9 @@ std::vector<GallerySection> selectGallery(const ResultSet& results, const std::v
 
 /// report_data.json: the record, the metric registry, every run (metrics as numbers, null when
 /// not measured or infinite) and the gallery. Same inputs, same bytes.
+/// With `published`, also its values and clock (key `published`; absent without, so such reports
+/// stay as they were).
 std::string reportDataJson(const ResultSet& results, const ExperimentRecord& record,
-                           const std::vector<GallerySection>& gallery);
+                           const std::vector<GallerySection>& gallery, const PublishedTable* published = nullptr);
 
 }  // namespace coverbench

@@ -7,6 +7,7 @@ import re
 import shlex
 
 from . import plots
+from . import published as P
 from . import tables as T
 from .analysis import Analysis
 from .page import esc, gallery_html, page
@@ -288,9 +289,12 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
                 f'papers: <a href="report.md">Markdown</a>, <a href="report.csv">CSV</a>, '
                 f'<a href="report.tex">LaTeX</a>; every run: <a href="report_data.json">report_data.json</a>.</p>')
     replanning = [T.to_html(t) for t in T.replanning_tables(a) + T.replanning_tables(a, measured=True)]
+    published = [f"<details><summary>{esc(t.title)} ({len(t.rows)} rows)</summary>{T.to_html(t)}</details>"
+                 if t.title == P.INSTANCE_TITLE else T.to_html(t) for t in P.tables(a)]
     sections = [("headline", "Headline", "\n".join(headline)), ("outcomes", "Outcomes", "\n".join(outcomes)),
                 *([("replanning", "Replanning", "\n".join(replanning))] if replanning else []),
-                ("paired", "Paired statistics", "\n".join(paired)), ("plots", "Plots", "\n".join(plots_html)),
+                ("paired", "Paired statistics", "\n".join(paired)),
+                *([("published", "Published results", "\n".join(published))] if published else []), ("plots", "Plots", "\n".join(plots_html)),
                 ("galleries", "Galleries", "\n".join(gallery)), ("appendix", "Appendix", "\n".join(appendix)),
                 ("record", "Reproducibility record", "\n".join(record))]
     scripts = []

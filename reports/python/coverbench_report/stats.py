@@ -142,3 +142,29 @@ def power_law(x, y):
     r = stats.linregress(np.log10(x[keep]), np.log10(y[keep]))
     return {"exponent": float(r.slope), "stderr": float(r.stderr), "intercept": float(r.intercept),
             "r": float(r.rvalue), "n": int(keep.sum())}
+
+
+def geometric_mean_ci(log_ratios, confidence=0.95):
+    """Geometric mean of ratios from their logarithms, with a t-interval on the mean log ratio
+    (scipy.stats.t), taken back by exp: (mean, low, high). One ratio gives no interval (NaN); equal
+    ratios give an interval of width zero."""
+    x = np.asarray(log_ratios, dtype=float)
+    n = len(x)
+    if n == 0:
+        return (math.nan, math.nan, math.nan)
+    mean = float(np.mean(x))
+    if n == 1:
+        return (math.exp(mean), math.nan, math.nan)
+    half = float(stats.t.ppf(0.5 + confidence / 2, n - 1)) * float(np.std(x, ddof=1)) / math.sqrt(n)
+    return (math.exp(mean), math.exp(mean - half), math.exp(mean + half))
+
+
+def signed_rank(log_ratios):
+    """Two-sided Wilcoxon signed-rank p-value of log ratios against 0 (scipy.stats.wilcoxon);
+    NaN without any, 1 when every ratio is 1."""
+    x = np.asarray(log_ratios, dtype=float)
+    if len(x) == 0:
+        return math.nan
+    if np.all(x == 0):
+        return 1.0
+    return float(stats.wilcoxon(x, zero_method="wilcox", alternative="two-sided").pvalue)

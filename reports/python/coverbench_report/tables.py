@@ -407,7 +407,7 @@ def friedman_table(a):
 
 def paper_tables(a):
     """The tables a paper takes: outcomes, per dataset the headline ranking, paired comparisons of
-    the headline metrics, and the Friedman tests."""
+    the headline metrics, the Friedman tests, and published results when given."""
     tables = [outcome_table(a), success_table(a)]
     for d in a.datasets:
         for tool in a.tools:
@@ -419,6 +419,8 @@ def paper_tables(a):
         ft = friedman_table(a)
         if ft.rows:
             tables.append(ft)
+    from . import published  # published imports this module
+    tables += published.tables(a)  # none without published values
     tables += replanning_tables(a)
     for d in a.datasets:  # last: what a rerun does not reproduce
         for tool in a.tools:
