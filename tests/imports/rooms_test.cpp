@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "coverbench/datasets.hpp"
+#include "coverbench/experiment.hpp"
 #include "coverbench/geometry.hpp"
 #include "coverbench/hash.hpp"
 #include "coverbench/wall_import.hpp"
@@ -190,6 +191,24 @@ TEST_F(Rooms, TheCommandWritesTheRoomsAndSaysWhatItDropped) {
   // A link to the segmentation is read as the file it names (as the map's image is).
   fs::create_symlink(seg("labels.pgm"), seg("link.pgm"));
   EXPECT_EQ(importRooms(map, seg("link.pgm")).rooms[0].keptPixels(), 68u);
+}
+
+TEST_F(Rooms, AConfigImportsAMapsRooms) {
+  writeHouse();
+  const std::string config = write("exp.yaml",
+                                   "name: rooms\noutput: out\n"
+                                   "datasets:\n  - import: house.yaml\n    rooms: labels.pgm\n    min_room_area: 0.01\n"
+                                   "planners: [zigzag]\ntool: {width: 0.1, clearance: 0.01}\n");
+  const ExperimentConfig c = loadExperimentConfig(config);
+  ASSERT_EQ(c.datasets.size(), 1u);
+  EXPECT_EQ(c.datasets[0].count, 3u);
+  const std::vector<WallEntry> walls = loadWalls(c);
+  ASSERT_EQ(walls.size(), 3u);
+  EXPECT_EQ(walls[2].wall.name, "house-room-30");
+  write("all.yaml", "name: x\noutput: out\ndatasets:\n  - import: house.yaml\n    rooms: labels.pgm\n    all_components: true\n"
+                    "planners: [zigzag]\n");
+  EXPECT_EQ(test::inputError([&] { loadExperimentConfig((dir_ / "all.yaml").string()); }),
+            (dir_ / "all.yaml").string() + ":5: datasets[0].rooms: keeps each room's largest part: --all-components does not apply");
 }
 
 TEST_F(Rooms, HostileSegmentationsAreRefusedWithOneLine) {
