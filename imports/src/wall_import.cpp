@@ -251,14 +251,14 @@ RawSet readOccupancyMap(const std::string& path, const YAML::Node& doc, const Im
   const fs::path image_path = fs::path(path).parent_path() / doc["image"].Scalar();
   import_detail::requireUtf8Path(image_path.string(), path, "image");
   if (!fs::is_regular_file(image_path)) throw InputError(path, "image", "'" + image_path.string() + "' is not a file");
-  const import_detail::FreeMask mask = gdal().read_free_cells(image_path.string(), path, "image", rule, resolution);
+  import_detail::FreeMask mask = gdal().read_free_cells(image_path.string(), path, "image", rule, resolution);
   extra_sources.push_back({image_path.string(), sha256Hex(readFile(image_path.string()))});
   if (mask.free_cells == 0) throw InputError(path, "image", "has no free cell (by free_thresh " + shortNumber(free) + ")");
   const double tolerance = options.simplify >= 0 ? options.simplify : resolution / 2;
   if (!options.rooms.empty()) {
     rooms.emplace_back();
-    return import_detail::readRooms(path, image_path.string(), stemOf(path), mask, resolution, tolerance, options, extra_sources,
-                                    rooms.back());
+    return import_detail::readRooms(path, image_path.string(), stemOf(path), std::move(mask), resolution, tolerance, options,
+                                    extra_sources, rooms.back());
   }
   import_detail::Components found = gdal().polygonize_mask(mask.free, mask.width, mask.height, resolution, tolerance, path);
   if (found.polygons.empty()) throw InputError(path, "image", "has no free area left after simplification");
