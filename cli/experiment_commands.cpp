@@ -69,7 +69,9 @@ int datasetImportCommand(DatasetImportOptions o) {
   double component_area = 0.0;
   for (const ImportedWall& w : result.walls) components += w.dropped_components, component_area += w.dropped_component_area;
   if (components) std::cout << " (" << components << " free map components left out, " << shortNumber(component_area) << " m^2)";
-  std::cout << "\n" << describeDataset(d);
+  std::cout << "\n";
+  for (const RoomsReport& rooms : result.rooms) std::cout << describeRooms(rooms);
+  std::cout << describeDataset(d);
   return 0;
 }
 

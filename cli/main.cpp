@@ -226,6 +226,11 @@ void addDatasetCommands(CLI::App& app, Commands& o) {
   imp_cmd->add_flag("--all-components", imp.options.all_components, "maps: every free component as a wall (default: the largest)");
   imp_cmd->add_option("--min-hole-area", imp.options.min_hole_area, "drop holes smaller than this (m^2), and count them")->capture_default_str();
   imp_cmd->add_option("--simplify", imp.options.simplify, "maps: simplification tolerance in metres (default: half a pixel)");
+  imp_cmd->add_option("--rooms", imp.options.rooms,
+                      "a map's segmentation image (each room's pixels one grey value, 0 none): one wall per room, "
+                      "MAP-room-LABEL, its largest free part; what is dropped is counted");
+  imp_cmd->add_option("--min-room-area", imp.options.min_room_area, "with --rooms: drop rooms whose wall has fewer free m^2 than this")
+      ->capture_default_str();
   imp_cmd->add_option("--transform", imp.transform, "placement, in order: translate=X,Y rotate=DEG scale=S");
   imp_cmd->add_option("--origin", imp.options.origin, "keep, corner (each wall's lower-left at 0,0) or auto (corner beyond 10 km)")
       ->capture_default_str();

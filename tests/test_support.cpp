@@ -253,6 +253,13 @@ std::size_t sampleStride() {
   return stride;
 }
 
+std::string pgm(const std::vector<std::vector<int>>& rows, int maxval) {
+  std::string s = "P5\n" + std::to_string(rows[0].size()) + " " + std::to_string(rows.size()) + "\n" + std::to_string(maxval) + "\n";
+  for (const auto& row : rows)
+    for (int v : row) s += maxval > 255 ? std::string{static_cast<char>(v >> 8), static_cast<char>(v & 0xff)} : std::string(1, static_cast<char>(v));
+  return s;
+}
+
 std::string inputError(const std::function<void()>& action) {
   try {
     action();

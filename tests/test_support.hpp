@@ -64,6 +64,10 @@ std::vector<T> sampled(const std::vector<T>& all) {
 /// The message of the InputError `action` throws ("" if it throws none).
 std::string inputError(const std::function<void()>& action);
 
+/// A binary PGM (P5) of `rows` (row 0 at the top) with maximum value `maxval` (two bytes a
+/// sample above 255): a map image, or a segmentation's labels.
+std::string pgm(const std::vector<std::vector<int>>& rows, int maxval = 255);
+
 /// A fixture with a fresh folder for each test (named after it), removed afterwards.
 class TempDirTest : public testing::Test {
  protected:

@@ -230,6 +230,8 @@ void readImportDataset(const ConfigFile& f, const Yaml& d, const std::string& wh
   if (const Yaml* n = d.find("all_components")) o.all_components = r.boolean(*n, where + ".all_components");
   if (const Yaml* n = d.find("min_hole_area")) o.min_hole_area = r.number(*n, where + ".min_hole_area", 0, 1e8);
   if (const Yaml* n = d.find("simplify")) o.simplify = r.number(*n, where + ".simplify", 0, 1e4);
+  if (const Yaml* n = d.find("rooms")) o.rooms = f.resolve(r.text(*n, where + ".rooms"));
+  if (const Yaml* n = d.find("min_room_area")) o.min_room_area = r.number(*n, where + ".min_room_area", 0, 1e8);
   if (const Yaml* n = d.find("transform")) o.transform = parseTransform(r.text(*n, where + ".transform"), f.path + ":" + std::to_string(n->line), where + ".transform");
   if (const Yaml* n = d.find("obstacle_layers")) {
     if (n->isScalar()) o.dxf_obstacle_layers = {n->scalar};
@@ -320,7 +322,7 @@ DatasetSpec readDataset(const ConfigFile& f, const Yaml& d, const std::string& w
   Reader& r = f.r;
   r.onlyKeys(d, where, {"family", "count", "seed", "suite", "folder", "label", "start", "end", "import", "format", "crs", "source_crs",
                         "name_field", "split_multipolygons", "boundary_layer", "obstacle_layers", "all_components",
-                        "min_hole_area", "simplify", "transform", "origin"});
+                        "min_hole_area", "simplify", "transform", "origin", "rooms", "min_room_area"});
   DatasetSpec spec;
   spec.line = d.line;
   const Yaml* family = d.find("family");

@@ -557,12 +557,11 @@ PnmHeader readPnmHeader(const std::string& path) {
 
 std::string pixelCount(long long w, long long h) { return std::to_string(w) + " x " + std::to_string(h); }
 
-}  // namespace
-
-FreeMask readFreeCells(const std::string& path, const std::string& source, const std::string& field, const MapRule& rule,
-                       double resolution) {
+/// An image opened by GDAL within the limits (10^8 pixels; a PNM holding the bytes its header
+/// declares), refused with one line naming `source` and `field` before any pixel is read.
+GDALDatasetUniquePtr openImage(const std::string& path, const std::string& source, const std::string& field, PnmHeader& pnm) {
   registerOnce();
-  const PnmHeader pnm = readPnmHeader(path);
+  pnm = readPnmHeader(path);
   if (pnm.is_pnm) {
     // The limits first, from the header alone: nothing is allocated for what the file lacks.
     if (pnm.width < 1 || pnm.height < 1) fail(source, field, "'" + path + "' has no pixels");
@@ -579,67 +578,94 @@ FreeMask readFreeCells(const std::string& path, const std::string& source, const
                                           std::to_string(need) + " bytes) but holds " + std::to_string(size) + " bytes");
   }
   GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!ds) fail(source, field, "cannot read the image '" + path + "': " + lastGdalError());
-  FreeMask out;
-  out.width = ds->GetRasterXSize();
-  out.height = ds->GetRasterYSize();
-  if (ds->GetRasterCount() < 1 || out.width < 1 || out.height < 1) fail(source, field, "'" + path + "' has no pixels");
-  if (static_cast<double>(out.width) * static_cast<double>(out.height) > kMaxMapPixels)
-    fail(source, field, "'" + path + "' is " + pixelCount(out.width, out.height) + " pixels, over the limit of 10^8");
+  const std::string why = ds ? "" : lastGdalError();
+  if (!ds) fail(source, field, "cannot read the image '" + path + "': " + (why.empty() ? "not an image GDAL reads" : why));
+  const int width = ds->GetRasterXSize(), height = ds->GetRasterYSize();
+  if (ds->GetRasterCount() < 1 || width < 1 || height < 1) fail(source, field, "'" + path + "' has no pixels");
+  if (static_cast<double>(width) * static_cast<double>(height) > kMaxMapPixels)
+    fail(source, field, "'" + path + "' is " + pixelCount(width, height) + " pixels, over the limit of 10^8");
+  return ds;
+}
+
+/// The bands' roles: colour channels (averaged), alpha (never averaged), or a palette; and the
+/// full scale of a channel (a PGM's maximum value, else its bits: 16-bit PNG 65535).
+struct Channels {
+  std::vector<GDALRasterBand*> colour;
+  GDALRasterBand* alpha = nullptr;
+  const GDALColorTable* palette = nullptr;
+  double full = 255.0;
+};
+
+Channels channelsOf(GDALDataset& ds, const PnmHeader& pnm, const std::string& path, const std::string& source,
+                    const std::string& field) {
+  Channels c;
+  for (int b = 1; b <= ds.GetRasterCount(); ++b) {
+    GDALRasterBand* band = ds.GetRasterBand(b);
+    if (band->GetColorInterpretation() == GCI_AlphaBand) c.alpha = band;
+    else if (c.colour.size() < 3) c.colour.push_back(band);
+  }
+  if (!c.alpha && (ds.GetRasterCount() == 2 || ds.GetRasterCount() == 4)) {  // grey+alpha or RGBA, unlabelled
+    c.alpha = ds.GetRasterBand(ds.GetRasterCount());
+    c.colour.erase(std::remove(c.colour.begin(), c.colour.end(), c.alpha), c.colour.end());
+  }
+  if (c.colour.empty()) fail(source, field, "'" + path + "' has no colour or grey channel");
+  if (c.colour.size() == 1 && c.colour[0]->GetColorInterpretation() == GCI_PaletteIndex) c.palette = c.colour[0]->GetColorTable();
+  const GDALDataType type = c.colour[0]->GetRasterDataType();
+  if (type == GDT_UInt16) c.full = 65535.0;
+  else if (type != GDT_Byte)
+    fail(source, field, "'" + path + "' has " + GDALGetDataTypeName(type) + " pixels: a map image has 8 or 16 bits");
+  if (const char* nbits = c.colour[0]->GetMetadataItem("NBITS", "IMAGE_STRUCTURE")) {
+    const int bits = std::atoi(nbits);
+    if (bits >= 1 && bits < 16) c.full = static_cast<double>((1 << bits) - 1);
+  }
+  if (pnm.is_pnm) c.full = static_cast<double>(pnm.maxval);
+  return c;
+}
+
+/// Reads the image a row at a time: per_row(y, each colour channel's row, the alpha row).
+template <class PerRow>
+void forEachRow(GDALDataset& ds, const Channels& c, const std::string& path, const std::string& source,
+                const std::string& field, PerRow per_row) {
+  const int width = ds.GetRasterXSize(), height = ds.GetRasterYSize();
+  std::vector<std::vector<std::uint16_t>> rows(c.colour.size(), std::vector<std::uint16_t>(static_cast<std::size_t>(width)));
+  std::vector<std::uint16_t> alpha_row(c.alpha ? static_cast<std::size_t>(width) : 0);
+  auto read = [&](GDALRasterBand* band, int y, std::vector<std::uint16_t>& row) {
+    if (band->RasterIO(GF_Read, 0, y, width, 1, row.data(), width, 1, GDT_UInt16, 0, 0) != CE_None)
+      fail(source, field, "cannot read the pixels of '" + path + "': " + lastGdalError());
+  };
+  for (int y = 0; y < height; ++y) {
+    for (std::size_t k = 0; k < c.colour.size(); ++k) read(c.colour[k], y, rows[k]);
+    if (c.alpha) read(c.alpha, y, alpha_row);
+    per_row(y, rows, alpha_row);
+  }
+}
+
+}  // namespace
+
+FreeMask readFreeCells(const std::string& path, const std::string& source, const std::string& field, const MapRule& rule,
+                       double resolution) {
+  PnmHeader pnm;
+  GDALDatasetUniquePtr ds = openImage(path, source, field, pnm);
+  FreeMask out{ds->GetRasterXSize(), ds->GetRasterYSize(), {}, 0};
   const double across = resolution * std::max(out.width, out.height);
   if (across > kMaxExtent)
     fail(source, "resolution", hostShortNumber(resolution) + " m per pixel makes the " + pixelCount(out.width, out.height) +
                                                " image " + hostShortNumber(across) + " m across, over 10 km");
-
-  // The bands' roles: colour channels (averaged), alpha (never averaged), or a palette.
-  std::vector<GDALRasterBand*> colour;
-  GDALRasterBand* alpha = nullptr;
-  for (int b = 1; b <= ds->GetRasterCount(); ++b) {
-    GDALRasterBand* band = ds->GetRasterBand(b);
-    if (band->GetColorInterpretation() == GCI_AlphaBand) alpha = band;
-    else if (colour.size() < 3) colour.push_back(band);
-  }
-  if (!alpha && (ds->GetRasterCount() == 2 || ds->GetRasterCount() == 4)) {  // grey+alpha or RGBA, unlabelled
-    alpha = ds->GetRasterBand(ds->GetRasterCount());
-    colour.erase(std::remove(colour.begin(), colour.end(), alpha), colour.end());
-  }
-  if (colour.empty()) fail(source, field, "'" + path + "' has no colour or grey channel");
-  const GDALColorTable* palette =
-      colour.size() == 1 && colour[0]->GetColorInterpretation() == GCI_PaletteIndex ? colour[0]->GetColorTable() : nullptr;
-  // The full scale of a channel: a PGM's maximum value, else its bits (16-bit PNG: 65535).
-  double full = 255.0;
-  const GDALDataType type = colour[0]->GetRasterDataType();
-  if (type == GDT_UInt16) full = 65535.0;
-  else if (type != GDT_Byte)
-    fail(source, field, "'" + path + "' has " + GDALGetDataTypeName(type) + " pixels: a map image has 8 or 16 bits");
-  if (const char* nbits = colour[0]->GetMetadataItem("NBITS", "IMAGE_STRUCTURE")) {
-    const int bits = std::atoi(nbits);
-    if (bits >= 1 && bits < 16) full = static_cast<double>((1 << bits) - 1);
-  }
-  if (pnm.is_pnm) full = static_cast<double>(pnm.maxval);
-
+  const Channels c = channelsOf(*ds, pnm, path, source, field);
   const std::size_t width = static_cast<std::size_t>(out.width);
   out.free.assign(width * static_cast<std::size_t>(out.height), 0);
-  std::vector<std::vector<std::uint16_t>> rows(colour.size(), std::vector<std::uint16_t>(width));
-  std::vector<std::uint16_t> alpha_row(alpha ? width : 0);
-  auto read = [&](GDALRasterBand* band, int y, std::vector<std::uint16_t>& row) {
-    if (band->RasterIO(GF_Read, 0, y, out.width, 1, row.data(), out.width, 1, GDT_UInt16, 0, 0) != CE_None)
-      fail(source, field, "cannot read the pixels of '" + path + "': " + lastGdalError());
-  };
-  for (int y = 0; y < out.height; ++y) {
-    for (std::size_t c = 0; c < colour.size(); ++c) read(colour[c], y, rows[c]);
-    if (alpha) read(alpha, y, alpha_row);
+  forEachRow(*ds, c, path, source, field, [&](int y, const auto& rows, const auto& alpha_row) {
     for (std::size_t x = 0; x < width; ++x) {
       double shade;  // 0 black .. 1 white: the mean of the colour channels
-      bool transparent = alpha && alpha_row[x] == 0;
-      if (palette) {
-        const GDALColorEntry* e = palette->GetColorEntry(rows[0][x]);
+      bool transparent = c.alpha && alpha_row[x] == 0;
+      if (c.palette) {
+        const GDALColorEntry* e = c.palette->GetColorEntry(rows[0][x]);
         shade = e ? (e->c1 + e->c2 + e->c3) / (3.0 * 255.0) : 0.0;
         transparent = transparent || (e && e->c4 == 0);
       } else {
         double sum = 0.0;
         for (const auto& row : rows) sum += row[x];
-        shade = sum / (static_cast<double>(rows.size()) * full);
+        shade = sum / (static_cast<double>(rows.size()) * c.full);
       }
       bool is_free;
       if (rule.mode == MapRule::Mode::Raw) {
@@ -652,20 +678,54 @@ FreeMask readFreeCells(const std::string& path, const std::string& source, const
       out.free[static_cast<std::size_t>(y) * width + x] = is_free ? 1 : 0;
       out.free_cells += is_free;
     }
-  }
+  });
   return out;
 }
 
-Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int height, double resolution, double tolerance,
-                          const std::string& source) {
+LabelImage readLabels(const std::string& path, const std::string& source, const std::string& field, int width, int height,
+                      const std::string& map_image) {
+  PnmHeader pnm;
+  GDALDatasetUniquePtr ds = openImage(path, source, field, pnm);
+  if (ds->GetRasterXSize() != width || ds->GetRasterYSize() != height)
+    fail(source, field, "'" + path + "' is " + pixelCount(ds->GetRasterXSize(), ds->GetRasterYSize()) +
+                            " pixels but the map's image '" + map_image + "' is " + pixelCount(width, height) +
+                            ": a segmentation labels the map's own pixels");
+  const Channels c = channelsOf(*ds, pnm, path, source, field);
+  LabelImage out{width, height, {}};
+  const std::size_t w = static_cast<std::size_t>(width);
+  out.labels.assign(w * static_cast<std::size_t>(height), 0);
+  // A label is a grey value: the one channel's value, or a colour's when its channels agree (grey
+  // saved as RGB, or a palette of greys). Alpha is not part of it.
+  forEachRow(*ds, c, path, source, field, [&](int y, const auto& rows, const auto&) {
+    for (std::size_t x = 0; x < w; ++x) {
+      int v[3] = {rows[0][x], rows[0][x], rows[0][x]};
+      const GDALColorEntry* e = c.palette ? c.palette->GetColorEntry(rows[0][x]) : nullptr;
+      if (c.palette) v[0] = e ? e->c1 : 0, v[1] = e ? e->c2 : 0, v[2] = e ? e->c3 : 0;
+      for (std::size_t k = 1; !c.palette && k < rows.size(); ++k) v[k] = rows[k][x];
+      if (v[0] != v[1] || v[0] != v[2])
+        fail(source, field, "'" + path + "' has a pixel that is not grey at column " + std::to_string(x) + ", row " +
+                                std::to_string(y) + " (" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " +
+                                std::to_string(v[2]) + "): each room's label is one grey value");
+      out.labels[static_cast<std::size_t>(y) * w + x] = static_cast<std::uint16_t>(v[0]);
+    }
+  });
+  return out;
+}
+
+namespace {
+
+/// The vectoriser of both a free mask and a label raster: `cells` is width x height values of
+/// `type` (GDT_Byte or GDT_UInt16), row 0 at the top; each 4-connected run of one non-zero value
+/// becomes a polygon.
+Components polygonizeCells(GDALDataType type, const void* cells, int width, int height, double resolution, double tolerance,
+                           const std::string& source) {
   registerOnce();
   GDALDriver* raster_driver = GetGDALDriverManager()->GetDriverByName("MEM");
   GDALDriver* vector_driver = GetGDALDriverManager()->GetDriverByName("Memory");
   if (!raster_driver || !vector_driver) throw std::runtime_error("GDAL has no in-memory drivers");
-  GDALDatasetUniquePtr raster(raster_driver->Create("", width, height, 1, GDT_Byte, nullptr));
+  GDALDatasetUniquePtr raster(raster_driver->Create("", width, height, 1, type, nullptr));
   GDALRasterBand* band = raster->GetRasterBand(1);
-  if (band->RasterIO(GF_Write, 0, 0, width, height, const_cast<std::uint8_t*>(mask.data()), width, height, GDT_Byte, 0,
-                     0) != CE_None)
+  if (band->RasterIO(GF_Write, 0, 0, width, height, const_cast<void*>(cells), width, height, type, 0, 0) != CE_None)
     throw std::runtime_error("GDAL: cannot fill an in-memory raster: " + lastGdalError());
   double transform[6] = {0.0, resolution, 0.0, height * resolution, 0.0, -resolution};
   raster->SetGeoTransform(transform);
@@ -673,13 +733,15 @@ Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int 
   OGRLayer* layer = vectors->CreateLayer("free", nullptr, wkbPolygon, nullptr);
   OGRFieldDefn value_field("value", OFTInteger);
   layer->CreateField(&value_field);
-  // The band as its own mask: only the non-zero (free) cells become polygons; 4-connected.
+  // The band as its own mask: only the non-zero cells become polygons, 4-connected, each with its
+  // cell value in field 0.
   if (GDALPolygonize(band, band, layer, 0, nullptr, nullptr, nullptr) != CE_None)
     fail(source, "image", "cannot be polygonised: " + lastGdalError());
   struct Found {
     double pixel_area;
     std::size_t order;
     RawPolygon raw;
+    int value;
   };
   std::vector<Found> found;
   Components out;
@@ -688,6 +750,7 @@ Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int 
     const OGRGeometry* g = feature->GetGeometryRef();
     if (!g || wkbFlatten(g->getGeometryType()) != wkbPolygon) continue;
     const double pixel_area = g->toPolygon()->get_Area();
+    const int value = feature->GetFieldAsInteger(0);
     GeometryPtr simple(tolerance > 0 ? g->SimplifyPreserveTopology(tolerance) : g->clone());
     std::vector<const OGRPolygon*> polys;
     std::vector<GeometryPtr> keep;
@@ -695,12 +758,13 @@ Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int 
     if (polys.empty()) {  // simplified away: said, not dropped silently
       ++out.lost;
       out.lost_area += pixel_area;
+      out.lost_values.push_back(value);
       continue;
     }
     // A component is one polygon; should simplification split it, its largest part stands for it.
     const OGRPolygon* best = *std::max_element(polys.begin(), polys.end(),
                                                [](const OGRPolygon* a, const OGRPolygon* b) { return a->get_Area() < b->get_Area(); });
-    found.push_back({pixel_area, found.size(), rawOf(*best)});
+    found.push_back({pixel_area, found.size(), rawOf(*best), value});
   }
   std::sort(found.begin(), found.end(), [](const Found& a, const Found& b) {
     return a.pixel_area != b.pixel_area ? a.pixel_area > b.pixel_area : a.order < b.order;
@@ -708,8 +772,21 @@ Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int 
   for (Found& f : found) {
     out.polygons.push_back(std::move(f.raw));
     out.pixel_areas.push_back(f.pixel_area);
+    out.values.push_back(f.value);
   }
   return out;
+}
+
+}  // namespace
+
+Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int height, double resolution, double tolerance,
+                          const std::string& source) {
+  return polygonizeCells(GDT_Byte, mask.data(), width, height, resolution, tolerance, source);
+}
+
+Components polygonizeLabels(const std::vector<std::uint16_t>& labels, int width, int height, double resolution, double tolerance,
+                            const std::string& source) {
+  return polygonizeCells(GDT_UInt16, labels.data(), width, height, resolution, tolerance, source);
 }
 
 }  // namespace coverbench::import_detail
@@ -717,6 +794,7 @@ Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int 
 extern "C" __attribute__((visibility("default"))) const void* coverbench_gdal_plugin(const void* h) {
   using namespace coverbench::import_detail;
   host = static_cast<const GdalHost*>(h);
-  static const GdalApi api{kGdalPluginAbi, &readVectorFile, &readDxfFile, &readWktText, &placeBareSet, &readFreeCells, &polygonizeMask};
+  static const GdalApi api{kGdalPluginAbi, &readVectorFile, &readDxfFile, &readWktText, &placeBareSet, &readFreeCells, &polygonizeMask,
+                           &readLabels,     &polygonizeLabels};
   return &api;
 }

@@ -59,17 +59,33 @@ struct FreeMask {
 FreeMask readFreeCells(const std::string& path, const std::string& source, const std::string& field, const MapRule& rule,
                        double resolution);
 
+/// The grey values of a segmentation image (`--rooms`), row 0 at the top: each room's pixels carry
+/// its label, 0 is no room. Read within the map image's limits, and refused unless it is `width`
+/// x `height` pixels (the map's image, `map_image`) and every pixel is grey (8 or 16 bits, or
+/// colours whose channels agree).
+struct LabelImage {
+  int width = 0, height = 0;
+  std::vector<std::uint16_t> labels;  ///< width * height, row-major
+};
+LabelImage readLabels(const std::string& path, const std::string& source, const std::string& field, int width, int height,
+                      const std::string& map_image);
+
 /// The polygons of the cells where `mask` is non-zero (4-connected components), in metres with
 /// the image's lower-left corner at (0, 0) and `resolution` metres per pixel, each simplified
 /// within `tolerance` (topology kept). Sorted by their pixels' area, largest first; components
-/// that simplification leaves empty are counted in `lost`.
+/// that simplification leaves empty are counted in `lost`. polygonizeLabels does the same with
+/// the 4-connected runs of each non-zero label, and says which label each polygon has.
 struct Components {
   std::vector<RawPolygon> polygons;
   std::vector<double> pixel_areas;  ///< each polygon's area before simplification (pixels * r^2)
+  std::vector<int> values;          ///< each polygon's cell value (a mask's: 1)
   std::size_t lost = 0;
   double lost_area = 0.0;
+  std::vector<int> lost_values;  ///< the cell value of each component simplification left empty
 };
 Components polygonizeMask(const std::vector<std::uint8_t>& mask, int width, int height, double resolution,
                           double tolerance, const std::string& source);
+Components polygonizeLabels(const std::vector<std::uint16_t>& labels, int width, int height, double resolution,
+                            double tolerance, const std::string& source);
 
 }  // namespace coverbench::import_detail

@@ -30,11 +30,15 @@ struct GdalApi {
                               double resolution);
   Components (*polygonize_mask)(const std::vector<std::uint8_t>& mask, int width, int height, double resolution, double tolerance,
                                 const std::string& source);
+  LabelImage (*read_labels)(const std::string& path, const std::string& source, const std::string& field, int width, int height,
+                            const std::string& map_image);
+  Components (*polygonize_labels)(const std::vector<std::uint16_t>& labels, int width, int height, double resolution,
+                                  double tolerance, const std::string& source);
 };
 
 /// Changes whenever GdalHost, GdalApi or the types they pass change: a plug-in of another build
 /// is refused, not called.
-inline constexpr int kGdalPluginAbi = 1;
+inline constexpr int kGdalPluginAbi = 2;
 
 /// The plug-in's one exported symbol: const void* coverbench_gdal_plugin(const void* host), which
 /// takes a GdalHost and returns a GdalApi.

@@ -20,6 +20,7 @@
 #include "coverbench/geometry.hpp"
 #include "coverbench/plugin.hpp"
 #include "gdal_plugin.hpp"
+#include "map_rooms.hpp"
 
 namespace coverbench {
 namespace {
@@ -41,14 +42,27 @@ void hostInputError(const std::string& source, const std::string& field, const s
 bool hostPointInRing(Point p, const Ring& ring) { return pointInRing(p, ring); }
 std::string hostShortNumber(double v) { return shortNumber(v); }
 
+}  // namespace
+
+void import_detail::requireUtf8Path(const std::string& path, const std::string& source, const std::string& field) {
+  if (!isValidUtf8(path))
+    throw InputError(toValidUtf8(source), field, (path == source ? "" : "'" + toValidUtf8(path) + "' ") +
+                                                     "is not a valid UTF-8 path (the manifest records each file's path as "
+                                                     "text): rename it");
+}
+
 /// The GDAL plug-in (gdal_plugin.hpp), opened by the first import: no other command loads GDAL.
-const import_detail::GdalApi& gdal() {
+const import_detail::GdalApi& import_detail::gdal() {
   static const import_detail::GdalHost host{&hostInputError, &hostPointInRing, &hostShortNumber};
   static const PluginSpec spec{"GDAL", "this format cannot be imported", "libcoverbench_gdal.so", "COVERBENCH_GDAL_PLUGIN",
                                COVERBENCH_GDAL_PLUGIN_PATH, import_detail::kGdalPluginEntry, import_detail::kGdalPluginAbi};
   static const auto* api = static_cast<const import_detail::GdalApi*>(openPlugin(spec, &host));
   return *api;
 }
+
+namespace {
+
+using import_detail::gdal;
 
 std::string stemOf(const std::string& path) {
   fs::path p(path);
@@ -195,7 +209,8 @@ struct MapDrops {
 };
 
 RawSet readOccupancyMap(const std::string& path, const YAML::Node& doc, const ImportOptions& options,
-                        MapPlacement& placement, std::vector<ImportedSource>& extra_sources, MapDrops& drops) {
+                        MapPlacement& placement, std::vector<ImportedSource>& extra_sources, MapDrops& drops,
+                        std::vector<RoomsReport>& rooms) {
   static const std::set<std::string> known = {"image", "resolution", "origin", "occupied_thresh", "free_thresh",
                                                "negate", "mode"};
   for (const auto& kv : doc)
@@ -234,11 +249,17 @@ RawSet readOccupancyMap(const std::string& path, const YAML::Node& doc, const Im
     throw InputError("--simplify", "(value)", "must be at most 10000 metres, got " + shortNumber(options.simplify));
 
   const fs::path image_path = fs::path(path).parent_path() / doc["image"].Scalar();
+  import_detail::requireUtf8Path(image_path.string(), path, "image");
   if (!fs::is_regular_file(image_path)) throw InputError(path, "image", "'" + image_path.string() + "' is not a file");
-  const import_detail::FreeMask mask = gdal().read_free_cells(image_path.string(), path, "image", rule, resolution);
+  import_detail::FreeMask mask = gdal().read_free_cells(image_path.string(), path, "image", rule, resolution);
   extra_sources.push_back({image_path.string(), sha256Hex(readFile(image_path.string()))});
   if (mask.free_cells == 0) throw InputError(path, "image", "has no free cell (by free_thresh " + shortNumber(free) + ")");
   const double tolerance = options.simplify >= 0 ? options.simplify : resolution / 2;
+  if (!options.rooms.empty()) {
+    rooms.emplace_back();
+    return import_detail::readRooms(path, image_path.string(), stemOf(path), std::move(mask), resolution, tolerance, options,
+                                    extra_sources, rooms.back());
+  }
   import_detail::Components found = gdal().polygonize_mask(mask.free, mask.width, mask.height, resolution, tolerance, path);
   if (found.polygons.empty()) throw InputError(path, "image", "has no free area left after simplification");
   std::vector<RawPolygon>& components = found.polygons;
@@ -457,6 +478,7 @@ void importSource(const std::string& source, const std::string& forced_format, c
 }
 
 void importFile(const std::string& source, const std::string& format, const ImportOptions& options, ImportResult& result) {
+  import_detail::requireUtf8Path(source, source, "(path)");
   const fs::path p(source);
   if (format == "polygon-text") {
     if (!fs::is_directory(p)) throw InputError(source, "--format", "polygon-text is a folder holding outer_polygon (and holes)");
@@ -466,6 +488,8 @@ void importFile(const std::string& source, const std::string& format, const Impo
   if (format != "polygon-text" && format != "yaml" && format != "yaml-polygon" && format != "map" && format != "wkt" &&
       format != "dxf" && format != "geojson" && format != "gml" && format != "kml" && format != "shapefile" && format != "gpkg")
     throw InputError(source, "--format", "unknown format '" + format + "'");
+  if (!options.rooms.empty() && format != "map" && format != "yaml")
+    throw InputError(source, "--rooms", "needs a map_server map (a YAML naming its image), not " + format);
   if ((format == "map" || format == "yaml" || format == "yaml-polygon" || format == "wkt") && isImageFile(p))
     throw InputError(source, "--format", format == "map" ? bareImageMessage(p) : "is an image, not " + format + " text");
   // Read once: hashed here, parsed from the same bytes (WKT); 20 MB twice was a tenth of the time.
@@ -487,7 +511,8 @@ void importFile(const std::string& source, const std::string& format, const Impo
       const YAML::Node doc = loadYaml(source);
       if (!doc.IsMap()) throw InputError(source, "(document)", "must be a YAML mapping (hull/holes, or a map_server map)");
       is_map = format == "map" || (format == "yaml" && doc["image"]);
-      if (is_map) set = readOccupancyMap(source, doc, options, placement, result.sources, drops);
+      if (is_map) set = readOccupancyMap(source, doc, options, placement, result.sources, drops, result.rooms);
+      else if (!options.rooms.empty()) throw InputError(source, "--rooms", "needs a map_server map (a YAML naming its image)");
       else if (format == "yaml-polygon" || doc["hull"]) set = readHullYaml(source, doc, options);
       else throw InputError(source, "(document)", "is neither a hull/holes polygon (no 'hull') nor a map_server map (no 'image')");
     } catch (const YAML::Exception& e) {  // a value of the wrong kind anywhere: one line, not an internal error
@@ -506,12 +531,18 @@ void importFile(const std::string& source, const std::string& format, const Impo
   if (is_map) placement_transform = placement_transform * Eigen::Translation2d(placement.x, placement.y) * Eigen::Rotation2Dd(placement.yaw);
   place(set, placement_transform);
   const std::string stem = stemOf(source);
+  std::vector<int> room_labels;  // of the walls, in order: the kept rooms'
+  if (is_map && !options.rooms.empty())
+    for (const RoomReport& room : result.rooms.back().rooms)
+      if (!room.wall.empty()) room_labels.push_back(room.label);
   for (std::size_t i = 0; i < set.polygons.size(); ++i) {
     const std::string fallback = set.polygons.size() > 1 ? stem + "_" + std::to_string(i + 1) : stem;
     result.walls.push_back(wallOf(set.polygons[i], fallback, set.crs, source, options));
     if (is_map) {
       result.walls.back().from_map = true;
-      if (i == 0) {  // a map's drops are recorded once, on its first wall
+      if (!room_labels.empty()) {  // a room's wall: what it dropped is in result.rooms
+        result.walls.back().room = room_labels[i];
+      } else if (i == 0) {  // a map's drops are recorded once, on its first wall
         result.walls.back().dropped_components = drops.components;
         result.walls.back().dropped_component_area = drops.area;
       }
@@ -570,6 +601,14 @@ ImportResult importWalls(const std::vector<std::string>& sources, const ImportOp
     throw InputError("--origin", "(value)", "must be auto, keep or corner, got '" + options.origin + "'");
   if (!(options.min_hole_area >= 0)) throw InputError("--min-hole-area", "(value)", "must be 0 or more");
   if (sources.empty()) throw InputError("(sources)", "(value)", "name at least one file or folder to import");
+  if (!(options.min_room_area >= 0)) throw InputError("--min-room-area", "(value)", "must be 0 or more");
+  if (options.rooms.empty() && options.min_room_area > 0) throw InputError("--min-room-area", "(value)", "applies to --rooms only");
+  if (!options.rooms.empty()) {
+    if (sources.size() != 1 || fs::is_directory(sources[0]))
+      throw InputError("--rooms", "(value)", "labels the rooms of one map: give its YAML as the only source");
+    if (options.all_components)
+      throw InputError("--rooms", "(value)", "keeps each room's largest part: --all-components does not apply");
+  }
   ImportResult result;
   for (const std::string& s : sources) importSource(s, options.format, options, result);
   return result;
@@ -593,6 +632,8 @@ std::string importRecordJson(const ImportResult& result, const ImportOptions& op
                     "], \"all_components\": " + (options.all_components ? "true" : "false") +
                     ", \"min_hole_area\": " + num(options.min_hole_area) + ", \"simplify\": " + num(options.simplify) +
                     ", \"transform\": " + json(transform).dump() + ", \"origin\": " + json(options.origin).dump() +
+                    (options.rooms.empty() ? std::string()
+                                           : ", \"rooms\": " + json(options.rooms).dump() + ", \"min_room_area\": " + num(options.min_room_area)) +
                     "},\n    \"sources\": [";
   for (std::size_t i = 0; i < result.sources.size(); ++i)
     out += std::string(i ? ",\n      " : "\n      ") + "{\"file\": " + json(result.sources[i].path).dump() + ", \"sha256\": \"" +
@@ -604,12 +645,15 @@ std::string importRecordJson(const ImportResult& result, const ImportOptions& op
            json(w.source).dump() + ", \"feature\": " + json(w.feature).dump() + ", \"crs\": " + json(w.crs).dump() +
            ", \"origin\": [" + num(w.origin_x) + ", " + num(w.origin_y) + "], \"dropped_holes\": " +
            std::to_string(w.dropped_holes) + ", \"dropped_hole_area\": " + num(w.dropped_hole_area) +
-           (w.from_map ? ", \"dropped_components\": " + std::to_string(w.dropped_components) +
-                             ", \"dropped_component_area\": " + num(w.dropped_component_area)
-                       : std::string()) +
+           (w.room ? ", \"room\": " + std::to_string(w.room)
+            : w.from_map ? ", \"dropped_components\": " + std::to_string(w.dropped_components) +
+                               ", \"dropped_component_area\": " + num(w.dropped_component_area)
+                         : std::string()) +
            "}";
   }
-  return out + "\n    ]\n  }";
+  out += "\n    ]";
+  for (const RoomsReport& rooms : result.rooms) out += ",\n    \"rooms\": " + import_detail::roomsRecordJson(rooms);
+  return out + "\n  }";
 }
 
 }  // namespace coverbench

@@ -135,13 +135,7 @@ TEST_F(Import, DxfLayersBecomeBoundaryAndObstaclesAndBlocksArePlaced) {
 
 // --- map_server occupancy grids ------------------------------------------------------------------
 
-/// A binary PGM (P5) of `rows` (row 0 at the top).
-std::string pgm(const std::vector<std::vector<int>>& rows) {
-  std::string s = "P5\n" + std::to_string(rows[0].size()) + " " + std::to_string(rows.size()) + "\n255\n";
-  for (const auto& row : rows)
-    for (int v : row) s += static_cast<char>(v);
-  return s;
-}
+using test::pgm;  // a binary PGM of rows (test_support.hpp)
 
 /// 20 x 10 pixels: occupied (0) all round; free (254) inside; an occupied block of 4 x 2 pixels and
 /// an unknown (128: occupancy 0.5, between the thresholds) block of 2 x 2. Free: 18 * 8 - 8 - 4 =
@@ -452,13 +446,6 @@ std::string png(int width, int height, int colour_type, int bits, const std::vec
          chunk("IDAT", z) + chunk("IEND", "");
 }
 
-/// A binary PGM of `rows` with maximum value `maxval` (two bytes a sample above 255).
-std::string pgm16(const std::vector<std::vector<int>>& rows, int maxval) {
-  std::string s = "P5\n" + std::to_string(rows[0].size()) + " " + std::to_string(rows.size()) + "\n" + std::to_string(maxval) + "\n";
-  for (const auto& row : rows)
-    for (int v : row) s += std::string{static_cast<char>(v >> 8), static_cast<char>(v & 0xff)};
-  return s;
-}
 
 std::vector<int> flat(const std::vector<std::vector<int>>& rows, int scale, int alpha = -1) {
   std::vector<int> out;
@@ -485,7 +472,7 @@ TEST_F(Import, SixteenBitMapsGiveTheWallsOfTheirEightBitCopies) {
   std::vector<std::vector<int>> rows16 = rows;
   for (auto& row : rows16)
     for (int& v : row) v *= 257;
-  writeBytes("m16.pgm", pgm16(rows16, 65535));
+  writeBytes("m16.pgm", pgm(rows16, 65535));
   writeBytes("m8.png", png(20, 10, 0, 8, flat(rows, 1)));
   writeBytes("m16.png", png(20, 10, 0, 16, flat(rows, 257)));
   std::vector<std::vector<ImportedWall>> maps;
@@ -503,7 +490,7 @@ TEST_F(Import, SixteenBitMapsGiveTheWallsOfTheirEightBitCopies) {
   std::vector<std::vector<int>> rows1000 = rows;
   for (auto& row : rows1000)
     for (int& v : row) v = v * 1000 / 255;
-  writeBytes("m1000.pgm", pgm16(rows1000, 1000));
+  writeBytes("m1000.pgm", pgm(rows1000, 1000));
   const auto m1000 = import(write("m1000.yaml", "image: m1000.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n"));
   EXPECT_NEAR(freeArea(m1000[0]), 132 * 0.05 * 0.05, 1e-9);
 }

@@ -20,6 +20,8 @@ inline constexpr double kMaxMapPixels = 1e8;
 inline constexpr double kMinMapResolution = 1e-3;
 inline constexpr double kMaxMapResolution = 100.0;
 inline constexpr double kMaxImportCoordinate = 1e8;
+/// At most this many room labels in a segmentation image (`--rooms`): each is a wall.
+inline constexpr std::size_t kMaxRooms = 1000;
 
 /// The formats `--format` names; "auto" picks one by the file's extension (or a folder's files).
 const std::vector<std::string>& importFormats();
@@ -53,6 +55,11 @@ struct ImportOptions {
   double min_hole_area = 0.0;
   /// Occupancy grids: simplification tolerance in metres; negative: half a pixel.
   double simplify = -1.0;
+  /// A map's segmentation image (`--rooms`): one wall per labelled room instead of the largest
+  /// free component. Only with one map as the only source.
+  std::string rooms;
+  /// With `rooms`: a room whose wall would cover less than this many m^2 of free pixels is dropped.
+  double min_room_area = 0.0;
   /// Placement of every imported wall, after projection and the map's own origin.
   std::vector<TransformStep> transform;
   /// Where the coordinates end up: "keep" them, move each wall's lower-left corner to the
@@ -77,6 +84,35 @@ struct ImportedWall {
   bool from_map = false;
   std::size_t dropped_components = 0;
   double dropped_component_area = 0.0;
+  int room = 0;  ///< a room's wall (`--rooms`): its label; 0 otherwise
+};
+
+/// One label of a segmentation (`--rooms`), in the map's pixels (a pixel's area is the
+/// resolution squared). Its free pixels are its wall's part (the largest 4-connected one) and
+/// its other parts, dropped; a room dropped whole has no wall and keeps no pixel.
+struct RoomReport {
+  int label = 0;
+  std::string wall;     ///< its wall's name; empty when the room was dropped
+  std::string dropped;  ///< why the room has no wall ("no free pixel", "under --min-room-area", "simplified away")
+  std::size_t free_pixels = 0;      ///< labelled and free in the map
+  std::size_t parts = 0;            ///< 4-connected parts of those
+  std::size_t kept_pixels = 0;      ///< those of its wall's part
+  std::size_t not_free_pixels = 0;  ///< labelled but occupied or unknown in the map: never free, in no area
+};
+
+/// What a `--rooms` import kept and dropped. The identity: the kept pixels of every room are the
+/// map's free pixels less the dropped ones (unlabelled free pixels, and each room's free pixels
+/// outside its wall's part).
+struct RoomsReport {
+  std::string map, segmentation;
+  double resolution = 0.0;  ///< metres per pixel
+  std::size_t free_pixels = 0;             ///< the map's
+  std::size_t unlabelled_free_pixels = 0;  ///< free pixels of label 0
+  std::vector<RoomReport> rooms;           ///< by label
+  std::size_t keptPixels() const;
+  std::size_t droppedPixels() const;
+  std::size_t notFreePixels() const;
+  double area(std::size_t pixels) const { return static_cast<double>(pixels) * resolution * resolution; }
 };
 
 struct ImportedSource {
@@ -87,11 +123,16 @@ struct ImportedSource {
 struct ImportResult {
   std::vector<ImportedWall> walls;
   std::vector<ImportedSource> sources;
+  std::vector<RoomsReport> rooms;  ///< one with `--rooms`, else none
 };
 
 /// Imports every source (files or folders) in order; walls keep the order of their sources and
 /// features. Throws InputError on the first problem: nothing is half imported.
 ImportResult importWalls(const std::vector<std::string>& sources, const ImportOptions& options);
+
+/// What a `--rooms` import kept and dropped, as the command prints it: the totals, then a line per
+/// label.
+std::string describeRooms(const RoomsReport& report);
 
 /// The manifest's "import" object: the sources with their hashes, the options, and each wall's
 /// source, feature, CRS and origin (one wall per line; same input, same bytes).
