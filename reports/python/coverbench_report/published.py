@@ -2,6 +2,7 @@
 (report data key `published`, from a config's `published:` or `coverbench report --published`;
 docs/report.md). The values are the user's; the statistics are stats.py's."""
 import math
+import sys
 
 from . import stats
 from . import tables as T
@@ -103,9 +104,9 @@ class Published:
             else:
                 out["losses"] += 1
             if x > 0 and y > 0:
-                logs.append(math.log(x / y))
+                logs.append(log_ratio(x, y))
                 if not tie:
-                    untied_logs.append(math.log(x / y))
+                    untied_logs.append(log_ratio(x, y))
         out["ratios"] = len(logs)
         out["gmean"], out["low"], out["high"] = stats.geometric_mean_ci(logs)
         out["p"] = stats.signed_rank(untied_logs) if logs else math.nan
@@ -121,6 +122,15 @@ class Published:
         for r, p in zip(out, stats.holm([r["p"] for r in out])):
             r["p_holm"] = p
         return out
+
+
+def log_ratio(x, y):
+    """ln(x / y) of two positive values, also where the quotient leaves the doubles' normal range
+    (a published 1e308 or a subnormal 1e-320): then ln x - ln y."""
+    r = x / y
+    if sys.float_info.min <= r < math.inf:
+        return math.log(r)
+    return math.log(x) - math.log(y)
 
 
 def of(a):

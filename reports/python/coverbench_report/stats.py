@@ -154,9 +154,17 @@ def geometric_mean_ci(log_ratios, confidence=0.95):
         return (math.nan, math.nan, math.nan)
     mean = float(np.mean(x))
     if n == 1:
-        return (math.exp(mean), math.nan, math.nan)
+        return (_exp(mean), math.nan, math.nan)
     half = float(stats.t.ppf(0.5 + confidence / 2, n - 1)) * float(np.std(x, ddof=1)) / math.sqrt(n)
-    return (math.exp(mean), math.exp(mean - half), math.exp(mean + half))
+    return (_exp(mean), _exp(mean - half), _exp(mean + half))
+
+
+def _exp(v):
+    """e^v, infinity past the largest double (a ratio of over 1e308)."""
+    try:
+        return math.exp(v)
+    except OverflowError:
+        return math.inf
 
 
 def signed_rank(log_ratios):

@@ -130,6 +130,31 @@ class PublishedByHand(unittest.TestCase):
         self.assertEqual(same.compared, ["length_total", "duration_s"])
         self.assertAlmostEqual(same.comparison("a", "M", "duration_s")["gmean"], math.sqrt(2), places=9)
 
+    def test_values_at_the_ends_of_the_doubles_give_ratios_not_an_error(self):
+        # Made-up published values a table may hold (finite, >= 0): 1e308, whose quotient with a
+        # small length underflows to 0, and a subnormal 1e-320, whose quotient overflows; and special
+        # characters in the names, escaped in every format.
+        runs_ = [run("a", f"w{i}", 0.99, ours) for i, ours in enumerate((1e-20, 1e-20, 10.0, 10.0))]
+        d = data(runs_, ["a"])
+        d["published"] = {"file": "t.csv", "sha256": "ab" * 32, "clock": None, "clock_matches": False,
+                          "columns": ["instance", "method", "metric", "value", "line"],
+                          "rows": [["w0", "big", "length_total", 1e308, 2], ["w1", "big", "length_total", 1e308, 3],
+                                   ["w2", "sub", "length_total", 1e-320, 4], ["w3", "sub", "length_total", 1e-320, 5],
+                                   ["<b>x</b> & 50% a_b | c\\d", "sub", "length_total", 1.0, 6]]}
+        p = P.of(Analysis(d))
+        big, sub = p.comparison("a", "big", "length_total"), p.comparison("a", "sub", "length_total")
+        # ln(1e-20 / 1e308) = -328 ln 10 twice: the mean and its zero-width interval, exp'd, are 0.
+        self.assertEqual((big["ratios"], big["gmean"], big["low"], big["high"]), (2, 0.0, 0.0, 0.0))
+        # ln(10 / 1e-320) = 321 ln 10 is over ln of the largest double: infinity.
+        self.assertEqual((sub["ratios"], sub["gmean"], sub["low"], sub["high"]), (2, math.inf, math.inf, math.inf))
+        self.assertAlmostEqual(P.log_ratio(1e-20, 1e308), -328 * math.log(10), places=9)
+        with tempfile.TemporaryDirectory() as folder:
+            report.build(d, folder, ["md", "csv", "latex"])
+            md = read(os.path.join(folder, "report.md"))
+            self.assertIn("| a | sub | length\\_total | 2 | 2 | inf | \\[inf, inf\\] |", md)
+            self.assertNotIn("<b>", md)
+            self.assertNotIn("<b>", read(os.path.join(folder, "report.tex")))
+
     def test_tables_in_every_format_same_bytes_and_none_without(self):
         outs = []
         for _ in range(2):
