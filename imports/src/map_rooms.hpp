@@ -13,7 +13,9 @@ namespace coverbench::import_detail {
 /// The GDAL plug-in, opened by the first call (wall_import.cpp).
 const GdalApi& gdal();
 
-/// Refuses a path that is not valid UTF-8, which the manifest could not record (`source`: `field`).
+/// Refuses a path that is not valid UTF-8, which the manifest could not record, or that holds a
+/// control character (a line break would split the one line of an error or a summary)
+/// (`source`: `field`).
 void requireUtf8Path(const std::string& path, const std::string& source, const std::string& field);
 
 /// One polygon per kept room of the segmentation image `segmentation` (read in `map_path`'s

@@ -45,10 +45,19 @@ std::string hostShortNumber(double v) { return shortNumber(v); }
 }  // namespace
 
 void import_detail::requireUtf8Path(const std::string& path, const std::string& source, const std::string& field) {
+  // As an error shows a path: valid UTF-8 on one line (each control character a '?').
+  auto shown = [](const std::string& text) {
+    std::string out = toValidUtf8(text);
+    for (char& c : out)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return out;
+  };
+  const std::string named = path == source ? "" : "'" + shown(path) + "' ";
   if (!isValidUtf8(path))
-    throw InputError(toValidUtf8(source), field, (path == source ? "" : "'" + toValidUtf8(path) + "' ") +
-                                                     "is not a valid UTF-8 path (the manifest records each file's path as "
-                                                     "text): rename it");
+    throw InputError(shown(source), field, named + "is not a valid UTF-8 path (the manifest records each file's path as text): rename it");
+  for (unsigned char c : path)
+    if (c < 0x20 || c == 0x7f)
+      throw InputError(shown(source), field, named + "holds a control character (a line break, a tab): rename it");
 }
 
 /// The GDAL plug-in (gdal_plugin.hpp), opened by the first import: no other command loads GDAL.

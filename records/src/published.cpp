@@ -62,20 +62,35 @@ bool splitFields(const std::string& line, std::vector<std::string>& fields, std:
   }
 }
 
+/// A field as an error message shows it: its first 40 bytes (cut between UTF-8 characters), "..."
+/// when there is more.
+std::string shortened(const std::string& text) {
+  if (text.size() <= 40) return text;
+  std::size_t n = 40;
+  while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;  // not inside a character
+  return text.substr(0, n) + "...";
+}
+
+/// A field without control characters (a tab, an escape sequence), which no name, metric or
+/// number holds and which an error message must not echo to a terminal.
+void checkPrintable(const std::string& text, const std::string& source, const char* field) {
+  for (unsigned char c : text)
+    if (c < 0x20 || c == 0x7f) throw InputError(source, field, "holds a control character");
+}
+
 /// A name field: not empty, at most kMaxPublishedName bytes, printable (no control characters).
 void checkName(const std::string& text, const std::string& source, const char* field) {
   if (text.empty()) throw InputError(source, field, "must not be empty");
   if (text.size() > kMaxPublishedName)
     throw InputError(source, field, "longer than " + std::to_string(kMaxPublishedName) + " bytes");
-  for (unsigned char c : text)
-    if (c < 0x20 || c == 0x7f) throw InputError(source, field, "holds a control character");
+  checkPrintable(text, source, field);
 }
 
 std::optional<double> parseValue(const std::string& text, const std::string& source) {
   if (text.empty()) return std::nullopt;  // the method did not solve the instance
   double v = 0.0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  const std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
+  const std::string shown = shortened(text);
   if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
     throw InputError(source, "value", "must be a finite number (or empty: not solved), got '" + shown + "'");
   if (v < 0.0) throw InputError(source, "value", "must be >= 0 (every compared metric is), got " + shown);
@@ -84,7 +99,9 @@ std::optional<double> parseValue(const std::string& text, const std::string& sou
 
 void checkMetric(const std::string& name, const std::string& source) {
   const MetricSpec* spec = findMetricSpec(name);
-  if (!spec) throw InputError(source, "metric", "unknown metric '" + name + "' (docs/metrics.md lists them)");
+  if (!spec) {
+    throw InputError(source, "metric", "unknown metric '" + shortened(name) + "' (docs/metrics.md lists them)");
+  }
   if (spec->kind == MetricKind::Measured)
     throw InputError(source, "metric", "'" + name + "' is measured on a machine: a value from another machine is not comparable");
   if (spec->kind != MetricKind::Quality || spec->better == 0)
@@ -132,6 +149,10 @@ PublishedTable readPublishedTable(const std::string& path, std::optional<MotionL
     const std::string source = path + ":" + std::to_string(line_no);
     if (line.find('\0') != std::string::npos) throw InputError(source, "(row)", "holds a NUL byte (not a text file)");
     if (!isValidUtf8(line)) throw InputError(source, "(row)", "is not valid UTF-8 text");
+    if (line.find('\r') != std::string::npos)
+      throw InputError(source, "(row)", "holds a carriage return inside the line (lines end with \\n or \\r\\n)");
+    if (line.find("\xEF\xBB\xBF") != std::string::npos)
+      throw InputError(source, "(row)", "holds a byte order mark (U+FEFF): only the file's first bytes may");
     if (line_no == 1) {
       if (line != kHeader)
         throw InputError(source, "(header)", std::string("must be exactly '") + kHeader + "'");
@@ -151,6 +172,7 @@ PublishedTable readPublishedTable(const std::string& path, std::optional<MotionL
     v.line = line_no;
     checkName(v.instance, source, kFields[0]);
     checkName(v.method, source, kFields[1]);
+    for (int k : {2, 3}) checkPrintable(fields[static_cast<std::size_t>(k)], source, kFields[k]);
     checkMetric(v.metric, source);
     v.value = parseValue(fields[3], source);
     const auto [it, fresh] = seen.emplace(std::make_tuple(v.instance, v.method, v.metric), line_no);

@@ -137,6 +137,30 @@ TEST_F(HostilePublished, BadTablesAreRefusedWithFileLineFieldAndProblem) {
                                 " bytes, over the limit of " + std::to_string(kMaxPublishedBytes) + " for a published table");
 }
 
+TEST_F(HostilePublished, StrayLineEndsByteOrderMarksAndControlCharactersAreRefused) {
+  const std::string h = "instance,method,metric,value\n";
+  const std::string t = (dir_ / "t.csv").string();
+  // Old Mac line ends (CR only): one line, refused as such, not as a wrong header.
+  EXPECT_EQ(tableError("instance,method,metric,value\rw,M,length_total,1\r"),
+            t + ":1: (row): holds a carriage return inside the line (lines end with \\n or \\r\\n)");
+  EXPECT_EQ(tableError(h + "w,M,length_total,5\r\r\n"),
+            t + ":2: (row): holds a carriage return inside the line (lines end with \\n or \\r\\n)");
+  // A byte order mark past the start (two files pasted together): not part of a name.
+  EXPECT_EQ(tableError(h + "\xEF\xBB\xBFw,M,length_total,1\n"),
+            t + ":2: (row): holds a byte order mark (U+FEFF): only the file's first bytes may");
+  // A control character is refused in every field, by name, and never echoed to a terminal.
+  EXPECT_EQ(tableError(h + "w,M,length_total\x1b[2J,1\n"), t + ":2: metric: holds a control character");
+  EXPECT_EQ(tableError(h + "w,M,length_total,1\t\n"), t + ":2: value: holds a control character");
+  EXPECT_EQ(tableError(h + "w\x7f,M,length_total,1\n"), t + ":2: instance: holds a control character");
+  // A long unknown metric is shown by its first 40 bytes, cut between characters.
+  EXPECT_EQ(tableError(h + "w,M," + std::string(39, 'm') + "\xC3\xA9" + std::string(100000, 'x') + ",1\n"),
+            t + ":2: metric: unknown metric '" + std::string(39, 'm') + "...' (docs/metrics.md lists them)");
+  // Every other form of number than from_chars' plain decimal is refused.
+  for (const char* v : {"0x10", "+5", " 5", "5 ", "1e-400", "inf"})
+    EXPECT_EQ(tableError(h + "w,M,length_total," + v + "\n"),
+              t + ":2: value: must be a finite number (or empty: not solved), got '" + v + "'");
+}
+
 TEST_F(HostilePublished, TheSectionNeedsATableAndItsClock) {
   write("t.csv", "instance,method,metric,value\nw,M,length_total,1\n");
   const std::string c = (dir_ / "c.yaml").string();

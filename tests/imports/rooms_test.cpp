@@ -287,6 +287,18 @@ TEST_F(Rooms, TheCommandRefusesWithOneLineAndWritesNothing) {
   EXPECT_EQ(latin.err, "coverbench: " + map + ": --rooms: '" + seg("labels\xef\xbf\xbd.pgm") +
                            "' is not a valid UTF-8 path (the manifest records each file's path as text): rename it\n");
   EXPECT_FALSE(fs::exists(ds));
+  // A path with a line break: refused on one line, the break shown as '?', whether the file is
+  // there or not.
+  fs::copy_file(seg("labels.pgm"), seg("two\nlines.pgm"));
+  for (const std::string name : {"two\nlines.pgm", "none\n.pgm"}) {
+    const test::CommandRun broken = run("dataset import " + map + " --rooms '" + seg(name) + "' --out " + ds);
+    EXPECT_EQ(broken.exit_code, 2);
+    std::string shown = seg(name);
+    std::replace(shown.begin(), shown.end(), '\n', '?');
+    EXPECT_EQ(broken.err, "coverbench: " + map + ": --rooms: '" + shown +
+                              "' holds a control character (a line break, a tab): rename it\n");
+    EXPECT_FALSE(fs::exists(ds));
+  }
   const std::string odd_map = (dir_ / "house\xff.yaml").string();
   fs::copy_file(map, odd_map);
   const test::CommandRun odd_run = run("dataset import '" + odd_map + "' --out " + ds);
