@@ -702,6 +702,9 @@
       view.exp = `${last.db}/${last.id}`;
       history.replaceState(null, "", addressOf(view));
     }
+    // The scripts after this one (plots.js, workbench.js) may still be loading when the list comes:
+    // an address that opens their tab waits for them.
+    if (document.readyState === "loading") await new Promise(r => document.addEventListener("DOMContentLoaded", r, {once: true}));
     await show(view);
     document.body.dataset.ready = "1";
   }

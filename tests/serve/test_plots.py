@@ -25,6 +25,7 @@ import struct
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 import urllib.error
 import urllib.request
@@ -335,6 +336,22 @@ class Plots(Served):
                              {k: was["controls"][k] for k in ("kind", "metric", "dataset", "tool")})
         self.assertEqual(r["first"]["query"], {})
         self.assertEqual(r["first"]["drawn"]["kind"], "box")
+
+    def test_an_address_of_the_plots_tab_draws_even_when_plots_js_comes_last(self):
+        # plots.js held back until the experiments' list has long been answered: the page opened
+        # on the Plots tab waits for it (it once failed with "Cannot read properties of undefined").
+        with opened(f"{self.base}/?exp={self.exp}") as page:
+            page.call("Fetch.enable", patterns=[{"urlPattern": "*/plots.js*"}])
+            page.call("Page.navigate", url=f"{self.base}/?exp={self.exp}&tab=plots")
+            paused = page.wait_for("Fetch.requestPaused")
+            time.sleep(1.5)  # not a measurement: the order of arrival this test is about
+            page.call("Fetch.continueRequest", requestId=paused["params"]["requestId"])
+            r = page.evaluate("(async () => {" + HELPERS + """
+                await until(() => P() && P().drawn() || $('status').textContent, 'the plot or an error');
+                return {status: $('status').textContent, drawn: !!(P() && P().drawn())};
+            })()""")
+            self.assertEqual(errors(page.events), [])
+        self.assertEqual(r, {"status": "", "drawn": True})
 
     def test_without_the_library_the_tab_says_how_to_install_it(self):
         with opened(f"{self.base}/?exp={self.exp}") as page:  # the Experiments tab: no plot, no library asked for
