@@ -436,6 +436,25 @@ TEST_P(StartAndEnd, DocksAtACornerAndBehindAnObstacleAreJoinedByDepotLegs) {
   EXPECT_NE(refused.reason.find("and a car is not given a depot leg to it"), std::string::npos) << refused.reason;
 }
 
+// The published 100 m field (12 holes; tests/data/field-12-holes.json, shared's fixture) starts
+// and ends at (0, 0), a vertex of its boundary: every planner plans, and both judges accept the
+// two depot legs there, each the straight move to F's corner (r + 5.5e-5 m, r + 5.5e-5 m).
+TEST_P(StartAndEnd, TheFieldStartsAndEndsAtItsCorner) {
+  const ToolParams tool{1.0, 0.02};
+  Wall field = loadWallFile(test::sourcePath("tests/data/field-12-holes.json"));
+  field.start = field.end = Point{0.0, 0.0};
+  const PlanResult r = test::planWith(GetParam(), field, tool);
+  ASSERT_TRUE(r.hasPath()) << r.reason;
+  EXPECT_TRUE(r.path.waypoints.front() == *field.start);
+  EXPECT_TRUE(r.path.waypoints.back() == *field.end);
+  EXPECT_EQ(r.stats.at("depot_legs"), 2.0);
+  EXPECT_NEAR(r.stats.at("depot_length"), 2 * std::sqrt(2.0) * (0.5 + 5.5e-5), 1e-6);
+  EXPECT_TRUE(test::isValidPath(field, tool, r.path));
+  const judge::ExactValidity exact = judge::judgeValidity(field, tool, r.path);
+  EXPECT_EQ(exact.depot_legs, 2u);
+  EXPECT_NEAR(exact.depot_length, r.stats.at("depot_length"), 1e-9);
+}
+
 INSTANTIATE_TEST_SUITE_P(AllPlanners, StartAndEnd, testing::ValuesIn(test::plannerNames()), test::plannerTestName);
 
 }  // namespace
