@@ -5,8 +5,8 @@
 #include "coverbench/car.hpp"
 #include "coverbench/car_sweep.hpp"
 #include "coverbench/clearance.hpp"
-#include "coverbench/region_ops.hpp"
 #include "coverbench/metrics.hpp"
+#include "coverbench/region_ops.hpp"
 #include "coverbench/transit_router.hpp"
 #include "coverbench/workspace.hpp"
 
@@ -75,24 +75,24 @@ std::optional<Point> offTheEdge(const ClearanceField& field, Point depot, Point 
   return std::nullopt;
 }
 
-/// The depot leg (path.hpp: depot legs) from `depot`, outside F, to `near`, the nearest point of
-/// F: the straight move when the rule allows it, else the shortest route whose centre line stays
-/// in the wall and off the obstacles (the visibility router for a tool of width 0). Empty when
-/// there is none: `where` is then the depot's place ("lies outside the wall", "lies in obstacle
-/// ...") or empty when no route joins it with F.
-std::vector<Point> depotLeg(const ClearanceField& field, Point depot, Point near, std::string& where) {
+/// Why no path may begin or end at `depot` ("lies outside the wall", "lies in obstacle ..."), or
+/// "" when it lies in the closed wall off every obstacle.
+std::string misplacedDepot(const ClearanceField& field, Point depot) {
   const Wall& wall = field.wall();
-  if (!pointInRing(depot, wall.boundary) && distanceSegmentRingEdges(depot, depot, wall.boundary) > kValidityTolerance) {
-    where = "lies outside the wall";
-    return {};
-  }
+  if (!pointInRing(depot, wall.boundary) && distanceSegmentRingEdges(depot, depot, wall.boundary) > kValidityTolerance)
+    return "lies outside the wall";
   const SegmentClearance at = field.measure(depot, depot);
-  if (!(at.obstacle_distance > 0.0)) {
-    const Obstacle& o = wall.obstacles[static_cast<std::size_t>(at.nearest_obstacle)];
-    where = "lies in " + (o.label.empty() ? "obstacles[" + std::to_string(at.nearest_obstacle) + "]" : "obstacle \"" + o.label + "\"") +
-            " (inside it or on its edge), where the tool's centre may never be";
-    return {};
-  }
+  if (at.obstacle_distance > 0.0) return "";
+  const Obstacle& o = wall.obstacles[static_cast<std::size_t>(at.nearest_obstacle)];
+  return "lies in " + (o.label.empty() ? "obstacles[" + std::to_string(at.nearest_obstacle) + "]" : "obstacle \"" + o.label + "\"") +
+         " (inside it or on its edge), where the tool's centre may never be";
+}
+
+/// The depot leg (path.hpp: depot legs) from `depot`, outside F and off every obstacle, to
+/// `near`, the nearest point of F: the straight move when the rule allows it, else the shortest
+/// route whose centre line stays in the wall and off the obstacles (the visibility router for a
+/// tool of width 0). Empty when no such route joins them.
+std::vector<Point> depotLeg(const ClearanceField& field, Point depot, Point near) {
   if (depotSegment(field, depot, near)) return {depot, near};
   const std::optional<Point> off = offTheEdge(field, depot, near);
   TransitRouter router(field, ToolParams{0.0, 0.0});
@@ -127,17 +127,19 @@ void attachEnds(const Problem& problem, PlanResult& result, bool depot_legs) {
     const std::string where = std::string(k == 0 ? "start " : "end ") + pointText(*point) +
                               " is where the tool's centre may not be (" + threeDigits(d) +
                               " m outside F); the nearest point of F is " + pointText(near);
+    const std::string misplaced = misplacedDepot(ws.field(), *point);
+    if (!misplaced.empty()) {
+      result = PlanResult::failure(PlanStatus::InvalidInput, std::string(k == 0 ? "start " : "end ") + pointText(*point) + " " + misplaced);
+      return;
+    }
     if (!depot_legs) {
       result = PlanResult::failure(PlanStatus::InvalidInput, where + ", and a car is not given a depot leg to it");
       return;
     }
-    std::string place;
-    legs[k] = depotLeg(ws.field(), *point, near, place);
+    legs[k] = depotLeg(ws.field(), *point, near);
     if (legs[k].empty()) {
-      result = PlanResult::failure(
-          PlanStatus::InvalidInput,
-          place.empty() ? where + ", and no tool-off route with its centre in the wall and off the obstacles joins them"
-                        : std::string(k == 0 ? "start " : "end ") + pointText(*point) + " " + place);
+      result = PlanResult::failure(PlanStatus::InvalidInput,
+                                   where + ", and no tool-off route with its centre in the wall and off the obstacles joins them");
       return;
     }
     (k == 0 ? first : last) = near;
