@@ -103,6 +103,8 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   o.plan.planner = planner.name;
   o.plan.wall = wall.name;
   o.plan.tool = tool;
+  o.plan.start = wall.start;
+  o.plan.end = wall.end;
   o.plan.vehicle = vehicle;
   o.plan.transit = transit;
   o.plan.seed = seed;
@@ -326,8 +328,11 @@ int metricsCommand(const MetricsOptions& options) {
   validateTimeLimit(options.time_limit_s, "--time-limit", "time_limit");
   if (options.arc_vertices < 8 || options.arc_vertices % 8 != 0 || options.arc_vertices > 4096)
     throw InputError("--arc-vertices", "arc_vertices", "must be a multiple of 8 from 8 to 4096");
-  const Wall wall = loadWallFile(options.wall);
+  Wall wall = loadWallFile(options.wall);
   const LoadedPlan plan = loadPlanFile(options.plan);
+  // The start and end the plan was made for (over the wall file's): its depot legs' ends.
+  if (plan.start) wall.start = plan.start;
+  if (plan.end) wall.end = plan.end;
   ToolParams tool;
   tool.tool_width = options.tool_width ? *options.tool_width : plan.tool_width.value_or(tool.tool_width);
   tool.clearance = options.clearance ? *options.clearance : plan.clearance.value_or(tool.clearance);
@@ -365,6 +370,10 @@ int metricsCommand(const MetricsOptions& options) {
   files.commit();
   // Where an invalid path goes wrong, on stderr (the JSON on stdout keeps its keys).
   if (!m.validity.valid) std::fprintf(stderr, "invalid path: %s\n", describeViolations(m.validity, tool.clearance).c_str());
+  if (m.validity.depot_legs > 0)
+    std::fprintf(stderr, "depot legs: %zu, %.6g m (fast judge)\n", m.validity.depot_legs, m.validity.depot_length);
+  if (exact && exact->validity.depot_legs > 0)
+    std::fprintf(stderr, "depot legs: %zu, %.6g m (exact judge)\n", exact->validity.depot_legs, exact->validity.depot_length);
   if (!exact) {
     std::cout << metricsJson(m);
     return m.validity.valid ? 0 : 3;

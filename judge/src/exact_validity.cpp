@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <vector>
 
 #include "coverbench/judge.hpp"
 #include "exact_arcs.hpp"
@@ -125,7 +127,7 @@ struct Round {
 class Scene {
  public:
   Scene(const Wall& wall, const ToolParams& tool)
-      : r_(tool.radius()), c_(tool.clearance), r_exact_(FT(tool.tool_width) / 2), rc_(r_exact_ + FT(c_)),
+      : r_(tool.radius()), c_(tool.clearance), r_exact_(FT(tool.tool_width) / 2),
         boundary_(polygonShape(wall.boundary)) {
     for (const Obstacle& o : wall.obstacles) {
       if (o.type == ObstacleType::Circle) {
@@ -220,26 +222,34 @@ class Scene {
     return outside || close;
   }
 
-  /// Whether segment i of the path, between `out` (outside F) and `in`, is an approach leg by
-  /// its own rule (path.hpp: kApproachLegSlack), exactly.
-  bool approachLeg(const Path& path, std::size_t i, const P2& out, const P2& in) const {
-    if (path.tool_on[i] || (!path.bulge.empty() && path.bulge[i] != 0.0) || out == in) return false;
-    const FT reach = rc_ + FT(kApproachLegSlack);
-    if (CGAL::squared_distance(out, in) > reach * reach) return false;
-    // The centre line in the wall: its ends inside or on the boundary, no edge crossed properly and
-    // no vertex of the boundary inside it (so it cannot leave through a corner).
-    if (!inside(boundary_, out) || !inside(boundary_, in)) return false;
+  /// Whether the straight segment from a to b may be part of a depot leg (path.hpp: depot legs),
+  /// exactly: not a point, its centre line in the closed wall and with no point in common with
+  /// any obstacle.
+  bool depotSegment(const P2& a, const P2& b) const {
+    if (a == b) return false;
+    // In the wall: the segment is cut where it meets the boundary (its edges' crossings and the
+    // vertices on it); each piece between two cuts lies inside, outside or on the boundary
+    // throughout, and its midpoint says which.
+    const V2 d = b - a;
+    const FT len2 = d.squared_length();
+    std::vector<FT> cuts{FT(0), FT(1)};
     for (const Edge& e : boundary_.edges) {
       const P2 &p = e.segment.source(), &q = e.segment.target();
-      const int o1 = CGAL::orientation(out, in, p), o2 = CGAL::orientation(out, in, q);
-      const int o3 = CGAL::orientation(p, q, out), o4 = CGAL::orientation(p, q, in);
-      if (o1 * o2 < 0 && o3 * o4 < 0) return false;
-      if (o1 == 0 && CGAL::collinear_are_strictly_ordered_along_line(out, p, in)) return false;
+      if (CGAL::orientation(a, b, p) == CGAL::COLLINEAR && CGAL::collinear_are_strictly_ordered_along_line(a, p, b))
+        cuts.push_back(((p - a) * d) / len2);
+      const V2 f = q - p, ap = p - a;
+      const FT den = d.x() * f.y() - d.y() * f.x();
+      if (den == 0) continue;
+      const FT t = (ap.x() * f.y() - ap.y() * f.x()) / den, u = (ap.x() * d.y() - ap.y() * d.x()) / den;
+      if (t > 0 && t < 1 && u >= 0 && u <= 1) cuts.push_back(t);
     }
+    std::sort(cuts.begin(), cuts.end());
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+      if (cuts[k] != cuts[k + 1] && !inside(boundary_, a + d * ((cuts[k] + cuts[k + 1]) / 2))) return false;
     // Off every obstacle: no point in common with any.
-    const S2 leg(out, in);
+    const S2 leg(a, b);
     for (const PolygonShape& o : polygons_) {
-      if (strictlyInside(o, out)) return false;
+      if (strictlyInside(o, a)) return false;
       for (const Edge& e : o.edges)
         if (CGAL::do_intersect(leg, e.segment)) return false;
     }
@@ -256,7 +266,7 @@ class Scene {
   }
 
   double r_, c_;
-  FT r_exact_, rc_;
+  FT r_exact_;
   PolygonShape boundary_;
   std::vector<PolygonShape> polygons_;
   std::vector<Round> rounds_;
@@ -288,17 +298,35 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
     scene.segment(path, points, segment, ia, ib, outside, close);
     flag(v, segment, outside, close);
   };
-  // Approach legs (path.hpp: kApproachLegSlack), exactly: the first segment from a start outside
-  // F, the last to an end outside F. A leg that breaks the rule is checked like any segment.
+  // Depot legs (path.hpp: depot legs), exactly: the tool-off prefix from a start outside F up to
+  // the first waypoint in F, and the suffix from the last waypoint in F to an end outside F. A leg
+  // that breaks the rule is checked segment by segment like any other instead.
   auto at = [&](const std::optional<Point>& p, std::size_t k) { return p && path.waypoints[k] == *p; };
-  const bool lead_in =
-      n >= 2 && at(wall.start, 0) && scene.outsideF(points[0]) && scene.approachLeg(path, 0, points[0], points[1]);
-  const bool lead_out = n >= 2 && at(wall.end, n - 1) && !(lead_in && n == 2) && scene.outsideF(points[n - 1]) &&
-                        scene.approachLeg(path, n - 2, points[n - 1], points[n - 2]);
-  v.approach_legs = static_cast<std::size_t>(lead_in) + static_cast<std::size_t>(lead_out);
+  // The segments of the leg from waypoint `from` walking by `step` (+1 from the start, -1 from
+  // the end) to the first waypoint in F; 0 when there is no such leg.
+  auto depotLeg = [&](std::size_t from, long step) -> std::size_t {
+    std::size_t here = from, k = 0;
+    for (;;) {
+      if ((step < 0 && here == 0) || (step > 0 && here + 1 >= n)) return 0;
+      const std::size_t next = step > 0 ? here + 1 : here - 1, segment = std::min(here, next);
+      if (path.tool_on[segment] || (!path.bulge.empty() && path.bulge[segment] != 0.0) ||
+          !scene.depotSegment(points[here], points[next]))
+        return 0;
+      ++k;
+      here = next;
+      if (!scene.outsideF(points[here])) return k;
+    }
+  };
+  const std::size_t lead_in = n >= 2 && at(wall.start, 0) && scene.outsideF(points[0]) ? depotLeg(0, 1) : 0;
+  const std::size_t lead_out = n >= 2 && at(wall.end, n - 1) && scene.outsideF(points[n - 1]) ? depotLeg(n - 1, -1) : 0;
+  v.depot_legs = static_cast<std::size_t>(lead_in > 0) + static_cast<std::size_t>(lead_out > 0);
+  // Segment i lies in a depot leg (the end's leg is segments n - 1 - lead_out to n - 2).
+  auto inDepotLeg = [&](std::size_t i) { return i < lead_in || i + 1 + lead_out >= n; };
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    if (inDepotLeg(i)) v.depot_length += std::hypot(path.waypoints[i + 1].x - path.waypoints[i].x, path.waypoints[i + 1].y - path.waypoints[i].y);
   if (n == 1) check(0, 0, 0);
   for (std::size_t i = 0; i + 1 < n; ++i)
-    if ((i == 0 && lead_in) || (i + 2 == n && lead_out))
+    if (inDepotLeg(i))
       continue;
     else if (vehicle.liftsTool() && !path.tool_on[i])
       flag(v, i, !scene.liftedInFrame(path.waypoints[i], path.waypoints[i + 1]), false);

@@ -86,6 +86,36 @@ std::string shortfall(double gap, double limit) {
 
 }  // namespace
 
+bool depotSegment(const ClearanceField& field, Point a, Point b) {
+  if (a == b) return false;
+  // Off every obstacle: not even touching one.
+  if (!(field.measure(a, b).obstacle_distance > 0.0)) return false;
+  // In the closed wall: the segment is cut where it meets the boundary (its edges' crossings and
+  // the vertices on it); each piece between two cuts lies inside, outside or on the boundary
+  // throughout, and its midpoint says which.
+  const Ring& ring = field.wall().boundary;
+  const Point d = b - a;
+  const double len2 = dot(d, d);
+  const double tol2 = kValidityTolerance * kValidityTolerance;
+  std::vector<double> cuts{0.0, 1.0};
+  for (std::size_t i = 0, m = ring.size(); i < m; ++i) {
+    const Point p = ring[i], e = ring[(i + 1) % m] - p;
+    const double t = dot(p - a, d) / len2;
+    if (t > 0.0 && t < 1.0 && squaredDistanceSegmentSegment(p, p, a, b) <= tol2) cuts.push_back(t);
+    const double den = cross(d, e);
+    if (den == 0.0) continue;
+    const double s = cross(p - a, e) / den, u = cross(p - a, d) / den;
+    if (s > 0.0 && s < 1.0 && u >= 0.0 && u <= 1.0) cuts.push_back(s);
+  }
+  std::sort(cuts.begin(), cuts.end());
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    if (!(cuts[k + 1] > cuts[k])) continue;
+    const Point mid = a + d * ((cuts[k] + cuts[k + 1]) / 2.0);
+    if (!pointInRing(mid, ring) && distanceSegmentRingEdges(mid, mid, ring) > kValidityTolerance) return false;
+  }
+  return true;
+}
+
 double arcChords(const ArcGeometry& arc, double sagitta) {
   // Sub-arcs of angle psi have sagitta R (1 - cos(psi / 2)) <= sagitta.
   const double psi_max = 2.0 * std::acos(std::fmax(-1.0, 1.0 - sagitta / arc.radius));
@@ -182,32 +212,38 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
       v.described.push_back(d);
     }
   };
-  // Approach legs (path.hpp: kApproachLegSlack): the first segment from a start outside F, the
-  // last to an end outside F. A leg that breaks the rule is checked like any segment instead.
+  // Depot legs (path.hpp: depot legs): the tool-off prefix from a start outside F up to the first
+  // waypoint in F, and the suffix from the last waypoint in F to an end outside F. A leg that
+  // breaks the rule is checked segment by segment like any other instead.
   auto outsideF = [&](Point p) {
     const auto [boundary_gap, obstacle_gap] = gaps(field.measure(p, p, r + tool.clearance));
     return boundary_gap < -kValidityTolerance || obstacle_gap < tool.clearance - kValidityTolerance;
   };
-  auto approachLeg = [&](std::size_t i, Point outside, Point in) {
-    const double length = distance(outside, in);
-    if (path.tool_on[i] || path.bulgeOf(i) != 0.0 || length == 0.0 ||
-        length > r + tool.clearance + kApproachLegSlack + kValidityTolerance)
-      return false;
-    // The centre line less its first nanometre strictly inside the wall (the point outside F may
-    // lie on the wall's edge) and off every obstacle.
-    const Point nudged = outside + (in - outside) * (std::fmin(kValidityTolerance, length / 2.0) / length);
-    const SegmentClearance c = field.measure(nudged, in);
-    return c.inside && field.measure(outside, in).obstacle_distance > 0.0;
+  // The segments of the leg from waypoint `from` walking by `step` (+1 from the start, -1 from
+  // the end) to the first waypoint in F; 0 when there is no such leg.
+  auto depotLeg = [&](std::size_t from, long step) -> std::size_t {
+    std::size_t at = from, k = 0;
+    for (;;) {
+      if ((step < 0 && at == 0) || (step > 0 && at + 1 >= n)) return 0;
+      const std::size_t next = step > 0 ? at + 1 : at - 1, segment = std::min(at, next);
+      if (path.tool_on[segment] || path.bulgeOf(segment) != 0.0 || !depotSegment(field, path.waypoints[at], path.waypoints[next]))
+        return 0;
+      ++k;
+      at = next;
+      if (!outsideF(path.waypoints[at])) return k;
+    }
   };
-  const bool lead_in = n >= 2 && wall.start && path.waypoints.front() == *wall.start && outsideF(*wall.start) &&
-                       approachLeg(0, path.waypoints[0], path.waypoints[1]);
-  const bool lead_out = n >= 2 && wall.end && path.waypoints.back() == *wall.end && !(lead_in && n == 2) &&
-                        outsideF(*wall.end) && approachLeg(n - 2, path.waypoints[n - 1], path.waypoints[n - 2]);
-  v.approach_legs = static_cast<std::size_t>(lead_in) + static_cast<std::size_t>(lead_out);
+  const std::size_t lead_in = n >= 2 && wall.start && path.waypoints.front() == *wall.start && outsideF(*wall.start) ? depotLeg(0, 1) : 0;
+  const std::size_t lead_out = n >= 2 && wall.end && path.waypoints.back() == *wall.end && outsideF(*wall.end) ? depotLeg(n - 1, -1) : 0;
+  v.depot_legs = static_cast<std::size_t>(lead_in > 0) + static_cast<std::size_t>(lead_out > 0);
+  // Segment i lies in a depot leg (the end's leg is segments n - 1 - lead_out to n - 2).
+  auto inDepotLeg = [&](std::size_t i) { return i < lead_in || i + 1 + lead_out >= n; };
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    if (inDepotLeg(i)) v.depot_length += distance(path.waypoints[i], path.waypoints[i + 1]);
   if (n == 1) check(0, path.waypoints[0], path.waypoints[0]);
   const bool lifts = vehicle.liftsTool();
   for (std::size_t i = 0; i + 1 < n; ++i)
-    if ((i == 0 && lead_in) || (i + 2 == n && lead_out))
+    if (inDepotLeg(i))
       continue;
     else if (lifts && !path.tool_on[i])
       lifted(i, path.waypoints[i], path.waypoints[i + 1]);

@@ -61,6 +61,8 @@ std::string planFileJson(const PlanFile& plan) {
   doc["wall"] = plan.wall;
   doc["tool_width"] = plan.tool.tool_width;
   doc["clearance"] = plan.tool.clearance;
+  if (plan.start) doc["start"] = {plan.start->x, plan.start->y};
+  if (plan.end) doc["end"] = {plan.end->x, plan.end->y};
   if (!plan.vehicle.isDefault()) doc["vehicle"] = ordered_json::parse(vehicleJson(plan.vehicle));
   if (!plan.transit.isDefault())
     doc["transit"] = {{"planner", plan.transit.planner}, {"iterations", plan.transit.iterations},
@@ -145,6 +147,13 @@ LoadedPlan loadPlanFile(const std::string& file) {
     if (!doc.contains(key)) continue;
     if (!doc[key].is_number()) throw InputError(file, key, "must be a number");
     (std::string(key) == "tool_width" ? plan.tool_width : plan.clearance) = doc[key].get<double>();
+  }
+  for (const char* key : {"start", "end"}) {
+    if (!doc.contains(key)) continue;
+    const auto& p = doc[key];
+    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+      throw InputError(file, key, "must be an [x, y] pair of numbers");
+    (std::string(key) == "start" ? plan.start : plan.end) = Point{p[0].get<double>(), p[1].get<double>()};
   }
   if (doc.contains("vehicle")) {
     const auto& v = doc["vehicle"];

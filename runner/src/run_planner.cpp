@@ -5,7 +5,9 @@
 #include "coverbench/car.hpp"
 #include "coverbench/car_sweep.hpp"
 #include "coverbench/clearance.hpp"
+#include "coverbench/metrics.hpp"
 #include "coverbench/region_ops.hpp"
+#include "coverbench/transit_router.hpp"
 #include "coverbench/workspace.hpp"
 
 #include <algorithm>
@@ -50,43 +52,98 @@ std::string threeDigits(double v) {
   return buf;
 }
 
+/// Room the depot leg's router needs between a point and the wall's edge or an obstacle (its
+/// moves keep kPlanningMargin).
+constexpr double kDepotRoom = 4.0 * kPlanningMargin;
+
+/// A point within 1 mm of `depot` with kDepotRoom around it, joined to the depot by a depot
+/// segment, preferring the direction of `toward`: where the router takes over from a depot on the
+/// wall's edge. The depot itself when it has the room; nullopt when no such point is found.
+std::optional<Point> offTheEdge(const ClearanceField& field, Point depot, Point toward) {
+  auto roomy = [&](Point p) {
+    const SegmentClearance c = field.measure(p, p, kDepotRoom);
+    return c.inside && c.boundary_distance >= kDepotRoom && c.obstacle_distance >= kDepotRoom;
+  };
+  if (roomy(depot)) return depot;
+  const double base = std::atan2(toward.y - depot.y, toward.x - depot.x);
+  for (double step = 1e-5; step <= 1e-3; step *= 4.0)
+    for (int j = 0; j < 64; ++j) {  // directions by their angle from `toward`: 0, +1, -1, +2, ... (x pi / 32)
+      const double angle = base + ((j + 1) / 2) * (j % 2 == 1 ? 1.0 : -1.0) * M_PI / 32.0;
+      const Point q = depot + Point{std::cos(angle), std::sin(angle)} * step;
+      if (roomy(q) && depotSegment(field, depot, q)) return q;
+    }
+  return std::nullopt;
+}
+
+/// Why no path may begin or end at `depot` ("lies outside the wall", "lies in obstacle ..."), or
+/// "" when it lies in the closed wall off every obstacle.
+std::string misplacedDepot(const ClearanceField& field, Point depot) {
+  const Wall& wall = field.wall();
+  if (!pointInRing(depot, wall.boundary) && distanceSegmentRingEdges(depot, depot, wall.boundary) > kValidityTolerance)
+    return "lies outside the wall";
+  const SegmentClearance at = field.measure(depot, depot);
+  if (at.obstacle_distance > 0.0) return "";
+  const Obstacle& o = wall.obstacles[static_cast<std::size_t>(at.nearest_obstacle)];
+  return "lies in " + (o.label.empty() ? "obstacles[" + std::to_string(at.nearest_obstacle) + "]" : "obstacle \"" + o.label + "\"") +
+         " (inside it or on its edge), where the tool's centre may never be";
+}
+
+/// The depot leg (path.hpp: depot legs) from `depot`, outside F and off every obstacle, to
+/// `near`, the nearest point of F: the straight move when the rule allows it, else the shortest
+/// route whose centre line stays in the wall and off the obstacles (the visibility router for a
+/// tool of width 0). Empty when no such route joins them.
+std::vector<Point> depotLeg(const ClearanceField& field, Point depot, Point near) {
+  if (depotSegment(field, depot, near)) return {depot, near};
+  const std::optional<Point> off = offTheEdge(field, depot, near);
+  TransitRouter router(field, ToolParams{0.0, 0.0});
+  const std::optional<std::vector<Point>> route = off ? router.route(*off, near) : std::nullopt;
+  std::vector<Point> leg{depot};
+  if (route) leg.insert(leg.end(), route->begin() + (*off == depot ? 1 : 0), route->end());
+  for (std::size_t i = 0; route && i + 1 < leg.size(); ++i)
+    if (!depotSegment(field, leg[i], leg[i + 1])) leg.clear();
+  if (!route) leg.clear();
+  return leg;
+}
+
 /// Begins the path at the wall's start and ends it at its end, each reached with the tool off
 /// (straight when free, lifted for a gantry, else along the problem's transit planner's route).
-/// A start or end outside F is joined to the nearest point of F by an approach leg (path.hpp:
-/// kApproachLegSlack), when `approach_legs` allows it; one no such leg or move reaches makes the
-/// result a failure that says which and where F is nearest.
-void attachEnds(const Problem& problem, PlanResult& result, bool approach_legs) {
+/// A start or end outside F is joined to the nearest point of F by a depot leg (path.hpp: depot
+/// legs), when `depot_legs` allows it; one no such leg joins makes the result a failure that says
+/// which, why and where F is nearest.
+void attachEnds(const Problem& problem, PlanResult& result, bool depot_legs) {
   const Wall& wall = *problem.wall;
   if ((!wall.start && !wall.end) || !result.hasPath() || result.path.waypoints.empty()) return;
   Workspace ws(wall, problem);
-  // Where the path proper begins and ends: the start and the end, or the points of F nearest them.
+  // Where the path proper begins and ends: the start and the end, or the points of F nearest them,
+  // and the depot legs to those (from the start; to the end, reversed below).
   std::optional<Point> first = wall.start, last = wall.end;
-  const double reach = problem.tool.radius() + problem.tool.clearance + kApproachLegSlack;
-  for (const auto& [point, name, inner] : {std::tuple{wall.start, "start", &first}, std::tuple{wall.end, "end", &last}})
-    if (point && !inFree(ws.free(), *point)) {
-      const Point near = nearestFreePoint(ws.free(), *point);
-      const double d = distance(*point, near);
-      if (d <= 1e-9) continue;  // on F's edge, where paths run too
-      const std::string where = std::string(name) + " " + pointText(*point) + " is where the tool's centre may not be (" +
-                                threeDigits(d) + " m outside F); the nearest point of F is " + pointText(near);
-      if (!approach_legs) {
-        result = PlanResult::failure(PlanStatus::InvalidInput, where + ", and a car is not given an approach leg to it");
-        return;
-      }
-      if (d > reach) {
-        result = PlanResult::failure(PlanStatus::InvalidInput, where + ", farther than an approach leg reaches (r + c + " +
-                                                                   threeDigits(kApproachLegSlack) + " m = " + threeDigits(reach) + " m)");
-        return;
-      }
-      // The leg's centre line must stay in the wall and off every obstacle (the judges' rule).
-      const ClearanceField field(wall);
-      const Point nudged = *point + (near - *point) * (std::fmin(kValidityTolerance, d / 2.0) / d);
-      if (!field.measure(nudged, near).inside || field.measure(*point, near).obstacle_distance <= 0.0) {
-        result = PlanResult::failure(PlanStatus::InvalidInput, where + ", and the straight approach leg to it crosses an obstacle or the wall's edge");
-        return;
-      }
-      *inner = near;
+  std::vector<Point> legs[2];
+  for (int k = 0; k < 2; ++k) {
+    const std::optional<Point> point = k == 0 ? wall.start : wall.end;
+    if (!point || inFree(ws.free(), *point)) continue;
+    const Point near = nearestFreePoint(ws.free(), *point);
+    const double d = distance(*point, near);
+    if (d <= 1e-9) continue;  // on F's edge, where paths run too
+    const std::string where = std::string(k == 0 ? "start " : "end ") + pointText(*point) +
+                              " is where the tool's centre may not be (" + threeDigits(d) +
+                              " m outside F); the nearest point of F is " + pointText(near);
+    const std::string misplaced = misplacedDepot(ws.field(), *point);
+    if (!misplaced.empty()) {
+      result = PlanResult::failure(PlanStatus::InvalidInput, std::string(k == 0 ? "start " : "end ") + pointText(*point) + " " + misplaced);
+      return;
     }
+    if (!depot_legs) {
+      result = PlanResult::failure(PlanStatus::InvalidInput, where + ", and a car is not given a depot leg to it");
+      return;
+    }
+    legs[k] = depotLeg(ws.field(), *point, near);
+    if (legs[k].empty()) {
+      result = PlanResult::failure(PlanStatus::InvalidInput,
+                                   where + ", and no tool-off route with its centre in the wall and off the obstacles joins them");
+      return;
+    }
+    (k == 0 ? first : last) = near;
+  }
   const Path planned = std::move(result.path);
   Path out;
   auto append = [&](const Path& part) {
@@ -110,24 +167,27 @@ void attachEnds(const Problem& problem, PlanResult& result, bool approach_legs) 
     append(b.path());
     return true;
   };
-  std::size_t approaches = 0;
-  if (wall.start && !(*first == *wall.start)) {  // the approach leg into F
-    out.moveTo(*wall.start, false);
-    out.moveTo(*first, false);
-    legs_m += distance(*wall.start, *first);
-    ++approaches;
-  }
+  double depot_m = 0.0;
+  auto depot = [&](const std::vector<Point>& points) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      out.moveTo(points[i], false);
+      if (i > 0) depot_m += distance(points[i - 1], points[i]);
+    }
+  };
+  depot(legs[0]);
   if (first && !leg(*first, planned.waypoints.front(), "the start", *wall.start)) return;
   append(planned);
   if (last && !leg(planned.waypoints.back(), *last, "the end", *wall.end)) return;
-  if (wall.end && !(*last == *wall.end)) {  // the approach leg out of F
-    out.moveTo(*wall.end, false);
-    legs_m += distance(*last, *wall.end);
-    ++approaches;
-  }
+  std::reverse(legs[1].begin(), legs[1].end());
+  depot(legs[1]);
   result.path = std::move(out);
-  result.stats["start_end_legs_m"] = legs_m;  // the tool-off moves from the start and to the end
-  if (approaches > 0) result.stats["approach_legs"] = static_cast<double>(approaches);
+  // The tool-off moves from the start and to the end, depot legs included.
+  result.stats["start_end_legs_m"] = legs_m + depot_m;
+  const std::size_t depots = !legs[0].empty() + !legs[1].empty();
+  if (depots > 0) {
+    result.stats["depot_legs"] = static_cast<double>(depots);
+    result.stats["depot_length"] = depot_m;
+  }
 }
 
 }  // namespace

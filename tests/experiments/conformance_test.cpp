@@ -10,6 +10,7 @@
 #include "coverbench/conformance.hpp"
 #include "coverbench/datasets.hpp"
 #include "coverbench/experiment.hpp"
+#include "coverbench/judge.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/registry.hpp"
 #include "coverbench/run_planner.hpp"
@@ -359,8 +360,8 @@ TEST_P(StartAndEnd, EveryPathBeginsAtTheStartAndEndsAtTheEnd) {
   }
   EXPECT_GE(planned, static_cast<int>(walls.size()) - 4);
   // A start and an end on the wall's edge, where the tool overhangs it (a dock): joined to the
-  // nearest points of F by approach legs. F is the free region as planners compute it: eroded by
-  // r = 0.05 m and a margin of 5.5e-5 m, so the legs are 0.050055 m long.
+  // nearest points of F by straight depot legs. F is the free region as planners compute it:
+  // eroded by r = 0.05 m and a margin of 5.5e-5 m, so the legs are 0.050055 m long.
   Wall wall = test::rectWall(2, 1);
   wall.start = Point{0.0, 0.5};
   wall.end = Point{2.0, 0.5};
@@ -373,22 +374,85 @@ TEST_P(StartAndEnd, EveryPathBeginsAtTheStartAndEndsAtTheEnd) {
   EXPECT_NEAR(w[1].y, 0.5, 1e-9);
   EXPECT_FALSE(r.path.tool_on.front());
   EXPECT_FALSE(r.path.tool_on.back());
-  EXPECT_EQ(r.stats.at("approach_legs"), 2.0);
+  EXPECT_EQ(r.stats.at("depot_legs"), 2.0);
+  EXPECT_NEAR(r.stats.at("depot_length"), 2 * 0.050055, 1e-6);
   EXPECT_TRUE(test::isValidPath(wall, tool, r.path));
-  EXPECT_EQ(checkValidity(wall, tool, r.path).approach_legs, 2u);
-  // A start farther from F than a leg reaches: the middle of a window (0.1 m + r + c from F).
+  EXPECT_EQ(checkValidity(wall, tool, r.path).depot_legs, 2u);
+  // A start in the window (x from 1 to 1.2, y from 0.4 to 0.6) or on its edge: refused.
   Wall window = test::rectWall(2, 1, {test::rect(1.0, 0.4, 0.2, 0.2)});
-  window.start = Point{1.1, 0.5};
-  PlanResult refused = test::planWith(GetParam(), window, tool);
+  for (const Point start : {Point{1.1, 0.5}, Point{1.0005, 0.5}, Point{1.0, 0.5}}) {
+    window.start = start;
+    const PlanResult refused = test::planWith(GetParam(), window, tool);
+    EXPECT_EQ(refused.status, PlanStatus::InvalidInput);
+    EXPECT_EQ(refused.reason, "start (" + shortNumber(start.x) + ", 0.5) lies in obstacles[0] (inside it or on its edge), where the tool's centre may never be");
+  }
+  // A start outside the wall (a wall built in code: wall files refuse it when read).
+  window.start = Point{-0.5, 0.5};
+  EXPECT_EQ(test::planWith(GetParam(), window, tool).reason, "start (-0.5, 0.5) lies outside the wall");
+}
+
+// A dock at the corner (0, 0) of a 2 m x 1 m wall and one at (0, 0.5) in the 2 cm slot between
+// the left edge and a window (x from 0.02 to 0.3, y from 0.3 to 0.7): every planner plans, both
+// judges accept the depot legs. The corner's leg is straight to F's corner (0.050055, 0.050055);
+// the slot's is routed around the window's corner (0.02, 0.3) to F's nearest point. F as planners
+// compute it is conservative: eroded by r and a margin of 5.5e-5 m, its clearance round the
+// corner cut square, so that point is (0.050055, 0.3 - 0.070055) (or the same above the window):
+// 0.201 m to the corner, then 0.0762 m.
+TEST_P(StartAndEnd, DocksAtACornerAndBehindAnObstacleAreJoinedByDepotLegs) {
+  const ToolParams tool{0.1, 0.02};
+  Wall corner = test::rectWall(2, 1);
+  corner.start = corner.end = Point{0.0, 0.0};
+  const PlanResult r = test::planWith(GetParam(), corner, tool);
+  ASSERT_TRUE(r.hasPath()) << r.reason;
+  EXPECT_EQ(r.stats.at("depot_legs"), 2.0);
+  EXPECT_NEAR(r.stats.at("depot_length"), 2 * std::sqrt(2.0) * 0.050055, 1e-5);
+  EXPECT_TRUE(test::isValidPath(corner, tool, r.path));
+  EXPECT_EQ(judge::judgeValidity(corner, tool, r.path).depot_legs, 2u);
+
+  Wall slot = test::rectWall(2, 1, {test::rect(0.02, 0.3, 0.28, 0.4)});
+  slot.start = Point{0.0, 0.5};
+  const PlanResult s = test::planWith(GetParam(), slot, tool);
+  ASSERT_TRUE(s.hasPath()) << s.reason;
+  EXPECT_EQ(s.stats.at("depot_legs"), 1.0);
+  const double routed = std::hypot(0.02, 0.2) + std::hypot(0.050055 - 0.02, 0.070055);
+  EXPECT_NEAR(s.stats.at("depot_length"), routed, 2e-5);
+  EXPECT_TRUE(test::isValidPath(slot, tool, s.path));
+  const Validity fast = checkValidity(slot, tool, s.path);
+  const judge::ExactValidity exact = judge::judgeValidity(slot, tool, s.path);
+  EXPECT_EQ(fast.depot_legs, 1u);
+  EXPECT_EQ(exact.depot_legs, 1u);
+  EXPECT_NEAR(fast.depot_length, s.stats.at("depot_length"), 1e-9);
+  EXPECT_NEAR(exact.depot_length, s.stats.at("depot_length"), 1e-9);
+  // A car (whose smoothing drives only in F) is refused the corner's leg, saying so.
+  Problem car;
+  car.wall = &corner;
+  car.tool = tool;
+  car.vehicle.kind = VehicleModel::Kind::Car;
+  const PlannerInfo& info = findPlanner(GetParam());
+  // (a planner that plans for the car itself takes no start yet: it is given car_plan: smoothed)
+  car.params = info.plans_for_car ? resolveParams(info, {{"car_plan", "smoothed"}}) : resolveParams(info, {});
+  const PlanResult refused = runPlanner(info, car, Budget(std::chrono::seconds(60)));
   EXPECT_EQ(refused.status, PlanStatus::InvalidInput);
-  const std::string too_far = "start (1.1, 0.5) is where the tool's centre may not be (0.17 m outside F); the nearest point of F is (";
-  EXPECT_EQ(refused.reason.substr(0, too_far.size()), too_far) << refused.reason;
-  EXPECT_NE(refused.reason.find("farther than an approach leg reaches (r + c + 0.001 m = 0.071 m)"), std::string::npos) << refused.reason;
-  // 0.5 mm inside the window: within reach of F (0.0706 m), but the leg crosses the window's edge.
-  window.start = Point{1.0005, 0.5};
-  refused = test::planWith(GetParam(), window, tool);
-  EXPECT_EQ(refused.status, PlanStatus::InvalidInput);
-  EXPECT_NE(refused.reason.find("the straight approach leg to it crosses an obstacle or the wall's edge"), std::string::npos) << refused.reason;
+  EXPECT_NE(refused.reason.find("and a car is not given a depot leg to it"), std::string::npos) << refused.reason;
+}
+
+// The published 100 m field (12 holes; tests/data/field-12-holes.json, shared's fixture) starts
+// and ends at (0, 0), a vertex of its boundary: every planner plans, and both judges accept the
+// two depot legs there, each the straight move to F's corner (r + 5.5e-5 m, r + 5.5e-5 m).
+TEST_P(StartAndEnd, TheFieldStartsAndEndsAtItsCorner) {
+  const ToolParams tool{0.1, 0.02};  // the published benchmark's
+  Wall field = loadWallFile(test::sourcePath("tests/data/field-12-holes.json"));
+  field.start = field.end = Point{0.0, 0.0};
+  const PlanResult r = test::planWith(GetParam(), field, tool);
+  ASSERT_TRUE(r.hasPath()) << r.reason;
+  EXPECT_TRUE(r.path.waypoints.front() == *field.start);
+  EXPECT_TRUE(r.path.waypoints.back() == *field.end);
+  EXPECT_EQ(r.stats.at("depot_legs"), 2.0);
+  EXPECT_NEAR(r.stats.at("depot_length"), 2 * std::sqrt(2.0) * (0.05 + 5.5e-5), 1e-6);
+  EXPECT_TRUE(test::isValidPath(field, tool, r.path));
+  const judge::ExactValidity exact = judge::judgeValidity(field, tool, r.path);
+  EXPECT_EQ(exact.depot_legs, 2u);
+  EXPECT_NEAR(exact.depot_length, r.stats.at("depot_length"), 1e-9);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllPlanners, StartAndEnd, testing::ValuesIn(test::plannerNames()), test::plannerTestName);

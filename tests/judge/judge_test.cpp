@@ -31,12 +31,13 @@ const double kPi = std::acos(-1.0);
 double inscribed(double rho, int n) { return n / 2.0 * rho * rho * std::sin(2 * kPi / n); }
 double circumscribed(double rho, int n) { return n * rho * rho * std::tan(kPi / n); }
 
-// ---- approach legs (path.hpp: kApproachLegSlack) --------------------------------------------
+// ---- depot legs (path.hpp: depot legs) ------------------------------------------------------
 
-// Both judges' verdicts, which must agree: valid, and the approach legs each accepted.
+// Both judges' verdicts, which must agree: valid, the depot legs each accepted and their length.
 struct Verdicts {
   bool valid;
   std::size_t legs;
+  double length;
 };
 Verdicts judged(const Wall& wall, const ToolParams& tool, const Path& path) {
   SCOPED_TRACE(wall.name + " from (" + std::to_string(path.waypoints[0].x) + ", " + std::to_string(path.waypoints[0].y) + ")");
@@ -44,62 +45,129 @@ Verdicts judged(const Wall& wall, const ToolParams& tool, const Path& path) {
   const judge::ExactValidity exact = judge::judgeValidity(wall, tool, path);
   EXPECT_EQ(fast.valid, exact.valid);
   EXPECT_EQ(fast.violations, exact.violations);
-  EXPECT_EQ(fast.approach_legs, exact.approach_legs);
-  return {exact.valid, exact.approach_legs};
+  EXPECT_EQ(fast.depot_legs, exact.depot_legs);
+  EXPECT_NEAR(fast.depot_length, exact.depot_length, 1e-12);
+  return {exact.valid, exact.depot_legs, exact.depot_length};
+}
+Path toolPath(std::vector<Point> points, std::vector<bool> on) {
+  Path p = pathOf(std::move(points));
+  p.tool_on = std::move(on);
+  return p;
 }
 
 // On a 2 m x 1 m wall (s = 0.1 m, c = 0.02 m: F is 0.05 m inside its edge and 0.07 m clear of
-// obstacles) a start on the left edge at (0, 0.5) lies 0.05 m outside F. The leg reaches at most
-// r + c + 1 mm = 0.071 m.
-TEST(ApproachLegs, BothJudgesAcceptTheStraightToolOffMoveFromAStartOutsideFAndNothingMore) {
+// obstacles) a start on the left edge at (0, 0.5) lies 0.05 m outside F.
+TEST(DepotLegs, BothJudgesAcceptTheToolOffMovesFromAStartOutsideFAndNothingMore) {
   const ToolParams tool{0.1, 0.02};
   Wall wall = rectWall(2, 1);
   wall.start = Point{0.0, 0.5};
   wall.end = Point{2.0, 0.5};
-  auto path = [](std::vector<Point> points, std::vector<bool> on) {
-    Path p = pathOf(std::move(points));
-    p.tool_on = std::move(on);
-    return p;
-  };
-  // From the start into F, paint, and out to the end: two legs.
-  const Path both = path({{0.0, 0.5}, {0.06, 0.5}, {1.94, 0.5}, {2.0, 0.5}}, {false, true, false});
+  // From the start into F, paint, and out to the end: two legs of 0.06 m.
+  const Path both = toolPath({{0.0, 0.5}, {0.06, 0.5}, {1.94, 0.5}, {2.0, 0.5}}, {false, true, false});
   Verdicts v = judged(wall, tool, both);
   EXPECT_TRUE(v.valid);
   EXPECT_EQ(v.legs, 2u);
+  EXPECT_NEAR(v.length, 0.12, 1e-12);
   // The fast engine's gaps leave the legs out: the tool then keeps 0.01 m from the edge.
   EXPECT_NEAR(checkValidity(wall, tool, both).min_boundary_gap, 0.01, 1e-12);
   // The leg painting: checked as any segment, and its disk leaves the wall.
-  v = judged(wall, tool, path({{0.0, 0.5}, {0.06, 0.5}, {1.0, 0.5}}, {true, true}));
+  v = judged(wall, tool, toolPath({{0.0, 0.5}, {0.06, 0.5}, {1.0, 0.5}}, {true, true}));
   EXPECT_FALSE(v.valid);
   EXPECT_EQ(v.legs, 0u);
-  // Longer than 0.071 m (to x = 0.08 m): not a leg.
-  v = judged(wall, tool, path({{0.0, 0.5}, {0.08, 0.5}, {1.0, 0.5}}, {false, true}));
-  EXPECT_FALSE(v.valid);
+  // A leg of any length: 0.3 m to (0.3, 0.5), and 0.06 m from the end to (1.94, 0.5).
+  v = judged(wall, tool, toolPath({{0.0, 0.5}, {0.3, 0.5}, {1.94, 0.5}, {2.0, 0.5}}, {false, true, false}));
+  EXPECT_TRUE(v.valid);
+  EXPECT_NEAR(v.length, 0.36, 1e-12);
   // A path that does not begin at the start, or a wall without one: no leg.
-  v = judged(wall, tool, path({{0.0, 0.4}, {0.06, 0.4}, {1.0, 0.4}}, {false, true}));
+  v = judged(wall, tool, toolPath({{0.0, 0.4}, {0.06, 0.4}, {1.0, 0.4}}, {false, true}));
   EXPECT_FALSE(v.valid);
   Wall no_start = wall;
   no_start.start.reset();
-  v = judged(no_start, tool, path({{0.0, 0.5}, {0.06, 0.5}, {1.0, 0.5}}, {false, true}));
+  v = judged(no_start, tool, toolPath({{0.0, 0.5}, {0.06, 0.5}, {1.0, 0.5}}, {false, true}));
   EXPECT_FALSE(v.valid);
   // A start inside F gets no leg: its first segment out of F is invalid.
   Wall inside = wall;
   inside.start = Point{0.5, 0.5};
-  v = judged(inside, tool, path({{0.5, 0.5}, {0.03, 0.5}, {0.5, 0.5}}, {false, true}));
+  v = judged(inside, tool, toolPath({{0.5, 0.5}, {0.03, 0.5}, {0.5, 0.5}}, {false, true}));
   EXPECT_FALSE(v.valid);
   EXPECT_EQ(v.legs, 0u);
-  // Through an obstacle: a window from x = 1 to 1.2; a start 0.2 mm inside it and a leg to
-  // x = 0.9295 (0.5 mm inside F): 0.0707 m, within the reach, but it crosses the window's edge.
-  Wall window = rectWall(2, 1, {rect(1.0, 0.4, 0.2, 0.2)});
-  window.start = Point{1.0002, 0.5};
-  v = judged(window, tool, path({{1.0002, 0.5}, {0.9295, 0.5}, {0.5, 0.5}}, {false, true}));
+  // Tool-off moves that never reach a waypoint in F are no leg: all outside F, all invalid.
+  v = judged(wall, tool, toolPath({{0.0, 0.5}, {0.02, 0.5}, {0.02, 0.02}, {1.0, 0.02}}, {false, false, false}));
   EXPECT_FALSE(v.valid);
   EXPECT_EQ(v.legs, 0u);
-  // Beside the window, 0.03 m from it: the same leg's end, 0.0405 m away, is accepted.
-  window.start = Point{0.97, 0.5};
-  v = judged(window, tool, path({{0.97, 0.5}, {0.9295, 0.5}, {0.5, 0.5}}, {false, true}));
+  // A leg that paints on its way to F (its second segment): no leg; the first three segments
+  // (out of F) fail.
+  v = judged(wall, tool, toolPath({{0.0, 0.5}, {0.02, 0.5}, {0.02, 0.2}, {0.3, 0.2}, {1.0, 0.2}}, {false, true, false, true}));
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.legs, 0u);
+  EXPECT_EQ(checkValidity(wall, tool, toolPath({{0.0, 0.5}, {0.02, 0.5}, {0.02, 0.2}, {0.3, 0.2}, {1.0, 0.2}},
+                                                {false, true, false, true})).violations, 3u);
+}
+
+// A start at the corner (0, 0), reached along the bottom edge from a dock at (1, 0): the leg runs
+// on the wall's edge to the corner, then 0.06 sqrt(2) m into F at (0.06, 0.06).
+TEST(DepotLegs, ALegAlongTheEdgeToACornerIsAcceptedOneLeavingTheWallIsNot) {
+  const ToolParams tool{0.1, 0.02};
+  Wall wall = rectWall(2, 1);
+  wall.start = Point{1.0, 0.0};
+  Verdicts v = judged(wall, tool, toolPath({{1.0, 0.0}, {0.0, 0.0}, {0.06, 0.06}, {1.9, 0.06}}, {false, false, true}));
   EXPECT_TRUE(v.valid);
   EXPECT_EQ(v.legs, 1u);
+  EXPECT_NEAR(v.length, 1.0 + 0.06 * std::sqrt(2.0), 1e-12);
+  // The same dock, a leg 1 cm below the wall's edge: both of its first segments fail.
+  v = judged(wall, tool, toolPath({{1.0, 0.0}, {0.5, -0.01}, {0.06, 0.06}, {1.9, 0.06}}, {false, false, true}));
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.legs, 0u);
+  // A U-shaped wall (a notch 1 m wide from y = 0.5 to the top at y = 2): from the tip of the
+  // left arm at (1, 2) straight to the tip of the right arm at (2, 2), across the notch (out of
+  // the wall, though both ends are on its edge and it crosses no edge), then down into F.
+  Wall u;
+  u.name = "u";
+  u.boundary = {{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 0.5}, {1, 0.5}, {1, 2}, {0, 2}};
+  u.start = Point{1.0, 2.0};
+  v = judged(u, tool, toolPath({{1.0, 2.0}, {2.0, 2.0}, {2.5, 1.5}, {2.5, 0.5}}, {false, false, true}));
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.legs, 0u);
+  // Down the arm's inner edge to its foot (1, 0.5), then into F at (1.5, 0.3): accepted.
+  v = judged(u, tool, toolPath({{1.0, 2.0}, {1.0, 0.5}, {1.5, 0.3}, {2.5, 0.3}}, {false, false, true}));
+  EXPECT_TRUE(v.valid);
+  EXPECT_EQ(v.legs, 1u);
+  EXPECT_NEAR(v.length, 1.5 + std::hypot(0.5, 0.2), 1e-12);
+}
+
+// A window from x = 0.02 to 0.3, y = 0.3 to 0.7, 2 cm from the left edge: a dock at (0, 0.5)
+// sits in the slot between them. Its leg runs down the slot to (0.01, 0.29), below the window's
+// corner, then to (0.1, 0.2) in F (0.1 m from the window and the edges).
+TEST(DepotLegs, ALegRoutedAroundAnObstacleIsAcceptedOneThroughItIsNot) {
+  const ToolParams tool{0.1, 0.02};
+  Wall wall = rectWall(2, 1, {rect(0.02, 0.3, 0.28, 0.4)});
+  wall.start = Point{0.0, 0.5};
+  Verdicts v = judged(wall, tool, toolPath({{0.0, 0.5}, {0.01, 0.29}, {0.1, 0.2}, {1.5, 0.2}}, {false, false, true}));
+  EXPECT_TRUE(v.valid);
+  EXPECT_EQ(v.legs, 1u);
+  EXPECT_NEAR(v.length, std::hypot(0.01, 0.21) + std::hypot(0.09, 0.09), 1e-12);
+  // Straight through the window to (0.4, 0.5): no leg, and the move fails.
+  v = judged(wall, tool, toolPath({{0.0, 0.5}, {0.4, 0.5}, {1.5, 0.5}}, {false, true}));
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.legs, 0u);
+  // Along the window's bottom edge on the way: no leg (not even touching it).
+  v = judged(wall, tool, toolPath({{0.0, 0.5}, {0.01, 0.3}, {0.1, 0.3}, {0.1, 0.2}, {1.5, 0.2}}, {false, false, false, true}));
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.legs, 0u);
+  // A lying plan: the same good leg, with one segment out of the wall hidden in it.
+  v = judged(wall, tool, toolPath({{0.0, 0.5}, {-0.01, 0.29}, {0.1, 0.2}, {1.5, 0.2}}, {false, false, true}));
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.legs, 0u);
+  // A round obstacle of radius 0.1 m at (0.5, 0.5): a dock at (0, 0.5) straight to (0.3, 0.5),
+  // 0.1 m from it, is a leg; straight on to (0.7, 0.5) crosses it.
+  Wall round = rectWall(2, 1, {circle(0.5, 0.5, 0.1)});
+  round.start = Point{0.0, 0.5};
+  v = judged(round, tool, toolPath({{0.0, 0.5}, {0.3, 0.5}, {0.3, 0.2}}, {false, true}));
+  EXPECT_TRUE(v.valid);
+  EXPECT_EQ(v.legs, 1u);
+  v = judged(round, tool, toolPath({{0.0, 0.5}, {0.7, 0.5}, {1.5, 0.5}}, {false, true}));
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.legs, 0u);
 }
 
 // ---- hand-computed areas -------------------------------------------------------------------

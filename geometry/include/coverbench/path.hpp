@@ -68,14 +68,21 @@ struct ToolParams {
 /// The tool as every table, column, title and message names it: "s=0.1 m, c=0.02 m".
 std::string toolLabel(const ToolParams& tool);
 
-/// An approach leg: where the wall's start lies outside F (the tool there overlaps the wall's edge
-/// or an obstacle's clearance, as at a dock), the path's first segment may be the straight
-/// tool-off move from the start into F; likewise its last segment to an end outside F. Both
-/// judges then check that segment only for this: it is straight and tool-off, at most r + c +
-/// kApproachLegSlack long, and its centre line stays in the wall (touching the edge allowed) and
-/// off every obstacle. Its end in F is the next segment's start, checked as usual. The slack
-/// covers the margin planners keep inside F (under 0.1 mm); a start farther from F is refused.
-inline constexpr double kApproachLegSlack = 1e-3;  ///< m
+/// Depot legs: a wall's start or end may lie anywhere in the closed wall off every obstacle (a
+/// dock on an edge or at a corner), also where the tool's centre may not be (outside F: the tool
+/// there overhangs the wall's edge or comes within c of an obstacle). A path from a start outside
+/// F begins with a depot leg: its longest run of segments from the start, up to and including the
+/// first one that ends at a waypoint in F, every waypoint before that one lying outside F. Each of
+/// its segments must be straight and tool-off, with its centre line inside the wall or on its
+/// edge and no point in common with any obstacle (the tool's body may overhang the edge and come
+/// near or over an obstacle: the tool is off, driving from its dock). Likewise a path to an end
+/// outside F ends with a depot leg from its last waypoint in F. Both judges check a depot leg by
+/// this rule only (a leg that breaks it is checked segment by segment like any other, and then
+/// fails); its end in F begins the next segment, checked as usual. It paints nothing and cannot
+/// hide a painting or a move anywhere but between the dock and F: a path that never reaches a
+/// waypoint in F has no depot leg. Its length and time count in the path's.
+/// The runner builds them (run_planner.cpp: attachEnds): the straight move to the nearest point of
+/// F when the rule allows it, else the shortest route around the obstacles.
 
 /// How the robot carries its tool between passes (docs/vehicles.md). Part of a problem like the
 /// tool: planners plan for it, the metrics engine validates and times a path by its rules.

@@ -31,8 +31,9 @@ struct Wall {
   Ring boundary;
   std::vector<Obstacle> obstacles;
   /// Where every path must begin and end (a dock, a charger, a field's gate), when given: planners
-  /// reach the start and leave for the end with the tool off. Each must lie inside the boundary.
-  /// One outside F is joined to F by an approach leg (kApproachLegSlack).
+  /// reach the start and leave for the end with the tool off. Each must lie inside the boundary
+  /// (or on it). One outside F is joined to F by a depot leg (path.hpp: depot legs), and must then
+  /// lie off every obstacle.
   std::optional<Point> start, end;
 };
 

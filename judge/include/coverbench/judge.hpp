@@ -52,7 +52,10 @@ struct ExactValidity {
   /// A car's segments it cannot drive (in `violations`): an arc of radius below the turn radius,
   /// or a heading that jumps at the segment's start (exact comparisons; docs/vehicles.md).
   std::size_t not_drivable = 0;
-  std::size_t approach_legs = 0;  ///< accepted by their own rule (path.hpp: kApproachLegSlack), exactly
+  /// Depot legs accepted by their own rule (0-2; path.hpp: depot legs), decided exactly, and their
+  /// length (m, in doubles: a figure, not a verdict).
+  std::size_t depot_legs = 0;
+  double depot_length = 0.0;
   static constexpr std::size_t kMaxListed = 10000;
 };
 /// An arc segment is judged as chords whose ends lie exactly on its circle; each is checked with

@@ -14,6 +14,8 @@
 
 namespace coverbench {
 
+class ClearanceField;  // coverbench/clearance.hpp
+
 /// One violating segment, described for messages: where it is, what it breaks and by how much.
 struct Violation {
   std::size_t segment = 0;  ///< segment i joins waypoints i and i + 1
@@ -59,13 +61,20 @@ struct Validity {
   /// radius, or a segment starting with another heading than the one before it ended with (for a
   /// reversing car, other than the opposite one at a cusp). Not one of the flattened metrics.
   std::size_t not_drivable = 0;
-  /// Approach legs accepted (0-2; path.hpp: kApproachLegSlack): checked by their own rule and
-  /// left out of min_clearance and min_boundary_gap.
-  std::size_t approach_legs = 0;
+  /// Depot legs accepted (0-2: from the start, to the end; path.hpp: depot legs): checked by their
+  /// own rule and left out of min_clearance and min_boundary_gap.
+  std::size_t depot_legs = 0;
+  double depot_length = 0.0;  ///< their length (m), part of the path's length
+
   /// The first kDescribedViolations violating segments (by index), each with what it breaks.
   std::vector<Violation> described;
 };
 inline constexpr std::size_t kMaxListedViolations = 10000;
+
+/// Whether the straight segment [a, b] may be part of a depot leg (path.hpp: depot legs): not a
+/// point, its centre line inside the wall or on its edge (within kValidityTolerance) and with no
+/// point in common with any obstacle. The runner builds depot legs with it.
+bool depotSegment(const ClearanceField& field, Point a, Point b);
 
 /// An invalid path's message: "N segments violate the wall or the clearance: segment 12 (1.2, 0.4)->
 /// (1.8, 0.4) enters obstacle "window" (clearance -0.05 m < 0.02 m); ...; M more" (the described

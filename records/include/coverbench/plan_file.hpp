@@ -15,6 +15,9 @@ struct PlanFile {
   std::string planner;
   std::string wall;
   ToolParams tool;
+  /// The wall's start and end the plan was made for (written only when given: a wall file's or
+  /// `--start`/`--end`), so that `coverbench metrics` judges its depot legs (path.hpp).
+  std::optional<Point> start, end;
   VehicleModel vehicle;  ///< written only when not holonomic (older files, and holonomic ones, have none)
   TransitSpec transit;   ///< written only when not visibility, with the seed
   std::uint64_t seed = 0;  ///< the problem's seed (what a sampling transit planner draws from)
@@ -40,11 +43,12 @@ std::string metricsJson(const PathMetrics& metrics);
 std::string violationsJson(const Validity& validity);
 
 /// A path read from a plan file of any source: only `waypoints` and `tool_on` are required;
-/// `tool_width`, `clearance` and `vehicle` are read when present.
+/// `tool_width`, `clearance`, `start`, `end` and `vehicle` are read when present.
 struct LoadedPlan {
   Path path;
   std::optional<double> tool_width;
   std::optional<double> clearance;
+  std::optional<Point> start, end;
   std::optional<VehicleModel> vehicle;
 };
 /// The plan file's `vehicle` object: {"model": "gantry", "lift_s": 1, "lower_s": 1}.
