@@ -224,6 +224,7 @@ struct DecompositionParams {
   bool boundary_loop = true;
   double row_end_inset = 0.6;
   bool fill_leftovers = false;
+  bool merge_events = false;
   CarPlan car_plan = CarPlan::Headland;
 };
 
@@ -241,6 +242,11 @@ const ParamTable<DecompositionParams>& paramTable() {
                &DecompositionParams::boundary_loop)
           .add(rowEndInsetParam(), &DecompositionParams::row_end_inset)
           .add(fillLeftoversParam(), &DecompositionParams::fill_leftovers)
+          .add({"merge_events", ParamType::Bool, false, 0, 0, {}, "",
+                "sweep events closer than twice the cells' depth inside the wall (+ s/4) count as one: no sliver "
+                "cells where the wall has corners on one line (README: merge width); off by default, it costs "
+                "length and overlap (steps inside joined cells are walked with the tool on)"},
+               &DecompositionParams::merge_events)
           .add(carPlanParam(), &DecompositionParams::car_plan, carPlanChoices());
   return table;
 }
@@ -278,7 +284,8 @@ class CellSweep {
                                                           kCellArcTolerance + kFreeSpaceMargin, kCellArcTolerance);
     // The headland comes from the part of F covered; the coarser F lies inside F, so each of its
     // parts lies in one part of F, and a vertex tells which.
-    const double merge_width = eventMergeWidth(problem.tool, spacing_, boundary_loop ? &layout : nullptr);
+    const double merge_width =
+        params_->merge_events ? eventMergeWidth(problem.tool, spacing_, boundary_loop ? &layout : nullptr) : 0.0;
     cells_ = decomposeParts(cell_region, kind, merge_width, [&](const PolygonWithHoles& poly) {
       return boundary_loop || std::any_of(main.begin(), main.end(), [&](const PolygonWithHoles& part) {
                return pointInPolygon(part, poly.outer.front());
@@ -504,7 +511,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
     const HeadlandOptions layout = carHeadlandOptions(problem, spacing, 1, params.row_end_inset, kCellArcTolerance, false);
     Headland h = headland(ws, frame.covered(), layout);
     std::vector<CarRow> rows = carHolePasses(ws, h.loops, spacing);
-    Decomposition cells = decomposeParts(h.ends, kind_, eventMergeWidth(problem.tool, spacing, &layout),
+    Decomposition cells = decomposeParts(h.ends, kind_, params.merge_events ? eventMergeWidth(problem.tool, spacing, &layout) : 0.0,
                                          [](const PolygonWithHoles&) { return true; });
     if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the decomposition");
     PassGrid grid;
