@@ -87,9 +87,90 @@ bool smoothJoin(const Edge& a, const Edge& b) {
   return dot(da, db) > std::cos(kCornerTurnDeg * M_PI / 180.0) * norm(da) * norm(db);
 }
 
+/// Joins every sliver, a cell narrower than `width` along the sweep, to a cell it continues: on
+/// its left, a cell that ends where the sliver begins and touches it there (the longest such
+/// contact), else on its right, one that begins where the sliver ends. The slices of the two run
+/// end to end, so the joined cell is x-monotone and lies in the polygon. The events joined stay
+/// within `width` of the one where the cell ended (or began) before: a run of slivers joins one
+/// cell only while it is that short. A cell that has grown to `width` is no sliver.
+void mergeSlivers(Decomposition& d, double width) {
+  const std::size_t n = d.cells.size();
+  std::vector<double> first_end(n), first_begin(n);
+  for (std::size_t i = 0; i < n; ++i) first_end[i] = d.cells[i].maxX(), first_begin[i] = d.cells[i].minX();
+  std::vector<std::size_t> into(n);
+  std::iota(into.begin(), into.end(), 0);
+  auto root = [&](std::size_t i) {
+    while (into[i] != i) i = into[i];
+    return i;
+  };
+  // Contact indices by cell, on the cell's left side and on its right side (a joined cell holds
+  // the lists of both parts; the x of a contact tells whether it lies at the cell's current end).
+  std::vector<std::vector<std::size_t>> on_left(n), on_right(n);
+  for (std::size_t k = 0; k < d.contacts.size(); ++k) {
+    on_left[d.contacts[k].right].push_back(k);
+    on_right[d.contacts[k].left].push_back(k);
+  }
+  // The cell across the longest contact at `x` in `list` whose own end (right end when it lies on
+  // the left) is at x; n if none.
+  auto partner = [&](std::size_t cell, const std::vector<std::size_t>& list, double x, bool partner_left) {
+    std::size_t best = n;
+    double longest = 0.0;
+    for (std::size_t k : list) {
+      const Contact& c = d.contacts[k];
+      if (c.x != x) continue;
+      const std::size_t other = root(partner_left ? c.left : c.right);
+      if (other == cell) continue;
+      const Cell& o = d.cells[other];
+      if ((partner_left ? o.maxX() : o.minX()) != x || c.y1 - c.y0 <= longest) continue;
+      best = other;
+      longest = c.y1 - c.y0;
+    }
+    return best;
+  };
+  bool merged = false;
+  for (std::size_t s = 0; s < n; ++s) {
+    Cell& sliver = d.cells[s];
+    if (sliver.maxX() - sliver.minX() >= width) continue;
+    std::size_t target = partner(s, on_left[s], sliver.minX(), true);
+    if (target != n && sliver.maxX() - first_end[target] >= width) target = n;
+    const bool append = target != n;
+    if (!append) target = partner(s, on_right[s], sliver.maxX(), false);
+    if (!append && target != n && first_begin[target] - sliver.minX() >= width) target = n;
+    if (target == n) continue;
+    std::vector<Slice>& to = d.cells[target].slices;
+    to.insert(append ? to.end() : to.begin(), sliver.slices.begin(), sliver.slices.end());
+    sliver.slices.clear();
+    for (auto* lists : {&on_left, &on_right})
+      (*lists)[target].insert((*lists)[target].end(), (*lists)[s].begin(), (*lists)[s].end());
+    into[s] = target;
+    merged = true;
+  }
+  if (!merged) return;
+  // The cells left, in sweep order again (a cell joined on its left begins earlier), and their
+  // contacts, without those between the parts of one cell.
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < n; ++i)
+    if (into[i] == i) kept.push_back(i);
+  std::stable_sort(kept.begin(), kept.end(),
+                   [&](std::size_t a, std::size_t b) { return d.cells[a].minX() < d.cells[b].minX(); });
+  std::vector<std::size_t> index(n);
+  std::vector<Cell> cells;
+  for (std::size_t i : kept) {
+    index[i] = cells.size();
+    cells.push_back(std::move(d.cells[i]));
+  }
+  std::vector<Contact> contacts;
+  for (Contact c : d.contacts) {
+    c.left = index[root(c.left)], c.right = index[root(c.right)];
+    if (c.left != c.right) contacts.push_back(c);
+  }
+  d.cells = std::move(cells);
+  d.contacts = std::move(contacts);
+}
+
 }  // namespace
 
-Decomposition decompose(const PolygonWithHoles& polygon, Kind kind, double min_contact) {
+Decomposition decompose(const PolygonWithHoles& polygon, Kind kind, double min_contact, double merge_width) {
   std::vector<Edge> edges;
   std::vector<double> xs;
   auto addRing = [&](const Ring& ring) {
@@ -173,6 +254,7 @@ Decomposition decompose(const PolygonWithHoles& polygon, Kind kind, double min_c
     }
     std::swap(previous, current);
   }
+  if (merge_width > 0.0) mergeSlivers(out, merge_width);
   return out;
 }
 

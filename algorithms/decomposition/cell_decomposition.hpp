@@ -66,7 +66,9 @@ struct Cell {
   std::vector<Point> boundaryWalk(double a, double b, bool ceiling) const;
 };
 
-/// Two cells sharing a piece of a vertical line: x, and the shared y range.
+/// Two cells sharing a piece of a vertical line: x, and the shared y range. `x` is the left
+/// cell's right end and the right cell's left end, or, after slivers were joined (decompose), a
+/// boundary between two slices of either.
 struct Contact {
   std::size_t left = 0, right = 0;  ///< cell indices, `left` on the smaller-x side
   double x = 0.0, y0 = 0.0, y1 = 0.0;
@@ -80,6 +82,16 @@ struct Decomposition {
 
 /// Decomposes one polygon with holes (outer ring counter-clockwise, holes clockwise, as regions
 /// come from region_ops). Contacts shorter than `min_contact` metres are not recorded.
-Decomposition decompose(const PolygonWithHoles& polygon, Kind kind, double min_contact = 1e-9);
+///
+/// Events closer than `merge_width` along the sweep count as one: a cell narrower than
+/// `merge_width` (a sliver between two such events) joins a cell it continues, one that ends
+/// where it begins or begins where it ends. Where a wall has several corners on one vertical line
+/// (a hole's right side above the next hole's left side), the region drawn inside the wall has
+/// them up to twice its depth apart, and each pair would make a sliver cell. A joined cell is
+/// still x-monotone, but its floor or ceiling may step where another cell begins beside it, so a
+/// contact may lie inside its left or right cell's x range (at a slice boundary of each) rather
+/// than at its end. 0 joins nothing.
+Decomposition decompose(const PolygonWithHoles& polygon, Kind kind, double min_contact = 1e-9,
+                        double merge_width = 0.0);
 
 }  // namespace coverbench::decomposition

@@ -45,7 +45,7 @@ struct PassGrid {
 /// as far as their cells reach (what they miss, only fill_leftovers paints). A pass of its own
 /// ran the whole height of the wall beside its neighbours' passes: a full strip painted twice.
 std::vector<double> passPositions(const Cell& cell, double shared_left, double shared_right, const PassGrid& grid,
-                                  bool boundary_loop) {
+                                  bool boundary_loop, const std::vector<double>& inner_edges) {
   const double x0 = cell.minX(), x1 = cell.maxX();
   const Span left = cell.spanAt(x0), right = cell.spanAt(x1);
   std::vector<double> xs;
@@ -54,7 +54,39 @@ std::vector<double> passPositions(const Cell& cell, double shared_left, double s
   for (; k <= grid.count && grid.at(k) < x1; ++k)
     if (grid.at(k) >= x0 && (xs.empty() || grid.at(k) - xs.back() > 1e-9)) xs.push_back(grid.at(k));
   if (!boundary_loop && ((right.top - right.bottom) - shared_right > 1e-6 || xs.empty())) xs.push_back(x1);
+  if (!boundary_loop && !inner_edges.empty()) {
+    xs.insert(xs.end(), inner_edges.begin(), inner_edges.end());
+    std::sort(xs.begin(), xs.end());
+    xs.erase(std::unique(xs.begin(), xs.end(), [](double a, double b) { return b - a <= 1e-9; }), xs.end());
+  }
   return xs;
+}
+
+/// Where a joined cell (decompose's slivers) has an edge of F inside it: at a slice boundary where
+/// another cell begins or ends beside it, the part of the step in its span that neither the other
+/// slice nor a neighbour shares. Without the boundary loop such an edge gets a pass, as a cell's
+/// end does (passPositions). Per cell, the x positions, increasing.
+std::vector<std::vector<double>> innerEdges(const Decomposition& cells) {
+  // (cell, x) -> lengths shared with cells ending at x on its left and beginning at x on its right.
+  std::map<std::pair<std::size_t, double>, std::pair<double, double>> shared;
+  for (const Contact& c : cells.contacts) {
+    if (c.x != cells.cells[c.right].minX()) shared[{c.right, c.x}].first += c.y1 - c.y0;
+    if (c.x != cells.cells[c.left].maxX()) shared[{c.left, c.x}].second += c.y1 - c.y0;
+  }
+  std::vector<std::vector<double>> edges(cells.cells.size());
+  for (const auto& [at, lengths] : shared) {
+    const auto& slices = cells.cells[at.first].slices;
+    const double x = at.second;
+    for (std::size_t i = 0; i + 1 < slices.size(); ++i) {
+      if (slices[i].x1 != x) continue;
+      const double b0 = slices[i].floor.yAt(x), t0 = slices[i].ceiling.yAt(x);
+      const double b1 = slices[i + 1].floor.yAt(x), t1 = slices[i + 1].ceiling.yAt(x);
+      const double both = std::max(0.0, std::min(t0, t1) - std::max(b0, b1));
+      if ((t0 - b0) - both - lengths.second > 1e-6 || (t1 - b1) - both - lengths.first > 1e-6)
+        edges[at.first].push_back(x);
+    }
+  }
+  return edges;
 }
 
 /// Removes the cells given no pass (and their contacts), renumbering the rest; returns how many.
@@ -83,13 +115,33 @@ std::size_t dropCellsWithoutPasses(Decomposition& d, std::vector<std::vector<dou
   return dropped;
 }
 
-/// The cells of every part of `region` that `keep` admits, as one decomposition.
+/// Sweep events closer than this count as one (decompose joins the sliver cells between them).
+/// One corner of the wall is an event on each side of the region the cells are cut from, at the
+/// depth that region lies inside the wall's edges across the passes; corners on one line, such as
+/// a hole's right side above the next hole's left side, are one event of the wall and twice that
+/// depth apart in the region. The depth is r + c plus: without the boundary loop, F's coarser
+/// drawing (kFreeSpaceMargin + kCellArcTolerance); with it (`layout`), the loops beyond the first
+/// and the rows' ends (the rows' region lies end_inset spacings inside the last loop and reaches
+/// half a spacing across, headland.cpp), drawn with chords of kCellArcTolerance. A quarter
+/// spacing more covers the chords of F's arcs, whose ends need not lie at an arc's extreme x, and
+/// the offsets' rounding. At s = 0.1 m, c = 0.02 m and the defaults: 0.195 m with the loop,
+/// 0.171 m without.
+double eventMergeWidth(const ToolParams& tool, double spacing, const HeadlandOptions* layout) {
+  double depth = tool.radius() + tool.clearance + kFreeSpaceMargin + kCellArcTolerance;
+  if (layout != nullptr)
+    depth += static_cast<double>(layout->loops - 1) * layout->spacing +
+             std::max(0.0, layout->end_inset - 0.5) * layout->spacing + kCellArcTolerance;
+  return 2.0 * depth + 0.25 * spacing;
+}
+
+/// The cells of every part of `region` that `keep` admits, as one decomposition; events closer
+/// than `merge_width` along the sweep count as one (eventMergeWidth).
 template <class Keep>
-Decomposition decomposeParts(const Region& region, Kind kind, Keep keep) {
+Decomposition decomposeParts(const Region& region, Kind kind, double merge_width, Keep keep) {
   Decomposition cells;
   for (const PolygonWithHoles& poly : region) {
     if (!keep(poly)) continue;
-    Decomposition d = decompose(poly, kind);
+    Decomposition d = decompose(poly, kind, 1e-9, merge_width);
     const std::size_t base = cells.cells.size();
     for (Contact& c : d.contacts) c.left += base, c.right += base;
     cells.cells.insert(cells.cells.end(), d.cells.begin(), d.cells.end());
@@ -105,9 +157,9 @@ Decomposition decomposeParts(const Region& region, Kind kind, Keep keep) {
 std::vector<std::vector<double>> cellPasses(const Decomposition& cells, const Box& span, double spacing,
                                             bool boundary_loop, PassGrid& grid) {
   std::vector<double> shared_left(cells.cells.size(), 0.0), shared_right(cells.cells.size(), 0.0);
-  for (const Contact& c : cells.contacts) {
-    shared_left[c.right] += c.y1 - c.y0;
-    shared_right[c.left] += c.y1 - c.y0;
+  for (const Contact& c : cells.contacts) {  // those at a cell's end (a joined sliver's may lie inside)
+    if (c.x == cells.cells[c.right].minX()) shared_left[c.right] += c.y1 - c.y0;
+    if (c.x == cells.cells[c.left].maxX()) shared_right[c.left] += c.y1 - c.y0;
   }
   grid = PassGrid{};
   if (!cells.cells.empty()) {
@@ -121,9 +173,10 @@ std::vector<std::vector<double>> cellPasses(const Decomposition& cells, const Bo
     grid.count = static_cast<std::size_t>(std::max(1.0, std::ceil((hi - lo) / spacing - 1e-9)));
     grid.step = (hi - lo) / static_cast<double>(grid.count);
   }
+  const std::vector<std::vector<double>> inner = innerEdges(cells);
   std::vector<std::vector<double>> passes(cells.cells.size());
   for (std::size_t i = 0; i < cells.cells.size(); ++i)
-    passes[i] = passPositions(cells.cells[i], shared_left[i], shared_right[i], grid, boundary_loop);
+    passes[i] = passPositions(cells.cells[i], shared_left[i], shared_right[i], grid, boundary_loop, inner[i]);
   return passes;
 }
 
@@ -171,6 +224,7 @@ struct DecompositionParams {
   bool boundary_loop = true;
   double row_end_inset = 0.6;
   bool fill_leftovers = false;
+  bool merge_events = false;
   CarPlan car_plan = CarPlan::Headland;
 };
 
@@ -188,6 +242,11 @@ const ParamTable<DecompositionParams>& paramTable() {
                &DecompositionParams::boundary_loop)
           .add(rowEndInsetParam(), &DecompositionParams::row_end_inset)
           .add(fillLeftoversParam(), &DecompositionParams::fill_leftovers)
+          .add({"merge_events", ParamType::Bool, false, 0, 0, {}, "",
+                "sweep events closer than twice the cells' depth inside the wall (+ s/4) count as one: no sliver "
+                "cells where the wall has corners on one line (README: merge width); off by default, it costs "
+                "length and overlap (steps inside joined cells are walked with the tool on)"},
+               &DecompositionParams::merge_events)
           .add(carPlanParam(), &DecompositionParams::car_plan, carPlanChoices());
   return table;
 }
@@ -225,7 +284,9 @@ class CellSweep {
                                                           kCellArcTolerance + kFreeSpaceMargin, kCellArcTolerance);
     // The headland comes from the part of F covered; the coarser F lies inside F, so each of its
     // parts lies in one part of F, and a vertex tells which.
-    cells_ = decomposeParts(cell_region, kind, [&](const PolygonWithHoles& poly) {
+    const double merge_width =
+        params_->merge_events ? eventMergeWidth(problem.tool, spacing_, boundary_loop ? &layout : nullptr) : 0.0;
+    cells_ = decomposeParts(cell_region, kind, merge_width, [&](const PolygonWithHoles& poly) {
       return boundary_loop || std::any_of(main.begin(), main.end(), [&](const PolygonWithHoles& part) {
                return pointInPolygon(part, poly.outer.front());
              });
@@ -450,7 +511,8 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
     const HeadlandOptions layout = carHeadlandOptions(problem, spacing, 1, params.row_end_inset, kCellArcTolerance, false);
     Headland h = headland(ws, frame.covered(), layout);
     std::vector<CarRow> rows = carHolePasses(ws, h.loops, spacing);
-    Decomposition cells = decomposeParts(h.ends, kind_, [](const PolygonWithHoles&) { return true; });
+    Decomposition cells = decomposeParts(h.ends, kind_, params.merge_events ? eventMergeWidth(problem.tool, spacing, &layout) : 0.0,
+                                         [](const PolygonWithHoles&) { return true; });
     if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in the decomposition");
     PassGrid grid;
     std::vector<std::vector<double>> passes = cellPasses(cells, h.row_span, spacing, true, grid);

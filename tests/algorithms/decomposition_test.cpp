@@ -50,13 +50,24 @@ void expectPartition(const PolygonWithHoles& polygon, const Decomposition& d, co
     total += cell.area();
   }
   EXPECT_NEAR(total, area(polygon), 1e-9 * std::max(1.0, area(polygon))) << what << ": cells do not tile the polygon";
+  // A contact lies where a slice of its left cell ends and one of its right cell begins: the
+  // cells' ends, or, in a cell a sliver joined (decompose's merge_width), a step inside it.
+  auto endsAt = [](const decomposition::Cell& cell, double x) {
+    return std::any_of(cell.slices.begin(), cell.slices.end(), [&](const auto& s) { return s.x1 == x; });
+  };
+  auto beginsAt = [](const decomposition::Cell& cell, double x) {
+    return std::any_of(cell.slices.begin(), cell.slices.end(), [&](const auto& s) { return s.x0 == x; });
+  };
   for (const auto& c : d.contacts) {
     EXPECT_NE(c.left, c.right) << what;
     EXPECT_GT(c.y1 - c.y0, 0.0) << what;
-    EXPECT_EQ(d.cells[c.left].maxX(), c.x) << what << ": a contact lies on its left cell's right end";
-    EXPECT_EQ(d.cells[c.right].minX(), c.x) << what;
+    EXPECT_TRUE(endsAt(d.cells[c.left], c.x)) << what << ": a contact lies where a slice of its left cell ends";
+    EXPECT_TRUE(beginsAt(d.cells[c.right], c.x)) << what;
   }
 }
+
+/// The x extent of a cell.
+double width(const decomposition::Cell& cell) { return cell.maxX() - cell.minX(); }
 
 TEST(CellDecomposition, SquareWithOneHoleHasFourCellsEitherWay) {
   // Hand count: left of the hole, below it, above it, right of it.
@@ -127,6 +138,37 @@ TEST(CellDecomposition, StackedWindowsWithEqualXGiveNoDegenerateCells) {
   for (Kind kind : {Kind::Trapezoidal, Kind::Boustrophedon}) expectPartition(notch, decomposition::decompose(notch, kind), "notch");
 }
 
+TEST(CellDecomposition, EventsCloserThanTheMergeWidthAreOne) {
+  // An upper hole ending at x = 4.05 and a lower one beginning at x = 3.95: the region a tool
+  // leaves around two holes whose sides share x = 4 (ETH's "ultimate" polygon at x = 5). Events
+  // apart: left of both, below and above the upper hole, the 0.1 m sliver between the two holes,
+  // below and above the lower hole, right of both = 7 cells. One event (the holes' sides on one
+  // line, as drawn): left, below and above the upper hole, below and above the lower, right = 6;
+  // the sliver joins the cell below the upper hole, which then ends at 4.05.
+  const PolygonWithHoles p{box(0, 0, 10, 6), {hole(2, 3, 4.05, 5), hole(3.95, 1, 6, 2.5)}};
+  for (Kind kind : {Kind::Trapezoidal, Kind::Boustrophedon}) {
+    const Decomposition apart = decomposition::decompose(p, kind, 1e-9, 0.05);
+    EXPECT_EQ(apart.cells.size(), 7u);
+    expectPartition(p, apart, "merge width 0.05");
+    EXPECT_EQ(std::count_if(apart.cells.begin(), apart.cells.end(), [](const auto& c) { return width(c) < 0.2; }), 1);
+    const Decomposition one = decomposition::decompose(p, kind, 1e-9, 0.2);
+    EXPECT_EQ(one.cells.size(), 6u);
+    expectPartition(p, one, "merge width 0.2");
+    for (const auto& cell : one.cells) EXPECT_GE(width(cell), 0.2) << "a sliver is left at x = " << cell.minX();
+    // The joined cell: [2, 3.95] below the upper hole, then [3.95, 4.05] between the holes; it
+    // touches the cell below the lower hole at x = 3.95, a step inside it.
+    const auto joined = std::find_if(one.cells.begin(), one.cells.end(), [](const auto& c) {
+      return c.minX() == 2.0 && c.spanAt(3.0).top == 3.0;
+    });
+    ASSERT_NE(joined, one.cells.end());
+    EXPECT_EQ(joined->maxX(), 4.05);
+    EXPECT_NEAR(joined->area(), 1.95 * 3.0 + 0.1 * 0.5, 1e-12);
+    EXPECT_TRUE(std::any_of(one.contacts.begin(), one.contacts.end(), [&](const auto& c) {
+      return one.cells.begin() + static_cast<std::ptrdiff_t>(c.left) == joined && c.x == 3.95;
+    }));
+  }
+}
+
 TEST(CellDecomposition, RectanglesSharingEdgesAreOneHole) {
   // Obstacles that share an edge or a corner merge into one hole of F; nothing degenerate results.
   const Wall wall = test::rectWall(6, 4, {test::rect(1, 1, 1, 1), test::rect(2, 1, 1, 1), test::rect(3, 2, 1, 1),
@@ -151,6 +193,13 @@ TEST(CellDecomposition, PartitionOnManyWallsAndTurnedFrames) {
         expectPartition(p, t, what);
         expectPartition(p, b, what);
         EXPECT_LE(b.cells.size(), t.cells.size()) << what;
+        // Events merged as the planners merge them at this tool (0.17 m with the loop): still a
+        // partition, never more cells.
+        for (Kind kind : {Kind::Trapezoidal, Kind::Boustrophedon}) {
+          const Decomposition m = decomposition::decompose(p, kind, 1e-9, 0.17);
+          expectPartition(p, m, what + " merged");
+          EXPECT_LE(m.cells.size(), (kind == Kind::Trapezoidal ? t : b).cells.size()) << what;
+        }
       }
     }
   }
@@ -363,6 +412,89 @@ TEST(DecompositionPlanners, AlignedWindowsAndTouchingRectanglesAtBothSweepAngles
       for (const char* part : {"decomposition", "ordering", "synthesis"}) EXPECT_EQ(r.timings_ms.count(part), 1u) << part;
       for (const auto& [name, value] : r.stats) EXPECT_EQ(name.find("_ms"), std::string::npos) << name;
     }
+}
+
+// ETH's "ultimate" BCD test polygon (tests/data/eth_ultimate: 11 x 6 m, 3 holes), swept with
+// vertical passes. Hand count of its boustrophedon cells, left to right (their test expects 14):
+// - x in [0, 1]: 3 cells, the notches of the left side leave three intervals (below the notch
+//   (1,1), between it and the notch at y in [2, 3], above that);
+// - x = 1: the notches end and the square hole begins, one event: below the hole, above it (2);
+// - x = 2: the hole ends: 1 cell to x = 3;
+// - x = 3: the quadrilateral begins: below it, above it (2);
+// - x = 5: the quadrilateral's right side above the rectangle's left side, one event: below the
+//   rectangle, above it (2);
+// - x = 7: the rectangle ends: 1 cell to x = 10;
+// - x = 10: the right side's notches begin, one event: 3 cells to x = 11.
+// 3 + 2 + 1 + 2 + 2 + 1 + 3 = 14. In F (the polygon eroded by r + c) the events at x = 1, 5 and
+// 10 split into events up to 2 (r + c) apart, with a sliver cell between each pair: 18 cells
+// (x = 1 gives two, one between the hole's side and the notch, one where F's arc round the
+// vertex (1, 1) ends a millimetre before the notch's side; x = 10 one, 0.1 mm wide), until
+// events closer than the merge width count as one.
+TEST(DecompositionPlanners, EthUltimatePolygonHasItsFourteenCells) {
+  const Wall wall = loadWallFile(test::sourcePath("tests/data/eth_ultimate/ultimate_bcd.json"));
+  for (const ToolParams& tool : {ToolParams{0.05, 0.0}, ToolParams{0.1, 0.02}}) {
+    // The decomposition itself, of F drawn as the planner draws it without the loop.
+    for (const PolygonWithHoles& f : freeRegion(wall, tool, 2e-3 + kFreeSpaceMargin, 2e-3)) {
+      const Decomposition apart = decomposition::decompose(f, Kind::Boustrophedon);
+      EXPECT_EQ(apart.cells.size(), 18u) << tool.tool_width;
+      EXPECT_EQ(std::count_if(apart.cells.begin(), apart.cells.end(), [&](const auto& c) { return width(c) < 2.0 * (tool.radius() + tool.clearance) + 0.01; }), 4);
+      const Decomposition one = decomposition::decompose(f, Kind::Boustrophedon, 1e-9, 2.0 * (tool.radius() + tool.clearance) + 0.02);
+      EXPECT_EQ(one.cells.size(), 14u) << tool.tool_width;
+      expectPartition(f, one, "ultimate");
+      for (const auto& cell : one.cells) EXPECT_GT(width(cell), 0.5) << "a sliver at x = " << cell.minX();
+    }
+    for (const char* loop : {"true", "false"}) {
+      const std::string what = std::string("s = ") + std::to_string(tool.tool_width) + ", loop " + loop;
+      const PlanResult r =
+          planWith("boustrophedon", wall, tool, {{"sweep_angle", "90"}, {"boundary_loop", loop}, {"merge_events", "true"}});
+      ASSERT_EQ(r.status, PlanStatus::Ok) << what << ": " << r.reason;
+      // Cells with passes: at s = 0.1 m with the loop a 1 mm piece where the corridor above the
+      // square hole (0.14 m high in the wall) closes in the rows' region gets none.
+      EXPECT_EQ(r.stats.at("cells"), 14.0) << what;
+      const PlanResult apart = planWith("boustrophedon", wall, tool, {{"sweep_angle", "90"}, {"boundary_loop", loop}});
+      ASSERT_EQ(apart.status, PlanStatus::Ok) << what;
+      EXPECT_GT(apart.stats.at("cells") + apart.stats.at("cells_without_pass"), 14.0) << what << ": merge_events is off by default";
+      EXPECT_TRUE(test::isValidPath(wall, tool, r.path)) << what;
+      EXPECT_GE(coverage(wall, tool, r.path).coverage_reachable, 0.99) << what;
+      const PlanResult t =
+          planWith("trapezoidal", wall, tool, {{"sweep_angle", "90"}, {"boundary_loop", loop}, {"merge_events", "true"}});
+      ASSERT_EQ(t.status, PlanStatus::Ok) << what << ": " << t.reason;
+      EXPECT_TRUE(test::isValidPath(wall, tool, t.path)) << what;
+      EXPECT_GE(coverage(wall, tool, t.path).coverage_reachable, 0.99) << what;
+    }
+  }
+}
+
+// Merged events (merge_events) never make a path invalid: generated walls of every family, both planners, both
+// sweep directions, with and without the boundary loop (without it, a joined cell's inner steps
+// get passes of their own).
+TEST(DecompositionPlanners, MergedEventsKeepPathsValidOnGeneratedWalls) {
+  const ToolParams tool{0.1, 0.02};
+  std::vector<Wall> walls;
+  for (const FamilyInfo& family : wallFamilies()) {
+    if (family.fixed_suite || family.name == "field" || family.name == "stress") continue;
+    for (std::size_t i = 0; i < 2; ++i) walls.push_back(generateWall(family.name, 11, i));
+  }
+  for (const Wall& wall : test::sampled(walls))
+    for (const char* planner : {"trapezoidal", "boustrophedon"})
+      for (const char* angle : {"0", "90"})
+        for (const char* loop : {"true", "false"}) {
+          const std::string what = wall.name + " " + planner + " " + angle + " loop " + loop;
+          const PlanResult r =
+              planWith(planner, wall, tool, {{"sweep_angle", angle}, {"boundary_loop", loop}, {"merge_events", "true"}});
+          ASSERT_TRUE(r.hasPath()) << what << ": " << r.reason;
+          EXPECT_TRUE(test::isValidPath(wall, tool, r.path)) << what;
+          // With the loop (the default), coverage as without merging (narrow walls cover their
+          // largest part only), within 0.005. Without it merging loses coverage: up to 0.003 for
+          // boustrophedon and 0.019 for trapezoidal on these walls (README, merge_events).
+          const PlanResult apart = planWith(planner, wall, tool, {{"sweep_angle", angle}, {"boundary_loop", loop}});
+          ASSERT_TRUE(apart.hasPath()) << what;
+          if (std::string(loop) == "true")
+            EXPECT_GE(coverage(wall, tool, r.path).coverage_reachable,
+                      coverage(wall, tool, apart.path).coverage_reachable - 5e-3)
+                << what;
+          EXPECT_LE(r.stats.at("cells"), apart.stats.at("cells") + apart.stats.at("cells_without_pass")) << what;
+        }
 }
 
 TEST(DecompositionPlanners, EveryOrderCoversTheSameCells) {
