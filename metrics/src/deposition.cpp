@@ -119,6 +119,13 @@ double depositionCell(const ToolParams& tool, const FluxProfile& profile) {
   return std::fmin(tool.tool_width / 40.0, profile.spread(tool.radius()) / 5.0);
 }
 
+void DepositionGrid::range(double lo, double hi, double origin, std::size_t count, std::size_t& first, std::size_t& last) const {
+  const double per = gauss ? 2.0 : 1.0;  // samples per cell along an axis
+  const double a = std::floor((lo - origin) / cell) - 1.0, b = std::ceil((hi - origin) / cell) + 1.0;
+  first = static_cast<std::size_t>(std::clamp(a * per, 0.0, static_cast<double>(count)));
+  last = static_cast<std::size_t>(std::clamp(b * per, 0.0, static_cast<double>(count)));
+}
+
 void depositionField(const Path& path, const ToolParams& tool, const FluxProfile& profile,
                      const std::vector<SegmentSpeed>& speeds, DepositionGrid& grid) {
   grid.thickness.assign(grid.nx * grid.ny, 0.0);
@@ -130,14 +137,9 @@ void depositionField(const Path& path, const ToolParams& tool, const FluxProfile
     if (!(len > 0.0)) continue;
     const Point u{d.x / len, d.y / len}, n{-u.y, u.x};
     const double reach = r + depth / 2.0;  // no cell farther from the chord is touched
-    const auto range = [&](double lo, double hi, double origin, std::size_t count, std::size_t& first, std::size_t& last) {
-      const double a = std::floor((lo - origin) / h - 0.5), b = std::ceil((hi - origin) / h - 0.5);
-      first = static_cast<std::size_t>(std::clamp(a, 0.0, static_cast<double>(count)));
-      last = static_cast<std::size_t>(std::clamp(b + 1.0, 0.0, static_cast<double>(count)));
-    };
     std::size_t i0, i1, j0, j1;
-    range(std::fmin(p.a.x, p.b.x) - reach, std::fmax(p.a.x, p.b.x) + reach, grid.x0, grid.nx, i0, i1);
-    range(std::fmin(p.a.y, p.b.y) - reach, std::fmax(p.a.y, p.b.y) + reach, grid.y0, grid.ny, j0, j1);
+    grid.range(std::fmin(p.a.x, p.b.x) - reach, std::fmax(p.a.x, p.b.x) + reach, grid.x0, grid.nx, i0, i1);
+    grid.range(std::fmin(p.a.y, p.b.y) - reach, std::fmax(p.a.y, p.b.y) + reach, grid.y0, grid.ny, j0, j1);
     const double ratio = (p.s1 - p.s0) / len;  // segment distance per chord distance
     for (std::size_t j = j0; j < j1; ++j)
       for (std::size_t i = i0; i < i1; ++i) {
@@ -171,12 +173,12 @@ std::vector<char> rasterMask(const Region& region, const DepositionGrid& grid) {
     }
     std::sort(crossings.begin(), crossings.end());
     for (std::size_t k = 0; k + 1 < crossings.size(); k += 2) {  // inside between pairs (even-odd)
-      const double first = std::ceil((crossings[k] - grid.x0) / grid.cell - 0.5);
-      const double last = std::ceil((crossings[k + 1] - grid.x0) / grid.cell - 0.5);  // exclusive
-      const auto clampIndex = [&](double v) {
-        return static_cast<std::size_t>(std::clamp(v, 0.0, static_cast<double>(grid.nx)));
-      };
-      for (std::size_t i = clampIndex(first); i < clampIndex(last); ++i) mask[j * grid.nx + i] = 1;
+      std::size_t first, last;
+      grid.range(crossings[k], crossings[k + 1], grid.x0, grid.nx, first, last);
+      for (std::size_t i = first; i < last; ++i) {
+        const double x = grid.coordinate(grid.x0, i);
+        if (x >= crossings[k] && x < crossings[k + 1]) mask[j * grid.nx + i] = 1;
+      }
     }
   }
   return mask;
@@ -218,16 +220,17 @@ Deposition deposition(const Wall& wall, const ToolParams& tool, const Path& path
   const Box box = boundingBox(reachable);
   DepositionGrid grid;
   if (box.empty()) return depositionStats(grid, {});
-  const double nx = std::ceil(box.width() / h), ny = std::ceil(box.height() / h);
+  const double nx = 2.0 * std::ceil(box.width() / h), ny = 2.0 * std::ceil(box.height() / h);  // samples
   if (!(nx * ny <= static_cast<double>(kMaxDepositionCells)))
     throw InputError("profile", "profile",
-                     "the reachable region needs " + number(nx * ny) + " raster cells of " + number(h) + " m, at most " +
+                     "the reachable region needs " + number(nx * ny) + " raster samples (4 per cell of " + number(h) + " m), at most " +
                          std::to_string(kMaxDepositionCells) + " (a wider sigma or beta spread, or a smaller wall)");
   grid.x0 = box.min_x;
   grid.y0 = box.min_y;
   grid.cell = h;
-  grid.nx = static_cast<std::size_t>(std::max(1.0, nx));
-  grid.ny = static_cast<std::size_t>(std::max(1.0, ny));
+  grid.gauss = true;
+  grid.nx = static_cast<std::size_t>(std::max(2.0, nx));
+  grid.ny = static_cast<std::size_t>(std::max(2.0, ny));
   depositionField(path, tool, profile, segmentSpeeds(path, limits, vehicle), grid);
   return depositionStats(grid, rasterMask(reachable, grid));
 }

@@ -28,10 +28,16 @@ MotionLimits noRamp() {
   return m;
 }
 
-/// A raster of nx x ny cells of side `cell` from (x0, y0), its field computed.
+/// A raster of nx x ny cells of side `cell` from (x0, y0), its field computed: one sample at each
+/// cell's centre, or with `gauss` 2 x 2 at its Gauss points (as the engine samples).
 DepositionGrid field(const Path& path, const FluxProfile& profile, const MotionLimits& limits, double x0, double y0,
-                     double cell, std::size_t nx, std::size_t ny) {
+                     double cell, std::size_t nx, std::size_t ny, bool gauss = false) {
   DepositionGrid g;
+  g.gauss = gauss;
+  if (gauss) {
+    nx *= 2;
+    ny *= 2;
+  }
   g.x0 = x0;
   g.y0 = y0;
   g.cell = cell;
@@ -72,15 +78,20 @@ TEST(Deposition, TwoParallelGaussianPassesMatchTheClosedFormCv) {
     const double cell = depositionCell(kTool, profile);  // sigma / 5 = 4 mm
     const std::size_t ny = static_cast<std::size_t>(std::lround(d / cell));
     ASSERT_NEAR(ny * cell, d, 1e-12);
-    const DepositionGrid g = field(path, profile, noRamp(), 0.5, 0.0, cell, static_cast<std::size_t>(std::lround(1.0 / cell)), ny);
+    const DepositionGrid g = field(path, profile, noRamp(), 0.5, 0.0, cell, std::lround(1.0 / cell), ny, true);
     const Deposition stats = depositionStats(g, std::vector<char>(g.thickness.size(), 1));
     const double exact = bandCv(sigma, d);
     // Thickness Q (f(y) + f(y - d)) / v: the mean is Q / (d v) times the profile's mass in the band.
     EXPECT_GT(exact, 0.01);
     EXPECT_NEAR(stats.cv, exact, 2e-3 * exact) << "d = " << d << ": raster " << stats.cv << ", closed form " << exact;
-    // A much finer raster (cell / 8) agrees far closer: the midpoint rule's error falls as cell^2.
-    const DepositionGrid fine = field(path, profile, noRamp(), 0.5, 0.0, cell / 8, std::lround(8.0 / cell), ny * 8);
-    EXPECT_NEAR(depositionStats(fine, std::vector<char>(fine.thickness.size(), 1)).cv, exact, 1e-4 * exact);
+    // A raster 4 times finer agrees far closer: the Gauss points' error falls as cell^4.
+    const DepositionGrid fine = field(path, profile, noRamp(), 0.5, 0.0, cell / 4, std::lround(4.0 / cell), ny * 4, true);
+    const double fine_cv = depositionStats(fine, std::vector<char>(fine.thickness.size(), 1)).cv;
+    EXPECT_NEAR(fine_cv, exact, 2e-5 * exact);
+    // The midpoint rule (one sample per cell) would be second order only: 6-10 % off here.
+    const DepositionGrid midpoint = field(path, profile, noRamp(), 0.5, 0.0, cell, std::lround(1.0 / cell), ny);
+    EXPECT_GT(std::fabs(depositionStats(midpoint, std::vector<char>(midpoint.thickness.size(), 1)).cv - exact), 0.05 * exact);
+    std::printf("d = %g: cv %.8f (cell %g), %.8f (cell / 4), closed form %.8f\n", d, stats.cv, cell, fine_cv, exact);
   }
 }
 
@@ -104,7 +115,8 @@ TEST(Deposition, UniformProfileOnOnePassIsRateTimesTimeOverTheWidth) {
 // Acceptance (issue 66): a pass whose speed ramps down deposits more where it is slower, as
 // 1 / v(s) of the time model. The fan is 5 mm deep: its mean of 1/v over the depth l differs
 // from 1/v at the centre by about (l^2 / 24) (1/v)'' / (1/v) = l^2 / (32 e^2), e the distance to
-// the stop: under 0.1 % from e = 3 cm on.
+// the stop: under 0.07 % from e = 3.5 cm on. (Within l / 2 of where braking starts, 9 cm from the
+// stop, the kink of v(s) makes the fan's mean differ by up to 0.35 %: those cells are left out.)
 TEST(Deposition, ThicknessFollowsTheTimeModelsSpeedWhereItBrakes) {
   Path path;
   path.moveTo({0, 0}, false);
@@ -119,7 +131,7 @@ TEST(Deposition, ThicknessFollowsTheTimeModelsSpeedWhereItBrakes) {
   EXPECT_NEAR(cruise, profile.rate * profile.density(0.0005, 0.1) / 0.3, 1e-9 * cruise);
   double previous = cruise;
   int checked = 0;
-  for (std::size_t i = 1911; i < 1970; ++i) {  // the braking stretch, 3 cm from the stop or more
+  for (std::size_t i = 1914; i < 1965; ++i) {  // the braking stretch, 3.5 to 8.6 cm from the stop
     const double x = g.centre(i, 0).x, v = speeds[0].speedAt(x);
     ASSERT_LT(v, 0.3);
     EXPECT_NEAR(g.thickness[i] / cruise, 0.3 / v, 1e-3 * 0.3 / v) << "at " << x << " m";
@@ -127,7 +139,7 @@ TEST(Deposition, ThicknessFollowsTheTimeModelsSpeedWhereItBrakes) {
     previous = g.thickness[i];
     ++checked;
   }
-  EXPECT_GT(checked, 50);
+  EXPECT_EQ(checked, 51);
   // At the stop the speed is 0, yet the coat is finite: the ramp to standstill takes finite time.
   EXPECT_TRUE(std::isfinite(g.thickness[1999]));
   EXPECT_GT(g.thickness[1999], g.thickness[1969]);
@@ -152,10 +164,40 @@ TEST(Deposition, TheRasterHoldsWhatTheToolSprays) {
   EXPECT_GT(on_time, 3.0);
   const FluxProfile profile = gaussian(0.025);
   const double cell = depositionCell(kTool, profile);
-  const DepositionGrid g = field(path, profile, limits, 0.0, 0.0, cell, std::lround(2.0 / cell), std::lround(2.2 / cell));
+  const DepositionGrid g = field(path, profile, limits, 0.0, 0.0, cell, std::lround(2.0 / cell), std::lround(2.2 / cell), true);
   double volume = 0.0;
-  for (double h : g.thickness) volume += h * cell * cell;
+  for (double h : g.thickness) volume += h * cell * cell / 4;
   EXPECT_NEAR(volume, profile.rate * on_time, 1e-4 * profile.rate * on_time);
+}
+
+// The speeds deposition reads are the time model's: per segment they take the time timeline()
+// gives it, and with the waits they add up to duration_s (rotations in place included).
+TEST(Deposition, SegmentSpeedsAreTheTimeModels) {
+  Path path;
+  path.moveTo({0, 0}, false);
+  path.moveTo({1, 0}, true);
+  path.moveTo({1.05, 0.02}, true);  // a small turn: driven through, no stop
+  path.moveTo({1.05, 1}, true);     // a large one: a stop
+  path.arcTo({0.45, 1}, 1.0, true);
+  path.moveTo({0.45, 0.5}, false);
+  MotionLimits rotating;
+  rotating.rotation_speed = 0.5;
+  for (const MotionLimits& limits : {MotionLimits{}, rotating, noRamp()}) {
+    const std::vector<SegmentSpeed> speeds = segmentSpeeds(path, limits);
+    const Timeline t = timeline(path, limits);
+    double total = 0.0;
+    for (std::size_t i = 0; i < speeds.size(); ++i) {
+      EXPECT_NEAR(speeds[i].duration(), t.arrive_s[i + 1] - t.arrive_s[i] - t.wait_s[i], 1e-12);
+      EXPECT_NEAR(speeds[i].length, segmentLength(path, i), 1e-12);
+      EXPECT_NEAR(speeds[i].timeAt(speeds[i].length), speeds[i].duration(), 1e-12);
+      total += speeds[i].duration() + t.wait_s[i];
+    }
+    EXPECT_NEAR(total, motion(path, limits).duration_s, 1e-9);
+  }
+  const std::vector<SegmentSpeed> speeds = segmentSpeeds(path, MotionLimits{});
+  EXPECT_EQ(speeds[0].v0, 0.0);
+  EXPECT_GT(speeds[0].v1, 0.0);  // through the small turn
+  EXPECT_EQ(speeds[1].v1, 0.0);  // the stop
 }
 
 TEST(Deposition, ADiskToolWithoutAProfileHasNoDepositionMetrics) {
@@ -179,9 +221,11 @@ TEST(Deposition, ADiskToolWithoutAProfileHasNoDepositionMetrics) {
 }
 
 // The metrics of a planner's path on a wall with an obstacle at the default cell and at a cell
-// four times finer: the stated error of docs/deposition.md.
+// four times finer: the stated error of docs/deposition.md. (Measured: the mean within 1e-5, the
+// CV within 0.07 % relative, the shares within 0.0084: the field jumps at a swath's truncated
+// edge and R's boundary, so the shares' error is of the order of the cell.)
 TEST(Deposition, DefaultRasterAgainstAFourTimesFinerOne) {
-  const Wall wall = test::rectWall(2, 1.2, {test::rect(0.8, 0.4, 0.3, 0.3)});
+  const Wall wall = test::rectWall(1.5, 1.0, {test::rect(0.6, 0.35, 0.25, 0.25)});
   const ToolParams tool{0.1, 0.02};
   const PlanResult plan = test::planWith("zigzag", wall, tool);
   ASSERT_FALSE(plan.path.waypoints.empty());
@@ -189,8 +233,8 @@ TEST(Deposition, DefaultRasterAgainstAFourTimesFinerOne) {
     const double cell = depositionCell(tool, profile);
     const Deposition coarse = deposition(wall, tool, plan.path, profile, {}, {}, cell);
     const Deposition fine = deposition(wall, tool, plan.path, profile, {}, {}, cell / 4);
-    EXPECT_NEAR(coarse.mean_um, fine.mean_um, 2e-3 * fine.mean_um);
-    EXPECT_NEAR(coarse.cv, fine.cv, 0.01 * fine.cv + 2e-3);
+    EXPECT_NEAR(coarse.mean_um, fine.mean_um, 1e-4 * fine.mean_um);
+    EXPECT_NEAR(coarse.cv, fine.cv, 2e-3 * fine.cv);
     EXPECT_NEAR(coarse.even_share, fine.even_share, 0.01);
     EXPECT_NEAR(coarse.thin_share, fine.thin_share, 0.01);
     EXPECT_NEAR(coarse.thick_share, fine.thick_share, 0.01);
