@@ -355,9 +355,19 @@ int metricsCommand(const MetricsOptions& options) {
   limits.rotation_speed = options.rotation_speed;
   if (!(limits.rotation_speed >= 0.0 && limits.rotation_speed <= 100.0))
     throw InputError("--rotation-speed", "rotation_speed", "must be in [0, 100] rad/s, got " + shortNumber(options.rotation_speed));
+  FluxProfile profile;
+  if (!parseFluxProfileKind(options.profile, profile.kind))
+    throw InputError("--profile", "profile", "must be none, uniform, gaussian or beta, got '" + options.profile + "'");
+  profile.sigma = options.sigma;
+  profile.beta = options.beta;
+  profile.rate = options.rate;
+  profile.depth = options.fan_depth;
+  if (profile.set()) profile.check(tool, "command line");
+  if (!profile.set() && (options.sigma != 0.0 || options.beta != 0.0))
+    throw InputError("--profile", "profile", "--sigma and --beta need --profile gaussian or beta");
   limitScoringTime(options.plan, options.time_limit_s);
   const VehicleModel vehicle = resolveVehicle(options.vehicle, plan.vehicle.value_or(VehicleModel{}));
-  const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits);
+  const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits, profile);
   std::optional<judge::Judgement> exact;
   if (options.judge == "exact") {
     judge::CoverageOptions judge_options;

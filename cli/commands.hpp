@@ -65,6 +65,10 @@ struct MetricsOptions {
   double time_limit_s = 600.0;  ///< scoring (and picture) past it: a one-line error, exit 2
   std::string judge = "fast";   ///< "fast", or "exact": also the exact judge, side by side
   int arc_vertices = 128;       ///< the exact judge's disk polygons
+  /// The tool's flux profile (deposition.hpp): "none" (no deposition metrics), uniform, gaussian
+  /// (with sigma) or beta (with beta); rate Q in m^3/s, the fan's depth in m (0: s / 10).
+  std::string profile = "none";
+  double sigma = 0.0, beta = 0.0, rate = 1e-6, fan_depth = 0.0;
 };
 /// Prints every metric of a plan file (from any source) as JSON. Returns 0 when the path is
 /// valid, 3 when it is not (with --judge exact: when either judge finds it invalid).

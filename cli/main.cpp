@@ -163,6 +163,15 @@ void addCheckCommands(CLI::App& app, Commands& o) {
   metrics_cmd->add_option("--rotation-speed", metrics.rotation_speed,
                           "rad/s: stop and rotate in place at every heading change, angle / this (0: none)")
       ->capture_default_str();
+  metrics_cmd->add_option("--profile", metrics.profile,
+                          "the tool's flux profile across its width, for the coat's thickness metrics (docs/deposition.md): "
+                          "none, uniform, gaussian (--sigma) or beta (--beta)")
+      ->capture_default_str();
+  metrics_cmd->add_option("--sigma", metrics.sigma, "gaussian profile: standard deviation, m (at least s/50)");
+  metrics_cmd->add_option("--beta", metrics.beta, "beta profile: f proportional to (1 - u^2)^(beta - 1), u = x / r; beta in [1, 100]");
+  metrics_cmd->add_option("--rate", metrics.rate, "what the tool sprays, m^3/s")->capture_default_str();
+  metrics_cmd->add_option("--fan-depth", metrics.fan_depth, "the spray fan's depth along the motion, m (0: s / 10)")
+      ->capture_default_str();
   metrics_cmd->add_option("--svg", metrics.svg, "picture with the coverage layer (SVG)");
   metrics_cmd->add_option("--time-limit", metrics.time_limit_s, "seconds scoring may take before it is abandoned")
       ->capture_default_str();

@@ -33,18 +33,19 @@ double runTime(double length, const MotionLimits& m) {
   return 2.0 * std::sqrt(length / a);
 }
 
-/// Time to drive pieces of (length, speed cap) from standstill to standstill, accelerating and
-/// braking at a, never faster than a piece's cap (the time-optimal profile: the speed at each
-/// junction is the largest both neighbours allow and braking distance permits, found forward
-/// then backward; within a piece it rises to min(cap, what the two ends allow) and falls).
-std::vector<double> profileTimes(const std::vector<std::pair<double, double>>& pieces, const MotionLimits& m) {
+/// The speed profile of pieces of (length, speed cap) driven from standstill to standstill,
+/// accelerating and braking at a, never faster than a piece's cap (the time-optimal profile: the
+/// speed at each junction is the largest both neighbours allow and braking distance permits,
+/// found forward then backward; within a piece it rises to min(cap, what the two ends allow) and
+/// falls). With no ramp every piece is driven at its cap.
+std::vector<SegmentSpeed> profileSpeeds(const std::vector<std::pair<double, double>>& pieces, const MotionLimits& m) {
   const double a = m.acceleration;
   const std::size_t n = pieces.size();
-  std::vector<double> times(n, 0.0);
-  if (n == 0) return times;
+  std::vector<SegmentSpeed> speeds(n);
+  if (n == 0) return speeds;
   if (std::isinf(a)) {  // no ramp: every piece at its cap
-    for (std::size_t k = 0; k < n; ++k) times[k] = pieces[k].first > 0.0 ? pieces[k].first / pieces[k].second : 0.0;
-    return times;
+    for (std::size_t k = 0; k < n; ++k) speeds[k] = {pieces[k].first, pieces[k].second, pieces[k].second, pieces[k].second, a};
+    return speeds;
   }
   std::vector<double> u(n + 1, 0.0);  // speed at junction k (before piece k)
   for (std::size_t k = 1; k < n; ++k)
@@ -52,11 +53,17 @@ std::vector<double> profileTimes(const std::vector<std::pair<double, double>>& p
   for (std::size_t k = n - 1; k >= 1; --k) u[k] = std::fmin(u[k], std::sqrt(u[k + 1] * u[k + 1] + 2.0 * a * pieces[k].first));
   for (std::size_t k = 0; k < n; ++k) {
     const double len = pieces[k].first, cap = pieces[k].second, v0 = u[k], v1 = u[k + 1];
-    if (len <= 0.0) continue;
-    const double peak = std::fmin(cap, std::sqrt((2.0 * a * len + v0 * v0 + v1 * v1) / 2.0));
-    const double accel = (peak * peak - v0 * v0) / (2.0 * a), brake = (peak * peak - v1 * v1) / (2.0 * a);
-    times[k] = (peak - v0) / a + (peak - v1) / a + std::fmax(0.0, len - accel - brake) / peak;
+    const double peak = len > 0.0 ? std::fmin(cap, std::sqrt((2.0 * a * len + v0 * v0 + v1 * v1) / 2.0)) : 0.0;
+    speeds[k] = {len, v0, peak, v1, a};
   }
+  return speeds;
+}
+
+/// The time of each piece under profileSpeeds.
+std::vector<double> profileTimes(const std::vector<std::pair<double, double>>& pieces, const MotionLimits& m) {
+  std::vector<double> times(pieces.size(), 0.0);
+  const std::vector<SegmentSpeed> speeds = profileSpeeds(pieces, m);
+  for (std::size_t k = 0; k < pieces.size(); ++k) times[k] = speeds[k].duration();
   return times;
 }
 
@@ -177,6 +184,50 @@ void MotionLimits::check() const {
 
 Motion motion(const Path& path, const MotionLimits& limits, const VehicleModel& vehicle) {
   return analyse(path, limits, vehicle, nullptr);
+}
+
+double SegmentSpeed::duration() const {
+  if (length <= 0.0) return 0.0;
+  if (std::isinf(acceleration)) return length / peak;
+  const double a = acceleration;
+  const double accel = (peak * peak - v0 * v0) / (2.0 * a), brake = (peak * peak - v1 * v1) / (2.0 * a);
+  return (peak - v0) / a + (peak - v1) / a + std::fmax(0.0, length - accel - brake) / peak;
+}
+
+double SegmentSpeed::timeAt(double s) const {
+  if (!(s > 0.0) || length <= 0.0) return 0.0;
+  if (s >= length) return duration();
+  if (std::isinf(acceleration)) return s / peak;
+  const double a = acceleration;
+  const double accel = (peak * peak - v0 * v0) / (2.0 * a), brake = (peak * peak - v1 * v1) / (2.0 * a);
+  if (s <= accel) return (std::sqrt(v0 * v0 + 2.0 * a * s) - v0) / a;  // accelerating
+  const double cruise_end = std::fmax(accel, length - brake);
+  if (s <= cruise_end) return (peak - v0) / a + (s - accel) / peak;  // at the peak
+  return duration() - (std::sqrt(v1 * v1 + 2.0 * a * (length - s)) - v1) / a;  // braking: the time left
+}
+
+double SegmentSpeed::speedAt(double s) const {
+  if (length <= 0.0) return 0.0;
+  s = std::fmin(std::fmax(s, 0.0), length);
+  if (std::isinf(acceleration)) return peak;
+  const double a = acceleration;
+  return std::fmin(peak, std::fmin(std::sqrt(v0 * v0 + 2.0 * a * s), std::sqrt(v1 * v1 + 2.0 * a * (length - s))));
+}
+
+std::vector<SegmentSpeed> segmentSpeeds(const Path& path, const MotionLimits& limits, const VehicleModel& vehicle) {
+  Trace trace;
+  analyse(path, limits, vehicle, &trace);
+  std::vector<SegmentSpeed> out(path.segments());
+  for (std::size_t first = 0; first < path.segments();) {  // each run's pieces, profiled together
+    std::size_t last = first;
+    while (last < path.segments() && trace.run[last] == trace.run[first]) ++last;
+    const std::vector<std::pair<double, double>> pieces(trace.piece.begin() + static_cast<std::ptrdiff_t>(first),
+                                                        trace.piece.begin() + static_cast<std::ptrdiff_t>(last));
+    const std::vector<SegmentSpeed> speeds = profileSpeeds(pieces, limits);
+    std::copy(speeds.begin(), speeds.end(), out.begin() + static_cast<std::ptrdiff_t>(first));
+    first = last;
+  }
+  return out;
 }
 
 Timeline timeline(const Path& path, const MotionLimits& limits, const VehicleModel& vehicle) {

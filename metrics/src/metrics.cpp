@@ -37,7 +37,7 @@ void checkScorable(const Path& path, const std::string& source) {
 
 
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle,
-                           const MotionLimits& limits) {
+                           const MotionLimits& limits, const FluxProfile& profile) {
   checkScorable(path, "path");
   PathMetrics m;
   m.validity = checkValidity(wall, tool, path, vehicle);
@@ -49,6 +49,7 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
   m.waypoints = path.waypoints.size();
   const double ideal = m.coverage.reachable_area / tool.tool_width;
   m.length_ratio = ideal > 0.0 ? m.lengths.total / ideal : 0.0;
+  if (profile.set()) m.deposition = deposition(wall, tool, path, profile, limits, vehicle);
   return m;
 }
 
@@ -84,6 +85,13 @@ std::vector<NamedMetric> flatten(const PathMetrics& m) {
   };
   out.insert(out.end(), rest.begin(), rest.end());
   if (m.motion.turn_cost_s) out.push_back({"turn_cost_s", *m.motion.turn_cost_s});
+  if (m.deposition) {
+    const Deposition& d = *m.deposition;
+    const std::vector<NamedMetric> coat = {{"thickness_mean", d.mean_um},     {"thickness_cv", d.cv},
+                                           {"even_share", d.even_share},      {"thin_share", d.thin_share},
+                                           {"thick_share", d.thick_share}};
+    out.insert(out.end(), coat.begin(), coat.end());
+  }
   return out;
 }
 

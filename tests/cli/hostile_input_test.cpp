@@ -469,6 +469,38 @@ TEST(Limits, HugeTimeLimitsDoNotOverflowTheBudget) {
   EXPECT_FALSE(Budget(std::chrono::duration<double>(86400.0)).expired());
 }
 
+TEST_F(Hostile, OutOfRangeFluxProfilesAreRefusedWithOneLine) {
+  const std::string plan = (dir_ / "p.json").string();
+  ASSERT_EQ(run("plan --wall " + wall_ + " --planner zigzag --out " + plan).exit_code, 0);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--profile gaussian", "command line: sigma: must be in [s/50, 100] m"},
+      {"--profile gaussian --sigma -0.02", "command line: sigma: must be in [s/50, 100] m"},
+      {"--profile gaussian --sigma 1e-9", "command line: sigma: must be in [s/50, 100] m"},
+      {"--profile gaussian --sigma nan", "--sigma: must be a finite number"},
+      {"--profile beta --beta 0.5", "command line: beta: must be in [1, 100]"},
+      {"--profile beta --beta 1e300", "command line: beta: must be in [1, 100]"},
+      {"--profile uniform --rate -1", "command line: rate: must be in (0, 1] m3/s"},
+      {"--profile uniform --fan-depth 5", "command line: depth: must be in (0, s] m"},
+      {"--profile cone", "--profile: profile: must be none, uniform, gaussian or beta, got 'cone'"},
+      {"--sigma 0.02", "--profile: profile: --sigma and --beta need --profile gaussian or beta"},
+  };
+  for (const auto& [flags, message] : cases) {
+    std::string printed;
+    const CommandRun r = run("metrics --wall " + wall_ + " --plan " + plan + " " + flags, &printed);
+    EXPECT_EQ(r.exit_code, 2) << flags;
+    EXPECT_NE(r.err.find(message), std::string::npos) << flags << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << flags << ": " << r.err;
+    EXPECT_EQ(printed, "") << flags;
+  }
+  std::string printed;
+  const CommandRun r = run("metrics --wall " + wall_ + " --plan " + plan + " --profile gaussian --sigma 0.02", &printed);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  for (const char* name : {"thickness_mean", "thickness_cv", "even_share", "thin_share", "thick_share"})
+    EXPECT_NE(printed.find(std::string("\"") + name + "\": "), std::string::npos) << name;
+  ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan, &printed).exit_code, 0);
+  EXPECT_EQ(printed.find("thickness"), std::string::npos);
+}
+
 TEST_F(Hostile, OutOfRangeLimitsAreRefusedWithOneLine) {
   const std::string out = (dir_ / "p.json").string();
   for (const char* limit : {"inf", "1e300", "0", "-5", "nan"}) {

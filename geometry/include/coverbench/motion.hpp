@@ -73,6 +73,22 @@ struct Timeline {
 };
 Timeline timeline(const Path& path, const MotionLimits& limits = {}, const VehicleModel& vehicle = {});
 
+/// How the time model drives one segment (its piece of a run): from v0 it accelerates at a up to
+/// `peak`, keeps it, and brakes at a to v1 at the segment's end (with no ramp, a infinite: `peak`
+/// throughout). Distances s are measured along the segment from its start (an arc's arc length).
+/// The same profile timeline() and duration_s follow (one time model, not a second one).
+struct SegmentSpeed {
+  double length = 0.0;  ///< m
+  double v0 = 0.0, peak = 0.0, v1 = 0.0;  ///< m/s: at the start, the most, at the end
+  double acceleration = 0.0;  ///< a, m/s^2 (infinity: no ramp)
+  double duration() const;  ///< s, the time on the segment
+  double timeAt(double s) const;   ///< s: when the tool is s metres along (0 before, duration() after)
+  double speedAt(double s) const;  ///< m/s at s metres along
+};
+/// Per segment, how the time model drives it (waits and rotations in place are not in it: see
+/// Timeline::wait_s). A zero-length segment has length 0 and takes no time.
+std::vector<SegmentSpeed> segmentSpeeds(const Path& path, const MotionLimits& limits = {}, const VehicleModel& vehicle = {});
+
 /// The time to drive a straight run of `length` from standstill to standstill: length / v + v / a,
 /// or 2 sqrt(length / a) when length < v^2 / a.
 double straightRunTime(double length, const MotionLimits& limits);

@@ -4,9 +4,11 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "coverbench/deposition.hpp"
 #include "coverbench/geometry.hpp"
 #include "coverbench/motion.hpp"
 #include "coverbench/path.hpp"
@@ -201,11 +203,14 @@ struct PathMetrics {
   Motion motion;
   std::size_t waypoints = 0;
   double length_ratio = 0.0;  ///< length_total / (|R| / s)
+  /// The coat's thickness (deposition.hpp): only when the tool has a flux profile.
+  std::optional<Deposition> deposition;
 };
 /// Scores a path. Throws InputError (field `waypoints`) for a path beyond the scoring limits
 /// below, before any work.
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path,
-                           const VehicleModel& vehicle = {}, const MotionLimits& limits = {});
+                           const VehicleModel& vehicle = {}, const MotionLimits& limits = {},
+                           const FluxProfile& profile = {});
 
 /// Scoring limits. Exact scoring grows with the path's waypoints (memory: a spanning-tree path of
 /// 10^6 waypoints took 18 s and 0.46 GB here) and, much faster, with how often the path crosses

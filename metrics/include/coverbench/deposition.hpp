@@ -1,0 +1,119 @@
+#pragma once
+/// Deposition: how thick a disk tool that sprays (paint, plaster) lays its coat, from the path and
+/// the time model's speed along it. Definitions: docs/deposition.md. Only computed when the tool
+/// has a flux profile; a tool without one has none of these metrics.
+///
+/// The model. The tool sprays Q m^3/s (its rate) as a fan: a strip across the direction of motion,
+/// as wide as the tool (2r = s) and `depth` (l) deep along the motion, centred on the tool's
+/// centre. Across the fan the flux follows the profile f(x), x the signed distance from the centre
+/// across the motion, with f = 0 for |x| > r and the integral of f over [-r, r] equal to 1:
+///   uniform:  f(x) = 1 / (2r)
+///   gaussian: f(x) = exp(-x^2 / (2 sigma^2)) / (sigma sqrt(2 pi) erf(r / (sigma sqrt 2)))
+///             (a Gaussian of standard deviation sigma, truncated at the tool's edge, normalised)
+///   beta:     f(x) = (1 - u^2)^(beta - 1) / (r B(1/2, beta)),  u = x / r
+/// Along its depth the fan is even: its flux per unit area is Q f(x) / l. While the tool drives a
+/// tool-on segment at speed v(s), a point p at lateral offset x from the segment's line and at
+/// distance t along it gains
+///   h_i(p) = Q f(x) tau_i(p) / l,  tau_i(p) = T_i(min(L_i, t + l/2)) - T_i(max(0, t - l/2)),
+/// where T_i(s) is the time model's time to reach s along segment i (SegmentSpeed::timeAt). At
+/// constant speed v that is Q f(x) / v (the fan's steady profile); where the tool brakes it is the
+/// mean of Q f(x) / v over the fan's depth, so a stop (speed 0 at a segment's end) deposits a
+/// finite amount: the ramp to standstill takes finite time. Waits do not deposit: rotations in place
+/// (rotation_speed) and a gantry's lowering and lifting are taken with the spray off. Thickness is
+/// the sum over tool-on segments; an arc is taken as chords with a sagitta under a hundredth of a
+/// raster cell, each carrying its share of the arc's speed profile.
+///
+/// The raster. Thickness is evaluated at 2 x 2 Gauss-Legendre points of square cells of side
+/// depositionCell() over the reachable region R (a point counts when it lies in R); the metrics
+/// are means over the points.
+
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "coverbench/geometry.hpp"
+#include "coverbench/motion.hpp"
+#include "coverbench/path.hpp"
+#include "coverbench/wall.hpp"
+
+namespace coverbench {
+
+/// A tool's flux profile across its width, its rate and its fan's depth (kind None: no profile).
+struct FluxProfile {
+  enum class Kind { None, Uniform, Gaussian, Beta };
+  Kind kind = Kind::None;
+  double sigma = 0.0;   ///< gaussian: standard deviation, m
+  double beta = 0.0;    ///< beta: exponent beta (f proportional to (1 - u^2)^(beta - 1))
+  double rate = 1e-6;   ///< Q, m^3/s sprayed (1 ml/s)
+  double depth = 0.0;   ///< l, the fan's depth along the motion, m; 0: a tenth of the tool width
+  bool set() const { return kind != Kind::None; }
+  /// The fan's depth for a tool: `depth`, or s / 10.
+  double depthFor(const ToolParams& tool) const { return depth > 0.0 ? depth : tool.tool_width / 10.0; }
+  /// f(x), 1/m, for a tool of radius r (0 outside [-r, r]).
+  double density(double x, double r) const;
+  /// The profile's standard deviation across the motion (m): sigma for a Gaussian (before its
+  /// truncation), r / sqrt(2 beta + 1) for beta, r / sqrt 3 for uniform.
+  double spread(double r) const;
+  /// "gaussian sigma 0.02 m, 1e-06 m3/s, fan depth 0.01 m".
+  std::string describe(const ToolParams& tool) const;
+  /// Throws InputError(source, field, problem) for a value out of range: sigma in [s/50, 100 m],
+  /// beta in [1, 100], rate in (0, 1] m^3/s, depth in (0, s] (0: the default).
+  void check(const ToolParams& tool, const std::string& source) const;
+};
+/// "uniform", "gaussian", "beta" (or "none").
+std::string toString(FluxProfile::Kind kind);
+/// The kind named `name`; false when there is none.
+bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind);
+
+/// The raster's cell side (m): min(s / 40, spread / 5).
+double depositionCell(const ToolParams& tool, const FluxProfile& profile);
+/// The most samples a raster may have (4 per cell); a wall that would need more is refused (field `profile`).
+inline constexpr std::size_t kMaxDepositionCells = 20000000;
+
+/// Thickness (m) sampled on a raster of square cells of side `cell` from (x0, y0), the corner of
+/// cell (0, 0): nx x ny samples, row-major. With `gauss` each cell holds 2 x 2 samples at the
+/// Gauss-Legendre points (the cell's centre +- cell / (2 sqrt 3) on each axis; sample i lies in
+/// cell i / 2), which integrate a smooth field to fourth order; without it one sample at each
+/// cell's centre (the midpoint rule, second order). Each sample weighs the same.
+struct DepositionGrid {
+  double x0 = 0.0, y0 = 0.0, cell = 0.0;
+  std::size_t nx = 0, ny = 0;  ///< samples per row and rows of samples
+  bool gauss = false;
+  std::vector<double> thickness;
+  double coordinate(double origin, std::size_t i) const {
+    if (!gauss) return origin + (static_cast<double>(i) + 0.5) * cell;
+    const double side = (i % 2 ? 0.5 : -0.5) / std::sqrt(3.0);
+    return origin + (static_cast<double>(i / 2) + 0.5 + side) * cell;
+  }
+  Point centre(std::size_t i, std::size_t j) const { return {coordinate(x0, i), coordinate(y0, j)}; }
+  /// The samples whose coordinate may lie in [lo, hi] along an axis from `origin` (a few more at
+  /// the ends), clamped to [0, count).
+  void range(double lo, double hi, double origin, std::size_t count, std::size_t& first, std::size_t& last) const;
+};
+/// The thickness field of `path` on the raster `grid` (its thickness is overwritten), with the
+/// speeds of segmentSpeeds(path, ...).
+void depositionField(const Path& path, const ToolParams& tool, const FluxProfile& profile,
+                     const std::vector<SegmentSpeed>& speeds, DepositionGrid& grid);
+/// Per sample of `grid`, whether it lies in `region` (scanlines through the samples).
+std::vector<char> rasterMask(const Region& region, const DepositionGrid& grid);
+
+/// The deposition metrics over the samples counted (thickness in micrometres). Shares are of the
+/// samples counted: even |h - mean| <= 0.1 mean, thin h < 0.9 mean, thick h > 1.1 mean (they add up
+/// to 1). With nothing deposited (mean 0) cv is 0 and every cell is thin.
+struct Deposition {
+  double mean_um = 0.0;
+  double cv = 0.0;
+  double even_share = 0.0, thin_share = 0.0, thick_share = 0.0;
+  double cell = 0.0;       ///< m
+  std::size_t cells = 0;   ///< samples counted
+};
+Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& mask);
+
+/// The deposition metrics of a path over the reachable region R, on cells of side `cell` (0:
+/// depositionCell), 2 x 2 Gauss points per cell. Throws InputError (field `profile`) when R needs
+/// more than kMaxDepositionCells samples.
+Deposition deposition(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
+                      const MotionLimits& limits = {}, const VehicleModel& vehicle = {}, double cell = 0.0);
+
+}  // namespace coverbench
