@@ -39,7 +39,8 @@ FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-
 
 class Page:
     def __init__(self, ws_url):
-        self.ws = websocket.create_connection(ws_url, timeout=60, suppress_origin=True)
+        # Longer than any wait inside the page (a minute), so that its own error names what it waited for.
+        self.ws = websocket.create_connection(ws_url, timeout=180, suppress_origin=True)
         self.next_id = 0
         self.events = []
 

@@ -400,6 +400,8 @@ class Compare(Served):
                 const p = document.querySelector('#viewer figure[data-playback]').coverbenchPlayer;
                 await until(() => p.playing(), 'playing again');
                 p.pause();
+                // The address follows the player's time within a quarter second (the page polls it).
+                await until(() => new URLSearchParams(location.search).get('t') === p.time().toFixed(3), 'the time in the address');
                 return true;
             })()""")
             # The run's address opened afresh: the first Tab reaches the skip link, and Enter on it
