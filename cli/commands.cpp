@@ -184,6 +184,20 @@ Point pointOption(const std::string& text, const std::string& flag) {
 
 }  // namespace
 
+FluxProfile fluxProfileOf(const ProfileOptions& options, double s) {
+  FluxProfile profile;
+  if (!parseFluxProfileKind(options.profile, profile.kind))
+    throw InputError("--profile", "profile", "must be none, uniform, gaussian or beta, got '" + options.profile + "'");
+  profile.sigma = options.sigma;
+  profile.beta = options.beta;
+  profile.rate = options.rate;
+  profile.depth = options.fan_depth;
+  if (profile.set()) profile.check(s, "command line");
+  if (!profile.set() && (options.sigma != 0.0 || options.beta != 0.0))
+    throw InputError("--profile", "profile", "--sigma and --beta need --profile gaussian or beta");
+  return profile;
+}
+
 int planCommand(const PlanOptions& options) {
   validateTool(options.tool, "command line");
   validateTimeLimit(options.time_limit_s, "--time-limit", "time_limit");
@@ -208,7 +222,9 @@ int planCommand(const PlanOptions& options) {
   validateTimeLimit(options.transit.time_cap_s, "--transit-time-cap", "transit.time_cap_s");
   if (options.seed > (1ULL << 53)) throw InputError("--seed", "seed", "must be from 0 to 2^53");
   if (transit->sampling) loadSamplingTransits();
-  const Outcome o = planOnce(wall, planner, options.tool, vehicle, std::move(params), options.time_limit_s,
+  ToolParams tool = options.tool;
+  tool.profile = fluxProfileOf(options.coat, tool.tool_width);
+  const Outcome o = planOnce(wall, planner, tool, vehicle, std::move(params), options.time_limit_s,
                              !options.svg.empty(), options.transit, options.seed);
   OutputFiles files;  // both files or neither
   files.add(options.out, o.plan_json);
@@ -355,19 +371,10 @@ int metricsCommand(const MetricsOptions& options) {
   limits.rotation_speed = options.rotation_speed;
   if (!(limits.rotation_speed >= 0.0 && limits.rotation_speed <= 100.0))
     throw InputError("--rotation-speed", "rotation_speed", "must be in [0, 100] rad/s, got " + shortNumber(options.rotation_speed));
-  FluxProfile profile;
-  if (!parseFluxProfileKind(options.profile, profile.kind))
-    throw InputError("--profile", "profile", "must be none, uniform, gaussian or beta, got '" + options.profile + "'");
-  profile.sigma = options.sigma;
-  profile.beta = options.beta;
-  profile.rate = options.rate;
-  profile.depth = options.fan_depth;
-  if (profile.set()) profile.check(tool, "command line");
-  if (!profile.set() && (options.sigma != 0.0 || options.beta != 0.0))
-    throw InputError("--profile", "profile", "--sigma and --beta need --profile gaussian or beta");
+  tool.profile = fluxProfileOf(options.coat, tool.tool_width);
   limitScoringTime(options.plan, options.time_limit_s);
   const VehicleModel vehicle = resolveVehicle(options.vehicle, plan.vehicle.value_or(VehicleModel{}));
-  const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits, profile);
+  const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits);
   std::optional<judge::Judgement> exact;
   if (options.judge == "exact") {
     judge::CoverageOptions judge_options;

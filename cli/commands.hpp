@@ -24,6 +24,16 @@ struct VehicleOptions {
   bool reverse = false;               ///< car: --reverse
 };
 
+/// The tool's flux profile on the command line (flux_profile.hpp): "none", uniform, gaussian
+/// (with sigma) or beta (with beta); rate Q in m^3/s, the fan's depth in m (0: s / 10).
+struct ProfileOptions {
+  std::string profile = "none";
+  double sigma = 0.0, beta = 0.0, rate = 1e-6, fan_depth = 0.0;
+};
+/// The profile the options describe for a tool of width s; InputError (source "--profile" or
+/// "command line") for a value out of range or --sigma/--beta without their profile.
+FluxProfile fluxProfileOf(const ProfileOptions& options, double s);
+
 struct PlanOptions {
   std::string wall, planner, out, svg;
   ToolParams tool;
@@ -34,6 +44,7 @@ struct PlanOptions {
   std::vector<std::string> params;  ///< key=value
   double time_limit_s = 60.0;
   std::string start, end;  ///< --start X,Y and --end X,Y (or --end start): over the wall file's own
+  ProfileOptions coat;     ///< the tool's flux profile (planners that space rows for an even coat read it)
 };
 /// Returns 0 when the plan is ok and valid, 3 when the planner reported a failure or its path is
 /// invalid (the plan file is still written and says which). Bad input throws InputError.
@@ -65,10 +76,7 @@ struct MetricsOptions {
   double time_limit_s = 600.0;  ///< scoring (and picture) past it: a one-line error, exit 2
   std::string judge = "fast";   ///< "fast", or "exact": also the exact judge, side by side
   int arc_vertices = 128;       ///< the exact judge's disk polygons
-  /// The tool's flux profile (deposition.hpp): "none" (no deposition metrics), uniform, gaussian
-  /// (with sigma) or beta (with beta); rate Q in m^3/s, the fan's depth in m (0: s / 10).
-  std::string profile = "none";
-  double sigma = 0.0, beta = 0.0, rate = 1e-6, fan_depth = 0.0;
+  ProfileOptions coat;  ///< the tool's flux profile: "none" gives no deposition metrics
 };
 /// Prints every metric of a plan file (from any source) as JSON. Returns 0 when the path is
 /// valid, 3 when it is not (with --judge exact: when either judge finds it invalid).

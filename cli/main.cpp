@@ -81,6 +81,19 @@ struct Commands {
   cli::ServeOptions serve;
 };
 
+/// --profile, --sigma, --beta, --rate and --fan-depth: the tool's flux profile (docs/deposition.md).
+void addProfileOptions(CLI::App* command, cli::ProfileOptions& coat, const std::string& what) {
+  command->add_option("--profile", coat.profile,
+                      "the tool's flux profile across its width, " + what + " (docs/deposition.md): "
+                      "none, uniform, gaussian (--sigma) or beta (--beta)")
+      ->capture_default_str();
+  command->add_option("--sigma", coat.sigma, "gaussian profile: standard deviation, m (at least s/50)");
+  command->add_option("--beta", coat.beta, "beta profile: f proportional to (1 - u^2)^(beta - 1), u = x / r; beta in [1, 100]");
+  command->add_option("--rate", coat.rate, "what the tool sprays, m^3/s")->capture_default_str();
+  command->add_option("--fan-depth", coat.fan_depth, "the spray fan's depth along the motion, m (0: s / 10)")
+      ->capture_default_str();
+}
+
 /// `planners`, `metric-specs` and `plan`: what can plan, what is measured, and one plan.
 void addPlanCommands(CLI::App& app, Commands& o) {
   app.add_subcommand("planners", "List the registered planners and their parameters")
@@ -117,6 +130,7 @@ void addPlanCommands(CLI::App& app, Commands& o) {
       ->capture_default_str();
   plan_cmd->add_option("--out", plan.out, "plan file to write (JSON)")->required();
   plan_cmd->add_option("--svg", plan.svg, "picture to write (SVG)");
+  addProfileOptions(plan_cmd, plan.coat, "for the thickness metrics and the planners that space rows for an even coat (coat_ripple)");
   plan_cmd->callback([&o, transit_iterations, transit_cap] {
     o.plan.transit_options_given = transit_iterations->count() > 0 || transit_cap->count() > 0;
     o.exit_code = cli::planCommand(o.plan);
@@ -163,15 +177,7 @@ void addCheckCommands(CLI::App& app, Commands& o) {
   metrics_cmd->add_option("--rotation-speed", metrics.rotation_speed,
                           "rad/s: stop and rotate in place at every heading change, angle / this (0: none)")
       ->capture_default_str();
-  metrics_cmd->add_option("--profile", metrics.profile,
-                          "the tool's flux profile across its width, for the coat's thickness metrics (docs/deposition.md): "
-                          "none, uniform, gaussian (--sigma) or beta (--beta)")
-      ->capture_default_str();
-  metrics_cmd->add_option("--sigma", metrics.sigma, "gaussian profile: standard deviation, m (at least s/50)");
-  metrics_cmd->add_option("--beta", metrics.beta, "beta profile: f proportional to (1 - u^2)^(beta - 1), u = x / r; beta in [1, 100]");
-  metrics_cmd->add_option("--rate", metrics.rate, "what the tool sprays, m^3/s")->capture_default_str();
-  metrics_cmd->add_option("--fan-depth", metrics.fan_depth, "the spray fan's depth along the motion, m (0: s / 10)")
-      ->capture_default_str();
+  addProfileOptions(metrics_cmd, metrics.coat, "for the coat's thickness metrics");
   metrics_cmd->add_option("--svg", metrics.svg, "picture with the coverage layer (SVG)");
   metrics_cmd->add_option("--time-limit", metrics.time_limit_s, "seconds scoring may take before it is abandoned")
       ->capture_default_str();

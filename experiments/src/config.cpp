@@ -488,11 +488,43 @@ PlannerList readPlanners(const ConfigFile& f, const Yaml& planners, ExperimentCo
   return list;
 }
 
-/// The `tool:` section: width and clearance, each a value or a list; the tools are their product.
+/// `tool.profile`: the flux profile of every tool of the config (flux_profile.hpp), checked
+/// against each tool's width.
+FluxProfile readProfile(Reader& r, const Yaml& p, const std::vector<double>& widths) {
+  r.onlyKeys(p, "tool.profile", {"kind", "sigma", "beta", "rate", "depth"});
+  FluxProfile profile;
+  const Yaml* kind = p.find("kind");
+  if (!kind) r.fail(p, "tool.profile.kind", "is missing: uniform, gaussian or beta");
+  const std::string name = r.text(*kind, "tool.profile.kind");
+  if (!parseFluxProfileKind(name, profile.kind) || !profile.set())
+    r.fail(*kind, "tool.profile.kind", "must be uniform, gaussian or beta, got '" + name + "'");
+  const bool gaussian = profile.kind == FluxProfile::Kind::Gaussian, beta = profile.kind == FluxProfile::Kind::Beta;
+  if (!gaussian && p.find("sigma")) r.fail(*p.find("sigma"), "tool.profile.sigma", "belongs to a gaussian profile");
+  if (!beta && p.find("beta")) r.fail(*p.find("beta"), "tool.profile.beta", "belongs to a beta profile");
+  if (gaussian && !p.find("sigma")) r.fail(p, "tool.profile.sigma", "is missing: a gaussian profile's standard deviation, m");
+  if (beta && !p.find("beta")) r.fail(p, "tool.profile.beta", "is missing: a beta profile's exponent");
+  if (const Yaml* v = p.find("sigma")) profile.sigma = r.number(*v, "tool.profile.sigma", 0.0, 100.0);
+  if (const Yaml* v = p.find("beta")) profile.beta = r.number(*v, "tool.profile.beta", 1.0, 100.0);
+  if (const Yaml* v = p.find("rate")) profile.rate = r.number(*v, "tool.profile.rate", 0.0, 1.0, true);
+  if (const Yaml* v = p.find("depth")) profile.depth = r.number(*v, "tool.profile.depth", 0.0, kMaxToolWidth);
+  for (double w : widths) {
+    try {
+      profile.check(w, "");
+    } catch (const InputError& e) {
+      r.fail(p.find(e.field()) ? *p.find(e.field()) : p, "tool.profile." + e.field(),
+             e.problem() + " (tool width " + shortNumber(w) + " m)");
+    }
+  }
+  return profile;
+}
+
+/// The `tool:` section: width and clearance, each a value or a list (the tools are their
+/// product), and one flux profile for them all.
 void readTools(Reader& r, const Yaml* t, ExperimentConfig& c) {
   std::vector<double> widths{0.1}, clearances{0.02};
+  FluxProfile profile;
   if (t) {
-    r.onlyKeys(*t, "tool", {"width", "clearance"});
+    r.onlyKeys(*t, "tool", {"width", "clearance", "profile"});
     if (const Yaml* w = t->find("width")) {
       widths.clear();
       for (const Yaml* v : r.values(*w, "tool.width")) {
@@ -511,8 +543,10 @@ void readTools(Reader& r, const Yaml* t, ExperimentConfig& c) {
       }
     }
   }
+  if (t)
+    if (const Yaml* p = t->find("profile")) profile = readProfile(r, *p, widths);
   for (double w : widths)
-    for (double cl : clearances) c.tools.push_back(ToolParams{w, cl});
+    for (double cl : clearances) c.tools.push_back(ToolParams{w, cl, profile});
 }
 
 /// The `vehicle:` section: one model per experiment (docs/vehicles.md).

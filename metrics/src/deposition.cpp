@@ -53,68 +53,6 @@ std::vector<Piece> pieces(const Path& path, const std::vector<SegmentSpeed>& spe
 
 }  // namespace
 
-double FluxProfile::density(double x, double r) const {
-  if (!(std::fabs(x) <= r) || !(r > 0.0)) return 0.0;
-  switch (kind) {
-    case Kind::None: return 0.0;
-    case Kind::Uniform: return 1.0 / (2.0 * r);
-    case Kind::Gaussian:
-      return std::exp(-x * x / (2.0 * sigma * sigma)) / (sigma * std::sqrt(2.0 * M_PI) * std::erf(r / (sigma * std::sqrt(2.0))));
-    case Kind::Beta: {
-      const double u = x / r;
-      // B(1/2, beta) = Gamma(1/2) Gamma(beta) / Gamma(beta + 1/2)
-      const double b = std::exp(std::lgamma(0.5) + std::lgamma(beta) - std::lgamma(beta + 0.5));
-      return std::pow(std::fmax(0.0, 1.0 - u * u), beta - 1.0) / (r * b);
-    }
-  }
-  return 0.0;
-}
-
-double FluxProfile::spread(double r) const {
-  switch (kind) {
-    case Kind::Gaussian: return sigma;
-    case Kind::Beta: return r / std::sqrt(2.0 * beta + 1.0);
-    default: return r / std::sqrt(3.0);
-  }
-}
-
-std::string toString(FluxProfile::Kind kind) {
-  switch (kind) {
-    case FluxProfile::Kind::None: return "none";
-    case FluxProfile::Kind::Uniform: return "uniform";
-    case FluxProfile::Kind::Gaussian: return "gaussian";
-    case FluxProfile::Kind::Beta: return "beta";
-  }
-  return "none";
-}
-
-bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind) {
-  for (FluxProfile::Kind k : {FluxProfile::Kind::None, FluxProfile::Kind::Uniform, FluxProfile::Kind::Gaussian, FluxProfile::Kind::Beta})
-    if (toString(k) == name) {
-      kind = k;
-      return true;
-    }
-  return false;
-}
-
-std::string FluxProfile::describe(const ToolParams& tool) const {
-  std::string out = toString(kind);
-  if (kind == Kind::Gaussian) out += " sigma " + number(sigma) + " m";
-  if (kind == Kind::Beta) out += " beta " + number(beta);
-  return out + ", " + number(rate) + " m3/s, fan depth " + number(depthFor(tool)) + " m";
-}
-
-void FluxProfile::check(const ToolParams& tool, const std::string& source) const {
-  const double s = tool.tool_width;
-  if (kind == Kind::Gaussian && !(sigma >= s / 50.0 && sigma <= 100.0))
-    throw InputError(source, "sigma", "must be in [s/50, 100] m (s/50 = " + number(s / 50.0) + " m), got " + number(sigma));
-  if (kind == Kind::Beta && !(beta >= 1.0 && beta <= 100.0))
-    throw InputError(source, "beta", "must be in [1, 100], got " + number(beta));
-  if (!(rate > 0.0 && rate <= 1.0)) throw InputError(source, "rate", "must be in (0, 1] m3/s, got " + number(rate));
-  if (!(depth >= 0.0 && depth <= s))
-    throw InputError(source, "depth", "must be in (0, s] m (0: s/10), got " + number(depth));
-}
-
 double depositionCell(const ToolParams& tool, const FluxProfile& profile) {
   return std::fmin(tool.tool_width / 40.0, profile.spread(tool.radius()) / 5.0);
 }
@@ -129,7 +67,7 @@ void DepositionGrid::range(double lo, double hi, double origin, std::size_t coun
 void depositionField(const Path& path, const ToolParams& tool, const FluxProfile& profile,
                      const std::vector<SegmentSpeed>& speeds, DepositionGrid& grid) {
   grid.thickness.assign(grid.nx * grid.ny, 0.0);
-  const double r = tool.radius(), depth = profile.depthFor(tool), h = grid.cell;
+  const double r = tool.radius(), depth = profile.depthFor(tool.tool_width), h = grid.cell;
   const double scale = profile.rate / depth;  // Q / l
   for (const Piece& p : pieces(path, speeds, h)) {
     const Point d = p.b - p.a;
@@ -222,7 +160,7 @@ Deposition deposition(const Wall& wall, const ToolParams& tool, const Path& path
   if (box.empty()) return depositionStats(grid, {});
   const double nx = 2.0 * std::ceil(box.width() / h), ny = 2.0 * std::ceil(box.height() / h);  // samples
   if (!(nx * ny <= static_cast<double>(kMaxDepositionCells)))
-    throw InputError("profile", "profile",
+    throw InputError("deposition", "tool.profile",
                      "the reachable region needs " + number(nx * ny) + " raster samples (4 per cell of " + number(h) + " m), at most " +
                          std::to_string(kMaxDepositionCells) + " (a wider sigma or beta spread, or a smaller wall)");
   grid.x0 = box.min_x;

@@ -37,7 +37,7 @@ void checkScorable(const Path& path, const std::string& source) {
 
 
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle,
-                           const MotionLimits& limits, const FluxProfile& profile) {
+                           const MotionLimits& limits) {
   checkScorable(path, "path");
   PathMetrics m;
   m.validity = checkValidity(wall, tool, path, vehicle);
@@ -49,7 +49,7 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
   m.waypoints = path.waypoints.size();
   const double ideal = m.coverage.reachable_area / tool.tool_width;
   m.length_ratio = ideal > 0.0 ? m.lengths.total / ideal : 0.0;
-  if (profile.set()) m.deposition = deposition(wall, tool, path, profile, limits, vehicle);
+  if (tool.profile.set()) m.deposition = deposition(wall, tool, path, tool.profile, limits, vehicle);
   return m;
 }
 

@@ -100,6 +100,33 @@ TEST_F(Experiments, ConfigErrorsNameTheLineAndTheKey) {
   EXPECT_NE(error(replace(kGood, "output: out\n", "")).find(":1: output: missing"), std::string::npos);
 }
 
+// tool.profile: one flux profile for every tool of the config, checked against each width; its
+// errors name the line and the key.
+TEST_F(Experiments, AToolsFluxProfileIsReadForEveryToolAndItsErrorsNameTheKey) {
+  auto with = [](const std::string& profile) {
+    std::string text = kGood;
+    return text.replace(text.find("  width: 0.1\n"), 13, "  width: [0.1, 0.3]\n  profile:\n" + profile);
+  };
+  const ExperimentConfig c = loadExperimentConfig(config(with("    kind: beta\n    beta: 2.5\n    rate: 2e-6\n")));
+  ASSERT_EQ(c.tools.size(), 2u);
+  for (const ToolParams& t : c.tools) {
+    EXPECT_EQ(t.profile.kind, FluxProfile::Kind::Beta);
+    EXPECT_EQ(t.profile.beta, 2.5);
+    EXPECT_EQ(t.profile.rate, 2e-6);
+  }
+  EXPECT_FALSE(loadExperimentConfig(config(kGood)).tools[0].profile.set());  // no profile: none
+  const std::string file = (dir_ / "exp.yaml").string();
+  EXPECT_EQ(error(with("    beta: 2\n")), file + ":16: tool.profile.kind: is missing: uniform, gaussian or beta");
+  EXPECT_EQ(error(with("    kind: cone\n")), file + ":16: tool.profile.kind: must be uniform, gaussian or beta, got 'cone'");
+  EXPECT_EQ(error(with("    kind: beta\n    sigma: 0.01\n")), file + ":17: tool.profile.sigma: belongs to a gaussian profile");
+  EXPECT_EQ(error(with("    kind: gaussian\n")), file + ":16: tool.profile.sigma: is missing: a gaussian profile's standard deviation, m");
+  // sigma at least s/50: 0.004 m suits the 0.1 m tool, not the 0.3 m one.
+  EXPECT_EQ(error(with("    kind: gaussian\n    sigma: 0.004\n")),
+            file + ":17: tool.profile.sigma: must be in [s/50, 100] m (s/50 = 0.006 m), got 0.004 (tool width 0.3 m)");
+  EXPECT_EQ(error(with("    kind: uniform\n    rate: 0\n")), file + ":17: tool.profile.rate: must be in (0, 1], got 0");
+  EXPECT_EQ(error(with("    kind: uniform\n    spread: 1\n")).substr(0, file.size() + 33), file + ":17: tool.profile.spread: unknown");
+}
+
 TEST_F(Experiments, AllMeansEveryRegisteredPlanner) {
   std::string text = kGood;
   text.replace(text.find("planners:"), text.find("tool:") - text.find("planners:"), "planners: [all]\n");
@@ -130,6 +157,18 @@ TEST_F(Experiments, RunKeysChangeWithEveryInputAndNothingElse) {
   r = runs[0];
   r.motion.stops = MotionLimits::Stops::Waypoints;  // another clock: other durations
   EXPECT_NE(runKey(r), key);
+  // A flux profile is a different tool (other metrics, and rows a planner may space for it); each
+  // of its values counts.
+  r = runs[0];
+  r.tool.profile.kind = FluxProfile::Kind::Beta;
+  r.tool.profile.beta = 2.5;
+  const std::string coat = runBaseKey(r);
+  EXPECT_NE(coat, runs[0].base_key);
+  r.tool.profile.beta = 3;
+  EXPECT_NE(runBaseKey(r), coat);
+  r.tool.profile.beta = 2.5;
+  r.tool.profile.rate = 2e-6;
+  EXPECT_NE(runBaseKey(r), coat);
   // The planner's version and code identity change the key, not the base key.
   r = runs[0];
   r.planner_version += "-next";

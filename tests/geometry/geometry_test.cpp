@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "coverbench/flux_profile.hpp"
 #include "coverbench/geometry.hpp"
 #include "coverbench/path.hpp"
 #include "coverbench/region_ops.hpp"
@@ -175,6 +176,58 @@ TEST(RegionOps, CircumscribedCircleContainsCircleWithinTolerance) {
   }
   for (std::size_t i = 0; i < ring.size(); ++i)  // every edge stays outside the circle
     EXPECT_GE(distancePointSegment({0, 0}, ring[i], ring[(i + 1) % ring.size()]), 1.0 - 1e-12);
+}
+
+}  // namespace
+}  // namespace coverbench
+
+// Row spacing for an even coat (flux_profile.hpp), against hand-computed sums of profiles.
+namespace coverbench {
+namespace {
+
+FluxProfile profileOf(FluxProfile::Kind kind, double beta = 0.0, double sigma = 0.0) {
+  FluxProfile p;
+  p.kind = kind;
+  p.beta = beta;
+  p.sigma = sigma;
+  return p;
+}
+
+TEST(EvenSpacing, RippleOfHandSummedProfiles) {
+  const FluxProfile uniform = profileOf(FluxProfile::Kind::Uniform);
+  // Uniform passes s apart tile the wall: flat; s/2 apart every point has two: flat; 0.75 s apart
+  // a point has one pass (0.75 of the mean) or two (1.5): ripple 0.5.
+  EXPECT_NEAR(passRipple(uniform, 0.2, 0.2), 0.0, 1e-12);
+  EXPECT_NEAR(passRipple(uniform, 0.2, 0.1), 0.0, 1e-12);
+  EXPECT_NEAR(passRipple(uniform, 0.2, 0.15), 0.5, 1e-12);
+  // beta = 2: f(x) = 3 (1 - x^2 / r^2) / (4 r). Passes r apart: g d = 3/4 (2 - (x^2 + (x - r)^2) / r^2),
+  // 0.75 at a pass's centre (ripple 0.25), 1.125 half-way.
+  const FluxProfile parabola = profileOf(FluxProfile::Kind::Beta, 2.0);
+  EXPECT_NEAR(passRipple(parabola, 0.2, 0.1), 0.25, 2e-3);  // sampled at 512 points, the first 0.1/1024 from the centre
+  EXPECT_GT(passRipple(parabola, 0.2, 0.1), 0.24);
+  EXPECT_TRUE(std::isnan(passRipple(FluxProfile{}, 0.2, 0.1)));  // no profile: no coat
+}
+
+TEST(EvenSpacing, TheWidestSpacingWithinTheRippleIsChosen) {
+  // Uniform: no overlap, s itself.
+  double ripple = -1.0;
+  EXPECT_EQ(evenSpacing(profileOf(FluxProfile::Kind::Uniform), 0.3, 0.05, &ripple), 0.3);
+  EXPECT_EQ(ripple, 0.0);
+  for (const FluxProfile& p : {profileOf(FluxProfile::Kind::Beta, 2.5), profileOf(FluxProfile::Kind::Beta, 1.5),
+                               profileOf(FluxProfile::Kind::Gaussian, 0.0, 0.05)}) {
+    for (double tolerance : {0.02, 0.05, 0.1}) {
+      const double s = 0.3, d = evenSpacing(p, s, tolerance, &ripple);
+      ASSERT_GT(d, s / 10) << toString(p.kind) << " " << tolerance;
+      EXPECT_LT(d, s);  // a fan that thins at its edges must overlap
+      EXPECT_LE(passRipple(p, s, d), tolerance);
+      EXPECT_EQ(ripple, passRipple(p, s, d));
+      // Every wider spacing on the scan's grid is not that even.
+      for (double wider = s; wider > d + s / 1000; wider -= s / 1000) EXPECT_GT(passRipple(p, s, wider), tolerance) << wider;
+    }
+  }
+  // A ripple no spacing down to s/10 reaches: none.
+  EXPECT_EQ(evenSpacing(profileOf(FluxProfile::Kind::Gaussian, 0.0, 0.006), 0.3, 1e-9), 0.0);
+  EXPECT_EQ(evenSpacing(FluxProfile{}, 0.3, 0.05), 0.0);
 }
 
 }  // namespace

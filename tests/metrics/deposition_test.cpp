@@ -209,7 +209,9 @@ TEST(Deposition, ADiskToolWithoutAProfileHasNoDepositionMetrics) {
   EXPECT_FALSE(plain.deposition.has_value());
   for (const NamedMetric& m : flatten(plain))
     for (const char* name : {"thickness_mean", "thickness_cv", "even_share", "thin_share", "thick_share"}) EXPECT_NE(m.name, name);
-  const PathMetrics coat = computeMetrics(wall, kTool, path, {}, {}, gaussian(0.03));
+  ToolParams sprayer = kTool;
+  sprayer.profile = gaussian(0.03);
+  const PathMetrics coat = computeMetrics(wall, sprayer, path);
   ASSERT_TRUE(coat.deposition.has_value());
   const std::vector<NamedMetric> all = flatten(coat);
   ASSERT_EQ(all.size(), flatten(plain).size() + 5);
@@ -247,7 +249,7 @@ TEST(Deposition, DefaultRasterAgainstAFourTimesFinerOne) {
 TEST(Deposition, OutOfRangeProfilesNameTheirField) {
   const auto field_of = [](const FluxProfile& p) {
     try {
-      p.check(kTool, "test");
+      p.check(kTool.tool_width, "test");
     } catch (const InputError& e) {
       return std::string(e.what());
     }
@@ -293,6 +295,33 @@ TEST(Deposition, ProfilesAreNormalisedDensities) {
   FluxProfile two = beta;
   two.beta = 2.0;
   EXPECT_NEAR(two.density(0.05, r), 3.0 * 0.75 / (4 * r), 1e-12);
+}
+
+}  // namespace
+}  // namespace coverbench
+
+namespace coverbench {
+namespace {
+
+// A wall whose raster would pass the cap is refused before any work, naming the profile: a run
+// records metrics_error with this reason, never a coat computed on a coarser raster than stated.
+TEST(Deposition, AWallPastTheRasterCapIsRefusedWithOneLine) {
+  Wall wall;
+  wall.name = "field";
+  wall.boundary = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+  Path path;
+  path.moveTo({1, 1}, false);
+  path.moveTo({99, 1}, true);
+  ToolParams tool{0.2, 0.0};
+  tool.profile = gaussian(0.05);  // cells of min(s/40, sigma/5) = 0.005 m: (2 x 100 / 0.005)^2 = 1.6e9 samples
+  try {
+    computeMetrics(wall, tool, path);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "deposition: tool.profile: the reachable region needs 1.6e+09 raster samples (4 per cell of 0.005 m), at most "
+              "20000000 (a wider sigma or beta spread, or a smaller wall)");
+  }
 }
 
 }  // namespace

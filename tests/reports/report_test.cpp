@@ -29,9 +29,9 @@ TEST(MetricRegistry, ListsExactlyTheEngineMetricsInOrderThenTheExactJudgesThenTh
   std::vector<std::string> engine;
   MotionLimits with_turn_cost;  // the cost per turn is listed only when set
   with_turn_cost.turn_cost_s = 1.0;
-  FluxProfile coat;  // the deposition metrics are listed only for a tool with a flux profile
-  coat.kind = FluxProfile::Kind::Uniform;
-  for (const NamedMetric& m : flatten(computeMetrics(wall, ToolParams{0.1, 0.02}, path, {}, with_turn_cost, coat)))
+  ToolParams coat{0.1, 0.02};  // the deposition metrics are listed only for a tool with a flux profile
+  coat.profile.kind = FluxProfile::Kind::Uniform;
+  for (const NamedMetric& m : flatten(computeMetrics(wall, coat, path, {}, with_turn_cost)))
     engine.push_back(m.name);
   for (const char* name : kExactJudgeMetrics) engine.push_back(name);  // an experiment with `judge: exact`
   std::vector<std::string> registry, measured;

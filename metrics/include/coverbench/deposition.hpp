@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "coverbench/flux_profile.hpp"
 #include "coverbench/geometry.hpp"
 #include "coverbench/motion.hpp"
 #include "coverbench/path.hpp"
@@ -39,36 +40,9 @@
 
 namespace coverbench {
 
-/// A tool's flux profile across its width, its rate and its fan's depth (kind None: no profile).
-struct FluxProfile {
-  enum class Kind { None, Uniform, Gaussian, Beta };
-  Kind kind = Kind::None;
-  double sigma = 0.0;   ///< gaussian: standard deviation, m
-  double beta = 0.0;    ///< beta: exponent beta (f proportional to (1 - u^2)^(beta - 1))
-  double rate = 1e-6;   ///< Q, m^3/s sprayed (1 ml/s)
-  double depth = 0.0;   ///< l, the fan's depth along the motion, m; 0: a tenth of the tool width
-  bool set() const { return kind != Kind::None; }
-  /// The fan's depth for a tool: `depth`, or s / 10.
-  double depthFor(const ToolParams& tool) const { return depth > 0.0 ? depth : tool.tool_width / 10.0; }
-  /// f(x), 1/m, for a tool of radius r (0 outside [-r, r]).
-  double density(double x, double r) const;
-  /// The profile's standard deviation across the motion (m): sigma for a Gaussian (before its
-  /// truncation), r / sqrt(2 beta + 1) for beta, r / sqrt 3 for uniform.
-  double spread(double r) const;
-  /// "gaussian sigma 0.02 m, 1e-06 m3/s, fan depth 0.01 m".
-  std::string describe(const ToolParams& tool) const;
-  /// Throws InputError(source, field, problem) for a value out of range: sigma in [s/50, 100 m],
-  /// beta in [1, 100], rate in (0, 1] m^3/s, depth in (0, s] (0: the default).
-  void check(const ToolParams& tool, const std::string& source) const;
-};
-/// "uniform", "gaussian", "beta" (or "none").
-std::string toString(FluxProfile::Kind kind);
-/// The kind named `name`; false when there is none.
-bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind);
-
 /// The raster's cell side (m): min(s / 40, spread / 5).
 double depositionCell(const ToolParams& tool, const FluxProfile& profile);
-/// The most samples a raster may have (4 per cell); a wall that would need more is refused (field `profile`).
+/// The most samples a raster may have (4 per cell); a wall that would need more is refused (field `tool.profile`).
 inline constexpr std::size_t kMaxDepositionCells = 20000000;
 
 /// Thickness (m) sampled on a raster of square cells of side `cell` from (x0, y0), the corner of
@@ -111,7 +85,7 @@ struct Deposition {
 Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& mask);
 
 /// The deposition metrics of a path over the reachable region R, on cells of side `cell` (0:
-/// depositionCell), 2 x 2 Gauss points per cell. Throws InputError (field `profile`) when R needs
+/// depositionCell), 2 x 2 Gauss points per cell. Throws InputError (field `tool.profile`) when R needs
 /// more than kMaxDepositionCells samples.
 Deposition deposition(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
                       const MotionLimits& limits = {}, const VehicleModel& vehicle = {}, double cell = 0.0);

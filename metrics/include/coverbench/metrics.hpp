@@ -206,11 +206,10 @@ struct PathMetrics {
   /// The coat's thickness (deposition.hpp): only when the tool has a flux profile.
   std::optional<Deposition> deposition;
 };
-/// Scores a path. Throws InputError (field `waypoints`) for a path beyond the scoring limits
-/// below, before any work.
+/// Scores a path (the coat's thickness too when the tool has a flux profile). Throws InputError
+/// (field `waypoints`) for a path beyond the scoring limits below, before any work.
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path,
-                           const VehicleModel& vehicle = {}, const MotionLimits& limits = {},
-                           const FluxProfile& profile = {});
+                           const VehicleModel& vehicle = {}, const MotionLimits& limits = {});
 
 /// Scoring limits. Exact scoring grows with the path's waypoints (memory: a spanning-tree path of
 /// 10^6 waypoints took 18 s and 0.46 GB here) and, much faster, with how often the path crosses

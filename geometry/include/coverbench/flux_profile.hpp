@@ -1,0 +1,55 @@
+#pragma once
+/// A tool's flux profile: how a spraying tool (paint, plaster) spreads what it sprays across its
+/// width. A value type of the tool (ToolParams::profile): planners read it to space their rows for
+/// an even coat, the metrics engine to compute the coat's thickness (deposition.hpp). Definitions
+/// and formulae: docs/deposition.md.
+///
+/// Across the fan the flux follows f(x), x the signed distance from the tool's centre across the
+/// motion, f = 0 for |x| > r (r = s / 2) and the integral of f over [-r, r] equal to 1:
+///   uniform:  f(x) = 1 / (2r)
+///   gaussian: f(x) = exp(-x^2 / (2 sigma^2)) / (sigma sqrt(2 pi) erf(r / (sigma sqrt 2)))
+///   beta:     f(x) = (1 - u^2)^(beta - 1) / (r B(1/2, beta)),  u = x / r
+#include <string>
+
+namespace coverbench {
+
+/// A tool's flux profile across its width, its rate and its fan's depth (kind None: no profile).
+struct FluxProfile {
+  enum class Kind { None, Uniform, Gaussian, Beta };
+  Kind kind = Kind::None;
+  double sigma = 0.0;   ///< gaussian: standard deviation, m
+  double beta = 0.0;    ///< beta: exponent beta (f proportional to (1 - u^2)^(beta - 1))
+  double rate = 1e-6;   ///< Q, m^3/s sprayed (1 ml/s)
+  double depth = 0.0;   ///< l, the fan's depth along the motion, m; 0: a tenth of the tool width
+  bool set() const { return kind != Kind::None; }
+  /// The fan's depth for a tool of width s: `depth`, or s / 10.
+  double depthFor(double s) const { return depth > 0.0 ? depth : s / 10.0; }
+  /// f(x), 1/m, for a tool of radius r (0 outside [-r, r]).
+  double density(double x, double r) const;
+  /// The profile's standard deviation across the motion (m): sigma for a Gaussian (before its
+  /// truncation), r / sqrt(2 beta + 1) for beta, r / sqrt 3 for uniform.
+  double spread(double r) const;
+  /// "gaussian sigma 0.02 m, 1e-06 m3/s, fan depth 0.01 m" for a tool of width s.
+  std::string describe(double s) const;
+  /// Throws InputError(source, field, problem) for a value out of range for a tool of width s:
+  /// sigma in [s/50, 100 m], beta in [1, 100], rate in (0, 1] m^3/s, depth in (0, s] (0: the default).
+  void check(double s, const std::string& source) const;
+};
+/// "uniform", "gaussian", "beta" (or "none").
+std::string toString(FluxProfile::Kind kind);
+/// The kind named `name`; false when there is none.
+bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind);
+
+/// The ripple of parallel passes d apart: the sum of the profile repeated every d,
+/// g(x) = sum_k f(x - k d), has mean 1/d over a period; the ripple is max |g(x) d - 1| over x,
+/// sampled at 512 points of a period (a tool of width s, r = s / 2).
+double passRipple(const FluxProfile& profile, double s, double d);
+/// The widest spacing of parallel passes, in [s/10, s], whose ripple (passRipple) is at most
+/// `tolerance`: the steady coat between the rows' ends is then within that fraction of its mean. A
+/// uniform profile gives s (flat with no overlap); a Gaussian or beta fan a spacing under s (its
+/// passes must overlap). Scanned from s down in steps of s/1000, the first spacing within the
+/// tolerance refined by bisection against the step before it; 0 when no spacing down to s/10 is
+/// within it. `ripple` (if given) receives the ripple at the spacing returned.
+double evenSpacing(const FluxProfile& profile, double s, double tolerance, double* ripple = nullptr);
+
+}  // namespace coverbench

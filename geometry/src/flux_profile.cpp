@@ -1,0 +1,117 @@
+// A tool's flux profile (definitions: flux_profile.hpp, docs/deposition.md).
+#include "coverbench/flux_profile.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "coverbench/input_error.hpp"
+
+namespace coverbench {
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+}  // namespace
+
+double FluxProfile::density(double x, double r) const {
+  if (!(std::fabs(x) <= r) || !(r > 0.0)) return 0.0;
+  switch (kind) {
+    case Kind::None: return 0.0;
+    case Kind::Uniform: return 1.0 / (2.0 * r);
+    case Kind::Gaussian:
+      return std::exp(-x * x / (2.0 * sigma * sigma)) / (sigma * std::sqrt(2.0 * M_PI) * std::erf(r / (sigma * std::sqrt(2.0))));
+    case Kind::Beta: {
+      const double u = x / r;
+      // B(1/2, beta) = Gamma(1/2) Gamma(beta) / Gamma(beta + 1/2)
+      const double b = std::exp(std::lgamma(0.5) + std::lgamma(beta) - std::lgamma(beta + 0.5));
+      return std::pow(std::fmax(0.0, 1.0 - u * u), beta - 1.0) / (r * b);
+    }
+  }
+  return 0.0;
+}
+
+double FluxProfile::spread(double r) const {
+  switch (kind) {
+    case Kind::Gaussian: return sigma;
+    case Kind::Beta: return r / std::sqrt(2.0 * beta + 1.0);
+    default: return r / std::sqrt(3.0);
+  }
+}
+
+std::string toString(FluxProfile::Kind kind) {
+  switch (kind) {
+    case FluxProfile::Kind::None: return "none";
+    case FluxProfile::Kind::Uniform: return "uniform";
+    case FluxProfile::Kind::Gaussian: return "gaussian";
+    case FluxProfile::Kind::Beta: return "beta";
+  }
+  return "none";
+}
+
+bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind) {
+  for (FluxProfile::Kind k : {FluxProfile::Kind::None, FluxProfile::Kind::Uniform, FluxProfile::Kind::Gaussian, FluxProfile::Kind::Beta})
+    if (toString(k) == name) {
+      kind = k;
+      return true;
+    }
+  return false;
+}
+
+std::string FluxProfile::describe(double s) const {
+  std::string out = toString(kind);
+  if (kind == Kind::Gaussian) out += " sigma " + number(sigma) + " m";
+  if (kind == Kind::Beta) out += " beta " + number(beta);
+  return out + ", " + number(rate) + " m3/s, fan depth " + number(depthFor(s)) + " m";
+}
+
+void FluxProfile::check(double s, const std::string& source) const {
+  if (kind == Kind::Gaussian && !(sigma >= s / 50.0 && sigma <= 100.0))
+    throw InputError(source, "sigma", "must be in [s/50, 100] m (s/50 = " + number(s / 50.0) + " m), got " + number(sigma));
+  if (kind == Kind::Beta && !(beta >= 1.0 && beta <= 100.0))
+    throw InputError(source, "beta", "must be in [1, 100], got " + number(beta));
+  if (!(rate > 0.0 && rate <= 1.0)) throw InputError(source, "rate", "must be in (0, 1] m3/s, got " + number(rate));
+  if (!(depth >= 0.0 && depth <= s))
+    throw InputError(source, "depth", "must be in (0, s] m (0: s/10), got " + number(depth));
+}
+
+double passRipple(const FluxProfile& profile, double s, double d) {
+  const double r = s / 2.0;
+  if (!profile.set() || !(d > 0.0) || !(r > 0.0)) return NAN;
+  constexpr int kSamples = 512;
+  double worst = 0.0;
+  for (int i = 0; i < kSamples; ++i) {
+    const double x = (i + 0.5) * d / kSamples;
+    double g = 0.0;
+    // The passes at k d within r of x.
+    for (long k = static_cast<long>(std::floor((x - r) / d)); k <= static_cast<long>(std::ceil((x + r) / d)); ++k)
+      g += profile.density(x - static_cast<double>(k) * d, r);
+    worst = std::fmax(worst, std::fabs(g * d - 1.0));
+  }
+  return worst;
+}
+
+double evenSpacing(const FluxProfile& profile, double s, double tolerance, double* ripple) {
+  if (ripple) *ripple = NAN;
+  if (!profile.set() || !(s > 0.0) || !(tolerance >= 0.0)) return 0.0;
+  const double step = s / 1000.0;
+  for (int k = 0; k <= 900; ++k) {
+    const double d = s - k * step;
+    const double here = passRipple(profile, s, d);
+    if (!(here <= tolerance)) continue;
+    double lo = d, hi = d + step;  // lo within the tolerance, hi (the step before) not
+    if (k > 0)
+      for (int it = 0; it < 30; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (passRipple(profile, s, mid) <= tolerance ? lo : hi) = mid;
+      }
+    if (ripple) *ripple = passRipple(profile, s, lo);
+    return lo;
+  }
+  return 0.0;
+}
+
+}  // namespace coverbench
