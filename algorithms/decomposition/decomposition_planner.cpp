@@ -221,6 +221,7 @@ struct DecompositionParams {
   SweepDirection sweep;
   Order order = Order::Tsp;
   double overlap = 0.0;
+  double coat_ripple = 0.0;
   bool boundary_loop = true;
   double row_end_inset = 0.6;
   bool fill_leftovers = false;
@@ -237,6 +238,7 @@ const ParamTable<DecompositionParams>& paramTable() {
                &DecompositionParams::order, {{"tsp", Order::Tsp}, {"dfs", Order::Dfs}, {"greedy", Order::Greedy}})
           .add({"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent passes overlap"},
                &DecompositionParams::overlap)
+          .add(coatRippleParam(), &DecompositionParams::coat_ripple)
           .add({"boundary_loop", ParamType::Bool, true, 0, 0, {}, "",
                 "one loop around the wall and each obstacle after the cells (covers corners the passes miss)"},
                &DecompositionParams::boundary_loop)
@@ -492,7 +494,10 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
   explicit DecompositionPlanner(Kind kind) : TypedPlanner(paramTable()), kind_(kind) {}
 
  protected:
-  PlanResult planWith(const Problem& problem, const DecompositionParams& params, const Budget& budget) override {
+  PlanResult planWith(const Problem& problem, const DecompositionParams& given, const Budget& budget) override {
+    DecompositionParams params = given;
+    if (std::string why = evenCoatOverlap(problem.tool, params.coat_ripple, params.overlap); !why.empty())
+      return PlanResult::failure(PlanStatus::InvalidInput, std::move(why));
     // A car comes only with car_plan headland or headland_no_fill: for smoothed, runPlanner gives
     // a tool that turns on the spot and smooths the path.
     return planSweep(problem, params.sweep, budget,

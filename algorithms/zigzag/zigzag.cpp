@@ -71,6 +71,7 @@ std::vector<Point> ringWalk(const Ring& ring, Point from, std::size_t e1, Point 
 struct ZigzagParams {
   SweepDirection sweep;
   double overlap = 0.0;
+  double coat_ripple = 0.0;
   long long boundary_passes = 1;
   double row_end_inset = 0.6;
   bool fill_leftovers = false;
@@ -83,6 +84,7 @@ const ParamTable<ZigzagParams>& paramTable() {
           .include(&ZigzagParams::sweep, sweepDirectionParams())
           .add({"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent rows overlap"},
                &ZigzagParams::overlap)
+          .add(coatRippleParam(), &ZigzagParams::coat_ripple)
           .add({"boundary_passes", ParamType::Integer, 1LL, 0, 10, {}, "",
                 "boundary-following loops around the wall and each obstacle before the rows"},
                &ZigzagParams::boundary_passes)
@@ -97,7 +99,10 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
   ZigzagPlanner() : TypedPlanner(paramTable()) {}
 
  protected:
-  PlanResult planWith(const Problem& problem, const ZigzagParams& params, const Budget& budget) override {
+  PlanResult planWith(const Problem& problem, const ZigzagParams& given, const Budget& budget) override {
+    ZigzagParams params = given;
+    if (std::string why = evenCoatOverlap(problem.tool, params.coat_ripple, params.overlap); !why.empty())
+      return PlanResult::failure(PlanStatus::InvalidInput, std::move(why));
     // A car comes only with car_plan headland or headland_no_fill: for smoothed, runPlanner gives
     // a tool that turns on the spot and smooths the path.
     return planSweep(problem, params.sweep, budget,

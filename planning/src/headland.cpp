@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "coverbench/input_error.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/workspace.hpp"
 
@@ -103,6 +104,35 @@ ParamSpec fillLeftoversParam() {
   return {"fill_leftovers", ParamType::Bool, false, 0, 0, {}, "",
           "after the rows, find what loops and rows left unpainted (exactly) and give each piece a pass; "
           "slower (docs/planner_quality.md)"};
+}
+
+ParamSpec coatRippleParam() {
+  return {"coat_ripple", ParamType::Number, 0.0, 0.0, 0.5, {}, "",
+          "0: rows `overlap` apart; else the coat's allowed ripple between rows (a fraction of its mean): rows "
+          "at the widest spacing whose summed flux profile stays that even (needs a tool with a flux profile; "
+          "docs/deposition.md)"};
+}
+
+std::string evenCoatOverlap(const ToolParams& tool, double coat_ripple, double& overlap) {
+  if (!(coat_ripple > 0.0)) return "";
+  if (!tool.profile.set())
+    return "coat_ripple needs a tool with a flux profile (tool.profile in a config, --profile on the command line)";
+  if (overlap != 0.0) return "coat_ripple sets the rows' overlap from the flux profile: leave overlap at 0";
+  // One search per thread and tool: every sweep direction, and every run of the same tool, reuses it.
+  thread_local struct {
+    FluxProfile profile;
+    double s = 0.0, ripple = 0.0, spacing = 0.0;
+  } last;
+  const FluxProfile& p = tool.profile;
+  if (!(last.s == tool.tool_width && last.ripple == coat_ripple && last.profile.kind == p.kind &&
+        last.profile.sigma == p.sigma && last.profile.beta == p.beta)) {
+    last = {p, tool.tool_width, coat_ripple, evenSpacing(p, tool.tool_width, coat_ripple)};
+  }
+  if (!(last.spacing > 0.0))
+    return "no row spacing down to s/10 keeps the " + toString(p.kind) + " profile's coat within " +
+           shortNumber(coat_ripple * 100.0) + " % of its mean";
+  overlap = 1.0 - last.spacing / tool.tool_width;
+  return "";
 }
 
 void recordLeftovers(PlanResult& result, const Leftovers& left) {

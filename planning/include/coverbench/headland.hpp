@@ -81,6 +81,14 @@ ParamSpec rowEndInsetParam();
 /// default experiment 7 of 981 sweep-planner runs had a piece worth a pass, and finding the
 /// pieces (a union of every painted capsule) cost 85 % of boustrophedon's planning time.
 ParamSpec fillLeftoversParam();
+/// The parameter `coat_ripple`: 0 (rows `overlap` apart), or the coat's allowed ripple between
+/// rows, from which the row spacing follows (evenCoatOverlap).
+ParamSpec coatRippleParam();
+/// With coat_ripple > 0: sets `overlap` to 1 - d / s, d the widest row spacing whose summed flux
+/// profile stays within coat_ripple of its mean (evenSpacing, flux_profile.hpp). Returns why it
+/// cannot (empty when it can, or when coat_ripple is 0): the tool has no flux profile, `overlap`
+/// was set too, or no spacing down to s/10 is that even.
+std::string evenCoatOverlap(const ToolParams& tool, double coat_ripple, double& overlap);
 /// The statistics leftover_passes, leftover_small_pieces and leftover_small_area_m2.
 void recordLeftovers(PlanResult& result, const Leftovers& left);
 
