@@ -188,13 +188,19 @@ FluxProfile fluxProfileOf(const ProfileOptions& options, double s) {
   FluxProfile profile;
   if (!parseFluxProfileKind(options.profile, profile.kind))
     throw InputError("--profile", "profile", "must be none, uniform, gaussian or beta, got '" + options.profile + "'");
-  profile.sigma = options.sigma;
-  profile.beta = options.beta;
-  profile.rate = options.rate;
-  profile.depth = options.fan_depth;
+  const bool gaussian = profile.kind == FluxProfile::Kind::Gaussian, beta = profile.kind == FluxProfile::Kind::Beta;
+  // As a config reads tool.profile: each value belongs to its profile, and none goes unused.
+  if (!profile.set() && (options.sigma || options.beta || options.rate || options.fan_depth))
+    throw InputError("--profile", "profile", "--sigma, --beta, --rate and --fan-depth need --profile");
+  if (options.sigma && !gaussian) throw InputError("--sigma", "sigma", "belongs to --profile gaussian");
+  if (options.beta && !beta) throw InputError("--beta", "beta", "belongs to --profile beta");
+  if (gaussian && !options.sigma) throw InputError("--sigma", "sigma", "is missing: a gaussian profile's standard deviation, m");
+  if (beta && !options.beta) throw InputError("--beta", "beta", "is missing: a beta profile's exponent");
+  if (options.sigma) profile.sigma = *options.sigma;
+  if (options.beta) profile.beta = *options.beta;
+  if (options.rate) profile.rate = *options.rate;
+  if (options.fan_depth) profile.depth = *options.fan_depth;
   if (profile.set()) profile.check(s, "command line");
-  if (!profile.set() && (options.sigma != 0.0 || options.beta != 0.0))
-    throw InputError("--profile", "profile", "--sigma and --beta need --profile gaussian or beta");
   return profile;
 }
 
@@ -372,6 +378,8 @@ int metricsCommand(const MetricsOptions& options) {
   if (!(limits.rotation_speed >= 0.0 && limits.rotation_speed <= 100.0))
     throw InputError("--rotation-speed", "rotation_speed", "must be in [0, 100] rad/s, got " + shortNumber(options.rotation_speed));
   tool.profile = fluxProfileOf(options.coat, tool.tool_width);
+  if (!options.coat_svg.empty() && !tool.profile.set())
+    throw InputError("--coat-svg", "profile", "the coat's picture needs the tool's flux profile (--profile)");
   limitScoringTime(options.plan, options.time_limit_s);
   const VehicleModel vehicle = resolveVehicle(options.vehicle, plan.vehicle.value_or(VehicleModel{}));
   const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits);
@@ -383,6 +391,8 @@ int metricsCommand(const MetricsOptions& options) {
   }
   OutputFiles files;  // the picture is written before anything is printed, so a failure prints nothing
   if (!options.svg.empty()) files.add(options.svg, pathPicture(wall, tool, vehicle, plan.path, wall.name + " / " + options.plan));
+  if (!options.coat_svg.empty())
+    files.add(options.coat_svg, coatPicture(wall, tool, plan.path, limits, vehicle, wall.name + " / " + options.plan + ": the coat"));
   ::alarm(0);
   files.commit();
   // Where an invalid path goes wrong, on stderr (the JSON on stdout keeps its keys).

@@ -28,7 +28,7 @@ struct VehicleOptions {
 /// (with sigma) or beta (with beta); rate Q in m^3/s, the fan's depth in m (0: s / 10).
 struct ProfileOptions {
   std::string profile = "none";
-  double sigma = 0.0, beta = 0.0, rate = 1e-6, fan_depth = 0.0;
+  std::optional<double> sigma, beta, rate, fan_depth;  ///< unset: the profile's default (rate 1e-6 m3/s, depth s/10)
 };
 /// The profile the options describe for a tool of width s; InputError (source "--profile" or
 /// "command line") for a value out of range or --sigma/--beta without their profile.
@@ -77,6 +77,7 @@ struct MetricsOptions {
   std::string judge = "fast";   ///< "fast", or "exact": also the exact judge, side by side
   int arc_vertices = 128;       ///< the exact judge's disk polygons
   ProfileOptions coat;  ///< the tool's flux profile: "none" gives no deposition metrics
+  std::string coat_svg;  ///< the coat's thickness map (SVG); needs a profile
 };
 /// Prints every metric of a plan file (from any source) as JSON. Returns 0 when the path is
 /// valid, 3 when it is not (with --judge exact: when either judge finds it invalid).

@@ -89,9 +89,8 @@ void addProfileOptions(CLI::App* command, cli::ProfileOptions& coat, const std::
       ->capture_default_str();
   command->add_option("--sigma", coat.sigma, "gaussian profile: standard deviation, m (at least s/50)");
   command->add_option("--beta", coat.beta, "beta profile: f proportional to (1 - u^2)^(beta - 1), u = x / r; beta in [1, 100]");
-  command->add_option("--rate", coat.rate, "what the tool sprays, m^3/s")->capture_default_str();
-  command->add_option("--fan-depth", coat.fan_depth, "the spray fan's depth along the motion, m (0: s / 10)")
-      ->capture_default_str();
+  command->add_option("--rate", coat.rate, "what the tool sprays, m^3/s (default 1e-6)");
+  command->add_option("--fan-depth", coat.fan_depth, "the spray fan's depth along the motion, m (default and 0: s / 10)");
 }
 
 /// `planners`, `metric-specs` and `plan`: what can plan, what is measured, and one plan.
@@ -178,6 +177,7 @@ void addCheckCommands(CLI::App& app, Commands& o) {
                           "rad/s: stop and rotate in place at every heading change, angle / this (0: none)")
       ->capture_default_str();
   addProfileOptions(metrics_cmd, metrics.coat, "for the coat's thickness metrics");
+  metrics_cmd->add_option("--coat-svg", metrics.coat_svg, "picture of the coat's thickness over R, with its scale in micrometres (SVG; needs --profile)");
   metrics_cmd->add_option("--svg", metrics.svg, "picture with the coverage layer (SVG)");
   metrics_cmd->add_option("--time-limit", metrics.time_limit_s, "seconds scoring may take before it is abandoned")
       ->capture_default_str();

@@ -62,9 +62,9 @@ bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind) {
 }
 
 std::string FluxProfile::describe(double s) const {
-  std::string out = toString(kind);
-  if (kind == Kind::Gaussian) out += " sigma " + number(sigma) + " m";
-  if (kind == Kind::Beta) out += " beta " + number(beta);
+  std::string out = toString(kind) + " profile";
+  if (kind == Kind::Gaussian) out = "gaussian profile, sigma " + number(sigma) + " m";
+  if (kind == Kind::Beta) out = "beta profile, beta " + number(beta);
   return out + ", " + number(rate) + " m3/s, fan depth " + number(depthFor(s)) + " m";
 }
 
@@ -75,7 +75,7 @@ void FluxProfile::check(double s, const std::string& source) const {
     throw InputError(source, "beta", "must be in [1, 100], got " + number(beta));
   if (!(rate > 0.0 && rate <= 1.0)) throw InputError(source, "rate", "must be in (0, 1] m3/s, got " + number(rate));
   if (!(depth >= 0.0 && depth <= s))
-    throw InputError(source, "depth", "must be in (0, s] m (0: s/10), got " + number(depth));
+    throw InputError(source, "depth", "must be in [0, s] m (0: s/10; s = " + number(s) + " m), got " + number(depth));
 }
 
 double passRipple(const FluxProfile& profile, double s, double d) {

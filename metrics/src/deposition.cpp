@@ -133,36 +133,38 @@ Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& 
     }
   if (out.cells == 0) return out;
   const double count = static_cast<double>(out.cells), mean = sum / count;
-  double squares = 0.0;
+  double squares = 0.0;  // of (h - mean) / mean: squares of tiny coats (a rate of 1e-170) would underflow
   std::size_t even = 0, thin = 0, thick = 0;
   for (std::size_t k = 0; k < grid.thickness.size(); ++k)
     if (mask[k]) {
       const double h = grid.thickness[k];
-      squares += (h - mean) * (h - mean);
+      if (mean > 0.0) squares += (h / mean - 1.0) * (h / mean - 1.0);
       if (h < 0.9 * mean || mean == 0.0) ++thin;
       else if (h > 1.1 * mean) ++thick;
       else ++even;
     }
   out.mean_um = mean * 1e6;
-  out.cv = mean > 0.0 ? std::sqrt(squares / count) / mean : 0.0;
+  out.cv = mean > 0.0 ? std::sqrt(squares / count) : 0.0;
   out.even_share = static_cast<double>(even) / count;
   out.thin_share = static_cast<double>(thin) / count;
   out.thick_share = static_cast<double>(thick) / count;
   return out;
 }
 
-Deposition deposition(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
+CoatRaster coatRaster(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
                       const MotionLimits& limits, const VehicleModel& vehicle, double cell) {
   const double h = cell > 0.0 ? cell : depositionCell(tool, profile);
   const Region reachable = reachableRegion(wall, tool);
   const Box box = boundingBox(reachable);
-  DepositionGrid grid;
-  if (box.empty()) return depositionStats(grid, {});
+  CoatRaster out;
+  if (box.empty()) return out;
   const double nx = 2.0 * std::ceil(box.width() / h), ny = 2.0 * std::ceil(box.height() / h);  // samples
   if (!(nx * ny <= static_cast<double>(kMaxDepositionCells)))
     throw InputError("deposition", "tool.profile",
-                     "the reachable region needs " + number(nx * ny) + " raster samples (4 per cell of " + number(h) + " m), at most " +
-                         std::to_string(kMaxDepositionCells) + " (a wider sigma or beta spread, or a smaller wall)");
+                     "needs a coat raster of " + number(nx * ny) + " samples over the reachable region (4 per cell of " + number(h) +
+                         " m, the smaller of s/40 and the profile's spread/5), at most " + std::to_string(kMaxDepositionCells) +
+                         ": a wider tool or a smaller wall");
+  DepositionGrid& grid = out.grid;
   grid.x0 = box.min_x;
   grid.y0 = box.min_y;
   grid.cell = h;
@@ -170,7 +172,14 @@ Deposition deposition(const Wall& wall, const ToolParams& tool, const Path& path
   grid.nx = static_cast<std::size_t>(std::max(2.0, nx));
   grid.ny = static_cast<std::size_t>(std::max(2.0, ny));
   depositionField(path, tool, profile, segmentSpeeds(path, limits, vehicle), grid);
-  return depositionStats(grid, rasterMask(reachable, grid));
+  out.mask = rasterMask(reachable, grid);
+  return out;
+}
+
+Deposition deposition(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
+                      const MotionLimits& limits, const VehicleModel& vehicle, double cell) {
+  const CoatRaster raster = coatRaster(wall, tool, path, profile, limits, vehicle, cell);
+  return depositionStats(raster.grid, raster.mask);
 }
 
 }  // namespace coverbench

@@ -1,6 +1,8 @@
 #include "coverbench/svg.hpp"
 
+#include "coverbench/deposition.hpp"
 #include "coverbench/escape.hpp"
+#include "coverbench/input_error.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/free_region.hpp"
@@ -378,6 +380,99 @@ std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleM
     content.four_passes = &four;
   }
   return renderSvg(content);
+}
+
+namespace {
+
+/// The coat's colour for a thickness `ratio` of the mean, in steps of a tenth: blues below 0.9
+/// (darker thinner), one green within 10 %, oranges to dark red above 1.1 (2 and more darkest).
+std::string coatColour(double ratio) {
+  auto mix = [](const int a[3], const int b[3], double t) {
+    char buf[8];
+    std::snprintf(buf, sizeof buf, "#%02x%02x%02x", static_cast<int>(std::lround(a[0] + (b[0] - a[0]) * t)),
+                  static_cast<int>(std::lround(a[1] + (b[1] - a[1]) * t)), static_cast<int>(std::lround(a[2] + (b[2] - a[2]) * t)));
+    return std::string(buf);
+  };
+  static const int kBare[3] = {8, 48, 107}, kThin[3] = {158, 202, 225}, kThick[3] = {253, 174, 107}, kHeavy[3] = {127, 0, 0};
+  if (ratio >= 0.9 && ratio <= 1.1) return "#41ab5d";
+  if (ratio < 0.9) return mix(kBare, kThin, std::floor(std::max(ratio, 0.0) * 10.0) / 9.0);
+  return mix(kThick, kHeavy, std::min(std::floor((ratio - 1.1) * 10.0), 9.0) / 9.0);
+}
+
+}  // namespace
+
+std::string coatPicture(const Wall& wall, const ToolParams& tool, const Path& path, const MotionLimits& limits,
+                        const VehicleModel& vehicle, const std::string& title) {
+  if (!tool.profile.set()) throw InputError("coat picture", "tool.profile", "the coat's picture needs the tool's flux profile");
+  const CoatRaster raster = coatRaster(wall, tool, path, tool.profile, limits, vehicle);
+  const Deposition d = depositionStats(raster.grid, raster.mask);
+  const DepositionGrid& g = raster.grid;
+  const View v = pictureView(wall, nullptr);
+  const double w_px = pictureWidth(v), h_px = pictureHeight(v), mean = d.mean_um * 1e-6;
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fmt(w_px) << "\" height=\"" << fmt(h_px) << "\" viewBox=\"0 0 "
+    << fmt(w_px) << " " << fmt(h_px) << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+    << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n"
+    << "<text x=\"" << fmt(kPadPx) << "\" y=\"" << fmt(kPadPx + 6) << "\" font-size=\"14\" font-weight=\"bold\">" << escapeHtml(title)
+    << "</text>\n<path d=\"" << v.ringPath(wall.boundary) << "\" fill=\"#f3efe6\" stroke=\"none\"/>\n";
+  // Blocks of cells about 3 px wide, each the mean of its samples in R, coloured by its ratio to
+  // R's mean; runs of one colour along a row are one rectangle.
+  const std::size_t per = g.cell > 0.0 ? std::max<std::size_t>(1, static_cast<std::size_t>(3.0 / (v.k * g.cell))) : 1;
+  const std::size_t span = 2 * per, bx = (g.nx + span - 1) / span, by = (g.ny + span - 1) / span;
+  const double side = static_cast<double>(per) * g.cell;
+  s << "<g class=\"coat\" stroke=\"none\">\n";
+  for (std::size_t j = 0; mean > 0.0 && j < by; ++j) {
+    std::string run_colour;
+    std::size_t run_start = 0;
+    auto flush = [&](std::size_t end) {
+      if (run_colour.empty()) return;
+      s << "<rect x=\"" << fmt(v.px(g.x0 + static_cast<double>(run_start) * side)) << "\" y=\""
+        << fmt(v.py(g.y0 + static_cast<double>(j + 1) * side)) << "\" width=\"" << fmt(static_cast<double>(end - run_start) * side * v.k)
+        << "\" height=\"" << fmt(side * v.k) << "\" fill=\"" << run_colour << "\"/>\n";
+      run_colour.clear();
+    };
+    for (std::size_t i = 0; i < bx; ++i) {
+      double sum = 0.0;
+      std::size_t n = 0;
+      for (std::size_t y = j * span; y < std::min(g.ny, (j + 1) * span); ++y)
+        for (std::size_t x = i * span; x < std::min(g.nx, (i + 1) * span); ++x)
+          if (raster.mask[y * g.nx + x]) {
+            sum += g.thickness[y * g.nx + x];
+            ++n;
+          }
+      const std::string colour = n ? coatColour(sum / static_cast<double>(n) / mean) : "";
+      if (colour != run_colour) {
+        flush(i);
+        run_colour = colour;
+        run_start = i;
+      }
+    }
+    flush(bx);
+  }
+  s << "</g>\n<path d=\"" << v.ringPath(wall.boundary) << "\" fill=\"none\" stroke=\"#333333\" stroke-width=\"1.5\"/>\n";
+  for (const Obstacle& o : wall.obstacles) {
+    if (o.type == ObstacleType::Circle)
+      s << "<circle cx=\"" << fmt(v.px(o.center.x)) << "\" cy=\"" << fmt(v.py(o.center.y)) << "\" r=\"" << fmt(o.radius * v.k)
+        << "\" fill=\"#9a9a9a\" stroke=\"#444444\"/>\n";
+    else
+      s << "<path d=\"" << v.ringPath(o.polygon) << "\" fill=\"#9a9a9a\" stroke=\"#444444\"/>\n";
+  }
+  // The colour scale in micrometres, 0 to twice the mean, and what the metrics say.
+  const double ly = v.top + v.box.height() * v.k + kPadPx + 8, bar = 400.0;
+  s << "<g class=\"coat-scale\" transform=\"translate(" << fmt(kPadPx) << "," << fmt(ly) << ")\">\n";
+  for (int k = 0; k < 20; ++k)
+    s << "<rect x=\"" << fmt(bar * k / 20.0) << "\" width=\"" << fmt(bar / 20.0 + 0.5) << "\" height=\"12\" fill=\""
+      << coatColour((k + 0.5) / 10.0) << "\"/>";
+  s << "\n";
+  for (double r : {0.0, 0.9, 1.1, 2.0})
+    s << "<line x1=\"" << fmt(bar * r / 2.0) << "\" y1=\"12\" x2=\"" << fmt(bar * r / 2.0) << "\" y2=\"17\" stroke=\"#000\"/>"
+      << "<text x=\"" << fmt(bar * r / 2.0) << "\" y=\"29\" text-anchor=\"middle\">" << shortNumber(std::round(r * d.mean_um * 10.0) / 10.0)
+      << (r == 2.0 ? "+" : "") << "</text>";
+  s << "<text x=\"" << fmt(bar + 12) << "\" y=\"10\">coat thickness, \u00b5m (green: within 10 % of the mean)</text>\n"
+    << "<text x=\"0\" y=\"50\">" << escapeHtml(tool.profile.describe(tool.tool_width)) << "; mean " << shortNumber(std::round(d.mean_um * 100.0) / 100.0)
+    << " \u00b5m, CV " << fmt(d.cv) << "; within 10 %: " << fmt(100.0 * d.even_share) << " %, thinner: " << fmt(100.0 * d.thin_share)
+    << " %, thicker: " << fmt(100.0 * d.thick_share) << " % of R</text>\n</g>\n</svg>\n";
+  return s.str();
 }
 
 std::string playbackScript(const std::string& id, const Wall& wall, const ToolParams& tool, const VehicleModel& vehicle,

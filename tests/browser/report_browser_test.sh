@@ -42,3 +42,10 @@ python=${COVERBENCH_PYTHON:-/usr/bin/python3}
   --expect-text '<script>alert("wall")</script> '"'q'" --expect-text '<img src=x onerror=alert(1)> "quoted"'
 "$bin" showcase --walls "$src/datasets/canonical" --out "$work/showcase" > /dev/null
 "$python" "$src/tests/browser/check_page.py" "$work/showcase/index.html" "$shots/showcase" --section walls --min-images 30 --lazy
+# The coat's picture (docs/deposition.md), as a page shows it: loaded, no error; its screenshot kept.
+"$bin" plan --wall "$src/datasets/canonical/gable_round_window.json" --planner boustrophedon --tool-width 0.3 \
+  --profile beta --beta 2.5 --param coat_ripple=0.02 --out "$work/coat-plan.json" > /dev/null
+"$bin" metrics --wall "$src/datasets/canonical/gable_round_window.json" --plan "$work/coat-plan.json" \
+  --profile beta --beta 2.5 --coat-svg "$work/coat.svg" > /dev/null
+printf '<!doctype html><html><head><meta charset="utf-8"><title>coat</title></head><body><img src="coat.svg" alt="the coat"></body></html>\n' > "$work/coat.html"
+"$python" "$src/tests/browser/check_page.py" "$work/coat.html" "$shots/coat" --min-images 1 --min-tables 0

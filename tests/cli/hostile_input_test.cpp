@@ -473,16 +473,23 @@ TEST_F(Hostile, OutOfRangeFluxProfilesAreRefusedWithOneLine) {
   const std::string plan = (dir_ / "p.json").string();
   ASSERT_EQ(run("plan --wall " + wall_ + " --planner zigzag --out " + plan).exit_code, 0);
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"--profile gaussian", "command line: sigma: must be in [s/50, 100] m"},
+      {"--profile gaussian", "--sigma: sigma: is missing: a gaussian profile's standard deviation, m"},
+      {"--profile beta", "--beta: beta: is missing: a beta profile's exponent"},
+      {"--profile beta --beta 2 --sigma 0.05", "--sigma: sigma: belongs to --profile gaussian"},
+      {"--profile gaussian --sigma 0.05 --beta 2", "--beta: beta: belongs to --profile beta"},
+      {"--profile uniform --sigma 0.05", "--sigma: sigma: belongs to --profile gaussian"},
+      {"--rate 1e-6", "--profile: profile: --sigma, --beta, --rate and --fan-depth need --profile"},
+      {"--fan-depth 0.01", "--profile: profile: --sigma, --beta, --rate and --fan-depth need --profile"},
+      {"--coat-svg " + (dir_ / "coat.svg").string(), "--coat-svg: profile: the coat's picture needs the tool's flux profile (--profile)"},
       {"--profile gaussian --sigma -0.02", "command line: sigma: must be in [s/50, 100] m"},
       {"--profile gaussian --sigma 1e-9", "command line: sigma: must be in [s/50, 100] m"},
       {"--profile gaussian --sigma nan", "--sigma: must be a finite number"},
       {"--profile beta --beta 0.5", "command line: beta: must be in [1, 100]"},
       {"--profile beta --beta 1e300", "command line: beta: must be in [1, 100]"},
       {"--profile uniform --rate -1", "command line: rate: must be in (0, 1] m3/s"},
-      {"--profile uniform --fan-depth 5", "command line: depth: must be in (0, s] m"},
+      {"--profile uniform --fan-depth 5", "command line: depth: must be in [0, s] m (0: s/10; s = 0.1 m), got 5"},
       {"--profile cone", "--profile: profile: must be none, uniform, gaussian or beta, got 'cone'"},
-      {"--sigma 0.02", "--profile: profile: --sigma and --beta need --profile gaussian or beta"},
+      {"--sigma 0.02", "--profile: profile: --sigma, --beta, --rate and --fan-depth need --profile"},
   };
   for (const auto& [flags, message] : cases) {
     std::string printed;

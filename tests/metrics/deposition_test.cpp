@@ -319,8 +319,8 @@ TEST(Deposition, AWallPastTheRasterCapIsRefusedWithOneLine) {
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "deposition: tool.profile: the reachable region needs 1.6e+09 raster samples (4 per cell of 0.005 m), at most "
-              "20000000 (a wider sigma or beta spread, or a smaller wall)");
+              "deposition: tool.profile: needs a coat raster of 1.6e+09 samples over the reachable region (4 per cell of "
+              "0.005 m, the smaller of s/40 and the profile's spread/5), at most 20000000: a wider tool or a smaller wall");
   }
 }
 

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "coverbench/deposition.hpp"
 #include "coverbench/metric_spec.hpp"
 #include "coverbench/metrics.hpp"
 #include "coverbench/ompl_export.hpp"
@@ -336,6 +337,40 @@ TEST(OmplExport, ALogByHandForTwoRunsOneOfThemFailed) {
       "1.5; nan; 0; 0; 4; nan; nan; two; k2; \n"
       ".\n";
   EXPECT_EQ(logs[0].text, expected);
+}
+
+// The coat's picture: its blocks' colours are the shares the metrics state (a uniform tool whose
+// two passes tile a wall exactly: green where both rows run at speed, thicker where the tool
+// brakes and turns, bare blue nowhere inside R but at the corners the rows' caps do not reach),
+// and its scale and figures in micrometres.
+TEST(CoatPicture, ShowsTheCoatByItsRatioToTheMeanWithItsScaleAndFigures) {
+  Wall wall;
+  wall.name = "two rows";
+  wall.boundary = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  ToolParams tool{0.5, 0.0};
+  tool.profile.kind = FluxProfile::Kind::Uniform;
+  Path path;
+  path.moveTo({0.25, 0.25}, false);
+  path.moveTo({1.75, 0.25}, true);
+  path.moveTo({1.75, 0.75}, true);
+  path.moveTo({0.25, 0.75}, true);
+  const std::string svg = coatPicture(wall, tool, path, MotionLimits{}, VehicleModel{}, "t");
+  const Deposition d = deposition(wall, tool, path, tool.profile);
+  ASSERT_GT(d.even_share, 0.3);
+  ASSERT_GT(d.thick_share, 0.0);
+  EXPECT_NE(svg.find("<g class=\"coat\""), std::string::npos);
+  EXPECT_NE(svg.find("fill=\"#41ab5d\""), std::string::npos);  // within 10 %
+  EXPECT_NE(svg.find("coat thickness, \u00b5m (green: within 10 % of the mean)"), std::string::npos);
+  char figures[200];
+  std::snprintf(figures, sizeof figures, "CV %.2f; within 10 %%: %.2f %%", d.cv, 100.0 * d.even_share);
+  EXPECT_NE(svg.find(figures), std::string::npos) << figures;
+  // The scale's ticks: 0, 0.9, 1.1 and 2 times the mean, in micrometres to a tenth.
+  for (double r : {0.9, 1.1}) {
+    const std::string tick = ">" + shortNumber(std::round(r * d.mean_um * 10.0) / 10.0) + "</text>";
+    EXPECT_NE(svg.find(tick), std::string::npos) << tick;
+  }
+  // No profile: no picture.
+  EXPECT_THROW(coatPicture(wall, ToolParams{0.5, 0.0}, path, MotionLimits{}, VehicleModel{}, "t"), std::exception);
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ struct FluxProfile {
   /// The profile's standard deviation across the motion (m): sigma for a Gaussian (before its
   /// truncation), r / sqrt(2 beta + 1) for beta, r / sqrt 3 for uniform.
   double spread(double r) const;
-  /// "gaussian sigma 0.02 m, 1e-06 m3/s, fan depth 0.01 m" for a tool of width s.
+  /// "gaussian profile, sigma 0.02 m, 1e-06 m3/s, fan depth 0.01 m" for a tool of width s.
   std::string describe(double s) const;
   /// Throws InputError(source, field, problem) for a value out of range for a tool of width s:
   /// sigma in [s/50, 100 m], beta in [1, 100], rate in (0, 1] m^3/s, depth in (0, s] (0: the default).

@@ -64,7 +64,7 @@ double segmentLength(const Path& path, std::size_t i);
 struct ToolParams {
   double tool_width = 0.1;  ///< s: the tool is a disk of diameter s centred on the path
   double clearance = 0.02;  ///< c: minimum gap between the tool disk and any obstacle
-  FluxProfile profile;      ///< how it spreads what it sprays (none: a tool that only touches)
+  FluxProfile profile = {};  ///< how it spreads what it sprays (none: a tool that only touches)
   double radius() const { return tool_width / 2.0; }
 };
 /// The tool as every table, column, title and message names it: "s=0.1 m, c=0.02 m".

@@ -84,6 +84,16 @@ struct Deposition {
 };
 Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& mask);
 
+/// The thickness field of a path on the default raster over R's bounding box (cell 0:
+/// depositionCell), and which samples lie in R: what deposition() summarises and the coat's
+/// picture draws. Throws as deposition() does.
+struct CoatRaster {
+  DepositionGrid grid;
+  std::vector<char> mask;
+};
+CoatRaster coatRaster(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
+                      const MotionLimits& limits = {}, const VehicleModel& vehicle = {}, double cell = 0.0);
+
 /// The deposition metrics of a path over the reachable region R, on cells of side `cell` (0:
 /// depositionCell), 2 x 2 Gauss points per cell. Throws InputError (field `tool.profile`) when R needs
 /// more than kMaxDepositionCells samples.

@@ -53,6 +53,13 @@ std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleM
                         const std::string& title, bool coverage_layer = true, double overlap_strips = 1500.0,
                         std::size_t first_judged_segment = 0, bool pass_counts = false);
 
+/// The coat a path leaves (deposition.hpp; the tool must have a flux profile): the wall with R's
+/// thickness in blocks about 3 px wide, each coloured by its mean's ratio to R's mean (blues
+/// thinner than 0.9, green within 10 %, oranges to dark red thicker than 1.1), obstacles on top,
+/// a colour scale in micrometres and the five metrics. Throws as deposition() does.
+std::string coatPicture(const Wall& wall, const ToolParams& tool, const Path& path, const MotionLimits& limits,
+                        const VehicleModel& vehicle, const std::string& title);
+
 /// The data that plays a picture's path back in place (reports/python/coverbench_report/player.js):
 /// a script calling coverbenchPlayback({...}) with the path in the picture's pixels (the frame
 /// of pathPicture), the tool's width, and when the time model has the tool at each waypoint.
