@@ -288,8 +288,10 @@ class Plots(Served):
                 choose('plots-versus', '{METRIC}');
                 await drawnWith({{metric: '{VERSUS}', versus: '{METRIC}'}}, 'the scatter against {METRIC}');
                 const residential = seen();
-                choose('plots-dataset', 'facade');
-                await drawnWith({{dataset: 'facade', versus: '{METRIC}'}}, 'the facade walls');
+                // The other dataset than the one drawn first (the first is the first in the runs' order).
+                const other = [...$('plots-dataset').options].map(o => o.value).find(d => d !== residential.drawn.dataset);
+                choose('plots-dataset', other);
+                await drawnWith({{dataset: other, versus: '{METRIC}'}}, 'the other dataset');
                 const last = {{...seen(), href: location.href}};
                 history.back();
                 await drawnWith({{dataset: residential.drawn.dataset, versus: '{METRIC}'}}, 'back to the first dataset');
@@ -301,29 +303,30 @@ class Plots(Served):
                 await drawnWith({{kind: 'box'}}, 'back to the first plot');
                 const backToFirst = seen();
                 history.go(5);
-                await drawnWith({{dataset: 'facade', kind: 'scatter'}}, 'forward to the facade walls');
-                return {{first, sweep, residential, last, back, backToSweep, backToFirst, forward: seen()}};
+                await drawnWith({{dataset: other, kind: 'scatter'}}, 'forward to the other dataset');
+                return {{first, sweep, residential, other, last, back, backToSweep, backToFirst, forward: seen()}};
             }})()""")
             page.screenshot(os.path.join(SHOTS, "plots-address-forward.png"))
             self.assertEqual(errors(page.events), [])
         with opened(r["last"]["href"]) as fresh:
             again = fresh.evaluate("(async () => {" + HELPERS + drawn_with + f"""
                 await until(() => document.body.dataset.ready && $('plots-kind'), 'the page');
-                await drawnWith({{kind: 'scatter', dataset: 'facade', versus: '{METRIC}'}}, 'the scatter from the address');
+                await drawnWith({{kind: 'scatter', dataset: '{r["other"]}', versus: '{METRIC}'}}, 'the scatter from the address');
                 return seen();
             }})()""")
             fresh.screenshot(os.path.join(SHOTS, "plots-address-reopened.png"))
             self.assertEqual(errors(fresh.events), [])
         last = r["last"]
         self.assertEqual(last["query"], {"plot": "scatter", "plot.metric": VERSUS, "plot.versus": METRIC,
-                                         "plot.dataset": "facade", "plot.tool": last["controls"]["tool"]})
+                                         "plot.dataset": r["other"], "plot.tool": last["controls"]["tool"]})
         self.assertEqual(last["controls"]["kind"], "scatter")
-        self.assertNotEqual(r["residential"]["drawn"]["dataset"], "facade")
-        # The reopened page: the same controls, the same marks, one dot per usable facade run with both values.
+        self.assertIn(r["other"], ("facade", "residential"))
+        self.assertNotEqual(r["residential"]["drawn"]["dataset"], r["other"])
+        # The reopened page: the same controls, the same marks, one dot per usable run of that dataset with both values.
         self.assertEqual(again["controls"], last["controls"])
         self.assertEqual(again["drawn"], last["drawn"])
         self.assertEqual(again["query"], last["query"])
-        first, second = self.sql_runs(VERSUS, "facade"), self.sql_runs(METRIC, "facade")
+        first, second = self.sql_runs(VERSUS, r["other"]), self.sql_runs(METRIC, r["other"])
         want = [k for k, x in first.items() if x["usable"] and x["value"] is not None and second[k]["value"] is not None]
         self.assertEqual(again["dots"], len(want))
         self.assertEqual(last["dots"], len(want))
