@@ -23,14 +23,13 @@ ToolParams sprayer(double s) {
   return tool;
 }
 
+/// The plan and its metrics (the coat's too: the tool has a profile).
 JudgedPlan planned(const char* planner, const Wall& wall, const ToolParams& tool,
                    const std::vector<std::pair<std::string, std::string>>& settings) {
-  const PlannerInfo& info = findPlanner(planner);
-  Problem problem;
-  problem.wall = &wall;
-  problem.tool = tool;
-  problem.params = resolveParams(info, settings);
-  return planAndJudge(info, problem, Budget(std::chrono::seconds(60)));
+  JudgedPlan j;
+  j.result = test::planWith(planner, wall, tool, settings);
+  j.metrics = computeMetrics(wall, tool, j.result.path);
+  return j;
 }
 
 TEST(EvenCoat, CoatRippleNeedsAFluxProfileAndNoOverlapOfItsOwn) {
