@@ -377,7 +377,14 @@ int metricsCommand(const MetricsOptions& options) {
   limits.rotation_speed = options.rotation_speed;
   if (!(limits.rotation_speed >= 0.0 && limits.rotation_speed <= 100.0))
     throw InputError("--rotation-speed", "rotation_speed", "must be in [0, 100] rad/s, got " + shortNumber(options.rotation_speed));
-  tool.profile = fluxProfileOf(options.coat, tool.tool_width);
+  // The command line's profile, else the plan file's (the one its rows may have been spaced for).
+  const ProfileOptions& coat = options.coat;
+  if (coat.profile != "none" || coat.sigma || coat.beta || coat.rate || coat.fan_depth || !plan.profile) {
+    tool.profile = fluxProfileOf(coat, tool.tool_width);
+  } else {
+    tool.profile = *plan.profile;
+    tool.profile.check(tool.tool_width, options.plan + ": profile");
+  }
   if (!options.coat_svg.empty() && !tool.profile.set())
     throw InputError("--coat-svg", "profile", "the coat's picture needs the tool's flux profile (--profile)");
   limitScoringTime(options.plan, options.time_limit_s);

@@ -61,7 +61,7 @@ ParamValue parseParam(const ParamSpec& spec, const std::string& text, const std:
       if (v < spec.min || v > spec.max)
         return fail(text + " is out of range [" + paramText(spec.min) + ", " + paramText(spec.max) + "]" +
                     (spec.unit.empty() ? "" : " " + spec.unit));
-      return v;
+      return v == 0.0 ? 0.0 : v;  // -0 is 0: one configuration, one key
     }
     case ParamType::Integer: {
       char* end = nullptr;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
 #include "coverbench/json_input.hpp"
 #include "coverbench/limits.hpp"
@@ -61,6 +62,14 @@ std::string planFileJson(const PlanFile& plan) {
   doc["wall"] = plan.wall;
   doc["tool_width"] = plan.tool.tool_width;
   doc["clearance"] = plan.tool.clearance;
+  if (const FluxProfile& p = plan.tool.profile; p.set()) {
+    ordered_json profile = {{"kind", toString(p.kind)}};
+    if (p.kind == FluxProfile::Kind::Gaussian) profile["sigma"] = p.sigma;
+    if (p.kind == FluxProfile::Kind::Beta) profile["beta"] = p.beta;
+    profile["rate"] = p.rate;
+    profile["depth"] = p.depthFor(plan.tool.tool_width);
+    doc["profile"] = profile;
+  }
   if (plan.start) doc["start"] = {plan.start->x, plan.start->y};
   if (plan.end) doc["end"] = {plan.end->x, plan.end->y};
   if (!plan.vehicle.isDefault()) doc["vehicle"] = ordered_json::parse(vehicleJson(plan.vehicle));
@@ -147,6 +156,30 @@ LoadedPlan loadPlanFile(const std::string& file) {
     if (!doc.contains(key)) continue;
     if (!doc[key].is_number()) throw InputError(file, key, "must be a number");
     (std::string(key) == "tool_width" ? plan.tool_width : plan.clearance) = doc[key].get<double>();
+  }
+  if (doc.contains("profile")) {  // as a config's tool.profile: each value belongs to its kind
+    const auto& p = doc["profile"];
+    FluxProfile profile;
+    if (!p.is_object() || !p.contains("kind") || !p["kind"].is_string() ||
+        !parseFluxProfileKind(p["kind"].get<std::string>(), profile.kind) || !profile.set())
+      throw InputError(file, "profile.kind", "must be \"uniform\", \"gaussian\" or \"beta\"");
+    for (const auto& [key, value] : p.items())
+      if (key != "kind" && key != "sigma" && key != "beta" && key != "rate" && key != "depth")
+        throw InputError(file, "profile", "has an unknown key (known: kind, sigma, beta, rate, depth)");
+    const std::string kind = toString(profile.kind);
+    for (const auto& [key, into, belongs] :
+         {std::tuple<const char*, double*, bool>{"sigma", &profile.sigma, kind == "gaussian"}, {"beta", &profile.beta, kind == "beta"},
+          {"rate", &profile.rate, true}, {"depth", &profile.depth, true}}) {
+      if (!p.contains(key)) {
+        if (belongs && std::string(key) != "rate" && std::string(key) != "depth")
+          throw InputError(file, std::string("profile.") + key, "is missing for a " + kind + " profile");
+        continue;
+      }
+      if (!belongs) throw InputError(file, std::string("profile.") + key, "does not belong to a " + kind + " profile");
+      if (!p[key].is_number()) throw InputError(file, std::string("profile.") + key, "must be a number");
+      *into = p[key].get<double>();
+    }
+    plan.profile = profile;  // checked against the tool's width by whoever scores it
   }
   for (const char* key : {"start", "end"}) {
     if (!doc.contains(key)) continue;

@@ -10,6 +10,8 @@
 #include <unistd.h>
 #include <sqlite3.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -506,6 +508,40 @@ TEST_F(Hostile, OutOfRangeFluxProfilesAreRefusedWithOneLine) {
     EXPECT_NE(printed.find(std::string("\"") + name + "\": "), std::string::npos) << name;
   ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan, &printed).exit_code, 0);
   EXPECT_EQ(printed.find("thickness"), std::string::npos);
+}
+
+// A plan made for a profiled tool carries the profile; `metrics` scores its coat with it unless
+// the command line names another; a plan file's malformed profile is one line naming the field.
+TEST_F(Hostile, APlanFileCarriesItsToolsProfile) {
+  const std::string plan = (dir_ / "p.json").string();
+  ASSERT_EQ(run("plan --wall " + wall_ + " --planner zigzag --tool-width 0.3 --profile beta --beta 2.5 --out " + plan).exit_code, 0);
+  const nlohmann::json doc = nlohmann::json::parse(slurp(plan));
+  EXPECT_EQ(doc["profile"], nlohmann::json::parse(R"({"kind": "beta", "beta": 2.5, "rate": 1e-06, "depth": 0.03})"));
+  std::string from_file, from_flags, other;
+  ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan, &from_file).exit_code, 0);
+  ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan + " --profile beta --beta 2.5", &from_flags).exit_code, 0);
+  ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan + " --profile uniform", &other).exit_code, 0);
+  EXPECT_NE(from_file.find("\"thickness_cv\": "), std::string::npos);
+  EXPECT_EQ(from_file, from_flags);
+  EXPECT_NE(other, from_file);
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {R"({"kind": "beta", "beta": 2.5, "sigma": 0.1})", "profile.sigma: does not belong to a beta profile"},
+      {R"({"kind": "gaussian"})", "profile.sigma: is missing for a gaussian profile"},
+      {R"({"kind": "cone"})", R"(profile.kind: must be "uniform", "gaussian" or "beta")"},
+      {R"({"kind": "uniform", "spread": 1})", "profile: has an unknown key"},
+      {R"({"kind": "beta", "beta": 0.5})", "p.json: profile: beta: must be in [1, 100], got 0.5"},
+  };
+  for (const auto& [profile, message] : bad) {
+    nlohmann::json edited = doc;
+    edited["profile"] = nlohmann::json::parse(profile);
+    std::ofstream(plan) << edited.dump();
+    std::string printed;
+    const CommandRun r = run("metrics --wall " + wall_ + " --plan " + plan, &printed);
+    EXPECT_EQ(r.exit_code, 2) << profile;
+    EXPECT_NE(r.err.find(message), std::string::npos) << profile << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(printed, "") << profile;
+  }
 }
 
 TEST_F(Hostile, OutOfRangeLimitsAreRefusedWithOneLine) {

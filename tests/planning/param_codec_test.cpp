@@ -3,6 +3,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <variant>
+
 #include "coverbench/param_codec.hpp"
 #include "coverbench/registry.hpp"
 
@@ -26,6 +29,17 @@ TEST(ParamCodec, TextReadBackAgainstItsSpecIsTheSameValue) {
   for (const PlannerInfo& p : registeredPlanners())
     for (const ParamSpec& s : p.params)
       EXPECT_EQ(parseParam(s, paramText(s.default_value), "test"), s.default_value) << p.name << "." << s.name;
+}
+
+// -0 and 0 are one value: one configuration, one run key (a config listing both ran twice).
+TEST(ParamCodec, MinusZeroReadsAsZero) {
+  const ParamSpec spec{"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", ""};
+  for (const char* text : {"-0", "-0.0", "-0e5"}) {
+    const ParamValue v = parseParam(spec, text, "test");
+    ASSERT_TRUE(std::holds_alternative<double>(v)) << text;
+    EXPECT_FALSE(std::signbit(std::get<double>(v))) << text;
+    EXPECT_EQ(paramText(v), "0") << text;
+  }
 }
 
 TEST(ParamCodec, ASpecWrittenAsJsonReadsBackAsItself) {
