@@ -2,20 +2,10 @@
 #include "coverbench/flux_profile.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "coverbench/input_error.hpp"
 
 namespace coverbench {
-namespace {
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-}  // namespace
 
 double FluxProfile::density(double x, double r) const {
   if (!(std::fabs(x) <= r) || !(r > 0.0)) return 0.0;
@@ -63,19 +53,19 @@ bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind) {
 
 std::string FluxProfile::describe(double s) const {
   std::string out = toString(kind) + " profile";
-  if (kind == Kind::Gaussian) out = "gaussian profile, sigma " + number(sigma) + " m";
-  if (kind == Kind::Beta) out = "beta profile, beta " + number(beta);
-  return out + ", " + number(rate) + " m3/s, fan depth " + number(depthFor(s)) + " m";
+  if (kind == Kind::Gaussian) out = "gaussian profile, sigma " + shortNumber(sigma) + " m";
+  if (kind == Kind::Beta) out = "beta profile, beta " + shortNumber(beta);
+  return out + ", " + shortNumber(rate) + " m3/s, fan depth " + shortNumber(depthFor(s)) + " m";
 }
 
 void FluxProfile::check(double s, const std::string& source) const {
   if (kind == Kind::Gaussian && !(sigma >= s / 50.0 && sigma <= 100.0))
-    throw InputError(source, "sigma", "must be in [s/50, 100] m (s/50 = " + number(s / 50.0) + " m), got " + number(sigma));
+    throw InputError(source, "sigma", "must be in [s/50, 100] m (s/50 = " + shortNumber(s / 50.0) + " m), got " + shortNumber(sigma));
   if (kind == Kind::Beta && !(beta >= 1.0 && beta <= 100.0))
-    throw InputError(source, "beta", "must be in [1, 100], got " + number(beta));
-  if (!(rate > 0.0 && rate <= 1.0)) throw InputError(source, "rate", "must be in (0, 1] m3/s, got " + number(rate));
+    throw InputError(source, "beta", "must be in [1, 100], got " + shortNumber(beta));
+  if (!(rate > 0.0 && rate <= 1.0)) throw InputError(source, "rate", "must be in (0, 1] m3/s, got " + shortNumber(rate));
   if (!(depth >= 0.0 && depth <= s))
-    throw InputError(source, "depth", "must be in [0, s] m (0: s/10; s = " + number(s) + " m), got " + number(depth));
+    throw InputError(source, "depth", "must be in [0, s] m (0: s/10; s = " + shortNumber(s) + " m), got " + shortNumber(depth));
 }
 
 double passRipple(const FluxProfile& profile, double s, double d) {

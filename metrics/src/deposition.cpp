@@ -3,19 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "coverbench/input_error.hpp"
 #include "coverbench/metrics.hpp"
 
 namespace coverbench {
 namespace {
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
 
 /// A straight piece of a tool-on segment: the segment itself, or one chord of an arc, with the
 /// stretch [s0, s1] of the segment's speed profile it stands for.
@@ -161,7 +154,7 @@ CoatRaster coatRaster(const Wall& wall, const ToolParams& tool, const Path& path
   const double nx = 2.0 * std::ceil(box.width() / h), ny = 2.0 * std::ceil(box.height() / h);  // samples
   if (!(nx * ny <= static_cast<double>(kMaxDepositionCells)))
     throw InputError("deposition", "tool.profile",
-                     "needs a coat raster of " + number(nx * ny) + " samples over the reachable region (4 per cell of " + number(h) +
+                     "needs a coat raster of " + shortNumber(nx * ny) + " samples over the reachable region (4 per cell of " + shortNumber(h) +
                          " m, the smaller of s/40 and the profile's spread/5), at most " + std::to_string(kMaxDepositionCells) +
                          ": a wider tool or a smaller wall");
   DepositionGrid& grid = out.grid;
