@@ -6,8 +6,9 @@ import numpy as np
 from scipy import stats
 
 ALPHA = 0.05
-BOOTSTRAP_RESAMPLES = 2000
-BOOTSTRAP_SEED = 20261123  # fixed: the same results give the same intervals, byte for byte
+# Two order statistics further apart than this many places have no draw between them with
+# probability under (1 - 63/n)^n < e^-63 < 1e-27: far below a double's rounding of the 2.5 % tail.
+_MEDIAN_GAP = 64
 
 
 def wilson(successes, trials, confidence=0.95):
@@ -16,6 +17,71 @@ def wilson(successes, trials, confidence=0.95):
         return (math.nan, math.nan)
     ci = stats.binomtest(successes, trials).proportion_ci(confidence_level=confidence, method="wilson")
     return (float(ci.low), float(ci.high))
+
+
+def _binom_sf(k, n, p):
+    """P(Binomial(n, p) > k), elementwise over p."""
+    return stats.binom.sf(k, n, p)
+
+
+def median_bootstrap(sorted_values):
+    """The bootstrap distribution of the sample median, exactly: no resampling, so no seed.
+
+    A resample draws n of the n values with replacement; its median is a function of which
+    sorted places the draws land on, and how many land at or below a place is binomial. With
+    n = 2m + 1 the median is the draws' (m+1)-th smallest: P(median <= x_(j)) = P(Bin(n, j/n) > m).
+    With n = 2m it is the mean of the m-th and (m+1)-th smallest, at places i <= j:
+      i < j: exactly m draws at or below i with one at i, the other n - m at or above j with one
+             at j: C(n, m) [(i/n)^m - ((i-1)/n)^m] [((n-j+1)/n)^(n-m) - ((n-j)/n)^(n-m)];
+      i = j: fewer than m draws below i and fewer than n - m above it (inclusion-exclusion over
+             the two binomials; both can only fail together as m below, n - m above, none at i).
+    Pairs over 64 places apart are left out (their mass is under 1e-27, see _MEDIAN_GAP).
+    Returns (support, probabilities): the medians' values in increasing order, each once."""
+    x = np.asarray(sorted_values, dtype=float)
+    n = len(x)
+    places = np.arange(1, n + 1, dtype=float)
+    if n % 2:
+        m = n // 2
+        cdf = _binom_sf(m, n, places / n)
+        cdf[-1] = 1.0
+        mass = np.diff(cdf, prepend=0.0)
+        values = x
+    else:
+        m = n // 2
+        log_c = math.lgamma(n + 1) - 2 * math.lgamma(m + 1)
+        i = places[:, None]
+        gap = np.arange(1, min(_MEDIAN_GAP, n - 1) + 1, dtype=float)[None, :]
+        j = i + gap
+        keep = j <= n
+        jj = np.where(keep, j, n)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            low = m * np.log(i / n) + np.log(-np.expm1(m * np.log1p(-1.0 / i)))
+            above = n - jj + 1
+            high = (n - m) * np.log(above / n) + np.log(-np.expm1((n - m) * np.log1p(-1.0 / above)))
+            apart = np.where(keep, np.exp(log_c + low + high), 0.0)
+            below, beyond = (places - 1) / n, (n - places) / n
+            ends = np.exp(log_c + m * np.log(below) + (n - m) * np.log(beyond))
+        same = 1.0 - _binom_sf(m - 1, n, below) - _binom_sf(n - m - 1, n, beyond) + ends
+        ii = np.broadcast_to(i, j.shape)[keep].astype(int) - 1
+        values = np.concatenate([x, (x[ii] + x[jj[keep].astype(int) - 1]) / 2])
+        mass = np.concatenate([np.clip(same, 0.0, 1.0), apart[keep]])
+    order = np.argsort(values, kind="stable")
+    values, mass = values[order], mass[order]
+    support, first = np.unique(values, return_index=True)
+    return support, np.add.reduceat(mass, first)
+
+
+def median_interval(sorted_values, confidence=0.95):
+    """The percentile bootstrap interval of the median from its exact bootstrap distribution: the
+    smallest medians whose probability of not being exceeded reaches (1 - confidence) / 2 and
+    (1 + confidence) / 2 (what the resampled percentile interval tends to as resamples grow)."""
+    support, mass = median_bootstrap(sorted_values)
+    cdf = np.cumsum(mass)
+    cdf /= cdf[-1]  # the left-out pairs and rounding: a total of 1 within 1e-15
+    tail = (1.0 - confidence) / 2
+    lo = int(np.searchsorted(cdf, tail - 1e-12, side="left"))
+    hi = int(np.searchsorted(cdf, 1.0 - tail - 1e-12, side="left"))
+    return float(support[lo]), float(support[min(hi, len(support) - 1)])
 
 
 def holm(pvalues):
@@ -46,8 +112,8 @@ def paired(spec, values, baseline):
     A failure (no valid path) is the metric's worst value, infinite (analysis.Analysis.pairs): it
     loses to every value. Returns pairs, wins/ties/losses (better = the metric's direction, ties
     within its band), `failed` and `baseline_failed` (pairs where that side failed), the median
-    difference (values - baseline) with a percentile bootstrap 95 % interval over the pairs where
-    both have a value (`both`), and the two-sided Wilcoxon signed-rank p-value over the pairs that
+    difference (values - baseline) with the percentile bootstrap 95 % interval of the median over
+    the pairs where both have a value (`both`; median_interval: exact, no resampling), and the two-sided Wilcoxon signed-rank p-value over the pairs that
     are not tied (1 when all are), a failure's difference ranked above every finite one (failures
     share the largest rank)."""
     a = np.asarray(values, dtype=float)
@@ -71,11 +137,8 @@ def paired(spec, values, baseline):
     if len(both):
         out["median"] = float(np.median(both))
     if len(both) >= 2 and np.ptp(both) > 0:
-        # Resampled from the sorted differences: the interval is a function of the pairs, not of
-        # the order they were read in (run keys, which change with a planner's version).
-        res = stats.bootstrap((np.sort(both),), np.median, n_resamples=BOOTSTRAP_RESAMPLES, vectorized=True,
-                              method="percentile", random_state=np.random.default_rng(BOOTSTRAP_SEED))
-        out["low"], out["high"] = float(res.confidence_interval.low), float(res.confidence_interval.high)
+        # A function of the sorted differences: not of the order the pairs were read in.
+        out["low"], out["high"] = median_interval(np.sort(both))
     else:
         out["low"] = out["high"] = out["median"]
     untied = diff[~tie]

@@ -373,8 +373,8 @@ def paired_table(a, dataset, metrics, title):
               note="Over the walls where both ran and at least one has a valid run; a run without a valid path loses "
                    "to every value on its wall (failed: such pairs, planner/baseline). Difference = planner - baseline "
                    "over the pairs where both are valid; a win is better in the metric's direction beyond its tie "
-                   "band (docs/metrics.md). Interval: percentile bootstrap of the median (2000 resamples, fixed "
-                   "seed). p: two-sided Wilcoxon signed-rank over the untied pairs, a failure's difference ranked "
+                   "band (docs/metrics.md). Interval: percentile bootstrap of the median, 95 %, from its exact "
+                   "bootstrap distribution (no resampling). p: two-sided Wilcoxon signed-rank over the untied pairs, a failure's difference ranked "
                    "above every other, Holm-adjusted across every comparison in this table; * p < 0.05, "
                    "** p < 0.01, *** p < 0.001.")
     for r in rows:

@@ -49,6 +49,55 @@ class Wilcoxon(unittest.TestCase):
         self.assertEqual((a["low"], a["high"]), (c["low"], c["high"]))
 
 
+class MedianBootstrap(unittest.TestCase):
+    """The bootstrap distribution of the median, computed exactly (no resampling)."""
+
+    def test_three_values_by_hand(self):
+        # n = 3: the median is at or below the smallest value when 2 or 3 of 3 draws land on it:
+        # 3 (1/3)^2 (2/3) + (1/3)^3 = 7/27; by symmetry 7/27 at the largest, 13/27 in the middle.
+        support, mass = stats.median_bootstrap([1.0, 2.0, 3.0])
+        self.assertEqual(list(support), [1.0, 2.0, 3.0])
+        for got, want in zip(mass, [7 / 27, 13 / 27, 7 / 27]):
+            self.assertAlmostEqual(got, want, places=15)
+
+    def test_two_values_by_hand(self):
+        # n = 2: resamples (0,0), (0,1), (1,0), (1,1): medians 0, 0.5, 0.5, 1.
+        support, mass = stats.median_bootstrap([0.0, 1.0])
+        self.assertEqual(list(support), [0.0, 0.5, 1.0])
+        for got, want in zip(mass, [0.25, 0.5, 0.25]):
+            self.assertAlmostEqual(got, want, places=15)
+
+    def test_every_resample_enumerated(self):
+        # All n^n resamples of small samples, ties included, odd and even n.
+        import itertools
+        from collections import Counter
+        for x in ([0.0, 0.0, 1.0, 3.0], [2.0, 2.0, 2.0, 5.0, 7.0], [-1.0, 0.5, 0.5, 4.0, 4.0, 9.0],
+                  [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7]):
+            n = len(x)
+            count = Counter()
+            for draw in itertools.product(x, repeat=n):
+                d = sorted(draw)
+                count[d[n // 2] if n % 2 else (d[n // 2 - 1] + d[n // 2]) / 2] += 1
+            support, mass = stats.median_bootstrap(x)
+            self.assertEqual(list(support), sorted(count))
+            for value, p in zip(support, mass):
+                self.assertAlmostEqual(p, count[value] / n ** n, places=14)
+
+    def test_interval_is_the_distributions_tail_quantiles(self):
+        # With 7/27 > 2.5 % at each end, the 95 % interval of 1, 2, 3 is the whole range.
+        self.assertEqual(stats.median_interval([1.0, 2.0, 3.0]), (1.0, 3.0))
+        # 41 values 0..40: the interval is the first place whose binomial tail reaches 2.5 % and
+        # the last below 97.5 %, by scipy's binomial distribution directly.
+        from scipy.stats import binom
+        x = [float(k) for k in range(41)]
+        cdf = [binom.sf(20, 41, (j + 1) / 41) for j in range(41)]
+        lo = next(j for j in range(41) if cdf[j] >= 0.025)
+        hi = next(j for j in range(41) if cdf[j] >= 0.975)
+        self.assertEqual(stats.median_interval(x), (float(lo), float(hi)))
+        self.assertLess(lo, 20)
+        self.assertGreater(hi, 20)
+
+
 class Friedman(unittest.TestCase):
     def test_identical_rankings_by_hand(self):
         # 4 walls, 3 planners, every wall ranks them 1, 2, 3 (lower is better): rank sums 4, 8, 12,
