@@ -119,41 +119,60 @@ PictureLayers pictureLayers(const Path& path, const std::string& status) {
 
 namespace {
 
-/// Draws every gallery picture into `folder`/gallery, two at a time, with the data that plays its
-/// path back under the experiment's time model, and sets their file names.
-void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::path& folder, const MotionLimits& motion) {
+/// The gallery's pictures with their runs: what the report data says of each (file, size, note,
+/// playback) is known before a picture is drawn, so the analysis can start while they are.
+struct GalleryPlan {
   std::vector<GalleryPicture*> pictures;
+  std::vector<std::string> stems;
+  std::vector<ResultsDb::StoredRun> runs;
+};
+
+/// Reads every gallery picture's run and sets its file names, size and note.
+GalleryPlan planGallery(ResultsDb& db, std::vector<GallerySection>& gallery) {
+  GalleryPlan plan;
   std::vector<std::string> names;
   for (GallerySection& s : gallery)
     for (GalleryWall& w : s.walls)
       for (GalleryPicture& p : w.pictures) {
-        pictures.push_back(&p);
+        plan.pictures.push_back(&p);
         names.push_back(s.title + "__" + w.wall_name + "__" + p.column);
       }
-  const std::vector<std::string> stems = uniqueFileNames(names);
-  std::vector<ResultsDb::StoredRun> runs;
-  runs.reserve(pictures.size());
-  for (GalleryPicture* p : pictures) runs.push_back(db.storedRun(p->key));
+  plan.stems = uniqueFileNames(names);
+  plan.runs.reserve(plan.pictures.size());
+  for (std::size_t i = 0; i < plan.pictures.size(); ++i) {
+    GalleryPicture& p = *plan.pictures[i];
+    const ResultsDb::StoredRun& r = plan.runs.emplace_back(db.storedRun(p.key));
+    const auto [scorable, layer] = pictureLayers(r.path, r.status);
+    if (scorable && !layer)
+      p.note = std::to_string(r.path.waypoints.size()) + " waypoints: coverage layer and failed segments " +
+               "left out (over " + std::to_string(kGalleryCoverageWaypoints) + "; `coverbench redraw` draws them)";
+    const PictureSize size = pictureSize(r.wall, &r.path);
+    p.width = std::llround(size.width);
+    p.height = std::llround(size.height);
+    p.file = "gallery/" + plan.stems[i] + ".svg";
+    if (r.path.segments() > 0) p.playback = "gallery/" + plan.stems[i] + ".js";
+  }
+  return plan;
+}
+
+/// Draws every planned picture into `folder`/gallery, two at a time, with the data that plays its
+/// path back under the experiment's time model.
+void drawGallery(const GalleryPlan& plan, const fs::path& folder, const MotionLimits& motion) {
   fs::create_directories(folder / "gallery");
-  std::vector<std::string> svgs(pictures.size()), scripts(pictures.size());
+  const std::size_t count = plan.runs.size();
+  std::vector<std::string> svgs(count), scripts(count);
   std::atomic<std::size_t> next{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
   auto work = [&] {
-    for (std::size_t i; (i = next++) < runs.size();) {
+    for (std::size_t i; (i = next++) < count;) {
       try {
-        const ResultsDb::StoredRun& r = runs[i];
-        const std::string title = r.wall.name + " / " + pictures[i]->column + "  " + r.status;
-        const auto [scorable, layer] = pictureLayers(r.path, r.status);
-        if (scorable && !layer)
-          pictures[i]->note = std::to_string(r.path.waypoints.size()) + " waypoints: coverage layer and failed segments " +
-                              "left out (over " + std::to_string(kGalleryCoverageWaypoints) + "; `coverbench redraw` draws them)";
-        svgs[i] = pathPicture(r.wall, r.tool, r.vehicle, r.path, title, layer, kGalleryOverlapStrips);
-        const PictureSize size = pictureSize(r.wall, &r.path);
-        pictures[i]->width = std::llround(size.width);
-        pictures[i]->height = std::llround(size.height);
-        if (r.path.segments() > 0)
-          scripts[i] = playbackScript("gallery/" + stems[i] + ".js", r.wall, r.tool, r.vehicle, r.path, motion);
+        const ResultsDb::StoredRun& r = plan.runs[i];
+        const GalleryPicture& p = *plan.pictures[i];
+        const std::string title = r.wall.name + " / " + p.column + "  " + r.status;
+        svgs[i] = pathPicture(r.wall, r.tool, r.vehicle, r.path, title, pictureLayers(r.path, r.status).layer,
+                              kGalleryOverlapStrips);
+        if (!p.playback.empty()) scripts[i] = playbackScript(p.playback, r.wall, r.tool, r.vehicle, r.path, motion);
       } catch (...) {
         std::lock_guard<std::mutex> lock(failure_mutex);
         failure = std::current_exception();
@@ -171,12 +190,9 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
     out.flush();  // a full disk shows here, with its reason in errno
     if (!out) throw InputError((folder / file).string(), "gallery", std::string("cannot be written: ") + std::strerror(errno));
   };
-  for (std::size_t i = 0; i < pictures.size(); ++i) {
-    pictures[i]->file = "gallery/" + stems[i] + ".svg";
-    write(pictures[i]->file, svgs[i]);
-    if (scripts[i].empty()) continue;
-    pictures[i]->playback = "gallery/" + stems[i] + ".js";
-    write(pictures[i]->playback, scripts[i]);
+  for (std::size_t i = 0; i < count; ++i) {
+    write(plan.pictures[i]->file, svgs[i]);
+    if (!scripts[i].empty()) write(plan.pictures[i]->playback, scripts[i]);
   }
 }
 
@@ -214,7 +230,16 @@ std::optional<PublishedTable> loadPublished(const ReportOptions& o, const Experi
 
 }  // namespace
 
-void runAnalysis(const std::string& data, const std::string& folder, const std::string& formats) {
+namespace {
+
+/// The analysis running beside the command (startAnalysis), waited for by finishAnalysis.
+struct AnalysisProcess {
+  pid_t pid = -1;
+  std::string python;
+  std::string folder;
+};
+
+AnalysisProcess startAnalysis(const std::string& data, const std::string& folder, const std::string& formats) {
   const std::string python = envOr("COVERBENCH_PYTHON", "/usr/bin/python3");
   const std::string pythonpath = envOr("COVERBENCH_REPORT_PYTHONPATH", COVERBENCH_REPORT_PYTHONPATH);
   // No __pycache__ in the source tree (PYTHONDONTWRITEBYTECODE), whatever the caller's environment.
@@ -248,11 +273,27 @@ void runAnalysis(const std::string& data, const std::string& folder, const std::
     ::execve(python.c_str(), argv.data(), env.data());
     ::_exit(127);  // exec failed
   }
+  return {pid, python, folder};
+}
+
+int waitFor(pid_t pid) {
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
+  return status;
+}
+
+/// Stops an analysis that is no longer wanted (the gallery failed): nothing of it is kept.
+void stopAnalysis(const AnalysisProcess& a) {
+  ::kill(a.pid, SIGKILL);
+  waitFor(a.pid);
+}
+
+void finishAnalysis(const AnalysisProcess& a) {
+  const std::string& python = a.python;
+  const int status = waitFor(a.pid);
   std::error_code ec;
-  fs::remove_all(fs::path(folder) / ".matplotlib", ec);
+  fs::remove_all(fs::path(a.folder) / ".matplotlib", ec);
   if (WIFEXITED(status) && WEXITSTATUS(status) == 127 && ::access(python.c_str(), X_OK) != 0)
     throw InputError(python, "report", "cannot start the analysis (" + std::string(std::strerror(errno)) +
                                            "): it needs python3 with matplotlib and scipy (Debian: python3-matplotlib "
@@ -263,6 +304,12 @@ void runAnalysis(const std::string& data, const std::string& folder, const std::
                              (WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
                                                 : "signal " + std::to_string(WTERMSIG(status))) +
                              "; its message is above");
+}
+
+}  // namespace
+
+void runAnalysis(const std::string& data, const std::string& folder, const std::string& formats) {
+  finishAnalysis(startAnalysis(data, folder, formats));
 }
 
 std::string writeReport(const ReportOptions& o) {
@@ -277,7 +324,7 @@ std::string writeReport(const ReportOptions& o) {
     if (std::find(datasets.begin(), datasets.end(), d.label) == datasets.end()) datasets.push_back(d.label);
   std::vector<GallerySection> gallery = selectGallery(results, datasets);
   Staging staging(target);
-  drawGallery(db, gallery, staging.path(), configMotion(record.config_text, record.config_path));
+  const GalleryPlan plan = planGallery(db, gallery);
   const fs::path data = staging.path() / "report_data.json";
   {
     std::ofstream out(data, std::ios::binary);
@@ -285,7 +332,15 @@ std::string writeReport(const ReportOptions& o) {
     out.flush();
     if (!out) throw InputError(data.string(), "report", std::string("cannot be written: ") + std::strerror(errno));
   }
-  runAnalysis(data.string(), staging.path().string(), "html,md,csv,latex");
+  // The pictures are drawn while the analysis runs: it needs only what the plan put in the data.
+  const AnalysisProcess analysis = startAnalysis(data.string(), staging.path().string(), "html,md,csv,latex");
+  try {
+    drawGallery(plan, staging.path(), configMotion(record.config_text, record.config_path));
+  } catch (...) {
+    stopAnalysis(analysis);
+    throw;
+  }
+  finishAnalysis(analysis);
   staging.publish(target);
   return (target / "index.html").string();
 }
