@@ -255,6 +255,38 @@ Region reachableRegion(const Wall& wall, const ToolParams& tool, double arc_tole
   return reachableRegion(grownFreeRegion(wall, tool, arc_tolerance));
 }
 
+namespace {
+
+bool sameShape(const Wall& a, const Wall& b) {
+  if (a.boundary != b.boundary || a.obstacles.size() != b.obstacles.size()) return false;
+  for (std::size_t k = 0; k < a.obstacles.size(); ++k) {
+    const Obstacle &x = a.obstacles[k], &y = b.obstacles[k];
+    if (x.type != y.type || x.polygon != y.polygon || !(x.center == y.center) || x.radius != y.radius) return false;
+  }
+  return true;
+}
+
+/// regionAreas of the last two walls scored on this thread: an experiment scores every planner's
+/// path on a wall in turn (two workers share a wall's runs), and R's and P's areas depend only on
+/// the wall's shape, r and c. The same values as computing them again, bit for bit.
+RegionAreas recentRegionAreas(const Wall& wall, const ToolParams& tool) {
+  struct Entry {
+    Wall wall;
+    double width = 0.0, clearance = 0.0;
+    RegionAreas areas;
+  };
+  thread_local std::vector<Entry> recent;
+  for (const Entry& e : recent)
+    if (e.width == tool.tool_width && e.clearance == tool.clearance && sameShape(e.wall, wall)) return e.areas;
+  Entry e{wall, tool.tool_width, tool.clearance, regionAreas(wall, tool)};
+  e.wall.name.clear();
+  if (recent.size() == 2) recent.erase(recent.begin());
+  recent.push_back(std::move(e));
+  return recent.back().areas;
+}
+
+}  // namespace
+
 CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const Path& path) {
   CoverageRegions g;
   g.reachable = reachableRegion(grownFreeRegion(wall, tool));
@@ -280,7 +312,7 @@ Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path, co
   // Every segment keeps its tool disk inside the wall and c away from the obstacles (to 1e-9 m), so
   // S lies in R and in P: both intersections are S itself, whose area is exact.
   Coverage c;
-  const RegionAreas areas = regionAreas(wall, tool);
+  const RegionAreas areas = recentRegionAreas(wall, tool);
   c.reachable_area = areas.reachable;
   c.paintable_area = areas.paintable;
   c.swept_area = swept_area;
