@@ -1,0 +1,94 @@
+// The tool's flux profile in the results database and in `coverbench runs` (docs/deposition.md):
+// stored for the runs that have one, listed beside the tool; runs without one, and databases made
+// before the profile was stored, read and list as they did.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "coverbench/results_db.hpp"
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ProfileRuns : public test::CommandTest {
+ protected:
+  /// Runs zigzag on one 2 x 1 m wall with the config's `tool:` section; the results database.
+  std::string experiment(const std::string& name, const std::string& tool) {
+    fs::create_directories(dir_ / "walls");
+    std::ofstream(dir_ / "walls" / "a.json") << R"({"name": "a", "width": 2, "height": 1})";
+    const std::string config =
+        write(name + ".yaml", "name: " + name + "\noutput: " + name + "\ndatasets:\n  - folder: walls\nplanners: [zigzag]\n" + tool);
+    const test::CommandRun r = run("run " + config + " --no-report");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return (dir_ / name / "results.sqlite").string();
+  }
+  /// `coverbench runs DB FLAGS`'s output.
+  std::string runs(const std::string& db, const std::string& flags) {
+    std::string out;
+    const test::CommandRun r = run("runs " + db + " " + flags, &out);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return out;
+  }
+  /// The listing, the CSV and the JSON.
+  std::string all(const std::string& db) { return runs(db, "--list") + runs(db, "") + runs(db, "--format json"); }
+};
+
+TEST(FluxProfileLabel, NamesTheKindItsValueAndWhatIsNotTheDefault) {
+  FluxProfile p;
+  EXPECT_EQ(p.label(), "");
+  p.kind = FluxProfile::Kind::Uniform;
+  EXPECT_EQ(p.label(), "uniform");
+  p.kind = FluxProfile::Kind::Beta;
+  p.beta = 2.5;
+  EXPECT_EQ(p.label(), "beta 2.5");
+  p.kind = FluxProfile::Kind::Gaussian;
+  p.sigma = 0.02;
+  p.rate = 2e-6;
+  p.depth = 0.05;
+  EXPECT_EQ(p.label(), "gaussian 0.02 m, 2e-06 m3/s, fan depth 0.05 m");
+}
+
+TEST_F(ProfileRuns, ARunWithAProfileIsStoredAndListedWithIt) {
+  const std::string db = experiment("coat", "tool:\n  width: [0.2, 0.3]\n  profile: {kind: beta, beta: 2.5, rate: 2e-6}\n");
+  const ResultSet rs = ResultsDb(db, ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(rs.runs.size(), 2u);
+  for (const ResultRow& r : rs.runs) {
+    EXPECT_EQ(r.tool.profile.kind, FluxProfile::Kind::Beta);
+    EXPECT_EQ((std::vector<double>{r.tool.profile.beta, r.tool.profile.rate, r.tool.profile.depth}),
+              (std::vector<double>{2.5, 2e-6, 0.0}));
+    EXPECT_TRUE(r.metrics.count("thickness_cv")) << r.key;
+  }
+  const std::string list = runs(db, "--list");
+  EXPECT_NE(list.find("  zigzag  s=0.2 m, c=0.02 m, beta 2.5, 2e-06 m3/s  default/a\n"), std::string::npos) << list;
+  EXPECT_NE(list.find("  zigzag  s=0.3 m, c=0.02 m, beta 2.5, 2e-06 m3/s  default/a\n"), std::string::npos) << list;
+  const std::string csv = runs(db, "");
+  EXPECT_EQ(csv.rfind("key,dataset,wall,wall_hash,planner,params,planner_version,tool_width,clearance,profile,", 0), 0u) << csv;
+  EXPECT_NE(csv.find(",0.3,0.02,\"beta 2.5, 2e-06 m3/s\","), std::string::npos) << csv;
+  const nlohmann::json json = nlohmann::json::parse(runs(db, "--format json"));
+  ASSERT_EQ(json.size(), 2u);
+  EXPECT_EQ(json[0]["profile"], "beta 2.5, 2e-06 m3/s");
+}
+
+TEST_F(ProfileRuns, RunsWithoutAProfileAndDatabasesFromBeforeItListAsBefore) {
+  const std::string plain = experiment("plain", "");
+  const std::string before = all(plain);
+  EXPECT_EQ(before.find("profile"), std::string::npos);
+  EXPECT_EQ(test::sqlRows(plain, "SELECT COUNT(*) FROM run_profile"), "0\n");
+  // A database made before run_profile (the table dropped: the only difference): the same bytes.
+  test::sqlRows(plain, "DROP TABLE run_profile");
+  EXPECT_EQ(all(plain), before);
+  // Runs of a profile in such a database read as disk tools without one.
+  const std::string coat = experiment("coat", "tool:\n  profile: {kind: uniform}\n");
+  EXPECT_NE(runs(coat, "--list").find("c=0.02 m, uniform  "), std::string::npos);
+  test::sqlRows(coat, "DROP TABLE run_profile");
+  for (const ResultRow& r : ResultsDb(coat, ResultsDb::Mode::ReadOnly).load().runs) EXPECT_FALSE(r.tool.profile.set());
+  EXPECT_EQ(runs(coat, "--list").find("uniform"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace coverbench
