@@ -34,10 +34,10 @@ class Profile(unittest.TestCase):
             self.assertAlmostEqual(m["even_share"] + m["thin_share"] + m["thick_share"], 1.0, places=12)
         self.assertEqual(short["reachable_area"], long["reachable_area"])
         cruise_um = (long["thickness_mean"] - short["thickness_mean"]) * long["reachable_area"] / (s * 1.0)
-        self.assertAlmostEqual(cruise_um / (q / (s * v) * 1e6), 1.0, delta=1e-3)  # 16.667 µm
+        self.assertAlmostEqual(cruise_um / (q / (s * v) * 1e6), 1.0, delta=1e-4)  # 16.667 µm (measured 1.1e-5 off)
         # Everything else is conserved too: the mean is Q times the driving time over R's area.
         self.assertAlmostEqual(long["thickness_mean"] / (q * long["duration_s"] / long["reachable_area"] * 1e6), 1.0,
-                               delta=2e-3)
+                               delta=1e-4)
         # Twice the rate, twice the coat; the shares are of the mean and do not change.
         double = coverbench.score(STRIP, [[0.5, 0.5], [2.5, 0.5]], [True], tool_width=s,
                                   profile={"kind": "uniform", "rate": 2e-6})

@@ -64,8 +64,8 @@ TEST_F(ProfileRuns, ARunWithAProfileIsStoredAndListedWithIt) {
     EXPECT_TRUE(r.metrics.count("thickness_cv")) << r.key;
   }
   const std::string list = runs(db, "--list");
-  EXPECT_NE(list.find("  zigzag  s=0.2 m, c=0.02 m, beta 2.5, 2e-06 m3/s  default/a\n"), std::string::npos) << list;
-  EXPECT_NE(list.find("  zigzag  s=0.3 m, c=0.02 m, beta 2.5, 2e-06 m3/s  default/a\n"), std::string::npos) << list;
+  EXPECT_NE(list.find("  zigzag  s=0.2 m, c=0.02 m, beta 2.5, 2e-06 m3/s  walls/a\n"), std::string::npos) << list;
+  EXPECT_NE(list.find("  zigzag  s=0.3 m, c=0.02 m, beta 2.5, 2e-06 m3/s  walls/a\n"), std::string::npos) << list;
   const std::string csv = runs(db, "");
   EXPECT_EQ(csv.rfind("key,dataset,wall,wall_hash,planner,params,planner_version,tool_width,clearance,profile,", 0), 0u) << csv;
   EXPECT_NE(csv.find(",0.3,0.02,\"beta 2.5, 2e-06 m3/s\","), std::string::npos) << csv;

@@ -47,6 +47,16 @@ class Protocol2 : public test::CommandTest {
                                      R"(", "version": "1", "summary": "s", "reference": "r", "command": ["/usr/bin/python3", ")" +
                                      file + R"("], "files": [")" + file + R"("]})");
   }
+  /// A request line with its time limit (the time left when it was sent: it differs between runs)
+  /// replaced by "T"; every other byte as sent.
+  std::string request(const std::string& file) {
+    const std::string line = slurp((dir_ / file).string());
+    const std::string key = "\"time_limit_s\":";
+    const std::size_t at = line.find(key);
+    if (at == std::string::npos) return line;
+    const std::size_t end = line.find_first_of(",}", at);
+    return line.substr(0, at + key.size()) + "T" + line.substr(end);
+  }
   /// `coverbench plan` with `planner` and `options`; the plan file's reason (the planner answers error).
   std::string reason(const std::string& planner, const std::string& options) {
     const std::string wall = std::string(COVERBENCH_SOURCE_DIR) + "/datasets/canonical/living_room_north.json";
@@ -72,12 +82,13 @@ TEST_F(Protocol2, AVersion2PlannerReceivesTheToolsShapeAndProfile) {
 TEST_F(Protocol2, AVersion1PlannersRequestIsTheSameBytesWithAProfile) {
   const std::string v1 = manifest("v1", 1, "record.py", kRecorder);
   EXPECT_EQ(reason(v1, ""), R"({"clearance": 0.02, "width": 0.1})");
-  const std::string plain = slurp((dir_ / "request.1.json").string());
+  const std::string plain = request("request.1.json");
   EXPECT_EQ(reason(v1, "--profile beta --beta 2.5"), R"({"clearance": 0.02, "width": 0.1})");
-  const std::string profiled = slurp((dir_ / "request.1.json").string());
+  const std::string profiled = request("request.1.json");
   EXPECT_EQ(profiled, plain);
   EXPECT_EQ(plain.rfind(R"({"id":1,"problem":{)", 0), 0u) << plain;
   EXPECT_NE(plain.find(R"("protocol":1})"), std::string::npos) << plain;
+  EXPECT_NE(plain.find(R"("time_limit_s":T,)"), std::string::npos) << plain;
   EXPECT_NE(plain.find(R"("tool":{"clearance":0.02,"width":0.1})"), std::string::npos) << plain;
   // The same planner as version 2: the request says 2 and carries the shape and the profile.
   const std::string v2 = manifest("v2", 2, "record.py", kRecorder);
