@@ -90,5 +90,32 @@ TEST_F(ProfileRuns, RunsWithoutAProfileAndDatabasesFromBeforeItListAsBefore) {
   EXPECT_EQ(runs(coat, "--list").find("uniform"), std::string::npos);
 }
 
+// tests/data/pre_profile: a database written by the build before run_profile (commit 42adf54), and
+// what that build's `coverbench runs` printed for it.
+TEST_F(ProfileRuns, ADatabaseFromBeforeRunProfileListsAsItsBuildListedIt) {
+  const fs::path fixture = test::sourcePath("tests/data/pre_profile");
+  const std::string db = (dir_ / "results.sqlite").string();
+  fs::copy_file(fixture / "results.sqlite", db);  // opening it makes -wal and -shm files beside it
+  EXPECT_EQ(test::sqlRows(db, "SELECT COUNT(*) FROM sqlite_master WHERE name = 'run_profile'"), "0\n");
+  auto same = [&](const std::string& when) {
+    for (const char* e : {"1", "2"}) {
+      const std::string golden = (fixture / "runs.").string() + e;
+      EXPECT_EQ(runs(db, std::string("--experiment ") + e + " --list"), slurp(golden + ".list")) << when << e;
+      EXPECT_EQ(runs(db, std::string("--experiment ") + e), slurp(golden + ".csv")) << when << e;
+      EXPECT_EQ(runs(db, std::string("--experiment ") + e + " --format json"), slurp(golden + ".json")) << when << e;
+    }
+  };
+  same("read only: ");
+  // Its runs are disk tools without a profile, also the one run with a profile then (experiment 2).
+  const ResultSet coat = ResultsDb(db, ResultsDb::Mode::ReadOnly).load(2);
+  ASSERT_EQ(coat.runs.size(), 1u);
+  EXPECT_FALSE(coat.runs[0].tool.profile.set());
+  EXPECT_TRUE(coat.runs[0].metrics.count("thickness_cv"));
+  // Opened to write, it gains the (empty) table, and still lists the same.
+  { ResultsDb writable(db, ResultsDb::Mode::ReadWrite); }
+  EXPECT_EQ(test::sqlRows(db, "SELECT COUNT(*) FROM run_profile"), "0\n");
+  same("after opening to write: ");
+}
+
 }  // namespace
 }  // namespace coverbench
