@@ -69,6 +69,20 @@ class Profile(unittest.TestCase):
         self.assertNotEqual(len(ours["tool_on"]), len(coverbench.plan(WALL, "boustrophedon", tool_width=0.3)["tool_on"]))
         self.assertFalse(set(COAT) & set(coverbench.plan(WALL, "zigzag")))
 
+    def test_runs_carry_the_tools_profile(self):
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, "c.yaml"), "w", encoding="utf-8") as f:
+                f.write("name: py\noutput: out\ndatasets:\n  - suite: seed-cases\nplanners: [zigzag]\n"
+                        "tool:\n  width: 0.3\n  profile: {kind: gaussian, sigma: 0.02}\n")
+            subprocess.run([BINARY, "run", os.path.join(d, "c.yaml"), "--no-report"], capture_output=True, check=True)
+            rows = coverbench.runs(os.path.join(d, "out", "results.sqlite"))
+        self.assertTrue(rows)
+        for r in rows:
+            self.assertEqual(r["profile"], "gaussian 0.02 m")
+            self.assertEqual(list(r)[9], "profile")  # after tool_width and clearance
+            if r["status"] == "ok":
+                self.assertGreater(r["thickness_mean"], 0.0)
+
     def cli_problem(self, *flags):
         r = subprocess.run([BINARY, "metrics", "--wall", WALL, "--plan", self.plan_file, *flags],
                            capture_output=True, text=True)

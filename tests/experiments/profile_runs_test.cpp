@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -88,6 +89,31 @@ TEST_F(ProfileRuns, RunsWithoutAProfileAndDatabasesFromBeforeItListAsBefore) {
   test::sqlRows(coat, "DROP TABLE run_profile");
   for (const ResultRow& r : ResultsDb(coat, ResultsDb::Mode::ReadOnly).load().runs) EXPECT_FALSE(r.tool.profile.set());
   EXPECT_EQ(runs(coat, "--list").find("uniform"), std::string::npos);
+}
+
+// Shards merge with their runs' profiles; a shard made before run_profile merges as disk tools.
+TEST_F(ProfileRuns, ShardsMergeWithTheirProfiles) {
+  experiment("coat", "");  // the wall
+  const std::string config = write("shard.yaml", "name: shard\noutput: shard\ndatasets:\n  - folder: walls\n"
+                                                 "planners: [zigzag, spiral]\ntool:\n  width: [0.2, 0.3]\n  profile: {kind: beta, beta: 3}\n");
+  for (const char* shard : {"0/2", "1/2"}) ASSERT_EQ(run("run " + config + " --shard " + shard).exit_code, 0) << shard;
+  const std::string shards = (dir_ / "shard" / "shards").string(), merged = (dir_ / "merged.sqlite").string();
+  ASSERT_EQ(run("merge " + merged + " " + shards + "/shard-0-of-2.sqlite " + shards + "/shard-1-of-2.sqlite").exit_code, 0);
+  const std::string list = runs(merged, "--list");
+  EXPECT_EQ(std::count(list.begin(), list.end(), '\n'), 4) << list;
+  EXPECT_EQ(test::sqlRows(merged, "SELECT DISTINCT kind, beta, rate, depth FROM run_profile"), "beta|3.0|1.0e-06|0.0\n");
+  EXPECT_EQ(test::sqlRows(merged, "SELECT COUNT(*) FROM run_profile"), "4\n");
+  EXPECT_EQ(std::count(list.begin(), list.end(), ','), 8) << list;  // "s=.., c=.., beta 3" on each
+  EXPECT_NE(list.find("c=0.02 m, beta 3  "), std::string::npos) << list;
+  // Shard 0 holds some of the runs, shard 1 the others; without shard 1's table only shard 0's keep it.
+  const std::string first = test::sqlRows(shards + "/shard-0-of-2.sqlite", "SELECT COUNT(*) FROM run_profile");
+  EXPECT_NE(first, "0\n");
+  EXPECT_NE(first, "4\n");
+  test::sqlRows(shards + "/shard-1-of-2.sqlite", "DROP TABLE run_profile");
+  const std::string again = (dir_ / "again.sqlite").string();
+  ASSERT_EQ(run("merge " + again + " " + shards + "/shard-0-of-2.sqlite " + shards + "/shard-1-of-2.sqlite").exit_code, 0);
+  EXPECT_EQ(test::sqlRows(again, "SELECT COUNT(*) FROM run_profile"), first);
+  EXPECT_EQ(test::sqlRows(again, "SELECT COUNT(*) FROM runs"), "4\n");
 }
 
 // tests/data/pre_profile: a database written by the build before run_profile (commit 42adf54), and
