@@ -184,26 +184,6 @@ Point pointOption(const std::string& text, const std::string& flag) {
 
 }  // namespace
 
-FluxProfile fluxProfileOf(const ProfileOptions& options, double s) {
-  FluxProfile profile;
-  if (!parseFluxProfileKind(options.profile, profile.kind))
-    throw InputError("--profile", "profile", "must be none, uniform, gaussian or beta, got '" + options.profile + "'");
-  const bool gaussian = profile.kind == FluxProfile::Kind::Gaussian, beta = profile.kind == FluxProfile::Kind::Beta;
-  // As a config reads tool.profile: each value belongs to its profile, and none goes unused.
-  if (!profile.set() && (options.sigma || options.beta || options.rate || options.fan_depth))
-    throw InputError("--profile", "profile", "--sigma, --beta, --rate and --fan-depth need --profile");
-  if (options.sigma && !gaussian) throw InputError("--sigma", "sigma", "belongs to --profile gaussian");
-  if (options.beta && !beta) throw InputError("--beta", "beta", "belongs to --profile beta");
-  if (gaussian && !options.sigma) throw InputError("--sigma", "sigma", "is missing: a gaussian profile's standard deviation, m");
-  if (beta && !options.beta) throw InputError("--beta", "beta", "is missing: a beta profile's exponent");
-  if (options.sigma) profile.sigma = *options.sigma;
-  if (options.beta) profile.beta = *options.beta;
-  if (options.rate) profile.rate = *options.rate;
-  if (options.fan_depth) profile.depth = *options.fan_depth;
-  if (profile.set()) profile.check(s, "command line");
-  return profile;
-}
-
 int planCommand(const PlanOptions& options) {
   validateTool(options.tool, "command line");
   validateTimeLimit(options.time_limit_s, "--time-limit", "time_limit");

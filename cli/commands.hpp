@@ -24,16 +24,6 @@ struct VehicleOptions {
   bool reverse = false;               ///< car: --reverse
 };
 
-/// The tool's flux profile on the command line (flux_profile.hpp): "none", uniform, gaussian
-/// (with sigma) or beta (with beta); rate Q in m^3/s, the fan's depth in m (0: s / 10).
-struct ProfileOptions {
-  std::string profile = "none";
-  std::optional<double> sigma, beta, rate, fan_depth;  ///< unset: the profile's default (rate 1e-6 m3/s, depth s/10)
-};
-/// The profile the options describe for a tool of width s; InputError (source "--profile" or
-/// "command line") for a value out of range or --sigma/--beta without their profile.
-FluxProfile fluxProfileOf(const ProfileOptions& options, double s);
-
 struct PlanOptions {
   std::string wall, planner, out, svg;
   ToolParams tool;

@@ -82,7 +82,7 @@ struct Commands {
 };
 
 /// --profile, --sigma, --beta, --rate and --fan-depth: the tool's flux profile (docs/deposition.md).
-void addProfileOptions(CLI::App* command, cli::ProfileOptions& coat, const std::string& what) {
+void addProfileOptions(CLI::App* command, coverbench::ProfileOptions& coat, const std::string& what) {
   command->add_option("--profile", coat.profile,
                       "the tool's flux profile across its width, " + what + " (docs/deposition.md): "
                       "none, uniform, gaussian (--sigma) or beta (--beta)")

@@ -131,6 +131,8 @@ class Reader {
       used = 0;
     }
     if (used != t.size() || t.empty() || !std::isfinite(v)) fail(n, field, "must be a number, got '" + t + "'");
+    // std::stod also reads hexadecimal ("0x10" as 16), which a config does not mean.
+    if (t.find_first_of("xX") != std::string::npos) fail(n, field, "must be a decimal number, got '" + t + "'");
     if (v < lo || v > hi || (open_lo && v == lo) || (open_hi && v == hi))
       fail(n, field, "must be in " + std::string(open_lo ? "(" : "[") + shortNumber(lo) + ", " + shortNumber(hi) + (open_hi ? ")" : "]") +
                          ", got " + t);
@@ -732,6 +734,12 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   c.text = readFile(path);
   c.hash = sha256Hex(c.text);
   Reader r(path);
+  // A byte that is not UTF-8 is named by its own line (yaml-cpp would read past it).
+  for (std::size_t start = 0, line = 1; start < c.text.size(); ++line) {
+    const std::size_t end = std::min(c.text.find('\n', start), c.text.size());
+    if (!isValidUtf8(c.text.substr(start, end - start))) r.fail(static_cast<int>(line), "(document)", "is not valid UTF-8 text");
+    start = end + 1;
+  }
   requireText(c.text, path + ":1");
   Yaml doc;
   try {

@@ -31,7 +31,10 @@ namespace {
 /// run's lifted moves as transits); replans and replan_figures (docs/replanning.md: a run's
 /// repairs after surprise obstacles, only for experiments with replanning; an older build ignores
 /// them and still reads every run correctly); run_car (a car's turn radius and reversing, beside
-/// its run_options row; an older build would read such a run as a holonomic one with arcs). Run
+/// its run_options row; an older build would read such a run as a holonomic one with arcs);
+/// run_profile (the tool's flux profile of each run that has one, docs/deposition.md: an older
+/// build lists such a run without it; a database without the table reads as disk tools without
+/// a profile). Run
 /// fields added since (stderr_tail) are columns added to an older database when it is written
 /// (addMissingRunColumns; its runs read as empty) and read as empty where a database opened
 /// read-only lacks them; an older build ignores them.
@@ -84,6 +87,9 @@ CREATE TABLE IF NOT EXISTS run_options (
   transit TEXT NOT NULL, transit_iterations INTEGER NOT NULL);
 CREATE TABLE IF NOT EXISTS run_car (
   run_key TEXT PRIMARY KEY, turn_radius REAL NOT NULL, reverse INTEGER NOT NULL);
+CREATE TABLE IF NOT EXISTS run_profile (
+  run_key TEXT PRIMARY KEY, kind TEXT NOT NULL, sigma REAL NOT NULL, beta REAL NOT NULL, rate REAL NOT NULL,
+  depth REAL NOT NULL);
 CREATE TABLE IF NOT EXISTS replans (
   run_key TEXT NOT NULL, position INTEGER NOT NULL, fraction REAL NOT NULL, repair TEXT NOT NULL,
   obstacles INTEGER NOT NULL, requested INTEGER NOT NULL, obstacles_json TEXT NOT NULL, status TEXT NOT NULL,

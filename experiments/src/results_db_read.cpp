@@ -39,6 +39,29 @@ void storedOptions(const Statement& s, int i, VehicleModel& vehicle, TransitSpec
   }
 }
 
+/// The tool's flux profile (run_profile) a LEFT JOIN selects (alias pr), in the order storedProfile
+/// reads; NULLs from a database made before the table (its runs: no profile).
+constexpr const char* kProfileColumns = "pr.kind, pr.sigma, pr.beta, pr.rate, pr.depth";
+constexpr const char* kNoProfileColumns = "NULL, NULL, NULL, NULL, NULL";
+/// The profile in columns i .. i + 4: none when the run has no row in run_profile.
+FluxProfile storedProfile(const Statement& s, int i) {
+  FluxProfile p;
+  if (s.columnNull(i)) return p;
+  if (!parseFluxProfileKind(s.columnText(i), p.kind) || !p.set()) throw std::runtime_error("run_profile: unknown kind " + s.columnText(i));
+  p.sigma = s.columnReal(i + 1);
+  p.beta = s.columnReal(i + 2);
+  p.rate = s.columnReal(i + 3);
+  p.depth = s.columnReal(i + 4);
+  return p;
+}
+
+/// Whether the database has the table `name` (one opened read-only may predate it).
+bool hasTable(sqlite3* db, const std::string& file, const std::string& name) {
+  Statement t(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?", file);
+  t.text(1, name);
+  return t.step();
+}
+
 /// A byte count in GiB, with one decimal ("1.5 GiB").
 std::string gibibytes(double bytes) {
   char buf[32];
@@ -102,13 +125,17 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   }
   std::map<std::string, std::size_t> index;
   {
-    // The context (columns 0 .. 7), the options (8 .. 14), then the run's fields (15 ..).
+    // The context (columns 0 .. 7), the options (8 .. 14), the profile (15 .. 19), then the run's
+    // fields (20 ..).
+    const bool profiles = hasTable(db_, file_, "run_profile");
     Statement s(db_,
                 "SELECT r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.seed, ws.name, r.planner_version, " +
-                    std::string(kOptionColumns) + ", " + runFieldSelect("r") + " FROM runs r "
+                    std::string(kOptionColumns) + ", " + (profiles ? kProfileColumns : kNoProfileColumns) + ", " +
+                    runFieldSelect("r") + " FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
                 "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 "
-                "JOIN walls ws ON ws.hash = r.wall_hash" + std::string(kOptionJoins) + "ORDER BY r.key",
+                "JOIN walls ws ON ws.hash = r.wall_hash" + std::string(kOptionJoins) +
+                    (profiles ? "LEFT JOIN run_profile pr ON pr.run_key = r.key " : "") + "ORDER BY r.key",
                 file_);
     s.integer(1, id);
     while (s.step()) {
@@ -124,9 +151,9 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
       row.config = row.planner;
       row.wall_name = s.columnText(6);
       row.planner_version = s.columnText(7);
-      row.tool = ToolParams{s.columnReal(3), s.columnReal(4)};
+      row.tool = ToolParams{s.columnReal(3), s.columnReal(4), storedProfile(s, 15)};
       storedOptions(s, 8, row.vehicle, row.transit);
-      int i = 15;
+      int i = 20;
       forEachRunField(static_cast<RunFields&>(row), [&](const RunField& f, auto& value) { readField(s, i++, file_, f, value); });
       // The measured fields the metric registry lists are the tables' metrics too.
       row.metrics["plan_time_ms"] = row.plan_time_ms;

@@ -91,7 +91,7 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
   try {
     // A retried run replaces everything stored under its key.
     for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options",
-                              "run_car", "replans", "replan_figures"}) {
+                              "run_car", "run_profile", "replans", "replan_figures"}) {
       Statement d(db_, std::string("DELETE FROM ") + table + " WHERE run_key = ?", file_);
       d.text(1, rec.key).run();
     }
@@ -117,6 +117,10 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
     if (spec.vehicle.isCar()) {
       Statement car(db_, "INSERT INTO run_car (run_key, turn_radius, reverse) VALUES (?,?,?)", file_);
       car.text(1, rec.key).real(2, spec.vehicle.turn_radius).integer(3, spec.vehicle.reverse ? 1 : 0).run();
+    }
+    if (const FluxProfile& p = spec.tool.profile; p.set()) {
+      Statement profile(db_, "INSERT INTO run_profile (run_key, kind, sigma, beta, rate, depth) VALUES (?,?,?,?,?,?)", file_);
+      profile.text(1, rec.key).text(2, toString(p.kind)).real(3, p.sigma).real(4, p.beta).real(5, p.rate).real(6, p.depth).run();
     }
     if (!rec.replans.empty()) {
       Statement rr(db_,

@@ -58,6 +58,16 @@ std::string FluxProfile::describe(double s) const {
   return out + ", " + shortNumber(rate) + " m3/s, fan depth " + shortNumber(depthFor(s)) + " m";
 }
 
+std::string FluxProfile::label() const {
+  if (!set()) return "";
+  std::string out = toString(kind);
+  if (kind == Kind::Gaussian) out += " " + shortNumber(sigma) + " m";
+  if (kind == Kind::Beta) out += " " + shortNumber(beta);
+  if (rate != FluxProfile{}.rate) out += ", " + shortNumber(rate) + " m3/s";
+  if (depth != 0.0) out += ", fan depth " + shortNumber(depth) + " m";
+  return out;
+}
+
 void FluxProfile::check(double s, const std::string& source) const {
   if (kind == Kind::Gaussian && !(sigma >= s / 50.0 && sigma <= 100.0))
     throw InputError(source, "sigma", "must be in [s/50, 100] m (s/50 = " + shortNumber(s / 50.0) + " m), got " + shortNumber(sigma));
@@ -66,6 +76,45 @@ void FluxProfile::check(double s, const std::string& source) const {
   if (!(rate > 0.0 && rate <= 1.0)) throw InputError(source, "rate", "must be in (0, 1] m3/s, got " + shortNumber(rate));
   if (!(depth >= 0.0 && depth <= s))
     throw InputError(source, "depth", "must be in [0, s] m (0: s/10; s = " + shortNumber(s) + " m), got " + shortNumber(depth));
+}
+
+namespace {
+/// A name from input as a message quotes it: bytes outside printable ASCII (control bytes, bytes
+/// that may not be UTF-8) as \xHH, so the message is one line of valid text whatever was given.
+std::string shown(const std::string& name) {
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  for (const char ch : name) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c >= 0x7f) out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
+    else out += ch;
+  }
+  return out;
+}
+}  // namespace
+
+FluxProfile fluxProfileOf(const ProfileOptions& options, double s, const ProfileSpelling& spelling) {
+  const ProfileSpelling& n = spelling;
+  auto source = [&](const std::string& name) { return n.source.empty() ? name : n.source; };
+  const std::string kind_field = n.source.empty() ? "profile" : "kind";
+  FluxProfile profile;
+  if (!parseFluxProfileKind(options.profile, profile.kind))
+    throw InputError(source(n.kind), kind_field,
+                     "must be none, uniform, gaussian or beta, got '" + shown(options.profile) + "'");
+  const bool gaussian = profile.kind == FluxProfile::Kind::Gaussian, beta = profile.kind == FluxProfile::Kind::Beta;
+  // As a config reads tool.profile: each value belongs to its profile, and none goes unused.
+  if (!profile.set() && (options.sigma || options.beta || options.rate || options.fan_depth))
+    throw InputError(source(n.kind), kind_field, n.sigma + ", " + n.beta + ", " + n.rate + " and " + n.depth + " need " + n.kind);
+  if (options.sigma && !gaussian) throw InputError(source(n.sigma), "sigma", "belongs to " + n.kind + " gaussian");
+  if (options.beta && !beta) throw InputError(source(n.beta), "beta", "belongs to " + n.kind + " beta");
+  if (gaussian && !options.sigma) throw InputError(source(n.sigma), "sigma", "is missing: a gaussian profile's standard deviation, m");
+  if (beta && !options.beta) throw InputError(source(n.beta), "beta", "is missing: a beta profile's exponent");
+  if (options.sigma) profile.sigma = *options.sigma;
+  if (options.beta) profile.beta = *options.beta;
+  if (options.rate) profile.rate = *options.rate;
+  if (options.fan_depth) profile.depth = *options.fan_depth;
+  if (profile.set()) profile.check(s, n.checked);
+  return profile;
 }
 
 double passRipple(const FluxProfile& profile, double s, double d) {

@@ -58,6 +58,8 @@ ParamValue parseParam(const ParamSpec& spec, const std::string& text, const std:
       char* end = nullptr;
       const double v = std::strtod(text.c_str(), &end);
       if (text.empty() || *end != '\0' || !std::isfinite(v)) return fail("'" + text + "' is not a finite number");
+      // strtod also reads hexadecimal ("0x10" as 16), which no parameter means.
+      if (text.find_first_of("xX") != std::string::npos) return fail("'" + text + "' is not a decimal number");
       if (v < spec.min || v > spec.max)
         return fail(text + " is out of range [" + paramText(spec.min) + ", " + paramText(spec.max) + "]" +
                     (spec.unit.empty() ? "" : " " + spec.unit));

@@ -8,6 +8,10 @@
 - Scores: ``score(wall, waypoints, tool_on, ..., judge="fast" | "exact")``: every metric of the
   fast engine, ``valid`` as a bool with the violating segments, and with the exact judge its
   certified verdict.
+- Tool profiles: ``plan`` and ``score`` take ``profile={"kind": "beta", "beta": 2.5}`` (kind
+  uniform, gaussian with ``sigma`` or beta with ``beta``; ``rate`` and ``depth`` optional; or just
+  the kind's name): the tool's flux profile, read and checked as ``--profile`` is, which adds the
+  five coat metrics (docs/deposition.md).
 - Results: ``runs(database)`` reads an experiment's runs as dicts; ``runs_dataframe(database)`` as
   a pandas DataFrame (pandas must be installed).
 - Planners in Python: ``coverbench.serve`` serves one over the planner protocol
@@ -29,7 +33,7 @@ import os
 from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 __all__ = ["load_wall", "check_wall", "planners", "plan", "score", "runs", "runs_dataframe",
-           "Wall", "Plan", "Waypoints"]
+           "Wall", "Plan", "Profile", "Waypoints"]
 __version__ = "0.1.0"
 
 # In the source tree (tests, the planners CoverBench starts with python/ on PYTHONPATH) the
@@ -47,6 +51,10 @@ Wall = Union[Mapping[str, Any], str]
 Waypoints = Any
 #: A plan as ``plan()`` returns it (keys in the docstring of ``plan``).
 Plan = Dict[str, Any]
+#: A tool's flux profile: None (no profile), a kind's name ("uniform"), or a dict of ``kind``
+#: ("uniform", "gaussian", "beta"), ``sigma`` (gaussian, m), ``beta`` (beta), ``rate`` (m³/s,
+#: default 1e-6) and ``depth`` (the fan's depth, m; default and 0: a tenth of the tool width).
+Profile = Union[None, str, Mapping[str, Any]]
 
 
 class _Lazy:
@@ -92,6 +100,15 @@ def _points_in(waypoints: Waypoints) -> List[Tuple[float, float]]:
     return out
 
 
+def _profile_in(profile: Profile) -> Dict[str, Any]:
+    """The profile as the compiled part reads it (which checks it as the command line does)."""
+    if profile is None:
+        return {}
+    if isinstance(profile, str):
+        return {"kind": profile}
+    return dict(profile)
+
+
 def load_wall(path: str) -> Dict[str, Any]:
     """The wall file at `path`, checked, as a dict (boundary as points, rects as polygons).
 
@@ -116,7 +133,7 @@ def planners() -> List[Dict[str, Any]]:
 
 def plan(wall: Wall, planner: str, params: Optional[Mapping[str, Union[bool, int, float, str]]] = None,
          tool_width: float = 0.1, clearance: float = 0.02, seed: int = 0, time_limit_s: float = 60.0,
-         memory_mb: float = 4096.0) -> Plan:
+         memory_mb: float = 4096.0, profile: Profile = None) -> Plan:
     """Plans `wall` with `planner` (a registered name or an external planner's manifest path) and
     judges the path as ``coverbench plan`` and a run judge it (the same code).
 
@@ -133,22 +150,26 @@ def plan(wall: Wall, planner: str, params: Optional[Mapping[str, Union[bool, int
       ``obstacle_label``, the gaps reached) and ``invalid_reason`` (the run's one-line message):
       None when there is no path or it could not be scored (``not_scored`` says why);
     - ``waypoints`` (numpy (n, 2) array where numpy is installed), ``tool_on`` (list of bool),
-      ``bulge`` (only when the path has arcs), ``stats``, ``plan_time_ms``.
+      ``bulge`` (only when the path has arcs), ``stats``, ``plan_time_ms``;
+    - with a `profile`: ``thickness_mean`` (µm), ``thickness_cv``, ``even_share``, ``thin_share``
+      and ``thick_share`` (docs/deposition.md), when the path was scored.
 
-    `params` are the planner's parameters by name. An external planner's processes are held to
+    `params` are the planner's parameters by name. `profile` is the tool's flux profile (see
+    ``Profile``): the planners that space rows for an even coat (``coat_ripple``) read it. An external planner's processes are held to
     `time_limit_s` and `memory_mb` (all of them together). Bad input raises ValueError."""
     try:  # read by the parameter codec, as the server reads a request's params
         settings = json.dumps(dict(params or {}), allow_nan=False)
     except (TypeError, ValueError) as e:
         raise ValueError(f"params: {e}") from None
     out: Plan = json.loads(_core.plan(_wall_text(wall), planner, settings, float(tool_width), float(clearance),
-                                          int(seed), float(time_limit_s), float(memory_mb)))
+                                          int(seed), float(time_limit_s), float(memory_mb), _profile_in(profile)))
     out["waypoints"] = _waypoints_out(out["waypoints"])
     return out
 
 
 def score(wall: Wall, waypoints: Waypoints, tool_on: Sequence[bool], tool_width: float = 0.1,
-          clearance: float = 0.02, bulge: Optional[Sequence[float]] = None, judge: str = "fast") -> Dict[str, Any]:
+          clearance: float = 0.02, bulge: Optional[Sequence[float]] = None, judge: str = "fast",
+          profile: Profile = None) -> Dict[str, Any]:
     """Scores a path from any source on `wall`: every metric of the fast engine by name
     (docs/metrics.md; None where one is not finite), ``valid`` as a bool, ``violations``,
     ``violating_segments`` (the first violating segments' indices), ``violation_details`` (what
@@ -158,10 +179,13 @@ def score(wall: Wall, waypoints: Waypoints, tool_on: Sequence[bool], tool_width:
     of ``coverage_reachable`` and ``coverage_wall``.
 
     `waypoints`: (x, y) pairs (a numpy (n, 2) array or any sequence); `tool_on`: one bool per
-    segment; `bulge`: none, or one per segment (0 straight). Bad input raises ValueError."""
+    segment; `bulge`: none, or one per segment (0 straight). With a flux `profile` (see
+    ``Profile``) the metrics include the coat's five: ``thickness_mean`` (µm), ``thickness_cv``,
+    ``even_share``, ``thin_share``, ``thick_share``. Bad input raises ValueError (a bad profile:
+    ``profile: FIELD: PROBLEM``, the command line's checks)."""
     result: Dict[str, Any] = json.loads(_core.score(
         _wall_text(wall), _points_in(waypoints), [bool(t) for t in tool_on], [float(b) for b in (bulge or [])],
-        float(tool_width), float(clearance), judge))
+        float(tool_width), float(clearance), judge, _profile_in(profile)))
     return result
 
 

@@ -1,5 +1,6 @@
-"""Serves a planner written in Python over CoverBench's planner protocol 1
+"""Serves a planner written in Python over CoverBench's planner protocol, version 1 or 2
 (docs/external_planners.md): one problem per line of JSON on stdin, one plan per line on stdout.
+Each answer repeats its request's version (the manifest's ``coverbench_planner``).
 
     python3 -m coverbench.serve my_module:MyPlanner
 
@@ -21,7 +22,10 @@ import sys
 import traceback
 from typing import IO, Any, Dict, List, Optional, Protocol
 
-PROTOCOL = 1
+#: The protocol versions served; an answer repeats its request's.
+PROTOCOLS = (1, 2)
+#: The newest of them.
+PROTOCOL = 2
 
 
 class Planner(Protocol):
@@ -32,13 +36,19 @@ class Planner(Protocol):
 
 
 class Problem:
-    """One problem: the wall (as a wall file's JSON), the tool, the vehicle, the parameters."""
+    """One problem: the wall (as a wall file's JSON), the tool, the vehicle, the parameters.
+
+    From protocol 2 the tool has a ``tool_shape`` ("disk") and a ``profile``: None, or the flux
+    profile's dict (``kind``; ``sigma`` or ``beta`` for their kinds; ``rate``, ``depth``). In
+    protocol 1 they are "disk" and None."""
 
     def __init__(self, data: Dict[str, Any]) -> None:
         self.data: Dict[str, Any] = data
         self.wall: Dict[str, Any] = data["wall"]
         self.tool_width = float(data["tool"]["width"])
         self.clearance = float(data["tool"]["clearance"])
+        self.tool_shape: str = data["tool"].get("shape", "disk")
+        self.profile: Optional[Dict[str, Any]] = data["tool"].get("profile")
         self.vehicle: Dict[str, Any] = data["vehicle"]
         self.params: Dict[str, Any] = data["params"]
         self.seed: int = data["seed"]
@@ -50,11 +60,11 @@ class Problem:
         return self.tool_width / 2.0
 
 
-def _answer(request_id: Any, plan: Any) -> Dict[str, Any]:
+def _answer(protocol: int, request_id: Any, plan: Any) -> Dict[str, Any]:
     if not isinstance(plan, dict):
-        return {"protocol": PROTOCOL, "id": request_id, "status": "error",
+        return {"protocol": protocol, "id": request_id, "status": "error",
                 "reason": f"plan() returned {type(plan).__name__}, not a dict"}
-    out: Dict[str, Any] = {"protocol": PROTOCOL, "id": request_id}
+    out: Dict[str, Any] = {"protocol": protocol, "id": request_id}
     out.update(plan)
     return out
 
@@ -70,6 +80,7 @@ def serve(planner: Planner, stdin: Optional[IO[str]] = None, stdout: Optional[IO
             continue
         request: Any
         reason = ""
+        protocol = PROTOCOL
         try:
             request = json.loads(line)
             request_id = request.get("id") if isinstance(request, dict) else None
@@ -78,29 +89,30 @@ def serve(planner: Planner, stdin: Optional[IO[str]] = None, stdout: Optional[IO
             reason = f"the request is not JSON: {e}"
         if not isinstance(request, dict):
             reason = reason if request is None else "the request is not a JSON object"
-            answer = {"protocol": PROTOCOL, "id": request_id, "status": "error", "reason": reason}
-        elif request.get("protocol") != PROTOCOL:
-            answer = {"protocol": PROTOCOL, "id": request_id, "status": "error",
-                      "reason": f"this planner speaks protocol {PROTOCOL}, not {request.get('protocol')}"}
+            answer = {"protocol": protocol, "id": request_id, "status": "error", "reason": reason}
+        elif request.get("protocol") not in PROTOCOLS or isinstance(request.get("protocol"), bool):
+            answer = {"protocol": protocol, "id": request_id, "status": "error",
+                      "reason": f"this planner speaks protocol 1 or 2, not {request.get('protocol')}"}
         else:
+            protocol = request["protocol"]
             try:
-                answer = _answer(request_id, planner.plan(Problem(request["problem"])))
+                answer = _answer(protocol, request_id, planner.plan(Problem(request["problem"])))
             except Exception as e:  # noqa: BLE001 - the run says what went wrong
                 traceback.print_exc(file=sys.stderr)
-                answer = {"protocol": PROTOCOL, "id": request_id, "status": "error",
+                answer = {"protocol": protocol, "id": request_id, "status": "error",
                           "reason": f"{type(e).__name__}: {e}"}
-        out.write(_line(request_id, answer) + "\n")
+        out.write(_line(protocol, request_id, answer) + "\n")
         out.flush()
 
 
-def _line(request_id: Any, answer: Dict[str, Any]) -> str:
+def _line(protocol: int, request_id: Any, answer: Dict[str, Any]) -> str:
     """The answer as one line of JSON; an answer JSON cannot hold (NaN, infinity, an object that is
     not a number, string, list or dict) is status error saying why, never a dead planner."""
     try:
         return json.dumps(answer, allow_nan=False, separators=(",", ":"))
     except (ValueError, TypeError, RecursionError) as e:
         traceback.print_exc(file=sys.stderr)
-        return json.dumps({"protocol": PROTOCOL, "id": request_id, "status": "error",
+        return json.dumps({"protocol": protocol, "id": request_id, "status": "error",
                            "reason": f"the plan cannot be written as JSON: {type(e).__name__}: {e}"},
                           separators=(",", ":"))
 

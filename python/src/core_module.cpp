@@ -74,8 +74,53 @@ Path pathOf(const std::vector<std::pair<double, double>>& waypoints, const std::
   return p;
 }
 
+/// A profile as Python gives it (a dict of kind, sigma, beta, rate, depth) read into the command
+/// line's options; the values are checked by fluxProfileOf, as the command line's are. A key it
+/// does not know, a kind that is not a string or a value that is not a number is InputError.
+/// Called with the GIL held.
+ProfileOptions profileOptions(const py::dict& profile) {
+  ProfileOptions o;
+  for (const auto& [k, v] : profile) {
+    const std::string key = py::str(k).cast<std::string>();
+    if (key == "kind") {
+      if (!py::isinstance<py::str>(v)) throw InputError("profile", "kind", "must be a string: none, uniform, gaussian or beta");
+      o.profile = v.cast<std::string>();
+      continue;
+    }
+    std::optional<double>* value = key == "sigma" ? &o.sigma
+                                   : key == "beta" ? &o.beta
+                                   : key == "rate" ? &o.rate
+                                   : key == "depth" ? &o.fan_depth
+                                                    : nullptr;
+    if (!value) throw InputError("profile", key, "is not a profile key (kind, sigma, beta, rate, depth)");
+    if (py::isinstance<py::bool_>(v) || !(py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v)))
+      throw InputError("profile", key, "must be a number");
+    *value = v.cast<double>();
+  }
+  return o;
+}
+
+/// Python's spelling of profile errors: "profile: sigma: belongs to kind gaussian".
+const ProfileSpelling kPythonProfile{"kind", "sigma", "beta", "rate", "depth", "profile", "profile"};
+
+/// The tool: its width and clearance checked as the command line checks them, then its profile.
+ToolParams toolOf(double tool_width, double clearance, const ProfileOptions& profile) {
+  ToolParams tool{tool_width, clearance};
+  validateTool(tool, "tool");
+  tool.profile = fluxProfileOf(profile, tool_width, kPythonProfile);
+  return tool;
+}
+
+/// The five coat metrics (docs/deposition.md) by name, or none without a profile's coat.
+void addCoat(ordered_json& out, const PathMetrics& metrics) {
+  for (const NamedMetric& m : flatten(metrics))
+    if (m.name == "thickness_mean" || m.name == "thickness_cv" || m.name == "even_share" || m.name == "thin_share" ||
+        m.name == "thick_share")
+      out[m.name] = number(m.value);
+}
+
 std::string plan(const std::string& wall_text, const std::string& planner, const std::string& params_json, double tool_width,
-                 double clearance, std::uint64_t seed, double time_limit_s, double memory_mb) {
+                 double clearance, std::uint64_t seed, double time_limit_s, double memory_mb, const ProfileOptions& profile) {
   const Wall wall = wallOf(wall_text, "wall");
   const PlannerInfo& info = external::plannerNamed(planner, "planner");
   validateTimeLimit(time_limit_s, "time_limit_s", "time_limit_s");
@@ -83,7 +128,7 @@ std::string plan(const std::string& wall_text, const std::string& planner, const
     throw InputError("memory_mb", "memory_mb", "must be in (0, 1048576] MiB, got " + shortNumber(memory_mb));
   ProblemInputs inputs;
   inputs.wall = &wall;
-  inputs.tool = ToolParams{tool_width, clearance};
+  inputs.tool = toolOf(tool_width, clearance, profile);
   const nlohmann::json params = parseJsonStrict(params_json, "params");
   if (!params.is_object()) throw InputError("params", "(document)", "must be a mapping of name: value");
   inputs.params = withDefaults(info, parseSettingsJson(info, params, "params"));
@@ -99,6 +144,7 @@ std::string plan(const std::string& wall_text, const std::string& planner, const
   const bool scored = r.hasPath() && judged.not_scored.empty();
   if (scored) {
     out.update(validityJson(judged.metrics.validity, problem.tool.clearance));
+    addCoat(out, judged.metrics);
   } else {  // no path, or one beyond the scoring limits: nothing was checked
     out["valid"] = false;
     out["violations"] = nullptr;
@@ -119,9 +165,9 @@ std::string plan(const std::string& wall_text, const std::string& planner, const
 
 std::string score(const std::string& wall_text, const std::vector<std::pair<double, double>>& waypoints,
                   const std::vector<bool>& tool_on, const std::vector<double>& bulge, double tool_width, double clearance,
-                  const std::string& judge) {
+                  const std::string& judge, const ProfileOptions& profile) {
   const Wall wall = wallOf(wall_text, "wall");
-  const ToolParams tool{tool_width, clearance};
+  const ToolParams tool = toolOf(tool_width, clearance, profile);
   validateToolForWall(tool, wall, "tool");  // the same check a plan's problem gets (buildProblem)
   const Path path = pathOf(waypoints, tool_on, bulge);
   ordered_json out = ordered_json::object();
@@ -158,14 +204,29 @@ PYBIND11_MODULE(_core, m) {
   m.def("wall_file", [](const std::string& path) { return coverbench::wallToJson(coverbench::loadWallFile(path)); },
         py::arg("path"), "The wall file at `path`, checked, as wall-file JSON text.");
   m.def("planners", &coverbench::planners, "Every registered planner with its parameters, as JSON text.");
-  m.def("plan", &coverbench::plan, py::arg("wall"), py::arg("planner"), py::arg("params"), py::arg("tool_width"),
-        py::arg("clearance"), py::arg("seed"), py::arg("time_limit_s"), py::arg("memory_mb") = 4096.0,
-        py::call_guard<py::gil_scoped_release>(),
+  m.def("plan",
+        [](const std::string& wall, const std::string& planner, const std::string& params, double tool_width, double clearance,
+           std::uint64_t seed, double time_limit_s, double memory_mb, const py::dict& profile) {
+          const coverbench::ProfileOptions options = coverbench::profileOptions(profile);
+          py::gil_scoped_release released;
+          return coverbench::plan(wall, planner, params, tool_width, clearance, seed, time_limit_s, memory_mb, options);
+        },
+        py::arg("wall"), py::arg("planner"), py::arg("params"), py::arg("tool_width"), py::arg("clearance"), py::arg("seed"),
+        py::arg("time_limit_s"), py::arg("memory_mb") = 4096.0, py::arg("profile") = py::dict(),
         "Plans wall-file JSON text with a registered planner or an external planner's manifest and judges the "
         "path as `coverbench plan` does; the plan as JSON text.");
-  m.def("score", &coverbench::score, py::arg("wall"), py::arg("waypoints"), py::arg("tool_on"), py::arg("bulge"),
-        py::arg("tool_width"), py::arg("clearance"), py::arg("judge"), py::call_guard<py::gil_scoped_release>(),
-        "Every metric of the fast engine for a path (judge 'exact' adds the exact judge's verdict), as JSON text.");
+  m.def("score",
+        [](const std::string& wall, const std::vector<std::pair<double, double>>& waypoints, const std::vector<bool>& tool_on,
+           const std::vector<double>& bulge, double tool_width, double clearance, const std::string& judge,
+           const py::dict& profile) {
+          const coverbench::ProfileOptions options = coverbench::profileOptions(profile);
+          py::gil_scoped_release released;
+          return coverbench::score(wall, waypoints, tool_on, bulge, tool_width, clearance, judge, options);
+        },
+        py::arg("wall"), py::arg("waypoints"), py::arg("tool_on"), py::arg("bulge"), py::arg("tool_width"),
+        py::arg("clearance"), py::arg("judge"), py::arg("profile") = py::dict(),
+        "Every metric of the fast engine for a path (judge 'exact' adds the exact judge's verdict; a flux `profile` "
+        "adds the coat's five), as JSON text.");
   m.def("runs", &coverbench::runs, py::arg("database"), py::arg("experiment") = 0,
         "An experiment's runs (0: the latest) from a results database, as JSON text.");
 }

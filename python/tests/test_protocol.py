@@ -1,4 +1,4 @@
-"""Planner protocol 1 against its JSON Schemas (docs/schemas): the example manifest, a request as
+"""Planner protocols 1 and 2 against their JSON Schemas (docs/schemas): the example manifest, a request as
 the coverbench binary writes it (recorded by a planner that saves what it reads), and the answers
 of coverbench.serve, including a planner that raises and one that prints."""
 import io
@@ -112,6 +112,54 @@ class Protocol(unittest.TestCase):
             jsonschema.validate(req, REQUEST)
             self.assertEqual(req["problem"]["params"], {"k": "b"})
             self.assertEqual(req["problem"]["tool"], {"width": 0.1, "clearance": 0.02})
+
+    def test_protocol_2_carries_the_tools_shape_and_profile_and_answers_repeat_the_version(self):
+        class Echo:
+            def plan(self, problem):
+                return {"status": "error", "reason": json.dumps([problem.tool_shape, problem.profile])}
+        profile = {"kind": "gaussian", "sigma": 0.02, "rate": 1e-6, "depth": 0.01}
+        v2 = request(rid=1)
+        v2["protocol"] = 2
+        v2["problem"]["tool"].update({"shape": "disk", "profile": profile})
+        plain = request(rid=2)
+        plain["protocol"] = 2
+        plain["problem"]["tool"].update({"shape": "disk", "profile": None})
+        for r in (v2, plain, request(rid=3)):
+            jsonschema.validate(r, REQUEST)
+        answers = served(Echo(), v2, plain, request(rid=3), dict(request(rid=4), protocol=3))
+        for a in answers:
+            jsonschema.validate(a, ANSWER)
+        self.assertEqual([a["protocol"] for a in answers], [2, 2, 1, 2])
+        self.assertEqual([json.loads(a["reason"]) for a in answers[:3]],
+                         [["disk", profile], ["disk", None], ["disk", None]])
+        self.assertEqual(answers[3]["reason"], "this planner speaks protocol 1 or 2, not 3")
+        with self.assertRaises(jsonschema.ValidationError):  # a shape no tool has yet
+            jsonschema.validate(dict(v2, problem=dict(v2["problem"], tool=dict(v2["problem"]["tool"], shape="line"))),
+                                REQUEST)
+
+    def test_the_binary_writes_protocol_2_requests_the_schema_accepts(self):
+        binary = os.environ.get("COVERBENCH_BINARY", os.path.join(ROOT, "build", "coverbench"))
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, "record.py"), "w", encoding="utf-8") as f:
+                f.write("import json, sys\nline = sys.stdin.readline()\nopen('request.json', 'w').write(line)\n"
+                        "print(json.dumps({'protocol': 2, 'id': json.loads(line)['id'], 'status': 'error', "
+                        "'reason': 'recorded'}), flush=True)\n")
+            manifest = {"coverbench_planner": 2, "name": "record", "version": "1", "summary": "s", "reference": "r",
+                        "command": [sys.executable, "record.py"], "files": ["record.py"]}
+            jsonschema.validate(manifest, MANIFEST)
+            with open(os.path.join(d, "record.json"), "w", encoding="utf-8") as f:
+                json.dump(manifest, f)
+            wall = os.path.join(ROOT, "datasets", "canonical", "living_room_north.json")
+            r = subprocess.run([binary, "plan", "--wall", wall, "--planner", os.path.join(d, "record.json"),
+                                "--tool-width", "0.2", "--profile", "beta", "--beta", "2", "--out", os.path.join(d, "p.json")],
+                               capture_output=True, text=True)
+            self.assertIn("recorded", r.stdout + r.stderr)
+            with open(os.path.join(d, "request.json"), encoding="utf-8") as f:
+                req = json.loads(f.read())
+            jsonschema.validate(req, REQUEST)
+            self.assertEqual(req["protocol"], 2)
+            self.assertEqual(req["problem"]["tool"], {"width": 0.2, "clearance": 0.02, "shape": "disk",
+                                                      "profile": {"kind": "beta", "beta": 2.0, "rate": 1e-6, "depth": 0.02}})
 
 
 if __name__ == "__main__":

@@ -36,13 +36,15 @@ std::vector<std::string> metricColumns(const ResultSet& rs) {
 }
 
 /// The columns `vehicle` and `transit`, each only when some run has another than holonomic or
-/// visibility (so tables of runs from before them keep their columns).
+/// visibility, and `profile` (the tool's flux profile, FluxProfile::label; empty for a run
+/// without one) only when some run has one (so tables of runs from before them keep their columns).
 struct OptionColumns {
-  bool vehicle = false, transit = false;
+  bool vehicle = false, transit = false, profile = false;
   explicit OptionColumns(const ResultSet& rs) {
     for (const ResultRow& r : rs.runs) {
       vehicle = vehicle || !r.vehicle.isDefault();
       transit = transit || !r.transit.isDefault();
+      profile = profile || r.tool.profile.set();
     }
   }
 };
@@ -65,6 +67,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
       row["planner_version"] = r.planner_version;
       row["tool_width"] = r.tool.tool_width;
       row["clearance"] = r.tool.clearance;
+      if (options.profile) row["profile"] = r.tool.profile.label();
       if (options.vehicle) row["vehicle"] = toString(r.vehicle.kind);
       if (options.transit) row["transit"] = r.transit.planner;
       forEachRunField(r, [&](const RunField& f, const auto& value) {
@@ -79,6 +82,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
     return out.dump(1) + "\n";
   }
   std::string text = "key,dataset,wall,wall_hash,planner,params,planner_version,tool_width,clearance";
+  text += options.profile ? ",profile" : "";
   text += std::string(options.vehicle ? ",vehicle" : "") + (options.transit ? ",transit" : "");
   for (const RunField& f : kRunFields)
     if (f.exported != RunExport::No) text += std::string(",") + f.name;
@@ -87,7 +91,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
   for (const ResultRow& r : rs.runs) {
     text += r.key + "," + escapeCsv(r.dataset) + "," + escapeCsv(r.wall_name) + "," + r.wall + "," + escapeCsv(r.config) +
             "," + escapeCsv(storedParamsJson(r.params).dump()) + "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) +
-            (options.vehicle ? "," + toString(r.vehicle.kind) : "") + (options.transit ? "," + r.transit.planner : "");
+            (options.profile ? "," + escapeCsv(r.tool.profile.label()) : "") + (options.vehicle ? "," + toString(r.vehicle.kind) : "") + (options.transit ? "," + r.transit.planner : "");
     forEachRunField(r, [&](const RunField& f, const auto& value) {
       if (f.exported != RunExport::No) text += "," + csvCell(value);
     });
@@ -124,7 +128,8 @@ std::string oneLine(const std::string& name) {
 std::string listRuns(const ResultSet& rs) {
   std::string text;
   for (const ResultRow& r : rs.runs) {
-    text += r.key + "  " + toString(r.status) + "  " + oneLine(r.config) + "  " + toolLabel(r.tool) + "  " + oneLine(r.dataset) + "/" +
+    text += r.key + "  " + toString(r.status) + "  " + oneLine(r.config) + "  " + toolLabel(r.tool) +
+            (r.tool.profile.set() ? ", " + r.tool.profile.label() : "") + "  " + oneLine(r.dataset) + "/" +
             oneLine(r.wall_name) + "\n";
   }
   return text;

@@ -1,5 +1,5 @@
 // Planners outside the tree: the manifest, the planner that asks its process (planner_process.cpp)
-// in protocol 1 (external_protocol.cpp), and the processes this process keeps for the next run.
+// in its manifest's protocol (external_protocol.cpp), and the processes this process keeps for the next run.
 #include "coverbench/external_planner.hpp"
 
 #include <signal.h>
@@ -47,7 +47,7 @@ std::map<std::string, std::unique_ptr<PlannerProcess>>& processes() {
 /// A planner outside the tree: each plan is one question to its manifest's process, kept for the next.
 class ExternalPlanner final : public Planner {
  public:
-  explicit ExternalPlanner(Launch launch) : launch_(std::move(launch)) {}
+  ExternalPlanner(Launch launch, int protocol) : launch_(std::move(launch)), protocol_(protocol) {}
   PlanResult plan(const Problem& problem, const Budget& budget) override {
     ::signal(SIGPIPE, SIG_IGN);  // a planner that died shows as a failed write
     auto& proc = processes()[launch_.manifest];
@@ -56,7 +56,7 @@ class ExternalPlanner final : public Planner {
     const long long id = ++next_id;
     const double limit = budget.remainingSeconds();
     const PlannerProcess::Answer a =
-        proc->ask(requestJson(problem, limit, id) + "\n", limit, problem.memory_limit_bytes);
+        proc->ask(requestJson(problem, limit, id, protocol_) + "\n", limit, problem.memory_limit_bytes);
     auto withProcess = [&](PlanResult r) {
       r.stderr_tail = a.stderr_tail;
       r.process_cpu_s = a.cpu_s;
@@ -66,7 +66,7 @@ class ExternalPlanner final : public Planner {
     if (!a.ok) return withProcess(PlanResult::failure(a.failure, a.reason));
     PlanResult result;
     std::string why;
-    if (!readAnswer(a.line, id, result, why)) {
+    if (!readAnswer(a.line, id, result, why, protocol_)) {
       proc.reset();  // a process that breaks the protocol is not asked again
       return withProcess(PlanResult::failure(PlanStatus::InvalidOutput, "the planner's answer: " + why));
     }
@@ -75,6 +75,7 @@ class ExternalPlanner final : public Planner {
 
  private:
   Launch launch_;
+  int protocol_;  ///< the manifest's: what its requests carry and its answers repeat
 };
 
 }  // namespace
@@ -88,8 +89,10 @@ PlannerInfo loadManifest(const std::string& path) {
   if (!doc.is_object()) r.fail("(document)", "must be a JSON object");
   r.onlyKeys(doc, "", {"coverbench_planner", "name", "version", "summary", "reference", "command", "files", "params",
                        "min_coverage_reachable"});
-  if (!doc.contains("coverbench_planner") || doc["coverbench_planner"] != kProtocolVersion)
-    r.fail("coverbench_planner", "must be " + std::to_string(kProtocolVersion) + " (the protocol version)");
+  const json& version = doc.contains("coverbench_planner") ? doc["coverbench_planner"] : json();
+  if (!version.is_number_integer() || version.get<long long>() < 1 || version.get<long long>() > kProtocolVersion)
+    r.fail("coverbench_planner", "must be 1 or " + std::to_string(kProtocolVersion) + " (the protocol version)");
+  const int protocol = version.get<int>();
   PlannerInfo info;
   info.name = r.text(doc, "name", "name");
   if (info.name.empty() || info.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_") != std::string::npos)
@@ -136,7 +139,7 @@ PlannerInfo loadManifest(const std::string& path) {
     info.min_coverage_reachable = m;
   }
   info.external_manifest = launch.manifest;
-  info.make = [launch] { return std::make_unique<ExternalPlanner>(launch); };
+  info.make = [launch, protocol] { return std::make_unique<ExternalPlanner>(launch, protocol); };
   return info;
 }
 

@@ -1,5 +1,5 @@
-// Protocol 1 of planners outside the tree (docs/external_planners.md): the request line for a
-// problem, and an answer line read strictly (bounded before it is parsed).
+// Protocols 1 and 2 of planners outside the tree (docs/external_planners.md): the request line for
+// a problem, and an answer line read strictly (bounded before it is parsed).
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -62,12 +62,32 @@ std::size_t answerProblem(const std::string& line, std::string& why) {
   return 0;
 }
 
+/// The request's `tool`: width and clearance; from protocol 2 its shape and flux profile (null
+/// for none), the profile as a plan file writes it (docs/file_formats.md).
+json toolJson(const ToolParams& tool, int protocol) {
+  json out = {{"width", tool.tool_width}, {"clearance", tool.clearance}};
+  if (protocol < 2) return out;  // protocol 1: the disk, and nothing of a profile
+  out["shape"] = "disk";
+  const FluxProfile& p = tool.profile;
+  if (!p.set()) {
+    out["profile"] = nullptr;
+    return out;
+  }
+  json profile = {{"kind", toString(p.kind)}};
+  if (p.kind == FluxProfile::Kind::Gaussian) profile["sigma"] = p.sigma;
+  if (p.kind == FluxProfile::Kind::Beta) profile["beta"] = p.beta;
+  profile["rate"] = p.rate;
+  profile["depth"] = p.depthFor(tool.tool_width);
+  out["profile"] = profile;
+  return out;
+}
+
 }  // namespace
 
-std::string requestJson(const Problem& problem, double time_limit_s, long long id) {
+std::string requestJson(const Problem& problem, double time_limit_s, long long id, int protocol) {
   json p;
   p["wall"] = json::parse(wallToJson(*problem.wall));
-  p["tool"] = {{"width", problem.tool.tool_width}, {"clearance", problem.tool.clearance}};
+  p["tool"] = toolJson(problem.tool, protocol);
   json vehicle = {{"model", toString(problem.vehicle.kind)}};
   if (problem.vehicle.isCar()) {
     vehicle["turn_radius"] = problem.vehicle.turn_radius;
@@ -80,10 +100,10 @@ std::string requestJson(const Problem& problem, double time_limit_s, long long i
   p["params"] = paramsJson(problem.params);
   p["seed"] = problem.seed;
   if (std::isfinite(time_limit_s)) p["time_limit_s"] = time_limit_s;
-  return json{{"protocol", kProtocolVersion}, {"id", id}, {"problem", p}}.dump();
+  return json{{"protocol", protocol}, {"id", id}, {"problem", p}}.dump();
 }
 
-bool readAnswer(const std::string& line, long long id, PlanResult& result, std::string& why) {
+bool readAnswer(const std::string& line, long long id, PlanResult& result, std::string& why, int protocol) {
   auto bad = [&](const std::string& text) {
     why = toValidUtf8(text);  // it may quote the planner's bytes
     return false;
@@ -103,8 +123,7 @@ bool readAnswer(const std::string& line, long long id, PlanResult& result, std::
     if (key != "protocol" && key != "id" && key != "status" && key != "reason" && key != "waypoints" &&
         key != "tool_on" && key != "bulge" && key != "stats")
       return bad(key + ": unknown key");
-  if (!a.contains("protocol") || a["protocol"] != kProtocolVersion)
-    return bad("protocol: must be " + std::to_string(kProtocolVersion));
+  if (!a.contains("protocol") || a["protocol"] != protocol) return bad("protocol: must be " + std::to_string(protocol));
   if (!a.contains("id") || !a["id"].is_number_integer() || a["id"].get<long long>() != id)
     return bad("id: must be the request's (" + std::to_string(id) + ")");
   if (!a.contains("status") || !a["status"].is_string()) return bad("status: missing");

@@ -984,5 +984,30 @@ TEST_F(Hostile, TheAnalysisIsStartedWithoutBytecodeWrites) {
   EXPECT_NE(("\n" + slurp((dir_ / "env.txt").string())).find("\nPYTHONDONTWRITEBYTECODE=1\n"), std::string::npos);
 }
 
+// Config numbers are decimal (std::stod reads "0x10" as 16), and so are planner parameters; a byte
+// that is not UTF-8 is named by its own line; a raw byte in --profile is quoted as \xHH.
+TEST_F(Hostile, HexadecimalNumbersBadBytesAndRawProfileNamesAreRefusedWithOneLine) {
+  const std::string file = (dir_ / "c.yaml").string(), planners = "planners: [zigzag]\n";
+  EXPECT_EQ(configError(kHead + planners + "seed: 0x10\n"), file + ":6: seed: must be a decimal number, got '0x10'");
+  EXPECT_EQ(configError(kHead + planners + "tool:\n  width: 0x1p-3\n"),
+            file + ":7: tool.width: must be a decimal number, got '0x1p-3'");
+  EXPECT_EQ(configError(kHead + planners + "tool:\n  profile: {kind: beta, beta: 0X2}\n"),
+            file + ":7: tool.profile.beta: must be a decimal number, got '0X2'");
+  EXPECT_EQ(configError(std::string(kHead) + "planners:\n  - name: zigzag\n    params: {overlap: 0x0.1p0}\n"),
+            file + ":7: planners[0].params.overlap: '0x0.1p0' is not a decimal number");
+  EXPECT_EQ(configError(kHead + planners + "tool:\n  width: 0.2\n  profile:\n    kind: \xff\n"),
+            file + ":9: (document): is not valid UTF-8 text");
+  EXPECT_EQ(configError(kHead + planners + "tool:\n  profile: {kind: \"be\xc3\"}\n"), file + ":7: (document): is not valid UTF-8 text");
+  EXPECT_EQ(configError(kHead + planners + "seed: 16\n"), "");  // what the first case means, in decimal
+  const std::string plan = (dir_ / "p.json").string();
+  ASSERT_EQ(run("plan --wall " + wall_ + " --planner zigzag --out " + plan).exit_code, 0);
+  const CommandRun r = run("metrics --wall " + wall_ + " --plan " + plan + " --profile \"$(printf 'a\\377\\033b')\"");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "coverbench: --profile: profile: must be none, uniform, gaussian or beta, got 'a\\xff\\x1bb'\n");
+  const CommandRun p = run("plan --wall " + wall_ + " --planner zigzag --param overlap=0x0.1p0 --out " + plan);
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.err.find("overlap: '0x0.1p0' is not a decimal number"), std::string::npos) << p.err;
+}
+
 }  // namespace
 }  // namespace coverbench

@@ -9,6 +9,7 @@
 ///   uniform:  f(x) = 1 / (2r)
 ///   gaussian: f(x) = exp(-x^2 / (2 sigma^2)) / (sigma sqrt(2 pi) erf(r / (sigma sqrt 2)))
 ///   beta:     f(x) = (1 - u^2)^(beta - 1) / (r B(1/2, beta)),  u = x / r
+#include <optional>
 #include <string>
 
 namespace coverbench {
@@ -29,6 +30,10 @@ struct FluxProfile {
   /// The profile's standard deviation across the motion (m): sigma for a Gaussian (before its
   /// truncation), r / sqrt(2 beta + 1) for beta, r / sqrt 3 for uniform.
   double spread(double r) const;
+  /// The profile as run listings show it beside the tool: "uniform", "gaussian 0.02 m" (sigma),
+  /// "beta 2.5", then the rate and the fan's depth where they are not the defaults
+  /// ("beta 2.5, 2e-06 m3/s, fan depth 0.05 m"); "" for none.
+  std::string label() const;
   /// "gaussian profile, sigma 0.02 m, 1e-06 m3/s, fan depth 0.01 m" for a tool of width s.
   std::string describe(double s) const;
   /// Throws InputError(source, field, problem) for a value out of range for a tool of width s:
@@ -39,6 +44,26 @@ struct FluxProfile {
 std::string toString(FluxProfile::Kind kind);
 /// The kind named `name`; false when there is none.
 bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind);
+
+/// A profile as the command line and Python give it: the kind's name ("none", "uniform",
+/// "gaussian", "beta") and each value, unset where not given (rate 1e-6 m^3/s, depth s / 10).
+struct ProfileOptions {
+  std::string profile = "none";
+  std::optional<double> sigma, beta, rate, fan_depth;
+};
+/// How a caller names the kind and the values in its messages. The default is the command line's:
+/// each error's source is the flag it is about ("--sigma: sigma: belongs to --profile gaussian"),
+/// range errors are the "command line"'s. With `source` set, every error has that source and
+/// names the value by its key (Python: "profile: sigma: belongs to kind gaussian").
+struct ProfileSpelling {
+  std::string kind = "--profile", sigma = "--sigma", beta = "--beta", rate = "--rate", depth = "--fan-depth";
+  std::string source;                   ///< empty: the flag each error is about
+  std::string checked = "command line";  ///< the source of out-of-range values (FluxProfile::check)
+};
+/// The profile the options describe for a tool of width s, read as a config reads tool.profile:
+/// each value belongs to its kind, none goes unused, a kind's own value is required, and every
+/// value is in range (FluxProfile::check). InputError, spelled by `spelling`, otherwise.
+FluxProfile fluxProfileOf(const ProfileOptions& options, double s, const ProfileSpelling& spelling = {});
 
 /// The ripple of parallel passes d apart: the sum of the profile repeated every d,
 /// g(x) = sum_k f(x - k d), has mean 1/d over a period; the ripple is max |g(x) d - 1| over x,

@@ -2,7 +2,8 @@
 /// Planners outside the tree, in any language (docs/external_planners.md): a manifest names the
 /// planner, its version, the command that starts it, its parameters and the files whose content
 /// identifies its code; the planner process is started once per process that plans (each worker)
-/// and answers one problem per line of JSON (protocol 1) for as many runs as it is given.
+/// and answers one problem per line of JSON (protocol 1 or 2: the manifest's) for as many runs as
+/// it is given.
 ///
 /// It runs under the limits and statuses of every run: past the time limit its processes are
 /// killed (timeout); past the memory limit (its processes together: their cgroup where the memory
@@ -18,8 +19,11 @@
 
 namespace coverbench::external {
 
-/// The protocol version this build speaks (requests carry it; answers must repeat it).
-inline constexpr int kProtocolVersion = 1;
+/// The newest protocol version this build speaks; it speaks every version from 1. A manifest names
+/// its planner's (`coverbench_planner`); requests carry it and answers must repeat it. Version 2
+/// adds the tool's shape and flux profile to the request's `tool`; a version-1 request is the same
+/// bytes whatever the tool's profile (the planner plans for the disk; the metrics use the profile).
+inline constexpr int kProtocolVersion = 2;
 /// The longest answer read (bytes); past it the process is killed and the run is invalid_output.
 inline constexpr std::size_t kMaxAnswerBytes = std::size_t{64} << 20;
 /// The deepest nesting of arrays and objects an answer may have (it needs 3: the answer, its
@@ -54,12 +58,13 @@ const PlannerInfo& addFromManifest(const std::string& path);
 /// ending in .json, loaded and added by addFromManifest); InputError naming `source` otherwise.
 const PlannerInfo& plannerNamed(const std::string& name, const std::string& source);
 
-/// The request line for one problem (protocol 1; tests and benchmarks).
-std::string requestJson(const Problem& problem, double time_limit_s, long long id);
+/// The request line for one problem in protocol `protocol` (1 or 2).
+std::string requestJson(const Problem& problem, double time_limit_s, long long id, int protocol = 1);
 /// Reads an answer line into `result` (status, reason, path, stats); false with the reason in
 /// `why` when the protocol does not allow it: not JSON, a duplicate key, nested deeper than
 /// kMaxAnswerDepth or holding more than kMaxAnswerWaypoints (both checked before parsing), ...
-bool readAnswer(const std::string& line, long long id, PlanResult& result, std::string& why);
+/// The answer must repeat the request's `protocol`.
+bool readAnswer(const std::string& line, long long id, PlanResult& result, std::string& why, int protocol = 1);
 
 /// Stops every planner process this process started, each with every process it started (a
 /// worker does this before it exits).

@@ -1,0 +1,147 @@
+// The tool's flux profile in the results database and in `coverbench runs` (docs/deposition.md):
+// stored for the runs that have one, listed beside the tool; runs without one, and databases made
+// before the profile was stored, read and list as they did.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "coverbench/results_db.hpp"
+#include "test_support.hpp"
+
+namespace coverbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ProfileRuns : public test::CommandTest {
+ protected:
+  /// Runs zigzag on one 2 x 1 m wall with the config's `tool:` section; the results database.
+  std::string experiment(const std::string& name, const std::string& tool) {
+    fs::create_directories(dir_ / "walls");
+    std::ofstream(dir_ / "walls" / "a.json") << R"({"name": "a", "width": 2, "height": 1})";
+    const std::string config =
+        write(name + ".yaml", "name: " + name + "\noutput: " + name + "\ndatasets:\n  - folder: walls\nplanners: [zigzag]\n" + tool);
+    const test::CommandRun r = run("run " + config + " --no-report");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return (dir_ / name / "results.sqlite").string();
+  }
+  /// `coverbench runs DB FLAGS`'s output.
+  std::string runs(const std::string& db, const std::string& flags) {
+    std::string out;
+    const test::CommandRun r = run("runs " + db + " " + flags, &out);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return out;
+  }
+  /// The listing, the CSV and the JSON.
+  std::string all(const std::string& db) { return runs(db, "--list") + runs(db, "") + runs(db, "--format json"); }
+};
+
+TEST(FluxProfileLabel, NamesTheKindItsValueAndWhatIsNotTheDefault) {
+  FluxProfile p;
+  EXPECT_EQ(p.label(), "");
+  p.kind = FluxProfile::Kind::Uniform;
+  EXPECT_EQ(p.label(), "uniform");
+  p.kind = FluxProfile::Kind::Beta;
+  p.beta = 2.5;
+  EXPECT_EQ(p.label(), "beta 2.5");
+  p.kind = FluxProfile::Kind::Gaussian;
+  p.sigma = 0.02;
+  p.rate = 2e-6;
+  p.depth = 0.05;
+  EXPECT_EQ(p.label(), "gaussian 0.02 m, 2e-06 m3/s, fan depth 0.05 m");
+}
+
+TEST_F(ProfileRuns, ARunWithAProfileIsStoredAndListedWithIt) {
+  const std::string db = experiment("coat", "tool:\n  width: [0.2, 0.3]\n  profile: {kind: beta, beta: 2.5, rate: 2e-6}\n");
+  const ResultSet rs = ResultsDb(db, ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(rs.runs.size(), 2u);
+  for (const ResultRow& r : rs.runs) {
+    EXPECT_EQ(r.tool.profile.kind, FluxProfile::Kind::Beta);
+    EXPECT_EQ((std::vector<double>{r.tool.profile.beta, r.tool.profile.rate, r.tool.profile.depth}),
+              (std::vector<double>{2.5, 2e-6, 0.0}));
+    EXPECT_TRUE(r.metrics.count("thickness_cv")) << r.key;
+  }
+  const std::string list = runs(db, "--list");
+  EXPECT_NE(list.find("  zigzag  s=0.2 m, c=0.02 m, beta 2.5, 2e-06 m3/s  walls/a\n"), std::string::npos) << list;
+  EXPECT_NE(list.find("  zigzag  s=0.3 m, c=0.02 m, beta 2.5, 2e-06 m3/s  walls/a\n"), std::string::npos) << list;
+  const std::string csv = runs(db, "");
+  EXPECT_EQ(csv.rfind("key,dataset,wall,wall_hash,planner,params,planner_version,tool_width,clearance,profile,", 0), 0u) << csv;
+  EXPECT_NE(csv.find(",0.3,0.02,\"beta 2.5, 2e-06 m3/s\","), std::string::npos) << csv;
+  const nlohmann::json json = nlohmann::json::parse(runs(db, "--format json"));
+  ASSERT_EQ(json.size(), 2u);
+  EXPECT_EQ(json[0]["profile"], "beta 2.5, 2e-06 m3/s");
+}
+
+TEST_F(ProfileRuns, RunsWithoutAProfileAndDatabasesFromBeforeItListAsBefore) {
+  const std::string plain = experiment("plain", "");
+  const std::string before = all(plain);
+  EXPECT_EQ(before.find("profile"), std::string::npos);
+  EXPECT_EQ(test::sqlRows(plain, "SELECT COUNT(*) FROM run_profile"), "0\n");
+  // A database made before run_profile (the table dropped: the only difference): the same bytes.
+  test::sqlRows(plain, "DROP TABLE run_profile");
+  EXPECT_EQ(all(plain), before);
+  // Runs of a profile in such a database read as disk tools without one.
+  const std::string coat = experiment("coat", "tool:\n  profile: {kind: uniform}\n");
+  EXPECT_NE(runs(coat, "--list").find("c=0.02 m, uniform  "), std::string::npos);
+  test::sqlRows(coat, "DROP TABLE run_profile");
+  for (const ResultRow& r : ResultsDb(coat, ResultsDb::Mode::ReadOnly).load().runs) EXPECT_FALSE(r.tool.profile.set());
+  EXPECT_EQ(runs(coat, "--list").find("uniform"), std::string::npos);
+}
+
+// Shards merge with their runs' profiles; a shard made before run_profile merges as disk tools.
+TEST_F(ProfileRuns, ShardsMergeWithTheirProfiles) {
+  experiment("coat", "");  // the wall
+  const std::string config = write("shard.yaml", "name: shard\noutput: shard\ndatasets:\n  - folder: walls\n"
+                                                 "planners: [zigzag, spiral]\ntool:\n  width: [0.2, 0.3]\n  profile: {kind: beta, beta: 3}\n");
+  for (const char* shard : {"0/2", "1/2"}) ASSERT_EQ(run("run " + config + " --shard " + shard).exit_code, 0) << shard;
+  const std::string shards = (dir_ / "shard" / "shards").string(), merged = (dir_ / "merged.sqlite").string();
+  ASSERT_EQ(run("merge " + merged + " " + shards + "/shard-0-of-2.sqlite " + shards + "/shard-1-of-2.sqlite").exit_code, 0);
+  const std::string list = runs(merged, "--list");
+  EXPECT_EQ(std::count(list.begin(), list.end(), '\n'), 4) << list;
+  EXPECT_EQ(test::sqlRows(merged, "SELECT DISTINCT kind, beta, rate, depth FROM run_profile"), "beta|3.0|1.0e-06|0.0\n");
+  EXPECT_EQ(test::sqlRows(merged, "SELECT COUNT(*) FROM run_profile"), "4\n");
+  EXPECT_EQ(std::count(list.begin(), list.end(), ','), 8) << list;  // "s=.., c=.., beta 3" on each
+  EXPECT_NE(list.find("c=0.02 m, beta 3  "), std::string::npos) << list;
+  // Shard 0 holds some of the runs, shard 1 the others; without shard 1's table only shard 0's keep it.
+  const std::string first = test::sqlRows(shards + "/shard-0-of-2.sqlite", "SELECT COUNT(*) FROM run_profile");
+  EXPECT_NE(first, "0\n");
+  EXPECT_NE(first, "4\n");
+  test::sqlRows(shards + "/shard-1-of-2.sqlite", "DROP TABLE run_profile");
+  const std::string again = (dir_ / "again.sqlite").string();
+  ASSERT_EQ(run("merge " + again + " " + shards + "/shard-0-of-2.sqlite " + shards + "/shard-1-of-2.sqlite").exit_code, 0);
+  EXPECT_EQ(test::sqlRows(again, "SELECT COUNT(*) FROM run_profile"), first);
+  EXPECT_EQ(test::sqlRows(again, "SELECT COUNT(*) FROM runs"), "4\n");
+}
+
+// tests/data/pre_profile: a database written by the build before run_profile (commit 42adf54), and
+// what that build's `coverbench runs` printed for it.
+TEST_F(ProfileRuns, ADatabaseFromBeforeRunProfileListsAsItsBuildListedIt) {
+  const fs::path fixture = test::sourcePath("tests/data/pre_profile");
+  const std::string db = (dir_ / "results.sqlite").string();
+  fs::copy_file(fixture / "results.sqlite", db);  // opening it makes -wal and -shm files beside it
+  EXPECT_EQ(test::sqlRows(db, "SELECT COUNT(*) FROM sqlite_master WHERE name = 'run_profile'"), "0\n");
+  auto same = [&](const std::string& when) {
+    for (const char* e : {"1", "2"}) {
+      const std::string golden = (fixture / "runs.").string() + e;
+      EXPECT_EQ(runs(db, std::string("--experiment ") + e + " --list"), slurp(golden + ".list")) << when << e;
+      EXPECT_EQ(runs(db, std::string("--experiment ") + e), slurp(golden + ".csv")) << when << e;
+      EXPECT_EQ(runs(db, std::string("--experiment ") + e + " --format json"), slurp(golden + ".json")) << when << e;
+    }
+  };
+  same("read only: ");
+  // Its runs are disk tools without a profile, also the one run with a profile then (experiment 2).
+  const ResultSet coat = ResultsDb(db, ResultsDb::Mode::ReadOnly).load(2);
+  ASSERT_EQ(coat.runs.size(), 1u);
+  EXPECT_FALSE(coat.runs[0].tool.profile.set());
+  EXPECT_TRUE(coat.runs[0].metrics.count("thickness_cv"));
+  // Opened to write, it gains the (empty) table, and still lists the same.
+  { ResultsDb writable(db, ResultsDb::Mode::ReadWrite); }
+  EXPECT_EQ(test::sqlRows(db, "SELECT COUNT(*) FROM run_profile"), "0\n");
+  same("after opening to write: ");
+}
+
+}  // namespace
+}  // namespace coverbench
