@@ -8,6 +8,7 @@
 
 #include "coverbench/flux_profile.hpp"
 #include "coverbench/headland.hpp"
+#include "coverbench/judge.hpp"
 #include "coverbench/motion.hpp"
 #include "coverbench/param_codec.hpp"
 #include "coverbench/registry.hpp"
@@ -143,6 +144,9 @@ TEST(EvenCoat, TriggerSpeedRefusesAGantryAndStopsAtEveryWaypoint) {
   problem.vehicle = {};
   problem.motion.stops = MotionLimits::Stops::Waypoints;
   EXPECT_NE(triggerSpeedCheck(problem, 0.5).find("stop at every waypoint"), std::string::npos);
+  problem.motion = {};
+  problem.straight_segments_only = true;  // a plan the runner smooths for a car (car_plan: smoothed)
+  EXPECT_NE(triggerSpeedCheck(problem, 0.5).find("car_plan: smoothed"), std::string::npos);
   // Through a planner: invalid_input with the reason.
   const Wall wall = test::turnedRectWall(2.0, 1.0, 0.0);
   for (const char* planner : kRowPlanners) {
@@ -156,6 +160,34 @@ TEST(EvenCoat, TriggerSpeedRefusesAGantryAndStopsAtEveryWaypoint) {
     EXPECT_EQ(r.status, PlanStatus::InvalidInput) << planner;
     EXPECT_NE(r.reason.find("not for a gantry"), std::string::npos) << planner << ": " << r.reason;
   }
+}
+
+// A car that reverses (its own plan: arcs, cusps) stops at its cusps: the spray is off around
+// them and at the path's ends, the arcs split on their circles; the clock and both judges agree.
+TEST(EvenCoat, TriggerSpeedOnACarsPathKeepsItsClockAndItsJudges) {
+  const Wall wall = loadWallFile(test::sourcePath("datasets/canonical/living_room_north.json"));
+  const PlannerInfo& info = findPlanner("zigzag");
+  Problem problem;
+  problem.wall = &wall;
+  problem.tool = sprayer(0.2);
+  problem.vehicle.kind = VehicleModel::Kind::Car;
+  problem.vehicle.turn_radius = 0.3;
+  problem.vehicle.reverse = true;
+  problem.params = resolveParams(info, {});
+  const PlanResult plain = runPlanner(info, problem, Budget());
+  problem.params = resolveParams(info, {{"trigger_speed", "0.5"}});
+  const PlanResult cut = runPlanner(info, problem, Budget());
+  ASSERT_EQ(cut.status, PlanStatus::Ok) << cut.reason;
+  ASSERT_TRUE(cut.path.hasArcs());
+  EXPECT_GT(cut.stats.at("trigger_off_m"), 2.0 * kSlowStretch);  // more than the path's two ends: cusps
+  const PathMetrics before = computeMetrics(wall, problem.tool, plain.path, problem.vehicle);
+  const PathMetrics after = computeMetrics(wall, problem.tool, cut.path, problem.vehicle);
+  EXPECT_TRUE(after.validity.valid);
+  EXPECT_TRUE(judge::judgePath(wall, problem.tool, cut.path, problem.vehicle).validity.valid);
+  EXPECT_NEAR(after.motion.duration_s, before.motion.duration_s, 1e-9);
+  EXPECT_NEAR(after.lengths.total, before.lengths.total, 1e-9);
+  EXPECT_EQ(after.motion.turns, before.motion.turns);
+  EXPECT_LT(after.deposition->cv, before.deposition->cv);
 }
 
 /// The tool-on and tool-off lengths of a path.
@@ -211,6 +243,7 @@ TEST(EvenCoat, TriggerSpeedKeepsTheClockAndTheJudgesOnAWallWithObstacles) {
     const JudgedPlan cut = planned(planner, wall, tool, {{"coat_ripple", "0.02"}, {"trigger_speed", "0.5"}});
     ASSERT_EQ(cut.result.status, PlanStatus::Ok) << planner << ": " << cut.result.reason;
     EXPECT_TRUE(cut.metrics.validity.valid) << planner;
+    EXPECT_TRUE(judge::judgePath(wall, tool, cut.result.path).validity.valid) << planner;  // the exact judge
     EXPECT_NEAR(cut.metrics.motion.duration_s, plain.metrics.motion.duration_s, 1e-9) << planner;
     EXPECT_EQ(cut.metrics.motion.turns, plain.metrics.motion.turns) << planner;
     const auto [plain_on, plain_off] = onOffLengths(plain.result.path);
