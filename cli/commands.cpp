@@ -120,6 +120,8 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   o.plan.result = std::move(judged.result);
   o.plan.metrics = judged.metrics;
   o.plan.not_scored = judged.not_scored;
+  // The plan file's reason says why its coat's metrics are null (a raster past the cap).
+  o.plan.result.reason = withNote(o.plan.result.reason, coatNotScoredNote(judged.metrics));
   o.plan_json = planFileJson(o.plan);
   const bool scored = o.plan.not_scored.empty();
   const std::string title = wall.name + " / " + planner.name + "  (" + toolLabel(tool) + ")  " +
@@ -370,6 +372,9 @@ int metricsCommand(const MetricsOptions& options) {
   limitScoringTime(options.plan, options.time_limit_s);
   const VehicleModel vehicle = resolveVehicle(options.vehicle, plan.vehicle.value_or(VehicleModel{}));
   const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits);
+  // Asked to score the coat, the command fails when it cannot (a raster past the cap): deposition()
+  // throws its one-line error before any raster work.
+  if (!m.coat_not_scored.empty()) deposition(wall, tool, plan.path, tool.profile, limits, vehicle);
   std::optional<judge::Judgement> exact;
   if (options.judge == "exact") {
     judge::CoverageOptions judge_options;

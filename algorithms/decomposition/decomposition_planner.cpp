@@ -222,6 +222,7 @@ struct DecompositionParams {
   Order order = Order::Tsp;
   double overlap = 0.0;
   double coat_ripple = 0.0;
+  double trigger_speed = 0.0;
   bool boundary_loop = true;
   double row_end_inset = 0.6;
   bool fill_leftovers = false;
@@ -239,6 +240,7 @@ const ParamTable<DecompositionParams>& paramTable() {
           .add({"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent passes overlap"},
                &DecompositionParams::overlap)
           .add(coatRippleParam(), &DecompositionParams::coat_ripple)
+          .add(triggerSpeedParam(), &DecompositionParams::trigger_speed)
           .add({"boundary_loop", ParamType::Bool, true, 0, 0, {}, "",
                 "one loop around the wall and each obstacle after the cells (covers corners the passes miss)"},
                &DecompositionParams::boundary_loop)
@@ -498,10 +500,14 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
     DecompositionParams params = given;
     if (std::string why = evenCoatOverlap(problem.tool, params.coat_ripple, params.overlap); !why.empty())
       return PlanResult::failure(PlanStatus::InvalidInput, std::move(why));
+    if (std::string why = triggerSpeedCheck(problem, params.trigger_speed); !why.empty())
+      return PlanResult::failure(PlanStatus::InvalidInput, std::move(why));
     // A car comes only with car_plan headland or headland_no_fill: for smoothed, runPlanner gives
     // a tool that turns on the spot and smooths the path.
-    return planSweep(problem, params.sweep, budget,
-                     [&](double angle_deg) { return planAt(problem, params, budget, angle_deg); });
+    PlanResult result = planSweep(problem, params.sweep, budget,
+                                  [&](double angle_deg) { return planAt(problem, params, budget, angle_deg); });
+    applyTriggerSpeed(problem, params.trigger_speed, result);
+    return result;
   }
 
  private:

@@ -72,6 +72,7 @@ struct ZigzagParams {
   SweepDirection sweep;
   double overlap = 0.0;
   double coat_ripple = 0.0;
+  double trigger_speed = 0.0;
   long long boundary_passes = 1;
   double row_end_inset = 0.6;
   bool fill_leftovers = false;
@@ -85,6 +86,7 @@ const ParamTable<ZigzagParams>& paramTable() {
           .add({"overlap", ParamType::Number, 0.0, 0.0, 0.9, {}, "", "fraction of the tool width adjacent rows overlap"},
                &ZigzagParams::overlap)
           .add(coatRippleParam(), &ZigzagParams::coat_ripple)
+          .add(triggerSpeedParam(), &ZigzagParams::trigger_speed)
           .add({"boundary_passes", ParamType::Integer, 1LL, 0, 10, {}, "",
                 "boundary-following loops around the wall and each obstacle before the rows"},
                &ZigzagParams::boundary_passes)
@@ -103,10 +105,14 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
     ZigzagParams params = given;
     if (std::string why = evenCoatOverlap(problem.tool, params.coat_ripple, params.overlap); !why.empty())
       return PlanResult::failure(PlanStatus::InvalidInput, std::move(why));
+    if (std::string why = triggerSpeedCheck(problem, params.trigger_speed); !why.empty())
+      return PlanResult::failure(PlanStatus::InvalidInput, std::move(why));
     // A car comes only with car_plan headland or headland_no_fill: for smoothed, runPlanner gives
     // a tool that turns on the spot and smooths the path.
-    return planSweep(problem, params.sweep, budget,
-                     [&](double angle_deg) { return planAt(problem, params, budget, angle_deg); });
+    PlanResult result = planSweep(problem, params.sweep, budget,
+                                  [&](double angle_deg) { return planAt(problem, params, budget, angle_deg); });
+    applyTriggerSpeed(problem, params.trigger_speed, result);
+    return result;
   }
 
  private:

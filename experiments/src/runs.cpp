@@ -308,6 +308,7 @@ RunRecord executeRun(const RunSpec& spec) {
                        "finds none)" + first + (result.reason.empty() ? "" : "; the planner said: " + result.reason);
         }
       }
+      rec.reason = withNote(rec.reason, coatNotScoredNote(m));
     } catch (const std::exception& e) {  // a path beyond the scoring limits, or a bug in the judge
       rec.status = RunStatus::MetricsError;
       rec.reason = std::string("the path could not be scored: ") + e.what();

@@ -49,8 +49,24 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
   m.waypoints = path.waypoints.size();
   const double ideal = m.coverage.reachable_area / tool.tool_width;
   m.length_ratio = ideal > 0.0 ? m.lengths.total / ideal : 0.0;
-  if (tool.profile.set()) m.deposition = deposition(wall, tool, path, tool.profile, limits, vehicle);
+  if (tool.profile.set()) {
+    try {
+      m.deposition = deposition(wall, tool, path, tool.profile, limits, vehicle);
+    } catch (const InputError& e) {  // the raster cap: the coat alone is not scored
+      if (e.source() != "deposition") throw;
+      m.coat_not_scored = e.what();
+    }
+  }
   return m;
+}
+
+std::string coatNotScoredNote(const PathMetrics& m) {
+  return m.coat_not_scored.empty() ? "" : "the coat's metrics are not scored (the others are): " + m.coat_not_scored;
+}
+
+std::string withNote(const std::string& reason, const std::string& note) {
+  if (note.empty()) return reason;
+  return reason.empty() ? note : reason + "; " + note;
 }
 
 std::vector<NamedMetric> flatten(const PathMetrics& m) {
@@ -91,6 +107,9 @@ std::vector<NamedMetric> flatten(const PathMetrics& m) {
                                            {"even_share", d.even_share},      {"thin_share", d.thin_share},
                                            {"thick_share", d.thick_share}};
     out.insert(out.end(), coat.begin(), coat.end());
+  } else if (!m.coat_not_scored.empty()) {  // named, with no value: the coat was asked for, not scored
+    for (const char* name : {"thickness_mean", "thickness_cv", "even_share", "thin_share", "thick_share"})
+      out.push_back({name, NAN});
   }
   return out;
 }

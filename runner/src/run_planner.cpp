@@ -295,6 +295,7 @@ JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, cons
     j.reason = describeViolations(j.metrics.validity, problem.tool.clearance) +
                (j.result.reason.empty() ? "" : "; the planner said: " + j.result.reason);
   }
+  j.reason = withNote(j.reason, coatNotScoredNote(j.metrics));
   return j;
 }
 

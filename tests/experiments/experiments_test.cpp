@@ -4,7 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cmath>
 #include <map>
+#include <set>
 
 #include "coverbench/build_identity.hpp"
 #include "coverbench/files.hpp"
@@ -223,6 +225,42 @@ TEST_F(Experiments, TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys) {
     for (const auto& [name, value] : executeRun(fast_runs[i]).metrics) EXPECT_EQ(name.rfind("exact_", 0), std::string::npos);
   }
   EXPECT_NE(error(small + "judge: strict\n").find(":12: judge: must be fast or exact, not 'strict'"), std::string::npos);
+}
+
+// A coat past the raster cap (a gaussian of sigma s/50 on cells of sigma/5 over a gable wall)
+// loses only the coat: the run keeps its status and every other metric (as a coat that fits has
+// them), the five coat metrics are stored with no value, and the reason says why.
+TEST_F(Experiments, ACoatPastTheRasterCapKeepsTheOtherMetricsAndSaysWhy) {
+  const std::string head = "name: c\noutput: out\ndatasets:\n  - family: gable\n    count: 1\n    seed: 3\n"
+                           "planners:\n  - zigzag\ntool:\n  width: 0.2\n  profile: {kind: gaussian, sigma: ";
+  // (A run spec points into its config's walls: both are kept.)
+  const ExperimentConfig fine_config = loadExperimentConfig(config(head + "0.05}\n", "fine.yaml"));
+  const ExperimentConfig too_fine_config = loadExperimentConfig(config(head + "0.004}\n", "too_fine.yaml"));
+  const std::vector<WallEntry> fine_walls = loadWalls(fine_config), too_fine_walls = loadWalls(too_fine_config);
+  const std::vector<RunSpec> fine = expandRuns(fine_config, fine_walls), too_fine = expandRuns(too_fine_config, too_fine_walls);
+  ASSERT_EQ(fine.size(), 1u);
+  ASSERT_EQ(too_fine.size(), 1u);
+  const RunRecord scored = executeRun(fine[0]), unscored = executeRun(too_fine[0]);
+  ASSERT_EQ(scored.status, RunStatus::Ok) << scored.reason;
+  EXPECT_EQ(scored.reason, "");
+  EXPECT_EQ(unscored.status, RunStatus::Ok) << unscored.reason;
+  EXPECT_TRUE(unscored.valid);
+  EXPECT_EQ(unscored.reason.rfind("the coat's metrics are not scored (the others are): deposition: tool.profile: needs a "
+                                  "coat raster of ", 0),
+            0u)
+      << unscored.reason;
+  ASSERT_EQ(unscored.metrics.size(), scored.metrics.size());
+  const std::set<std::string> coat = {"thickness_mean", "thickness_cv", "even_share", "thin_share", "thick_share"};
+  for (std::size_t i = 0; i < scored.metrics.size(); ++i) {
+    const auto& [name, value] = unscored.metrics[i];
+    EXPECT_EQ(name, scored.metrics[i].first);
+    if (coat.count(name)) {
+      EXPECT_TRUE(std::isnan(value)) << name;
+      EXPECT_TRUE(std::isfinite(scored.metrics[i].second)) << name;
+    } else if (!std::isnan(value)) {
+      EXPECT_EQ(value, scored.metrics[i].second) << name;
+    }
+  }
 }
 
 TEST(PathEncoding, RoundTripsExactly) {

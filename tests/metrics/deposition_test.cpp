@@ -303,8 +303,9 @@ TEST(Deposition, ProfilesAreNormalisedDensities) {
 namespace coverbench {
 namespace {
 
-// A wall whose raster would pass the cap is refused before any work, naming the profile: a run
-// records metrics_error with this reason, never a coat computed on a coarser raster than stated.
+// A wall whose raster would pass the cap is refused before any work, naming the profile, never a
+// coat computed on a coarser raster than stated: deposition() throws, and computeMetrics keeps
+// every other metric and says why the coat has none (its five names listed with no value).
 TEST(Deposition, AWallPastTheRasterCapIsRefusedWithOneLine) {
   Wall wall;
   wall.name = "field";
@@ -314,14 +315,35 @@ TEST(Deposition, AWallPastTheRasterCapIsRefusedWithOneLine) {
   path.moveTo({99, 1}, true);
   ToolParams tool{0.2, 0.0};
   tool.profile = gaussian(0.05);  // cells of min(s/40, sigma/5) = 0.005 m: (2 x 100 / 0.005)^2 = 1.6e9 samples
+  const std::string why =
+      "deposition: tool.profile: needs a coat raster of 1.6e+09 samples over the reachable region (4 per cell of "
+      "0.005 m, the smaller of s/40 and the profile's spread/5), at most 20000000: a wider tool or a smaller wall";
   try {
-    computeMetrics(wall, tool, path);
+    deposition(wall, tool, path, tool.profile);
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "deposition: tool.profile: needs a coat raster of 1.6e+09 samples over the reachable region (4 per cell of "
-              "0.005 m, the smaller of s/40 and the profile's spread/5), at most 20000000: a wider tool or a smaller wall");
+    EXPECT_EQ(std::string(e.what()), why);
   }
+  const PathMetrics m = computeMetrics(wall, tool, path);
+  EXPECT_FALSE(m.deposition.has_value());
+  EXPECT_EQ(m.coat_not_scored, why);
+  EXPECT_EQ(coatNotScoredNote(m), "the coat's metrics are not scored (the others are): " + why);
+  EXPECT_TRUE(m.validity.valid);
+  EXPECT_NEAR(m.lengths.total, 98.0, 1e-12);
+  EXPECT_GT(m.coverage.coverage_reachable, 0.0);
+  std::size_t unvalued = 0;
+  for (const NamedMetric& n : flatten(m))
+    if (std::isnan(n.value)) {
+      ++unvalued;
+      EXPECT_TRUE(n.name == "thickness_mean" || n.name == "thickness_cv" || n.name == "even_share" ||
+                  n.name == "thin_share" || n.name == "thick_share")
+          << n.name;
+    }
+  EXPECT_EQ(unvalued, 5u);
+  // A tool without a profile has no coat metrics and no note.
+  const PathMetrics bare = computeMetrics(wall, ToolParams{0.2, 0.0}, path);
+  EXPECT_EQ(bare.coat_not_scored, "");
+  EXPECT_EQ(coatNotScoredNote(bare), "");
 }
 
 }  // namespace

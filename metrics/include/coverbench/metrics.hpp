@@ -203,11 +203,22 @@ struct PathMetrics {
   Motion motion;
   std::size_t waypoints = 0;
   double length_ratio = 0.0;  ///< length_total / (|R| / s)
-  /// The coat's thickness (deposition.hpp): only when the tool has a flux profile.
+  /// The coat's thickness (deposition.hpp): only when the tool has a flux profile and R's raster
+  /// fits kMaxDepositionCells.
   std::optional<Deposition> deposition;
+  /// Why a tool with a flux profile has no coat metrics: R would need a raster past
+  /// kMaxDepositionCells (deposition()'s message, "deposition: tool.profile: needs a coat raster
+  /// of ..."). Empty otherwise. flatten() then lists the coat's metrics with no value (NaN).
+  std::string coat_not_scored;
 };
-/// Scores a path (the coat's thickness too when the tool has a flux profile). Throws InputError
-/// (field `waypoints`) for a path beyond the scoring limits below, before any work.
+/// What a run's reason adds when the coat was not scored: "the coat's metrics are not scored
+/// (the others are): deposition: tool.profile: needs a coat raster of ...", else "".
+std::string coatNotScoredNote(const PathMetrics& m);
+/// `reason` with `note` appended ("; " between them); `reason` itself when `note` is empty.
+std::string withNote(const std::string& reason, const std::string& note);
+/// Scores a path (the coat's thickness too when the tool has a flux profile, unless its raster is
+/// too large: coat_not_scored). Throws InputError (field `waypoints`) for a path beyond the
+/// scoring limits below, before any work.
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path,
                            const VehicleModel& vehicle = {}, const MotionLimits& limits = {});
 

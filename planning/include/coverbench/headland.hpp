@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "coverbench/geometry.hpp"
+#include "coverbench/motion.hpp"
 #include "coverbench/planner.hpp"
 
 namespace coverbench {
@@ -89,6 +90,30 @@ ParamSpec coatRippleParam();
 /// cannot (empty when it can, or when coat_ripple is 0): the tool has no flux profile, `overlap`
 /// was set too, or no spacing down to s/10 is that even.
 std::string evenCoatOverlap(const ToolParams& tool, double coat_ripple, double& overlap);
+/// The parameter `trigger_speed`: 0 (the tool sprays wherever the path has it on), or a fraction
+/// f in (0, 1) of the time model's speed v (Problem::motion) under which the spray is off while
+/// the tool accelerates out of or brakes into a stop (switchOffWhileSlow).
+ParamSpec triggerSpeedParam();
+/// Why `trigger_speed` cannot apply to the problem (empty when it can, or when it is 0): a gantry
+/// stops at every change of tool state (to lower or lift its tool), a time model that stops at
+/// every waypoint would stop where the spray switches, and a path smoothed for a car after
+/// planning stops elsewhere than the planned one.
+std::string triggerSpeedCheck(const Problem& problem, double trigger_speed);
+/// With trigger_speed f > 0 and a path: switches the spray off where the time model drives the
+/// path slower than f v next to a stop (switchOffWhileSlow) and records how much as the
+/// statistic `trigger_off_m`.
+void applyTriggerSpeed(const Problem& problem, double trigger_speed, PlanResult& result);
+/// The path with the same geometry, and the tool off along every stretch next to a stop (a
+/// standstill of the time model: a run's start or end) where `segmentSpeeds` drives it slower
+/// than `speed`: from a stop up to where the tool reaches `speed` accelerating, and from where it
+/// falls under `speed` braking into the next stop (a run that never reaches it: all of it).
+/// Segments are split at those points (an arc into two arcs of its circle); a piece shorter than
+/// kMinArcChord takes its neighbour's state. A split is collinear (or continues the arc), so the
+/// time model drives the path as before: duration_s is unchanged up to rounding, for any vehicle
+/// that does not stop at tool-state changes (not a gantry) and a time model that does not stop at
+/// every waypoint. `off_m` (if given) receives the length switched off.
+Path switchOffWhileSlow(const Path& path, const MotionLimits& limits, const VehicleModel& vehicle, double speed,
+                        double* off_m = nullptr);
 /// The statistics leftover_passes, leftover_small_pieces and leftover_small_area_m2.
 void recordLeftovers(PlanResult& result, const Leftovers& left);
 
