@@ -389,7 +389,8 @@ int metricsCommand(const MetricsOptions& options) {
     throw InputError("--coat-svg", "profile", "the coat's picture needs the tool's flux profile (--profile)");
   limitScoringTime(options.plan, options.time_limit_s);
   const VehicleModel vehicle = resolveVehicle(options.vehicle, plan.vehicle.value_or(VehicleModel{}));
-  const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits);
+  CoatRaster raster;  // the raster the coat's metrics were computed on, drawn by --coat-svg
+  const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits, options.coat_svg.empty() ? nullptr : &raster);
   std::optional<judge::Judgement> exact;
   if (options.judge == "exact") {
     judge::CoverageOptions judge_options;
@@ -399,7 +400,7 @@ int metricsCommand(const MetricsOptions& options) {
   OutputFiles files;  // the picture is written before anything is printed, so a failure prints nothing
   if (!options.svg.empty()) files.add(options.svg, pathPicture(wall, tool, vehicle, plan.path, wall.name + " / " + options.plan));
   if (!options.coat_svg.empty())
-    files.add(options.coat_svg, coatPicture(wall, tool, plan.path, limits, vehicle, wall.name + " / " + options.plan + ": the coat"));
+    files.add(options.coat_svg, coatPicture(wall, tool, raster, wall.name + " / " + options.plan + ": the coat"));
   ::alarm(0);
   files.commit();
   // Where an invalid path goes wrong, on stderr (the JSON on stdout keeps its keys).

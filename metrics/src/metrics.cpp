@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace coverbench {
 
@@ -37,7 +38,7 @@ void checkScorable(const Path& path, const std::string& source) {
 
 
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle,
-                           const MotionLimits& limits) {
+                           const MotionLimits& limits, CoatRaster* coat) {
   checkScorable(path, "path");
   PathMetrics m;
   m.validity = checkValidity(wall, tool, path, vehicle);
@@ -49,7 +50,11 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
   m.waypoints = path.waypoints.size();
   const double ideal = m.coverage.reachable_area / tool.tool_width;
   m.length_ratio = ideal > 0.0 ? m.lengths.total / ideal : 0.0;
-  if (tool.profile.set()) m.deposition = deposition(wall, tool, path, tool.profile, limits, vehicle);
+  if (tool.profile.set()) {
+    CoatRaster raster = coatRaster(wall, tool, path, tool.profile, limits, vehicle);
+    m.deposition = depositionStats(raster.grid, raster.mask);
+    if (coat) *coat = std::move(raster);
+  }
   return m;
 }
 

@@ -402,9 +402,14 @@ std::string coatColour(double ratio) {
 }  // namespace
 
 std::string coatPicture(const Wall& wall, const ToolParams& tool, const Path& path, const MotionLimits& limits,
-                        const VehicleModel& vehicle, const std::string& title) {
+                        const VehicleModel& vehicle, const std::string& title, double block_px) {
   if (!tool.profile.set()) throw InputError("coat picture", "tool.profile", "the coat's picture needs the tool's flux profile");
-  const CoatRaster raster = coatRaster(wall, tool, path, tool.profile, limits, vehicle);
+  return coatPicture(wall, tool, coatRaster(wall, tool, path, tool.profile, limits, vehicle), title, block_px);
+}
+
+std::string coatPicture(const Wall& wall, const ToolParams& tool, const CoatRaster& raster, const std::string& title,
+                        double block_px) {
+  if (!tool.profile.set()) throw InputError("coat picture", "tool.profile", "the coat's picture needs the tool's flux profile");
   const Deposition d = depositionStats(raster.grid, raster.mask);
   const DepositionGrid& g = raster.grid;
   const View v = pictureView(wall, nullptr);
@@ -415,9 +420,9 @@ std::string coatPicture(const Wall& wall, const ToolParams& tool, const Path& pa
     << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n"
     << "<text x=\"" << fmt(kPadPx) << "\" y=\"" << fmt(kPadPx + 6) << "\" font-size=\"14\" font-weight=\"bold\">" << escapeHtml(title)
     << "</text>\n<path d=\"" << v.ringPath(wall.boundary) << "\" fill=\"#f3efe6\" stroke=\"none\"/>\n";
-  // Blocks of cells about 3 px wide, each the mean of its samples in R, coloured by its ratio to
-  // R's mean; runs of one colour along a row are one rectangle.
-  const std::size_t per = g.cell > 0.0 ? std::max<std::size_t>(1, static_cast<std::size_t>(3.0 / (v.k * g.cell))) : 1;
+  // Blocks of cells about block_px wide, each the mean of its samples in R, coloured by its ratio
+  // to R's mean; runs of one colour along a row are one rectangle.
+  const std::size_t per = g.cell > 0.0 ? std::max<std::size_t>(1, static_cast<std::size_t>(block_px / (v.k * g.cell))) : 1;
   const std::size_t span = 2 * per, bx = (g.nx + span - 1) / span, by = (g.ny + span - 1) / span;
   const double side = static_cast<double>(per) * g.cell;
   s << "<g class=\"coat\" stroke=\"none\">\n";
