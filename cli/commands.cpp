@@ -524,10 +524,17 @@ int redrawCommand(const RedrawOptions& options) {
   char title[512];
   std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s", run.wall.name.c_str(), run.planner.c_str(),
                 run.tool.tool_width, run.tool.clearance, run.status.c_str());
-  writeFileAtomically(options.svg, pathPicture(run.wall, run.tool, run.vehicle, run.path, title, true, 1500.0,
-                                               run.first_judged_segment));
+  if (!options.coat_svg.empty() && !run.tool.profile.set())
+    throw InputError("--coat-svg", "tool.profile",
+                     "run " + run.key.substr(0, 12) + "'s tool has no flux profile (its experiment's tool: gives none): it lays no coat to draw");
+  OutputFiles files;  // both pictures or neither
+  files.add(options.svg, pathPicture(run.wall, run.tool, run.vehicle, run.path, title, true, 1500.0, run.first_judged_segment));
+  if (!options.coat_svg.empty())
+    files.add(options.coat_svg, coatPicture(run.wall, run.tool, run.path, run.motion, run.vehicle, std::string(title) + ": the coat"));
+  files.commit();
   std::cout << "run " << run.key << ": " << run.status << (run.reason.empty() ? "" : " (" + run.reason + ")") << ", "
-            << run.path.waypoints.size() << " waypoints -> " << options.svg << "\n";
+            << run.path.waypoints.size() << " waypoints -> " << options.svg
+            << (options.coat_svg.empty() ? "" : ", its coat -> " + options.coat_svg) << "\n";
   return 0;
 }
 
