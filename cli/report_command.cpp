@@ -135,7 +135,7 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
   runs.reserve(pictures.size());
   for (GalleryPicture* p : pictures) runs.push_back(db.storedRun(p->key));
   fs::create_directories(folder / "gallery");
-  std::vector<std::string> svgs(pictures.size()), scripts(pictures.size());
+  std::vector<std::string> svgs(pictures.size()), scripts(pictures.size()), coats(pictures.size());
   std::atomic<std::size_t> next{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
@@ -154,6 +154,16 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
         pictures[i]->height = std::llround(size.height);
         if (r.path.segments() > 0)
           scripts[i] = playbackScript("gallery/" + stems[i] + ".js", r.wall, r.tool, r.vehicle, r.path, motion);
+        if (scorable && r.tool.profile.set()) {  // the coat beside the path (docs/deposition.md)
+          try {
+            coats[i] = coatPicture(r.wall, r.tool, r.path, motion, r.vehicle, title + ": the coat", true);
+            const PictureSize coat = pictureSize(r.wall, nullptr);
+            pictures[i]->coat_width = std::llround(coat.width);
+            pictures[i]->coat_height = std::llround(coat.height);
+          } catch (const InputError& e) {  // a raster over the cap: the page says why there is none
+            pictures[i]->note += (pictures[i]->note.empty() ? "" : "; ") + std::string("no coat picture: ") + e.problem();
+          }
+        }
       } catch (...) {
         std::lock_guard<std::mutex> lock(failure_mutex);
         failure = std::current_exception();
@@ -174,6 +184,11 @@ void drawGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const fs::
   for (std::size_t i = 0; i < pictures.size(); ++i) {
     pictures[i]->file = "gallery/" + stems[i] + ".svg";
     write(pictures[i]->file, svgs[i]);
+    if (!coats[i].empty()) {  // in a folder of their own: no name there is a path picture's
+      fs::create_directories(folder / "gallery" / "coat");
+      pictures[i]->coat = "gallery/coat/" + stems[i] + ".svg";
+      write(pictures[i]->coat, coats[i]);
+    }
     if (scripts[i].empty()) continue;
     pictures[i]->playback = "gallery/" + stems[i] + ".js";
     write(pictures[i]->playback, scripts[i]);
