@@ -48,7 +48,7 @@ def figure(src, alt, size=None):
 # A wall whose runs have coat pictures (a tool with a flux profile) shows each run's path and coat
 # side by side in one cell of the gallery, its cells twice as wide. Set on the elements, so the
 # pages of other experiments stay as they were.
-COAT_GALLERY = "grid-template-columns:repeat(auto-fill,minmax(600px,1fr))"
+COAT_GALLERY = "grid-template-columns:repeat(auto-fill,minmax(760px,1fr))"
 COAT_PAIR = "display:grid;grid-template-columns:1fr 1fr;gap:6px;align-items:start"
 
 
