@@ -286,11 +286,13 @@ TEST_F(Cli, RunRejectsABadConfigBeforeAnyRunAndReportsAGoodOne) {
 // redraw that missed the profile would fail, one that missed the clock would draw another coat),
 // all but the title. A run whose tool has no profile: one line, nothing written.
 TEST_F(Cli, RedrawDrawsARunsCoatAsMetricsDoes) {
+  fs::create_directories(dir_ / "walls");
   write("walls/w.json", R"({"name": "w", "width": 2.0, "height": 1.2, "obstacles": [
         {"type": "rect", "x": 0.8, "y": 0.4, "width": 0.4, "height": 0.3}]})");
   const std::string config = write("coat.yaml", "name: coat\noutput: out\ndatasets:\n  - folder: walls\nplanners: [zigzag]\n"
                                                 "tool:\n  width: 0.3\n  profile: {kind: beta, beta: 2.5}\nmotion:\n  speed: 0.5\n");
-  ASSERT_EQ(run("run " + config + " --no-report").exit_code, 0);
+  const CommandRun ran = run("run " + config + " --no-report");
+  ASSERT_EQ(ran.exit_code, 0) << ran.err;
   const std::string db = (dir_ / "out" / "results.sqlite").string();
   const ExperimentConfig c = loadExperimentConfig(config);
   const std::string key = expandRuns(c, loadWalls(c)).front().key;
