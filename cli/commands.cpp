@@ -371,7 +371,8 @@ int metricsCommand(const MetricsOptions& options) {
     throw InputError("--coat-svg", "profile", "the coat's picture needs the tool's flux profile (--profile)");
   limitScoringTime(options.plan, options.time_limit_s);
   const VehicleModel vehicle = resolveVehicle(options.vehicle, plan.vehicle.value_or(VehicleModel{}));
-  const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits);
+  CoatRaster raster;  // the raster the coat's metrics were computed on, drawn by --coat-svg
+  const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits, options.coat_svg.empty() ? nullptr : &raster);
   // Asked to score the coat, the command fails when it cannot (a raster past the cap): deposition()
   // throws its one-line error before any raster work.
   if (!m.coat_not_scored.empty()) deposition(wall, tool, plan.path, tool.profile, limits, vehicle);
@@ -384,7 +385,7 @@ int metricsCommand(const MetricsOptions& options) {
   OutputFiles files;  // the picture is written before anything is printed, so a failure prints nothing
   if (!options.svg.empty()) files.add(options.svg, pathPicture(wall, tool, vehicle, plan.path, wall.name + " / " + options.plan));
   if (!options.coat_svg.empty())
-    files.add(options.coat_svg, coatPicture(wall, tool, plan.path, limits, vehicle, wall.name + " / " + options.plan + ": the coat"));
+    files.add(options.coat_svg, coatPicture(wall, tool, raster, wall.name + " / " + options.plan + ": the coat"));
   ::alarm(0);
   files.commit();
   // Where an invalid path goes wrong, on stderr (the JSON on stdout keeps its keys).
@@ -508,10 +509,17 @@ int redrawCommand(const RedrawOptions& options) {
   char title[512];
   std::snprintf(title, sizeof title, "%s / %s  (s = %g m, c = %g m)  %s", run.wall.name.c_str(), run.planner.c_str(),
                 run.tool.tool_width, run.tool.clearance, run.status.c_str());
-  writeFileAtomically(options.svg, pathPicture(run.wall, run.tool, run.vehicle, run.path, title, true, 1500.0,
-                                               run.first_judged_segment));
+  if (!options.coat_svg.empty() && !run.tool.profile.set())
+    throw InputError("--coat-svg", "tool.profile",
+                     "run " + run.key.substr(0, 12) + "'s tool has no flux profile (its experiment's tool: gives none): it lays no coat to draw");
+  OutputFiles files;  // both pictures or neither
+  files.add(options.svg, pathPicture(run.wall, run.tool, run.vehicle, run.path, title, true, 1500.0, run.first_judged_segment));
+  if (!options.coat_svg.empty())
+    files.add(options.coat_svg, coatPicture(run.wall, run.tool, run.path, run.motion, run.vehicle, std::string(title) + ": the coat"));
+  files.commit();
   std::cout << "run " << run.key << ": " << run.status << (run.reason.empty() ? "" : " (" + run.reason + ")") << ", "
-            << run.path.waypoints.size() << " waypoints -> " << options.svg << "\n";
+            << run.path.waypoints.size() << " waypoints -> " << options.svg
+            << (options.coat_svg.empty() ? "" : ", its coat -> " + options.coat_svg) << "\n";
   return 0;
 }
 

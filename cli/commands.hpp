@@ -171,9 +171,11 @@ int runsCommand(const RunsOptions& options);
 
 struct RedrawOptions {
   std::string database, run, svg;
+  std::string coat_svg;  ///< also the coat's picture (the run's tool must have a flux profile); empty: none
   std::optional<std::size_t> replan;  ///< draw this repair of the run instead (replans table, 0-based)
 };
-/// Redraws a stored run (its wall, path and coverage layer) as an SVG picture.
+/// Redraws a stored run (its wall, path and coverage layer) as an SVG picture, and with
+/// `coat_svg` the coat it lays (its experiment's flux profile and time model).
 int redrawCommand(const RedrawOptions& options);
 /// html: writes the report folder (--out); md, csv, latex: prints (or writes) its tables.
 int reportCommand(const ReportOptions& options);

@@ -340,6 +340,8 @@ void addResultCommands(CLI::App& app, Commands& o) {
   redraw_cmd->add_option("database", redraw.database, "results.sqlite of an experiment")->required();
   redraw_cmd->add_option("--run", redraw.run, "run key, or its first 6 or more hex digits")->required();
   redraw_cmd->add_option("--svg", redraw.svg, "picture to write")->required();
+  redraw_cmd->add_option("--coat-svg", redraw.coat_svg,
+                         "also the coat's thickness over R, with its scale in micrometres (SVG; the run's tool needs a flux profile)");
   redraw_cmd->add_option("--replan", redraw.replan,
                          "draw the run's repair number N after surprise obstacles (0-based; docs/replanning.md)");
   redraw_cmd->callback([&o] { o.exit_code = cli::redrawCommand(o.redraw); });

@@ -119,16 +119,45 @@ PictureLayers pictureLayers(const Path& path, const std::string& status) {
 
 namespace {
 
+/// Runs work(i) for i in [0, count) on two threads; the first exception is thrown after all.
+template <class Work>
+void inParallel(std::size_t count, Work work) {
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto run = [&] {
+    for (std::size_t i; (i = next++) < count;) {
+      try {
+        work(i);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        failure = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  const unsigned n = std::max(1u, std::min(2u, std::thread::hardware_concurrency()));
+  for (unsigned t = 0; t < n; ++t) threads.emplace_back(run);
+  for (std::thread& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
 /// The gallery's pictures with their runs: what the report data says of each (file, size, note,
-/// playback) is known before a picture is drawn, so the analysis can start while they are.
+/// playback, coat) is known before its path is drawn, so the analysis can start while they are.
 struct GalleryPlan {
   std::vector<GalleryPicture*> pictures;
   std::vector<std::string> stems;
   std::vector<ResultsDb::StoredRun> runs;
+  std::vector<std::string> coats;  ///< each run's coat picture, for a tool with a flux profile
 };
 
-/// Reads every gallery picture's run and sets its file names, size and note.
-GalleryPlan planGallery(ResultsDb& db, std::vector<GallerySection>& gallery) {
+std::string pictureTitle(const ResultsDb::StoredRun& r, const GalleryPicture& p) {
+  return r.wall.name + " / " + p.column + "  " + r.status;
+}
+
+/// Reads every gallery picture's run and sets its file names, size and note; draws the coats of a
+/// tool with a flux profile (docs/deposition.md), whose raster may be refused with a reason.
+GalleryPlan planGallery(ResultsDb& db, std::vector<GallerySection>& gallery, const MotionLimits& motion) {
   GalleryPlan plan;
   std::vector<std::string> names;
   for (GallerySection& s : gallery)
@@ -139,6 +168,7 @@ GalleryPlan planGallery(ResultsDb& db, std::vector<GallerySection>& gallery) {
       }
   plan.stems = uniqueFileNames(names);
   plan.runs.reserve(plan.pictures.size());
+  bool profiled = false;
   for (std::size_t i = 0; i < plan.pictures.size(); ++i) {
     GalleryPicture& p = *plan.pictures[i];
     const ResultsDb::StoredRun& r = plan.runs.emplace_back(db.storedRun(p.key));
@@ -151,39 +181,46 @@ GalleryPlan planGallery(ResultsDb& db, std::vector<GallerySection>& gallery) {
     p.height = std::llround(size.height);
     p.file = "gallery/" + plan.stems[i] + ".svg";
     if (r.path.segments() > 0) p.playback = "gallery/" + plan.stems[i] + ".js";
+    profiled = profiled || (scorable && r.tool.profile.set());
+  }
+  plan.coats.resize(plan.runs.size());
+  if (!profiled) return plan;
+  std::vector<std::string> refused(plan.runs.size());
+  inParallel(plan.runs.size(), [&](std::size_t i) {
+    const ResultsDb::StoredRun& r = plan.runs[i];
+    if (!pictureLayers(r.path, r.status).scorable || !r.tool.profile.set()) return;
+    try {  // the coat beside the path
+      plan.coats[i] = coatPicture(r.wall, r.tool, r.path, motion, r.vehicle, pictureTitle(r, *plan.pictures[i]) + ": the coat", true);
+    } catch (const InputError& e) {  // a raster over the cap: the page says why there is none
+      refused[i] = e.problem();
+    }
+  });
+  for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+    GalleryPicture& p = *plan.pictures[i];
+    if (!refused[i].empty()) p.note += (p.note.empty() ? "" : "; ") + std::string("no coat picture: ") + refused[i];
+    if (plan.coats[i].empty()) continue;
+    // In a folder of their own: no name there is a path picture's.
+    p.coat = "gallery/coat/" + plan.stems[i] + ".svg";
+    const PictureSize coat = pictureSize(plan.runs[i].wall, nullptr);
+    p.coat_width = std::llround(coat.width);
+    p.coat_height = std::llround(coat.height);
   }
   return plan;
 }
 
 /// Draws every planned picture into `folder`/gallery, two at a time, with the data that plays its
-/// path back under the experiment's time model.
+/// path back under the experiment's time model, and writes the coats drawn with the plan.
 void drawGallery(const GalleryPlan& plan, const fs::path& folder, const MotionLimits& motion) {
   fs::create_directories(folder / "gallery");
   const std::size_t count = plan.runs.size();
   std::vector<std::string> svgs(count), scripts(count);
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  auto work = [&] {
-    for (std::size_t i; (i = next++) < count;) {
-      try {
-        const ResultsDb::StoredRun& r = plan.runs[i];
-        const GalleryPicture& p = *plan.pictures[i];
-        const std::string title = r.wall.name + " / " + p.column + "  " + r.status;
-        svgs[i] = pathPicture(r.wall, r.tool, r.vehicle, r.path, title, pictureLayers(r.path, r.status).layer,
-                              kGalleryOverlapStrips);
-        if (!p.playback.empty()) scripts[i] = playbackScript(p.playback, r.wall, r.tool, r.vehicle, r.path, motion);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(failure_mutex);
-        failure = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> threads;
-  const unsigned n = std::max(1u, std::min(2u, std::thread::hardware_concurrency()));
-  for (unsigned t = 0; t < n; ++t) threads.emplace_back(work);
-  for (std::thread& t : threads) t.join();
-  if (failure) std::rethrow_exception(failure);
+  inParallel(count, [&](std::size_t i) {
+    const ResultsDb::StoredRun& r = plan.runs[i];
+    const GalleryPicture& p = *plan.pictures[i];
+    svgs[i] = pathPicture(r.wall, r.tool, r.vehicle, r.path, pictureTitle(r, p), pictureLayers(r.path, r.status).layer,
+                          kGalleryOverlapStrips);
+    if (!p.playback.empty()) scripts[i] = playbackScript(p.playback, r.wall, r.tool, r.vehicle, r.path, motion);
+  });
   auto write = [&](const std::string& file, const std::string& text) {
     std::ofstream out(folder / file, std::ios::binary);
     out << text;
@@ -191,8 +228,13 @@ void drawGallery(const GalleryPlan& plan, const fs::path& folder, const MotionLi
     if (!out) throw InputError((folder / file).string(), "gallery", std::string("cannot be written: ") + std::strerror(errno));
   };
   for (std::size_t i = 0; i < count; ++i) {
-    write(plan.pictures[i]->file, svgs[i]);
-    if (!scripts[i].empty()) write(plan.pictures[i]->playback, scripts[i]);
+    const GalleryPicture& p = *plan.pictures[i];
+    write(p.file, svgs[i]);
+    if (!p.coat.empty()) {
+      fs::create_directories(folder / "gallery" / "coat");
+      write(p.coat, plan.coats[i]);
+    }
+    if (!scripts[i].empty()) write(p.playback, scripts[i]);
   }
 }
 
@@ -324,7 +366,8 @@ std::string writeReport(const ReportOptions& o) {
     if (std::find(datasets.begin(), datasets.end(), d.label) == datasets.end()) datasets.push_back(d.label);
   std::vector<GallerySection> gallery = selectGallery(results, datasets);
   Staging staging(target);
-  const GalleryPlan plan = planGallery(db, gallery);
+  const MotionLimits motion = configMotion(record.config_text, record.config_path);
+  const GalleryPlan plan = planGallery(db, gallery, motion);
   const fs::path data = staging.path() / "report_data.json";
   {
     std::ofstream out(data, std::ios::binary);
@@ -335,7 +378,7 @@ std::string writeReport(const ReportOptions& o) {
   // The pictures are drawn while the analysis runs: it needs only what the plan put in the data.
   const AnalysisProcess analysis = startAnalysis(data.string(), staging.path().string(), "html,md,csv,latex");
   try {
-    drawGallery(plan, staging.path(), configMotion(record.config_text, record.config_path));
+    drawGallery(plan, staging.path(), motion);
   } catch (...) {
     stopAnalysis(analysis);
     throw;

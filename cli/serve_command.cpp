@@ -147,6 +147,10 @@ void ServeApp::Impl::addExplorerRoutes() {
                res.set_content(explorer.drawing(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.matches[3], playback),
                                playback ? "text/javascript; charset=utf-8" : "image/svg+xml");
              }));
+  server.Get(R"(/api/experiments/(\d{1,6})/(\d{1,12})/runs/([0-9a-f]{64})/coat\.svg)",
+             guarded([this](const httplib::Request& req, httplib::Response& res) {
+               res.set_content(explorer.coat(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.matches[3]), "image/svg+xml");
+             }));
   server.Get("/api/experiments/(\\d{1,6})/(\\d{1,12})/runs/([0-9a-f]{64})/problem",
              guarded([this](const httplib::Request& req, httplib::Response& res) {
                res.set_content(jsonText(explorer.problem(std::stoul(req.matches[1]), std::stoll(req.matches[2]), req.matches[3])),

@@ -49,6 +49,24 @@ std::string Explorer::drawing(std::size_t db, long long id, const std::string& k
                      pictureLayers(r.path, r.status).layer, kGalleryOverlapStrips, 0, true);
 }
 
+std::string Explorer::coat(std::size_t db, long long id, const std::string& key) {
+  ResultsDb::StoredRun r;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    r = storedRun(db, id, key);
+  }
+  if (!r.tool.profile.set())
+    throw HttpError(404, "run " + key + "'s tool has no flux profile (its experiment's tool: gives none): it lays no coat");
+  if (!pictureLayers(r.path, r.status).scorable)
+    throw HttpError(404, "run " + key + " has no scored path (" + r.status + "): no coat to draw");
+  std::lock_guard<std::mutex> lock(coat_mutex_);
+  try {
+    return coatPicture(r.wall, r.tool, r.path, r.motion, r.vehicle, r.wall.name + " / " + r.planner + "  " + r.status + ": the coat", true);
+  } catch (const InputError& e) {  // a raster over the cap: the run's metrics said so too
+    throw HttpError(404, "run " + key + " has no coat picture: " + e.problem());
+  }
+}
+
 ResultsDb::StoredRun Explorer::storedRun(std::size_t db, long long id, const std::string& key) {
   if (!index(db, id).position.count(key))
     throw HttpError(404, "experiment " + std::to_string(id) + " of database " + std::to_string(db) + " has no run " + key);

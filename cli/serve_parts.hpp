@@ -79,6 +79,10 @@ class Explorer {
   /// The run's picture, or the script that plays it back under the experiment's time model. The
   /// run is read under the lock; it is drawn outside it, so other requests do not wait for it.
   std::string drawing(std::size_t db, long long id, const std::string& key, bool playback);
+  /// The coat the run lays (its experiment's flux profile and time model; coatPicture's blocks as
+  /// one image), drawn outside the lock, one at a time (a raster may take 200 MB). 404 for a run
+  /// whose tool has no profile, or that has no scored path.
+  std::string coat(std::size_t db, long long id, const std::string& key);
   /// What the run planned, as a workbench request: its wall file, planner, parameters and tool.
   nlohmann::json problem(std::size_t db, long long id, const std::string& key);
   /// How the run ended, in words: its status, reason and the end of an external planner's stderr
@@ -141,6 +145,7 @@ class Explorer {
   std::vector<Db> dbs_;
   std::map<std::pair<std::size_t, long long>, Index> cache_;
   std::mutex mutex_;
+  std::mutex coat_mutex_;  ///< one coat drawn at a time (coat())
 };
 
 /// Plans in a helper process of its own: the server has threads, and a process with threads must

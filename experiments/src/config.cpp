@@ -728,6 +728,18 @@ MotionLimits configMotion(const std::string& config_text, const std::string& sou
   return {};
 }
 
+FluxProfile configProfile(const std::string& config_text, const std::string& source, double tool_width) {
+  Reader r(source);
+  try {
+    const Yaml doc = r.copy(YAML::Load(config_text), "", 0);
+    const Yaml* tool = doc.isMap() ? doc.find("tool") : nullptr;
+    if (const Yaml* p = tool && tool->isMap() ? tool->find("profile") : nullptr) return readProfile(r, *p, {tool_width});
+  } catch (const YAML::Exception& e) {
+    throw InputError(source + ":" + std::to_string(e.mark.line + 1), "(document)", "YAML syntax: " + e.msg);
+  }
+  return {};
+}
+
 ExperimentConfig loadExperimentConfig(const std::string& path) {
   ExperimentConfig c;
   c.path = path;

@@ -470,6 +470,17 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
   run.stderr_tail = s.columnText(16);  // after the 7 option columns
   if (s.step()) throw InputError(file_, "runs", "several run keys start with " + key_prefix + ": give more digits");
   if (std::optional<Path> p = path(run.key)) run.path = std::move(*p);
+  // The tool's flux profile and the time model: the config's (the run key holds them).
+  Statement c(db_,
+              "SELECT e.config_text FROM experiments e JOIN experiment_runs x ON x.experiment_id = e.id WHERE x.run_key = ? "
+              "ORDER BY e.id DESC LIMIT 1",
+              file_);
+  c.text(1, run.key);
+  if (c.step()) {
+    const std::string source = file_ + ": experiments.config_text";
+    run.motion = configMotion(c.columnText(0), source);
+    run.tool.profile = configProfile(c.columnText(0), source, run.tool.tool_width);
+  }
   return run;
 }
 

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace coverbench {
 
@@ -37,7 +38,7 @@ void checkScorable(const Path& path, const std::string& source) {
 
 
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle,
-                           const MotionLimits& limits) {
+                           const MotionLimits& limits, CoatRaster* coat) {
   checkScorable(path, "path");
   PathMetrics m;
   m.validity = checkValidity(wall, tool, path, vehicle);
@@ -51,7 +52,9 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
   m.length_ratio = ideal > 0.0 ? m.lengths.total / ideal : 0.0;
   if (tool.profile.set()) {
     try {
-      m.deposition = deposition(wall, tool, path, tool.profile, limits, vehicle);
+      CoatRaster raster = coatRaster(wall, tool, path, tool.profile, limits, vehicle);
+      m.deposition = depositionStats(raster.grid, raster.mask);
+      if (coat) *coat = std::move(raster);
     } catch (const InputError& e) {  // the raster cap: the coat alone is not scored
       if (e.source() != "deposition") throw;
       m.coat_not_scored = e.what();

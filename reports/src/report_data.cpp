@@ -209,9 +209,12 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
     Json section = {{"title", s.title}, {"walls", Json::array()}};
     for (const GalleryWall& w : s.walls) {
       Json pictures = Json::array();
-      for (const GalleryPicture& p : w.pictures)
+      for (const GalleryPicture& p : w.pictures) {
         pictures.push_back({{"column", p.column}, {"key", p.key}, {"status", p.status}, {"file", p.file}, {"note", p.note},
                             {"playback", p.playback}, {"width", p.width}, {"height", p.height}});
+        if (!p.coat.empty())  // only for a tool with a flux profile, so other reports stay as they were
+          pictures.back().update({{"coat", p.coat}, {"coat_width", p.coat_width}, {"coat_height", p.coat_height}});
+      }
       section["walls"].push_back({{"wall", w.wall}, {"wall_name", w.wall_name}, {"why", w.why}, {"pictures", pictures}});
     }
     j["gallery"].push_back(section);

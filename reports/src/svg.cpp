@@ -9,11 +9,14 @@
 #include "coverbench/motion.hpp"
 
 #include <nlohmann/json.hpp>
+#include <openssl/evp.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 namespace coverbench {
 namespace {
@@ -402,9 +405,98 @@ std::string coatColour(double ratio) {
 }  // namespace
 
 std::string coatPicture(const Wall& wall, const ToolParams& tool, const Path& path, const MotionLimits& limits,
-                        const VehicleModel& vehicle, const std::string& title) {
+                        const VehicleModel& vehicle, const std::string& title, bool as_image) {
   if (!tool.profile.set()) throw InputError("coat picture", "tool.profile", "the coat's picture needs the tool's flux profile");
-  const CoatRaster raster = coatRaster(wall, tool, path, tool.profile, limits, vehicle);
+  return coatPicture(wall, tool, coatRaster(wall, tool, path, tool.profile, limits, vehicle), title, as_image);
+}
+
+namespace {
+
+/// The coat's blocks: `per` x `per` cells each (about 3 px), `bx` x `by` of them from the raster's
+/// corner, each the colour of its samples' mean in R over R's mean ("" where none is in R), row
+/// by row from the bottom.
+struct CoatBlocks {
+  std::size_t bx = 0, by = 0;
+  double side = 0.0;  ///< m
+  std::vector<std::string> colour;
+};
+CoatBlocks coatBlocks(const CoatRaster& raster, double k, double mean) {
+  const DepositionGrid& g = raster.grid;
+  const std::size_t per = g.cell > 0.0 ? std::max<std::size_t>(1, static_cast<std::size_t>(3.0 / (k * g.cell))) : 1;
+  const std::size_t span = 2 * per;
+  CoatBlocks b;
+  b.bx = (g.nx + span - 1) / span;
+  b.by = mean > 0.0 ? (g.ny + span - 1) / span : 0;
+  b.side = static_cast<double>(per) * g.cell;
+  b.colour.resize(b.bx * b.by);
+  for (std::size_t j = 0; j < b.by; ++j)
+    for (std::size_t i = 0; i < b.bx; ++i) {
+      double sum = 0.0;
+      std::size_t n = 0;
+      for (std::size_t y = j * span; y < std::min(g.ny, (j + 1) * span); ++y)
+        for (std::size_t x = i * span; x < std::min(g.nx, (i + 1) * span); ++x)
+          if (raster.mask[y * g.nx + x]) {
+            sum += g.thickness[y * g.nx + x];
+            ++n;
+          }
+      if (n) b.colour[j * b.bx + i] = coatColour(sum / static_cast<double>(n) / mean);
+    }
+  return b;
+}
+
+/// One PNG chunk: length, type, data, and the CRC of type and data (zlib's crc32).
+void pngChunk(std::string& out, const char* type, const std::string& data) {
+  auto be32 = [&out](unsigned long v) {
+    for (int shift = 24; shift >= 0; shift -= 8) out += static_cast<char>((v >> shift) & 0xff);
+  };
+  be32(data.size());
+  const std::string body = type + data;
+  out += body;
+  be32(crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
+}
+
+/// The blocks as a PNG of one pixel a block (8-bit RGBA, transparent outside R, the top row
+/// first), base-64 encoded for a data: address.
+std::string coatPng(const CoatBlocks& b) {
+  std::string raw;
+  raw.reserve(b.by * (1 + 4 * b.bx));
+  for (std::size_t row = b.by; row-- > 0;) {
+    raw += '\0';  // filter: none
+    for (std::size_t i = 0; i < b.bx; ++i) {
+      const std::string& c = b.colour[row * b.bx + i];
+      const unsigned long rgb = c.empty() ? 0 : std::stoul(c.substr(1), nullptr, 16);
+      raw += static_cast<char>((rgb >> 16) & 0xff);
+      raw += static_cast<char>((rgb >> 8) & 0xff);
+      raw += static_cast<char>(rgb & 0xff);
+      raw += static_cast<char>(c.empty() ? 0 : 255);
+    }
+  }
+  uLongf size = compressBound(static_cast<uLong>(raw.size()));
+  std::string packed(size, '\0');
+  if (compress2(reinterpret_cast<Bytef*>(packed.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
+                static_cast<uLong>(raw.size()), 9) != Z_OK)
+    throw std::runtime_error("coat picture: zlib could not compress the image");
+  packed.resize(size);
+  std::string header;
+  for (std::size_t v : {b.bx, b.by})
+    for (int shift = 24; shift >= 0; shift -= 8) header += static_cast<char>((v >> shift) & 0xff);
+  header += std::string("\x08\x06\x00\x00\x00", 5);  // 8 bits, RGBA, deflate, no filter choice, no interlace
+  std::string png = "\x89PNG\r\n\x1a\n";
+  pngChunk(png, "IHDR", header);
+  pngChunk(png, "IDAT", packed);
+  pngChunk(png, "IEND", "");
+  std::string text(4 * ((png.size() + 2) / 3) + 1, '\0');
+  const int n = EVP_EncodeBlock(reinterpret_cast<unsigned char*>(text.data()), reinterpret_cast<const unsigned char*>(png.data()),
+                                static_cast<int>(png.size()));
+  text.resize(static_cast<std::size_t>(n));
+  return text;
+}
+
+}  // namespace
+
+std::string coatPicture(const Wall& wall, const ToolParams& tool, const CoatRaster& raster, const std::string& title,
+                        bool as_image) {
+  if (!tool.profile.set()) throw InputError("coat picture", "tool.profile", "the coat's picture needs the tool's flux profile");
   const Deposition d = depositionStats(raster.grid, raster.mask);
   const DepositionGrid& g = raster.grid;
   const View v = pictureView(wall, nullptr);
@@ -416,38 +508,35 @@ std::string coatPicture(const Wall& wall, const ToolParams& tool, const Path& pa
     << "<text x=\"" << fmt(kPadPx) << "\" y=\"" << fmt(kPadPx + 6) << "\" font-size=\"14\" font-weight=\"bold\">" << escapeHtml(title)
     << "</text>\n<path d=\"" << v.ringPath(wall.boundary) << "\" fill=\"#f3efe6\" stroke=\"none\"/>\n";
   // Blocks of cells about 3 px wide, each the mean of its samples in R, coloured by its ratio to
-  // R's mean; runs of one colour along a row are one rectangle.
-  const std::size_t per = g.cell > 0.0 ? std::max<std::size_t>(1, static_cast<std::size_t>(3.0 / (v.k * g.cell))) : 1;
-  const std::size_t span = 2 * per, bx = (g.nx + span - 1) / span, by = (g.ny + span - 1) / span;
-  const double side = static_cast<double>(per) * g.cell;
+  // R's mean: runs of one colour along a row as one rectangle each, or (as_image) one PNG pixel
+  // a block, drawn unsmoothed.
+  const CoatBlocks b = coatBlocks(raster, v.k, mean);
   s << "<g class=\"coat\" stroke=\"none\">\n";
-  for (std::size_t j = 0; mean > 0.0 && j < by; ++j) {
+  if (as_image && b.by > 0) {
+    s << "<image x=\"" << fmt(v.px(g.x0)) << "\" y=\"" << fmt(v.py(g.y0 + static_cast<double>(b.by) * b.side)) << "\" width=\""
+      << fmt(static_cast<double>(b.bx) * b.side * v.k) << "\" height=\"" << fmt(static_cast<double>(b.by) * b.side * v.k)
+      << "\" preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\" href=\"data:image/png;base64," << coatPng(b)
+      << "\"/>\n";
+  }
+  for (std::size_t j = 0; !as_image && j < b.by; ++j) {
     std::string run_colour;
     std::size_t run_start = 0;
     auto flush = [&](std::size_t end) {
       if (run_colour.empty()) return;
-      s << "<rect x=\"" << fmt(v.px(g.x0 + static_cast<double>(run_start) * side)) << "\" y=\""
-        << fmt(v.py(g.y0 + static_cast<double>(j + 1) * side)) << "\" width=\"" << fmt(static_cast<double>(end - run_start) * side * v.k)
-        << "\" height=\"" << fmt(side * v.k) << "\" fill=\"" << run_colour << "\"/>\n";
+      s << "<rect x=\"" << fmt(v.px(g.x0 + static_cast<double>(run_start) * b.side)) << "\" y=\""
+        << fmt(v.py(g.y0 + static_cast<double>(j + 1) * b.side)) << "\" width=\"" << fmt(static_cast<double>(end - run_start) * b.side * v.k)
+        << "\" height=\"" << fmt(b.side * v.k) << "\" fill=\"" << run_colour << "\"/>\n";
       run_colour.clear();
     };
-    for (std::size_t i = 0; i < bx; ++i) {
-      double sum = 0.0;
-      std::size_t n = 0;
-      for (std::size_t y = j * span; y < std::min(g.ny, (j + 1) * span); ++y)
-        for (std::size_t x = i * span; x < std::min(g.nx, (i + 1) * span); ++x)
-          if (raster.mask[y * g.nx + x]) {
-            sum += g.thickness[y * g.nx + x];
-            ++n;
-          }
-      const std::string colour = n ? coatColour(sum / static_cast<double>(n) / mean) : "";
+    for (std::size_t i = 0; i < b.bx; ++i) {
+      const std::string& colour = b.colour[j * b.bx + i];
       if (colour != run_colour) {
         flush(i);
         run_colour = colour;
         run_start = i;
       }
     }
-    flush(bx);
+    flush(b.bx);
   }
   s << "</g>\n<path d=\"" << v.ringPath(wall.boundary) << "\" fill=\"none\" stroke=\"#333333\" stroke-width=\"1.5\"/>\n";
   for (const Obstacle& o : wall.obstacles) {

@@ -467,7 +467,7 @@
     await zoomed;
   }
   /** The viewer's pictures: the open run's, or the compared runs' in order. @returns {HTMLElement[]} */
-  const pictures = () => [...$("viewer").querySelectorAll("figure")];
+  const pictures = () => [...$("viewer").querySelectorAll("figure:not(.coat)")];
   /** Each picture at the view's zoom, once it has loaded (its size is known then). @param {View} view */
   async function zoomPictures(view, seq) {
     await Promise.all(pictures().map(async (f, i) => {
@@ -594,7 +594,35 @@
       } catch (e) { showError(e); }
     });
     button("same-wall", "other planners on this wall", () => compareWall(run).catch(showError));
+    // A tool with a flux profile lays a coat: its thickness map, drawn by the server when asked.
+    if ("thickness_mean" in run.metrics) button("show-coat", "the coat's thickness", () => showCoat(run).catch(showError));
     viewer.insertBefore(tools, figure);
+  }
+
+  /** The open run's coat (docs/deposition.md) under its picture; the server's error if it has none. */
+  async function showCoat(run) {
+    const [db, id] = state.view.exp.split("/");
+    const b = /** @type {HTMLButtonElement} */ ($("show-coat"));
+    b.disabled = true;
+    try {
+      const res = await fetch(`/api/experiments/${db}/${id}/runs/${run.key}/coat.svg`);
+      if (!res.ok) throw new Error((await res.json()).error || res.statusText);
+      const blob = await res.blob();
+      if (state.chosen !== run.key || $("viewer").querySelector("figure.coat")) return;
+      const figure = document.createElement("figure");
+      figure.className = "coat";
+      const img = document.createElement("img");
+      img.alt = `${run.wall_name} / ${run.planner}: the coat`;
+      img.src = URL.createObjectURL(blob);
+      img.addEventListener("load", () => URL.revokeObjectURL(img.src), {once: true});
+      const caption = document.createElement("figcaption");
+      caption.textContent = "the coat's thickness, \u00b5m: green within 10 % of the mean, blues thinner, oranges to dark red thicker";
+      figure.append(img, caption);
+      $("viewer").querySelector("figure")?.after(figure);
+    } catch (e) {
+      b.disabled = false;
+      throw e;
+    }
   }
 
   // Why a run failed or left parts out, and the end of an external planner's stderr: planner

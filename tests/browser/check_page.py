@@ -15,7 +15,7 @@ The page may load scripts only from its own files (player.js, gallery/*.js): no 
 no script from data.
 
 usage: check_page.py PAGE.html SCREENSHOT_PREFIX [--expect-text TEXT]... [--min-images N]
-       [--min-tables N] [--section ID]... [--play] [--lazy]
+       [--min-tables N] [--section ID]... [--play] [--lazy] [--shot-of SELECTOR]...
 """
 import argparse
 import base64
@@ -234,6 +234,8 @@ def main():
     ap.add_argument("--section", action="append", default=[])
     ap.add_argument("--play", action="store_true")
     ap.add_argument("--lazy", action="store_true")
+    ap.add_argument("--shot-of", action="append", default=[], metavar="SELECTOR",
+                    help="screenshot SHOTS-shot-N.png with the first element SELECTOR matches scrolled to the middle (it must exist, its images loaded)")
     args = ap.parse_args()
     os.makedirs(os.path.dirname(os.path.abspath(args.shots)), exist_ok=True)
     with opened(args.page) as page:
@@ -274,6 +276,21 @@ def main():
             page.evaluate(f"document.getElementById({json.dumps(s)}).scrollIntoView()")
             time.sleep(0.2)
             page.screenshot(f"{args.shots}-{s}.png")
+        for n, selector in enumerate(args.shot_of):
+            found = page.evaluate(f"""(() => {{
+                const e = document.querySelector({json.dumps(selector)});
+                if (!e) return null;
+                e.scrollIntoView({{block: 'center'}});
+                const imgs = [...e.querySelectorAll('img')];
+                return {{images: imgs.length, loaded: imgs.filter(i => i.complete && i.naturalWidth > 0).length}};
+            }})()""")
+            if not found:
+                problems.append(f"no element matches {selector!r}")
+                continue
+            if found["loaded"] < found["images"]:
+                problems.append(f"{selector!r}: {found['images'] - found['loaded']} of its images did not load")
+            time.sleep(0.3)
+            page.screenshot(f"{args.shots}-shot-{n}.png")
         if args.play:
             problems += play(page, args.shots)
         problems += [p for p in errors(page.events) if p not in problems]

@@ -49,3 +49,26 @@ python=${COVERBENCH_PYTHON:-/usr/bin/python3}
   --profile beta --beta 2.5 --coat-svg "$work/coat.svg" > /dev/null
 printf '<!doctype html><html><head><meta charset="utf-8"><title>coat</title></head><body><img src="coat.svg" alt="the coat"></body></html>\n' > "$work/coat.html"
 "$python" "$src/tests/browser/check_page.py" "$work/coat.html" "$shots/coat" --min-images 1 --min-tables 0
+# A report of a tool with a flux profile: every run of the gallery with its coat beside its path
+# (loaded, lazy, sized); the first wall's pair kept as coat-report-shot-0.png.
+mkdir -p "$work/coat-walls"
+cp "$work/walls/b.json" "$work/coat-walls/"
+cat > "$work/coat.yaml" <<'YAML'
+name: coat
+output: coat-out
+datasets:
+  - folder: coat-walls
+planners:
+  - zigzag
+  - name: boustrophedon
+    params:
+      coat_ripple: 0.02
+tool:
+  width: 0.3
+  profile: {kind: beta, beta: 2.5}
+YAML
+"$bin" run "$work/coat.yaml" > "$work/coat-run.log"
+coats=$(ls "$work/coat-out/report/gallery/coat" | wc -l)
+[ "$coats" -ge 2 ] || { echo "FAIL: $coats coat pictures in the gallery, expected 2 or more" >&2; exit 1; }
+"$python" "$src/tests/browser/check_page.py" "$work/coat-out/report/index.html" "$shots/coat-report" --section galleries \
+  --min-images 4 --lazy --shot-of '.coat-pair'

@@ -13,6 +13,9 @@
 #include <iterator>
 
 #include "coverbench/experiment.hpp"
+#include "coverbench/plan_file.hpp"
+#include "coverbench/results_db.hpp"
+#include "coverbench/wall_file.hpp"
 #include "coverbench/registry.hpp"
 #include "test_support.hpp"
 
@@ -276,6 +279,68 @@ TEST_F(Cli, RunRejectsABadConfigBeforeAnyRunAndReportsAGoodOne) {
                 .exit_code, 0) << out;
   EXPECT_NE(slurp(svg).find("<svg"), std::string::npos);
   EXPECT_EQ(run("redraw " + (dir_ / "out" / "results.sqlite").string() + " --run 000000000 --svg " + svg).exit_code, 2);
+}
+
+// `redraw --coat-svg` draws a stored run's coat from its experiment's flux profile and time
+// model: the picture `metrics --coat-svg` draws of the same path with that profile and clock (a
+// redraw that missed the profile would fail, one that missed the clock would draw another coat),
+// all but the title. A run whose tool has no profile: one line, nothing written.
+TEST_F(Cli, RedrawDrawsARunsCoatAsMetricsDoes) {
+  fs::create_directories(dir_ / "walls");
+  write("walls/w.json", R"({"name": "w", "width": 2.0, "height": 1.2, "obstacles": [
+        {"type": "rect", "x": 0.8, "y": 0.4, "width": 0.4, "height": 0.3}]})");
+  const std::string config = write("coat.yaml", "name: coat\noutput: out\ndatasets:\n  - folder: walls\nplanners: [zigzag]\n"
+                                                "tool:\n  width: 0.3\n  profile: {kind: beta, beta: 2.5}\nmotion:\n  speed: 0.5\n");
+  const CommandRun ran = run("run " + config + " --no-report");
+  ASSERT_EQ(ran.exit_code, 0) << ran.err;
+  const std::string db = (dir_ / "out" / "results.sqlite").string();
+  const ExperimentConfig c = loadExperimentConfig(config);
+  const std::string key = expandRuns(c, loadWalls(c)).front().key;
+  const std::string wall = (dir_ / "wall.json").string(), plan = (dir_ / "plan.json").string();
+  {
+    ResultsDb results(db, ResultsDb::Mode::ReadOnly);
+    const ResultsDb::StoredRun stored = results.storedRun(key);
+    ASSERT_TRUE(stored.tool.profile.set());
+    EXPECT_EQ(stored.motion.speed, 0.5);
+    ASSERT_GT(stored.path.segments(), 0u);
+    writeFileAtomically(wall, wallToJson(stored.wall));
+    PlanFile file;
+    file.planner = "zigzag";
+    file.wall = stored.wall.name;
+    file.tool = stored.tool;
+    file.result.path = stored.path;
+    writeFileAtomically(plan, planFileJson(file));
+  }
+  const std::string redrawn = (dir_ / "redrawn.svg").string(), scored = (dir_ / "scored.svg").string();
+  std::string out;
+  ASSERT_EQ(run("redraw " + db + " --run " + key.substr(0, 12) + " --svg " + (dir_ / "run.svg").string() + " --coat-svg " + redrawn, &out)
+                .exit_code, 0) << out;
+  EXPECT_NE(out.find("its coat -> " + redrawn), std::string::npos) << out;
+  ASSERT_EQ(run("metrics --wall " + wall + " --plan " + plan + " --profile beta --beta 2.5 --speed 0.5 --coat-svg " + scored).exit_code, 0);
+  auto untitled = [](std::string svg) {  // the title is the one line in bold
+    const std::size_t at = svg.find("font-weight=\"bold\">");
+    EXPECT_NE(at, std::string::npos);
+    return svg.erase(at, svg.find("</text>", at) - at);
+  };
+  const std::string a = slurp(redrawn), b = slurp(scored);
+  EXPECT_NE(a.find("coat thickness"), std::string::npos);
+  EXPECT_EQ(untitled(a), untitled(b));
+  ASSERT_EQ(run("metrics --wall " + wall + " --plan " + plan + " --profile beta --beta 2.5 --coat-svg " + scored).exit_code, 0);
+  EXPECT_NE(untitled(a), untitled(slurp(scored))) << "the default clock lays another coat";
+
+  const std::string plain = write("plain.yaml", "name: plain\noutput: plain\ndatasets:\n  - folder: walls\nplanners: [zigzag]\n");
+  ASSERT_EQ(run("run " + plain + " --no-report").exit_code, 0);
+  const ExperimentConfig p = loadExperimentConfig(plain);
+  const std::string plain_key = expandRuns(p, loadWalls(p)).front().key;
+  const std::string none = (dir_ / "none.svg").string();
+  const CommandRun refused = run("redraw " + (dir_ / "plain" / "results.sqlite").string() + " --run " + plain_key.substr(0, 12) +
+                                 " --svg " + none + " --coat-svg " + (dir_ / "none-coat.svg").string());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_EQ(lines(refused.err), 1) << refused.err;
+  EXPECT_NE(refused.err.find("--coat-svg: tool.profile: run " + plain_key.substr(0, 12) + "'s tool has no flux profile"), std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(none));
+  EXPECT_FALSE(fs::exists(dir_ / "none-coat.svg"));
 }
 
 TEST_F(Cli, ReportFolderIsAllOrNothingAndNeverReplacesAUsersFolder) {

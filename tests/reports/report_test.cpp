@@ -369,6 +369,18 @@ TEST(CoatPicture, ShowsTheCoatByItsRatioToTheMeanWithItsScaleAndFigures) {
     const std::string tick = ">" + shortNumber(std::round(r * d.mean_um * 10.0) / 10.0) + "</text>";
     EXPECT_NE(svg.find(tick), std::string::npos) << tick;
   }
+  // As one image (the gallery's and the explorer's): a PNG of a pixel a block in place of the
+  // rectangles, the rest of the picture the same; from a raster already computed, the same bytes.
+  const std::string image = coatPicture(wall, tool, path, MotionLimits{}, VehicleModel{}, "t", true);
+  auto coatGroup = [](const std::string& text) {
+    const std::size_t from = text.find("<g class=\"coat\""), to = text.find("</g>", from);
+    return std::make_pair(text.substr(0, from) + text.substr(to), text.substr(from, to - from));
+  };
+  EXPECT_EQ(coatGroup(image).first, coatGroup(svg).first);
+  EXPECT_NE(coatGroup(image).second.find("href=\"data:image/png;base64,iVBORw0KGgo"), std::string::npos);  // the PNG signature
+  EXPECT_EQ(coatGroup(image).second.find("<rect"), std::string::npos);
+  EXPECT_NE(coatGroup(svg).second.find("<rect"), std::string::npos);
+  EXPECT_EQ(coatPicture(wall, tool, coatRaster(wall, tool, path, tool.profile), "t", true), image);
   // No profile: no picture.
   EXPECT_THROW(coatPicture(wall, ToolParams{0.5, 0.0}, path, MotionLimits{}, VehicleModel{}, "t"), std::exception);
 }

@@ -512,6 +512,56 @@ class Doors(unittest.TestCase):
         status, answer = self.request("POST", "/api/check", body, json_type, timeout=60)
         self.assertEqual((status, answer.get("ok")), (200, True), answer)
 
+    def test_a_runs_coat_is_drawn_only_for_a_tool_with_a_profile(self):
+        """coat.svg: a run whose tool has a flux profile gets its coat (several asked at once, one
+        drawn at a time); a run without one, an unknown run, database or experiment, or a key the
+        route does not take, a one-line JSON error; nothing ends the server."""
+        with tempfile.TemporaryDirectory(prefix="coverbench-doors-coat-") as work:
+            os.makedirs(os.path.join(work, "walls"))
+            with open(os.path.join(work, "walls", "w.json"), "w") as f:
+                f.write('{"name": "w", "width": 2.0, "height": 1.2, "obstacles": [{"type": "rect", "x": 0.8, "y": 0.4, '
+                        '"width": 0.4, "height": 0.3}]}')
+            base = "output: {}\ndatasets:\n  - folder: walls\nplanners: [zigzag, spiral]\ntool:\n  width: 0.3\n"
+            with open(os.path.join(work, "coat.yaml"), "w") as f:
+                f.write("name: coat\n" + base.format("coat") + "  profile: {kind: beta, beta: 2.5}\n")
+            with open(os.path.join(work, "plain.yaml"), "w") as f:
+                f.write("name: plain\n" + base.format("plain"))
+            for name in ("coat", "plain"):
+                subprocess.run([BIN, "run", name + ".yaml", "--no-report"], cwd=work, check=True, capture_output=True)
+            server, port = start_server(os.path.join(work, "coat", "results.sqlite"), os.path.join(work, "plain", "results.sqlite"))
+            try:
+                keys = {}
+                for db in (0, 1):
+                    status, page = self.request("GET", f"/api/experiments/{db}/1/runs", port=port)
+                    self.assertEqual((status, page["total"]), (200, 2), page)
+                    keys[db] = [r["key"] for r in page["runs"]]
+                coat = lambda db, key, exp=1: f"/api/experiments/{db}/{exp}/runs/{key}/coat.svg"  # noqa: E731
+                answers = [None] * 4
+
+                def ask(i):
+                    answers[i] = self.request("GET", coat(0, keys[0][i % 2]), port=port, timeout=120)
+                threads = [threading.Thread(target=ask, args=(i,)) for i in range(4)]
+                for t in threads:
+                    t.start()
+                for t in threads:
+                    t.join()
+                for status, svg in answers:
+                    self.assertEqual(status, 200, svg)
+                    self.assertTrue(svg.startswith(b"<svg") and b"data:image/png;base64," in svg and b"coat thickness" in svg, svg[:200])
+                status, answer = self.request("GET", coat(1, keys[1][0]), port=port)
+                self.assertEqual(status, 404, answer)
+                self.assert_one_line_error(answer)
+                self.assertIn("tool has no flux profile", answer["error"])
+                for path in (coat(0, "0" * 64), coat(0, keys[0][0], exp=9), coat(7, keys[0][0]), coat(0, keys[0][0].upper()),
+                             coat(0, keys[0][0][:63]), coat(0, keys[0][0] + "0"), coat(0, "..%2F" * 13 + "abcdefghijklm"),
+                             coat(0, keys[0][0]) + "%00", "/api/experiments/0/1/runs/%FF%FE/coat.svg"):
+                    status, answer = self.request("GET", path, port=port)
+                    self.assertEqual(status, 404, (path, answer))
+                    self.assert_one_line_error(answer)
+                self.assertIsNone(server.poll(), "the server ended")
+            finally:
+                stop_server(server)
+
     def test_answers_are_whole_whatever_range_is_asked(self):
         whole = self.request("GET", "/api/walls")[1]
         for r in ("bytes=0-10", "bytes=0-1,5-6", "bytes=999999-1000000"):

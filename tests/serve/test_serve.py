@@ -151,7 +151,7 @@ class Serve(unittest.TestCase):
             paths = set(yaml.safe_load(f)["paths"])
         served = {"/api/experiments", "/api/experiments/{db}/{id}/runs", "/api/experiments/{db}/{id}/runs.csv", "/api/metrics",
                   "/api/experiments/{db}/{id}/values",
-                  "/api/experiments/{db}/{id}/runs/{key}/picture.svg",
+                  "/api/experiments/{db}/{id}/runs/{key}/picture.svg", "/api/experiments/{db}/{id}/runs/{key}/coat.svg",
                   "/api/experiments/{db}/{id}/runs/{key}/playback.js", "/api/experiments/{db}/{id}/runs/{key}/problem",
                   "/api/experiments/{db}/{id}/runs/{key}/outcome",
                   "/api/planners", "/api/check", "/api/plan", "/api/plans/{id}/picture.svg", "/api/plans/{id}/playback.js",
@@ -512,6 +512,58 @@ class Outcome(unittest.TestCase):
     """Issue 61: a run's outcome in words, for the run view: a planner that crashes on walls with
     holes (tests/data/crash_on_holes) has its reason and the end of its stderr served as JSON
     strings (bytes that were not UTF-8 as U+FFFD); the view shows them as text."""
+
+    def test_a_runs_coat_is_shown_in_the_viewer(self):
+        """A run of a tool with a flux profile: its view's button shows the coat under its picture
+        (loaded, with the scale); a run of a tool without one has no button. Screenshot serve-coat.png."""
+        opening = """(async () => {
+            const sleep = ms => new Promise(r => setTimeout(r, ms));
+            for (let k = 0; k < 400 && !document.body.dataset.ready; ++k) await sleep(25);
+            const rows = () => [...document.querySelectorAll('#runs tbody tr')];
+            for (let k = 0; k < 400 && !rows().length; ++k) await sleep(25);
+            rows()[0].click();
+            for (let k = 0; k < 400 && !document.getElementById('same-wall'); ++k) await sleep(25);
+            const button = document.getElementById('show-coat');
+            if (!button) return {button: false};
+            button.click();
+            const img = () => document.querySelector('#viewer figure.coat img');
+            for (let k = 0; k < 800 && !(img() && img().complete && img().naturalWidth > 0); ++k) await sleep(25);
+            if (!img()) return {error: 'no coat shown: ' + document.getElementById('status').textContent};
+            img().scrollIntoView({block: 'center'});
+            return {button: true, width: img().naturalWidth, disabled: button.disabled,
+                    caption: document.querySelector('#viewer figure.coat figcaption').textContent};
+        })()"""
+        shown = {}
+        with tempfile.TemporaryDirectory() as work:
+            os.makedirs(os.path.join(work, "walls"))
+            with open(os.path.join(work, "walls", "w.json"), "w") as f:
+                json.dump({"name": "w", "width": 2, "height": 1.2,
+                           "obstacles": [{"type": "rect", "x": 0.8, "y": 0.4, "width": 0.4, "height": 0.3}]}, f)
+            for name, profile in (("coat", "  profile: {kind: beta, beta: 2.5}\n"), ("plain", "")):
+                with open(os.path.join(work, name + ".yaml"), "w") as f:
+                    f.write(f"name: {name}\noutput: {name}\ndatasets:\n  - folder: walls\nplanners: [zigzag]\n"
+                            "tool:\n  width: 0.3\n" + profile)
+                subprocess.run([BIN, "run", name + ".yaml", "--no-report"], cwd=work, check=True, stdout=subprocess.DEVNULL)
+                server = subprocess.Popen([BIN, "serve", os.path.join(work, name, "results.sqlite"), "--port", "0"],
+                                          stdout=subprocess.PIPE, text=True)
+                try:
+                    port = re.search(r"http://127\.0\.0\.1:(\d+)/", server.stdout.readline()).group(1)
+                    with opened(f"http://127.0.0.1:{port}/") as page:
+                        shown[name] = page.evaluate(opening)
+                        time.sleep(0.3)
+                        if name == "coat":
+                            page.screenshot(os.path.join(SHOTS, "serve-coat.png"))
+                        shown[name]["problems"] = errors(page.events)
+                finally:
+                    server.kill()
+                    server.wait()
+                    server.stdout.close()
+        coat = shown["coat"]
+        self.assertNotIn("error", coat, coat)
+        self.assertEqual((coat["button"], coat["disabled"], coat["problems"]), (True, True, []), coat)
+        self.assertGreater(coat["width"], 100)
+        self.assertIn("thickness", coat["caption"])
+        self.assertEqual(shown["plain"], {"button": False, "problems": []})
 
     def test_a_crashed_runs_reason_and_stderr_are_served(self):
         with tempfile.TemporaryDirectory() as work:

@@ -100,6 +100,9 @@ ExperimentConfig loadExperimentConfig(const std::string& path);
 /// The time model a config's text sets (its `motion:` section; the default without one), for
 /// readers of a stored experiment. `source` names it in errors.
 MotionLimits configMotion(const std::string& config_text, const std::string& source);
+/// The flux profile a config's text gives its tools (`tool.profile`, checked for a tool
+/// `tool_width` wide; none without one), for readers of a stored experiment.
+FluxProfile configProfile(const std::string& config_text, const std::string& source, double tool_width);
 
 /// The published table a config's text names (its `published:` section, the table's path
 /// relative to `source`'s folder), read and checked; none without one. For the report of a stored

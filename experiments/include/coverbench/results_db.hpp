@@ -104,7 +104,10 @@ class ResultsDb {
     std::string planner;  ///< planner name and resolved parameters
     std::string planner_name;  ///< the registered planner
     std::string params_json;   ///< its resolved parameters as stored: a JSON object
+    /// Width and clearance; the flux profile and `motion` are the config's of the latest
+    /// experiment that holds the run (the run key holds both, so every such experiment agrees).
     ToolParams tool;
+    MotionLimits motion;
     VehicleModel vehicle;
     std::string status, reason;  ///< the run's (RunStatus's name) or the repair's
     std::string stderr_tail;     ///< the run's (RunRecord::stderr_tail; "" in a database from before it)

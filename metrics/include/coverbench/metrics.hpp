@@ -218,9 +218,11 @@ std::string coatNotScoredNote(const PathMetrics& m);
 std::string withNote(const std::string& reason, const std::string& note);
 /// Scores a path (the coat's thickness too when the tool has a flux profile, unless its raster is
 /// too large: coat_not_scored). Throws InputError (field `waypoints`) for a path beyond the
-/// scoring limits below, before any work.
+/// scoring limits below, before any work. With `coat` and a tool whose coat was scored, the coat's
+/// raster the metrics were computed on is handed out there (for its picture, coatPicture in
+/// svg.hpp); it is left as it is otherwise.
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path,
-                           const VehicleModel& vehicle = {}, const MotionLimits& limits = {});
+                           const VehicleModel& vehicle = {}, const MotionLimits& limits = {}, CoatRaster* coat = nullptr);
 
 /// Scoring limits. Exact scoring grows with the path's waypoints (memory: a spanning-tree path of
 /// 10^6 waypoints took 18 s and 0.46 GB here) and, much faster, with how often the path crosses

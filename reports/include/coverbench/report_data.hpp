@@ -20,6 +20,10 @@ struct GalleryPicture {
   std::string note;  ///< what the picture leaves out, if anything
   std::string playback;  ///< its path's playback data (a script), relative to the report folder; empty: none
   long long width = 0, height = 0;  ///< the picture's size in pixels (the page reserves it before loading), set when drawn
+  /// The coat's picture (a tool with a flux profile, a scorable path), relative to the report
+  /// folder, and its size in pixels; empty: none (report_data.json then has no coat keys).
+  std::string coat;
+  long long coat_width = 0, coat_height = 0;
 };
 /// One pictured wall: why it was chosen and every column's run on it.
 struct GalleryWall {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "coverbench/deposition.hpp"
 #include "coverbench/geometry.hpp"
 #include "coverbench/motion.hpp"
 #include "coverbench/planner.hpp"
@@ -56,9 +57,15 @@ std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleM
 /// The coat a path leaves (deposition.hpp; the tool must have a flux profile): the wall with R's
 /// thickness in blocks about 3 px wide, each coloured by its mean's ratio to R's mean (blues
 /// thinner than 0.9, green within 10 %, oranges to dark red thicker than 1.1), obstacles on top,
-/// a colour scale in micrometres and the five metrics. Throws as deposition() does.
+/// a colour scale in micrometres and the five metrics. The blocks are rectangles, or with
+/// `as_image` one embedded PNG of a pixel a block, drawn unsmoothed: the same picture in a file
+/// tens of times smaller (the report's gallery and the explorer use it). Throws as deposition() does.
 std::string coatPicture(const Wall& wall, const ToolParams& tool, const Path& path, const MotionLimits& limits,
-                        const VehicleModel& vehicle, const std::string& title);
+                        const VehicleModel& vehicle, const std::string& title, bool as_image = false);
+/// The same picture from a raster already computed (coatRaster(), or the one computeMetrics hands
+/// out), so the metrics and the picture share one computation.
+std::string coatPicture(const Wall& wall, const ToolParams& tool, const CoatRaster& raster, const std::string& title,
+                        bool as_image = false);
 
 /// The data that plays a picture's path back in place (reports/python/coverbench_report/player.js):
 /// a script calling coverbenchPlayback({...}) with the path in the picture's pixels (the frame

@@ -45,23 +45,42 @@ def figure(src, alt, size=None):
             f'decoding="async"{size_attributes(*(size or (0, 0)))}></a></p>')
 
 
+# A wall whose runs have coat pictures (a tool with a flux profile) shows each run's path and coat
+# side by side in one cell of the gallery, its cells twice as wide. Set on the elements, so the
+# pages of other experiments stay as they were.
+COAT_GALLERY = "grid-template-columns:repeat(auto-fill,minmax(760px,1fr))"
+COAT_PAIR = "display:grid;grid-template-columns:1fr 1fr;gap:6px;align-items:start"
+
+
 def gallery_html(section):
-    """Walls of one gallery section, each with every planner's picture side by side."""
+    """Walls of one gallery section, each with every planner's picture side by side (and its
+    coat's beside it, for a tool with a flux profile)."""
     out = []
     for wall in section["walls"]:
         out.append(f"<h4>{esc(wall['wall_name'])} <small>({esc(wall['why'])})</small></h4>")
-        out.append('<div class="gallery">')
+        coats = any(p.get("coat") for p in wall["pictures"])
+        out.append(f'<div class="gallery" style="{COAT_GALLERY}">' if coats else '<div class="gallery">')
         for p in wall["pictures"]:
             bad = p["status"] not in ("ok",)
             play = f' data-playback="{esc(p["playback"])}"' if p.get("playback") else ""
+            alt = wall["wall_name"] + " / " + p["column"]
             # Loaded when scrolled near, its room kept meanwhile: the first screen does not wait
             # for the hundreds of pictures below it.
-            out.append(f'<figure{play}><a href="{esc(p["file"])}"><img src="{esc(p["file"])}" '
-                       f'alt="{esc(wall["wall_name"] + " / " + p["column"])}" loading="lazy" decoding="async"'
+            picture = (f'<figure{play}><a href="{esc(p["file"])}"><img src="{esc(p["file"])}" '
+                       f'alt="{esc(alt)}" loading="lazy" decoding="async"'
                        f'{size_attributes(p.get("width"), p.get("height"))}></a>'
                        f'<figcaption>{esc(p["column"])}: <span class="{"status-bad" if bad else ""}">'
                        f'{esc(p["status"])}</span>'
                        + (f'<br><small>{esc(p["note"])}</small>' if p.get("note") else "") + "</figcaption></figure>")
+            if not coats:
+                out.append(picture)
+                continue
+            coat = (f'<figure class="coat"><a href="{esc(p["coat"])}"><img src="{esc(p["coat"])}" '
+                    f'alt="{esc(alt + ": the coat")}" loading="lazy" decoding="async"'
+                    f'{size_attributes(p.get("coat_width"), p.get("coat_height"))}></a>'
+                    f'<figcaption>{esc(p["column"])}: the coat\'s thickness (\u00b5m)</figcaption></figure>'
+                    if p.get("coat") else "")
+            out.append(f'<div class="coat-pair" style="{COAT_PAIR}">{picture}{coat}</div>')
         out.append("</div>")
     return "\n".join(out)
 
