@@ -14,7 +14,7 @@ mode="${1:-all}"
 # What the command and its report need.
 MAIN_PACKAGES=(g++ cmake ninja-build pkg-config ccache
           libpolyclipping-dev nlohmann-json3-dev libcli11-dev libboost-graph-dev
-          libyaml-cpp-dev libsqlite3-dev libssl-dev zlib1g-dev
+          libyaml-cpp-dev libsqlite3-dev libssl-dev zlib1g-dev libpng-dev
           libcgal-dev libgmp-dev libmpfr-dev                       # the exact judge
           python3 python3-numpy python3-scipy python3-matplotlib   # the report's statistics and plots
           libeigen3-dev)                                           # import placements

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 #include <openssl/evp.h>
-#include <zlib.h>
+#include <png.h>
 
 #include <algorithm>
 #include <cmath>
@@ -444,50 +444,33 @@ CoatBlocks coatBlocks(const CoatRaster& raster, double k, double mean) {
   return b;
 }
 
-/// One PNG chunk: length, type, data, and the CRC of type and data (zlib's crc32).
-void pngChunk(std::string& out, const char* type, const std::string& data) {
-  auto be32 = [&out](unsigned long v) {
-    for (int shift = 24; shift >= 0; shift -= 8) out += static_cast<char>((v >> shift) & 0xff);
-  };
-  be32(data.size());
-  const std::string body = type + data;
-  out += body;
-  be32(crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
-}
-
 /// The blocks as a PNG of one pixel a block (8-bit RGBA, transparent outside R, the top row
-/// first), base-64 encoded for a data: address.
+/// first; libpng's simplified writer), base-64 encoded for a data: address.
 std::string coatPng(const CoatBlocks& b) {
-  std::string raw;
-  raw.reserve(b.by * (1 + 4 * b.bx));
-  for (std::size_t row = b.by; row-- > 0;) {
-    raw += '\0';  // filter: none
+  std::vector<unsigned char> rgba;
+  rgba.reserve(4 * b.bx * b.by);
+  for (std::size_t row = b.by; row-- > 0;)
     for (std::size_t i = 0; i < b.bx; ++i) {
       const std::string& c = b.colour[row * b.bx + i];
       const unsigned long rgb = c.empty() ? 0 : std::stoul(c.substr(1), nullptr, 16);
-      raw += static_cast<char>((rgb >> 16) & 0xff);
-      raw += static_cast<char>((rgb >> 8) & 0xff);
-      raw += static_cast<char>(rgb & 0xff);
-      raw += static_cast<char>(c.empty() ? 0 : 255);
+      for (const unsigned long v : {(rgb >> 16) & 0xff, (rgb >> 8) & 0xff, rgb & 0xff, c.empty() ? 0ul : 255ul})
+        rgba.push_back(static_cast<unsigned char>(v));
     }
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(b.bx);
+  image.height = static_cast<png_uint_32>(b.by);
+  image.format = PNG_FORMAT_RGBA;
+  png_alloc_size_t size = 0;
+  std::vector<unsigned char> png;
+  if (png_image_write_get_memory_size(image, size, 0, rgba.data(), 0, nullptr)) {
+    png.resize(size);
+    if (!png_image_write_to_memory(&image, png.data(), &size, 0, rgba.data(), 0, nullptr)) png.clear();
+    png.resize(size);
   }
-  uLongf size = compressBound(static_cast<uLong>(raw.size()));
-  std::string packed(size, '\0');
-  if (compress2(reinterpret_cast<Bytef*>(packed.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
-                static_cast<uLong>(raw.size()), 9) != Z_OK)
-    throw std::runtime_error("coat picture: zlib could not compress the image");
-  packed.resize(size);
-  std::string header;
-  for (std::size_t v : {b.bx, b.by})
-    for (int shift = 24; shift >= 0; shift -= 8) header += static_cast<char>((v >> shift) & 0xff);
-  header += std::string("\x08\x06\x00\x00\x00", 5);  // 8 bits, RGBA, deflate, no filter choice, no interlace
-  std::string png = "\x89PNG\r\n\x1a\n";
-  pngChunk(png, "IHDR", header);
-  pngChunk(png, "IDAT", packed);
-  pngChunk(png, "IEND", "");
+  if (png.empty()) throw std::runtime_error(std::string("coat picture: libpng could not write the image: ") + image.message);
   std::string text(4 * ((png.size() + 2) / 3) + 1, '\0');
-  const int n = EVP_EncodeBlock(reinterpret_cast<unsigned char*>(text.data()), reinterpret_cast<const unsigned char*>(png.data()),
-                                static_cast<int>(png.size()));
+  const int n = EVP_EncodeBlock(reinterpret_cast<unsigned char*>(text.data()), png.data(), static_cast<int>(png.size()));
   text.resize(static_cast<std::size_t>(n));
   return text;
 }
