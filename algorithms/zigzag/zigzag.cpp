@@ -103,16 +103,10 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
  protected:
   PlanResult planWith(const Problem& problem, const ZigzagParams& given, const Budget& budget) override {
     ZigzagParams params = given;
-    if (std::string why = evenCoatOverlap(problem.tool, params.coat_ripple, params.overlap); !why.empty())
-      return PlanResult::failure(PlanStatus::InvalidInput, std::move(why));
-    if (std::string why = triggerSpeedCheck(problem, params.trigger_speed); !why.empty())
-      return PlanResult::failure(PlanStatus::InvalidInput, std::move(why));
     // A car comes only with car_plan headland or headland_no_fill: for smoothed, runPlanner gives
     // a tool that turns on the spot and smooths the path.
-    PlanResult result = planSweep(problem, params.sweep, budget,
-                                  [&](double angle_deg) { return planAt(problem, params, budget, angle_deg); });
-    applyTriggerSpeed(problem, params.trigger_speed, result);
-    return result;
+    return planRows(problem, params.coat_ripple, params.overlap, params.trigger_speed, params.sweep, budget,
+                    [&](double angle_deg) { return planAt(problem, params, budget, angle_deg); });
   }
 
  private:

@@ -135,4 +135,15 @@ void applyTriggerSpeed(const Problem& problem, double trigger_speed, PlanResult&
   result.stats["trigger_off_m"] = off_m;
 }
 
+PlanResult planRows(const Problem& problem, double coat_ripple, double& overlap, double trigger_speed,
+                    const SweepDirection& sweep, const Budget& budget, const std::function<PlanResult(double)>& plan_at) {
+  if (std::string why = evenCoatOverlap(problem.tool, coat_ripple, overlap); !why.empty())
+    return PlanResult::failure(PlanStatus::InvalidInput, std::move(why));
+  if (std::string why = triggerSpeedCheck(problem, trigger_speed); !why.empty())
+    return PlanResult::failure(PlanStatus::InvalidInput, std::move(why));
+  PlanResult result = planSweep(problem, sweep, budget, plan_at);
+  applyTriggerSpeed(problem, trigger_speed, result);
+  return result;
+}
+
 }  // namespace coverbench

@@ -18,6 +18,7 @@
 #include "coverbench/geometry.hpp"
 #include "coverbench/motion.hpp"
 #include "coverbench/planner.hpp"
+#include "coverbench/sweep_search.hpp"
 
 namespace coverbench {
 
@@ -103,6 +104,12 @@ std::string triggerSpeedCheck(const Problem& problem, double trigger_speed);
 /// path slower than f v next to a stop (switchOffWhileSlow) and records how much as the
 /// statistic `trigger_off_m`.
 void applyTriggerSpeed(const Problem& problem, double trigger_speed, PlanResult& result);
+/// A row planner's plan (zigzag, boustrophedon, trapezoidal): `coat_ripple` (which may set
+/// `overlap`) and `trigger_speed` checked, invalid_input with the reason when they cannot apply;
+/// then the sweep direction searched with `plan_at` (planSweep) and the spray switched off where
+/// the tool is slow (applyTriggerSpeed).
+PlanResult planRows(const Problem& problem, double coat_ripple, double& overlap, double trigger_speed,
+                    const SweepDirection& sweep, const Budget& budget, const std::function<PlanResult(double)>& plan_at);
 /// The path with the same geometry, and the tool off along every stretch next to a stop (a
 /// standstill of the time model: a run's start or end) where `segmentSpeeds` drives it slower
 /// than `speed`: from a stop up to where the tool reaches `speed` accelerating, and from where it
