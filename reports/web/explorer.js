@@ -76,12 +76,16 @@
     if (mag < -4) return v.toExponential(2).replace(/e([+-])(\d)$/, "e$10$2");  // 5.50e-05, as Python writes it
     return v.toFixed(2 - mag);
   }
+  /** A unit as a reader writes it: m² for m2, µm for um. */
+  function unitText(unit) {
+    return unit === "um" ? "\u00b5m" : unit.replace("m2", "m\u00b2");
+  }
   function unitLabel(name) {
     const s = state.specs.get(name);
     if (!s) return "";
     if (s.format === "percent") return "%";
     if (s.format === "bytes") return "MiB";
-    return s.unit === "1" ? "" : s.unit.replace("m2", "m\u00b2");
+    return s.unit === "1" ? "" : unitText(s.unit);
   }
   /** A metric's value with its unit: shares in percent, bytes in MiB, counts whole. */
   function formatted(name, v) {

@@ -203,7 +203,8 @@
     const arrow = s.better > 0 ? " \u2191" : s.better < 0 ? " \u2193" : "";
     if (s.format === "percent") return {label: `${name} (%)${arrow}`, tickFormat: v => String(+(100 * v).toFixed(6))};
     if (s.format === "bytes") return {label: `${name} (MiB)${arrow}`, tickFormat: v => String(+(v / 1048576).toFixed(3))};
-    return {label: s.unit === "1" ? name + arrow : `${name} (${s.unit})${arrow}`};
+    const unit = s.unit === "um" ? "\u00b5m" : s.unit.replace("m2", "m\u00b2");  // as the tables write it
+    return {label: s.unit === "1" ? name + arrow : `${name} (${unit})${arrow}`};
   }
 
   /** The chart's width: its column's, so its text is shown at its own size (at least 480 px). */

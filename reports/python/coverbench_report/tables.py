@@ -64,7 +64,7 @@ def difference(spec, v):
 def unit_label(spec):
     if is_percent(spec):
         return "%"
-    return {"B": "MiB", "1": "", "m2": "m²"}.get(spec["unit"], spec["unit"])
+    return {"B": "MiB", "1": "", "m2": "m²", "um": "µm"}.get(spec["unit"], spec["unit"])
 
 
 def stars(p):
