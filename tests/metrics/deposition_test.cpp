@@ -166,7 +166,7 @@ TEST(Deposition, TheMetricsTakeTheProfilesTarget) {
   Path path;
   path.moveTo({0.5, 0.5}, false);
   path.moveTo({2.5, 0.5}, true);
-  const Wall wall = rectWall(3, 1);
+  const Wall wall = test::rectWall(3, 1);
   ToolParams tool = kTool;
   tool.profile.kind = FluxProfile::Kind::Uniform;
   const PathMetrics without = computeMetrics(wall, tool, path);
