@@ -81,7 +81,7 @@ struct Commands {
   cli::ServeOptions serve;
 };
 
-/// --profile, --sigma, --beta, --rate and --fan-depth: the tool's flux profile (docs/deposition.md).
+/// --profile, --sigma, --beta, --rate, --fan-depth and --target: the tool's flux profile (docs/deposition.md).
 void addProfileOptions(CLI::App* command, coverbench::ProfileOptions& coat, const std::string& what) {
   command->add_option("--profile", coat.profile,
                       "the tool's flux profile across its width, " + what + " (docs/deposition.md): "
@@ -91,6 +91,8 @@ void addProfileOptions(CLI::App* command, coverbench::ProfileOptions& coat, cons
   command->add_option("--beta", coat.beta, "beta profile: f proportional to (1 - u^2)^(beta - 1), u = x / r; beta in [1, 100]");
   command->add_option("--rate", coat.rate, "what the tool sprays, m^3/s (default 1e-6)");
   command->add_option("--fan-depth", coat.fan_depth, "the spray fan's depth along the motion, m (default and 0: s / 10)");
+  command->add_option("--target", coat.target,
+                      "the coat aimed at, micrometres: even/thin/thick shares of it, not of the mean (default: none)");
 }
 
 /// `planners`, `metric-specs` and `plan`: what can plan, what is measured, and one plan.

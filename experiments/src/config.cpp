@@ -493,7 +493,7 @@ PlannerList readPlanners(const ConfigFile& f, const Yaml& planners, ExperimentCo
 /// `tool.profile`: the flux profile of every tool of the config (flux_profile.hpp), checked
 /// against each tool's width.
 FluxProfile readProfile(Reader& r, const Yaml& p, const std::vector<double>& widths) {
-  r.onlyKeys(p, "tool.profile", {"kind", "sigma", "beta", "rate", "depth"});
+  r.onlyKeys(p, "tool.profile", {"kind", "sigma", "beta", "rate", "depth", "target"});
   FluxProfile profile;
   const Yaml* kind = p.find("kind");
   if (!kind) r.fail(p, "tool.profile.kind", "is missing: uniform, gaussian or beta");
@@ -509,6 +509,7 @@ FluxProfile readProfile(Reader& r, const Yaml& p, const std::vector<double>& wid
   if (const Yaml* v = p.find("beta")) profile.beta = r.number(*v, "tool.profile.beta", 1.0, 100.0);
   if (const Yaml* v = p.find("rate")) profile.rate = r.number(*v, "tool.profile.rate", 0.0, 1.0, true);
   if (const Yaml* v = p.find("depth")) profile.depth = r.number(*v, "tool.profile.depth", 0.0, kMaxToolWidth);
+  if (const Yaml* v = p.find("target")) profile.target = r.number(*v, "tool.profile.target", 0.0, FluxProfile::kMaxTarget, true);
   for (double w : widths) {
     try {
       profile.check(w, "");

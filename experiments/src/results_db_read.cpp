@@ -43,7 +43,9 @@ void storedOptions(const Statement& s, int i, VehicleModel& vehicle, TransitSpec
 /// reads; NULLs from a database made before the table (its runs: no profile).
 constexpr const char* kProfileColumns = "pr.kind, pr.sigma, pr.beta, pr.rate, pr.depth";
 constexpr const char* kNoProfileColumns = "NULL, NULL, NULL, NULL, NULL";
-/// The profile in columns i .. i + 4: none when the run has no row in run_profile.
+/// The profile's target (run_profile_target, alias pt); NULL for none and before the table.
+constexpr const char* kTargetColumn = "pt.target";
+/// The profile in columns i .. i + 5 (the target last): none when the run has no row in run_profile.
 FluxProfile storedProfile(const Statement& s, int i) {
   FluxProfile p;
   if (s.columnNull(i)) return p;
@@ -52,6 +54,7 @@ FluxProfile storedProfile(const Statement& s, int i) {
   p.beta = s.columnReal(i + 2);
   p.rate = s.columnReal(i + 3);
   p.depth = s.columnReal(i + 4);
+  if (!s.columnNull(i + 5)) p.target = s.columnReal(i + 5);
   return p;
 }
 
@@ -125,17 +128,19 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   }
   std::map<std::string, std::size_t> index;
   {
-    // The context (columns 0 .. 7), the options (8 .. 14), the profile (15 .. 19), then the run's
-    // fields (20 ..).
-    const bool profiles = hasTable(db_, file_, "run_profile");
+    // The context (columns 0 .. 7), the options (8 .. 14), the profile (15 .. 20), then the run's
+    // fields (21 ..).
+    const bool profiles = hasTable(db_, file_, "run_profile"), targets = hasTable(db_, file_, "run_profile_target");
     Statement s(db_,
                 "SELECT r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.seed, ws.name, r.planner_version, " +
                     std::string(kOptionColumns) + ", " + (profiles ? kProfileColumns : kNoProfileColumns) + ", " +
+                    (targets ? kTargetColumn : "NULL") + ", " +
                     runFieldSelect("r") + " FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
                 "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 "
                 "JOIN walls ws ON ws.hash = r.wall_hash" + std::string(kOptionJoins) +
-                    (profiles ? "LEFT JOIN run_profile pr ON pr.run_key = r.key " : "") + "ORDER BY r.key",
+                    (profiles ? "LEFT JOIN run_profile pr ON pr.run_key = r.key " : "") +
+                    (targets ? "LEFT JOIN run_profile_target pt ON pt.run_key = r.key " : "") + "ORDER BY r.key",
                 file_);
     s.integer(1, id);
     while (s.step()) {
@@ -153,7 +158,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
       row.planner_version = s.columnText(7);
       row.tool = ToolParams{s.columnReal(3), s.columnReal(4), storedProfile(s, 15)};
       storedOptions(s, 8, row.vehicle, row.transit);
-      int i = 20;
+      int i = 21;
       forEachRunField(static_cast<RunFields&>(row), [&](const RunField& f, auto& value) { readField(s, i++, file_, f, value); });
       // The measured fields the metric registry lists are the tables' metrics too.
       row.metrics["plan_time_ms"] = row.plan_time_ms;

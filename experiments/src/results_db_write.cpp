@@ -91,7 +91,7 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
   try {
     // A retried run replaces everything stored under its key.
     for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options",
-                              "run_car", "run_profile", "replans", "replan_figures"}) {
+                              "run_car", "run_profile", "run_profile_target", "replans", "replan_figures"}) {
       Statement d(db_, std::string("DELETE FROM ") + table + " WHERE run_key = ?", file_);
       d.text(1, rec.key).run();
     }
@@ -121,6 +121,10 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
     if (const FluxProfile& p = spec.tool.profile; p.set()) {
       Statement profile(db_, "INSERT INTO run_profile (run_key, kind, sigma, beta, rate, depth) VALUES (?,?,?,?,?,?)", file_);
       profile.text(1, rec.key).text(2, toString(p.kind)).real(3, p.sigma).real(4, p.beta).real(5, p.rate).real(6, p.depth).run();
+      if (p.target > 0.0) {
+        Statement target(db_, "INSERT INTO run_profile_target (run_key, target) VALUES (?,?)", file_);
+        target.text(1, rec.key).real(2, p.target).run();
+      }
     }
     if (!rec.replans.empty()) {
       Statement rr(db_,

@@ -171,6 +171,8 @@ std::string runBaseKey(const RunSpec& spec) {
   if (const FluxProfile& p = spec.tool.profile; p.set())  // a tool without one keeps its old keys
     text += "\nprofile=" + toString(p.kind) + "\nprofile.sigma=" + exact(p.sigma) + "\nprofile.beta=" + exact(p.beta) +
             "\nprofile.rate=" + exact(p.rate) + "\nprofile.depth=" + exact(p.depthFor(spec.tool.tool_width));  // 0 is s/10
+  if (const FluxProfile& p = spec.tool.profile; p.target > 0.0)  // a profile without one keeps its old keys
+    text += "\nprofile.target=" + exact(p.target);
   if (spec.exact_judge) text += "\njudge=exact";
   if (spec.vehicle.isCar())
     text += "\nvehicle=car\nturn_radius=" + exact(spec.vehicle.turn_radius) + "\nreverse=" + (spec.vehicle.reverse ? "1" : "0");

@@ -55,7 +55,8 @@ std::string FluxProfile::describe(double s) const {
   std::string out = toString(kind) + " profile";
   if (kind == Kind::Gaussian) out = "gaussian profile, sigma " + shortNumber(sigma) + " m";
   if (kind == Kind::Beta) out = "beta profile, beta " + shortNumber(beta);
-  return out + ", " + shortNumber(rate) + " m3/s, fan depth " + shortNumber(depthFor(s)) + " m";
+  out += ", " + shortNumber(rate) + " m3/s, fan depth " + shortNumber(depthFor(s)) + " m";
+  return target > 0.0 ? out + ", target " + shortNumber(target) + " \u00b5m" : out;
 }
 
 std::string FluxProfile::label() const {
@@ -65,6 +66,7 @@ std::string FluxProfile::label() const {
   if (kind == Kind::Beta) out += " " + shortNumber(beta);
   if (rate != FluxProfile{}.rate) out += ", " + shortNumber(rate) + " m3/s";
   if (depth != 0.0) out += ", fan depth " + shortNumber(depth) + " m";
+  if (target != 0.0) out += ", target " + shortNumber(target) + " um";
   return out;
 }
 
@@ -76,6 +78,8 @@ void FluxProfile::check(double s, const std::string& source) const {
   if (!(rate > 0.0 && rate <= 1.0)) throw InputError(source, "rate", "must be in (0, 1] m3/s, got " + shortNumber(rate));
   if (!(depth >= 0.0 && depth <= s))
     throw InputError(source, "depth", "must be in [0, s] m (0: s/10; s = " + shortNumber(s) + " m), got " + shortNumber(depth));
+  if (!(target == 0.0 || (target > 0.0 && target <= kMaxTarget)))
+    throw InputError(source, "target", "must be in (0, 1e+06] um (or 0: none), got " + shortNumber(target));
 }
 
 namespace {
@@ -103,8 +107,9 @@ FluxProfile fluxProfileOf(const ProfileOptions& options, double s, const Profile
                      "must be none, uniform, gaussian or beta, got '" + shown(options.profile) + "'");
   const bool gaussian = profile.kind == FluxProfile::Kind::Gaussian, beta = profile.kind == FluxProfile::Kind::Beta;
   // As a config reads tool.profile: each value belongs to its profile, and none goes unused.
-  if (!profile.set() && (options.sigma || options.beta || options.rate || options.fan_depth))
-    throw InputError(source(n.kind), kind_field, n.sigma + ", " + n.beta + ", " + n.rate + " and " + n.depth + " need " + n.kind);
+  if (!profile.set() && (options.sigma || options.beta || options.rate || options.fan_depth || options.target))
+    throw InputError(source(n.kind), kind_field,
+                     n.sigma + ", " + n.beta + ", " + n.rate + ", " + n.depth + " and " + n.target + " need " + n.kind);
   if (options.sigma && !gaussian) throw InputError(source(n.sigma), "sigma", "belongs to " + n.kind + " gaussian");
   if (options.beta && !beta) throw InputError(source(n.beta), "beta", "belongs to " + n.kind + " beta");
   if (gaussian && !options.sigma) throw InputError(source(n.sigma), "sigma", "is missing: a gaussian profile's standard deviation, m");
@@ -113,6 +118,12 @@ FluxProfile fluxProfileOf(const ProfileOptions& options, double s, const Profile
   if (options.beta) profile.beta = *options.beta;
   if (options.rate) profile.rate = *options.rate;
   if (options.fan_depth) profile.depth = *options.fan_depth;
+  if (options.target) {
+    // Given, a target is a coat aimed at: 0 (none) is only the default.
+    if (!(*options.target > 0.0 && *options.target <= FluxProfile::kMaxTarget))
+      throw InputError(source(n.target), "target", "must be in (0, 1e+06] um, got " + shortNumber(*options.target));
+    profile.target = *options.target;
+  }
   if (profile.set()) profile.check(s, n.checked);
   return profile;
 }

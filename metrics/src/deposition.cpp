@@ -115,7 +115,7 @@ std::vector<char> rasterMask(const Region& region, const DepositionGrid& grid) {
   return mask;
 }
 
-Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& mask) {
+Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& mask, double target_um) {
   Deposition out;
   out.cell = grid.cell;
   double sum = 0.0;
@@ -128,12 +128,13 @@ Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& 
   const double count = static_cast<double>(out.cells), mean = sum / count;
   double squares = 0.0;  // of (h - mean) / mean: squares of tiny coats (a rate of 1e-170) would underflow
   std::size_t even = 0, thin = 0, thick = 0;
+  const double c = target_um > 0.0 ? target_um * 1e-6 : mean;  // the shares' reference, m
   for (std::size_t k = 0; k < grid.thickness.size(); ++k)
     if (mask[k]) {
       const double h = grid.thickness[k];
       if (mean > 0.0) squares += (h / mean - 1.0) * (h / mean - 1.0);
-      if (h < 0.9 * mean || mean == 0.0) ++thin;
-      else if (h > 1.1 * mean) ++thick;
+      if (h < 0.9 * c || c == 0.0) ++thin;
+      else if (h > 1.1 * c) ++thick;
       else ++even;
     }
   out.mean_um = mean * 1e6;
@@ -172,7 +173,7 @@ CoatRaster coatRaster(const Wall& wall, const ToolParams& tool, const Path& path
 Deposition deposition(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
                       const MotionLimits& limits, const VehicleModel& vehicle, double cell) {
   const CoatRaster raster = coatRaster(wall, tool, path, profile, limits, vehicle, cell);
-  return depositionStats(raster.grid, raster.mask);
+  return depositionStats(raster.grid, raster.mask, profile.target);
 }
 
 }  // namespace coverbench

@@ -53,7 +53,7 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
   if (tool.profile.set()) {
     try {
       CoatRaster raster = coatRaster(wall, tool, path, tool.profile, limits, vehicle);
-      m.deposition = depositionStats(raster.grid, raster.mask);
+      m.deposition = depositionStats(raster.grid, raster.mask, tool.profile.target);
       if (coat) *coat = std::move(raster);
     } catch (const InputError& e) {  // the raster cap: the coat alone is not scored
       if (e.source() != "deposition") throw;

@@ -39,7 +39,7 @@ class Problem:
     """One problem: the wall (as a wall file's JSON), the tool, the vehicle, the parameters.
 
     From protocol 2 the tool has a ``tool_shape`` ("disk") and a ``profile``: None, or the flux
-    profile's dict (``kind``; ``sigma`` or ``beta`` for their kinds; ``rate``, ``depth``). In
+    profile's dict (``kind``; ``sigma`` or ``beta`` for their kinds; ``rate``, ``depth``; ``target`` when set). In
     protocol 1 they are "disk" and None."""
 
     def __init__(self, data: Dict[str, Any]) -> None:

@@ -91,8 +91,9 @@ ProfileOptions profileOptions(const py::dict& profile) {
                                    : key == "beta" ? &o.beta
                                    : key == "rate" ? &o.rate
                                    : key == "depth" ? &o.fan_depth
+                                   : key == "target" ? &o.target
                                                     : nullptr;
-    if (!value) throw InputError("profile", key, "is not a profile key (kind, sigma, beta, rate, depth)");
+    if (!value) throw InputError("profile", key, "is not a profile key (kind, sigma, beta, rate, depth, target)");
     if (py::isinstance<py::bool_>(v) || !(py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v)))
       throw InputError("profile", key, "must be a number");
     *value = v.cast<double>();
@@ -101,7 +102,7 @@ ProfileOptions profileOptions(const py::dict& profile) {
 }
 
 /// Python's spelling of profile errors: "profile: sigma: belongs to kind gaussian".
-const ProfileSpelling kPythonProfile{"kind", "sigma", "beta", "rate", "depth", "profile", "profile"};
+const ProfileSpelling kPythonProfile{"kind", "sigma", "beta", "rate", "depth", "target", "profile", "profile"};
 
 /// The tool: its width and clearance checked as the command line checks them, then its profile.
 ToolParams toolOf(double tool_width, double clearance, const ProfileOptions& profile) {

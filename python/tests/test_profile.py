@@ -43,6 +43,23 @@ class Profile(unittest.TestCase):
                                   profile={"kind": "uniform", "rate": 2e-6})
         self.assertAlmostEqual(double["thickness_mean"] / long["thickness_mean"], 2.0, places=12)
         self.assertEqual(double["even_share"], long["even_share"])
+        # A target thickness (micrometres): the shares are of it. The pass's coat at cruise is
+        # Q / (s v); against that target its swath at cruise is even, against twice it thin; the
+        # mean and the CV do not change, and the shares still add up to 1.
+        coat_um = q / (s * v) * 1e6
+        aimed = coverbench.score(STRIP, [[0.5, 0.5], [2.5, 0.5]], [True], tool_width=s,
+                                 profile={"kind": "uniform", "target": coat_um})
+        twice = coverbench.score(STRIP, [[0.5, 0.5], [2.5, 0.5]], [True], tool_width=s,
+                                 profile={"kind": "uniform", "target": 2 * coat_um})
+        for m in (aimed, twice):
+            self.assertEqual(m["thickness_mean"], long["thickness_mean"])
+            self.assertEqual(m["thickness_cv"], long["thickness_cv"])
+            self.assertAlmostEqual(m["even_share"] + m["thin_share"] + m["thick_share"], 1.0, places=12)
+        # The swath at cruise (1.82 m of the 2 m pass, ramps of 0.09 m) is 0.2 x 1.82 m of R's area.
+        self.assertGreaterEqual(aimed["even_share"], 0.2 * 1.82 / long["reachable_area"] - 0.01)
+        self.assertLess(twice["even_share"], aimed["even_share"])
+        self.assertGreater(twice["thin_share"], aimed["thin_share"] + 0.2 * 1.82 / long["reachable_area"] - 0.01)
+        self.assertGreater(long["thick_share"], aimed["thick_share"])  # the swath is over 1.1 times the mean
         # Without a profile (None, or kind none) there are no coat metrics.
         for none in (None, "none", {}):
             plain = coverbench.score(STRIP, [[0.5, 0.5], [2.5, 0.5]], [True], tool_width=s, profile=none)
@@ -111,6 +128,10 @@ class Profile(unittest.TestCase):
                 ({"kind": "gaussian"}, "profile: sigma: is missing: a gaussian profile's standard deviation, m",
                  ["--profile", "gaussian"]),
                 ({"kind": "cone"}, "profile: kind: must be none, uniform, gaussian or beta, got 'cone'", ["--profile", "cone"]),
+                ({"kind": "uniform", "target": 0}, "profile: target: must be in (0, 1e+06] um, got 0",
+                 ["--profile", "uniform", "--target", "0"]),
+                ({"kind": "uniform", "target": -25}, "profile: target: must be in (0, 1e+06] um, got -25",
+                 ["--profile", "uniform", "--target", "-25"]),
             ]
             for profile, message, flags in cases:
                 with self.assertRaises(ValueError) as caught:
@@ -125,11 +146,13 @@ class Profile(unittest.TestCase):
                 ({"kind": "uniform", "rate": float("nan")}, "profile: rate: must be in (0, 1] m3/s, got nan"),
                 ({"kind": "uniform", "sigma": 0.02}, "profile: sigma: belongs to kind gaussian"),
                 ({"kind": "gaussian", "sigma": 0.02, "beta": 2}, "profile: beta: belongs to kind beta"),
-                ({"sigma": 0.02}, "profile: kind: sigma, beta, rate and depth need kind"),
+                ({"sigma": 0.02}, "profile: kind: sigma, beta, rate, depth and target need kind"),
                 ({"kind": "uniform", "rate": "1e-6"}, "profile: rate: must be a number"),
+                ({"kind": "uniform", "target": float("nan")}, "profile: target: must be in (0, 1e+06] um, got nan"),
+                ({"kind": "uniform", "target": "25"}, "profile: target: must be a number"),
                 ({"kind": "uniform", "rate": True}, "profile: rate: must be a number"),
                 ({"kind": 3}, "profile: kind: must be a string: none, uniform, gaussian or beta"),
-                ({"kind": "uniform", "width": 1}, "profile: width: is not a profile key (kind, sigma, beta, rate, depth)")]:
+                ({"kind": "uniform", "width": 1}, "profile: width: is not a profile key (kind, sigma, beta, rate, depth, target)")]:
             with self.assertRaises(ValueError) as caught:
                 coverbench.score(WALL, [[0.2, 0.2], [1.0, 0.2]], [True], profile=profile)
             self.assertEqual(str(caught.exception), message)

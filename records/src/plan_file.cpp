@@ -68,6 +68,7 @@ std::string planFileJson(const PlanFile& plan) {
     if (p.kind == FluxProfile::Kind::Beta) profile["beta"] = p.beta;
     profile["rate"] = p.rate;
     profile["depth"] = p.depthFor(plan.tool.tool_width);
+    if (p.target > 0.0) profile["target"] = p.target;  // micrometres; none: no key
     doc["profile"] = profile;
   }
   if (plan.start) doc["start"] = {plan.start->x, plan.start->y};
@@ -164,14 +165,14 @@ LoadedPlan loadPlanFile(const std::string& file) {
         !parseFluxProfileKind(p["kind"].get<std::string>(), profile.kind) || !profile.set())
       throw InputError(file, "profile.kind", "must be \"uniform\", \"gaussian\" or \"beta\"");
     for (const auto& [key, value] : p.items())
-      if (key != "kind" && key != "sigma" && key != "beta" && key != "rate" && key != "depth")
-        throw InputError(file, "profile", "has an unknown key (known: kind, sigma, beta, rate, depth)");
+      if (key != "kind" && key != "sigma" && key != "beta" && key != "rate" && key != "depth" && key != "target")
+        throw InputError(file, "profile", "has an unknown key (known: kind, sigma, beta, rate, depth, target)");
     const std::string kind = toString(profile.kind);
     for (const auto& [key, into, belongs] :
          {std::tuple<const char*, double*, bool>{"sigma", &profile.sigma, kind == "gaussian"}, {"beta", &profile.beta, kind == "beta"},
-          {"rate", &profile.rate, true}, {"depth", &profile.depth, true}}) {
+          {"rate", &profile.rate, true}, {"depth", &profile.depth, true}, {"target", &profile.target, true}}) {
       if (!p.contains(key)) {
-        if (belongs && std::string(key) != "rate" && std::string(key) != "depth")
+        if (belongs && std::string(key) != "rate" && std::string(key) != "depth" && std::string(key) != "target")
           throw InputError(file, std::string("profile.") + key, "is missing for a " + kind + " profile");
         continue;
       }
@@ -179,6 +180,8 @@ LoadedPlan loadPlanFile(const std::string& file) {
       if (!p[key].is_number()) throw InputError(file, std::string("profile.") + key, "must be a number");
       *into = p[key].get<double>();
     }
+    if (p.contains("target") && !(profile.target > 0.0 && profile.target <= FluxProfile::kMaxTarget))
+      throw InputError(file, "profile.target", "must be in (0, 1e+06] um, got " + shortNumber(profile.target));
     plan.profile = profile;  // checked against the tool's width by whoever scores it
   }
   for (const char* key : {"start", "end"}) {

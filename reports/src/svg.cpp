@@ -413,20 +413,20 @@ std::string coatPicture(const Wall& wall, const ToolParams& tool, const Path& pa
 namespace {
 
 /// The coat's blocks: `per` x `per` cells each (about 3 px), `bx` x `by` of them from the raster's
-/// corner, each the colour of its samples' mean in R over R's mean ("" where none is in R), row
-/// by row from the bottom.
+/// corner, each the colour of its samples' mean in R over `reference` (R's mean or the target;
+/// "" where none is in R), row by row from the bottom; no blocks for a reference of 0.
 struct CoatBlocks {
   std::size_t bx = 0, by = 0;
   double side = 0.0;  ///< m
   std::vector<std::string> colour;
 };
-CoatBlocks coatBlocks(const CoatRaster& raster, double k, double mean) {
+CoatBlocks coatBlocks(const CoatRaster& raster, double k, double reference) {
   const DepositionGrid& g = raster.grid;
   const std::size_t per = g.cell > 0.0 ? std::max<std::size_t>(1, static_cast<std::size_t>(3.0 / (k * g.cell))) : 1;
   const std::size_t span = 2 * per;
   CoatBlocks b;
   b.bx = (g.nx + span - 1) / span;
-  b.by = mean > 0.0 ? (g.ny + span - 1) / span : 0;
+  b.by = reference > 0.0 ? (g.ny + span - 1) / span : 0;
   b.side = static_cast<double>(per) * g.cell;
   b.colour.resize(b.bx * b.by);
   for (std::size_t j = 0; j < b.by; ++j)
@@ -439,7 +439,7 @@ CoatBlocks coatBlocks(const CoatRaster& raster, double k, double mean) {
             sum += g.thickness[y * g.nx + x];
             ++n;
           }
-      if (n) b.colour[j * b.bx + i] = coatColour(sum / static_cast<double>(n) / mean);
+      if (n) b.colour[j * b.bx + i] = coatColour(sum / static_cast<double>(n) / reference);
     }
   return b;
 }
@@ -480,10 +480,12 @@ std::string coatPng(const CoatBlocks& b) {
 std::string coatPicture(const Wall& wall, const ToolParams& tool, const CoatRaster& raster, const std::string& title,
                         bool as_image) {
   if (!tool.profile.set()) throw InputError("coat picture", "tool.profile", "the coat's picture needs the tool's flux profile");
-  const Deposition d = depositionStats(raster.grid, raster.mask);
+  const double target_um = tool.profile.target;  // 0: none, the blocks' ratios are to R's mean
+  const Deposition d = depositionStats(raster.grid, raster.mask, target_um);
   const DepositionGrid& g = raster.grid;
   const View v = pictureView(wall, nullptr);
-  const double w_px = pictureWidth(v), h_px = pictureHeight(v), mean = d.mean_um * 1e-6;
+  const double reference_um = target_um > 0.0 ? target_um : d.mean_um;
+  const double w_px = pictureWidth(v), h_px = pictureHeight(v), reference = reference_um * 1e-6;
   std::ostringstream s;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fmt(w_px) << "\" height=\"" << fmt(h_px) << "\" viewBox=\"0 0 "
     << fmt(w_px) << " " << fmt(h_px) << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
@@ -491,9 +493,9 @@ std::string coatPicture(const Wall& wall, const ToolParams& tool, const CoatRast
     << "<text x=\"" << fmt(kPadPx) << "\" y=\"" << fmt(kPadPx + 6) << "\" font-size=\"14\" font-weight=\"bold\">" << escapeHtml(title)
     << "</text>\n<path d=\"" << v.ringPath(wall.boundary) << "\" fill=\"#f3efe6\" stroke=\"none\"/>\n";
   // Blocks of cells about 3 px wide, each the mean of its samples in R, coloured by its ratio to
-  // R's mean: runs of one colour along a row as one rectangle each, or (as_image) one PNG pixel
+  // R's mean (or to the target, if the profile has one): runs of one colour along a row as one rectangle each, or (as_image) one PNG pixel
   // a block, drawn unsmoothed.
-  const CoatBlocks b = coatBlocks(raster, v.k, mean);
+  const CoatBlocks b = coatBlocks(raster, v.k, d.mean_um > 0.0 ? reference : 0.0);
   s << "<g class=\"coat\" stroke=\"none\">\n";
   if (as_image && b.by > 0) {
     s << "<image x=\"" << fmt(v.px(g.x0)) << "\" y=\"" << fmt(v.py(g.y0 + static_cast<double>(b.by) * b.side)) << "\" width=\""
@@ -529,7 +531,7 @@ std::string coatPicture(const Wall& wall, const ToolParams& tool, const CoatRast
     else
       s << "<path d=\"" << v.ringPath(o.polygon) << "\" fill=\"#9a9a9a\" stroke=\"#444444\"/>\n";
   }
-  // The colour scale in micrometres, 0 to twice the mean, and what the metrics say.
+  // The colour scale in micrometres, 0 to twice the mean (or the target), and what the metrics say.
   const double ly = v.top + v.box.height() * v.k + kPadPx + 8, bar = 400.0;
   s << "<g class=\"coat-scale\" transform=\"translate(" << fmt(kPadPx) << "," << fmt(ly) << ")\">\n";
   for (int k = 0; k < 20; ++k)
@@ -538,9 +540,10 @@ std::string coatPicture(const Wall& wall, const ToolParams& tool, const CoatRast
   s << "\n";
   for (double r : {0.0, 0.9, 1.1, 2.0})
     s << "<line x1=\"" << fmt(bar * r / 2.0) << "\" y1=\"12\" x2=\"" << fmt(bar * r / 2.0) << "\" y2=\"17\" stroke=\"#000\"/>"
-      << "<text x=\"" << fmt(bar * r / 2.0) << "\" y=\"29\" text-anchor=\"middle\">" << shortNumber(std::round(r * d.mean_um * 10.0) / 10.0)
+      << "<text x=\"" << fmt(bar * r / 2.0) << "\" y=\"29\" text-anchor=\"middle\">" << shortNumber(std::round(r * reference_um * 10.0) / 10.0)
       << (r == 2.0 ? "+" : "") << "</text>";
-  s << "<text x=\"" << fmt(bar + 12) << "\" y=\"10\">coat thickness, \u00b5m (green: within 10 % of the mean)</text>\n"
+  s << "<text x=\"" << fmt(bar + 12) << "\" y=\"10\">coat thickness, \u00b5m (green: within 10 % of the "
+    << (target_um > 0.0 ? "target, " + shortNumber(target_um) + " \u00b5m" : std::string("mean")) << ")</text>\n"
     << "<text x=\"0\" y=\"50\">" << escapeHtml(tool.profile.describe(tool.tool_width)) << "; mean " << shortNumber(std::round(d.mean_um * 100.0) / 100.0)
     << " \u00b5m, CV " << fmt(d.cv) << "; within 10 %: " << fmt(100.0 * d.even_share) << " %, thinner: " << fmt(100.0 * d.thin_share)
     << " %, thicker: " << fmt(100.0 * d.thick_share) << " % of R</text>\n</g>\n</svg>\n";

@@ -78,6 +78,7 @@ json toolJson(const ToolParams& tool, int protocol) {
   if (p.kind == FluxProfile::Kind::Beta) profile["beta"] = p.beta;
   profile["rate"] = p.rate;
   profile["depth"] = p.depthFor(tool.tool_width);
+  if (p.target > 0.0) profile["target"] = p.target;  // micrometres; none: no key
   out["profile"] = profile;
   return out;
 }

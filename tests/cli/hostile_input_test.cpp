@@ -480,8 +480,8 @@ TEST_F(Hostile, OutOfRangeFluxProfilesAreRefusedWithOneLine) {
       {"--profile beta --beta 2 --sigma 0.05", "--sigma: sigma: belongs to --profile gaussian"},
       {"--profile gaussian --sigma 0.05 --beta 2", "--beta: beta: belongs to --profile beta"},
       {"--profile uniform --sigma 0.05", "--sigma: sigma: belongs to --profile gaussian"},
-      {"--rate 1e-6", "--profile: profile: --sigma, --beta, --rate and --fan-depth need --profile"},
-      {"--fan-depth 0.01", "--profile: profile: --sigma, --beta, --rate and --fan-depth need --profile"},
+      {"--rate 1e-6", "--profile: profile: --sigma, --beta, --rate, --fan-depth and --target need --profile"},
+      {"--fan-depth 0.01", "--profile: profile: --sigma, --beta, --rate, --fan-depth and --target need --profile"},
       {"--coat-svg " + (dir_ / "coat.svg").string(), "--coat-svg: profile: the coat's picture needs the tool's flux profile (--profile)"},
       {"--profile gaussian --sigma -0.02", "command line: sigma: must be in [s/50, 100] m"},
       {"--profile gaussian --sigma 1e-9", "command line: sigma: must be in [s/50, 100] m"},
@@ -491,7 +491,12 @@ TEST_F(Hostile, OutOfRangeFluxProfilesAreRefusedWithOneLine) {
       {"--profile uniform --rate -1", "command line: rate: must be in (0, 1] m3/s"},
       {"--profile uniform --fan-depth 5", "command line: depth: must be in [0, s] m (0: s/10; s = 0.1 m), got 5"},
       {"--profile cone", "--profile: profile: must be none, uniform, gaussian or beta, got 'cone'"},
-      {"--sigma 0.02", "--profile: profile: --sigma, --beta, --rate and --fan-depth need --profile"},
+      {"--sigma 0.02", "--profile: profile: --sigma, --beta, --rate, --fan-depth and --target need --profile"},
+      {"--target 25", "--profile: profile: --sigma, --beta, --rate, --fan-depth and --target need --profile"},
+      {"--profile uniform --target 0", "--target: target: must be in (0, 1e+06] um, got 0"},
+      {"--profile uniform --target -25", "--target: target: must be in (0, 1e+06] um, got -25"},
+      {"--profile uniform --target 2e6", "--target: target: must be in (0, 1e+06] um, got 2e+06"},
+      {"--profile uniform --target nan", "--target: must be a finite number"},
   };
   for (const auto& [flags, message] : cases) {
     std::string printed;
@@ -530,6 +535,9 @@ TEST_F(Hostile, APlanFileCarriesItsToolsProfile) {
       {R"({"kind": "cone"})", R"(profile.kind: must be "uniform", "gaussian" or "beta")"},
       {R"({"kind": "uniform", "spread": 1})", "profile: has an unknown key"},
       {R"({"kind": "beta", "beta": 0.5})", "p.json: profile: beta: must be in [1, 100], got 0.5"},
+      {R"({"kind": "uniform", "target": 0})", "p.json: profile.target: must be in (0, 1e+06] um, got 0"},
+      {R"({"kind": "uniform", "target": -1})", "p.json: profile.target: must be in (0, 1e+06] um, got -1"},
+      {R"({"kind": "uniform", "target": "25"})", "p.json: profile.target: must be a number"},
   };
   for (const auto& [profile, message] : bad) {
     nlohmann::json edited = doc;
@@ -542,6 +550,33 @@ TEST_F(Hostile, APlanFileCarriesItsToolsProfile) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_EQ(printed, "") << profile;
   }
+}
+
+// A profile's target thickness goes into the plan file and back: `metrics` of the file scores the
+// shares against it as it does with the flags; the mean and the CV do not depend on it.
+TEST_F(Hostile, APlanFileCarriesItsProfilesTarget) {
+  const std::string plan = (dir_ / "p.json").string(), plain = (dir_ / "q.json").string();
+  const std::string tool = " --tool-width 0.3 --profile beta --beta 2.5";
+  ASSERT_EQ(run("plan --wall " + wall_ + " --planner zigzag" + tool + " --target 20 --out " + plan).exit_code, 0);
+  ASSERT_EQ(run("plan --wall " + wall_ + " --planner zigzag" + tool + " --out " + plain).exit_code, 0);
+  const nlohmann::json doc = nlohmann::json::parse(slurp(plan)), plain_doc = nlohmann::json::parse(slurp(plain));
+  EXPECT_EQ(doc["profile"], nlohmann::json::parse(R"({"kind": "beta", "beta": 2.5, "rate": 1e-06, "depth": 0.03, "target": 20.0})"));
+  EXPECT_FALSE(plain_doc["profile"].contains("target"));
+  EXPECT_EQ(doc["waypoints"], plain_doc["waypoints"]);  // the planner reads no target
+  EXPECT_EQ(doc["tool_on"], plain_doc["tool_on"]);
+  std::string from_file, from_flags, without;
+  ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan, &from_file).exit_code, 0);
+  // The flags name the profile instead of the file's: with the target, and without it.
+  ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan + " --profile beta --beta 2.5 --target 20", &from_flags).exit_code, 0);
+  ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan + " --profile beta --beta 2.5", &without).exit_code, 0);
+  EXPECT_EQ(from_file, from_flags);
+  const nlohmann::json a = nlohmann::json::parse(from_file), b = nlohmann::json::parse(without);
+  EXPECT_EQ(a["thickness_mean"], b["thickness_mean"]);
+  EXPECT_EQ(a["thickness_cv"], b["thickness_cv"]);
+  EXPECT_NE(a["even_share"], b["even_share"]);
+  // Written again (plan's statistics aside), the file's profile is the same.
+  ASSERT_EQ(run("plan --wall " + wall_ + " --planner zigzag" + tool + " --target 20 --out " + plain).exit_code, 0);
+  EXPECT_EQ(nlohmann::json::parse(slurp(plain))["profile"], doc["profile"]);
 }
 
 TEST_F(Hostile, OutOfRangeLimitsAreRefusedWithOneLine) {

@@ -127,6 +127,13 @@ TEST_F(Experiments, AToolsFluxProfileIsReadForEveryToolAndItsErrorsNameTheKey) {
             file + ":17: tool.profile.sigma: must be in [s/50, 100] m (s/50 = 0.006 m), got 0.004 (tool width 0.3 m)");
   EXPECT_EQ(error(with("    kind: uniform\n    rate: 0\n")), file + ":17: tool.profile.rate: must be in (0, 1], got 0");
   EXPECT_EQ(error(with("    kind: uniform\n    spread: 1\n")).substr(0, file.size() + 33), file + ":17: tool.profile.spread: unknown");
+  // A target thickness, micrometres: optional (none: 0), and when given in (0, 1e6].
+  EXPECT_EQ(c.tools[0].profile.target, 0.0);
+  EXPECT_EQ(loadExperimentConfig(config(with("    kind: beta\n    beta: 2.5\n    target: 25\n"))).tools[1].profile.target, 25.0);
+  EXPECT_EQ(error(with("    kind: uniform\n    target: 0\n")), file + ":17: tool.profile.target: must be in (0, 1e+06], got 0");
+  EXPECT_EQ(error(with("    kind: uniform\n    target: -3\n")), file + ":17: tool.profile.target: must be in (0, 1e+06], got -3");
+  EXPECT_EQ(error(with("    kind: uniform\n    target: 2e6\n")), file + ":17: tool.profile.target: must be in (0, 1e+06], got 2e6");
+  EXPECT_EQ(error(with("    kind: uniform\n    target: .nan\n")), file + ":17: tool.profile.target: must be a number, got '.nan'");
 }
 
 TEST_F(Experiments, AllMeansEveryRegisteredPlanner) {
@@ -171,6 +178,16 @@ TEST_F(Experiments, RunKeysChangeWithEveryInputAndNothingElse) {
   r.tool.profile.beta = 2.5;
   r.tool.profile.rate = 2e-6;
   EXPECT_NE(runBaseKey(r), coat);
+  // A target enters the key only when there is one: a profile without one keeps its key (the
+  // key's text is unchanged; tests/experiments/profile_runs_test.cpp pins a stored key).
+  r.tool.profile.rate = 1e-6;
+  r.tool.profile.target = 0.0;
+  EXPECT_EQ(runBaseKey(r), coat);
+  r.tool.profile.target = 25.0;
+  const std::string targeted = runBaseKey(r);
+  EXPECT_NE(targeted, coat);
+  r.tool.profile.target = 30.0;
+  EXPECT_NE(runBaseKey(r), targeted);
   // The planner's version and code identity change the key, not the base key.
   r = runs[0];
   r.planner_version += "-next";

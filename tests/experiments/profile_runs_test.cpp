@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "coverbench/results_db.hpp"
 #include "test_support.hpp"
@@ -73,6 +74,45 @@ TEST_F(ProfileRuns, ARunWithAProfileIsStoredAndListedWithIt) {
   const nlohmann::json json = nlohmann::json::parse(runs(db, "--format json"));
   ASSERT_EQ(json.size(), 2u);
   EXPECT_EQ(json[0]["profile"], "beta 2.5, 2e-06 m3/s");
+}
+
+// A profile's target thickness: stored (run_profile_target), listed, scored against, and part of
+// the run key only when there is one. The base keys of the run above (no target) are those the
+// build before the target gave it (commit 682a1a8: `coverbench run` of this config).
+TEST_F(ProfileRuns, ATargetIsStoredListedAndKeyedOnlyWhenSet) {
+  const std::string plain = experiment("coat", "tool:\n  width: [0.2, 0.3]\n  profile: {kind: beta, beta: 2.5, rate: 2e-6}\n");
+  EXPECT_EQ(test::sqlRows(plain, "SELECT base_key FROM runs ORDER BY base_key"),
+            "5b02f92382e4ac9106d8bed1bb7975a7096d7c82acb8335e03ac7cf21d8dd595\n"
+            "ad871fbf70325c885e9a58de9a3af2a0ff584f58e6dd29ad827d6a0c6c90452e\n");
+  EXPECT_EQ(test::sqlRows(plain, "SELECT COUNT(*) FROM run_profile_target"), "0\n");
+  EXPECT_EQ(runs(plain, "--list").find("target"), std::string::npos);
+  const std::string aimed =
+      experiment("aimed", "tool:\n  width: [0.2, 0.3]\n  profile: {kind: beta, beta: 2.5, rate: 2e-6, target: 25}\n");
+  EXPECT_EQ(test::sqlRows(aimed, "SELECT COUNT(*) FROM runs WHERE base_key IN ('5b02f92382e4ac9106d8bed1bb7975a7096d7c82acb8335e03ac7cf21d8dd595', "
+                                 "'ad871fbf70325c885e9a58de9a3af2a0ff584f58e6dd29ad827d6a0c6c90452e')"),
+            "0\n");
+  EXPECT_EQ(test::sqlRows(aimed, "SELECT DISTINCT target FROM run_profile_target"), "25.0\n");
+  const ResultSet with = ResultsDb(aimed, ResultsDb::Mode::ReadOnly).load(), without = ResultsDb(plain, ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(with.runs.size(), 2u);
+  ASSERT_EQ(without.runs.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(with.runs[i].tool.profile.target, 25.0);
+    EXPECT_EQ(without.runs[i].tool.profile.target, 0.0);
+  }
+  const std::string list = runs(aimed, "--list");
+  EXPECT_NE(list.find("  zigzag  s=0.3 m, c=0.02 m, beta 2.5, 2e-06 m3/s, target 25 um  walls/a\n"), std::string::npos) << list;
+  // The same paths (the planner reads no target), the same mean, other shares.
+  std::map<double, const ResultRow*> by_width;
+  for (const ResultRow& r : without.runs) by_width[r.tool.tool_width] = &r;
+  for (const ResultRow& r : with.runs) {
+    const ResultRow& o = *by_width.at(r.tool.tool_width);
+    EXPECT_EQ(r.metrics.at("thickness_mean"), o.metrics.at("thickness_mean"));
+    EXPECT_EQ(r.metrics.at("thickness_cv"), o.metrics.at("thickness_cv"));
+    EXPECT_NE(r.metrics.at("even_share"), o.metrics.at("even_share"));
+  }
+  // A database made before run_profile_target reads its runs without a target.
+  test::sqlRows(aimed, "DROP TABLE run_profile_target");
+  for (const ResultRow& r : ResultsDb(aimed, ResultsDb::Mode::ReadOnly).load().runs) EXPECT_EQ(r.tool.profile.target, 0.0);
 }
 
 TEST_F(ProfileRuns, RunsWithoutAProfileAndDatabasesFromBeforeItListAsBefore) {

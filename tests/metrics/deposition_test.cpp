@@ -112,6 +112,75 @@ TEST(Deposition, UniformProfileOnOnePassIsRateTimesTimeOverTheWidth) {
     }
 }
 
+// A target thickness (FluxProfile::target): the shares are of it, not of the mean. One uniform
+// pass at cruise lays Q / (s v) across its width (the test above): over a band 0.3 m high with the
+// 0.2 m swath in its middle (40 of 60 rows of cells), the swath is 2/3 of the samples and the mean
+// is 2/3 of Q / (s v).
+TEST(Deposition, SharesAreOfTheTargetWhenThereIsOne) {
+  Path path;
+  path.moveTo({0, 0}, false);
+  path.moveTo({2, 0}, true);
+  FluxProfile profile;
+  profile.kind = FluxProfile::Kind::Uniform;
+  profile.rate = 2e-6;
+  const DepositionGrid g = field(path, profile, {}, 0.0, -0.15, 0.005, 400, 60);
+  const double coat_um = profile.rate / (kTool.tool_width * 0.3) * 1e6;  // 33.33 um
+  std::vector<char> swath(g.thickness.size(), 0), band(g.thickness.size(), 0);
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 40; i < 360; ++i) {  // at cruise
+      band[j * g.nx + i] = 1;
+      swath[j * g.nx + i] = std::fabs(g.centre(i, j).y) < 0.1;
+    }
+  // Over the swath: all of it is the target's coat; all of it thin against twice that, thick
+  // against half of it. The mean and the CV do not depend on the target.
+  const Deposition at = depositionStats(g, swath, coat_um);
+  EXPECT_EQ(at.even_share, 1.0);
+  EXPECT_EQ(at.thin_share, 0.0);
+  EXPECT_EQ(at.thick_share, 0.0);
+  EXPECT_NEAR(at.mean_um, coat_um, 1e-9 * coat_um);
+  const Deposition twice = depositionStats(g, swath, 2.0 * coat_um);
+  EXPECT_EQ(twice.thin_share, 1.0);
+  EXPECT_EQ(twice.even_share, 0.0);
+  EXPECT_EQ(twice.mean_um, at.mean_um);
+  EXPECT_EQ(twice.cv, at.cv);
+  EXPECT_EQ(depositionStats(g, swath, 0.5 * coat_um).thick_share, 1.0);
+  // Over the band: the swath (2/3) is even against the target and the bare rest (1/3) thin;
+  // against the mean (2/3 of the coat) the swath is 1.5 times the mean: thick.
+  const Deposition target = depositionStats(g, band, coat_um), mean = depositionStats(g, band);
+  EXPECT_NEAR(target.mean_um, 2.0 / 3.0 * coat_um, 1e-9 * coat_um);
+  EXPECT_DOUBLE_EQ(target.even_share, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(target.thin_share, 1.0 / 3.0);
+  EXPECT_EQ(target.thick_share, 0.0);
+  EXPECT_EQ(mean.even_share, 0.0);
+  EXPECT_DOUBLE_EQ(mean.thick_share, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(mean.thin_share, 1.0 / 3.0);
+  EXPECT_EQ(target.cv, mean.cv);
+  // A target of 0 is none: the shares are of the mean.
+  const Deposition none = depositionStats(g, band, 0.0);
+  EXPECT_EQ(none.even_share, mean.even_share);
+  EXPECT_EQ(none.thick_share, mean.thick_share);
+}
+
+// The whole engine with a target: computeMetrics scores the shares against the profile's target.
+TEST(Deposition, TheMetricsTakeTheProfilesTarget) {
+  Path path;
+  path.moveTo({0.5, 0.5}, false);
+  path.moveTo({2.5, 0.5}, true);
+  const Wall wall = test::rectWall(3, 1);
+  ToolParams tool = kTool;
+  tool.profile.kind = FluxProfile::Kind::Uniform;
+  const PathMetrics without = computeMetrics(wall, tool, path);
+  tool.profile.target = 1e6 * tool.profile.rate / (tool.tool_width * 0.3);
+  const PathMetrics with = computeMetrics(wall, tool, path);
+  ASSERT_TRUE(with.deposition && without.deposition);
+  EXPECT_EQ(with.deposition->mean_um, without.deposition->mean_um);
+  EXPECT_EQ(with.deposition->cv, without.deposition->cv);
+  const CoatRaster raster = coatRaster(wall, tool, path, tool.profile);
+  EXPECT_EQ(with.deposition->even_share, depositionStats(raster.grid, raster.mask, tool.profile.target).even_share);
+  EXPECT_EQ(without.deposition->even_share, depositionStats(raster.grid, raster.mask).even_share);
+  EXPECT_NE(with.deposition->even_share, without.deposition->even_share);
+}
+
 // Acceptance (issue 66): a pass whose speed ramps down deposits more where it is slower, as
 // 1 / v(s) of the time model. The fan is 5 mm deep: its mean of 1/v over the depth l differs
 // from 1/v at the centre by about (l^2 / 24) (1/v)'' / (1/v) = l^2 / (32 e^2), e the distance to
@@ -268,6 +337,15 @@ TEST(Deposition, OutOfRangeProfilesNameTheirField) {
   p.rate = 1e-6;
   p.depth = NAN;
   EXPECT_NE(field_of(p).find("depth"), std::string::npos);
+  p.depth = 0.0;
+  for (const double bad : {-1.0, double(NAN), double(INFINITY), 2e6}) {
+    p.target = bad;
+    EXPECT_NE(field_of(p).find("target: must be in (0, 1e+06] um"), std::string::npos) << bad;
+  }
+  p.target = 25.0;
+  EXPECT_EQ(field_of(p), "accepted");
+  p.target = 0.0;  // none
+  EXPECT_EQ(field_of(p), "accepted");
   FluxProfile b;
   b.kind = FluxProfile::Kind::Beta;
   b.beta = 0.5;

@@ -385,5 +385,48 @@ TEST(CoatPicture, ShowsTheCoatByItsRatioToTheMeanWithItsScaleAndFigures) {
   EXPECT_THROW(coatPicture(wall, ToolParams{0.5, 0.0}, path, MotionLimits{}, VehicleModel{}, "t"), std::exception);
 }
 
+// With a target thickness the blocks' ratios, the scale's ticks and its label are of the target,
+// and the figures are the metrics' (shares of the target). The rows' steady coat is Q / (s v) =
+// 1e-6 / (0.5 x 0.3) m = 6.667 um: aimed at it, the rows at speed are green; aimed at ten times
+// the mean, no block is within 10 % of it.
+TEST(CoatPicture, WithATargetTheColoursAndTheScaleAreOfTheTarget) {
+  Wall wall;
+  wall.name = "two rows";
+  wall.boundary = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  ToolParams tool{0.5, 0.0};
+  tool.profile.kind = FluxProfile::Kind::Uniform;
+  Path path;
+  path.moveTo({0.25, 0.25}, false);
+  path.moveTo({1.75, 0.25}, true);
+  path.moveTo({1.75, 0.75}, true);
+  path.moveTo({0.25, 0.75}, true);
+  const double mean_um = deposition(wall, tool, path, tool.profile).mean_um;
+  tool.profile.target = 1e6 * tool.profile.rate / (0.5 * 0.3);
+  // The blocks (the coat's group; the scale below it has green too).
+  auto blocks = [](const std::string& svg) {
+    const std::size_t from = svg.find("<g class=\"coat\""), to = svg.find("</g>", from);
+    return svg.substr(from, to - from);
+  };
+  const std::string steady = coatPicture(wall, tool, path, MotionLimits{}, VehicleModel{}, "t");
+  EXPECT_NE(blocks(steady).find("fill=\"#41ab5d\""), std::string::npos);
+  EXPECT_NE(steady.find("(green: within 10 % of the target, " + shortNumber(tool.profile.target) + " \u00b5m)"), std::string::npos);
+  tool.profile.target = 10.0 * mean_um;
+  const std::string far = coatPicture(wall, tool, path, MotionLimits{}, VehicleModel{}, "t");
+  const Deposition d = deposition(wall, tool, path, tool.profile);
+  EXPECT_EQ(d.mean_um, mean_um);
+  EXPECT_EQ(d.even_share, 0.0);
+  EXPECT_EQ(d.thin_share, 1.0);
+  EXPECT_EQ(blocks(far).find("fill=\"#41ab5d\""), std::string::npos);
+  EXPECT_NE(blocks(far).find("<rect"), std::string::npos);
+  EXPECT_NE(far.find("within 10 % of the target, " + shortNumber(10.0 * mean_um) + " \u00b5m)"), std::string::npos);
+  EXPECT_EQ(far.find("of the mean"), std::string::npos);
+  for (double r : {0.9, 1.1, 2.0}) {
+    const std::string tick = ">" + shortNumber(std::round(r * 10.0 * mean_um * 10.0) / 10.0);
+    EXPECT_NE(far.find(tick), std::string::npos) << tick;
+  }
+  EXPECT_NE(far.find("within 10 %: 0.00 %, thinner: 100.00 %"), std::string::npos);
+  EXPECT_NE(far.find(", target " + shortNumber(10.0 * mean_um) + " \u00b5m; mean "), std::string::npos);
+}
+
 }  // namespace
 }  // namespace coverbench

@@ -77,6 +77,9 @@ TEST_F(Protocol2, AVersion2PlannerReceivesTheToolsShapeAndProfile) {
   EXPECT_EQ(json::parse(reason(echo, "--profile uniform")),
             json::parse(R"({"shape": "disk", "profile": {"kind": "uniform", "rate": 1e-6, "depth": 0.01}})"));
   EXPECT_EQ(json::parse(reason(echo, "")), json::parse(R"({"shape": "disk", "profile": null})"));
+  // A target thickness (micrometres) only when there is one.
+  EXPECT_EQ(json::parse(reason(echo, "--profile uniform --target 25")),
+            json::parse(R"({"shape": "disk", "profile": {"kind": "uniform", "rate": 1e-6, "depth": 0.01, "target": 25}})"));
 }
 
 TEST_F(Protocol2, AVersion1PlannersRequestIsTheSameBytesWithAProfile) {

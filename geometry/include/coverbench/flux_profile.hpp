@@ -22,7 +22,12 @@ struct FluxProfile {
   double beta = 0.0;    ///< beta: exponent beta (f proportional to (1 - u^2)^(beta - 1))
   double rate = 1e-6;   ///< Q, m^3/s sprayed (1 ml/s)
   double depth = 0.0;   ///< l, the fan's depth along the motion, m; 0: a tenth of the tool width
+  /// The coat aimed at, micrometres; 0: none, and the coat's shares are of its mean. With a target,
+  /// even_share, thin_share and thick_share are of it (docs/deposition.md).
+  double target = 0.0;
   bool set() const { return kind != Kind::None; }
+  /// The largest target thickness accepted, micrometres (a metre of coat).
+  static constexpr double kMaxTarget = 1e6;
   /// The fan's depth for a tool of width s: `depth`, or s / 10.
   double depthFor(double s) const { return depth > 0.0 ? depth : s / 10.0; }
   /// f(x), 1/m, for a tool of radius r (0 outside [-r, r]).
@@ -31,13 +36,15 @@ struct FluxProfile {
   /// truncation), r / sqrt(2 beta + 1) for beta, r / sqrt 3 for uniform.
   double spread(double r) const;
   /// The profile as run listings show it beside the tool: "uniform", "gaussian 0.02 m" (sigma),
-  /// "beta 2.5", then the rate and the fan's depth where they are not the defaults
-  /// ("beta 2.5, 2e-06 m3/s, fan depth 0.05 m"); "" for none.
+  /// "beta 2.5", then the rate and the fan's depth where they are not the defaults and the target
+  /// where there is one ("beta 2.5, 2e-06 m3/s, fan depth 0.05 m, target 25 um"); "" for none.
   std::string label() const;
-  /// "gaussian profile, sigma 0.02 m, 1e-06 m3/s, fan depth 0.01 m" for a tool of width s.
+  /// "gaussian profile, sigma 0.02 m, 1e-06 m3/s, fan depth 0.01 m" for a tool of width s, then
+  /// ", target 25 µm" where there is a target.
   std::string describe(double s) const;
   /// Throws InputError(source, field, problem) for a value out of range for a tool of width s:
-  /// sigma in [s/50, 100 m], beta in [1, 100], rate in (0, 1] m^3/s, depth in (0, s] (0: the default).
+  /// sigma in [s/50, 100 m], beta in [1, 100], rate in (0, 1] m^3/s, depth in (0, s] (0: the default),
+  /// target in (0, 1e6] um or 0 (none).
   void check(double s, const std::string& source) const;
 };
 /// "uniform", "gaussian", "beta" (or "none").
@@ -49,14 +56,15 @@ bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind);
 /// "gaussian", "beta") and each value, unset where not given (rate 1e-6 m^3/s, depth s / 10).
 struct ProfileOptions {
   std::string profile = "none";
-  std::optional<double> sigma, beta, rate, fan_depth;
+  std::optional<double> sigma, beta, rate, fan_depth, target;
 };
 /// How a caller names the kind and the values in its messages. The default is the command line's:
 /// each error's source is the flag it is about ("--sigma: sigma: belongs to --profile gaussian"),
 /// range errors are the "command line"'s. With `source` set, every error has that source and
 /// names the value by its key (Python: "profile: sigma: belongs to kind gaussian").
 struct ProfileSpelling {
-  std::string kind = "--profile", sigma = "--sigma", beta = "--beta", rate = "--rate", depth = "--fan-depth";
+  std::string kind = "--profile", sigma = "--sigma", beta = "--beta", rate = "--rate", depth = "--fan-depth",
+              target = "--target";
   std::string source;                   ///< empty: the flag each error is about
   std::string checked = "command line";  ///< the source of out-of-range values (FluxProfile::check)
 };

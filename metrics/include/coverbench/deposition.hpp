@@ -73,8 +73,9 @@ void depositionField(const Path& path, const ToolParams& tool, const FluxProfile
 std::vector<char> rasterMask(const Region& region, const DepositionGrid& grid);
 
 /// The deposition metrics over the samples counted (thickness in micrometres). Shares are of the
-/// samples counted: even |h - mean| <= 0.1 mean, thin h < 0.9 mean, thick h > 1.1 mean (they add up
-/// to 1). With nothing deposited (mean 0) cv is 0 and every cell is thin.
+/// samples counted, against a reference c: even |h - c| <= 0.1 c, thin h < 0.9 c, thick h > 1.1 c
+/// (they add up to 1). c is the target (`target_um`, micrometres; FluxProfile::target) when there is
+/// one (> 0), else the mean. With nothing deposited (mean 0) cv is 0 and every cell is thin.
 struct Deposition {
   double mean_um = 0.0;
   double cv = 0.0;
@@ -82,7 +83,7 @@ struct Deposition {
   double cell = 0.0;       ///< m
   std::size_t cells = 0;   ///< samples counted
 };
-Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& mask);
+Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& mask, double target_um = 0.0);
 
 /// The thickness field of a path on the default raster over R's bounding box (cell 0:
 /// depositionCell), and which samples lie in R: what deposition() summarises and the coat's
