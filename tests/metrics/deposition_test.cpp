@@ -95,14 +95,25 @@ TEST(Deposition, TwoParallelGaussianPassesMatchTheClosedFormCv) {
   }
 }
 
-TEST(Deposition, UniformProfileOnOnePassIsRateTimesTimeOverTheWidth) {
+/// One uniform pass of 2 m along y = 0 at rate 2e-6 m^3/s, with the default time model, on a
+/// raster of 5 mm cells over x in [0, 2], y in [-0.15, 0.15].
+struct OneUniformPass {
   Path path;
-  path.moveTo({0, 0}, false);
-  path.moveTo({2, 0}, true);
   FluxProfile profile;
-  profile.kind = FluxProfile::Kind::Uniform;
-  profile.rate = 2e-6;
-  const DepositionGrid g = field(path, profile, {}, 0.0, -0.15, 0.005, 400, 60);  // default time model
+  DepositionGrid g;
+  OneUniformPass() {
+    path.moveTo({0, 0}, false);
+    path.moveTo({2, 0}, true);
+    profile.kind = FluxProfile::Kind::Uniform;
+    profile.rate = 2e-6;
+    g = field(path, profile, {}, 0.0, -0.15, 0.005, 400, 60);
+  }
+};
+
+TEST(Deposition, UniformProfileOnOnePassIsRateTimesTimeOverTheWidth) {
+  const OneUniformPass pass;
+  const FluxProfile& profile = pass.profile;
+  const DepositionGrid& g = pass.g;
   const double v = 0.3;  // at cruise: x in [0.09, 1.91] m (ramps of v^2 / 2a = 0.09 m)
   for (std::size_t j = 0; j < g.ny; ++j)
     for (std::size_t i = 40; i < 360; ++i) {
@@ -117,13 +128,9 @@ TEST(Deposition, UniformProfileOnOnePassIsRateTimesTimeOverTheWidth) {
 // 0.2 m swath in its middle (40 of 60 rows of cells), the swath is 2/3 of the samples and the mean
 // is 2/3 of Q / (s v).
 TEST(Deposition, SharesAreOfTheTargetWhenThereIsOne) {
-  Path path;
-  path.moveTo({0, 0}, false);
-  path.moveTo({2, 0}, true);
-  FluxProfile profile;
-  profile.kind = FluxProfile::Kind::Uniform;
-  profile.rate = 2e-6;
-  const DepositionGrid g = field(path, profile, {}, 0.0, -0.15, 0.005, 400, 60);
+  OneUniformPass pass;
+  FluxProfile& profile = pass.profile;
+  const DepositionGrid& g = pass.g;
   const double coat_um = profile.rate / (kTool.tool_width * 0.3) * 1e6;  // 33.33 um
   std::vector<char> swath(g.thickness.size(), 0), band(g.thickness.size(), 0);
   for (std::size_t j = 0; j < g.ny; ++j)

@@ -339,21 +339,31 @@ TEST(OmplExport, ALogByHandForTwoRunsOneOfThemFailed) {
   EXPECT_EQ(logs[0].text, expected);
 }
 
+/// Two rows of a uniform tool (s = 0.5 m) that tile a 2 x 1 m wall exactly.
+struct TwoRows {
+  Wall wall;
+  ToolParams tool{0.5, 0.0};
+  Path path;
+  TwoRows() {
+    wall.name = "two rows";
+    wall.boundary = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+    tool.profile.kind = FluxProfile::Kind::Uniform;
+    path.moveTo({0.25, 0.25}, false);
+    path.moveTo({1.75, 0.25}, true);
+    path.moveTo({1.75, 0.75}, true);
+    path.moveTo({0.25, 0.75}, true);
+  }
+};
+
 // The coat's picture: its blocks' colours are the shares the metrics state (a uniform tool whose
 // two passes tile a wall exactly: green where both rows run at speed, thicker where the tool
 // brakes and turns, bare blue nowhere inside R but at the corners the rows' caps do not reach),
 // and its scale and figures in micrometres.
 TEST(CoatPicture, ShowsTheCoatByItsRatioToTheMeanWithItsScaleAndFigures) {
-  Wall wall;
-  wall.name = "two rows";
-  wall.boundary = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
-  ToolParams tool{0.5, 0.0};
-  tool.profile.kind = FluxProfile::Kind::Uniform;
-  Path path;
-  path.moveTo({0.25, 0.25}, false);
-  path.moveTo({1.75, 0.25}, true);
-  path.moveTo({1.75, 0.75}, true);
-  path.moveTo({0.25, 0.75}, true);
+  TwoRows rows;
+  const Wall& wall = rows.wall;
+  ToolParams& tool = rows.tool;
+  const Path& path = rows.path;
   const std::string svg = coatPicture(wall, tool, path, MotionLimits{}, VehicleModel{}, "t");
   const Deposition d = deposition(wall, tool, path, tool.profile);
   ASSERT_GT(d.even_share, 0.3);
@@ -390,16 +400,10 @@ TEST(CoatPicture, ShowsTheCoatByItsRatioToTheMeanWithItsScaleAndFigures) {
 // 1e-6 / (0.5 x 0.3) m = 6.667 um: aimed at it, the rows at speed are green; aimed at ten times
 // the mean, no block is within 10 % of it.
 TEST(CoatPicture, WithATargetTheColoursAndTheScaleAreOfTheTarget) {
-  Wall wall;
-  wall.name = "two rows";
-  wall.boundary = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
-  ToolParams tool{0.5, 0.0};
-  tool.profile.kind = FluxProfile::Kind::Uniform;
-  Path path;
-  path.moveTo({0.25, 0.25}, false);
-  path.moveTo({1.75, 0.25}, true);
-  path.moveTo({1.75, 0.75}, true);
-  path.moveTo({0.25, 0.75}, true);
+  TwoRows rows;
+  const Wall& wall = rows.wall;
+  ToolParams& tool = rows.tool;
+  const Path& path = rows.path;
   const double mean_um = deposition(wall, tool, path, tool.profile).mean_um;
   tool.profile.target = 1e6 * tool.profile.rate / (0.5 * 0.3);
   // The blocks (the coat's group; the scale below it has green too).
