@@ -59,8 +59,9 @@ slow+="|ReplanningPlanners.EveryRepairedPathIsValid/(trapezoidal|spiral) "
 # headless Chromium): they check the page's behaviour; the server code they reach runs here in
 # serve and serve_doors, whose hostile requests cover the runs, values and CSV routes.
 slow+="|^serve_(table|plots|compare|a11y|workbench)$"
-# No C++ at all: the report's statistics (Python) and the explorer's type check (tsc).
-slow+="|^report_python_statistics$|^web_types$"
+# No C++ at all: the report's statistics (Python), the explorer's type check (tsc) and the
+# layering check's self-test (nm on the archives).
+slow+="|^report_python_statistics$|^web_types$|^layers_selftest$"
 echo "== the tests under AddressSanitizer and UndefinedBehaviorSanitizer"
 source scripts/ctest_costs.sh
 seed_ctest_costs $build
