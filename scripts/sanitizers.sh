@@ -51,21 +51,27 @@ slow+="|CarSweep.ACarsTransitsPaintWhereTheyPassOverWhatNothingElsePaints|CarSwe
 slow+="|CarSweep.ACarThatStartsInAPocketStartsAgainWhereItGetsOut|CarSweep.StrokesPaintOnTheWay|CarSweep.StrokesReachWhatTheRowsDoNot"
 slow+="|CarSweep.ACellOrderIsTakenCellByCell|CarSweep.RingsThatStartInAPocket|Isolation.KillingTheRunnerOrAWorkerLosesAndDuplicatesNothing"
 slow+="|Experiments.TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys|FieldScale.EveryPlannerPlansAHundredMetrePolygon"
-# Every planner smoothed for a car on 4 of the 9 families (the other 5 run here, residential with
+# Every planner smoothed for a car on 5 of the 9 families (the other 4 run here, residential with
 # the exact judge), and repairs of the two slowest planners' paths (the other 5 run here).
-slow+="|CarFamilies.EveryPlannersSmoothedPathIsValidAndDrivable/(gable|industrial|stairwell|facade) "
+slow+="|CarFamilies.EveryPlannersSmoothedPathIsValidAndDrivable/(gable|industrial|stairwell|facade|random) "
 slow+="|ReplanningPlanners.EveryRepairedPathIsValid/(trapezoidal|spiral) "
-# The explorer's page tests (its table, plots, compare view, keys, accessibility and workbench in
-# headless Chromium): they check the page's behaviour; the server code they reach runs here in
-# serve and serve_doors, whose hostile requests cover the runs, values and CSV routes.
-slow+="|^serve_(table|plots|compare|a11y|workbench)$"
+# Tests that judge results with the exact judge, 1-2 minutes each under the sanitizers: the fast
+# engine's closed areas against the certified intervals, and the spray trigger on a wall with
+# obstacles. The judge's code runs here in ExactJudge.*, the trigger's in EvenCoat's other tests.
+slow+="|ExactJudgeProperty.RegionAreasClosedFormsInsideTheCertifiedIntervals|EvenCoat.TriggerSpeedKeepsTheClockAndTheJudgesOnAWallWithObstacles"
+# The explorer's and the report's page tests (its table, plots, compare view, keys, accessibility
+# and workbench, and the report in headless Chromium): they check the page's behaviour; the server
+# code they reach runs here in serve and serve_doors, whose hostile requests cover the runs, values
+# and CSV routes, and the report's in Cli.* and PublishedReport.*.
+slow+="|^serve_(table|plots|compare|a11y|workbench)$|^report_in_browser$"
 # No C++ at all: the report's statistics (Python), the explorer's type check (tsc) and the
 # layering check's self-test (nm on the archives).
 slow+="|^report_python_statistics$|^web_types$|^layers_selftest$"
 echo "== the tests under AddressSanitizer and UndefinedBehaviorSanitizer"
 source scripts/ctest_costs.sh
 seed_ctest_costs $build
-ctest --test-dir $build --output-on-failure -j 2 \
+# One test more than cores, as in scripts/test.sh: the extra test fills the time others wait.
+ctest --test-dir $build --output-on-failure -j "$(( $(nproc) + 1 ))" \
   -E "RunLimitsBecomeStatusesInTheTables|EachMisbehavingPlannerYieldsItsStatusAndTheRestIsUntouched|^quality_gate$|CarStressWalls|$slow"
 echo "== fuzzing, $seconds s per target"
 COVERBENCH_SANITIZE_BUILD=$build bash scripts/fuzz.sh "$seconds"
