@@ -100,7 +100,11 @@ std::vector<GallerySection> selectGallery(const ResultSet& rs, const std::vector
         for (const ResultRow* r : runs)
           if (r->wall == wall && r->planner == column) {
             g.wall_name = r->wall_name;
-            g.pictures.push_back({column, r->key, toString(r->status), "", ""});
+            GalleryPicture picture;
+            picture.column = column;
+            picture.key = r->key;
+            picture.status = toString(r->status);
+            g.pictures.push_back(std::move(picture));
           }
       section.walls.push_back(std::move(g));
     }

@@ -489,10 +489,11 @@ TEST(DecompositionPlanners, MergedEventsKeepPathsValidOnGeneratedWalls) {
           // boustrophedon and 0.019 for trapezoidal on these walls (README, merge_events).
           const PlanResult apart = planWith(planner, wall, tool, {{"sweep_angle", angle}, {"boundary_loop", loop}});
           ASSERT_TRUE(apart.hasPath()) << what;
-          if (std::string(loop) == "true")
+          if (std::string(loop) == "true") {
             EXPECT_GE(coverage(wall, tool, r.path).coverage_reachable,
                       coverage(wall, tool, apart.path).coverage_reachable - 5e-3)
                 << what;
+          }
           EXPECT_LE(r.stats.at("cells"), apart.stats.at("cells") + apart.stats.at("cells_without_pass")) << what;
         }
 }

@@ -71,7 +71,7 @@ TEST(EvenCoat, RowsSpacedForTheProfileVaryLessThanRowsAToolWidthApart) {
       EXPECT_TRUE(even.metrics.validity.valid) << where;
       EXPECT_GE(even.metrics.coverage.coverage_reachable, plain.metrics.coverage.coverage_reachable - 1e-3) << where;
       // Rows no farther apart than the even spacing (a planner may close them up to fit a span).
-      if (even.result.stats.count("row_spacing")) EXPECT_LE(even.result.stats.at("row_spacing"), d + 1e-9) << where;
+      if (even.result.stats.count("row_spacing")) { EXPECT_LE(even.result.stats.at("row_spacing"), d + 1e-9) << where; }
       EXPECT_LT(metric(even, "thickness_cv"), metric(plain, "thickness_cv")) << where;
     }
   }

@@ -200,8 +200,9 @@ TEST(ConformanceWalls, ExpectedOutcomes) {
       if (!r.hasPath()) return;
       EXPECT_EQ(r.free_components, expected.free_components) << where;
       EXPECT_EQ(r.covered_components, 1u) << where;
-      if (expected.status == PlanStatus::Partial)
+      if (expected.status == PlanStatus::Partial) {
         EXPECT_NE(r.reason.find("disconnected"), std::string::npos) << where << " must say what it left out: " << r.reason;
+      }
     });
   }
 }
@@ -298,7 +299,7 @@ TEST(FieldScale, EveryPlannerPlansAHundredMetrePolygonWithFifteenBuildingsAndFie
   std::vector<std::pair<Wall, ToolParams>> cases = {
       {loadWallFile(test::sourcePath("bench/walls/field_100m_15_buildings.json")), ToolParams{3.0, 0.0}}};
   ASSERT_EQ(cases[0].first.obstacles.size(), 15u);
-  for (std::size_t i = 0; i < 3; ++i) cases.push_back({generateWall("field", 3, i), ToolParams{1.0 + 2.5 * i, 0.0}});
+  for (std::size_t i = 0; i < 3; ++i) cases.push_back({generateWall("field", 3, i), ToolParams{1.0 + 2.5 * static_cast<double>(i), 0.0, {}}});
   for (const PlannerInfo& info : registeredPlanners())
     for (const auto& [wall, tool] : cases) {
       PlanResult r;

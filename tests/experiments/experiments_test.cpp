@@ -355,7 +355,7 @@ TEST_F(Experiments, SecondRunDoesNoWorkAndGivesIdenticalRunsAndAGrownConfigOnlyR
     const auto& s = summaries[i];
     ASSERT_TRUE(by_key.count(s.key));
     const ResultRow& r = *by_key.at(s.key);
-    if (i > 0) EXPECT_LT(summaries[i - 1].key, s.key);
+    if (i > 0) { EXPECT_LT(summaries[i - 1].key, s.key); }
     EXPECT_EQ(s.planner, r.planner);
     EXPECT_EQ(s.dataset, r.dataset);
     EXPECT_EQ(s.wall, r.wall);

@@ -70,7 +70,7 @@ void registerMisbehavingPlanners() {
   }));
   addPlannerForTesting(misbehaving("loops-forever", [](const Problem&) -> PlanResult {
     volatile unsigned long spin = 0;
-    for (;;) ++spin;  // ignores its budget
+    for (;;) spin = spin + 1;  // ignores its budget
   }));
   // It asks for 64 MiB at a time and touches none of it: the worker's address-space limit refuses
   // it after a few blocks, at once, however slow the machine's page faults (filling 1 MiB blocks,
@@ -155,10 +155,11 @@ TEST_F(Isolation, EachMisbehavingPlannerYieldsItsStatusAndTheRestIsUntouched) {
       EXPECT_EQ(sqlite3_column_int(st, 1), SIGSEGV);
       EXPECT_NE(reason.find("signal 11"), std::string::npos) << reason;
     }
-    if (status == "timeout")
+    if (status == "timeout") {
       EXPECT_TRUE(reason.find("hard deadline") != std::string::npos || reason.find("CPU-time limit") != std::string::npos)
           << reason;
-    if (status == "error") EXPECT_NE(reason.find("on purpose"), std::string::npos) << reason;
+    }
+    if (status == "error") { EXPECT_NE(reason.find("on purpose"), std::string::npos) << reason; }
   }
   sqlite3_finalize(st);
   sqlite3_close(db);
@@ -173,7 +174,7 @@ TEST_F(Isolation, EachMisbehavingPlannerYieldsItsStatusAndTheRestIsUntouched) {
     ASSERT_NE(same, rs.runs.end());
     EXPECT_EQ(same->status, c.status);
     for (const auto& [name, value] : c.metrics)
-      if (name != "plan_time_ms" && name != "peak_memory_bytes") EXPECT_EQ(same->metrics.at(name), value) << name;
+      if (name != "plan_time_ms" && name != "peak_memory_bytes") { EXPECT_EQ(same->metrics.at(name), value) << name; }
   }
 
   // Failures are recorded once: a second run does nothing, unless failures are retried.

@@ -77,7 +77,7 @@ TEST(Deposition, TwoParallelGaussianPassesMatchTheClosedFormCv) {
     const FluxProfile profile = gaussian(sigma);
     const double cell = depositionCell(kTool, profile);  // sigma / 5 = 4 mm
     const std::size_t ny = static_cast<std::size_t>(std::lround(d / cell));
-    ASSERT_NEAR(ny * cell, d, 1e-12);
+    ASSERT_NEAR(static_cast<double>(ny) * cell, d, 1e-12);
     const DepositionGrid g = field(path, profile, noRamp(), 0.5, 0.0, cell, std::lround(1.0 / cell), ny, true);
     const Deposition stats = depositionStats(g, std::vector<char>(g.thickness.size(), 1));
     const double exact = bandCv(sigma, d);

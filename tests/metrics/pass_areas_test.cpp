@@ -425,7 +425,7 @@ TEST(PassAreasProperties, ReversedAndMovedPathsHaveTheSameAreas) {
     // Nested sets: no negative area, no level larger than the one below (no share of |S| below 0).
     for (std::size_t k = 0; k < 4; ++k) {
       EXPECT_GE(a[k], 0.0) << "trial " << trial;
-      if (k > 0) EXPECT_LE(a[k], a[k - 1]) << "trial " << trial;
+      if (k > 0) { EXPECT_LE(a[k], a[k - 1]) << "trial " << trial; }
     }
     for (std::size_t k = 0; k < 4; ++k) {
       EXPECT_NEAR(a[k], b[k], 1e-12) << "trial " << trial << ", level " << k + 1;

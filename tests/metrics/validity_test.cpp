@@ -212,7 +212,7 @@ TEST(ArcClearance, AgreesWithFineChordsOnRandomArcsAndWalls) {
       }
       const SegmentClearance c = field.measureArc(a, b, bulge);
       EXPECT_NEAR(c.boundary_distance, boundary, 1e-8) << "seed " << seed << " arc " << k;
-      if (std::isfinite(obstacle)) EXPECT_NEAR(c.obstacle_distance, obstacle, 1e-8) << "seed " << seed << " arc " << k;
+      if (std::isfinite(obstacle)) { EXPECT_NEAR(c.obstacle_distance, obstacle, 1e-8) << "seed " << seed << " arc " << k; }
       ++compared;
     }
   }

@@ -186,7 +186,7 @@ tool:
       EXPECT_EQ(std::stod(cell), value) << f.name;
     } else {
       EXPECT_EQ(json[0][f.name], value) << f.name;
-      if constexpr (std::is_same_v<T, std::string>) EXPECT_EQ(cell, value) << f.name;
+      if constexpr (std::is_same_v<T, std::string>) { EXPECT_EQ(cell, value) << f.name; }
     }
   });
   EXPECT_GE(exported, 6u);

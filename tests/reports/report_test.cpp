@@ -46,7 +46,7 @@ TEST(MetricRegistry, ListsExactlyTheEngineMetricsInOrderThenTheExactJudgesThenTh
     EXPECT_FALSE(s.unit.empty()) << s.name;
     EXPECT_GE(s.tie_absolute, 0.0);
     EXPECT_GE(s.tie_relative, 0.0);
-    if (s.headline) EXPECT_NE(s.better, 0) << s.name << ": a headline metric needs a direction";
+    if (s.headline) { EXPECT_NE(s.better, 0) << s.name << ": a headline metric needs a direction"; }
   }
   // The headline is what the issue asks a researcher to see first.
   std::vector<std::string> headline;
@@ -133,7 +133,7 @@ TEST(Pictures, FailedSegmentsAreMarkedAndAPathLeavingTheWallStaysInThePicture) {
   // The frame holds x = 3 m: 3 m across 1000 px gives k = 333.3 px/m, so x = 3 m is drawn at
   // 24 + 3 k = 1024 px (with the wall's frame alone it would be at 24 + 3 * 500 = 1524, outside).
   EXPECT_NE(svg.find("1024.00,"), std::string::npos);
-  const std::string clean = pathPicture(wall, ToolParams{0.1, 0.02}, VehicleModel{}, Path{{{0.2, 0.5}, {1.8, 0.5}}, {true}}, "t");
+  const std::string clean = pathPicture(wall, ToolParams{0.1, 0.02}, VehicleModel{}, Path{{{0.2, 0.5}, {1.8, 0.5}}, {true}, {}}, "t");
   EXPECT_EQ(clean.find("class=\"violation\""), std::string::npos);
 }
 

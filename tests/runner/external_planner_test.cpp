@@ -198,7 +198,7 @@ TEST_F(External, EachMisbehavingPlannerGetsItsStatusAndTheOthersRunsAreUntouched
       {"wrong-id", "id: must be the request's"}};
   for (const ResultRow& r : rs.runs) {
     EXPECT_EQ(r.status, expected.at(r.config)) << r.config << ": " << r.reason;
-    if (says.count(r.config)) EXPECT_NE(r.reason.find(says.at(r.config)), std::string::npos) << r.config << ": " << r.reason;
+    if (says.count(r.config)) { EXPECT_NE(r.reason.find(says.at(r.config)), std::string::npos) << r.config << ": " << r.reason; }
   }
   // "fine" returned a valid path: judged like any other (valid; coverage far below 1).
   for (const ResultRow& r : rs.runs)
@@ -381,7 +381,7 @@ TEST_F(External, ConformancePrintsAReportCardForAnyPlanner) {
     for (const auto& row : card["walls"]) {
       EXPECT_TRUE(row["contract"].get<bool>()) << row.dump();
       EXPECT_TRUE(row["deterministic"].get<bool>()) << row.dump();
-      if (row["status"] == "ok" || row["status"] == "partial") EXPECT_TRUE(row["valid"].get<bool>()) << row.dump();
+      if (row["status"] == "ok" || row["status"] == "partial") { EXPECT_TRUE(row["valid"].get<bool>()) << row.dump(); }
     }
   }
   // "fine" paints 5 cm of a wall and promises 90 %: every row where the promise applies breaks it.

@@ -201,8 +201,9 @@ TEST(Car, TheTimelineSlowsOnTheArcAndEndsAtTheDuration) {
   for (std::size_t i = 0; i + 1 < t.arrive_s.size(); ++i) EXPECT_LT(t.arrive_s[i], t.arrive_s[i + 1]);
   // Along the arc at most sqrt(a R): it takes at least its length over that speed.
   for (std::size_t i = 0; i < p.segments(); ++i)
-    if (p.bulgeOf(i) != 0.0)
+    if (p.bulgeOf(i) != 0.0) {
       EXPECT_GE(t.arrive_s[i + 1] - t.arrive_s[i], segmentLength(p, i) / std::sqrt(limits.acceleration * 0.1) - 1e-12);
+    }
 }
 
 TEST(Arcs, CoverageMeasuresTheBandAlongTheArc) {
@@ -444,7 +445,7 @@ TEST(CarSmoothing, TurnsAtPassEndsAndNeverMakesAPathInvalid) {
     EXPECT_EQ(s.path.waypoints.back(), (Point{0.06, 1.1})) << "it reaches the end of the last pass";
     EXPECT_TRUE(checkValidity(wall, kTool, s.path, car(0.3, reverse)).valid) << reverse;
     EXPECT_TRUE(judge::judgeValidity(wall, kTool, s.path, car(0.3, reverse)).valid) << reverse;
-    if (reverse) EXPECT_GE(s.cusps, 1u);
+    if (reverse) { EXPECT_GE(s.cusps, 1u); }
   }
 }
 
@@ -473,8 +474,9 @@ class CarFamilies : public testing::TestWithParam<std::string> {
         const std::string where = wall.name + " " + name + (reverse ? " reeds-shepp" : " dubins");
         const Validity v = checkValidity(wall, kTool, r.path, problem.vehicle);
         EXPECT_TRUE(v.valid) << where << ": " << v.violations << " violations, " << v.not_drivable << " not drivable";
-        if (exact && (name == "zigzag" || name == "boustrophedon" || name == "spanning-tree"))
+        if (exact && (name == "zigzag" || name == "boustrophedon" || name == "spanning-tree")) {
           EXPECT_TRUE(judge::judgeValidity(wall, kTool, r.path, problem.vehicle).valid) << where;
+        }
         // Partial exactly when something was left out: rows no curve reached, or the rings'
         // rest where no curve went on (a plan for the car itself; what its rings could not turn
         // into is said in the reason and the statistics), or segments the smoothing skipped.
@@ -749,7 +751,7 @@ TEST(CarSweep, AForwardOnlyCarCoversARectangleFromItsOwnPlan) {
     EXPECT_EQ(r.stats.at("headland_rings"), 4.0);
     EXPECT_EQ(r.stats.at("car_rows_unreached"), 0.0);
     EXPECT_EQ(r.stats.at("car_routed_links"), 0.0) << "on an open rectangle every row is one curve from the last";
-    if (!reverse) EXPECT_EQ(r.stats.at("car_cusps"), 0.0);
+    if (!reverse) { EXPECT_EQ(r.stats.at("car_cusps"), 0.0); }
     const PathMetrics m = computeMetrics(wall, kTool, r.path, car(0.3, reverse));
     EXPECT_TRUE(m.validity.valid) << m.validity.violations << " " << m.validity.not_drivable;
     // The four corners a forward-only car cannot turn into cost 4 (R + r)^2 (1 - pi/4) = 0.105 m^2
