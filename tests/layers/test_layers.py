@@ -55,6 +55,7 @@ class Layers(unittest.TestCase):
         for lib, above in (("metrics", "planning"), ("judge", "geometry"), ("planning", "algorithms"),
                            ("geometry", "experiments"), ("experiments", "cli")):
             with self.subTest(lib=lib, calls=above):
+                self.tearDown()  # a fresh copy of the archives for each
                 self.setUp()
                 callee = a_function_of(above)
                 self.call_from(lib, callee)
@@ -62,7 +63,6 @@ class Layers(unittest.TestCase):
                 self.assertEqual(len(wrong), 1, wrong)
                 self.assertIn(f"libcoverbench_{lib} uses {layers.demangle(callee)}", wrong[0])
                 self.assertIn(f"defined only in libcoverbench_{above}", wrong[0])
-                self.tearDown()
 
     def test_a_call_downward_passes(self):
         self.call_from("algorithms", a_function_of("planning"))
