@@ -29,6 +29,77 @@ struct Quadtree {
   std::size_t open_leaves = 0, fine_leaves = 0, nodes = 0, largest = 1;
 };
 
+/// Whether points of one grid row lie in `main`, with pointInPolygon's answer at a fraction of its
+/// cost: the quadtree asks once per leaf, each time about every edge of F. A row's crossings (the
+/// x where each ring's edges cross the row's line, computed by pointInRing's own expression) are
+/// found once and sorted, and a point is inside a ring when an odd number of them lie to its
+/// right, which is pointInRing's count. A row is keyed by its y, and any other y is answered by
+/// pointInPolygon itself.
+class RowsInMain {
+ public:
+  RowsInMain(const Region& main, std::size_t rows) : main_(main), rows_(rows) {}
+
+  bool operator()(std::size_t row, Point p) {
+    Row& r = rows_[row];
+    if (!r.known) fill(r, p.y);
+    if (r.y != p.y)
+      return std::any_of(main_.begin(), main_.end(), [&](const PolygonWithHoles& part) { return pointInPolygon(part, p); });
+    const std::size_t* ends = &ends_[r.ends];
+    std::size_t ring = 0;
+    for (const PolygonWithHoles& part : main_) {
+      const std::size_t holes_end = ring + 1 + part.holes.size();
+      if (oddRightOf(ends, ring++, p.x)) {
+        while (ring < holes_end && !oddRightOf(ends, ring, p.x)) ++ring;
+        if (ring == holes_end) return true;
+      }
+      ring = holes_end;
+    }
+    return false;
+  }
+
+ private:
+  /// Ring k's crossings on a row are xs_[ends_[r.ends + k - 1], ends_[r.ends + k]), sorted (rings
+  /// in order: each part's outer ring, then its holes; ends_[r.ends - 1] is where ring 0 starts).
+  struct Row {
+    bool known = false;
+    double y = 0.0;
+    std::size_t ends = 0;
+  };
+
+  bool oddRightOf(const std::size_t* ends, std::size_t ring, double x) const {
+    const std::size_t* end = ends + ring;
+    const auto first = xs_.begin() + static_cast<std::ptrdiff_t>(end[-1]);
+    const auto last = xs_.begin() + static_cast<std::ptrdiff_t>(end[0]);
+    return ((last - std::upper_bound(first, last, x)) & 1) != 0;
+  }
+
+  void fill(Row& r, double y) {
+    r.known = true;
+    r.y = y;
+    ends_.push_back(xs_.size());  // where ring 0 starts
+    r.ends = ends_.size();
+    auto add = [&](const Ring& ring) {
+      const std::size_t n = ring.size(), first = xs_.size();
+      for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+        const Point& a = ring[i];
+        const Point& b = ring[j];
+        if ((a.y > y) != (b.y > y)) xs_.push_back(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
+      }
+      std::sort(xs_.begin() + static_cast<std::ptrdiff_t>(first), xs_.end());
+      ends_.push_back(xs_.size());
+    };
+    for (const PolygonWithHoles& part : main_) {
+      add(part.outer);
+      for (const Ring& hole : part.holes) add(hole);
+    }
+  }
+
+  const Region& main_;
+  std::vector<Row> rows_;
+  std::vector<double> xs_;         ///< every filled row's crossings
+  std::vector<std::size_t> ends_;  ///< per filled row: its start, then each ring's end
+};
+
 /// Quadtree over the bounding square of `main` (the covered part of F, whose rings are `rings`),
 /// cells aligned to a grid of pitch s. A node whose inner rectangle (cell shrunk by s/2, where
 /// row centres run) meets no boundary edge of F is wholly inside or outside; inside, it becomes
@@ -36,13 +107,12 @@ struct Quadtree {
 /// leaves), kept when their centre is in F. nullopt: the budget ran out.
 std::optional<Quadtree> quadtree(const Region& main, const std::vector<Ring>& rings, Workspace& ws, double s,
                                  const Budget& budget) {
-  auto inMain = [&](Point p) {
-    return std::any_of(main.begin(), main.end(), [&](const PolygonWithHoles& part) { return pointInPolygon(part, p); });
-  };
   const EdgeIndex edges(rings, 4.0 * s);
   const Box box = boundingBox(main);
   int levels = 0;
   while (s * std::ldexp(1.0, levels) < std::fmax(box.width(), box.height()) + s) ++levels;
+  RowsInMain inRow(main, static_cast<std::size_t>(1) << levels);
+  auto inMain = [&](int row, Point p) { return inRow(static_cast<std::size_t>(row), p); };
   Quadtree q;
   q.x0 = box.min_x - s / 2.0 + 1e-4;
   q.y0 = box.min_y - s / 2.0 + 1e-4;
@@ -62,7 +132,7 @@ std::optional<Quadtree> quadtree(const Region& main, const std::vector<Ring>& ri
     inner.add({q.x0 + (n.cx + n.size - 0.5) * s, q.y0 + (n.cy + n.size - 0.5) * s});
     if (inner.min_x > box.max_x || inner.min_y > box.max_y) continue;  // beyond F entirely
     if (!edges.meetsBox(inner)) {
-      if (!inMain({inner.min_x, inner.min_y})) continue;  // wholly outside F
+      if (!inMain(n.cy, {inner.min_x, inner.min_y})) continue;  // wholly outside F
       for (int j = 0; j < n.size; ++j) q.rows[n.cy + j].push_back({inner.min_x, inner.max_x});
       ++(n.size == 1 ? q.fine_leaves : q.open_leaves);
       q.largest = std::max<std::size_t>(q.largest, static_cast<std::size_t>(n.size));
@@ -70,7 +140,7 @@ std::optional<Quadtree> quadtree(const Region& main, const std::vector<Ring>& ri
     }
     if (n.size == 1) {
       const Point c{inner.min_x, inner.min_y};
-      if (inMain(c) && ws.router().isFree(c, c)) {
+      if (inMain(n.cy, c) && ws.router().isFree(c, c)) {
         q.rows[n.cy].push_back({c.x, c.x});
         ++q.fine_leaves;
       }
