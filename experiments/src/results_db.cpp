@@ -278,6 +278,7 @@ ResultsDb::Marks ResultsDb::checkOwnership(Mode mode) {
 }
 
 void ResultsDb::rollback() noexcept {
+  for (auto& entry : prepared_) entry.second->reset();  // a statement left stepping by the failure
   // After a failed COMMIT (a full disk, say) SQLite may have rolled back already: then there is
   // nothing to undo, and ROLLBACK's own error must not hide the real one.
   if (!sqlite3_get_autocommit(db_)) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
@@ -288,7 +289,15 @@ void ResultsDb::limitPagesForTesting(long long pages) {
 }
 
 ResultsDb::~ResultsDb() {
+  prepared_.clear();
   if (db_) sqlite3_close(db_);
+}
+
+Statement& ResultsDb::prepared(const std::string& sql) {
+  std::unique_ptr<Statement>& s = prepared_[sql];
+  if (!s) s = std::make_unique<Statement>(db_, sql, file_);
+  s->reset();  // a use that threw may have left it stepped or bound
+  return *s;
 }
 
 void ResultsDb::exec(const std::string& sql) {

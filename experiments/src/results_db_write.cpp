@@ -87,18 +87,18 @@ long long ResultsDb::beginExperiment(const ExperimentConfig& config, const Prove
 }
 
 void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
-  exec("BEGIN IMMEDIATE");
+  prepared("BEGIN IMMEDIATE").run();
   try {
     // A retried run replaces everything stored under its key.
     for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options",
                               "run_car", "run_profile", "run_profile_target", "replans", "replan_figures"}) {
-      Statement d(db_, std::string("DELETE FROM ") + table + " WHERE run_key = ?", file_);
+      Statement& d = prepared(std::string("DELETE FROM ") + table + " WHERE run_key = ?");
       d.text(1, rec.key).run();
     }
     // The run's fields (kRunFields, the key first), its context, and when it finished.
     std::string marks;
     for (std::size_t n = 0; n < kRunFieldCount + std::size(kRunContextColumns); ++n) marks += "?,";
-    Statement r(db_, "INSERT OR REPLACE INTO runs (" + runColumnList() + ") VALUES (" + marks + "?)", file_);
+    Statement& r = prepared("INSERT OR REPLACE INTO runs (" + runColumnList() + ") VALUES (" + marks + "?)");
     int column = 0;
     forEachRunField(rec, [&](const RunField&, const auto& value) { bindField(r, ++column, value); });
     const int c = column;  // the context's columns follow, in kRunContextColumns' order
@@ -107,31 +107,29 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
     r.real(c + 7, spec.tool.tool_width).real(c + 8, spec.tool.clearance).integer(c + 9, static_cast<long long>(spec.seed));
     r.integer(c + 10, spec.repetitions).text(c + 11, utcNow()).run();
     if (!spec.vehicle.isDefault() || !spec.transit.isDefault()) {
-      Statement v(db_,
-                  "INSERT INTO run_options (run_key, vehicle, lift_s, lower_s, transit, transit_iterations) "
-                  "VALUES (?,?,?,?,?,?)",
-                  file_);
+      Statement& v = prepared(
+          "INSERT INTO run_options (run_key, vehicle, lift_s, lower_s, transit, transit_iterations) VALUES (?,?,?,?,?,?)");
       v.text(1, rec.key).text(2, toString(spec.vehicle.kind)).real(3, spec.vehicle.lift_s).real(4, spec.vehicle.lower_s);
       v.text(5, spec.transit.planner).integer(6, spec.transit.iterations).run();
     }
     if (spec.vehicle.isCar()) {
-      Statement car(db_, "INSERT INTO run_car (run_key, turn_radius, reverse) VALUES (?,?,?)", file_);
+      Statement& car = prepared("INSERT INTO run_car (run_key, turn_radius, reverse) VALUES (?,?,?)");
       car.text(1, rec.key).real(2, spec.vehicle.turn_radius).integer(3, spec.vehicle.reverse ? 1 : 0).run();
     }
     if (const FluxProfile& p = spec.tool.profile; p.set()) {
-      Statement profile(db_, "INSERT INTO run_profile (run_key, kind, sigma, beta, rate, depth) VALUES (?,?,?,?,?,?)", file_);
+      Statement& profile =
+          prepared("INSERT INTO run_profile (run_key, kind, sigma, beta, rate, depth) VALUES (?,?,?,?,?,?)");
       profile.text(1, rec.key).text(2, toString(p.kind)).real(3, p.sigma).real(4, p.beta).real(5, p.rate).real(6, p.depth).run();
       if (p.target > 0.0) {
-        Statement target(db_, "INSERT INTO run_profile_target (run_key, target) VALUES (?,?)", file_);
+        Statement& target = prepared("INSERT INTO run_profile_target (run_key, target) VALUES (?,?)");
         target.text(1, rec.key).real(2, p.target).run();
       }
     }
     if (!rec.replans.empty()) {
-      Statement rr(db_,
-                   "INSERT INTO replans (run_key, position, fraction, repair, obstacles, requested, obstacles_json, status, "
-                   "reason, valid, repair_ms, path, cut_waypoint) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?)",
-                   file_);
-      Statement rf(db_, "INSERT INTO replan_figures (run_key, position, name, value) VALUES (?,?,?,?)", file_);
+      Statement& rr = prepared(
+          "INSERT INTO replans (run_key, position, fraction, repair, obstacles, requested, obstacles_json, status, "
+          "reason, valid, repair_ms, path, cut_waypoint) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?)");
+      Statement& rf = prepared("INSERT INTO replan_figures (run_key, position, name, value) VALUES (?,?,?,?)");
       for (std::size_t i = 0; i < rec.replans.size(); ++i) {
         const ReplanRecord& p = rec.replans[i];
         const auto pos = static_cast<long long>(i);
@@ -144,26 +142,26 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
         for (const auto& [name, value] : p.figures) rf.text(1, rec.key).integer(2, pos).text(3, name).real(4, value).run();
       }
     }
-    Statement rp(db_, "INSERT INTO run_repetitions (run_key, repetition, plan_time_ms) VALUES (?,?,?)", file_);
+    Statement& rp = prepared("INSERT INTO run_repetitions (run_key, repetition, plan_time_ms) VALUES (?,?,?)");
     for (std::size_t i = 0; i < rec.plan_times_ms.size(); ++i)
       rp.text(1, rec.key).integer(2, static_cast<long long>(i)).real(3, rec.plan_times_ms[i]).run();
-    Statement m(db_, "INSERT INTO metrics (run_key, position, name, value) VALUES (?,?,?,?)", file_);
+    Statement& m = prepared("INSERT INTO metrics (run_key, position, name, value) VALUES (?,?,?,?)");
     for (std::size_t i = 0; i < rec.metrics.size(); ++i) {
       // Every stored metric is one the registry describes (unit, direction), so reports can read it.
       const auto& [name, value] = rec.metrics[i];
       if (!findMetricSpec(name)) throw std::logic_error("metric '" + name + "' is not in the registry");
       m.text(1, rec.key).integer(2, static_cast<long long>(i)).text(3, name).real(4, value).run();
     }
-    Statement st(db_, "INSERT INTO planner_stats (run_key, name, value) VALUES (?,?,?)", file_);
+    Statement& st = prepared("INSERT INTO planner_stats (run_key, name, value) VALUES (?,?,?)");
     for (const auto& [name, value] : rec.stats) st.text(1, rec.key).text(2, name).real(3, value).run();
-    Statement tm(db_, "INSERT INTO planner_timings (run_key, name, ms) VALUES (?,?,?)", file_);
+    Statement& tm = prepared("INSERT INTO planner_timings (run_key, name, ms) VALUES (?,?,?)");
     for (const auto& [name, value] : rec.timings_ms) tm.text(1, rec.key).text(2, name).real(3, value).run();
     if (!rec.path.waypoints.empty()) {
-      Statement p(db_, "INSERT INTO paths (run_key, encoding, waypoints, data) VALUES (?,?,?,?)", file_);
+      Statement& p = prepared("INSERT INTO paths (run_key, encoding, waypoints, data) VALUES (?,?,?,?)");
       p.text(1, rec.key).text(2, "zlib-f64le-1").integer(3, static_cast<long long>(rec.path.waypoints.size()));
       p.blob(4, rec.path_blob.empty() ? encodePath(rec.path) : rec.path_blob).run();
     }
-    exec("COMMIT");
+    prepared("COMMIT").run();
   } catch (...) {
     rollback();
     throw;
