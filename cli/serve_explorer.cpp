@@ -112,6 +112,27 @@ Explorer::Index& Explorer::index(std::size_t db, long long id) {
     }
   }
   const ExperimentRecord record = dbs_[db].db->record(id);
+  // Planners and datasets in the config's order (the first dataset is the one the Plots tab opens
+  // on), not in the order their runs' keys happen to sort in; a value the config does not list
+  // (none should) keeps its place after those it does.
+  auto configOrder = [&](std::size_t f, const std::vector<std::string>& order) {
+    std::vector<std::uint32_t> by(x.facet_values[f].size());
+    for (std::uint32_t v = 0; v < by.size(); ++v) by[v] = v;
+    auto rank = [&](std::uint32_t v) {
+      return static_cast<std::size_t>(std::find(order.begin(), order.end(), x.facet_values[f][v]) - order.begin());
+    };
+    std::stable_sort(by.begin(), by.end(), [&](std::uint32_t a, std::uint32_t b) { return rank(a) < rank(b); });
+    std::vector<std::uint32_t> now(by.size());
+    std::vector<std::string> values(by.size());
+    for (std::uint32_t k = 0; k < by.size(); ++k) now[by[k]] = k, values[k] = x.facet_values[f][by[k]];
+    x.facet_values[f] = std::move(values);
+    for (std::uint32_t& v : x.facet_of[f]) v = now[v];
+  };
+  std::vector<std::string> planner_order, dataset_order;
+  for (const ExperimentRecord::Config& c : record.planners) planner_order.push_back(c.label);
+  for (const ExperimentRecord::Dataset& d : record.datasets) dataset_order.push_back(d.label);
+  configOrder(0, planner_order);
+  configOrder(1, dataset_order);
   // Each planner column's parameters, as text (the workbench's) and as stored JSON (the CSV's).
   std::map<std::string, std::set<std::string>> values;
   for (const std::string& label : x.facet_values[0]) {
