@@ -53,8 +53,8 @@ slow+="|CarSweep.ACellOrderIsTakenCellByCell|CarSweep.RingsThatStartInAPocket|Is
 slow+="|Experiments.TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys|FieldScale.EveryPlannerPlansAHundredMetrePolygon"
 # Every planner smoothed for a car on 5 of the 9 families (the other 4 run here, residential with
 # the exact judge), and repairs of the two slowest planners' paths (the other 5 run here).
-slow+="|CarFamilies.EveryPlannersSmoothedPathIsValidAndDrivable/(gable|industrial|stairwell|facade|random) "
-slow+="|ReplanningPlanners.EveryRepairedPathIsValid/(trapezoidal|spiral) "
+slow+="|CarFamilies.EveryPlannersSmoothedPathIsValidAndDrivable/(gable|industrial|stairwell|facade|random)$"
+slow+="|ReplanningPlanners.EveryRepairedPathIsValid/(trapezoidal|spiral)$"
 # Tests that judge results with the exact judge, 1-2 minutes each under the sanitizers: the fast
 # engine's closed areas against the certified intervals, and the spray trigger on a wall with
 # obstacles. The judge's code runs here in ExactJudge.*, the trigger's in EvenCoat's other tests.
