@@ -39,12 +39,12 @@ class RowsInMain {
  public:
   RowsInMain(const Region& main, std::size_t rows) : main_(main), rows_(rows) {}
 
-  bool operator()(std::size_t row, Point p) {
-    Row& r = rows_[row];
+  bool operator()(int row, Point p) {
+    Row& r = rows_[static_cast<std::size_t>(row)];
     if (!r.known) fill(r, p.y);
     if (r.y != p.y)
       return std::any_of(main_.begin(), main_.end(), [&](const PolygonWithHoles& part) { return pointInPolygon(part, p); });
-    const std::size_t* ends = &ends_[r.ends];
+    const std::size_t* ends = ends_.data() + r.ends;
     std::size_t ring = 0;
     for (const PolygonWithHoles& part : main_) {
       const std::size_t holes_end = ring + 1 + part.holes.size();
@@ -111,8 +111,7 @@ std::optional<Quadtree> quadtree(const Region& main, const std::vector<Ring>& ri
   const Box box = boundingBox(main);
   int levels = 0;
   while (s * std::ldexp(1.0, levels) < std::fmax(box.width(), box.height()) + s) ++levels;
-  RowsInMain inRow(main, static_cast<std::size_t>(1) << levels);
-  auto inMain = [&](int row, Point p) { return inRow(static_cast<std::size_t>(row), p); };
+  RowsInMain inMain(main, static_cast<std::size_t>(1) << levels);
   Quadtree q;
   q.x0 = box.min_x - s / 2.0 + 1e-4;
   q.y0 = box.min_y - s / 2.0 + 1e-4;
