@@ -149,7 +149,7 @@ class ResultsDb {
   std::string runFieldSelect(const std::string& alias);
   void rollback() noexcept;
   /// A statement prepared once per connection and reset for each use: storing a run runs about
-  /// twenty, and preparing them anew was a tenth of the storing process's work.
+  /// twenty, and preparing them anew was about a fifth of the storing process's CPU (perf).
   Statement& prepared(const std::string& sql);
   sqlite3* db_ = nullptr;
   std::string file_;
