@@ -282,17 +282,39 @@ TEST_F(Isolation, KillingTheRunnerOrAWorkerLosesAndDuplicatesNothing) {
   ASSERT_EQ(run("run " + cfg).exit_code, 0);
   EXPECT_EQ(test::dumpRuns((dir_ / "out" / "results.sqlite").string()), reference);
 
-  // kill -9 a worker: its run is recorded as a crash (or, if it was between runs, a fresh worker
-  // takes over); --retry-failed then completes the same database.
-  fs::remove_all(dir_ / "out");
+  // kill -9 a worker mid-way: its run is recorded as a crash; --retry-failed then completes the
+  // same database. The kill waits until runs are being stored (not a fixed sleep: on a fast host
+  // the runs end in under a second and a sleep would kill only the report) and targets a worker,
+  // a child of the runner in its process group (the guardian leaves it). A kill that lands between
+  // two runs costs no run (a fresh worker takes over), so it is tried again, a few times at most.
+  const std::string db = (dir_ / "out" / "results.sqlite").string();
   const std::string pid_file = (dir_ / "pid").string();
-  const std::string script = "( " + std::string(COVERBENCH_BINARY) + " run " + cfg + " > /dev/null 2>&1 & echo $! > " +
-                             pid_file + "; wait )";
-  std::thread runner([&] { std::system(script.c_str()); });
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  const std::string pid = slurp(pid_file);
-  std::system(("pkill -KILL -n -P " + pid.substr(0, pid.find('\n'))).c_str());
-  runner.join();
+  bool crash_recorded = false;
+  for (int attempt = 0; attempt < 5 && !crash_recorded; ++attempt) {
+    fs::remove_all(dir_ / "out");
+    fs::remove(pid_file);
+    const std::string script = "( " + std::string(COVERBENCH_BINARY) + " run " + cfg + " --no-report > /dev/null 2>&1 & echo $! > " +
+                               pid_file + ".tmp; mv " + pid_file + ".tmp " + pid_file + "; wait )";
+    std::thread runner([&] { std::system(script.c_str()); });
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (std::chrono::steady_clock::now() < give_up) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      if (!fs::exists(pid_file) || !fs::exists(db)) continue;
+      const std::string pid = slurp(pid_file).substr(0, slurp(pid_file).find('\n'));
+      if (test::sqlRows(db, "SELECT COUNT(*) FROM sqlite_master WHERE name = 'runs'") != "1\n") continue;
+      const int stored = std::stoi(test::sqlRows(db, "SELECT COUNT(*) FROM runs"));
+      if (stored < 20) continue;
+      if (stored >= 360) break;  // too late: every run is stored
+      // A worker: a child of the runner whose process group is not its own (the guardian's is).
+      const std::string kill = "ps -o pid=,pgid= --ppid " + pid + " | awk '$1 != $2 {print $1; exit}' | xargs -r kill -KILL";
+      std::system(kill.c_str());
+      break;
+    }
+    runner.join();
+    crash_recorded =
+        fs::exists(db) && test::sqlRows(db, "SELECT COUNT(*) FROM runs WHERE status = 'crash'") == "1\n";
+  }
+  ASSERT_TRUE(crash_recorded) << "no worker was killed mid-run in five tries";
   ASSERT_EQ(run("run " + cfg + " --retry-failed").exit_code, 0);
   EXPECT_EQ(test::dumpRuns((dir_ / "out" / "results.sqlite").string()), reference);
 }
