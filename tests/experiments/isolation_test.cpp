@@ -6,6 +6,8 @@
 #include <sqlite3.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -106,6 +108,43 @@ void registerMisbehavingPlanners() {
 
 class Isolation : public test::CommandTest {
  protected:
+  /// The runs stored in a results database; -1 when it has no runs table (yet).
+  int storedRuns(const std::string& db) {
+    if (!fs::exists(db) || test::sqlRows(db, "SELECT COUNT(*) FROM sqlite_master WHERE name = 'runs'") != "1\n") return -1;
+    return std::stoi(test::sqlRows(db, "SELECT COUNT(*) FROM runs"));
+  }
+  /// Starts `coverbench run CONFIG --no-report` in the background; once `db` holds at least `from`
+  /// runs and fewer than `total`, runs the shell command `kill` on the runner's pid (the word PID in
+  /// it, else appended) and waits for the runner to end. Returns the runs stored when the kill was
+  /// sent, or -1 when the run ended first (or stored all `total` before the kill could be sent).
+  int killMidWay(const std::string& config, const std::string& db, int from, int total, std::string kill) {
+    const std::string pid_file = (dir_ / "runner.pid").string();
+    fs::remove(pid_file);
+    const std::string script = "( " + std::string(COVERBENCH_BINARY) + " run " + config + " --no-report > /dev/null 2>&1 & echo $! > " +
+                               pid_file + ".tmp; mv " + pid_file + ".tmp " + pid_file + "; wait )";
+    std::atomic<bool> ended{false};
+    std::thread runner([&] {
+      std::system(script.c_str());
+      ended = true;
+    });
+    int at = -1;
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!ended && std::chrono::steady_clock::now() < give_up) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      if (!fs::exists(pid_file)) continue;
+      const int stored = storedRuns(db);
+      if (stored >= total) break;
+      if (stored < from) continue;
+      const std::string text = slurp(pid_file);
+      const std::string pid = text.substr(0, text.find('\n'));
+      const std::size_t k = kill.find("PID");
+      const std::string command = k == std::string::npos ? kill + " " + pid : kill.replace(k, 3, pid);
+      if (std::system(command.c_str()) == 0) at = stored;
+      break;
+    }
+    runner.join();
+    return at;
+  }
   void SetUp() override {
     CommandTest::SetUp();
     registerMisbehavingPlanners();
@@ -267,52 +306,35 @@ TEST_F(Isolation, KillingTheRunnerOrAWorkerLosesAndDuplicatesNothing) {
   const std::string reference = test::dumpRuns((dir_ / "ref" / "out" / "results.sqlite").string());
   ASSERT_NE(reference.find("360|360"), std::string::npos) << reference.substr(0, 200);
 
-  // kill -9 at random moments, five times, resuming each time.
+  // kill -9 the runner mid-way five times, resuming each time: each kill waits until the run has
+  // stored 1-60 runs more than the last one left (not a fixed delay: the 360 runs take half a
+  // second here, and a delay can land after them on a fast host or before the first on a slow one).
+  const std::string db = (dir_ / "out" / "results.sqlite").string();
   std::mt19937 rng(9);
-  std::uniform_int_distribution<int> after_ms(250, 900);
+  std::uniform_int_distribution<int> more(1, 60);
   int killed = 0;
   for (int attempt = 0; attempt < 20 && killed < 5; ++attempt) {
-    const test::CommandRun r = run("--version > /dev/null; timeout -s KILL " + std::to_string(after_ms(rng) / 1000.0) +
-                                   " " + std::string(COVERBENCH_BINARY) + " run " + cfg);
-    if (r.exit_code == 0) break;  // finished before the kill
-    ASSERT_EQ(r.exit_code, 137) << r.err;
+    const int before = std::max(0, storedRuns(db));
+    const int at = killMidWay(cfg, db, before + more(rng), 360, "kill -KILL");
+    if (at < 0) continue;  // the run ended first (its last runs stored): try again
+    const int after = storedRuns(db);
+    EXPECT_LT(after, 360) << "killed at " << at << " runs stored";
+    EXPECT_GE(after, at) << "runs stored before the kill were lost";
     ++killed;
   }
   EXPECT_EQ(killed, 5) << "the runner was killed mid-way five times";
   ASSERT_EQ(run("run " + cfg).exit_code, 0);
-  EXPECT_EQ(test::dumpRuns((dir_ / "out" / "results.sqlite").string()), reference);
+  EXPECT_EQ(test::dumpRuns(db), reference);
 
   // kill -9 a worker mid-way: its run is recorded as a crash; --retry-failed then completes the
-  // same database. The kill waits until runs are being stored (not a fixed sleep: on a fast host
-  // the runs end in under a second and a sleep would kill only the report) and targets a worker,
-  // a child of the runner in its process group (the guardian leaves it). A kill that lands between
-  // two runs costs no run (a fresh worker takes over), so it is tried again, a few times at most.
-  const std::string db = (dir_ / "out" / "results.sqlite").string();
-  const std::string pid_file = (dir_ / "pid").string();
+  // same database. The worker is a child of the runner in its process group (the guardian leaves
+  // it). A kill that lands between two runs costs no run (a fresh worker takes over), so it is tried
+  // again, a few times at most.
   bool crash_recorded = false;
   for (int attempt = 0; attempt < 5 && !crash_recorded; ++attempt) {
     fs::remove_all(dir_ / "out");
-    fs::remove(pid_file);
-    const std::string script = "( " + std::string(COVERBENCH_BINARY) + " run " + cfg + " --no-report > /dev/null 2>&1 & echo $! > " +
-                               pid_file + ".tmp; mv " + pid_file + ".tmp " + pid_file + "; wait )";
-    std::thread runner([&] { std::system(script.c_str()); });
-    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    while (std::chrono::steady_clock::now() < give_up) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-      if (!fs::exists(pid_file) || !fs::exists(db)) continue;
-      const std::string pid = slurp(pid_file).substr(0, slurp(pid_file).find('\n'));
-      if (test::sqlRows(db, "SELECT COUNT(*) FROM sqlite_master WHERE name = 'runs'") != "1\n") continue;
-      const int stored = std::stoi(test::sqlRows(db, "SELECT COUNT(*) FROM runs"));
-      if (stored < 20) continue;
-      if (stored >= 360) break;  // too late: every run is stored
-      // A worker: a child of the runner whose process group is not its own (the guardian's is).
-      const std::string kill = "ps -o pid=,pgid= --ppid " + pid + " | awk '$1 != $2 {print $1; exit}' | xargs -r kill -KILL";
-      std::system(kill.c_str());
-      break;
-    }
-    runner.join();
-    crash_recorded =
-        fs::exists(db) && test::sqlRows(db, "SELECT COUNT(*) FROM runs WHERE status = 'crash'") == "1\n";
+    killMidWay(cfg, db, 20, 360, "ps -o pid=,pgid= --ppid PID | awk '$1 != $2 {print $1; exit}' | xargs -r kill -KILL");
+    crash_recorded = storedRuns(db) >= 0 && test::sqlRows(db, "SELECT COUNT(*) FROM runs WHERE status = 'crash'") == "1\n";
   }
   ASSERT_TRUE(crash_recorded) << "no worker was killed mid-run in five tries";
   ASSERT_EQ(run("run " + cfg + " --retry-failed").exit_code, 0);
