@@ -219,12 +219,13 @@ class Serve(unittest.TestCase):
         # A plan that cannot finish within its time limit: spiral on a 100 m field at a 5 cm tool
         # takes about 20 s; asked for 0.5 s, the answer is a 504 within its answer deadline
         # (2 x 0.5 s + 10 s: the worker's hard deadline and the helper's reading and scoring), not
-        # a 20 s wait. The bound is the server's promise, not a speed: it holds on a busy machine.
+        # a 20 s wait. The bound is the server's promise (counted from the request's arrival), not a
+        # speed, plus 4 s for the client's side of the request on a busy machine.
         field = read(os.path.join(SOURCE, "bench", "walls", "field_100m_15_buildings.json"))
         start = time.monotonic()
         status, answer = self.post("/api/plan", {"wall": field, "planner": "spiral", "tool_width": 0.05, "clearance": 0,
                                                  "time_limit_s": 0.5})
-        self.assertLess(time.monotonic() - start, 11.0)
+        self.assertLess(time.monotonic() - start, 15.0)
         self.assertEqual(status, 504, answer)
         self.assertTrue(answer["error"].startswith("time_limit_s: the plan did not finish within its time limit of 0.5 s"), answer)
         for body, message in (
