@@ -67,6 +67,11 @@ slow+="|^serve_(table|plots|compare|a11y|workbench)$|^report_in_browser$"
 # No C++ at all: the report's statistics (Python), the explorer's type check (tsc) and the
 # layering check's self-test (nm on the archives).
 slow+="|^report_python_statistics$|^web_types$|^layers_selftest$"
+# For time (35-40 s each here): the report card's own test, whose C++ (the conformance command
+# and the runner hosting broken external planners) runs here in External.*; and boustrophedon's
+# cell count and tour length against the other decompositions' on 30 walls, a property of results
+# whose code runs here in the other DecompositionPlanners tests.
+slow+="|^conformance_card$|DecompositionPlanners.BoustrophedonHasFewerCellsAndTspIsNoLongerThanDfs"
 echo "== the tests under AddressSanitizer and UndefinedBehaviorSanitizer"
 source scripts/ctest_costs.sh
 seed_ctest_costs $build
