@@ -80,6 +80,13 @@ std::string sqlRows(const std::string& database, const std::string& sql) {
   return out;
 }
 
+int storedRuns(const std::string& database) {
+  if (!std::filesystem::exists(database) ||
+      sqlRows(database, "SELECT COUNT(*) FROM sqlite_master WHERE name = 'runs'") != "1\n")
+    return -1;
+  return std::stoi(sqlRows(database, "SELECT COUNT(*) FROM runs"));
+}
+
 std::string dumpRuns(const std::string& database) {
   std::string out;
   for (const char* sql : {"PRAGMA integrity_check", "SELECT COUNT(*), COUNT(DISTINCT key) FROM runs",

@@ -94,6 +94,9 @@ class CommandTest : public TempDirTest {
 /// The rows a SQL statement yields on a database file, one line each ("a|b|NULL"); the
 /// statement may also write (opened read-write).
 std::string sqlRows(const std::string& database, const std::string& sql);
+/// The runs stored in a results database that a runner may be writing; -1 while it has no runs
+/// table (no file yet, or killed before its first transaction).
+int storedRuns(const std::string& database);
 
 /// A resolved parameter's value, by name (tests read values; planners receive their struct).
 template <class T>

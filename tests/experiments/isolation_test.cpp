@@ -108,11 +108,6 @@ void registerMisbehavingPlanners() {
 
 class Isolation : public test::CommandTest {
  protected:
-  /// The runs stored in a results database; -1 when it has no runs table (yet).
-  int storedRuns(const std::string& db) {
-    if (!fs::exists(db) || test::sqlRows(db, "SELECT COUNT(*) FROM sqlite_master WHERE name = 'runs'") != "1\n") return -1;
-    return std::stoi(test::sqlRows(db, "SELECT COUNT(*) FROM runs"));
-  }
   /// Starts `coverbench run CONFIG --no-report` in the background; once `db` holds at least `from`
   /// runs and fewer than `total`, runs the shell command `kill` on the runner's pid (the word PID in
   /// it, else appended) and waits for the runner to end. Returns the runs stored when the kill was
@@ -132,7 +127,7 @@ class Isolation : public test::CommandTest {
     while (!ended && std::chrono::steady_clock::now() < give_up) {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
       if (!fs::exists(pid_file)) continue;
-      const int stored = storedRuns(db);
+      const int stored = test::storedRuns(db);
       if (stored >= total) break;
       if (stored < from) continue;
       const std::string text = slurp(pid_file);
@@ -314,10 +309,10 @@ TEST_F(Isolation, KillingTheRunnerOrAWorkerLosesAndDuplicatesNothing) {
   std::uniform_int_distribution<int> more(1, 60);
   int killed = 0;
   for (int attempt = 0; attempt < 20 && killed < 5; ++attempt) {
-    const int before = std::max(0, storedRuns(db));
+    const int before = std::max(0, test::storedRuns(db));
     const int at = killMidWay(cfg, db, before + more(rng), 360, "kill -KILL");
     if (at < 0) continue;  // the run ended first (its last runs stored): try again
-    const int after = storedRuns(db);
+    const int after = test::storedRuns(db);
     EXPECT_LT(after, 360) << "killed at " << at << " runs stored";
     EXPECT_GE(after, at) << "runs stored before the kill were lost";
     ++killed;
@@ -334,7 +329,7 @@ TEST_F(Isolation, KillingTheRunnerOrAWorkerLosesAndDuplicatesNothing) {
   for (int attempt = 0; attempt < 5 && !crash_recorded; ++attempt) {
     fs::remove_all(dir_ / "out");
     killMidWay(cfg, db, 20, 360, "ps -o pid=,pgid= --ppid PID | awk '$1 != $2 {print $1; exit}' | xargs -r kill -KILL");
-    crash_recorded = storedRuns(db) >= 0 && test::sqlRows(db, "SELECT COUNT(*) FROM runs WHERE status = 'crash'") == "1\n";
+    crash_recorded = test::storedRuns(db) >= 0 && test::sqlRows(db, "SELECT COUNT(*) FROM runs WHERE status = 'crash'") == "1\n";
   }
   ASSERT_TRUE(crash_recorded) << "no worker was killed mid-run in five tries";
   ASSERT_EQ(run("run " + cfg + " --retry-failed").exit_code, 0);
