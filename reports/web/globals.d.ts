@@ -2,7 +2,7 @@
 // the player (player.js), the explorer's comparison (compare.js), the workbench (workbench.js) and the plots (plots.js).
 interface CoverbenchPlayer {
   play(): void; pause(): void; seek(s: number): void; setSpeed(s: number): void; rescale(zoom: number): void;
-  time(): number; playing(): boolean; speed(): number; duration(): number; frames(): number; drawMs(): number; waypoints(): number; marked(): number;
+  time(): number; playing(): boolean; speed(): number; duration(): number; frames(): number; lastFrame(): number; drawMs(): number; waypoints(): number; marked(): number;
 }
 interface CoverbenchZoom { set(zoom: number, cx?: number, cy?: number): void; zoom(): number; view: HTMLDivElement }
 interface CoverbenchCompare {

@@ -188,9 +188,12 @@ PLAY = """(async () => {
             const f0 = p.frames(); p.play();
             const c0 = performance.now();
             await sleep(1000);
-            const progress = p.time(), seconds = (performance.now() - c0) / 1000;
+            // The playhead moves on frames: its progress is measured to the last frame's clock, not to
+            // now (a frame 100 ms late at one speed and not at the other once gave 98.7x for 80x).
+            const progress = p.time(), frames = p.frames() - f0;
+            const seconds = p.lastFrame() > c0 ? (p.lastFrame() - c0) / 1000 : 0;
             p.pause();
-            return {speed, progress, seconds, frames: p.frames() - f0};
+            return {speed, progress, seconds, frames};
         };
         const slow = await measure(0.25), fast = await measure(20);
         p.seek(p.duration() / 2);

@@ -258,8 +258,10 @@
       figure.dataset.playhead = time.toFixed(3);
     }
     let raf = 0;  // the one pending animation frame, so that a pause and a play never leave two
+    let lastFrame = 0;  // the clock (performance.now()) of the last frame drawn while playing
     function tick(now) {
       if (!playing) return;
+      lastFrame = now;
       // A frame's time stamp may be earlier than the moment play was pressed: never before it.
       time = Math.min(d.end, anchorTime + Math.max(0, now - anchorClock) / 1000 * rate);
       if (time >= d.end) playing = false;
@@ -298,6 +300,7 @@
       speed: () => rate,
       duration: () => d.end,
       frames: () => frames,
+      lastFrame: () => lastFrame,
       drawMs: () => drawMs,
       waypoints: () => d.t.length,
       marked: () => d.bad.length,
