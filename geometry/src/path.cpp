@@ -61,8 +61,19 @@ double segmentLength(const Path& path, std::size_t i) {
   return g.radius * std::fabs(g.sweep);
 }
 
+std::string toString(ToolShape shape) { return shape == ToolShape::Line ? "line" : "disk"; }
+
+bool parseToolShape(const std::string& name, ToolShape& shape) {
+  for (ToolShape k : {ToolShape::Disk, ToolShape::Line})
+    if (name == toString(k)) {
+      shape = k;
+      return true;
+    }
+  return false;
+}
+
 std::string toolLabel(const ToolParams& tool) {
-  return "s=" + shortNumber(tool.tool_width) + " m, c=" + shortNumber(tool.clearance) + " m";
+  return std::string(tool.isLine() ? "line " : "") + "s=" + shortNumber(tool.tool_width) + " m, c=" + shortNumber(tool.clearance) + " m";
 }
 
 std::string toString(VehicleModel::Kind kind) {

@@ -17,10 +17,12 @@
 #include <CGAL/convex_hull_2.h>
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "coverbench/judge.hpp"
 #include "exact_arcs.hpp"
+#include "exact_line.hpp"
 #include "exact_kernel.hpp"
 
 namespace coverbench::judge {
@@ -129,13 +131,47 @@ struct Regions {
   PolygonSet reachable, paintable, swept;
 };
 
+Polygon polygonOf(const std::vector<P2>& points) { return Polygon(points.begin(), points.end()); }
+
+/// What a line tool sweeps with the tool on (exact_line.hpp), on `side`: each tool-on move's
+/// rectangle and the two sectors of each turn between two tool-on moves (zero-length moves
+/// skipped), the sectors' arcs as chords of about kArcCoverageSagitta.
+std::vector<Polygon> lineSwept(const ToolParams& tool, const Path& path, Side side) {
+  const bool outer = side == Side::Outer;
+  const double h = tool.radius();
+  const FT h2 = (FT(tool.tool_width) / 2) * (FT(tool.tool_width) / 2);
+  std::vector<Polygon> pieces;
+  std::optional<V2> heading;
+  for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
+    if (!path.tool_on[i]) {
+      heading.reset();
+      continue;
+    }
+    const P2 a = exactPoint(path.waypoints[i]), b = exactPoint(path.waypoints[i + 1]);
+    if (a == b) continue;
+    if (heading) {
+      const ExactTurn t = exactTurn(*heading, b - a);
+      for (int s = 1; t.turns && s >= -1; s -= 2) {
+        const std::vector<Triangle> fan = sectorFan(a, t, h, h2, std::fmin(kArcCoverageSagitta, h / 2.0), outer, s);
+        if (fan.empty()) throw std::logic_error("judge: a line tool's turn has no certified fan");
+        for (const Triangle& tri : fan) pieces.push_back(Polygon(tri.begin(), tri.end()));
+      }
+    }
+    pieces.push_back(polygonOf(lineRectangle(a, b, h, h2, outer)));
+    heading = b - a;
+  }
+  return pieces;
+}
+
 Regions buildRegions(const Wall& wall, const ToolParams& tool, const Path& path, int n, Side side) {
-  const double r = tool.radius();
+  // A line tool reaches X, the wall minus its obstacles grown by c (docs/metrics.md#tool-shapes):
+  // F's construction with the tool's own radius 0.
+  const double r = tool.isLine() ? 0.0 : tool.radius();
   // F is built with the opposite side's polygons (it shrinks as the disks grow).
   const Side f_side = side == Side::Inner ? Side::Outer : Side::Inner;
-  const std::vector<V2> tool_disk = diskPolygon(r, n, side);
-  const std::vector<V2> f_tool_disk = diskPolygon(r, n, f_side);
-  const std::vector<V2> f_clear_disk = diskPolygon(r + tool.clearance, n, f_side);
+  const std::vector<V2> tool_disk = r > 0.0 ? diskPolygon(r, n, side) : std::vector<V2>{};
+  const std::vector<V2> f_tool_disk = r > 0.0 ? diskPolygon(r, n, f_side) : std::vector<V2>{};
+  const std::vector<V2> f_clear_disk = r + tool.clearance > 0.0 ? diskPolygon(r + tool.clearance, n, f_side) : std::vector<V2>{};
   Regions g;
 
   const PolygonSet wall_set(polygonOf(wall.boundary));
@@ -152,7 +188,8 @@ Regions buildRegions(const Wall& wall, const ToolParams& tool, const Path& path,
       const Polygon p = polygonOf(o.polygon);
       obstacles.join(p);
       grown_pieces.push_back(p);
-      for (Polygon& h : ringHulls(o.polygon, f_clear_disk)) grown_pieces.push_back(std::move(h));
+      if (!f_clear_disk.empty())
+        for (Polygon& h : ringHulls(o.polygon, f_clear_disk)) grown_pieces.push_back(std::move(h));
     }
   }
   const PolygonSet obstacles_grown = unionOf(grown_pieces);
@@ -161,11 +198,15 @@ Regions buildRegions(const Wall& wall, const ToolParams& tool, const Path& path,
   g.paintable.difference(obstacles);
 
   PolygonSet free_region = wall_set;
-  free_region.difference(unionOf(ringHulls(wall.boundary, f_tool_disk)));
+  if (r > 0.0) free_region.difference(unionOf(ringHulls(wall.boundary, f_tool_disk)));
   free_region.difference(obstacles_grown);
-  std::vector<Polygon> reach = boundaryHulls(free_region, tool_disk);
+  std::vector<Polygon> reach = r > 0.0 ? boundaryHulls(free_region, tool_disk) : std::vector<Polygon>{};
   g.reachable = free_region;
   if (!reach.empty()) g.reachable.join(unionOf(reach));
+  if (tool.isLine()) {
+    g.swept = unionOf(lineSwept(tool, path, side));
+    return g;
+  }
 
   std::vector<Polygon> capsules;
   for (std::size_t i = 0; i < path.tool_on.size(); ++i) {

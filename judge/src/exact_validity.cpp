@@ -9,10 +9,12 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "coverbench/judge.hpp"
 #include "exact_arcs.hpp"
+#include "exact_line.hpp"
 #include "exact_kernel.hpp"
 
 namespace coverbench::judge {
@@ -66,6 +68,27 @@ bool inside(const PolygonShape& p, const P2& q) {
 }
 bool strictlyInside(const PolygonShape& p, const P2& q) {
   return CGAL::bounded_side_2(p.vertices.begin(), p.vertices.end(), q, K()) == CGAL::ON_BOUNDED_SIDE;
+}
+
+/// Whether the segment e meets the interior of the convex counter-clockwise polygon q: the
+/// parameters of e's points strictly inside every edge's half-plane form an open interval.
+bool meetsInterior(const std::vector<P2>& q, const S2& e) {
+  const P2 &s = e.source(), &t = e.target();
+  FT lo = 0, hi = 1;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const V2 edge = q[(k + 1) % q.size()] - q[k];
+    const FT f0 = crossOf(edge, s - q[k]), f1 = crossOf(edge, t - q[k]);
+    const FT slope = f1 - f0;
+    if (slope == 0) {
+      if (f0 <= 0) return false;
+      continue;
+    }
+    const FT root = -f0 / slope;
+    if (slope > 0) lo = std::max(lo, root);
+    else hi = std::min(hi, root);
+    if (!(lo < hi)) return false;
+  }
+  return lo < hi;
 }
 
 /// Squared distance from the path piece [a, b] (a point when a == b) to an edge.
@@ -211,6 +234,75 @@ class Scene {
     }
   }
 
+  /// A convex polygon q (counter-clockwise, exact) that a line tool sweeps: whether it leaves the
+  /// wall (an edge of the wall meets its interior, or its centroid lies outside) or comes closer
+  /// than c to an obstacle (an obstacle's edge meets its interior or comes closer than c to one of
+  /// its edges, its centroid lies inside a polygon obstacle, or a round one's centre is nearer
+  /// than rho + c to it). A convex polygon whose interior no edge of the wall meets lies inside or
+  /// outside the wall as its centroid does; likewise for an obstacle.
+  void convex(const std::vector<P2>& q, bool& outside, bool& close) const {
+    FT sx = 0, sy = 0;
+    double lo_x = INFINITY, lo_y = INFINITY, hi_x = -INFINITY, hi_y = -INFINITY;
+    for (const P2& v : q) {
+      sx += v.x(), sy += v.y();
+      const auto ix = CGAL::to_interval(v.x()), iy = CGAL::to_interval(v.y());
+      lo_x = std::min(lo_x, ix.first), hi_x = std::max(hi_x, ix.second);
+      lo_y = std::min(lo_y, iy.first), hi_y = std::max(hi_y, iy.second);
+    }
+    const P2 centroid(sx / FT(static_cast<int>(q.size())), sy / FT(static_cast<int>(q.size())));
+    const Box box = boxAround({lo_x, lo_y}, {hi_x, hi_y}, 0.0), reach = boxAround({lo_x, lo_y}, {hi_x, hi_y}, c_);
+    if (!outside) outside = !inside(boundary_, centroid);
+    for (const Edge& e : boundary_.edges) {
+      if (outside) break;
+      if (box.meets(e.box) && meetsInterior(q, e.segment)) outside = true;
+    }
+    const FT c2 = FT(c_) * FT(c_);
+    for (const PolygonShape& o : polygons_) {
+      if (close) break;
+      if (!reach.meets(o.box)) continue;
+      if (strictlyInside(o, centroid)) {
+        close = true;
+        break;
+      }
+      for (const Edge& e : o.edges) {
+        if (!reach.meets(e.box)) continue;
+        if (meetsInterior(q, e.segment)) close = true;
+        for (std::size_t k = 0; k < q.size() && !close && c_ > 0.0; ++k)
+          if (CGAL::squared_distance(S2(q[k], q[(k + 1) % q.size()]), e.segment) < c2) close = true;
+        if (close) break;
+      }
+    }
+    for (const Round& o : rounds_) {
+      if (close) break;
+      if (!reach.meets(o.box)) continue;
+      if (CGAL::bounded_side_2(q.begin(), q.end(), o.centre, K()) != CGAL::ON_UNBOUNDED_SIDE) {
+        close = true;
+        break;
+      }
+      const FT limit = o.radius + FT(c_);
+      for (std::size_t k = 0; k < q.size() && !close; ++k)
+        if (CGAL::squared_distance(S2(q[k], q[(k + 1) % q.size()]), o.centre) < limit * limit) close = true;
+    }
+  }
+
+  /// The turn of a line tool of half-width h about p: its two sectors, through fans of triangles
+  /// that contain them (exact_line.hpp), tried with chords of 1e-3, 1e-5 and kArcChordSagitta m
+  /// as an arc is: a try that passes settles it; when the last fails, the turn is refused.
+  void turn(const P2& p, const ExactTurn& t, double h, const FT& h2, bool& outside, bool& close) const {
+    bool out = false, near = false;
+    for (double sagitta = 1e-3;; sagitta = std::fmax(sagitta / 100.0, kArcChordSagitta)) {
+      out = near = false;
+      for (int side : {1, -1}) {
+        const std::vector<Triangle> fan = sectorFan(p, t, h, h2, std::fmin(sagitta, h / 2.0), true, side);
+        if (fan.empty()) out = true;  // no certified container: refused
+        for (const Triangle& tri : fan) convex(std::vector<P2>(tri.begin(), tri.end()), out, near);
+      }
+      if ((!out && !near) || sagitta <= kArcChordSagitta) break;
+    }
+    outside = outside || out;
+    close = close || near;
+  }
+
   /// A gantry's lifted segment from a to b: the disk at both ends within the wall's bounding box,
   /// compared exactly (the box is convex, so the whole segment's disks are then inside it).
   bool liftedInFrame(Point a, Point b) const { return inFrame(a) && inFrame(b); }
@@ -324,14 +416,39 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
   auto inDepotLeg = [&](std::size_t i) { return i < lead_in || i + 1 + lead_out >= n; };
   for (std::size_t i = 0; i + 1 < n; ++i)
     if (inDepotLeg(i)) v.depot_length += std::hypot(path.waypoints[i + 1].x - path.waypoints[i].x, path.waypoints[i + 1].y - path.waypoints[i].y);
+  // A line tool (exact_line.hpp): each move's rectangle on the wall and the turn at its start
+  // from the last such move (zero-length moves skipped). A path that never moves has no heading:
+  // its tool must fit in every one, as the disk does.
+  const bool line = tool.isLine() && std::any_of(points.begin(), points.end(), [&](const P2& p) { return p != points[0]; });
+  if (tool.isLine() && (vehicle.isCar() || std::any_of(path.bulge.begin(), path.bulge.end(), [](double b) { return b != 0.0; })))
+    throw std::invalid_argument("judge: a line tool's path is judged on straight moves only (no car, no arcs)");
+  const double h = tool.radius();
+  const FT h2 = (FT(tool.tool_width) / 2) * (FT(tool.tool_width) / 2);
+  std::optional<V2> heading;  // the direction of the last move on the wall
+  auto lineCheck = [&](std::size_t i) {
+    if (points[i] == points[i + 1]) return;  // the line there is the one the moves around it end and start with
+    bool outside = false, close = false;
+    scene.convex(lineRectangle(points[i], points[i + 1], h, h2, true), outside, close);
+    if (heading) {
+      const ExactTurn t = exactTurn(*heading, points[i + 1] - points[i]);
+      if (t.turns) scene.turn(points[i], t, h, h2, outside, close);
+    }
+    heading = points[i + 1] - points[i];
+    flag(v, i, outside, close);
+  };
   if (n == 1) check(0, 0, 0);
   for (std::size_t i = 0; i + 1 < n; ++i)
-    if (inDepotLeg(i))
+    if (inDepotLeg(i)) {
+      if (points[i] != points[i + 1]) heading = points[i + 1] - points[i];  // its end's turn is the next move's
       continue;
-    else if (vehicle.liftsTool() && !path.tool_on[i])
+    } else if (vehicle.liftsTool() && !path.tool_on[i]) {
       flag(v, i, !scene.liftedInFrame(path.waypoints[i], path.waypoints[i + 1]), false);
-    else
+      heading.reset();  // the tool turns lifted
+    } else if (line) {
+      lineCheck(i);
+    } else {
       check(i, i, i + 1);
+    }
   if (vehicle.isCar()) drivable(path, vehicle, points, v);
   v.valid = v.violations == 0;
   return v;

@@ -7,6 +7,7 @@
 #include "coverbench/metrics.hpp"
 #include "coverbench/region_ops.hpp"
 #include "coverbench/free_region.hpp"
+#include "line_tool.hpp"
 
 namespace coverbench {
 namespace {
@@ -147,6 +148,18 @@ Region paintableRegion(const Wall& wall) {
   return subtract(regionFromRings({wall.boundary}), regionFromRings(obstacle_rings));
 }
 
+/// A line tool's R: X, the wall minus its obstacles grown by c (docs/metrics.md#tool-shapes).
+Region lineReachableRegion(const Wall& wall, const ToolParams& tool, double arc_tolerance) {
+  Region grown;
+  for (const Obstacle& o : wall.obstacles) {
+    Region piece = obstacleRegion(o, arc_tolerance);
+    if (tool.clearance > 0.0) piece = offsetRegion(piece, tool.clearance, arc_tolerance);
+    grown = grown.empty() ? std::move(piece) : unite(grown, piece);
+  }
+  const Region wall_region = regionFromRings({wall.boundary});
+  return grown.empty() ? wall_region : subtract(wall_region, grown);
+}
+
 /// |opening of B by r| = |erode(B, r)| + r perimeter(erode(B, r)) + pi r^2 for a strictly convex B
 /// (Steiner's formula), if eroding B by r keeps every edge; false otherwise.
 bool convexOpeningArea(const Ring& b, double r, double& out) {
@@ -252,6 +265,7 @@ RegionAreas regionAreas(const Wall& wall, const ToolParams& tool) {
 }
 
 Region reachableRegion(const Wall& wall, const ToolParams& tool, double arc_tolerance) {
+  if (tool.isLine()) return lineReachableRegion(wall, tool, arc_tolerance);
   return reachableRegion(grownFreeRegion(wall, tool, arc_tolerance));
 }
 
@@ -289,6 +303,12 @@ RegionAreas recentRegionAreas(const Wall& wall, const ToolParams& tool) {
 
 CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const Path& path) {
   CoverageRegions g;
+  if (tool.isLine()) {
+    g.reachable = lineReachableRegion(wall, tool, kMetricArcTolerance);
+    g.paintable = paintableRegion(wall);
+    g.swept = coveredAtLeast(line_tool::sweptRings(path, tool.radius()), 1);
+    return g;
+  }
   g.reachable = reachableRegion(grownFreeRegion(wall, tool));
   g.paintable = paintableRegion(wall);
   Path chords;
@@ -308,7 +328,7 @@ Coverage coverage(const CoverageRegions& g) {
 
 Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path, const Validity& validity,
                   double swept_area) {
-  if (!validity.valid) return coverage(coverageRegions(wall, tool, path));
+  if (!validity.valid || tool.isLine()) return coverage(coverageRegions(wall, tool, path));
   // Every segment keeps its tool disk inside the wall and c away from the obstacles (to 1e-9 m), so
   // S lies in R and in P: both intersections are S itself, whose area is exact.
   Coverage c;
@@ -323,6 +343,7 @@ Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path, co
 }
 
 Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path) {
+  if (tool.isLine()) return coverage(coverageRegions(wall, tool, path));
   return coverage(wall, tool, path, checkValidity(wall, tool, path), passLevelAreas(path, tool.radius(), 1)[0]);
 }
 
@@ -420,6 +441,31 @@ Passes passes(const Path& path, double radius, std::size_t bins) {
     out.overlap = bins > 1 ? at_least[1] / out.swept_area : 0.0;
   }
   return out;
+}
+
+Passes passes(const Path& path, const ToolParams& tool, std::size_t bins) {
+  if (!tool.isLine()) return passes(path, tool.radius(), bins);
+  // The line's swept shapes as polygons: |{passes >= k}| from one union a level.
+  const std::vector<Ring> rings = line_tool::sweptRings(path, tool.radius());
+  Passes out;
+  out.histogram.assign(bins, 0.0);
+  std::vector<double> at_least(bins, 0.0);
+  for (std::size_t k = 0; k < bins; ++k) {
+    at_least[k] = area(coveredAtLeast(rings, static_cast<int>(k + 1)));
+    if (at_least[k] == 0.0) break;
+  }
+  out.swept_area = bins > 0 ? at_least[0] : 0.0;
+  if (out.swept_area > 0.0) {
+    for (std::size_t k = 0; k < bins; ++k)
+      out.histogram[k] = (at_least[k] - (k + 1 < bins ? at_least[k + 1] : 0.0)) / out.swept_area;
+    out.overlap = bins > 1 ? at_least[1] / out.swept_area : 0.0;
+  }
+  return out;
+}
+
+Region passRegion(const Path& path, const ToolParams& tool, double resolution, int min_passes) {
+  if (tool.isLine()) return coveredAtLeast(line_tool::sweptRings(path, tool.radius()), min_passes);
+  return passRegion(path, tool.radius(), resolution, min_passes);
 }
 
 Region overlapRegion(const Path& path, double radius, double resolution) { return passRegion(path, radius, resolution, 2); }

@@ -37,14 +37,23 @@ void checkScorable(const Path& path, const std::string& source) {
 }
 
 
+void checkLineScorable(const Path& path, const VehicleModel& vehicle, const std::string& source) {
+  if (vehicle.isCar())
+    throw InputError(source, "tool.shape", "a line tool on a car is not scored yet (its arcs' swept shapes): use a disk");
+  for (std::size_t i = 0; i < path.segments(); ++i)
+    if (path.bulgeOf(i) != 0.0)
+      throw InputError(source, "bulge[" + std::to_string(i) + "]", "a line tool's path is scored on straight moves only, and this one is an arc");
+}
+
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle,
                            const MotionLimits& limits, CoatRaster* coat) {
   checkScorable(path, "path");
+  if (tool.isLine()) checkLineScorable(path, vehicle, "path");
   PathMetrics m;
   m.validity = checkValidity(wall, tool, path, vehicle);
   m.lengths = pathLengths(path);
   // The pass counts take arcs as arcs; an invalid path's coverage polygons take them as chords.
-  m.passes = passes(path, tool.radius());
+  m.passes = passes(path, tool);
   m.coverage = coverage(wall, tool, path, m.validity, m.passes.swept_area);
   m.motion = motion(path, limits, vehicle);
   m.waypoints = path.waypoints.size();

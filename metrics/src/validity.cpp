@@ -1,10 +1,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <tuple>
 #include <utility>
 
 #include "coverbench/clearance.hpp"
 #include "coverbench/metrics.hpp"
+#include "line_tool.hpp"
 
 namespace coverbench {
 namespace {
@@ -182,14 +185,47 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
   auto gaps = [&](const SegmentClearance& c) {
     return std::pair{c.inside ? c.boundary_distance - r : -c.boundary_distance - r, c.obstacle_distance - r};
   };
+  // A line tool (line_tool.hpp): the rectangle of each move it makes on the wall and the turn at
+  // the move's start, from the last such move (zero-length moves skipped: they turn nothing). A
+  // path that never moves has no heading: its tool must fit in every one, as the disk does.
+  const bool line = tool.isLine() && std::any_of(path.waypoints.begin(), path.waypoints.end(),
+                                                 [&](Point p) { return !(p == path.waypoints[0]); });
+  std::optional<Point> heading;  // the direction of the last move on the wall
+  auto lineGaps = [&](Point a, Point b) {
+    const double cutoff = std::fmax(v.min_clearance, tool.clearance) + r;
+    line_tool::Gaps g = line_tool::segmentGaps(field, a, b, r, cutoff);
+    if (heading) {
+      const line_tool::Turn turn = line_tool::turnBetween(*heading, b - a);
+      if (turn.sweep != 0.0) {
+        const line_tool::Gaps t = line_tool::turnGaps(field, a, turn, r, cutoff);
+        g.outside = g.outside || t.outside;
+        g.overlaps = g.overlaps || t.overlaps;
+        g.boundary = std::fmin(g.boundary, t.boundary);
+        if (t.nearest >= 0 && ((t.overlaps && !g.overlaps) || t.obstacle < g.obstacle || g.nearest < 0)) g.nearest = t.nearest;
+        g.obstacle = std::fmin(g.obstacle, t.obstacle);
+      }
+    }
+    heading = b - a;
+    return g;
+  };
   auto check = [&](std::size_t segment, Point a, Point b) {
     const double bulge = n > 1 ? path.bulgeOf(segment) : 0.0;
-    const SegmentClearance c = field.measureArc(a, b, bulge, std::fmax(v.min_clearance, tool.clearance) + r);
-    const auto [boundary_gap, obstacle_gap] = gaps(c);
+    if (line && a == b) return;  // the line there is the one the moves around it end and start with
+    SegmentClearance c;
+    double boundary_gap = 0.0, obstacle_gap = 0.0;
+    bool line_out = false, line_overlap = false;
+    if (line) {
+      const line_tool::Gaps g = lineGaps(a, b);
+      boundary_gap = g.boundary, obstacle_gap = g.obstacle, c.nearest_obstacle = g.nearest;
+      line_out = g.outside, line_overlap = g.overlaps;
+    } else {
+      c = field.measureArc(a, b, bulge, std::fmax(v.min_clearance, tool.clearance) + r);
+      std::tie(boundary_gap, obstacle_gap) = gaps(c);
+    }
     v.min_boundary_gap = std::fmin(v.min_boundary_gap, boundary_gap);
     v.min_clearance = std::fmin(v.min_clearance, obstacle_gap);
-    const bool outside = boundary_gap < -kValidityTolerance;
-    const bool close = obstacle_gap < tool.clearance - kValidityTolerance;
+    const bool outside = line_out || boundary_gap < -kValidityTolerance;
+    const bool close = line_overlap || obstacle_gap < tool.clearance - kValidityTolerance;
     v.outside_boundary += outside;
     v.too_close += close;
     if ((outside || close) && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
@@ -201,11 +237,11 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
       d.to = b;
       d.outside_boundary = outside;
       d.too_close = close;
-      d.boundary_gap = boundary_gap;
+      d.boundary_gap = line_out ? NAN : boundary_gap;  // a line's swept shape crossing the edge: no depth
       // The obstacle gap is exact when an obstacle came nearer than the cutoff (always so when
       // `close`); otherwise it is only "at least the cutoff" and not shown.
       if (c.nearest_obstacle >= 0) {
-        d.clearance = obstacle_gap;
+        d.clearance = line_overlap ? NAN : obstacle_gap;
         d.obstacle = c.nearest_obstacle;
         d.obstacle_label = wall.obstacles[static_cast<std::size_t>(c.nearest_obstacle)].label;
       }
@@ -243,11 +279,15 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
   if (n == 1) check(0, path.waypoints[0], path.waypoints[0]);
   const bool lifts = vehicle.liftsTool();
   for (std::size_t i = 0; i + 1 < n; ++i)
-    if (inDepotLeg(i))
+    if (inDepotLeg(i)) {
+      // The leg's tool may overhang; the turn at its end in F is checked with the move after it.
+      if (!(path.waypoints[i] == path.waypoints[i + 1])) heading = path.waypoints[i + 1] - path.waypoints[i];
       continue;
-    else if (lifts && !path.tool_on[i])
+    }
+    else if (lifts && !path.tool_on[i]) {
       lifted(i, path.waypoints[i], path.waypoints[i + 1]);
-    else
+      heading.reset();  // the tool turns lifted
+    } else
       check(i, path.waypoints[i], path.waypoints[i + 1]);
   if (vehicle.isCar()) {
     std::vector<Violation> undrivable;
@@ -271,10 +311,16 @@ std::string describeViolations(const Validity& validity, double required_clearan
     std::vector<std::string> what;
     if (d.lifted) {
       what.push_back("leaves the wall's bounding box (a lifted move)");
+    } else if (d.outside_boundary && std::isnan(d.boundary_gap)) {
+      what.push_back("crosses the wall's edge (the line tool's swept shape)");
     } else if (d.outside_boundary) {
       what.push_back("leaves the wall's edge (gap " + shortfall(d.boundary_gap, 0.0) + ")");
     }
-    if (d.too_close) {
+    if (d.too_close && std::isnan(d.clearance)) {
+      const std::string name = d.obstacle_label.empty() ? "obstacles[" + std::to_string(d.obstacle) + "]"
+                                                        : "obstacle \"" + d.obstacle_label + "\"";
+      what.push_back("overlaps " + name + " (the line tool's swept shape)");
+    } else if (d.too_close) {
       const std::string name = d.obstacle_label.empty() ? "obstacles[" + std::to_string(d.obstacle) + "]"
                                                         : "obstacle \"" + d.obstacle_label + "\"";
       what.push_back(std::string(d.clearance < 0.0 ? "enters " : "comes too close to ") + name + " (clearance " +

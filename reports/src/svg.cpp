@@ -372,13 +372,13 @@ std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleM
   // Draw the overlap with strips no finer than the measure's and at most `overlap_strips` over the wall.
   const Box box = boundingBox(wall.boundary);
   const double strip = std::max(tool.radius() / 10.0, box.height() / overlap_strips);
-  const Region overlap = overlapRegion(path, tool.radius(), strip);
+  const Region overlap = passRegion(path, tool, strip, 2);
   content.reachable = &reachable;
   content.overlap = &overlap;
   Region three, four;
   if (pass_counts) {
-    three = passRegion(path, tool.radius(), strip, 3);
-    four = passRegion(path, tool.radius(), strip, 4);
+    three = passRegion(path, tool, strip, 3);
+    four = passRegion(path, tool, strip, 4);
     content.three_passes = &three;
     content.four_passes = &four;
   }

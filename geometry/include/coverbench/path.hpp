@@ -60,14 +60,31 @@ double effectiveBulge(Point a, Point b, double bulge);
 /// The length of segment i: the chord, or the arc's radius times |phi|.
 double segmentLength(const Path& path, std::size_t i);
 
+/// The tool's shape (docs/metrics.md#tool-shapes).
+enum class ToolShape {
+  Disk,  ///< a disk of diameter s centred on the path: the same in every heading
+  /// A segment of length s centred on the path and square to its heading (a roller, a trowel, a
+  /// mower deck, a line sensor): it sweeps a rectangle along a straight move and, where the
+  /// heading turns, rotates about its centre by the smaller angle (a line is the same turned by
+  /// half a circle), sweeping two opposite sectors of radius s / 2.
+  Line,
+};
+/// "disk" or "line".
+std::string toString(ToolShape shape);
+/// The shape named `name`; false when there is none.
+bool parseToolShape(const std::string& name, ToolShape& shape);
+
 /// The tool and clearance of a problem (metres).
 struct ToolParams {
-  double tool_width = 0.1;  ///< s: the tool is a disk of diameter s centred on the path
-  double clearance = 0.02;  ///< c: minimum gap between the tool disk and any obstacle
+  double tool_width = 0.1;  ///< s: the tool's width (a disk's diameter, a line's length)
+  double clearance = 0.02;  ///< c: minimum gap between the tool and any obstacle
   FluxProfile profile = {};  ///< how it spreads what it sprays (none: a tool that only touches)
+  ToolShape shape = ToolShape::Disk;
   double radius() const { return tool_width / 2.0; }
+  bool isLine() const { return shape == ToolShape::Line; }
 };
-/// The tool as every table, column, title and message names it: "s=0.1 m, c=0.02 m".
+/// The tool as every table, column, title and message names it: "s=0.1 m, c=0.02 m" (a disk),
+/// "line s=0.1 m, c=0.02 m".
 std::string toolLabel(const ToolParams& tool);
 
 /// Depot legs: a wall's start or end may lie anywhere in the closed wall off every obstacle (a

@@ -51,6 +51,11 @@ Region subtract(const Region& a, const Region& b);
 /// Builds a region from rings of any orientation (non-zero fill), e.g. obstacles that overlap.
 Region regionFromRings(const std::vector<Ring>& rings);
 
+/// The points inside at least `k` (>= 1) of the rings (each taken counter-clockwise, so a
+/// point's winding number is how many contain it): one Clipper union with k - 1 clockwise copies
+/// of a box around them all, filled where the winding stays positive.
+Region coveredAtLeast(const std::vector<Ring>& rings, int k);
+
 /// A polygon containing the circle, with every vertex within `tolerance` of the circle.
 Ring circumscribedCircle(Point center, double radius, double tolerance);
 /// The obstacle as a region (circles circumscribed within `tolerance`).

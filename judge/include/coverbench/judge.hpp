@@ -13,6 +13,10 @@
 ///   [area with inscribed polygons, area with circumscribed ones]. The width of the interval is
 ///   the price of the arcs; it shrinks as 1 / arc_vertices^2.
 ///
+/// - A line tool (ToolParams::shape, docs/metrics.md#tool-shapes): its rectangles and turns are
+///   judged through rational polygons that contain them (judge/src/exact_line.hpp), as arcs are
+///   through their chords; its R is the wall minus the obstacles grown by c.
+///
 /// This header does not include CGAL: CGAL stays inside the judge's own translation units.
 
 #include <cmath>

@@ -178,6 +178,9 @@ struct Passes {
   double swept_area = 0.0;        ///< |S| = |{passes >= 1}| (m^2), exact up to rounding
 };
 Passes passes(const Path& path, double radius, std::size_t bins = 4);
+/// passes() of the tool's shape: a disk's as above; a line's from its swept shapes as polygons
+/// (rectangles, and sectors as chords within line_tool's 1 um; docs/metrics.md#tool-shapes).
+Passes passes(const Path& path, const ToolParams& tool, std::size_t bins = 4);
 /// The areas |{q : passes(q) >= k}| for k = 1 .. levels (m^2). Waypoints closer than 1 nm are
 /// taken as one, and sides running along each other within 1 nm as touching.
 std::vector<double> passLevelAreas(const Path& path, double radius, std::size_t levels);
@@ -188,6 +191,8 @@ std::vector<double> passLevelAreas(const Path& path, double radius, std::size_t 
 Passes passesOnScanlines(const Path& path, double radius, double resolution, std::size_t bins = 4);
 /// The points passed over `min_passes` times or more, as strips one scanline high (for pictures).
 Region passRegion(const Path& path, double radius, double resolution, int min_passes);
+/// passRegion() of the tool's shape: a line's is exact up to its sectors' chords (no scanlines).
+Region passRegion(const Path& path, const ToolParams& tool, double resolution, int min_passes);
 /// The points passed over twice or more: passRegion(path, radius, resolution, 2).
 Region overlapRegion(const Path& path, double radius, double resolution);
 /// Number of passes over one point (the definition, point by point).
@@ -240,6 +245,9 @@ inline constexpr std::size_t kMaxArcChords = 100000;
 /// Throws InputError(source, field, problem) if `path` is beyond the scoring limits (waypoints,
 /// coordinates, an arc's chords), or its coordinates are not finite.
 void checkScorable(const Path& path, const std::string& source);
+/// Throws InputError if a line tool's path cannot be scored yet: a car's (field tool.shape) or
+/// one with an arc (field bulge[i]). Both engines score a line tool's straight moves only.
+void checkLineScorable(const Path& path, const VehicleModel& vehicle, const std::string& source);
 
 /// One named metric value, in the order metrics are written (plan files, tables).
 struct NamedMetric {

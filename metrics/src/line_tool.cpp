@@ -1,0 +1,138 @@
+// The line tool in the fast engine (line_tool.hpp). A swept shape is checked through its boundary
+// curves, each measured in closed form by the ClearanceField (segments and arcs), with the shape
+// shrunk by kShrink so that touching the wall's edge or an obstacle (allowed) is told apart from
+// crossing it: a shape whose shrunk boundary meets an edge goes past it by more than kShrink.
+#include "line_tool.hpp"
+
+#include <algorithm>
+
+namespace coverbench::line_tool {
+namespace {
+
+/// How far the checked shapes are shrunk (m): twice the validity tolerance, so that a crossing
+/// reads below -kValidityTolerance and a touch does not.
+constexpr double kShrink = 2.0 * kValidityTolerance;
+
+Point leftNormal(Point d) {
+  const double len = norm(d);
+  return {-d.y / len, d.x / len};
+}
+
+/// Folds the gaps of one boundary curve (a segment or an arc) into `g`.
+void fold(const SegmentClearance& c, Gaps& g) {
+  if (!c.inside) g.outside = true;
+  else g.boundary = std::fmin(g.boundary, c.boundary_distance - kShrink);
+  if (c.obstacle_distance <= 0.0) g.overlaps = true;
+  else if (c.obstacle_distance - kShrink < g.obstacle) g.obstacle = c.obstacle_distance - kShrink;
+  if (c.nearest_obstacle >= 0 && (g.nearest < 0 || c.obstacle_distance - kShrink <= g.obstacle)) g.nearest = c.nearest_obstacle;
+}
+
+/// Obstacles lying wholly inside a shape touch none of its boundary curves: one point of each
+/// obstacle near `box` is tested with `inside`.
+template <class Inside>
+void obstaclesWithin(const ClearanceField& field, const Box& box, Inside inside, Gaps& g) {
+  const std::vector<Obstacle>& obstacles = field.wall().obstacles;
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    const Obstacle& o = obstacles[k];
+    const Point probe = o.type == ObstacleType::Circle || o.polygon.empty() ? o.center : o.polygon[0];
+    if (probe.x < box.min_x || probe.x > box.max_x || probe.y < box.min_y || probe.y > box.max_y) continue;
+    if (!inside(probe)) continue;
+    g.overlaps = true;
+    g.nearest = static_cast<long>(k);
+  }
+}
+
+void settle(Gaps& g) {
+  if (g.outside) g.boundary = 0.0;
+  if (g.overlaps) g.obstacle = 0.0;
+  g.boundary = std::fmax(g.boundary, 0.0);
+  g.obstacle = std::fmax(g.obstacle, 0.0);
+}
+
+}  // namespace
+
+Turn turnBetween(Point d1, Point d2) {
+  Turn t;
+  t.u1 = leftNormal(d1);
+  t.u2 = leftNormal(d2);
+  if (dot(d1, d2) < 0.0) t.u2 = t.u2 * -1.0;  // more than a right angle: the line's shorter way round
+  if (cross(d1, d2) == 0.0) return t;         // straight on, or straight back: no turn
+  t.sweep = std::atan2(cross(t.u1, t.u2), dot(t.u1, t.u2));
+  return t;
+}
+
+Gaps segmentGaps(const ClearanceField& field, Point a, Point b, double h, double cutoff) {
+  Gaps g;
+  const double len = distance(a, b);
+  const Point t = (b - a) * (1.0 / len), u = leftNormal(b - a);
+  const double shrink = std::fmin(kShrink, len / 4.0), hh = std::fmax(h - kShrink, 0.0);
+  const Point a2 = a + t * shrink, b2 = b - t * shrink;
+  const Point corner[4] = {a2 - u * hh, b2 - u * hh, b2 + u * hh, a2 + u * hh};
+  for (int k = 0; k < 4; ++k) fold(field.measure(corner[k], corner[(k + 1) % 4], cutoff), g);
+  Box box{INFINITY, INFINITY, -INFINITY, -INFINITY};
+  for (const Point& p : corner)
+    box = {std::fmin(box.min_x, p.x), std::fmin(box.min_y, p.y), std::fmax(box.max_x, p.x), std::fmax(box.max_y, p.y)};
+  const double len2 = distance(a2, b2);
+  obstaclesWithin(field, box, [&](Point q) {
+    const Point v = q - a2;
+    const double along = dot(v, t), across = cross(t, v);
+    return along >= 0.0 && along <= len2 && std::fabs(across) <= hh;
+  }, g);
+  settle(g);
+  return g;
+}
+
+Gaps turnGaps(const ClearanceField& field, Point p, const Turn& turn, double h, double cutoff) {
+  Gaps g;
+  const double hh = std::fmax(h - kShrink, 0.0);
+  const double bulge = std::tan(turn.sweep / 4.0);
+  fold(field.measure(p - turn.u1 * hh, p + turn.u1 * hh, cutoff), g);
+  fold(field.measure(p - turn.u2 * hh, p + turn.u2 * hh, cutoff), g);
+  for (double side : {1.0, -1.0})
+    fold(field.measureArc(p + turn.u1 * (side * hh), p + turn.u2 * (side * hh), bulge, cutoff), g);
+  const double sign = turn.sweep > 0.0 ? 1.0 : -1.0;
+  obstaclesWithin(field, Box{p.x - hh, p.y - hh, p.x + hh, p.y + hh}, [&](Point q) {
+    // The wedge from u1 to u2 (at most a right angle), or the opposite one.
+    auto inWedge = [&](Point v) { return sign * cross(turn.u1, v) >= 0.0 && sign * cross(v, turn.u2) >= 0.0; };
+    const Point v = q - p;
+    return norm(v) <= hh && (inWedge(v) || inWedge(v * -1.0));
+  }, g);
+  settle(g);
+  return g;
+}
+
+std::vector<Ring> sweptRings(const Path& path, double h) {
+  std::vector<Ring> rings;
+  bool have = false;      // a tool-on move came before, with only zero-length moves since
+  Point last{0.0, 0.0};   // its direction
+  for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
+    const Point a = path.waypoints[i], b = path.waypoints[i + 1];
+    if (!path.tool_on[i]) {
+      have = false;
+      continue;
+    }
+    if (a == b) continue;
+    const Point d = b - a, u = leftNormal(d);
+    if (have) {
+      const Turn turn = turnBetween(last, d);
+      if (turn.sweep != 0.0) {
+        const auto chords = static_cast<int>(std::ceil(std::fabs(turn.sweep) / (2.0 * std::acos(1.0 - kSectorSagitta / h))));
+        const double start = std::atan2(turn.u1.y, turn.u1.x);
+        for (double side : {1.0, -1.0}) {
+          Ring sector{a};
+          for (int k = 0; k <= chords; ++k) {
+            const double angle = start + turn.sweep * k / chords;
+            sector.push_back(a + Point{std::cos(angle), std::sin(angle)} * (side * h));
+          }
+          rings.push_back(std::move(sector));
+        }
+      }
+    }
+    rings.push_back({a - u * h, b - u * h, b + u * h, a + u * h});
+    have = true;
+    last = d;
+  }
+  return rings;
+}
+
+}  // namespace coverbench::line_tool
