@@ -48,6 +48,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// --tool-shape's value: disk or line.
+ToolShape toolShapeOption(const std::string& name) {
+  ToolShape shape = ToolShape::Disk;
+  if (!parseToolShape(name, shape))
+    throw InputError("--tool-shape", "tool.shape", "must be disk or line, got '" + name + "'");
+  return shape;
+}
+
 /// The command line's vehicle over `base` (the default, or the plan file's), checked.
 VehicleModel resolveVehicle(const VehicleOptions& given, VehicleModel base) {
   if (given.model && !parseVehicleKind(*given.model, base.kind))
@@ -122,6 +130,7 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   o.plan.not_scored = judged.not_scored;
   // The plan file's reason says why its coat's metrics are null (a raster past the cap).
   o.plan.result.reason = withNote(o.plan.result.reason, coatNotScoredNote(judged.metrics));
+  if (tool.isLine() && o.plan.result.hasPath()) o.plan.result.reason = withNote(o.plan.result.reason, lineToolNote(planner));
   o.plan_json = planFileJson(o.plan);
   const bool scored = o.plan.not_scored.empty();
   const std::string title = wall.name + " / " + planner.name + "  (" + toolLabel(tool) + ")  " +
@@ -212,6 +221,7 @@ int planCommand(const PlanOptions& options) {
   if (transit->sampling) loadSamplingTransits();
   ToolParams tool = options.tool;
   tool.profile = fluxProfileOf(options.coat, tool.tool_width);
+  tool.shape = toolShapeOption(options.tool_shape);
   const Outcome o = planOnce(wall, planner, tool, vehicle, std::move(params), options.time_limit_s,
                              !options.svg.empty(), options.transit, options.seed);
   OutputFiles files;  // both files or neither
@@ -340,6 +350,7 @@ int metricsCommand(const MetricsOptions& options) {
   ToolParams tool;
   tool.tool_width = options.tool_width ? *options.tool_width : plan.tool_width.value_or(tool.tool_width);
   tool.clearance = options.clearance ? *options.clearance : plan.clearance.value_or(tool.clearance);
+  tool.shape = options.tool_shape ? toolShapeOption(*options.tool_shape) : plan.tool_shape.value_or(ToolShape::Disk);
   validateToolForWall(tool, wall, options.tool_width || options.clearance ? "command line" : options.plan);
   MotionLimits limits;
   limits.speed = options.speed;

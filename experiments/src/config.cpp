@@ -522,12 +522,23 @@ FluxProfile readProfile(Reader& r, const Yaml& p, const std::vector<double>& wid
 }
 
 /// The `tool:` section: width and clearance, each a value or a list (the tools are their
-/// product), and one flux profile for them all.
+/// product, with the shapes), and one flux profile for them all.
 void readTools(Reader& r, const Yaml* t, ExperimentConfig& c) {
   std::vector<double> widths{0.1}, clearances{0.02};
   FluxProfile profile;
+  std::vector<ToolShape> shapes{ToolShape::Disk};
   if (t) {
-    r.onlyKeys(*t, "tool", {"width", "clearance", "profile"});
+    r.onlyKeys(*t, "tool", {"width", "clearance", "profile", "shape"});
+    if (const Yaml* s = t->find("shape")) {
+      shapes.clear();
+      for (const Yaml* v : r.values(*s, "tool.shape")) {
+        const std::string name = r.text(*v, "tool.shape");
+        ToolShape shape = ToolShape::Disk;
+        if (!parseToolShape(name, shape)) r.fail(*v, "tool.shape", "must be disk or line, not '" + name + "'");
+        if (std::find(shapes.begin(), shapes.end(), shape) != shapes.end()) r.fail(*v, "tool.shape", "lists " + name + " twice");
+        shapes.push_back(shape);
+      }
+    }
     if (const Yaml* w = t->find("width")) {
       widths.clear();
       for (const Yaml* v : r.values(*w, "tool.width")) {
@@ -549,7 +560,8 @@ void readTools(Reader& r, const Yaml* t, ExperimentConfig& c) {
   if (t)
     if (const Yaml* p = t->find("profile")) profile = readProfile(r, *p, widths);
   for (double w : widths)
-    for (double cl : clearances) c.tools.push_back(ToolParams{w, cl, profile});
+    for (double cl : clearances)
+      for (ToolShape shape : shapes) c.tools.push_back(ToolParams{w, cl, profile, shape});
 }
 
 /// The `vehicle:` section: one model per experiment (docs/vehicles.md).
@@ -784,6 +796,11 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   if (c.replanning.enabled() && c.vehicle.isCar())
     r.fail(*doc.find("replanning"), "replanning",
            "is not built for a car yet: its repairs are straight moves a car cannot drive (docs/replanning.md)");
+  if (std::any_of(c.tools.begin(), c.tools.end(), [](const ToolParams& t) { return t.isLine(); }) &&
+      (c.vehicle.isCar() || c.replanning.enabled()))
+    r.fail(*doc.find("tool")->find("shape"), "tool.shape",
+           std::string("a line tool is not built for ") + (c.vehicle.isCar() ? "a car yet: the arcs it drives" : "replanning yet: its repairs' paint") +
+               " (docs/metrics.md#tool-shapes); use a disk");
   readRunSettings(r, doc, c);
   readBaseline(r, doc, planners, c);
   if (const Yaml* p = doc.find("published")) c.published = readPublished(r, *p, file.base);

@@ -35,7 +35,9 @@ namespace {
 /// run_profile (the tool's flux profile of each run that has one, docs/deposition.md: an older
 /// build lists such a run without it; a database without the table reads as disk tools without
 /// a profile); run_profile_target (the profile's target thickness, for a run whose profile has
-/// one: an older build lists and scores such a run against the mean). Run
+/// one: an older build lists and scores such a run against the mean); run_tool_shape (the tool's
+/// shape of each run whose tool is not a disk, docs/metrics.md#tool-shapes: a database without
+/// the table reads as disk tools; an older build would read a line tool's run as a disk's). Run
 /// fields added since (stderr_tail) are columns added to an older database when it is written
 /// (addMissingRunColumns; its runs read as empty) and read as empty where a database opened
 /// read-only lacks them; an older build ignores them.
@@ -93,6 +95,8 @@ CREATE TABLE IF NOT EXISTS run_profile (
   depth REAL NOT NULL);
 CREATE TABLE IF NOT EXISTS run_profile_target (
   run_key TEXT PRIMARY KEY, target REAL NOT NULL);
+CREATE TABLE IF NOT EXISTS run_tool_shape (
+  run_key TEXT PRIMARY KEY, shape TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS replans (
   run_key TEXT NOT NULL, position INTEGER NOT NULL, fraction REAL NOT NULL, repair TEXT NOT NULL,
   obstacles INTEGER NOT NULL, requested INTEGER NOT NULL, obstacles_json TEXT NOT NULL, status TEXT NOT NULL,

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 #include <set>
+#include <tuple>
 #include <stdexcept>
 
 #include "coverbench/param_codec.hpp"
@@ -56,6 +57,13 @@ FluxProfile storedProfile(const Statement& s, int i) {
   p.depth = s.columnReal(i + 4);
   if (!s.columnNull(i + 5)) p.target = s.columnReal(i + 5);
   return p;
+}
+
+/// The tool's shape in column i (run_tool_shape, alias ts): a disk when the run has no row.
+ToolShape storedShape(const Statement& s, int i) {
+  ToolShape shape = ToolShape::Disk;
+  if (!s.columnNull(i) && !parseToolShape(s.columnText(i), shape)) throw std::runtime_error("run_tool_shape: unknown shape " + s.columnText(i));
+  return shape;
 }
 
 /// Whether the database has the table `name` (one opened read-only may predate it).
@@ -128,19 +136,21 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   }
   std::map<std::string, std::size_t> index;
   {
-    // The context (columns 0 .. 7), the options (8 .. 14), the profile (15 .. 20), then the run's
-    // fields (21 ..).
+    // The context (columns 0 .. 7), the options (8 .. 14), the profile (15 .. 20), the tool's
+    // shape (21), then the run's fields (22 ..).
     const bool profiles = hasTable(db_, file_, "run_profile"), targets = hasTable(db_, file_, "run_profile_target");
+    const bool shapes = hasTable(db_, file_, "run_tool_shape");
     Statement s(db_,
                 "SELECT r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.seed, ws.name, r.planner_version, " +
                     std::string(kOptionColumns) + ", " + (profiles ? kProfileColumns : kNoProfileColumns) + ", " +
-                    (targets ? kTargetColumn : "NULL") + ", " +
+                    (targets ? kTargetColumn : "NULL") + ", " + (shapes ? "ts.shape" : "NULL") + ", " +
                     runFieldSelect("r") + " FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
                 "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 "
                 "JOIN walls ws ON ws.hash = r.wall_hash" + std::string(kOptionJoins) +
                     (profiles ? "LEFT JOIN run_profile pr ON pr.run_key = r.key " : "") +
-                    (targets ? "LEFT JOIN run_profile_target pt ON pt.run_key = r.key " : "") + "ORDER BY r.key",
+                    (targets ? "LEFT JOIN run_profile_target pt ON pt.run_key = r.key " : "") +
+                    (shapes ? "LEFT JOIN run_tool_shape ts ON ts.run_key = r.key " : "") + "ORDER BY r.key",
                 file_);
     s.integer(1, id);
     while (s.step()) {
@@ -157,8 +167,10 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
       row.wall_name = s.columnText(6);
       row.planner_version = s.columnText(7);
       row.tool = ToolParams{s.columnReal(3), s.columnReal(4), storedProfile(s, 15)};
+      row.tool.shape = storedShape(s, 21);
+      if (row.tool.isLine()) row.pairing += "/line";  // runs pair only with the same tool
       storedOptions(s, 8, row.vehicle, row.transit);
-      int i = 21;
+      int i = 22;
       forEachRunField(static_cast<RunFields&>(row), [&](const RunField& f, auto& value) { readField(s, i++, file_, f, value); });
       // The measured fields the metric registry lists are the tables' metrics too.
       row.metrics["plan_time_ms"] = row.plan_time_ms;
@@ -168,15 +180,19 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
     }
   }
   // Each tool configuration is its own group: with several, every column is "label @ tool".
-  std::set<std::pair<double, double>> tools;
-  for (const ResultRow& r : rs.runs) tools.insert({r.tool.tool_width, r.tool.clearance});
+  std::set<std::tuple<double, double, ToolShape>> tools;
+  for (const ResultRow& r : rs.runs) tools.insert({r.tool.tool_width, r.tool.clearance, r.tool.shape});
   if (tools.size() > 1) {
-    auto suffix = [](double w, double c) { return " @ " + toolLabel(ToolParams{w, c}); };
+    auto suffix = [](double w, double c, ToolShape shape = ToolShape::Disk) {
+      ToolParams t{w, c};
+      t.shape = shape;
+      return " @ " + toolLabel(t);
+    };
     std::vector<std::string> columns;
     for (const std::string& label : rs.planners)
-      for (const auto& [w, c] : tools) columns.push_back(label + suffix(w, c));
+      for (const auto& [w, c, shape] : tools) columns.push_back(label + suffix(w, c, shape));
     rs.planners = columns;
-    for (ResultRow& r : rs.runs) r.planner = r.config + suffix(r.tool.tool_width, r.tool.clearance);
+    for (ResultRow& r : rs.runs) r.planner = r.config + suffix(r.tool.tool_width, r.tool.clearance, r.tool.shape);
   }
   // So is each transit planner: with several, every column also gets "@ transit=NAME" (in the
   // registry's order), and runs differing only in it pair up on the same walls.
@@ -475,6 +491,12 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
   run.stderr_tail = s.columnText(16);  // after the 7 option columns
   if (s.step()) throw InputError(file_, "runs", "several run keys start with " + key_prefix + ": give more digits");
   if (std::optional<Path> p = path(run.key)) run.path = std::move(*p);
+  if (hasTable(db_, file_, "run_tool_shape")) {
+    Statement shape(db_, "SELECT shape FROM run_tool_shape WHERE run_key = ?", file_);
+    shape.text(1, run.key);
+    if (shape.step() && !parseToolShape(shape.columnText(0), run.tool.shape))
+      throw InputError(file_, "run_tool_shape", "unknown shape " + shape.columnText(0));
+  }
   // The tool's flux profile and the time model: the config's (the run key holds them).
   Statement c(db_,
               "SELECT e.config_text FROM experiments e JOIN experiment_runs x ON x.experiment_id = e.id WHERE x.run_key = ? "

@@ -62,6 +62,7 @@ std::string planFileJson(const PlanFile& plan) {
   doc["wall"] = plan.wall;
   doc["tool_width"] = plan.tool.tool_width;
   doc["clearance"] = plan.tool.clearance;
+  if (plan.tool.isLine()) doc["tool_shape"] = toString(plan.tool.shape);  // a disk: no key, as before shapes
   if (const FluxProfile& p = plan.tool.profile; p.set()) {
     ordered_json profile = {{"kind", toString(p.kind)}};
     if (p.kind == FluxProfile::Kind::Gaussian) profile["sigma"] = p.sigma;
@@ -157,6 +158,12 @@ LoadedPlan loadPlanFile(const std::string& file) {
     if (!doc.contains(key)) continue;
     if (!doc[key].is_number()) throw InputError(file, key, "must be a number");
     (std::string(key) == "tool_width" ? plan.tool_width : plan.clearance) = doc[key].get<double>();
+  }
+  if (doc.contains("tool_shape")) {
+    ToolShape shape = ToolShape::Disk;
+    if (!doc["tool_shape"].is_string() || !parseToolShape(doc["tool_shape"].get<std::string>(), shape))
+      throw InputError(file, "tool_shape", "must be \"disk\" or \"line\"");
+    plan.tool_shape = shape;
   }
   if (doc.contains("profile")) {  // as a config's tool.profile: each value belongs to its kind
     const auto& p = doc["profile"];

@@ -39,12 +39,13 @@ std::vector<std::string> metricColumns(const ResultSet& rs) {
 /// visibility, and `profile` (the tool's flux profile, FluxProfile::label; empty for a run
 /// without one) only when some run has one (so tables of runs from before them keep their columns).
 struct OptionColumns {
-  bool vehicle = false, transit = false, profile = false;
+  bool vehicle = false, transit = false, profile = false, shape = false;
   explicit OptionColumns(const ResultSet& rs) {
     for (const ResultRow& r : rs.runs) {
       vehicle = vehicle || !r.vehicle.isDefault();
       transit = transit || !r.transit.isDefault();
       profile = profile || r.tool.profile.set();
+      shape = shape || r.tool.isLine();
     }
   }
 };
@@ -67,6 +68,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
       row["planner_version"] = r.planner_version;
       row["tool_width"] = r.tool.tool_width;
       row["clearance"] = r.tool.clearance;
+      if (options.shape) row["tool_shape"] = toString(r.tool.shape);
       if (options.profile) row["profile"] = r.tool.profile.label();
       if (options.vehicle) row["vehicle"] = toString(r.vehicle.kind);
       if (options.transit) row["transit"] = r.transit.planner;
@@ -82,6 +84,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
     return out.dump(1) + "\n";
   }
   std::string text = "key,dataset,wall,wall_hash,planner,params,planner_version,tool_width,clearance";
+  text += options.shape ? ",tool_shape" : "";
   text += options.profile ? ",profile" : "";
   text += std::string(options.vehicle ? ",vehicle" : "") + (options.transit ? ",transit" : "");
   for (const RunField& f : kRunFields)
@@ -91,7 +94,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
   for (const ResultRow& r : rs.runs) {
     text += r.key + "," + escapeCsv(r.dataset) + "," + escapeCsv(r.wall_name) + "," + r.wall + "," + escapeCsv(r.config) +
             "," + escapeCsv(storedParamsJson(r.params).dump()) + "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) +
-            (options.profile ? "," + escapeCsv(r.tool.profile.label()) : "") + (options.vehicle ? "," + toString(r.vehicle.kind) : "") + (options.transit ? "," + r.transit.planner : "");
+            (options.shape ? "," + toString(r.tool.shape) : "") + (options.profile ? "," + escapeCsv(r.tool.profile.label()) : "") + (options.vehicle ? "," + toString(r.vehicle.kind) : "") + (options.transit ? "," + r.transit.planner : "");
     forEachRunField(r, [&](const RunField& f, const auto& value) {
       if (f.exported != RunExport::No) text += "," + csvCell(value);
     });

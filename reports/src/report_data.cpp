@@ -185,6 +185,8 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
       if (f.exported == RunExport::RunsAndReport) run[f.name] = fieldValue(value);
     });
     run["metrics"] = std::move(m);
+    // Only a tool other than a disk names its shape, so disk reports stay as they were.
+    if (r->tool.isLine()) run["tool_shape"] = toString(r->tool.shape);
     // Only a vehicle other than holonomic is named, so holonomic reports stay as they were.
     if (r->vehicle.isCar())
       run["vehicle"] = {{"model", "car"}, {"turn_radius", r->vehicle.turn_radius}, {"reverse", r->vehicle.reverse}};

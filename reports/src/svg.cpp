@@ -309,15 +309,17 @@ std::string renderSvg(const SvgContent& c) {
     }
     // The painted runs are written once and drawn twice (the tool's swath, then its centre line).
     s << "<defs><g id=\"paint\">\n" << on_runs << "</g></defs>\n";
+    // A line tool's band has square ends (its rectangles); its turns are drawn as round joins.
+    const char* cap = c.tool.isLine() ? "butt" : "round";
     s << "<use xlink:href=\"#paint\" fill=\"none\" stroke=\"#2f6fd0\" stroke-opacity=\"0.18\" stroke-width=\"" << fmt(tool_px)
-      << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>\n";
+      << "\" stroke-linecap=\"" << cap << "\" stroke-linejoin=\"round\"/>\n";
     // R not swept: R in red under a mask that hides what the tool's band covers. The band is the
     // painted runs stroked at the tool's width with round caps and joins: S itself (the union of
     // the tool-on capsules), drawn by the viewer, so no polygon union of the path is computed.
     if (c.reachable && !c.reachable->empty()) {
       s << "<mask id=\"unswept\" maskUnits=\"userSpaceOnUse\" x=\"0\" y=\"0\" width=\"" << fmt(w_px) << "\" height=\""
         << fmt(h_px) << "\"><rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/><use xlink:href=\"#paint\" fill=\"none\" "
-        << "stroke=\"#000000\" stroke-width=\"" << fmt(tool_px) << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/></mask>\n";
+        << "stroke=\"#000000\" stroke-width=\"" << fmt(tool_px) << "\" stroke-linecap=\"" << cap << "\" stroke-linejoin=\"round\"/></mask>\n";
       s << "<path d=\"" << v.regionPath(simplifyRegion(*c.reachable, draw_tolerance))
         << "\" fill=\"#e8383d\" fill-opacity=\"0.75\" fill-rule=\"evenodd\" stroke=\"none\" mask=\"url(#unswept)\"/>\n";
     }

@@ -66,8 +66,8 @@ std::size_t answerProblem(const std::string& line, std::string& why) {
 /// for none), the profile as a plan file writes it (docs/file_formats.md).
 json toolJson(const ToolParams& tool, int protocol) {
   json out = {{"width", tool.tool_width}, {"clearance", tool.clearance}};
-  if (protocol < 2) return out;  // protocol 1: the disk, and nothing of a profile
-  out["shape"] = "disk";
+  if (protocol < 2) return out;  // protocol 1: the disk (a line's circumscribed one), and nothing of a profile
+  out["shape"] = toString(tool.shape);
   const FluxProfile& p = tool.profile;
   if (!p.set()) {
     out["profile"] = nullptr;

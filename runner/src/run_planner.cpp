@@ -274,6 +274,11 @@ RunStatus runStatusOf(PlanStatus status) {
   return RunStatus::Error;
 }
 
+std::string lineToolNote(const PlannerInfo& planner) {
+  return planner.plans_line_tool ? "" : "planned for the line tool's circumscribed disk (diameter s): " + planner.name +
+                                             " plans for disks; the line's path is scored as a line";
+}
+
 JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, const Budget& budget) {
   JudgedPlan j;
   j.result = runPlanner(planner, problem, budget);
@@ -296,6 +301,7 @@ JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, cons
                (j.result.reason.empty() ? "" : "; the planner said: " + j.result.reason);
   }
   j.reason = withNote(j.reason, coatNotScoredNote(j.metrics));
+  if (problem.tool.isLine() && j.result.hasPath()) j.reason = withNote(j.reason, lineToolNote(planner));
   return j;
 }
 

@@ -183,6 +183,10 @@ struct PlannerInfo {
   /// The planner is given the problem's car (not a holonomic tool) and may plan for it itself
   /// (PlanResult::planned_for_car); else runPlanner plans it holonomic and smooths the path.
   bool plans_for_car = false;
+  /// The planner plans for a line tool's shape (ToolParams::shape); else it plans for the line's
+  /// circumscribed disk (a disk-valid path is line-valid: the line lies in the disk at every
+  /// heading), and every run says so in its reason.
+  bool plans_line_tool = false;
   std::function<std::unique_ptr<Planner>()> make{};
 };
 

@@ -93,7 +93,8 @@ class Analysis:
         self.tool_of = {}
         for c in self.columns:
             rs = self.by_column[c]
-            t = (rs[0]["tool_width"], rs[0]["clearance"]) if rs else (math.nan, math.nan)
+            # A line tool is another tool than the disk of its width (docs/metrics.md#tool-shapes).
+            t = (rs[0]["tool_width"], rs[0]["clearance"], rs[0].get("tool_shape", "disk")) if rs else (math.nan, math.nan, "disk")
             self.tool_of[c] = t
             if t not in self.tools:
                 self.tools.append(t)

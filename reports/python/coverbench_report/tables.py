@@ -185,7 +185,8 @@ def render(tables, fmt, preamble=""):
 # --- the curated tables ---------------------------------------------------------------------------
 
 def tool_label(a, tool):
-    return "" if len(a.tools) == 1 else f" at s={number(tool[0])} m, c={number(tool[1])} m"
+    shape = "" if tool[2] == "disk" else f"{tool[2]} "
+    return "" if len(a.tools) == 1 else f" at {shape}s={number(tool[0])} m, c={number(tool[1])} m"
 
 
 MEASURED_TITLE = "Measured on this machine"

@@ -199,6 +199,28 @@ class ToolsNeverPooled(unittest.TestCase):
             self.assertEqual({e["column"] for e in a.ranking("d", tool, "length_total")}, set(a.tool_columns(tool)))
 
 
+    def test_a_line_tool_and_a_disk_of_its_width_are_two_tools(self):
+        # docs/metrics.md#tool-shapes: same width and clearance, other shape: never ranked together.
+        cols = ["a @ s=0.1 m, c=0.02 m", "a @ line s=0.1 m, c=0.02 m", "b @ s=0.1 m, c=0.02 m", "b @ line s=0.1 m, c=0.02 m"]
+        runs = []
+        for w in ("w1", "w2", "w3"):
+            for shape, suffix in (("disk", " @ s=0.1 m, c=0.02 m"), ("line", " @ line s=0.1 m, c=0.02 m")):
+                for planner, length in (("a", 20), ("b", 21)):
+                    r = run(planner + suffix, w, 1.0, length if shape == "disk" else length - 5)
+                    if shape == "line":
+                        r["tool_shape"] = "line"
+                        r["key"] += "-line"
+                        r["pairing"] += "/line"
+                    runs.append(r)
+        a = Analysis(data(runs, cols))
+        self.assertEqual(sorted(a.tools), [(0.1, 0.02, "disk"), (0.1, 0.02, "line")])
+        for r in a.paired_table("d", ["length_total"]):
+            self.assertEqual(a.tool_of[r["column"]], a.tool_of[r["baseline"]])
+            self.assertEqual(r["pairs"], 3)
+        self.assertEqual(T.tool_label(a, (0.1, 0.02, "line")), " at line s=0.100 m, c=0.0200 m")
+        self.assertEqual(T.tool_label(a, (0.1, 0.02, "disk")), " at s=0.100 m, c=0.0200 m")
+
+
 class Rendering(unittest.TestCase):
     def test_hostile_labels_are_text_in_every_format(self):
         hostile = '<script>alert("x")</script> | 50% & _x_'

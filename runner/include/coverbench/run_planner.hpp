@@ -34,5 +34,8 @@ struct JudgedPlan {
   bool succeeded() const { return verdict == RunStatus::Ok; }
 };
 JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, const Budget& budget);
+/// What a line tool's run says of its plan: "" when the planner plans for lines
+/// (PlannerInfo::plans_line_tool), else that it planned for the line's circumscribed disk.
+std::string lineToolNote(const PlannerInfo& planner);
 
 }  // namespace coverbench
