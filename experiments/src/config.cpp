@@ -521,44 +521,30 @@ FluxProfile readProfile(Reader& r, const Yaml& p, const std::vector<double>& wid
   return profile;
 }
 
-/// The `tool:` section: width and clearance, each a value or a list (the tools are their
-/// product, with the shapes), and one flux profile for them all.
+/// The `tool:` section: width, clearance and shape, each a value or a list naming nothing twice
+/// (the tools are their product, in that order; `distinct` reads one), and one flux profile.
 void readTools(Reader& r, const Yaml* t, ExperimentConfig& c) {
   std::vector<double> widths{0.1}, clearances{0.02};
-  FluxProfile profile;
   std::vector<ToolShape> shapes{ToolShape::Disk};
-  if (t) {
-    r.onlyKeys(*t, "tool", {"width", "clearance", "profile", "shape"});
-    if (const Yaml* s = t->find("shape")) {
-      shapes.clear();
-      for (const Yaml* v : r.values(*s, "tool.shape")) {
-        const std::string name = r.text(*v, "tool.shape");
-        ToolShape shape = ToolShape::Disk;
-        if (!parseToolShape(name, shape)) r.fail(*v, "tool.shape", "must be disk or line, not '" + name + "'");
-        if (std::find(shapes.begin(), shapes.end(), shape) != shapes.end()) r.fail(*v, "tool.shape", "lists " + name + " twice");
-        shapes.push_back(shape);
-      }
+  auto distinct = [&](const char* key, auto read, auto& out) {
+    const Yaml* n = t ? t->find(key) : nullptr;
+    if (!n) return;
+    const std::string field = std::string("tool.") + key;
+    out.clear();
+    for (const Yaml* v : r.values(*n, field)) {
+      out.push_back(read(*v, field));
+      if (std::find(out.begin(), out.end() - 1, out.back()) != out.end() - 1) r.fail(*v, field, "lists " + v->scalar + " twice");
     }
-    if (const Yaml* w = t->find("width")) {
-      widths.clear();
-      for (const Yaml* v : r.values(*w, "tool.width")) {
-        widths.push_back(r.number(*v, "tool.width", kMinToolWidth, kMaxToolWidth));
-        for (std::size_t k = 0; k + 1 < widths.size(); ++k)
-          if (widths[k] == widths.back()) r.fail(*v, "tool.width", "lists " + shortNumber(widths.back()) + " twice");
-      }
-    }
-    if (const Yaml* cl = t->find("clearance")) {
-      clearances.clear();
-      for (const Yaml* v : r.values(*cl, "tool.clearance")) {
-        clearances.push_back(r.number(*v, "tool.clearance", 0.0, kMaxClearance));
-        for (std::size_t k = 0; k + 1 < clearances.size(); ++k)
-          if (clearances[k] == clearances.back())
-            r.fail(*v, "tool.clearance", "lists " + shortNumber(clearances.back()) + " twice");
-      }
-    }
-  }
-  if (t)
-    if (const Yaml* p = t->find("profile")) profile = readProfile(r, *p, widths);
+  };
+  if (t) r.onlyKeys(*t, "tool", {"width", "clearance", "profile", "shape"});
+  distinct("width", [&](const Yaml& v, const std::string& f) { return r.number(v, f, kMinToolWidth, kMaxToolWidth); }, widths);
+  distinct("clearance", [&](const Yaml& v, const std::string& f) { return r.number(v, f, 0.0, kMaxClearance); }, clearances);
+  distinct("shape", [&](const Yaml& v, const std::string& f) {
+    ToolShape shape = ToolShape::Disk;
+    if (!parseToolShape(r.text(v, f), shape)) r.fail(v, f, "must be disk or line, not '" + v.scalar + "'");
+    return shape;
+  }, shapes);
+  const FluxProfile profile = t && t->find("profile") ? readProfile(r, *t->find("profile"), widths) : FluxProfile{};
   for (double w : widths)
     for (double cl : clearances)
       for (ToolShape shape : shapes) c.tools.push_back(ToolParams{w, cl, profile, shape});
@@ -796,11 +782,9 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   if (c.replanning.enabled() && c.vehicle.isCar())
     r.fail(*doc.find("replanning"), "replanning",
            "is not built for a car yet: its repairs are straight moves a car cannot drive (docs/replanning.md)");
-  if (std::any_of(c.tools.begin(), c.tools.end(), [](const ToolParams& t) { return t.isLine(); }) &&
-      (c.vehicle.isCar() || c.replanning.enabled()))
-    r.fail(*doc.find("tool")->find("shape"), "tool.shape",
-           std::string("a line tool is not built for ") + (c.vehicle.isCar() ? "a car yet: the arcs it drives" : "replanning yet: its repairs' paint") +
-               " (docs/metrics.md#tool-shapes); use a disk");
+  if (std::any_of(c.tools.begin(), c.tools.end(), [](const ToolParams& x) { return x.isLine(); }) && (c.vehicle.isCar() || c.replanning.enabled()))
+    r.fail(*doc.find("tool")->find("shape"), "tool.shape", std::string("a line tool is not built for ") +
+           (c.vehicle.isCar() ? "a car yet: the arcs it drives" : "replanning yet: its repairs' paint") + " (docs/metrics.md#tool-shapes); use a disk");
   readRunSettings(r, doc, c);
   readBaseline(r, doc, planners, c);
   if (const Yaml* p = doc.find("published")) c.published = readPublished(r, *p, file.base);

@@ -66,6 +66,24 @@ ToolShape storedShape(const Statement& s, int i) {
   return shape;
 }
 
+/// Each tool configuration is its own group: with several, every column is "label @ tool" (a
+/// line tool's label names its shape: never pooled with the disk of its width).
+void labelTools(ResultSet& rs) {
+  std::set<std::tuple<double, double, ToolShape>> tools;
+  for (const ResultRow& r : rs.runs) tools.insert({r.tool.tool_width, r.tool.clearance, r.tool.shape});
+  if (tools.size() <= 1) return;
+  auto suffix = [](double w, double c, ToolShape shape) {
+    ToolParams t{w, c};
+    t.shape = shape;
+    return " @ " + toolLabel(t);
+  };
+  std::vector<std::string> columns;
+  for (const std::string& label : rs.planners)
+    for (const auto& [w, c, shape] : tools) columns.push_back(label + suffix(w, c, shape));
+  rs.planners = columns;
+  for (ResultRow& r : rs.runs) r.planner = r.config + suffix(r.tool.tool_width, r.tool.clearance, r.tool.shape);
+}
+
 /// Whether the database has the table `name` (one opened read-only may predate it).
 bool hasTable(sqlite3* db, const std::string& file, const std::string& name) {
   Statement t(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?", file);
@@ -179,21 +197,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
       rs.runs.push_back(std::move(row));
     }
   }
-  // Each tool configuration is its own group: with several, every column is "label @ tool".
-  std::set<std::tuple<double, double, ToolShape>> tools;
-  for (const ResultRow& r : rs.runs) tools.insert({r.tool.tool_width, r.tool.clearance, r.tool.shape});
-  if (tools.size() > 1) {
-    auto suffix = [](double w, double c, ToolShape shape = ToolShape::Disk) {
-      ToolParams t{w, c};
-      t.shape = shape;
-      return " @ " + toolLabel(t);
-    };
-    std::vector<std::string> columns;
-    for (const std::string& label : rs.planners)
-      for (const auto& [w, c, shape] : tools) columns.push_back(label + suffix(w, c, shape));
-    rs.planners = columns;
-    for (ResultRow& r : rs.runs) r.planner = r.config + suffix(r.tool.tool_width, r.tool.clearance, r.tool.shape);
-  }
+  labelTools(rs);
   // So is each transit planner: with several, every column also gets "@ transit=NAME" (in the
   // registry's order), and runs differing only in it pair up on the same walls.
   std::set<std::string> used;
