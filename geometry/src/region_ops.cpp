@@ -266,23 +266,43 @@ Region regionFromRings(const std::vector<Ring>& rings) {
   return fromTree(tree);
 }
 
-Region coveredAtLeast(const std::vector<Ring>& rings, int k) {
-  if (rings.empty() || k < 1) return {};
+namespace {
+
+/// The rings counter-clockwise and k - 1 clockwise copies of a box around them all, in `clipper`.
+void addLevel(cl::Clipper& clipper, const std::vector<Ring>& rings, int k) {
   Box box = boundingBox(rings[0]);
   for (const Ring& ring : rings) {
     const Box b = boundingBox(ring);
     box = {std::min(box.min_x, b.min_x), std::min(box.min_y, b.min_y), std::max(box.max_x, b.max_x), std::max(box.max_y, b.max_y)};
   }
-  cl::Clipper clipper;
   addCounterClockwise(clipper, rings, cl::ptSubject);
   const double m = 1.0;  // the box is clear of every ring by a metre
   cl::Path frame = toPath({{box.min_x - m, box.min_y - m}, {box.min_x - m, box.max_y + m}, {box.max_x + m, box.max_y + m},
                            {box.max_x + m, box.min_y - m}});
   if (cl::Orientation(frame)) cl::ReversePath(frame);
   for (int i = 1; i < k; ++i) clipper.AddPath(frame, cl::ptSubject, true);
+}
+
+}  // namespace
+
+Region coveredAtLeast(const std::vector<Ring>& rings, int k) {
+  if (rings.empty() || k < 1) return {};
+  cl::Clipper clipper;
+  addLevel(clipper, rings, k);
   cl::PolyTree tree;
   clipper.Execute(cl::ctUnion, tree, cl::pftPositive, cl::pftPositive);
   return fromTree(tree);
+}
+
+double coveredAtLeastArea(const std::vector<Ring>& rings, int k) {
+  if (rings.empty() || k < 1) return 0.0;
+  cl::Clipper clipper;
+  addLevel(clipper, rings, k);
+  cl::Paths out;  // outer rings counter-clockwise, holes clockwise: their signed areas add up
+  clipper.Execute(cl::ctUnion, out, cl::pftPositive, cl::pftPositive);
+  double total = 0.0;
+  for (const cl::Path& path : out) total += cl::Area(path);
+  return total / (kScale * kScale);
 }
 
 Ring circumscribedCircle(Point center, double radius, double tolerance) {

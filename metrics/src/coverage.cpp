@@ -328,7 +328,16 @@ Coverage coverage(const CoverageRegions& g) {
 
 Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path, const Validity& validity,
                   double swept_area) {
-  if (!validity.valid || tool.isLine()) return coverage(coverageRegions(wall, tool, path));
+  if (!validity.valid) return coverage(coverageRegions(wall, tool, path));
+  if (tool.isLine()) {  // S lies in R and in P, as for a disk: their areas, and S's from the pass levels
+    Coverage c;
+    c.reachable_area = area(lineReachableRegion(wall, tool, kMetricArcTolerance));
+    c.paintable_area = recentRegionAreas(wall, tool).paintable;
+    c.swept_area = swept_area;
+    c.coverage_reachable = c.reachable_area > 0 ? std::fmin(1.0, swept_area / c.reachable_area) : 0.0;
+    c.coverage_wall = c.paintable_area > 0 ? std::fmin(1.0, swept_area / c.paintable_area) : 0.0;
+    return c;
+  }
   // Every segment keeps its tool disk inside the wall and c away from the obstacles (to 1e-9 m), so
   // S lies in R and in P: both intersections are S itself, whose area is exact.
   Coverage c;
@@ -451,7 +460,7 @@ Passes passes(const Path& path, const ToolParams& tool, std::size_t bins) {
   out.histogram.assign(bins, 0.0);
   std::vector<double> at_least(bins, 0.0);
   for (std::size_t k = 0; k < bins; ++k) {
-    at_least[k] = area(coveredAtLeast(rings, static_cast<int>(k + 1)));
+    at_least[k] = coveredAtLeastArea(rings, static_cast<int>(k + 1));
     if (at_least[k] == 0.0) break;
   }
   out.swept_area = bins > 0 ? at_least[0] : 0.0;

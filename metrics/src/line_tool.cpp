@@ -116,7 +116,8 @@ std::vector<Ring> sweptRings(const Path& path, double h) {
     if (have) {
       const Turn turn = turnBetween(last, d);
       if (turn.sweep != 0.0) {
-        const auto chords = static_cast<int>(std::ceil(std::fabs(turn.sweep) / (2.0 * std::acos(1.0 - kSectorSagitta / h))));
+        const double sagitta = std::fmin(kSectorSagitta * h, 5e-5);
+        const auto chords = static_cast<int>(std::ceil(std::fabs(turn.sweep) / (2.0 * std::acos(1.0 - sagitta / h))));
         const double start = std::atan2(turn.u1.y, turn.u1.x);
         for (double side : {1.0, -1.0}) {
           Ring sector{a};

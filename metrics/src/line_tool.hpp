@@ -36,8 +36,9 @@ Gaps segmentGaps(const ClearanceField& field, Point a, Point b, double h, double
 /// The two sectors of radius h the line sweeps turning about p (turn.sweep != 0).
 Gaps turnGaps(const ClearanceField& field, Point p, const Turn& turn, double h, double cutoff);
 
-/// Sectors' arcs are chords through points on the arc with this sagitta at most (m).
-inline constexpr double kSectorSagitta = 1e-6;
+/// Sectors' arcs are chords through points on the arc with a sagitta of at most this fraction of
+/// their radius h (and at most 50 um): each sector's area is short by under 1.4e-4 of it.
+inline constexpr double kSectorSagitta = 1e-4;
 /// What the line of half-width h sweeps with the tool on: a rectangle per tool-on move, and the
 /// two sectors of each turn between two tool-on moves (zero-length moves are skipped: the turn is
 /// between the moves around them). The path has no arcs.

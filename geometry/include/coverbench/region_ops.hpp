@@ -55,6 +55,9 @@ Region regionFromRings(const std::vector<Ring>& rings);
 /// point's winding number is how many contain it): one Clipper union with k - 1 clockwise copies
 /// of a box around them all, filled where the winding stays positive.
 Region coveredAtLeast(const std::vector<Ring>& rings, int k);
+/// The area of coveredAtLeast(rings, k) (m^2), without building the region (Clipper's paths, not
+/// its tree: no hole is matched to its outer ring, which for many small holes is most of the cost).
+double coveredAtLeastArea(const std::vector<Ring>& rings, int k);
 
 /// A polygon containing the circle, with every vertex within `tolerance` of the circle.
 Ring circumscribedCircle(Point center, double radius, double tolerance);
