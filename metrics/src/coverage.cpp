@@ -439,10 +439,13 @@ Passes passesOnScanlines(const Path& path, double radius, double resolution, std
   return out;
 }
 
-Passes passes(const Path& path, double radius, std::size_t bins) {
+namespace {
+
+/// The pass histogram and overlap from the areas |{passes >= k}|, k = 1 .. bins.
+Passes passesFromLevels(const std::vector<double>& at_least) {
+  const std::size_t bins = at_least.size();
   Passes out;
   out.histogram.assign(bins, 0.0);
-  const std::vector<double> at_least = passLevelAreas(path, radius, bins);
   out.swept_area = bins > 0 ? at_least[0] : 0.0;
   if (out.swept_area > 0.0) {
     for (std::size_t k = 0; k < bins; ++k)
@@ -452,24 +455,22 @@ Passes passes(const Path& path, double radius, std::size_t bins) {
   return out;
 }
 
+}  // namespace
+
+Passes passes(const Path& path, double radius, std::size_t bins) {
+  return passesFromLevels(passLevelAreas(path, radius, bins));
+}
+
 Passes passes(const Path& path, const ToolParams& tool, std::size_t bins) {
   if (!tool.isLine()) return passes(path, tool.radius(), bins);
   // The line's swept shapes as polygons: |{passes >= k}| from one union a level.
   const std::vector<Ring> rings = line_tool::sweptRings(path, tool.radius());
-  Passes out;
-  out.histogram.assign(bins, 0.0);
   std::vector<double> at_least(bins, 0.0);
   for (std::size_t k = 0; k < bins; ++k) {
     at_least[k] = coveredAtLeastArea(rings, static_cast<int>(k + 1));
     if (at_least[k] == 0.0) break;
   }
-  out.swept_area = bins > 0 ? at_least[0] : 0.0;
-  if (out.swept_area > 0.0) {
-    for (std::size_t k = 0; k < bins; ++k)
-      out.histogram[k] = (at_least[k] - (k + 1 < bins ? at_least[k + 1] : 0.0)) / out.swept_area;
-    out.overlap = bins > 1 ? at_least[1] / out.swept_area : 0.0;
-  }
-  return out;
+  return passesFromLevels(at_least);
 }
 
 Region passRegion(const Path& path, const ToolParams& tool, double resolution, int min_passes) {
