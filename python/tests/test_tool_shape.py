@@ -1,0 +1,48 @@
+"""A line tool from Python (docs/metrics.md#tool-shapes): scored by the same engines as the command
+line, with the hand values of tests/metrics/line_tool_test.cpp, and checked with the same message."""
+import math
+import os
+import sys
+import unittest
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+
+import coverbench  # noqa: E402
+
+# A 2 x 1 m wall without obstacles.
+WALL = {"name": "strip", "boundary": [[0, 0], [2, 0], [2, 1], [0, 1]]}
+
+
+class ToolShape(unittest.TestCase):
+    def test_a_right_angle_turn_of_a_line_sweeps_its_hand_area_in_both_engines(self):
+        # East 1 m, north 0.5 m, s = 0.2 m: 0.2 + 0.1 - 0.1^2 + pi 0.1^2 / 4.
+        hand = 0.29 + math.pi * 0.01 / 4
+        m = coverbench.score(WALL, [[0.5, 0.3], [1.5, 0.3], [1.5, 0.8]], [True, True], tool_width=0.2,
+                             tool_shape="line", judge="exact")
+        self.assertTrue(m["valid"])
+        self.assertTrue(m["exact"]["valid"])
+        self.assertAlmostEqual(m["swept_area"], hand, delta=5e-6)
+        self.assertAlmostEqual(m["reachable_area"], 2.0, delta=1e-9)  # a line's R: the whole wall
+        disk = coverbench.score(WALL, [[0.5, 0.3], [1.5, 0.3], [1.5, 0.8]], [True, True], tool_width=0.2)
+        self.assertLess(disk["reachable_area"], 2.0)
+
+    def test_a_pass_to_the_walls_edge_is_valid_for_a_line_only(self):
+        path = [[0.5, 0.5], [2.0, 0.5]]
+        self.assertTrue(coverbench.score(WALL, path, [True], tool_width=0.2, tool_shape="line")["valid"])
+        self.assertFalse(coverbench.score(WALL, path, [True], tool_width=0.2)["valid"])
+
+    def test_plan_says_it_planned_for_the_circumscribed_disk(self):
+        p = coverbench.plan(WALL, "zigzag", tool_width=0.2, tool_shape="line")
+        self.assertEqual(p["status"], "ok")
+        self.assertTrue(p["valid"])
+        self.assertIn("circumscribed disk", p["reason"])
+
+    def test_an_unknown_shape_is_one_line(self):
+        with self.assertRaises(ValueError) as e:
+            coverbench.score(WALL, [[0.5, 0.5], [1, 0.5]], [True], tool_shape="square")
+        self.assertEqual(str(e.exception), "tool_shape: tool.shape: must be disk or line, got 'square'")
+
+
+if __name__ == "__main__":
+    unittest.main()
