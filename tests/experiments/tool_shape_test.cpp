@@ -54,7 +54,7 @@ TEST_F(ToolShapeRuns, ALineToolsRunsAreKeyedStoredListedAndScoredAsALine) {
   for (std::size_t i = 0; i < 2; ++i) {
     const ResultRow& r = l.runs[i];
     EXPECT_TRUE(r.tool.isLine());
-    EXPECT_EQ(toString(r.status), "ok") << r.reason;
+    EXPECT_EQ(std::string(toString(r.status)), "ok") << r.reason;
     EXPECT_NE(r.reason.find("planned for the line tool's circumscribed disk"), std::string::npos) << r.reason;
     // Its R is the wall minus the window grown by c: larger than the disk's.
     EXPECT_NEAR(r.metrics.at("reachable_area"), 2.0 - (0.34 * 0.34 - (4 - M_PI) * 0.02 * 0.02), 2e-6);
