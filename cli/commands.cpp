@@ -52,7 +52,7 @@ namespace fs = std::filesystem;
 ToolShape toolShapeOption(const std::string& name) {
   ToolShape shape = ToolShape::Disk;
   if (!parseToolShape(name, shape))
-    throw InputError("--tool-shape", "tool.shape", "must be disk or line, got '" + name + "'");
+    throw InputError("--tool-shape", "tool.shape", toolShapeProblem(name));
   return shape;
 }
 

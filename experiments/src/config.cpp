@@ -541,7 +541,7 @@ void readTools(Reader& r, const Yaml* t, ExperimentConfig& c) {
   distinct("clearance", [&](const Yaml& v, const std::string& f) { return r.number(v, f, 0.0, kMaxClearance); }, clearances);
   distinct("shape", [&](const Yaml& v, const std::string& f) {
     ToolShape shape = ToolShape::Disk;
-    if (!parseToolShape(r.text(v, f), shape)) r.fail(v, f, "must be disk or line, not '" + v.scalar + "'");
+    if (!parseToolShape(r.text(v, f), shape)) r.fail(v, f, toolShapeProblem(v.scalar));
     return shape;
   }, shapes);
   const FluxProfile profile = t && t->find("profile") ? readProfile(r, *t->find("profile"), widths) : FluxProfile{};

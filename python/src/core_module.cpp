@@ -108,7 +108,7 @@ const ProfileSpelling kPythonProfile{"kind", "sigma", "beta", "rate", "depth", "
 ToolParams toolOf(double tool_width, double clearance, const std::string& shape, const ProfileOptions& profile) {
   ToolParams tool{tool_width, clearance};
   validateTool(tool, "tool");
-  if (!parseToolShape(shape, tool.shape)) throw InputError("tool_shape", "tool.shape", "must be disk or line, got '" + shape + "'");
+  if (!parseToolShape(shape, tool.shape)) throw InputError("tool_shape", "tool.shape", toolShapeProblem(shape));
   tool.profile = fluxProfileOf(profile, tool_width, kPythonProfile);
   return tool;
 }

@@ -113,7 +113,7 @@ TEST_F(ToolShapeRuns, AShapeThatIsNotBuiltIsOneLineNamingTheField) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(dir_ / name / "results.sqlite")) << name;
   };
-  refused("square", "tool:\n  shape: square\n", "square.yaml:7: tool.shape: must be disk or line, not 'square'");
+  refused("square", "tool:\n  shape: square\n", "square.yaml:7: tool.shape: must be disk or line, got 'square'");
   refused("twice", "tool:\n  shape: [line, line]\n", "twice.yaml:7: tool.shape: lists line twice");
   refused("car", "tool:\n  shape: line\nvehicle:\n  model: car\n", "tool.shape: a line tool is not built for a car yet");
 }
@@ -144,6 +144,10 @@ TEST_F(ToolShapeRuns, PlanAndMetricsTakeTheShapeAndPlanFilesCarryIt) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("--tool-shape: tool.shape: must be disk or line, got 'triangle'"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(dir_ / "bad.json"));
+  const test::CommandRun bytes = run("plan --wall " + wall + " --planner zigzag --tool-shape \"$(printf 'li\\377ne\\001')\" --out " + (dir_ / "bad.json").string());
+  EXPECT_EQ(bytes.exit_code, 2);
+  EXPECT_NE(bytes.err.find("got 'li\\xffne\\x01'"), std::string::npos) << bytes.err;
+  EXPECT_EQ(std::count(bytes.err.begin(), bytes.err.end(), '\n'), 1) << bytes.err;
   std::ofstream(dir_ / "odd.json") << R"({"waypoints": [[0.5, 0.5], [1, 0.5]], "tool_on": [true], "tool_shape": "blob"})";
   const test::CommandRun odd = run("metrics --wall " + wall + " --plan " + (dir_ / "odd.json").string());
   EXPECT_EQ(odd.exit_code, 2);

@@ -73,6 +73,9 @@ enum class ToolShape {
 std::string toString(ToolShape shape);
 /// The shape named `name`; false when there is none.
 bool parseToolShape(const std::string& name, ToolShape& shape);
+/// What every reader says of a shape that is none: "must be disk or line, got 'NAME'", with bytes
+/// outside printable ASCII as \xHH (one line of valid text whatever was given).
+std::string toolShapeProblem(const std::string& name);
 
 /// The tool and clearance of a problem (metres).
 struct ToolParams {
