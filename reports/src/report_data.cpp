@@ -187,6 +187,11 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
     run["metrics"] = std::move(m);
     // Only a tool other than a disk names its shape, so disk reports stay as they were.
     if (r->tool.isLine()) run["tool_shape"] = toString(r->tool.shape);
+    // Only a tool with a flux profile names it (FluxProfile::label; the target in um, or null), so
+    // other reports stay as they were.
+    if (r->tool.profile.set())
+      run["profile"] = {{"label", r->tool.profile.label()},
+                        {"target_um", r->tool.profile.target > 0.0 ? Json(r->tool.profile.target) : Json(nullptr)}};
     // Only a vehicle other than holonomic is named, so holonomic reports stay as they were.
     if (r->vehicle.isCar())
       run["vehicle"] = {{"model", "car"}, {"turn_radius", r->vehicle.turn_radius}, {"reverse", r->vehicle.reverse}};

@@ -9,6 +9,11 @@ import numpy as np
 from . import stats
 
 COMPARED_KINDS = ("quality",)  # measured figures (one noisy sample per run) are never tested
+# The coat's metrics (docs/deposition.md) head the report of an experiment whose runs carry them:
+# how even the coat is, is what a tool with a flux profile is measured for. EVEN_COAT ranks "the
+# most even coat".
+COAT_HEADLINE = ("even_share", "thickness_cv")
+EVEN_COAT = "even_share"
 
 
 def load(path):
@@ -99,7 +104,12 @@ class Analysis:
             if t not in self.tools:
                 self.tools.append(t)
         self.config_of = {c: (self.by_column[c][0]["config"] if self.by_column[c] else c) for c in self.columns}
-        self.headline = [m for m, s in self.specs.items() if s["headline"]]
+        self.has_coat = any(math.isfinite(value(r, EVEN_COAT)) for r in self.runs)
+        # The tools' flux profiles (docs/deposition.md; one per experiment config): their labels,
+        # and whether the coat's shares are of a target rather than of the mean.
+        self.profiles = sorted({r["profile"]["label"] for r in self.runs if r.get("profile")})
+        self.coat_target = any(r.get("profile") and r["profile"].get("target_um") for r in self.runs)
+        self.headline = [m for m, s in self.specs.items() if s["headline"] or (self.has_coat and m in COAT_HEADLINE)]
         self.headline_quality = [m for m in self.headline if self.specs[m]["kind"] != "measured"]
         self.headline_measured = [m for m in self.headline if self.specs[m]["kind"] == "measured"]
         self.compared = [m for m, s in self.specs.items() if s["better"] != 0 and s["kind"] in COMPARED_KINDS]
@@ -279,13 +289,33 @@ class Analysis:
                 continue
             e["rank"] = 1 + sum(1 for o in ranked if (o["median"] - e["median"]) * spec["better"] > 0
                                 and not stats.tied(spec, o["median"], e["median"]))
-        if len(ordered) >= 2 and not math.isnan(ordered[0]["median"]) and metric in self.compared:
-            leader = ordered[0]["column"]
-            tests = [self.compare(leader, e["column"], dataset, metric) for e in ordered[1:]]
-            adj = stats.holm([t["p"] if t["pairs"] else math.nan for t in tests])
-            ordered[0]["best"] = all(t["pairs"] > 0 and p < stats.ALPHA and t["wins"] > t["losses"]
-                                     for t, p in zip(tests, adj))
+        tests = self._leader_tests(ordered, dataset, metric)
+        if tests:
+            ordered[0]["best"] = all(t["pairs"] > 0 and t["p_holm"] < stats.ALPHA and t["wins"] > t["losses"]
+                                     for t in tests)
         return ordered
+
+    def _leader_tests(self, ordered, dataset, metric):
+        """The ranking's leader against every other column (stats.paired, with `column`, `other`
+        and `p_holm`: Holm-adjusted over these tests); none without a leader with a median."""
+        if len(ordered) < 2 or math.isnan(ordered[0]["median"]) or metric not in self.compared:
+            return []
+        leader = ordered[0]["column"]
+        tests = [dict(self.compare(leader, e["column"], dataset, metric), column=leader, other=e["column"])
+                 for e in ordered[1:]]
+        for t, p in zip(tests, stats.holm([t["p"] if t["pairs"] else math.nan for t in tests])):
+            t["p_holm"] = p
+        return tests
+
+    def most_even(self, dataset, tool):
+        """Which configuration of `tool` leaves the most even coat on `dataset`: the ranking of
+        EVEN_COAT (the share of R within 10 % of the target or the mean), its leader (`best` when
+        the paired tests say it is better than every other) and those tests; None when no run
+        there has a coat."""
+        ranking = self.ranking(dataset, tool, EVEN_COAT)
+        if not any(not math.isnan(e["median"]) for e in ranking):
+            return None
+        return {"ranking": ranking, "tests": self._leader_tests(ranking, dataset, EVEN_COAT)}
 
     # --- Friedman -----------------------------------------------------------------------------
     def _value_table(self, dataset, tool, metric):

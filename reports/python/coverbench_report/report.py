@@ -80,11 +80,20 @@ def motion_text(a):
     return f" Time model of duration_s: {m}." if m else ""
 
 
+def profile_text(a):
+    """' Flux profile of the tool (the coat): beta 2.5.' when the runs' tool has one."""
+    return f" Flux profile of the tool (the coat): {'; '.join(a.profiles)}." if a.profiles else ""
+
+
+def coat_html(table):
+    return T.to_html(table) if table is not None else ""
+
+
 def preamble(a, fmt):
     e = a.experiment
     runs = len(a.runs)
     line = (f"Experiment {e['name']}: {runs} runs, {len(a.datasets)} datasets, {len(a.columns)} planner "
-            f"configurations, baseline {e['baseline']}, config sha256 {e['config_hash'][:12]}.{motion_text(a)}{vehicle_text(a)}"
+            f"configurations, baseline {e['baseline']}, config sha256 {e['config_hash'][:12]}.{motion_text(a)}{profile_text(a)}{vehicle_text(a)}"
             f"{transit_text(a)}{replanning_text(a)}")
     if fmt == "md":
         return f"# {T._md('Experiment ' + e['name'])}\n\n{T._md(line)}\n\n"
@@ -192,6 +201,8 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
             label = d + T.tool_label(a, tool)
             headline.append(f"<h3>{esc(label)}</h3>")
             headline.append(Later(lambda d=d, tool=tool: T.to_html(T.headline_table(a, d, tool))))
+            if a.has_coat:  # which planner leaves the most even coat, by paired tests
+                headline.append(Later(lambda d=d, tool=tool: coat_html(T.even_coat_table(a, d, tool))))
             if a.headline_measured:
                 headline.append(Later(lambda d=d, tool=tool: T.to_html(T.headline_table(a, d, tool, measured=True))))
             path, src = fig(stem + "-boxes.svg")
@@ -284,7 +295,7 @@ def build(data, folder, formats=("html", "md", "csv", "latex")):
     if transit:
         outcomes.append(T.to_html(transit))
     subtitle = (f"<p>{len(a.runs)} runs: {len(a.datasets)} datasets, {len(a.columns)} planner configurations, "
-                f"baseline <b>{esc(e['baseline'])}</b>.{esc(motion_text(a) + vehicle_text(a) + transit_text(a) + replanning_text(a))} Definitions of every metric: docs/metrics.md "
+                f"baseline <b>{esc(e['baseline'])}</b>.{esc(motion_text(a) + profile_text(a) + vehicle_text(a) + transit_text(a) + replanning_text(a))} Definitions of every metric: docs/metrics.md "
                 f"(vehicle models: docs/vehicles.md). Tables for "
                 f'papers: <a href="report.md">Markdown</a>, <a href="report.csv">CSV</a>, '
                 f'<a href="report.tex">LaTeX</a>; every run: <a href="report_data.json">report_data.json</a>.</p>')

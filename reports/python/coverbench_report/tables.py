@@ -226,6 +226,41 @@ def headline_table(a, dataset, tool, measured=False):
     return t
 
 
+def even_coat_table(a, dataset, tool):
+    """Which configuration leaves the most even coat (analysis.most_even): the verdict in the
+    title, the leader against every other configuration below it. None without a coat."""
+    found = a.most_even(dataset, tool) if a.has_coat else None
+    if found is None:
+        return None
+    ranking, tests = found["ranking"], found["tests"]
+    spec, leader = a.specs[A.EVEN_COAT], ranking[0]
+    reference = "the target" if a.coat_target else "the mean"
+    profile = f" The tool's flux profile: {'; '.join(a.profiles)}." if a.profiles else ""
+    if leader["best"]:
+        verdict = f"the most even coat: {leader['column']}"
+    elif tests:
+        verdict = f"no configuration leaves a more even coat than every other ({leader['column']} leads, not separably)"
+    else:
+        verdict = f"one configuration, {leader['column']}: nothing to compare"
+    t = Table(f"{dataset}{tool_label(a, tool)}: {verdict}",
+              ["planner", "vs", "pairs", "failed", f"{A.EVEN_COAT}, median", "vs, median", "median difference",
+               "win/tie/loss", "p (Holm)"],
+              note=f"{A.EVEN_COAT}: the share of the reachable area R whose coat is within 10 % of {reference} "
+                   "(docs/deposition.md). The configuration with the highest median leads; it leaves the most even "
+                   "coat (bold) only when it is better than every other configuration of this tool on the same walls "
+                   "by a two-sided Wilcoxon signed-rank test, Holm-adjusted over these rows, p < 0.05, with more wins "
+                   "than losses. A run without a valid path loses to every value on its wall; a win is better beyond "
+                   "the metric's tie band." + profile)
+    medians = {e["column"]: e for e in ranking}
+    for r in tests:
+        other = medians[r["other"]]
+        t.add([(r["column"], "best") if leader["best"] else r["column"], r["other"], str(r["pairs"]),
+               f"{r['failed']}/{r['baseline_failed']}", value(spec, leader["median"], False),
+               "failed" if other["failed"] else value(spec, other["median"], False), difference(spec, r["median"]),
+               f"{r['wins']}/{r['ties']}/{r['losses']}", (pvalue(r["p_holm"]) + " " + stars(r["p_holm"])).strip()])
+    return t
+
+
 def summary_table(a, dataset, tool, metrics, title):
     cols = a.tool_columns(tool)
     t = Table(f"{dataset}{tool_label(a, tool)}: {title}", ["metric"] + cols,
@@ -413,6 +448,9 @@ def paper_tables(a):
     for d in a.datasets:
         for tool in a.tools:
             tables.append(headline_table(a, d, tool))
+            coat = even_coat_table(a, d, tool)
+            if coat is not None:
+                tables.append(coat)
     headline_compared = [m for m in a.headline if m in a.compared]
     if len(a.columns) > 1:
         for d in a.datasets:

@@ -221,6 +221,71 @@ class ToolsNeverPooled(unittest.TestCase):
         self.assertEqual(T.tool_label(a, (0.1, 0.02, "disk")), " at s=0.100 m, c=0.0200 m")
 
 
+COAT_SPECS = SPECS + [
+    {"name": "thickness_cv", "unit": "1", "better": -1, "kind": "quality", "headline": False,
+     "tie_absolute": 0.001, "tie_relative": 0, "description": "cv"},
+    {"name": "even_share", "unit": "1", "better": 1, "kind": "quality", "headline": False,
+     "tie_absolute": 0.005, "tie_relative": 0, "description": "e"}]
+
+
+def coated(r, even, cv, target=None):
+    """A run of a tool with a flux profile (as report data carries it) and its coat's metrics."""
+    out = json.loads(json.dumps(r))
+    out["metrics"].update(even_share=even, thickness_cv=cv)
+    out["profile"] = {"label": "beta 2.5" + (f", target {target} um" if target else ""), "target_um": target}
+    return out
+
+
+class EvenCoat(unittest.TestCase):
+    """docs/deposition.md, the report: which planner leaves the most even coat, by paired tests."""
+
+    def coat_data(self, walls, target=None):
+        # b's coat is more even than a's on every wall (0.05 more of R within 10 %), c's less.
+        runs = []
+        for i in range(walls):
+            runs += [coated(run("a", f"w{i}", 1.0, 10), 0.70 + 0.001 * i, 0.3, target),
+                     coated(run("b", f"w{i}", 1.0, 11), 0.75 + 0.002 * i, 0.2, target),
+                     coated(run("c", f"w{i}", 1.0, 12), 0.60 + 0.001 * i, 0.4, target)]
+        d = data(runs, ["a", "b", "c"])
+        d["metrics"] = COAT_SPECS
+        return d
+
+    def test_the_coat_heads_the_report_only_when_runs_have_one(self):
+        a = Analysis(self.coat_data(6))
+        self.assertIn("even_share", a.headline)
+        self.assertIn("thickness_cv", a.headline)
+        plain = data(HAND, ["a", "b"])
+        plain["metrics"] = COAT_SPECS
+        b = Analysis(plain)
+        self.assertNotIn("even_share", b.headline)
+        self.assertIsNone(T.even_coat_table(b, "d", b.tools[0]))
+
+    def test_the_most_even_coat_is_named_only_when_the_paired_tests_say_so(self):
+        # 12 walls, b ahead of both on all: exact Wilcoxon p = 2/4096 each, Holm-adjusted 2 x that.
+        a = Analysis(self.coat_data(12, target=87.9))
+        t = T.even_coat_table(a, "d", a.tools[0])
+        self.assertEqual(t.title, "d: the most even coat: b")
+        self.assertEqual([(r[0], r[1], r[7]) for r in t.rows], [(("b", "best"), "a", "12/0/0"), (("b", "best"), "c", "12/0/0")])
+        self.assertEqual([t["p_holm"] for t in a.most_even("d", a.tools[0])["tests"]], [4 / 4096, 4 / 4096])
+        self.assertEqual(t.rows[0][8], "0.00098 ***")
+        self.assertIn("within 10 % of the target", t.note)
+        self.assertIn("beta 2.5, target 87.9 um", t.note)
+        # On 3 walls the same lead is not significant (exact p = 0.25): the leader is not named best.
+        a3 = Analysis(self.coat_data(3))
+        t3 = T.even_coat_table(a3, "d", a3.tools[0])
+        self.assertEqual(t3.title, "d: no configuration leaves a more even coat than every other (b leads, not separably)")
+        self.assertFalse(any(isinstance(c, tuple) for row in t3.rows for c in row))
+        self.assertIn("within 10 % of the mean", t3.note)
+
+    def test_the_report_says_it(self):
+        with tempfile.TemporaryDirectory() as out:
+            report.build(self.coat_data(12, target=87.9), out)
+            page = read(os.path.join(out, "index.html"))
+            self.assertIn("d: the most even coat: b", page)
+            self.assertIn("Flux profile of the tool (the coat): beta 2.5, target 87.9 um.", page)
+            self.assertIn("d: the most even coat: b", read(os.path.join(out, "report.md")))
+
+
 class Rendering(unittest.TestCase):
     def test_hostile_labels_are_text_in_every_format(self):
         hostile = '<script>alert("x")</script> | 50% & _x_'
