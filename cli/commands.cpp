@@ -382,8 +382,10 @@ int metricsCommand(const MetricsOptions& options) {
     throw InputError("--coat-svg", "profile", "the coat's picture needs the tool's flux profile (--profile)");
   limitScoringTime(options.plan, options.time_limit_s);
   const VehicleModel vehicle = resolveVehicle(options.vehicle, plan.vehicle.value_or(VehicleModel{}));
-  CoatRaster raster;  // the raster the coat's metrics were computed on, drawn by --coat-svg
-  const PathMetrics m = computeMetrics(wall, tool, plan.path, vehicle, limits, options.coat_svg.empty() ? nullptr : &raster);
+  Coat scored_coat;  // the coat the metrics were computed in, drawn by --coat-svg
+  const bool draw_coat = !options.coat_svg.empty();
+  const PathMetrics m =
+      computeMetrics(wall, tool, plan.path, vehicle, limits, draw_coat ? &scored_coat : nullptr, draw_coat ? coatBlockCells(wall, tool) : 0);
   // Asked to score the coat, the command fails when it cannot (a raster past the cap): deposition()
   // throws its one-line error before any raster work.
   if (!m.coat_not_scored.empty()) deposition(wall, tool, plan.path, tool.profile, limits, vehicle);
@@ -396,7 +398,7 @@ int metricsCommand(const MetricsOptions& options) {
   OutputFiles files;  // the picture is written before anything is printed, so a failure prints nothing
   if (!options.svg.empty()) files.add(options.svg, pathPicture(wall, tool, vehicle, plan.path, wall.name + " / " + options.plan));
   if (!options.coat_svg.empty())
-    files.add(options.coat_svg, coatPicture(wall, tool, raster, wall.name + " / " + options.plan + ": the coat"));
+    files.add(options.coat_svg, coatPicture(wall, tool, scored_coat, wall.name + " / " + options.plan + ": the coat"));
   ::alarm(0);
   files.commit();
   // Where an invalid path goes wrong, on stderr (the JSON on stdout keeps its keys).

@@ -7,22 +7,40 @@
 
 namespace coverbench {
 
-double FluxProfile::density(double x, double r) const {
-  if (!(std::fabs(x) <= r) || !(r > 0.0)) return 0.0;
-  switch (kind) {
-    case Kind::None: return 0.0;
-    case Kind::Uniform: return 1.0 / (2.0 * r);
-    case Kind::Gaussian:
-      return std::exp(-x * x / (2.0 * sigma * sigma)) / (sigma * std::sqrt(2.0 * M_PI) * std::erf(r / (sigma * std::sqrt(2.0))));
-    case Kind::Beta: {
-      const double u = x / r;
+FluxDensity::FluxDensity(const FluxProfile& profile, double r)
+    : kind_(profile.kind), r_(r), sigma_(profile.sigma), exponent_(profile.beta - 1.0) {
+  if (!(r > 0.0)) kind_ = FluxProfile::Kind::None;
+  switch (kind_) {
+    case FluxProfile::Kind::Uniform: denominator_ = 2.0 * r; break;
+    case FluxProfile::Kind::Gaussian:
+      two_sigma_squared_ = 2.0 * sigma_ * sigma_;
+      denominator_ = sigma_ * std::sqrt(2.0 * M_PI) * std::erf(r / (sigma_ * std::sqrt(2.0)));
+      break;
+    case FluxProfile::Kind::Beta: {
       // B(1/2, beta) = Gamma(1/2) Gamma(beta) / Gamma(beta + 1/2)
-      const double b = std::exp(std::lgamma(0.5) + std::lgamma(beta) - std::lgamma(beta + 0.5));
-      return std::pow(std::fmax(0.0, 1.0 - u * u), beta - 1.0) / (r * b);
+      const double b = std::exp(std::lgamma(0.5) + std::lgamma(profile.beta) - std::lgamma(profile.beta + 0.5));
+      denominator_ = r * b;
+      break;
+    }
+    case FluxProfile::Kind::None: break;
+  }
+}
+
+double FluxDensity::operator()(double x) const {
+  if (!(std::fabs(x) <= r_)) return 0.0;
+  switch (kind_) {
+    case FluxProfile::Kind::None: return 0.0;
+    case FluxProfile::Kind::Uniform: return 1.0 / denominator_;
+    case FluxProfile::Kind::Gaussian: return std::exp(-x * x / two_sigma_squared_) / denominator_;
+    case FluxProfile::Kind::Beta: {
+      const double u = x / r_;
+      return std::pow(std::fmax(0.0, 1.0 - u * u), exponent_) / denominator_;
     }
   }
   return 0.0;
 }
+
+double FluxProfile::density(double x, double r) const { return FluxDensity(*this, r)(x); }
 
 double FluxProfile::spread(double r) const {
   switch (kind) {

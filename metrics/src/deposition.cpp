@@ -62,6 +62,7 @@ void depositionField(const Path& path, const ToolParams& tool, const FluxProfile
   grid.thickness.assign(grid.nx * grid.ny, 0.0);
   const double r = tool.radius(), depth = profile.depthFor(tool.tool_width), h = grid.cell;
   const double scale = profile.rate / depth;  // Q / l
+  const FluxDensity density(profile, r);
   for (const Piece& p : pieces(path, speeds, h)) {
     const Point d = p.b - p.a;
     const double len = norm(d);
@@ -70,19 +71,35 @@ void depositionField(const Path& path, const ToolParams& tool, const FluxProfile
     const double reach = r + depth / 2.0;  // no cell farther from the chord is touched
     std::size_t i0, i1, j0, j1;
     grid.range(std::fmin(p.a.x, p.b.x) - reach, std::fmax(p.a.x, p.b.x) + reach, grid.x0, grid.nx, i0, i1);
-    grid.range(std::fmin(p.a.y, p.b.y) - reach, std::fmax(p.a.y, p.b.y) + reach, grid.y0, grid.ny, j0, j1);
+    grid.range(std::fmin(p.a.y, p.b.y) - reach, std::fmax(p.a.y, p.b.y) + reach, grid.y0, grid.row0 + grid.ny, j0, j1);
+    j0 = std::max(j0, grid.row0) - grid.row0;  // the band's rows
+    j1 = std::max(j1, grid.row0) - grid.row0;
     const double ratio = (p.s1 - p.s0) / len;  // segment distance per chord distance
-    for (std::size_t j = j0; j < j1; ++j)
-      for (std::size_t i = i0; i < i1; ++i) {
-        const Point q = grid.centre(i, j) - p.a;
-        const double x = q.x * n.x + q.y * n.y;
-        if (!(std::fabs(x) <= r)) continue;
-        const double t = q.x * u.x + q.y * u.y;
-        const double lo = std::fmax(0.0, t - depth / 2.0), hi = std::fmin(len, t + depth / 2.0);
-        if (!(hi > lo)) continue;
-        const double tau = p.speed->timeAt(p.s0 + hi * ratio) - p.speed->timeAt(p.s0 + lo * ratio);
-        grid.thickness[j * grid.nx + i] += scale * profile.density(x, r) * tau;
+    // f at the last lateral offset: along a raster row of a piece along x (n.x = 0) the offset is
+    // the same at every sample, so is f; a piece along y is walked column by column for the same.
+    double last_x = NAN, last_f = 0.0;
+    const auto add = [&](std::size_t i, std::size_t j) {
+      const Point q = grid.centre(i, j) - p.a;
+      const double x = q.x * n.x + q.y * n.y;
+      if (!(std::fabs(x) <= r)) return;
+      const double t = q.x * u.x + q.y * u.y;
+      const double lo = std::fmax(0.0, t - depth / 2.0), hi = std::fmin(len, t + depth / 2.0);
+      if (!(hi > lo)) return;
+      if (x != last_x) {
+        last_x = x;
+        last_f = density(x);
       }
+      const double tau = p.speed->timeAt(p.s0 + hi * ratio) - p.speed->timeAt(p.s0 + lo * ratio);
+      grid.thickness[j * grid.nx + i] += scale * last_f * tau;
+    };
+    // (Each sample gains at most once from a piece, so the walk's order leaves every sum as it is.)
+    if (n.y == 0.0) {
+      for (std::size_t i = i0; i < i1; ++i)
+        for (std::size_t j = j0; j < j1; ++j) add(i, j);
+    } else {
+      for (std::size_t j = j0; j < j1; ++j)
+        for (std::size_t i = i0; i < i1; ++i) add(i, j);
+    }
   }
 }
 
@@ -115,65 +132,126 @@ std::vector<char> rasterMask(const Region& region, const DepositionGrid& grid) {
   return mask;
 }
 
+namespace {
+
+/// The sums behind Deposition, over one raster or its bands in row order: first() over every
+/// sample (the mean), then second() over the same samples in the same order (the spread and the
+/// shares of c).
+struct CoatTally {
+  double sum = 0.0, squares = 0.0;  // squares of (h - mean) / mean: squares of tiny coats (a rate of 1e-170) would underflow
+  std::size_t cells = 0, even = 0, thin = 0, thick = 0;
+  void first(const DepositionGrid& grid, const std::vector<char>& mask) {
+    for (std::size_t k = 0; k < grid.thickness.size(); ++k)
+      if (mask[k]) {
+        sum += grid.thickness[k];
+        ++cells;
+      }
+  }
+  double mean() const { return sum / static_cast<double>(cells); }
+  void second(const DepositionGrid& grid, const std::vector<char>& mask, double c) {
+    const double m = mean();
+    for (std::size_t k = 0; k < grid.thickness.size(); ++k)
+      if (mask[k]) {
+        const double h = grid.thickness[k];
+        if (m > 0.0) squares += (h / m - 1.0) * (h / m - 1.0);
+        if (h < 0.9 * c || c == 0.0) ++thin;
+        else if (h > 1.1 * c) ++thick;
+        else ++even;
+      }
+  }
+  /// The shares' reference, m: the target (um) when there is one, else the mean.
+  double reference(double target_um) const { return target_um > 0.0 ? target_um * 1e-6 : mean(); }
+  Deposition result(double cell) const {
+    Deposition out;
+    out.cell = cell;
+    out.cells = cells;
+    if (cells == 0) return out;
+    const double count = static_cast<double>(cells), m = mean();
+    out.mean_um = m * 1e6;
+    out.cv = m > 0.0 ? std::sqrt(squares / count) : 0.0;
+    out.even_share = static_cast<double>(even) / count;
+    out.thin_share = static_cast<double>(thin) / count;
+    out.thick_share = static_cast<double>(thick) / count;
+    return out;
+  }
+};
+
+}  // namespace
+
 Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& mask, double target_um) {
-  Deposition out;
-  out.cell = grid.cell;
-  double sum = 0.0;
-  for (std::size_t k = 0; k < grid.thickness.size(); ++k)
-    if (mask[k]) {
-      sum += grid.thickness[k];
-      ++out.cells;
-    }
-  if (out.cells == 0) return out;
-  const double count = static_cast<double>(out.cells), mean = sum / count;
-  double squares = 0.0;  // of (h - mean) / mean: squares of tiny coats (a rate of 1e-170) would underflow
-  std::size_t even = 0, thin = 0, thick = 0;
-  const double c = target_um > 0.0 ? target_um * 1e-6 : mean;  // the shares' reference, m
-  for (std::size_t k = 0; k < grid.thickness.size(); ++k)
-    if (mask[k]) {
-      const double h = grid.thickness[k];
-      if (mean > 0.0) squares += (h / mean - 1.0) * (h / mean - 1.0);
-      if (h < 0.9 * c || c == 0.0) ++thin;
-      else if (h > 1.1 * c) ++thick;
-      else ++even;
-    }
-  out.mean_um = mean * 1e6;
-  out.cv = mean > 0.0 ? std::sqrt(squares / count) : 0.0;
-  out.even_share = static_cast<double>(even) / count;
-  out.thin_share = static_cast<double>(thin) / count;
-  out.thick_share = static_cast<double>(thick) / count;
-  return out;
+  CoatTally tally;
+  tally.first(grid, mask);
+  if (tally.cells > 0) tally.second(grid, mask, tally.reference(target_um));
+  return tally.result(grid.cell);
 }
 
-CoatRaster coatRaster(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
-                      const MotionLimits& limits, const VehicleModel& vehicle, double cell) {
+Coat coat(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile, const MotionLimits& limits,
+          const VehicleModel& vehicle, std::size_t block_cells, double cell, std::size_t band_samples) {
   const double h = cell > 0.0 ? cell : depositionCell(tool, profile);
   const Region reachable = reachableRegion(wall, tool);
   const Box box = boundingBox(reachable);
-  CoatRaster out;
+  Coat out;
   if (box.empty()) return out;
   const double nx = 2.0 * std::ceil(box.width() / h), ny = 2.0 * std::ceil(box.height() / h);  // samples
-  if (!(nx * ny <= static_cast<double>(kMaxDepositionCells)))
+  if (!(nx * ny <= kMaxCoatSamples))
     throw InputError("deposition", "tool.profile",
                      "needs a coat raster of " + shortNumber(nx * ny) + " samples over the reachable region (4 per cell of " + shortNumber(h) +
-                         " m, the smaller of s/40 and the profile's spread/5), at most " + std::to_string(kMaxDepositionCells) +
+                         " m, the smaller of s/40 and the profile's spread/5), at most " + shortNumber(kMaxCoatSamples) +
                          ": a wider tool or a smaller wall");
-  DepositionGrid& grid = out.grid;
+  DepositionGrid grid;
   grid.x0 = box.min_x;
   grid.y0 = box.min_y;
   grid.cell = h;
   grid.gauss = true;
   grid.nx = static_cast<std::size_t>(std::max(2.0, nx));
-  grid.ny = static_cast<std::size_t>(std::max(2.0, ny));
-  depositionField(path, tool, profile, segmentSpeeds(path, limits, vehicle), grid);
-  out.mask = rasterMask(reachable, grid);
+  const std::size_t rows = static_cast<std::size_t>(std::max(2.0, ny));
+  const std::size_t band = std::max<std::size_t>(2, band_samples / grid.nx);
+  const std::vector<SegmentSpeed> speeds = segmentSpeeds(path, limits, vehicle);
+  std::vector<char> mask;
+  const auto fill = [&](std::size_t row0) {
+    grid.row0 = row0;
+    grid.ny = std::min(band, rows - row0);
+    depositionField(path, tool, profile, speeds, grid);
+    mask = rasterMask(reachable, grid);
+  };
+  CoatBlocks& b = out.blocks;
+  std::vector<std::size_t> counts;
+  if (block_cells > 0) {
+    const std::size_t span = 2 * block_cells;  // samples a block is wide
+    b.cells = block_cells;
+    b.bx = (grid.nx + span - 1) / span;
+    b.by = (rows + span - 1) / span;
+    b.x0 = grid.x0;
+    b.y0 = grid.y0;
+    b.side = static_cast<double>(block_cells) * h;
+    b.mean.assign(b.bx * b.by, 0.0);
+    counts.assign(b.bx * b.by, 0);
+  }
+  CoatTally tally;
+  for (std::size_t row0 = 0; row0 < rows; row0 += band) {
+    fill(row0);
+    tally.first(grid, mask);
+    for (std::size_t j = 0; block_cells > 0 && j < grid.ny; ++j)
+      for (std::size_t i = 0; i < grid.nx; ++i)
+        if (mask[j * grid.nx + i]) {
+          const std::size_t k = (row0 + j) / (2 * block_cells) * b.bx + i / (2 * block_cells);
+          b.mean[k] += grid.thickness[j * grid.nx + i];
+          ++counts[k];
+        }
+  }
+  for (std::size_t k = 0; k < b.mean.size(); ++k) b.mean[k] = counts[k] ? b.mean[k] / static_cast<double>(counts[k]) : NAN;
+  if (tally.cells > 0)
+    for (std::size_t row0 = 0; row0 < rows; row0 += band) {
+      if (band < rows) fill(row0);  // one band is still there
+      tally.second(grid, mask, tally.reference(profile.target));
+    }
+  out.stats = tally.result(h);
   return out;
 }
 
 Deposition deposition(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
                       const MotionLimits& limits, const VehicleModel& vehicle, double cell) {
-  const CoatRaster raster = coatRaster(wall, tool, path, profile, limits, vehicle, cell);
-  return depositionStats(raster.grid, raster.mask, profile.target);
+  return coat(wall, tool, path, profile, limits, vehicle, 0, cell).stats;
 }
 
 }  // namespace coverbench

@@ -46,7 +46,7 @@ void checkLineScorable(const Path& path, const VehicleModel& vehicle, const std:
 }
 
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle,
-                           const MotionLimits& limits, CoatRaster* coat) {
+                           const MotionLimits& limits, Coat* coat, std::size_t block_cells) {
   checkScorable(path, "path");
   if (tool.isLine()) checkLineScorable(path, vehicle, "path");
   PathMetrics m;
@@ -61,9 +61,9 @@ PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path&
   m.length_ratio = ideal > 0.0 ? m.lengths.total / ideal : 0.0;
   if (tool.profile.set()) {
     try {
-      CoatRaster raster = coatRaster(wall, tool, path, tool.profile, limits, vehicle);
-      m.deposition = depositionStats(raster.grid, raster.mask, tool.profile.target);
-      if (coat) *coat = std::move(raster);
+      Coat scored = coverbench::coat(wall, tool, path, tool.profile, limits, vehicle, coat ? block_cells : 0);
+      m.deposition = scored.stats;
+      if (coat) *coat = std::move(scored);
     } catch (const InputError& e) {  // the raster cap: the coat alone is not scored
       if (e.source() != "deposition") throw;
       m.coat_not_scored = e.what();

@@ -89,7 +89,8 @@ class Profile(unittest.TestCase):
     def test_runs_carry_the_tools_profile(self):
         with tempfile.TemporaryDirectory() as d:
             with open(os.path.join(d, "c.yaml"), "w", encoding="utf-8") as f:
-                f.write("name: py\noutput: out\ndatasets:\n  - suite: seed-cases\nplanners: [zigzag]\n"
+                f.write("name: py\noutput: out\ndatasets:\n  - suite: seed-cases\n  - family: field\n    count: 1\n"
+                        "    seed: 3\nplanners: [zigzag]\n"
                         "tool:\n  width: 0.3\n  profile: {kind: gaussian, sigma: 0.02}\n")
             subprocess.run([BINARY, "run", os.path.join(d, "c.yaml"), "--no-report"], capture_output=True, check=True)
             rows = coverbench.runs(os.path.join(d, "out", "results.sqlite"))
@@ -103,7 +104,8 @@ class Profile(unittest.TestCase):
                 self.assertIsNone(r["thickness_mean"])
             else:
                 self.assertGreater(r["thickness_mean"], 0.0)
-        # Both kinds occur in the seed cases at sigma 2 cm: the small walls are scored, the large not.
+        # Both kinds occur at sigma 2 cm: the seed cases are scored, the field of 2.8 ha is not (cells
+        # of 4 mm: 9.9e9 samples, past kMaxCoatSamples).
         self.assertTrue(any(r["thickness_mean"] is not None for r in rows))
         self.assertTrue(any(r["thickness_mean"] is None for r in rows))
 

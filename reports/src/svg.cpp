@@ -409,51 +409,33 @@ std::string coatColour(double ratio) {
 std::string coatPicture(const Wall& wall, const ToolParams& tool, const Path& path, const MotionLimits& limits,
                         const VehicleModel& vehicle, const std::string& title, bool as_image) {
   if (!tool.profile.set()) throw InputError("coat picture", "tool.profile", "the coat's picture needs the tool's flux profile");
-  return coatPicture(wall, tool, coatRaster(wall, tool, path, tool.profile, limits, vehicle), title, as_image);
+  return coatPicture(wall, tool, coat(wall, tool, path, tool.profile, limits, vehicle, coatBlockCells(wall, tool)), title, as_image);
+}
+
+std::size_t coatBlockCells(const Wall& wall, const ToolParams& tool) {
+  const double k = pictureView(wall, nullptr).k, cell = depositionCell(tool, tool.profile);
+  return cell > 0.0 ? std::max<std::size_t>(1, static_cast<std::size_t>(3.0 / (k * cell))) : 1;
 }
 
 namespace {
 
-/// The coat's blocks: `per` x `per` cells each (about 3 px), `bx` x `by` of them from the raster's
-/// corner, each the colour of its samples' mean in R over `reference` (R's mean or the target;
-/// "" where none is in R), row by row from the bottom; no blocks for a reference of 0.
-struct CoatBlocks {
-  std::size_t bx = 0, by = 0;
-  double side = 0.0;  ///< m
-  std::vector<std::string> colour;
-};
-CoatBlocks coatBlocks(const CoatRaster& raster, double k, double reference) {
-  const DepositionGrid& g = raster.grid;
-  const std::size_t per = g.cell > 0.0 ? std::max<std::size_t>(1, static_cast<std::size_t>(3.0 / (k * g.cell))) : 1;
-  const std::size_t span = 2 * per;
-  CoatBlocks b;
-  b.bx = (g.nx + span - 1) / span;
-  b.by = reference > 0.0 ? (g.ny + span - 1) / span : 0;
-  b.side = static_cast<double>(per) * g.cell;
-  b.colour.resize(b.bx * b.by);
-  for (std::size_t j = 0; j < b.by; ++j)
-    for (std::size_t i = 0; i < b.bx; ++i) {
-      double sum = 0.0;
-      std::size_t n = 0;
-      for (std::size_t y = j * span; y < std::min(g.ny, (j + 1) * span); ++y)
-        for (std::size_t x = i * span; x < std::min(g.nx, (i + 1) * span); ++x)
-          if (raster.mask[y * g.nx + x]) {
-            sum += g.thickness[y * g.nx + x];
-            ++n;
-          }
-      if (n) b.colour[j * b.bx + i] = coatColour(sum / static_cast<double>(n) / reference);
-    }
-  return b;
+/// The colours of the coat's blocks, each its mean's ratio to `reference` (R's mean or the target;
+/// "" where no sample is in R), row by row from the bottom; none for a reference of 0.
+std::vector<std::string> blockColours(const CoatBlocks& b, double reference) {
+  std::vector<std::string> colour(reference > 0.0 ? b.mean.size() : 0);
+  for (std::size_t k = 0; k < colour.size(); ++k)
+    if (!std::isnan(b.mean[k])) colour[k] = coatColour(b.mean[k] / reference);
+  return colour;
 }
 
 /// The blocks as a PNG of one pixel a block (8-bit RGBA, transparent outside R, the top row
 /// first; libpng's simplified writer), base-64 encoded for a data: address.
-std::string coatPng(const CoatBlocks& b) {
+std::string coatPng(const CoatBlocks& b, const std::vector<std::string>& colour) {
   std::vector<unsigned char> rgba;
   rgba.reserve(4 * b.bx * b.by);
   for (std::size_t row = b.by; row-- > 0;)
     for (std::size_t i = 0; i < b.bx; ++i) {
-      const std::string& c = b.colour[row * b.bx + i];
+      const std::string& c = colour[row * b.bx + i];
       const unsigned long rgb = c.empty() ? 0 : std::stoul(c.substr(1), nullptr, 16);
       for (const unsigned long v : {(rgb >> 16) & 0xff, (rgb >> 8) & 0xff, rgb & 0xff, c.empty() ? 0ul : 255ul})
         rgba.push_back(static_cast<unsigned char>(v));
@@ -479,12 +461,12 @@ std::string coatPng(const CoatBlocks& b) {
 
 }  // namespace
 
-std::string coatPicture(const Wall& wall, const ToolParams& tool, const CoatRaster& raster, const std::string& title,
+std::string coatPicture(const Wall& wall, const ToolParams& tool, const Coat& coat, const std::string& title,
                         bool as_image) {
   if (!tool.profile.set()) throw InputError("coat picture", "tool.profile", "the coat's picture needs the tool's flux profile");
   const double target_um = tool.profile.target;  // 0: none, the blocks' ratios are to R's mean
-  const Deposition d = depositionStats(raster.grid, raster.mask, target_um);
-  const DepositionGrid& g = raster.grid;
+  const Deposition& d = coat.stats;
+  const CoatBlocks& b = coat.blocks;
   const View v = pictureView(wall, nullptr);
   const double reference_um = target_um > 0.0 ? target_um : d.mean_um;
   const double w_px = pictureWidth(v), h_px = pictureHeight(v), reference = reference_um * 1e-6;
@@ -497,29 +479,30 @@ std::string coatPicture(const Wall& wall, const ToolParams& tool, const CoatRast
   // Blocks of cells about 3 px wide, each the mean of its samples in R, coloured by its ratio to
   // R's mean (or to the target, if the profile has one): runs of one colour along a row as one rectangle each, or (as_image) one PNG pixel
   // a block, drawn unsmoothed.
-  const CoatBlocks b = coatBlocks(raster, v.k, d.mean_um > 0.0 ? reference : 0.0);
+  const std::vector<std::string> colour = blockColours(b, d.mean_um > 0.0 ? reference : 0.0);
+  const std::size_t rows = colour.empty() ? 0 : b.by;
   s << "<g class=\"coat\" stroke=\"none\">\n";
-  if (as_image && b.by > 0) {
-    s << "<image x=\"" << fmt(v.px(g.x0)) << "\" y=\"" << fmt(v.py(g.y0 + static_cast<double>(b.by) * b.side)) << "\" width=\""
+  if (as_image && rows > 0) {
+    s << "<image x=\"" << fmt(v.px(b.x0)) << "\" y=\"" << fmt(v.py(b.y0 + static_cast<double>(b.by) * b.side)) << "\" width=\""
       << fmt(static_cast<double>(b.bx) * b.side * v.k) << "\" height=\"" << fmt(static_cast<double>(b.by) * b.side * v.k)
-      << "\" preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\" href=\"data:image/png;base64," << coatPng(b)
+      << "\" preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\" href=\"data:image/png;base64," << coatPng(b, colour)
       << "\"/>\n";
   }
-  for (std::size_t j = 0; !as_image && j < b.by; ++j) {
+  for (std::size_t j = 0; !as_image && j < rows; ++j) {
     std::string run_colour;
     std::size_t run_start = 0;
     auto flush = [&](std::size_t end) {
       if (run_colour.empty()) return;
-      s << "<rect x=\"" << fmt(v.px(g.x0 + static_cast<double>(run_start) * b.side)) << "\" y=\""
-        << fmt(v.py(g.y0 + static_cast<double>(j + 1) * b.side)) << "\" width=\"" << fmt(static_cast<double>(end - run_start) * b.side * v.k)
+      s << "<rect x=\"" << fmt(v.px(b.x0 + static_cast<double>(run_start) * b.side)) << "\" y=\""
+        << fmt(v.py(b.y0 + static_cast<double>(j + 1) * b.side)) << "\" width=\"" << fmt(static_cast<double>(end - run_start) * b.side * v.k)
         << "\" height=\"" << fmt(b.side * v.k) << "\" fill=\"" << run_colour << "\"/>\n";
       run_colour.clear();
     };
     for (std::size_t i = 0; i < b.bx; ++i) {
-      const std::string& colour = b.colour[j * b.bx + i];
-      if (colour != run_colour) {
+      const std::string& c = colour[j * b.bx + i];
+      if (c != run_colour) {
         flush(i);
-        run_colour = colour;
+        run_colour = c;
         run_start = i;
       }
     }

@@ -248,11 +248,13 @@ TEST_F(Experiments, TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys) {
 // loses only the coat: the run keeps its status and every other metric (as a coat that fits has
 // them), the five coat metrics are stored with no value, and the reason says why.
 TEST_F(Experiments, ACoatPastTheRasterCapKeepsTheOtherMetricsAndSaysWhy) {
-  const std::string head = "name: c\noutput: out\ndatasets:\n  - family: gable\n    count: 1\n    seed: 3\n"
-                           "planners:\n  - zigzag\ntool:\n  width: 0.2\n  profile: {kind: gaussian, sigma: ";
+  // A field of 2.8 ha and a 2 m tool: cells of min(s/40, spread/5), 0.05 m at sigma 1 m (4.6e7
+  // samples), 0.008 m at sigma 0.04 m (2.5e9 samples, past kMaxCoatSamples).
+  const std::string head = "name: c\noutput: out\ndatasets:\n  - family: field\n    count: 1\n    seed: 3\n"
+                           "planners:\n  - zigzag\ntool:\n  width: 2.0\n  profile: {kind: gaussian, sigma: ";
   // (A run spec points into its config's walls: both are kept.)
-  const ExperimentConfig fine_config = loadExperimentConfig(config(head + "0.05}\n", "fine.yaml"));
-  const ExperimentConfig too_fine_config = loadExperimentConfig(config(head + "0.004}\n", "too_fine.yaml"));
+  const ExperimentConfig fine_config = loadExperimentConfig(config(head + "1.0}\n", "fine.yaml"));
+  const ExperimentConfig too_fine_config = loadExperimentConfig(config(head + "0.04}\n", "too_fine.yaml"));
   const std::vector<WallEntry> fine_walls = loadWalls(fine_config), too_fine_walls = loadWalls(too_fine_config);
   const std::vector<RunSpec> fine = expandRuns(fine_config, fine_walls), too_fine = expandRuns(too_fine_config, too_fine_walls);
   ASSERT_EQ(fine.size(), 1u);

@@ -182,9 +182,10 @@ TEST(Deposition, TheMetricsTakeTheProfilesTarget) {
   ASSERT_TRUE(with.deposition && without.deposition);
   EXPECT_EQ(with.deposition->mean_um, without.deposition->mean_um);
   EXPECT_EQ(with.deposition->cv, without.deposition->cv);
-  const CoatRaster raster = coatRaster(wall, tool, path, tool.profile);
-  EXPECT_EQ(with.deposition->even_share, depositionStats(raster.grid, raster.mask, tool.profile.target).even_share);
-  EXPECT_EQ(without.deposition->even_share, depositionStats(raster.grid, raster.mask).even_share);
+  EXPECT_EQ(with.deposition->even_share, deposition(wall, tool, path, tool.profile).even_share);
+  FluxProfile untargeted = tool.profile;
+  untargeted.target = 0.0;
+  EXPECT_EQ(without.deposition->even_share, deposition(wall, tool, path, untargeted).even_share);
   EXPECT_NE(with.deposition->even_share, without.deposition->even_share);
 }
 
@@ -322,6 +323,39 @@ TEST(Deposition, DefaultRasterAgainstAFourTimesFinerOne) {
   }
 }
 
+// A raster past the band's samples is computed band by band, twice (its mean, then its spread and
+// shares): the same samples, values and sums in the same order as at once, so the same bytes: the
+// metrics, with and without a target, and the picture's blocks. Bands of about 3 rows and of 40
+// rows against one band (this raster holds 240 x 164 samples).
+TEST(Deposition, BandsGiveTheSameBytesAsOneRaster) {
+  const Wall wall = test::rectWall(1.5, 1.0, {test::rect(0.6, 0.35, 0.25, 0.25)});
+  ToolParams tool{0.1, 0.02};
+  tool.profile.kind = FluxProfile::Kind::Beta;
+  tool.profile.beta = 2.5;
+  const PlanResult plan = test::planWith("zigzag", wall, tool);
+  ASSERT_FALSE(plan.path.waypoints.empty());
+  for (const double target : {0.0, 30.0}) {
+    tool.profile.target = target;
+    const Coat whole = coat(wall, tool, plan.path, tool.profile, {}, {}, 3);
+    ASSERT_GT(whole.stats.cells, 0u);
+    ASSERT_GT(whole.stats.even_share, 0.0);
+    const std::size_t nx = 2 * static_cast<std::size_t>(std::ceil(1.5 / depositionCell(tool, tool.profile)));
+    for (const std::size_t rows : {std::size_t{3}, std::size_t{40}}) {
+      const Coat banded = coat(wall, tool, plan.path, tool.profile, {}, {}, 3, 0.0, rows * nx);
+      EXPECT_EQ(banded.stats.cells, whole.stats.cells);
+      EXPECT_EQ(banded.stats.mean_um, whole.stats.mean_um);
+      EXPECT_EQ(banded.stats.cv, whole.stats.cv);
+      EXPECT_EQ(banded.stats.even_share, whole.stats.even_share);
+      EXPECT_EQ(banded.stats.thin_share, whole.stats.thin_share);
+      EXPECT_EQ(banded.stats.thick_share, whole.stats.thick_share);
+      ASSERT_EQ(banded.blocks.mean.size(), whole.blocks.mean.size());
+      for (std::size_t k = 0; k < whole.blocks.mean.size(); ++k)
+        if (!(std::isnan(banded.blocks.mean[k]) && std::isnan(whole.blocks.mean[k])))
+          ASSERT_EQ(banded.blocks.mean[k], whole.blocks.mean[k]) << "block " << k;
+    }
+  }
+}
+
 TEST(Deposition, OutOfRangeProfilesNameTheirField) {
   const auto field_of = [](const FluxProfile& p) {
     try {
@@ -394,15 +428,15 @@ namespace {
 TEST(Deposition, AWallPastTheRasterCapIsRefusedWithOneLine) {
   Wall wall;
   wall.name = "field";
-  wall.boundary = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+  wall.boundary = {{0, 0}, {200, 0}, {200, 200}, {0, 200}};
   Path path;
   path.moveTo({1, 1}, false);
-  path.moveTo({99, 1}, true);
+  path.moveTo({199, 1}, true);
   ToolParams tool{0.2, 0.0};
-  tool.profile = gaussian(0.05);  // cells of min(s/40, sigma/5) = 0.005 m: (2 x 100 / 0.005)^2 = 1.6e9 samples
+  tool.profile = gaussian(0.05);  // cells of min(s/40, sigma/5) = 0.005 m: (2 x 200 / 0.005)^2 = 6.4e9 samples
   const std::string why =
-      "deposition: tool.profile: needs a coat raster of 1.6e+09 samples over the reachable region (4 per cell of "
-      "0.005 m, the smaller of s/40 and the profile's spread/5), at most 20000000: a wider tool or a smaller wall";
+      "deposition: tool.profile: needs a coat raster of 6.4e+09 samples over the reachable region (4 per cell of "
+      "0.005 m, the smaller of s/40 and the profile's spread/5), at most 1e+09: a wider tool or a smaller wall";
   try {
     deposition(wall, tool, path, tool.profile);
     ADD_FAILURE() << "no error";
@@ -414,7 +448,7 @@ TEST(Deposition, AWallPastTheRasterCapIsRefusedWithOneLine) {
   EXPECT_EQ(m.coat_not_scored, why);
   EXPECT_EQ(coatNotScoredNote(m), "the coat's metrics are not scored (the others are): " + why);
   EXPECT_TRUE(m.validity.valid);
-  EXPECT_NEAR(m.lengths.total, 98.0, 1e-12);
+  EXPECT_NEAR(m.lengths.total, 198.0, 1e-12);
   EXPECT_GT(m.coverage.coverage_reachable, 0.0);
   std::size_t unvalued = 0;
   for (const NamedMetric& n : flatten(m))

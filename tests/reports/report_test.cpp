@@ -390,7 +390,7 @@ TEST(CoatPicture, ShowsTheCoatByItsRatioToTheMeanWithItsScaleAndFigures) {
   EXPECT_NE(coatGroup(image).second.find("href=\"data:image/png;base64,iVBORw0KGgo"), std::string::npos);  // the PNG signature
   EXPECT_EQ(coatGroup(image).second.find("<rect"), std::string::npos);
   EXPECT_NE(coatGroup(svg).second.find("<rect"), std::string::npos);
-  EXPECT_EQ(coatPicture(wall, tool, coatRaster(wall, tool, path, tool.profile), "t", true), image);
+  EXPECT_EQ(coatPicture(wall, tool, coat(wall, tool, path, tool.profile, {}, {}, coatBlockCells(wall, tool)), "t", true), image);
   // No profile: no picture.
   EXPECT_THROW(coatPicture(wall, ToolParams{0.5, 0.0}, path, MotionLimits{}, VehicleModel{}, "t"), std::exception);
 }

@@ -47,6 +47,19 @@ struct FluxProfile {
   /// target in (0, 1e6] um or 0 (none).
   void check(double s, const std::string& source) const;
 };
+/// A profile's f(x) for a tool of radius r with its constants (the normalisation, a gamma function
+/// and an error function) computed once: FluxProfile::density, bit for bit, at a fraction of its
+/// cost where one profile is evaluated many times (the coat's raster).
+class FluxDensity {
+ public:
+  FluxDensity(const FluxProfile& profile, double r);
+  double operator()(double x) const;
+
+ private:
+  FluxProfile::Kind kind_;
+  double r_, sigma_, exponent_, two_sigma_squared_ = 0.0, denominator_ = 0.0;
+};
+
 /// "uniform", "gaussian", "beta" (or "none").
 std::string toString(FluxProfile::Kind kind);
 /// The kind named `name`; false when there is none.

@@ -42,17 +42,26 @@ namespace coverbench {
 
 /// The raster's cell side (m): min(s / 40, spread / 5).
 double depositionCell(const ToolParams& tool, const FluxProfile& profile);
-/// The most samples a raster may have (4 per cell); a wall that would need more is refused (field `tool.profile`).
-inline constexpr std::size_t kMaxDepositionCells = 20000000;
+/// The most samples of a raster held at once (4 per cell; about 180 MB): a raster with more is
+/// computed in bands of rows, twice (its mean first, then its spread and shares), never coarser.
+inline constexpr std::size_t kCoatBandSamples = 20000000;
+/// The most samples a raster may have (4 per cell): a wall that would need more is refused (field
+/// `tool.profile`). Time is the bound: a raster past the band is computed twice, about 35 ns a
+/// sample each time here, so about 70 s at the cap (docs/deposition.md).
+inline constexpr double kMaxCoatSamples = 1e9;
 
 /// Thickness (m) sampled on a raster of square cells of side `cell` from (x0, y0), the corner of
 /// cell (0, 0): nx x ny samples, row-major. With `gauss` each cell holds 2 x 2 samples at the
 /// Gauss-Legendre points (the cell's centre +- cell / (2 sqrt 3) on each axis; sample i lies in
 /// cell i / 2), which integrate a smooth field to fourth order; without it one sample at each
 /// cell's centre (the midpoint rule, second order). Each sample weighs the same.
+///
+/// A band of a larger raster holds its rows row0 .. row0 + ny - 1: sample (i, j) of the band is
+/// sample (i, row0 + j) of the raster, at the same coordinates.
 struct DepositionGrid {
   double x0 = 0.0, y0 = 0.0, cell = 0.0;
   std::size_t nx = 0, ny = 0;  ///< samples per row and rows of samples
+  std::size_t row0 = 0;        ///< the first row's index in the whole raster
   bool gauss = false;
   std::vector<double> thickness;
   double coordinate(double origin, std::size_t i) const {
@@ -60,7 +69,7 @@ struct DepositionGrid {
     const double side = (i % 2 ? 0.5 : -0.5) / std::sqrt(3.0);
     return origin + (static_cast<double>(i / 2) + 0.5 + side) * cell;
   }
-  Point centre(std::size_t i, std::size_t j) const { return {coordinate(x0, i), coordinate(y0, j)}; }
+  Point centre(std::size_t i, std::size_t j) const { return {coordinate(x0, i), coordinate(y0, row0 + j)}; }
   /// The samples whose coordinate may lie in [lo, hi] along an axis from `origin` (a few more at
   /// the ends), clamped to [0, count).
   void range(double lo, double hi, double origin, std::size_t count, std::size_t& first, std::size_t& last) const;
@@ -85,19 +94,30 @@ struct Deposition {
 };
 Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& mask, double target_um = 0.0);
 
-/// The thickness field of a path on the default raster over R's bounding box (cell 0:
-/// depositionCell), and which samples lie in R: what deposition() summarises and the coat's
-/// picture draws. Throws as deposition() does.
-struct CoatRaster {
-  DepositionGrid grid;
-  std::vector<char> mask;
+/// What the coat's picture draws: R's mean thickness (m) over each block of `cells` x `cells`
+/// raster cells (the mean of its samples in R; NaN where none is), bx x by blocks from the
+/// raster's corner (x0, y0), row by row from the bottom, each `side` = cells x cell wide.
+struct CoatBlocks {
+  std::size_t cells = 0, bx = 0, by = 0;
+  double x0 = 0.0, y0 = 0.0, side = 0.0;
+  std::vector<double> mean;
 };
-CoatRaster coatRaster(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
-                      const MotionLimits& limits = {}, const VehicleModel& vehicle = {}, double cell = 0.0);
+/// The coat's metrics and, when asked for, its blocks.
+struct Coat {
+  Deposition stats;
+  CoatBlocks blocks;
+};
 
-/// The deposition metrics of a path over the reachable region R, on cells of side `cell` (0:
-/// depositionCell), 2 x 2 Gauss points per cell. Throws InputError (field `tool.profile`) when R needs
-/// more than kMaxDepositionCells samples.
+/// The coat of a path over the reachable region R, on cells of side `cell` (0: depositionCell),
+/// 2 x 2 Gauss points per cell over R's bounding box, with its blocks of `block_cells` cells (0:
+/// none). A raster past `band_samples` is computed band by band (the same samples, values and
+/// sums, in the same order: the same bytes as at once). Throws InputError (source "deposition",
+/// field `tool.profile`) when R needs more than kMaxCoatSamples samples, before any work.
+Coat coat(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
+          const MotionLimits& limits = {}, const VehicleModel& vehicle = {}, std::size_t block_cells = 0, double cell = 0.0,
+          std::size_t band_samples = kCoatBandSamples);
+
+/// coat()'s metrics alone.
 Deposition deposition(const Wall& wall, const ToolParams& tool, const Path& path, const FluxProfile& profile,
                       const MotionLimits& limits = {}, const VehicleModel& vehicle = {}, double cell = 0.0);
 

@@ -209,10 +209,10 @@ struct PathMetrics {
   std::size_t waypoints = 0;
   double length_ratio = 0.0;  ///< length_total / (|R| / s)
   /// The coat's thickness (deposition.hpp): only when the tool has a flux profile and R's raster
-  /// fits kMaxDepositionCells.
+  /// fits kMaxCoatSamples.
   std::optional<Deposition> deposition;
   /// Why a tool with a flux profile has no coat metrics: R would need a raster past
-  /// kMaxDepositionCells (deposition()'s message, "deposition: tool.profile: needs a coat raster
+  /// kMaxCoatSamples (deposition()'s message, "deposition: tool.profile: needs a coat raster
   /// of ..."). Empty otherwise. flatten() then lists the coat's metrics with no value (NaN).
   std::string coat_not_scored;
 };
@@ -223,11 +223,12 @@ std::string coatNotScoredNote(const PathMetrics& m);
 std::string withNote(const std::string& reason, const std::string& note);
 /// Scores a path (the coat's thickness too when the tool has a flux profile, unless its raster is
 /// too large: coat_not_scored). Throws InputError (field `waypoints`) for a path beyond the
-/// scoring limits below, before any work. With `coat` and a tool whose coat was scored, the coat's
-/// raster the metrics were computed on is handed out there (for its picture, coatPicture in
-/// svg.hpp); it is left as it is otherwise.
+/// scoring limits below, before any work. With `coat` and a tool whose coat was scored, the coat
+/// the metrics were computed in is handed out there, with its blocks of `block_cells` cells (for
+/// its picture: coatPicture and coatBlockCells in svg.hpp); it is left as it is otherwise.
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path,
-                           const VehicleModel& vehicle = {}, const MotionLimits& limits = {}, CoatRaster* coat = nullptr);
+                           const VehicleModel& vehicle = {}, const MotionLimits& limits = {}, Coat* coat = nullptr,
+                           std::size_t block_cells = 0);
 
 /// Scoring limits. Exact scoring grows with the path's waypoints (memory: a spanning-tree path of
 /// 10^6 waypoints took 18 s and 0.46 GB here) and, much faster, with how often the path crosses

@@ -62,10 +62,12 @@ std::string pathPicture(const Wall& wall, const ToolParams& tool, const VehicleM
 /// tens of times smaller (the report's gallery and the explorer use it). Throws as deposition() does.
 std::string coatPicture(const Wall& wall, const ToolParams& tool, const Path& path, const MotionLimits& limits,
                         const VehicleModel& vehicle, const std::string& title, bool as_image = false);
-/// The same picture from a raster already computed (coatRaster(), or the one computeMetrics hands
-/// out), so the metrics and the picture share one computation.
-std::string coatPicture(const Wall& wall, const ToolParams& tool, const CoatRaster& raster, const std::string& title,
+/// The same picture from a coat already computed with blocks of coatBlockCells(wall, tool) cells
+/// (coat(), or the one computeMetrics hands out), so the metrics and the picture share one computation.
+std::string coatPicture(const Wall& wall, const ToolParams& tool, const Coat& coat, const std::string& title,
                         bool as_image = false);
+/// The raster cells a block of the coat's picture is wide (about 3 px at the picture's scale).
+std::size_t coatBlockCells(const Wall& wall, const ToolParams& tool);
 
 /// The data that plays a picture's path back in place (reports/python/coverbench_report/player.js):
 /// a script calling coverbenchPlayback({...}) with the path in the picture's pixels (the frame
