@@ -244,7 +244,7 @@ TEST_F(Experiments, TheExactJudgeOptionStoresItsFiguresUnderItsOwnKeys) {
   EXPECT_NE(error(small + "judge: strict\n").find(":12: judge: must be fast or exact, not 'strict'"), std::string::npos);
 }
 
-// A coat past the raster cap (a gaussian of sigma s/50 on cells of sigma/5 over a gable wall)
+// A coat past the raster cap (a gaussian of sigma s/50 on cells of sigma/5 over a field of 2.8 ha)
 // loses only the coat: the run keeps its status and every other metric (as a coat that fits has
 // them), the five coat metrics are stored with no value, and the reason says why.
 TEST_F(Experiments, ACoatPastTheRasterCapKeepsTheOtherMetricsAndSaysWhy) {
