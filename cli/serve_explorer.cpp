@@ -104,7 +104,7 @@ Explorer::Index& Explorer::index(std::size_t db, long long id) {
   for (std::uint32_t i = 0; i < x.runs.size(); ++i) {
     const ResultsDb::RunSummary& r = x.runs[i];
     x.position.emplace(r.key, i);
-    const std::string values[kFacets] = {r.planner, r.dataset, toString(r.status), toolLabel(r.tool)};
+    const std::string values[kFacets] = {r.planner, r.dataset, toString(r.status), toolAndProfileLabel(r.tool)};
     for (std::size_t f = 0; f < kFacets; ++f) {
       const auto [it, added] = seen[f].emplace(values[f], static_cast<std::uint32_t>(x.facet_values[f].size()));
       if (added) x.facet_values[f].push_back(values[f]);

@@ -289,12 +289,21 @@ std::vector<ResultsDb::RunSummary> ResultsDb::runSummaries(long long experiment)
   }
   const std::set<std::string> columns = runColumns();
   auto column = [&](const char* name) { return columns.count(name) ? std::string("r.") + name : std::string("NULL"); };
+  // The tool's profile (columns 11 .. 16) and shape (17), as load() reads them: a line or a
+  // profile is another tool than the plain disk of its width.
+  const bool profiles = hasTable(db_, file_, "run_profile"), targets = hasTable(db_, file_, "run_profile_target");
+  const bool shapes = hasTable(db_, file_, "run_tool_shape");
   Statement s(db_,
               "SELECT e.run_key, r.config_id, w.dataset, r.wall_hash, ws.name, r.status, r.tool_width, r.clearance, " +
-                  column("plan_time_ms") + ", " + column("peak_memory_bytes") +
-                  ", COALESCE(o.transit, '') FROM experiment_runs e JOIN runs r ON r.key = e.run_key "
+                  column("plan_time_ms") + ", " + column("peak_memory_bytes") + ", COALESCE(o.transit, ''), " +
+                  (profiles ? kProfileColumns : kNoProfileColumns) + ", " + (targets ? kTargetColumn : "NULL") + ", " +
+                  (shapes ? "ts.shape" : "NULL") +
+                  " FROM experiment_runs e JOIN runs r ON r.key = e.run_key "
                   "JOIN experiment_walls w ON w.experiment_id = ?1 AND w.wall_hash = r.wall_hash "
-                  "JOIN walls ws ON ws.hash = r.wall_hash LEFT JOIN run_options o ON o.run_key = e.run_key "
+                  "JOIN walls ws ON ws.hash = r.wall_hash LEFT JOIN run_options o ON o.run_key = e.run_key " +
+                  (profiles ? "LEFT JOIN run_profile pr ON pr.run_key = e.run_key " : "") +
+                  (targets ? "LEFT JOIN run_profile_target pt ON pt.run_key = e.run_key " : "") +
+                  (shapes ? "LEFT JOIN run_tool_shape ts ON ts.run_key = e.run_key " : "") +
                   "WHERE e.experiment_id = ?1 ORDER BY e.run_key",
               file_);
   s.integer(1, experiment);
@@ -309,7 +318,8 @@ std::vector<ResultsDb::RunSummary> ResultsDb::runSummaries(long long experiment)
     r.wall = s.columnText(3);
     r.wall_name = s.columnText(4);
     readField(s, 5, file_, kRunFields[1], r.status);
-    r.tool = ToolParams{s.columnReal(6), s.columnReal(7)};
+    r.tool = ToolParams{s.columnReal(6), s.columnReal(7), storedProfile(s, 11)};
+    r.tool.shape = storedShape(s, 17);
     r.plan_time_ms = s.columnReal(8);
     r.peak_memory_bytes = s.columnReal(9);
     transits.push_back(s.columnText(10).empty() ? TransitSpec{}.planner : s.columnText(10));

@@ -87,6 +87,10 @@ std::string toolLabel(const ToolParams& tool) {
   return std::string(tool.isLine() ? "line " : "") + "s=" + shortNumber(tool.tool_width) + " m, c=" + shortNumber(tool.clearance) + " m";
 }
 
+std::string toolAndProfileLabel(const ToolParams& tool) {
+  return toolLabel(tool) + (tool.profile.set() ? ", " + tool.profile.label() : "");
+}
+
 std::string toString(VehicleModel::Kind kind) {
   switch (kind) {
     case VehicleModel::Kind::Holonomic: return "holonomic";

@@ -131,8 +131,8 @@ std::string oneLine(const std::string& name) {
 std::string listRuns(const ResultSet& rs) {
   std::string text;
   for (const ResultRow& r : rs.runs) {
-    text += r.key + "  " + toString(r.status) + "  " + oneLine(r.config) + "  " + toolLabel(r.tool) +
-            (r.tool.profile.set() ? ", " + r.tool.profile.label() : "") + "  " + oneLine(r.dataset) + "/" +
+    text += r.key + "  " + toString(r.status) + "  " + oneLine(r.config) + "  " + toolAndProfileLabel(r.tool) + "  " +
+            oneLine(r.dataset) + "/" +
             oneLine(r.wall_name) + "\n";
   }
   return text;

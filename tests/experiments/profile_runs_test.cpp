@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <map>
 
 #include "coverbench/results_db.hpp"
@@ -74,6 +75,11 @@ TEST_F(ProfileRuns, ARunWithAProfileIsStoredAndListedWithIt) {
   const nlohmann::json json = nlohmann::json::parse(runs(db, "--format json"));
   ASSERT_EQ(json.size(), 2u);
   EXPECT_EQ(json[0]["profile"], "beta 2.5, 2e-06 m3/s");
+  // The explorer's tool facet names the profile beside the tool (toolAndProfileLabel).
+  ResultsDb results(db, ResultsDb::Mode::ReadOnly);
+  std::set<std::string> tools;
+  for (const ResultsDb::RunSummary& r : results.runSummaries(results.experiments().back().id)) tools.insert(toolAndProfileLabel(r.tool));
+  EXPECT_EQ(tools, (std::set<std::string>{"s=0.2 m, c=0.02 m, beta 2.5, 2e-06 m3/s", "s=0.3 m, c=0.02 m, beta 2.5, 2e-06 m3/s"}));
 }
 
 // A profile's target thickness: stored (run_profile_target), listed, scored against, and part of

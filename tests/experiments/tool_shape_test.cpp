@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "coverbench/results_db.hpp"
 #include "test_support.hpp"
@@ -88,6 +89,11 @@ TEST_F(ToolShapeRuns, BothShapesInOneExperimentAreTwoToolsNeverPooled) {
     EXPECT_EQ(r.planner.find(" @ line ") != std::string::npos, r.tool.isLine()) << r.planner;
     EXPECT_EQ(r.pairing.size() >= 5 && r.pairing.substr(r.pairing.size() - 5) == "/line", r.tool.isLine()) << r.pairing;
   }
+  // The explorer's summaries (its tool facet: toolAndProfileLabel) carry the shape too.
+  ResultsDb results(db, ResultsDb::Mode::ReadOnly);
+  std::set<std::string> labels;
+  for (const ResultsDb::RunSummary& r : results.runSummaries(results.experiments().back().id)) labels.insert(toolAndProfileLabel(r.tool));
+  EXPECT_EQ(labels, (std::set<std::string>{"line s=0.2 m, c=0.02 m", "s=0.2 m, c=0.02 m"}));
 }
 
 TEST_F(ToolShapeRuns, ShardsMergeWithTheirShapes) {

@@ -89,6 +89,8 @@ struct ToolParams {
 /// The tool as every table, column, title and message names it: "s=0.1 m, c=0.02 m" (a disk),
 /// "line s=0.1 m, c=0.02 m".
 std::string toolLabel(const ToolParams& tool);
+/// toolLabel, then the flux profile's label where there is one: "s=0.1 m, c=0.02 m, beta 2.5".
+std::string toolAndProfileLabel(const ToolParams& tool);
 
 /// Depot legs: a wall's start or end may lie anywhere in the closed wall off every obstacle (a
 /// dock on an edge or at a corner), also where the tool's centre may not be (outside F: the tool
