@@ -45,9 +45,9 @@ const std::vector<MetricSpec>& metricSpecs() {
       // Only for a tool with a flux profile (deposition.hpp, docs/deposition.md): the coat over R.
       {"thickness_mean", "um", 0, K::Quality, false, 0, 1e-3, "mean thickness of the coat over the reachable area R (tool with a flux profile)"},
       {"thickness_cv", "1", -1, K::Quality, false, 1e-3, 0, "coefficient of variation of the coat's thickness over R: standard deviation / mean"},
-      {"even_share", "1", +1, K::Quality, false, 5e-3, 0, "share of R whose thickness is within 10 % of the mean"},
-      {"thin_share", "1", -1, K::Quality, false, 5e-3, 0, "share of R thinner than 0.9 times the mean (unpainted R included)"},
-      {"thick_share", "1", -1, K::Quality, false, 5e-3, 0, "share of R thicker than 1.1 times the mean"},
+      {"even_share", "1", +1, K::Quality, false, 5e-3, 0, "share of R whose thickness is within 10 % of the target (the mean without one)"},
+      {"thin_share", "1", -1, K::Quality, false, 5e-3, 0, "share of R thinner than 0.9 times the target or the mean (unpainted R included)"},
+      {"thick_share", "1", -1, K::Quality, false, 5e-3, 0, "share of R thicker than 1.1 times the target or the mean"},
       // Only with `judge: exact` in an experiment: the exact judge's verdict and certified bounds.
       {"exact_valid", "1", +1, K::Validity, false, 0, 0, "1 when the exact judge (CGAL, no tolerance) finds no violating segment"},
       {"exact_violations", "segments", -1, K::Validity, false, 0.5, 0, "segments the exact judge finds leaving F"},
