@@ -90,7 +90,8 @@ def stop_server(p):
 def synthesise(source, target, runs):
     """A copy of `source` whose latest experiment has at least `runs` runs: its run rows (and run
     options) repeated under new keys (five hex digits of the copy's number, then the original key's
-    rest). Returns the experiment's id."""
+    rest; not the copy whose number is the key's own first five digits, which would be the key
+    itself). Returns the experiment's id."""
     shutil.copyfile(source, target)
     con = sqlite3.connect(target)
     con.execute("PRAGMA journal_mode = DELETE")
@@ -99,14 +100,15 @@ def synthesise(source, target, runs):
     (n,) = con.execute("SELECT COUNT(*) FROM experiment_runs WHERE experiment_id = ?", (experiment,)).fetchone()
     con.execute("CREATE TEMP TABLE copies (i INTEGER PRIMARY KEY)")
     con.execute("WITH RECURSIVE c(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM c WHERE i < ?) INSERT INTO copies SELECT i FROM c",
-                (-(-runs // n) - 1,))
+                (-(-runs // n),))
     for table, key in (("runs", "key"), ("run_options", "run_key")):
         cols = [r[1] for r in con.execute(f"PRAGMA table_info({table})")]
         select = ", ".join(f"printf('%05x', copies.i) || substr({c}, 6)" if c == key else f"{table}.{c}" for c in cols)
         con.execute(f"INSERT INTO {table} ({', '.join(cols)}) SELECT {select} FROM copies, {table} "
-                    f"WHERE {table}.{key} IN (SELECT run_key FROM experiment_runs WHERE experiment_id = ?)", (experiment,))
+                    f"WHERE {table}.{key} IN (SELECT run_key FROM experiment_runs WHERE experiment_id = ?) "
+                    f"AND printf('%05x', copies.i) != substr({table}.{key}, 1, 5)", (experiment,))
     con.execute("INSERT INTO experiment_runs SELECT ?1, printf('%05x', copies.i) || substr(run_key, 6) FROM copies, experiment_runs "
-                "WHERE experiment_id = ?1", (experiment,))
+                "WHERE experiment_id = ?1 AND printf('%05x', copies.i) != substr(run_key, 1, 5)", (experiment,))
     con.commit()
     con.close()
     return experiment
