@@ -436,7 +436,7 @@ TEST(Deposition, AWallPastTheRasterCapIsRefusedWithOneLine) {
   tool.profile = gaussian(0.05);  // cells of min(s/40, sigma/5) = 0.005 m: (2 x 200 / 0.005)^2 = 6.4e9 samples
   const std::string why =
       "deposition: tool.profile: needs a coat raster of 6.4e+09 samples over the reachable region (4 per cell of "
-      "0.005 m, the smaller of s/40 and the profile's spread/5), at most 1e+09: a wider tool or a smaller wall";
+      "0.005 m, the smaller of s/40 and the profile's spread/5), at most 4e+08: a wider tool or a smaller wall";
   try {
     deposition(wall, tool, path, tool.profile);
     ADD_FAILURE() << "no error";
