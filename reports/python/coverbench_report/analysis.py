@@ -14,6 +14,7 @@ COMPARED_KINDS = ("quality",)  # measured figures (one noisy sample per run) are
 # most even coat".
 COAT_HEADLINE = ("even_share", "thickness_cv")
 EVEN_COAT = "even_share"
+COAT_SPREAD = "thickness_cv"
 
 
 def load(path):
@@ -310,12 +311,26 @@ class Analysis:
     def most_even(self, dataset, tool):
         """Which configuration of `tool` leaves the most even coat on `dataset`: the ranking of
         EVEN_COAT (the share of R within 10 % of the target or the mean), its leader (`best` when
-        the paired tests say it is better than every other) and those tests; None when no run
-        there has a coat."""
+        the paired tests say it is better than every other) and those tests (`tests`); each other
+        configuration against the leader in COAT_SPREAD (`spread_tests`, Holm-adjusted over
+        them, in the same order) and those whose coat varies less than the leader's by them
+        (`less_varied`: a share of R within 10 % of a target, or of a mean that stops raise, can
+        favour a patchier coat); the configurations that share the leader's rank (`top`). None
+        when no run there has a coat."""
         ranking = self.ranking(dataset, tool, EVEN_COAT)
         if not any(not math.isnan(e["median"]) for e in ranking):
             return None
-        return {"ranking": ranking, "tests": self._leader_tests(ranking, dataset, EVEN_COAT)}
+        tests = self._leader_tests(ranking, dataset, EVEN_COAT)
+        spread = []
+        if tests and COAT_SPREAD in self.compared:
+            leader = ranking[0]["column"]
+            spread = [dict(self.compare(e["column"], leader, dataset, COAT_SPREAD), column=e["column"], other=leader)
+                      for e in ranking[1:]]
+            for t, p in zip(spread, stats.holm([t["p"] if t["pairs"] else math.nan for t in spread])):
+                t["p_holm"] = p
+        less = [t["column"] for t in spread if t["pairs"] > 0 and t["p_holm"] < stats.ALPHA and t["wins"] > t["losses"]]
+        top = [e["column"] for e in ranking if e["rank"] == 1]
+        return {"ranking": ranking, "tests": tests, "spread_tests": spread, "less_varied": less, "top": top}
 
     # --- Friedman -----------------------------------------------------------------------------
     def _value_table(self, dataset, tool, metric):

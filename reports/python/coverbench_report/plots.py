@@ -20,7 +20,9 @@ from .tables import is_percent, number, unit_label  # noqa: E402
 plt.rcParams.update({"svg.hashsalt": "coverbench", "svg.fonttype": "none", "font.family": "DejaVu Sans", "font.size": 9,
                      "axes.titley": 1.0,
                      "axes.titlesize": 9, "axes.spines.top": False, "axes.spines.right": False,
-                     "figure.dpi": 100})
+                     "figure.dpi": 100,
+                     # Labels come from configs: "$...$" in one is text, never mathtext.
+                     "text.parse_math": False})
 PROFILE_METRICS = ["length_total", "overlap", "duration_s", "plan_time_ms"]
 PARAMETER_METRICS = ["coverage_reachable", "overlap", "length_ratio", "plan_time_ms"]
 

@@ -81,8 +81,14 @@ def motion_text(a):
 
 
 def profile_text(a):
-    """' Flux profile of the tool (the coat): beta 2.5.' when the runs' tool has one."""
-    return f" Flux profile of the tool (the coat): {'; '.join(a.profiles)}." if a.profiles else ""
+    """' Flux profile of the tool (the coat): beta 2.5.' when the runs' tool has one, and how many
+    runs have no coat because its raster would pass the cap (docs/deposition.md)."""
+    if not a.profiles:
+        return ""
+    unscored = sum(1 for r in a.runs if "the coat's metrics are not scored" in r.get("reason", ""))
+    missing = (f" The coat is not scored on {unscored} of {len(a.runs)} runs (a raster past its cap; each run's "
+               "reason says why): the coat's metrics leave them out.") if unscored else ""
+    return f" Flux profile of the tool (the coat): {'; '.join(a.profiles)}.{missing}"
 
 
 def coat_html(table):

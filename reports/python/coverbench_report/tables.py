@@ -120,7 +120,7 @@ def to_html(t):
 
 def _md(text):
     text = " ".join(str(text).split())
-    for ch in "\\`*_[]<>|&":
+    for ch in "\\`*_[]<>|&~$":
         text = text.replace(ch, "\\" + ch)
     return text
 
@@ -228,36 +228,55 @@ def headline_table(a, dataset, tool, measured=False):
 
 def even_coat_table(a, dataset, tool):
     """Which configuration leaves the most even coat (analysis.most_even): the verdict in the
-    title, the leader against every other configuration below it. None without a coat."""
+    title, the leader against every other configuration below it, in the share of R within 10 %
+    and in the coefficient of variation. None without a coat."""
     found = a.most_even(dataset, tool) if a.has_coat else None
     if found is None:
         return None
-    ranking, tests = found["ranking"], found["tests"]
+    ranking, tests, spread = found["ranking"], found["tests"], found["spread_tests"]
     spec, leader = a.specs[A.EVEN_COAT], ranking[0]
     reference = "the target" if a.coat_target else "the mean"
-    profile = f" The tool's flux profile: {'; '.join(a.profiles)}." if a.profiles else ""
-    if leader["best"]:
-        verdict = f"the most even coat: {leader['column']}"
-    elif tests:
-        verdict = f"no configuration leaves a more even coat than every other ({leader['column']} leads, not separably)"
+    name = leader["column"]
+    if not tests:
+        verdict = f"one configuration, {name}: nothing to compare"
+    elif leader["best"] and not found["less_varied"]:
+        verdict = f"the most even coat: {name}"
+    elif leader["best"]:
+        verdict = (f"most of R within 10 % of {reference}: {name}, but {', '.join(found['less_varied'])} "
+                   f"{'varies' if len(found['less_varied']) == 1 else 'vary'} less ({A.COAT_SPREAD}): no one most even coat")
+    elif len(found["top"]) > 1:
+        verdict = f"no configuration leaves a more even coat than every other ({', '.join(found['top'])} tie at the top)"
     else:
-        verdict = f"one configuration, {leader['column']}: nothing to compare"
+        verdict = f"no configuration leaves a more even coat than every other ({name} leads, not separably)"
+    profile = f" The tool's flux profile: {'; '.join(a.profiles)}." if a.profiles else ""
+    cv = a.specs.get(A.COAT_SPREAD)
     t = Table(f"{dataset}{tool_label(a, tool)}: {verdict}",
               ["planner", "vs", "pairs", "failed", f"{A.EVEN_COAT}, median", "vs, median", "median difference",
-               "win/tie/loss", "p (Holm)"],
-              note=f"{A.EVEN_COAT}: the share of the reachable area R whose coat is within 10 % of {reference} "
-                   "(docs/deposition.md). The configuration with the highest median leads; it leaves the most even "
-                   "coat (bold) only when it is better than every other configuration of this tool on the same walls "
-                   "by a two-sided Wilcoxon signed-rank test, Holm-adjusted over these rows, p < 0.05, with more wins "
-                   "than losses. A run without a valid path loses to every value on its wall; a win is better beyond "
-                   "the metric's tie band." + profile)
+               "win/tie/loss", "p (Holm)", f"{A.COAT_SPREAD}, median", "vs, median", "vs less varied: p (Holm)"],
+              note=f"{A.EVEN_COAT}: the share of the reachable area R whose coat is within 10 % of {reference}; "
+                   f"{A.COAT_SPREAD}: the coat's standard deviation over its mean (docs/deposition.md). The "
+                   f"configuration with the highest median {A.EVEN_COAT} leads; it leaves the most even coat (bold) only "
+                   "when it is better than every other configuration of this tool on the same walls by a two-sided "
+                   "Wilcoxon signed-rank test, Holm-adjusted over these rows, p < 0.05, with more wins than losses, and no "
+                   f"other configuration's coat varies less than its by the same test in {A.COAT_SPREAD} (the last "
+                   "column: the other against the leader; a share of R near a target, or near a mean that stops raise, "
+                   "can favour a patchier coat). A run without a valid path loses to every value on its wall; a win is "
+                   "better beyond the metric's tie band." + profile)
     medians = {e["column"]: e for e in ranking}
+    spread_of = {r["column"]: r for r in spread}
+    spread_median = {e["column"]: e for e in a.ranking(dataset, tool, A.COAT_SPREAD)} if cv else {}
     for r in tests:
         other = medians[r["other"]]
-        t.add([(r["column"], "best") if leader["best"] else r["column"], r["other"], str(r["pairs"]),
-               f"{r['failed']}/{r['baseline_failed']}", value(spec, leader["median"], False),
+        s = spread_of.get(r["other"])
+        lead_cv, other_cv = spread_median.get(name), spread_median.get(r["other"])
+        t.add([(r["column"], "best") if leader["best"] and not found["less_varied"] else r["column"], r["other"],
+               str(r["pairs"]), f"{r['failed']}/{r['baseline_failed']}", value(spec, leader["median"], False),
                "failed" if other["failed"] else value(spec, other["median"], False), difference(spec, r["median"]),
-               f"{r['wins']}/{r['ties']}/{r['losses']}", (pvalue(r["p_holm"]) + " " + stars(r["p_holm"])).strip()])
+               f"{r['wins']}/{r['ties']}/{r['losses']}", (pvalue(r["p_holm"]) + " " + stars(r["p_holm"])).strip(),
+               "-" if lead_cv is None else ("failed" if lead_cv["failed"] else value(cv, lead_cv["median"], False)),
+               "-" if other_cv is None else ("failed" if other_cv["failed"] else value(cv, other_cv["median"], False)),
+               "-" if s is None else ((pvalue(s["p_holm"]) + " " + stars(s["p_holm"])).strip()
+                                      + (" (yes)" if r["other"] in found["less_varied"] else ""))])
     return t
 
 

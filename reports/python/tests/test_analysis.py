@@ -277,12 +277,48 @@ class EvenCoat(unittest.TestCase):
         self.assertFalse(any(isinstance(c, tuple) for row in t3.rows for c in row))
         self.assertIn("within 10 % of the mean", t3.note)
 
+    def test_a_share_near_the_target_that_a_patchier_coat_wins_is_not_called_most_even(self):
+        # b has more of R within 10 % of the target on all 12 walls, but c's coat varies less on
+        # all 12 (its CV 0.1 against b's 0.2): the title says what b leads in, and that c varies less.
+        runs = []
+        for i in range(12):
+            runs += [coated(run("a", f"w{i}", 1.0, 10), 0.70 + 0.001 * i, 0.3, 87.9),
+                     coated(run("b", f"w{i}", 1.0, 11), 0.75 + 0.002 * i, 0.2, 87.9),
+                     coated(run("c", f"w{i}", 1.0, 12), 0.60 + 0.001 * i, 0.1 - 0.001 * i, 87.9)]
+        d = data(runs, ["a", "b", "c"])
+        d["metrics"] = COAT_SPECS
+        a = Analysis(d)
+        self.assertEqual(a.most_even("d", a.tools[0])["less_varied"], ["c"])
+        t = T.even_coat_table(a, "d", a.tools[0])
+        self.assertEqual(t.title, "d: most of R within 10 % of the target: b, but c varies less (thickness_cv): no one most even coat")
+        self.assertFalse(any(isinstance(c, tuple) for row in t.rows for c in row))
+        # The last column: each other configuration's CV against b's, two-sided; "(yes)" where it is lower.
+        self.assertEqual({row[1]: row[11] for row in t.rows}, {"a": "0.00098 ***", "c": "0.00098 *** (yes)"})
+
+    def test_configurations_within_the_tie_band_tie_at_the_top(self):
+        # a and b leave the same coat on every wall (as two settings that give one path do).
+        runs = []
+        for i in range(6):
+            runs += [coated(run("a", f"w{i}", 1.0, 10), 0.75, 0.2), coated(run("b", f"w{i}", 1.0, 10), 0.75, 0.2),
+                     coated(run("c", f"w{i}", 1.0, 12), 0.60, 0.4)]
+        d = data(runs, ["a", "b", "c"])
+        d["metrics"] = COAT_SPECS
+        a = Analysis(d)
+        self.assertEqual(T.even_coat_table(a, "d", a.tools[0]).title,
+                         "d: no configuration leaves a more even coat than every other (a, b tie at the top)")
+
     def test_the_report_says_it(self):
+        d = self.coat_data(12, target=87.9)
+        # A wall whose coat's raster is past the cap: the run keeps its other metrics, not its coat.
+        big = coated(run("a", "big", 1.0, 10), None, None, 87.9)
+        big["reason"] = "the coat's metrics are not scored (the others are): deposition: tool.profile: needs ..."
+        d["runs"].append(big)
         with tempfile.TemporaryDirectory() as out:
-            report.build(self.coat_data(12, target=87.9), out)
+            report.build(d, out)
             page = read(os.path.join(out, "index.html"))
             self.assertIn("d: the most even coat: b", page)
-            self.assertIn("Flux profile of the tool (the coat): beta 2.5, target 87.9 um.", page)
+            self.assertIn("Flux profile of the tool (the coat): beta 2.5, target 87.9 um. The coat is not scored on 1 "
+                          "of 37 runs (a raster past its cap; each run&#x27;s reason says why)", page)
             self.assertIn("d: the most even coat: b", read(os.path.join(out, "report.md")))
 
 
@@ -389,6 +425,8 @@ class Replanning(unittest.TestCase):
 class Markdown(unittest.TestCase):
     def test_underscores_and_markup_are_escaped(self):
         self.assertEqual(T._md("_u_ *b* a|b"), "\\_u\\_ \\*b\\* a\\|b")
+        # Strikethrough and math (GitHub) are text too.
+        self.assertEqual(T._md("~~x~~ $a$"), "\\~\\~x\\~\\~ \\$a\\$")
 
 
 class Numbers(unittest.TestCase):
