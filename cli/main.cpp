@@ -86,7 +86,8 @@ void addProfileOptions(CLI::App* command, coverbench::ProfileOptions& coat, cons
   command->add_option("--profile", coat.profile,
                       "the tool's flux profile across its width, " + what + " (docs/deposition.md): "
                       "none, uniform, gaussian (--sigma) or beta (--beta)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->each([&coat](const std::string&) { coat.named = true; });
   command->add_option("--sigma", coat.sigma, "gaussian profile: standard deviation, m (at least s/50)");
   command->add_option("--beta", coat.beta, "beta profile: f proportional to (1 - u^2)^(beta - 1), u = x / r; beta in [1, 100]");
   command->add_option("--rate", coat.rate, "what the tool sprays, m^3/s (default 1e-6)");

@@ -522,13 +522,17 @@ TEST_F(Hostile, APlanFileCarriesItsToolsProfile) {
   ASSERT_EQ(run("plan --wall " + wall_ + " --planner zigzag --tool-width 0.3 --profile beta --beta 2.5 --out " + plan).exit_code, 0);
   const nlohmann::json doc = nlohmann::json::parse(slurp(plan));
   EXPECT_EQ(doc["profile"], nlohmann::json::parse(R"({"kind": "beta", "beta": 2.5, "rate": 1e-06, "depth": 0.03})"));
-  std::string from_file, from_flags, other;
+  std::string from_file, from_flags, other, none;
   ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan, &from_file).exit_code, 0);
   ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan + " --profile beta --beta 2.5", &from_flags).exit_code, 0);
   ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan + " --profile uniform", &other).exit_code, 0);
+  // --profile none: no coat, whatever the plan file says (a plan on a wall past the raster cap).
+  ASSERT_EQ(run("metrics --wall " + wall_ + " --plan " + plan + " --profile none", &none).exit_code, 0);
   EXPECT_NE(from_file.find("\"thickness_cv\": "), std::string::npos);
   EXPECT_EQ(from_file, from_flags);
   EXPECT_NE(other, from_file);
+  EXPECT_EQ(none.find("thickness"), std::string::npos) << none;
+  EXPECT_NE(none.find("\"coverage_reachable\": "), std::string::npos) << none;
   const std::vector<std::pair<std::string, std::string>> bad = {
       {R"({"kind": "beta", "beta": 2.5, "sigma": 0.1})", "profile.sigma: does not belong to a beta profile"},
       {R"({"kind": "gaussian"})", "profile.sigma: is missing for a gaussian profile"},

@@ -69,6 +69,9 @@ bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind);
 /// "gaussian", "beta") and each value, unset where not given (rate 1e-6 m^3/s, depth s / 10).
 struct ProfileOptions {
   std::string profile = "none";
+  /// The kind was given (the command line's --profile): `none` then means no profile, not "the
+  /// plan file's".
+  bool named = false;
   std::optional<double> sigma, beta, rate, fan_depth, target;
 };
 /// How a caller names the kind and the values in its messages. The default is the command line's:
