@@ -529,7 +529,9 @@ std::string coatPicture(const Wall& wall, const ToolParams& tool, const Coat& co
       << (r == 2.0 ? "+" : "") << "</text>";
   s << "<text x=\"" << fmt(bar + 12) << "\" y=\"10\">coat thickness, \u00b5m (green: within 10 % of the "
     << (target_um > 0.0 ? "target, " + shortNumber(target_um) + " \u00b5m" : std::string("mean")) << ")</text>\n"
-    << "<text x=\"0\" y=\"50\">" << escapeHtml(tool.profile.describe(tool.tool_width)) << "; mean " << shortNumber(std::round(d.mean_um * 100.0) / 100.0)
+    // Two lines, so that the figures fit the picture's least width (740 px).
+    << "<text x=\"0\" y=\"50\">" << escapeHtml(tool.profile.describe(tool.tool_width)) << ":</text>\n"
+    << "<text x=\"0\" y=\"66\">mean " << shortNumber(std::round(d.mean_um * 100.0) / 100.0)
     << " \u00b5m, CV " << fmt(d.cv) << "; within 10 %: " << fmt(100.0 * d.even_share) << " %, thinner: " << fmt(100.0 * d.thin_share)
     << " %, thicker: " << fmt(100.0 * d.thick_share) << " % of R</text>\n</g>\n</svg>\n";
   return s.str();
