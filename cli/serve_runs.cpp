@@ -178,7 +178,7 @@ Explorer::Selection Explorer::select(std::size_t db, long long id, const Params&
 
 std::string Explorer::csvHeader(const Selection& s) {
   std::lock_guard<std::mutex> lock(mutex_);
-  std::string text = "key,dataset,wall,wall_hash,planner,params,status,tool_width,clearance";
+  std::string text = "key,dataset,wall,wall_hash,planner,params,status,tool_width,clearance,tool";
   for (const std::string& m : index(s.db, s.id).metric_names) {
     text += ',';
     text += escapeCsv(m);
@@ -198,7 +198,7 @@ std::string Explorer::csvRows(const Selection& s, std::size_t from, std::size_t 
     const ResultsDb::RunSummary& r = x.runs[i];
     text += r.key + "," + escapeCsv(r.dataset) + "," + escapeCsv(r.wall_name) + "," + r.wall + "," + escapeCsv(r.planner) + "," +
             escapeCsv(x.params_json_of_planner[x.facet_of[0][i]]) + "," + toString(r.status) + "," + csvNumber(r.tool.tool_width) +
-            "," + csvNumber(r.tool.clearance);
+            "," + csvNumber(r.tool.clearance) + "," + escapeCsv(x.facet_values[3][x.facet_of[3][i]]);
     const auto& m = metrics.at(r.key);
     for (const std::string& name : x.metric_names) {
       const auto it = m.find(name);

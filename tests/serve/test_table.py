@@ -205,6 +205,8 @@ class Table(Served):
         stored = dict(self.sql("SELECT name, value FROM metrics WHERE run_key = ?", rows[0]["key"]))
         self.assertEqual({k: float(rows[0][k]) for k in stored if stored[k] is not None}, {k: v for k, v in stored.items() if v is not None})
         self.assertEqual(json.loads(rows[0]["params"]), labels["zigzag"])
+        # The tool as the tool filter names it (a line tool's shape and a flux profile would be in it).
+        self.assertEqual({row["tool"] for row in rows}, {"s=0.1 m, c=0.02 m"})
 
     def test_bad_values_of_the_new_parameters_are_one_line_400s(self):
         for query, message in (
