@@ -315,8 +315,9 @@ class Analysis:
         configuration against the leader in COAT_SPREAD (`spread_tests`, Holm-adjusted over
         them, in the same order) and those whose coat varies less than the leader's by them
         (`less_varied`: a share of R within 10 % of a target, or of a mean that stops raise, can
-        favour a patchier coat); the configurations that share the leader's rank (`top`). None
-        when no run there has a coat."""
+        favour a patchier coat); the configurations that share the leader's rank (`top`), and the
+        one of them whose coat varies less than every other configuration's, when one does
+        (`least_varied`). None when no run there has a coat."""
         ranking = self.ranking(dataset, tool, EVEN_COAT)
         if not any(not math.isnan(e["median"]) for e in ranking):
             return None
@@ -330,7 +331,15 @@ class Analysis:
                 t["p_holm"] = p
         less = [t["column"] for t in spread if t["pairs"] > 0 and t["p_holm"] < stats.ALPHA and t["wins"] > t["losses"]]
         top = [e["column"] for e in ranking if e["rank"] == 1]
-        return {"ranking": ranking, "tests": tests, "spread_tests": spread, "less_varied": less, "top": top}
+        # Among configurations that tie at the top of EVEN_COAT, one whose coat varies less than
+        # every other's (COAT_SPREAD's leader, marked best by its own paired tests) breaks the tie.
+        least_varied = None
+        if len(top) > 1 and COAT_SPREAD in self.compared:
+            first = self.ranking(dataset, tool, COAT_SPREAD)[0]
+            if first["best"] and first["column"] in top:
+                least_varied = first["column"]
+        return {"ranking": ranking, "tests": tests, "spread_tests": spread, "less_varied": less, "top": top,
+                "least_varied": least_varied}
 
     # --- Friedman -----------------------------------------------------------------------------
     def _value_table(self, dataset, tool, metric):

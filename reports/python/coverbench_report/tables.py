@@ -244,6 +244,10 @@ def even_coat_table(a, dataset, tool):
     elif leader["best"]:
         verdict = (f"most of R within 10 % of {reference}: {name}, but {', '.join(found['less_varied'])} "
                    f"{'varies' if len(found['less_varied']) == 1 else 'vary'} less ({A.COAT_SPREAD}): no one most even coat")
+    elif found["least_varied"]:
+        others = [c for c in found["top"] if c != found["least_varied"]]
+        verdict = (f"the most even coat: {found['least_varied']} (tied with {', '.join(others)} in {A.EVEN_COAT}, "
+                   f"its coat varies less than every other's in {A.COAT_SPREAD})")
     elif len(found["top"]) > 1:
         verdict = f"no configuration leaves a more even coat than every other ({', '.join(found['top'])} tie at the top)"
     else:
@@ -260,8 +264,10 @@ def even_coat_table(a, dataset, tool):
                    "Wilcoxon signed-rank test, Holm-adjusted over these rows, p < 0.05, with more wins than losses, and no "
                    f"other configuration's coat varies less than its by the same test in {A.COAT_SPREAD} (the last "
                    "column: the other against the leader; a share of R near a target, or near a mean that stops raise, "
-                   "can favour a patchier coat). A run without a valid path loses to every value on its wall; a win is "
-                   "better beyond the metric's tie band." + profile)
+                   "can favour a patchier coat). When several tie at the top (medians within the tie band), the one "
+                   f"whose coat varies less than every other's ({A.COAT_SPREAD}, by the same tests) leaves the most even "
+                   "coat. A run without a valid path loses to every value on its wall; a win is better beyond the "
+                   "metric's tie band." + profile)
     medians = {e["column"]: e for e in ranking}
     spread_of = {r["column"]: r for r in spread}
     spread_median = {e["column"]: e for e in a.ranking(dataset, tool, A.COAT_SPREAD)} if cv else {}

@@ -306,6 +306,17 @@ class EvenCoat(unittest.TestCase):
         a = Analysis(d)
         self.assertEqual(T.even_coat_table(a, "d", a.tools[0]).title,
                          "d: no configuration leaves a more even coat than every other (a, b tie at the top)")
+        # A tie at the top broken by a coat that varies less than every other's, on all 12 walls.
+        runs = []
+        for i in range(12):
+            runs += [coated(run("a", f"w{i}", 1.0, 10), 0.75, 0.3), coated(run("b", f"w{i}", 1.0, 10), 0.75, 0.2 - 0.001 * i),
+                     coated(run("c", f"w{i}", 1.0, 12), 0.60, 0.4)]
+        d = data(runs, ["a", "b", "c"])
+        d["metrics"] = COAT_SPECS
+        a = Analysis(d)
+        self.assertEqual(T.even_coat_table(a, "d", a.tools[0]).title,
+                         "d: the most even coat: b (tied with a in even_share, its coat varies less than every other's in "
+                         "thickness_cv)")
 
     def test_the_report_says_it(self):
         d = self.coat_data(12, target=87.9)
