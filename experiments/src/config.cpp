@@ -412,8 +412,7 @@ std::string readLabel(Reader& r, const Yaml& p, const std::string& where, const 
   const std::string field = where + ".label";
   const std::string label = r.text(*node, field);
   if (label.empty() || label.size() > 80) r.fail(*node, field, "must be 1 to 80 characters");
-  for (unsigned char ch : label)
-    if (ch < 0x20 || ch == 0x7f) r.fail(*node, field, "must be one line of printable characters");
+  if (!isPrintableLine(label)) r.fail(*node, field, "must be one line of printable characters (no control or bidirectional marks)");
   if (label.front() == ' ' || label.back() == ' ') r.fail(*node, field, "must not begin or end with a space");
   if (label != planner && lookupPlanner(label))
     r.fail(*node, field, "'" + label + "' is the name of another planner; a label must not read as one");

@@ -31,6 +31,19 @@ std::string readFile(const std::string& path) {
   return ss.str();
 }
 
+bool isPrintableLine(const std::string& text) {
+  const auto byte = [&](std::size_t i) { return i < text.size() ? static_cast<unsigned char>(text[i]) : 0; };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const unsigned char a = byte(i), b = byte(i + 1), c = byte(i + 2);
+    if (a < 0x20 || a == 0x7f) return false;
+    if (a == 0xc2 && b >= 0x80 && b <= 0x9f) return false;                          // U+0080 .. U+009F
+    if (a == 0xd8 && b == 0x9c) return false;                                       // U+061C
+    if (a == 0xe2 && b == 0x80 && (c == 0x8e || c == 0x8f || (c >= 0xa8 && c <= 0xae))) return false;  // U+200E/F, U+2028 .. U+202E
+    if (a == 0xe2 && b == 0x81 && c >= 0xa6 && c <= 0xa9) return false;            // U+2066 .. U+2069
+  }
+  return true;
+}
+
 bool isValidUtf8(const std::string& text) {
   const auto* s = reinterpret_cast<const unsigned char*>(text.data());
   const std::size_t n = text.size();

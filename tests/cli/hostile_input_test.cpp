@@ -148,7 +148,13 @@ TEST_F(Hostile, LabelsThatWouldMisleadAreRefusedAtTheirLine) {
   EXPECT_EQ(configError(entry("spiral")),
             file + ":7: planners[0].label: 'spiral' is the name of another planner; a label must not read as one");
   EXPECT_EQ(configError(entry("\"\"")), file + ":7: planners[0].label: must be 1 to 80 characters");
-  EXPECT_EQ(configError(entry("\"a\\nb\"")), file + ":7: planners[0].label: must be one line of printable characters");
+  const std::string unprintable = ":7: planners[0].label: must be one line of printable characters (no control or bidirectional marks)";
+  EXPECT_EQ(configError(entry("\"a\\nb\"")), file + unprintable);
+  // A C1 control (U+0085), a line separator (U+2028) and a right-to-left override (U+202E), which
+  // would reorder what a table shows; plain non-ASCII letters stay.
+  for (const char* hidden : {"\"nel\\x85x\"", "\"ls\\u2028y\"", "\"rlo\\u202Ez\"", "\"lri\\u2066z\"", "\"alm\\u061Cz\""})
+    EXPECT_EQ(configError(entry(hidden)), file + unprintable) << hidden;
+  EXPECT_EQ(configError(entry("\"Fl\\u00e4che \\u2013 rows\"")).find("label"), std::string::npos);
   EXPECT_EQ(configError(entry(std::string(81, 'x'))), file + ":7: planners[0].label: must be 1 to 80 characters");
   // Two entries under one label: the second is refused, naming the first.
   const std::string twice = configError(std::string(kHead) + "planners:\n  - name: zigzag\n    label: mine\n"

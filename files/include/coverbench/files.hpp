@@ -18,6 +18,11 @@ void requireText(const std::string& text, const std::string& source);
 
 /// Whether `text` is valid UTF-8 (no overlong forms, no surrogates, nothing above U+10FFFF).
 bool isValidUtf8(const std::string& text);
+/// Whether valid UTF-8 `text` is one line of printable characters: no ASCII or C1 control (U+0000
+/// to U+001F, U+007F to U+009F), no line or paragraph separator (U+2028, U+2029), and no
+/// bidirectional control (U+061C, U+200E, U+200F, U+202A to U+202E, U+2066 to U+2069), which
+/// would reorder what a table shows.
+bool isPrintableLine(const std::string& text);
 /// `bytes` as valid UTF-8 text: every byte that does not begin or continue a valid sequence, and
 /// every NUL, replaced by U+FFFD (for untrusted output kept as text: a planner's stderr).
 std::string toValidUtf8(const std::string& bytes);
