@@ -24,4 +24,15 @@ std::string shortNumber(double v) {
   return buf;
 }
 
+std::string shownBytes(const std::string& name) {
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  for (const char ch : name) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c >= 0x7f) out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
+    else out += ch;
+  }
+  return out;
+}
+
 }  // namespace coverbench

@@ -100,20 +100,6 @@ void FluxProfile::check(double s, const std::string& source) const {
     throw InputError(source, "target", "must be in (0, 1e+06] um (or 0: none), got " + shortNumber(target));
 }
 
-namespace {
-/// A name from input as a message quotes it: bytes outside printable ASCII (control bytes, bytes
-/// that may not be UTF-8) as \xHH, so the message is one line of valid text whatever was given.
-std::string shown(const std::string& name) {
-  static const char* hex = "0123456789abcdef";
-  std::string out;
-  for (const char ch : name) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c < 0x20 || c >= 0x7f) out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
-    else out += ch;
-  }
-  return out;
-}
-}  // namespace
 
 FluxProfile fluxProfileOf(const ProfileOptions& options, double s, const ProfileSpelling& spelling) {
   const ProfileSpelling& n = spelling;
@@ -122,7 +108,7 @@ FluxProfile fluxProfileOf(const ProfileOptions& options, double s, const Profile
   FluxProfile profile;
   if (!parseFluxProfileKind(options.profile, profile.kind))
     throw InputError(source(n.kind), kind_field,
-                     "must be none, uniform, gaussian or beta, got '" + shown(options.profile) + "'");
+                     "must be none, uniform, gaussian or beta, got '" + shownBytes(options.profile) + "'");
   const bool gaussian = profile.kind == FluxProfile::Kind::Gaussian, beta = profile.kind == FluxProfile::Kind::Beta;
   // As a config reads tool.profile: each value belongs to its profile, and none goes unused.
   if (!profile.set() && (options.sigma || options.beta || options.rate || options.fan_depth || options.target))

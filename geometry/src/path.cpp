@@ -72,16 +72,7 @@ bool parseToolShape(const std::string& name, ToolShape& shape) {
   return false;
 }
 
-std::string toolShapeProblem(const std::string& name) {
-  static const char* hex = "0123456789abcdef";
-  std::string shown;
-  for (const char ch : name) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c < 0x20 || c >= 0x7f) shown += std::string("\\x") + hex[c >> 4] + hex[c & 15];
-    else shown += ch;
-  }
-  return "must be disk or line, got '" + shown + "'";
-}
+std::string toolShapeProblem(const std::string& name) { return "must be disk or line, got '" + shownBytes(name) + "'"; }
 
 std::string toolLabel(const ToolParams& tool) {
   return std::string(tool.isLine() ? "line " : "") + "s=" + shortNumber(tool.tool_width) + " m, c=" + shortNumber(tool.clearance) + " m";

@@ -23,5 +23,8 @@ class InputError : public std::runtime_error {
 /// A number as messages show it: six significant digits, or as many more as read back as it
 /// ("0.1", "1e-09", "3600.0000001").
 std::string shortNumber(double v);
+/// A name from input as a message quotes it: bytes outside printable ASCII (control bytes, bytes
+/// that may not be UTF-8) as \xHH, so the message is one line of valid text whatever was given.
+std::string shownBytes(const std::string& name);
 
 }  // namespace coverbench
