@@ -130,7 +130,7 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   o.plan.not_scored = judged.not_scored;
   // The plan file's reason says why its coat's metrics are null (a raster past the cap).
   o.plan.result.reason = withNote(o.plan.result.reason, coatNotScoredNote(judged.metrics));
-  if (tool.isLine() && o.plan.result.hasPath()) o.plan.result.reason = withNote(o.plan.result.reason, lineToolNote(planner));
+  if (o.plan.result.hasPath()) o.plan.result.reason = withNote(o.plan.result.reason, toolShapeNote(planner, tool));
   o.plan_json = planFileJson(o.plan);
   const bool scored = o.plan.not_scored.empty();
   const std::string title = wall.name + " / " + planner.name + "  (" + toolLabel(tool) + ")  " +
@@ -196,7 +196,9 @@ Point pointOption(const std::string& text, const std::string& flag) {
 }  // namespace
 
 int planCommand(const PlanOptions& options) {
-  validateTool(options.tool, "command line");
+  ToolParams tool = options.tool;
+  tool.shape = toolShapeOption(options.tool_shape);
+  validateTool(tool, "command line");
   validateTimeLimit(options.time_limit_s, "--time-limit", "time_limit");
   Wall wall = loadWallFile(options.wall);
   if (!options.start.empty()) wall.start = pointOption(options.start, "--start");
@@ -219,9 +221,7 @@ int planCommand(const PlanOptions& options) {
   validateTimeLimit(options.transit.time_cap_s, "--transit-time-cap", "transit.time_cap_s");
   if (options.seed > (1ULL << 53)) throw InputError("--seed", "seed", "must be from 0 to 2^53");
   if (transit->sampling) loadSamplingTransits();
-  ToolParams tool = options.tool;
   tool.profile = fluxProfileOf(options.coat, tool.tool_width);
-  tool.shape = toolShapeOption(options.tool_shape);
   const Outcome o = planOnce(wall, planner, tool, vehicle, std::move(params), options.time_limit_s,
                              !options.svg.empty(), options.transit, options.seed);
   OutputFiles files;  // both files or neither
@@ -351,7 +351,9 @@ int metricsCommand(const MetricsOptions& options) {
   tool.tool_width = options.tool_width ? *options.tool_width : plan.tool_width.value_or(tool.tool_width);
   tool.clearance = options.clearance ? *options.clearance : plan.clearance.value_or(tool.clearance);
   tool.shape = options.tool_shape ? toolShapeOption(*options.tool_shape) : plan.tool_shape.value_or(ToolShape::Disk);
-  validateToolForWall(tool, wall, options.tool_width || options.clearance ? "command line" : options.plan);
+  // A rectangle's depth: the command line's, else the plan file's when it is a rectangle too.
+  tool.depth = options.tool_depth ? *options.tool_depth : tool.isRectangle() ? plan.tool_depth.value_or(0.0) : 0.0;
+  validateToolForWall(tool, wall, options.tool_width || options.clearance || options.tool_depth ? "command line" : options.plan);
   MotionLimits limits;
   limits.speed = options.speed;
   limits.acceleration = options.acceleration;

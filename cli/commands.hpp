@@ -35,7 +35,7 @@ struct PlanOptions {
   double time_limit_s = 60.0;
   std::string start, end;  ///< --start X,Y and --end X,Y (or --end start): over the wall file's own
   ProfileOptions coat;     ///< the tool's flux profile (planners that space rows for an even coat read it)
-  std::string tool_shape = "disk";  ///< --tool-shape: disk or line (docs/metrics.md#tool-shapes)
+  std::string tool_shape = "disk";  ///< --tool-shape: disk, line or rectangle (docs/metrics.md#tool-shapes)
 };
 /// Returns 0 when the plan is ok and valid, 3 when the planner reported a failure or its path is
 /// invalid (the plan file is still written and says which). Bad input throws InputError.
@@ -61,6 +61,7 @@ struct MetricsOptions {
   std::string wall, plan, svg;
   std::optional<double> tool_width, clearance;  ///< default: the plan file's, else 0.1 / 0.02
   std::optional<std::string> tool_shape;        ///< default: the plan file's, else disk
+  std::optional<double> tool_depth;             ///< a rectangle's; default: the plan file's
   VehicleOptions vehicle;  ///< default: the plan file's, else holonomic
   double speed = 0.3, acceleration = 0.5;
   std::string stops = "turns";  ///< the time model's stops: turns or waypoints

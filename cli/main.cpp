@@ -112,8 +112,10 @@ void addPlanCommands(CLI::App& app, Commands& o) {
   plan_cmd->add_option("--planner", plan.planner, "planner name (see `coverbench planners`), or an external planner's manifest (FILE.json)")->required();
   plan_cmd->add_option("--tool-width", plan.tool.tool_width, "tool diameter s in metres")->capture_default_str();
   plan_cmd->add_option("--tool-shape", plan.tool_shape,
-                       "disk, or line: a segment of length s square to the heading (docs/metrics.md#tool-shapes)")
+                       "disk; line: a segment of length s square to the heading; rectangle: s across it and "
+                       "--tool-depth along it (docs/metrics.md#tool-shapes)")
       ->capture_default_str();
+  plan_cmd->add_option("--tool-depth", plan.tool.depth, "a rectangle tool's depth d along the heading, metres");
   plan_cmd->add_option("--clearance", plan.tool.clearance, "gap c between tool and obstacles, metres")
       ->capture_default_str();
   plan_cmd->add_option("--vehicle", plan.vehicle.model,
@@ -164,7 +166,8 @@ void addCheckCommands(CLI::App& app, Commands& o) {
   metrics_cmd->add_option("--wall", metrics.wall, "wall file (JSON)")->required();
   metrics_cmd->add_option("--plan", metrics.plan, "plan file: needs only waypoints and tool_on")->required();
   metrics_cmd->add_option("--tool-width", metrics.tool_width, "tool diameter s in metres (default: the plan's, else 0.1)");
-  metrics_cmd->add_option("--tool-shape", metrics.tool_shape, "disk or line (default: the plan's, else disk; docs/metrics.md#tool-shapes)");
+  metrics_cmd->add_option("--tool-shape", metrics.tool_shape, "disk, line or rectangle (default: the plan's, else disk; docs/metrics.md#tool-shapes)");
+  metrics_cmd->add_option("--tool-depth", metrics.tool_depth, "a rectangle tool's depth d in metres (default: the plan's)");
   metrics_cmd->add_option("--clearance", metrics.clearance, "gap c in metres (default: the plan's, else 0.02)");
   metrics_cmd->add_option("--vehicle", metrics.vehicle.model, "holonomic, gantry or car (default: the plan's, else holonomic)");
   metrics_cmd->add_option("--turn-radius", metrics.vehicle.turn_radius, "car: its smallest turn radius, m (default: the plan's, else 0.5)");

@@ -14,159 +14,17 @@
 #include "coverbench/hash.hpp"
 #include "coverbench/limits.hpp"
 #include "coverbench/registry.hpp"
+#include "config_reader.hpp"
 
 namespace coverbench {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
-/// A YAML value copied out of yaml-cpp once, at load. yaml-cpp's nodes are handles whose
-/// assignment writes through to the shared node (so sorting or reassigning them rewrites the
-/// document); every later step reads this plain value tree instead, which cannot alias.
-struct Yaml;
-struct YamlEntry;
-struct Yaml {
-  enum class Kind { Null, Scalar, List, Map } kind = Kind::Null;
-  std::string scalar;
-  std::vector<Yaml> items;          ///< a list's items
-  std::vector<YamlEntry> entries;   ///< a map's entries, in file order, keys unique
-  int line = 1;                     ///< 1-based
-  bool isScalar() const { return kind == Kind::Scalar; }
-  bool isMap() const { return kind == Kind::Map; }
-  bool isList() const { return kind == Kind::List; }
-  const Yaml* find(const std::string& key) const;
-};
-struct YamlEntry {
-  std::string key;
-  int key_line = 1;
-  Yaml value;
-};
-const Yaml* Yaml::find(const std::string& key) const {
-  for (const YamlEntry& e : entries)
-    if (e.key == key) return &e.value;
-  return nullptr;
-}
-
-/// Reads one config file; every error names FILE:LINE and the key path.
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(int line, const std::string& field, const std::string& problem) const {
-    throw InputError(file_ + ":" + std::to_string(line), field, problem);
-  }
-  [[noreturn]] void fail(const Yaml& at, const std::string& field, const std::string& problem) const {
-    fail(at.line, field, problem);
-  }
-
-  /// The document as a value tree: keys must be plain scalars and appear once per mapping.
-  Yaml copy(const YAML::Node& n, const std::string& where, int depth) {
-    if (depth > 32) fail(line(n), where.empty() ? "(document)" : where, "nested more than 32 levels deep");
-    if (++nodes_ > 1000000) fail(line(n), where.empty() ? "(document)" : where, "more than 10^6 values (aliases expanding?)");
-    Yaml y;
-    y.line = line(n);
-    if (n.IsScalar()) {
-      y.kind = Yaml::Kind::Scalar;
-      y.scalar = n.Scalar();
-    } else if (n.IsSequence()) {
-      y.kind = Yaml::Kind::List;
-      std::size_t i = 0;
-      for (const YAML::Node& item : n) y.items.push_back(copy(item, where + "[" + std::to_string(i++) + "]", depth + 1));
-    } else if (n.IsMap()) {
-      y.kind = Yaml::Kind::Map;
-      for (auto it = n.begin(); it != n.end(); ++it) {
-        if (!it->first.IsScalar())
-          fail(line(it->first), where.empty() ? "(document)" : where, "a key must be a plain name, not a list or mapping");
-        const std::string key = it->first.Scalar();
-        const std::string field = where.empty() ? key : where + "." + key;
-        for (const YamlEntry& e : y.entries)
-          if (e.key == key) fail(line(it->first), field, "duplicate key (first on line " + std::to_string(e.key_line) + ")");
-        y.entries.push_back(YamlEntry{key, line(it->first), copy(it->second, field, depth + 1)});
-      }
-    }
-    return y;
-  }
-
-  void onlyKeys(const Yaml& map, const std::string& where, const std::vector<std::string>& allowed) const {
-    if (!map.isMap()) fail(map, where.empty() ? "(document)" : where, "must be a mapping of keys to values");
-    for (const YamlEntry& e : map.entries) {
-      if (std::find(allowed.begin(), allowed.end(), e.key) != allowed.end()) continue;
-      std::string hint;
-      std::size_t best = 3;
-      for (const std::string& a : allowed)
-        if (editDistance(e.key, a) < best) best = editDistance(e.key, a), hint = a;
-      std::string known;
-      for (const std::string& a : allowed) known += (known.empty() ? "" : ", ") + a;
-      fail(e.key_line, where.empty() ? e.key : where + "." + e.key,
-           "unknown key" + (hint.empty() ? " (allowed: " + known + ")" : " (did you mean '" + hint + "'?)"));
-    }
-  }
-
-  std::string text(const Yaml& n, const std::string& field) const {
-    if (!n.isScalar()) fail(n, field, "must be a single value");
-    return n.scalar;
-  }
-  double number(const Yaml& n, const std::string& field, double lo, double hi, bool open_lo = false, bool open_hi = false) const {
-    const std::string t = text(n, field);
-    double v = 0.0;
-    std::size_t used = 0;
-    try {
-      v = std::stod(t, &used);
-    } catch (...) {
-      used = 0;
-    }
-    if (used != t.size() || t.empty() || !std::isfinite(v)) fail(n, field, "must be a number, got '" + t + "'");
-    // std::stod also reads hexadecimal ("0x10" as 16), which a config does not mean.
-    if (t.find_first_of("xX") != std::string::npos) fail(n, field, "must be a decimal number, got '" + t + "'");
-    if (v < lo || v > hi || (open_lo && v == lo) || (open_hi && v == hi))
-      fail(n, field, "must be in " + std::string(open_lo ? "(" : "[") + shortNumber(lo) + ", " + shortNumber(hi) + (open_hi ? ")" : "]") +
-                         ", got " + t);
-    return v;
-  }
-  long long integer(const Yaml& n, const std::string& field, long long lo, long long hi) const {
-    const double v = number(n, field, static_cast<double>(lo), static_cast<double>(hi));
-    if (v != std::floor(v)) fail(n, field, "must be a whole number, got " + text(n, field));
-    return static_cast<long long>(v);
-  }
-  bool boolean(const Yaml& n, const std::string& field) const {
-    const std::string t = text(n, field);
-    if (t == "true") return true;
-    if (t == "false") return false;
-    fail(n, field, "must be true or false, got '" + t + "'");
-  }
-  /// A scalar or a list of scalars, as a list.
-  std::vector<const Yaml*> values(const Yaml& n, const std::string& field) const {
-    std::vector<const Yaml*> out;
-    if (n.isList()) {
-      if (n.items.empty()) fail(n, field, "must not be an empty list");
-      for (const Yaml& item : n.items) out.push_back(&item);
-    } else {
-      out.push_back(&n);
-    }
-    return out;
-  }
-  const std::string& file() const { return file_; }
-
- private:
-  static int line(const YAML::Node& n) { return n.Mark().line >= 0 ? n.Mark().line + 1 : 1; }
-  std::string file_;
-  std::size_t nodes_ = 0;
-};
+using config_yaml::Reader;
+using config_yaml::readProfile;
+using config_yaml::readTools;
+using config_yaml::Yaml;
+using config_yaml::YamlEntry;
 
 /// One planner configuration: resolved parameters, its label, and its content hash.
 PlannerConfig makeConfig(const PlannerInfo& info, ParamSettings settings) {
@@ -489,66 +347,6 @@ PlannerList readPlanners(const ConfigFile& f, const Yaml& planners, ExperimentCo
   return list;
 }
 
-/// `tool.profile`: the flux profile of every tool of the config (flux_profile.hpp), checked
-/// against each tool's width.
-FluxProfile readProfile(Reader& r, const Yaml& p, const std::vector<double>& widths) {
-  r.onlyKeys(p, "tool.profile", {"kind", "sigma", "beta", "rate", "depth", "target"});
-  FluxProfile profile;
-  const Yaml* kind = p.find("kind");
-  if (!kind) r.fail(p, "tool.profile.kind", "is missing: uniform, gaussian or beta");
-  const std::string name = r.text(*kind, "tool.profile.kind");
-  if (!parseFluxProfileKind(name, profile.kind) || !profile.set())
-    r.fail(*kind, "tool.profile.kind", "must be uniform, gaussian or beta, got '" + name + "'");
-  const bool gaussian = profile.kind == FluxProfile::Kind::Gaussian, beta = profile.kind == FluxProfile::Kind::Beta;
-  if (!gaussian && p.find("sigma")) r.fail(*p.find("sigma"), "tool.profile.sigma", "belongs to a gaussian profile");
-  if (!beta && p.find("beta")) r.fail(*p.find("beta"), "tool.profile.beta", "belongs to a beta profile");
-  if (gaussian && !p.find("sigma")) r.fail(p, "tool.profile.sigma", "is missing: a gaussian profile's standard deviation, m");
-  if (beta && !p.find("beta")) r.fail(p, "tool.profile.beta", "is missing: a beta profile's exponent");
-  if (const Yaml* v = p.find("sigma")) profile.sigma = r.number(*v, "tool.profile.sigma", 0.0, 100.0);
-  if (const Yaml* v = p.find("beta")) profile.beta = r.number(*v, "tool.profile.beta", 1.0, 100.0);
-  if (const Yaml* v = p.find("rate")) profile.rate = r.number(*v, "tool.profile.rate", 0.0, 1.0, true);
-  if (const Yaml* v = p.find("depth")) profile.depth = r.number(*v, "tool.profile.depth", 0.0, kMaxToolWidth);
-  if (const Yaml* v = p.find("target")) profile.target = r.number(*v, "tool.profile.target", 0.0, FluxProfile::kMaxTarget, true);
-  for (double w : widths) {
-    try {
-      profile.check(w, "");
-    } catch (const InputError& e) {
-      r.fail(p.find(e.field()) ? *p.find(e.field()) : p, "tool.profile." + e.field(),
-             e.problem() + " (tool width " + shortNumber(w) + " m)");
-    }
-  }
-  return profile;
-}
-
-/// The `tool:` section: width, clearance and shape, each a value or a list naming nothing twice
-/// (the tools are their product, in that order; `distinct` reads one), and one flux profile.
-void readTools(Reader& r, const Yaml* t, ExperimentConfig& c) {
-  std::vector<double> widths{0.1}, clearances{0.02};
-  std::vector<ToolShape> shapes{ToolShape::Disk};
-  auto distinct = [&](const char* key, auto read, auto& out) {
-    const Yaml* n = t ? t->find(key) : nullptr;
-    if (!n) return;
-    const std::string field = std::string("tool.") + key;
-    out.clear();
-    for (const Yaml* v : r.values(*n, field)) {
-      out.push_back(read(*v, field));
-      if (std::find(out.begin(), out.end() - 1, out.back()) != out.end() - 1) r.fail(*v, field, "lists " + v->scalar + " twice");
-    }
-  };
-  if (t) r.onlyKeys(*t, "tool", {"width", "clearance", "profile", "shape"});
-  distinct("width", [&](const Yaml& v, const std::string& f) { return r.number(v, f, kMinToolWidth, kMaxToolWidth); }, widths);
-  distinct("clearance", [&](const Yaml& v, const std::string& f) { return r.number(v, f, 0.0, kMaxClearance); }, clearances);
-  distinct("shape", [&](const Yaml& v, const std::string& f) {
-    ToolShape shape = ToolShape::Disk;
-    if (!parseToolShape(r.text(v, f), shape)) r.fail(v, f, toolShapeProblem(v.scalar));
-    return shape;
-  }, shapes);
-  const FluxProfile profile = t && t->find("profile") ? readProfile(r, *t->find("profile"), widths) : FluxProfile{};
-  for (double w : widths)
-    for (double cl : clearances)
-      for (ToolShape shape : shapes) c.tools.push_back(ToolParams{w, cl, profile, shape});
-}
-
 /// The `vehicle:` section: one model per experiment (docs/vehicles.md).
 void readVehicle(Reader& r, const Yaml& v, VehicleModel& vehicle) {
   r.onlyKeys(v, "vehicle", {"model", "lift_s", "lower_s", "turn_radius", "reverse"});
@@ -781,8 +579,9 @@ ExperimentConfig loadExperimentConfig(const std::string& path) {
   if (c.replanning.enabled() && c.vehicle.isCar())
     r.fail(*doc.find("replanning"), "replanning",
            "is not built for a car yet: its repairs are straight moves a car cannot drive (docs/replanning.md)");
-  if (std::any_of(c.tools.begin(), c.tools.end(), [](const ToolParams& x) { return x.isLine(); }) && (c.vehicle.isCar() || c.replanning.enabled()))
-    r.fail(*doc.find("tool")->find("shape"), "tool.shape", std::string("a line tool is not built for ") +
+  const auto turning = std::find_if(c.tools.begin(), c.tools.end(), [](const ToolParams& x) { return x.turnsWithHeading(); });
+  if (turning != c.tools.end() && (c.vehicle.isCar() || c.replanning.enabled()))
+    r.fail(*doc.find("tool")->find("shape"), "tool.shape", "a " + toString(turning->shape) + " tool is not built for " +
            (c.vehicle.isCar() ? "a car yet: the arcs it drives" : "replanning yet: its repairs' paint") + " (docs/metrics.md#tool-shapes); use a disk");
   readRunSettings(r, doc, c);
   readBaseline(r, doc, planners, c);

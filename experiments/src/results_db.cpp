@@ -37,7 +37,8 @@ namespace {
 /// a profile); run_profile_target (the profile's target thickness, for a run whose profile has
 /// one: an older build lists and scores such a run against the mean); run_tool_shape (the tool's
 /// shape of each run whose tool is not a disk, docs/metrics.md#tool-shapes: a database without
-/// the table reads as disk tools; an older build would read a line tool's run as a disk's). Run
+/// the table reads as disk tools; an older build would read a line tool's run as a disk's);
+/// run_tool_depth (a rectangle tool's depth d, for each run whose tool is a rectangle). Run
 /// fields added since (stderr_tail) are columns added to an older database when it is written
 /// (addMissingRunColumns; its runs read as empty) and read as empty where a database opened
 /// read-only lacks them; an older build ignores them.
@@ -97,6 +98,8 @@ CREATE TABLE IF NOT EXISTS run_profile_target (
   run_key TEXT PRIMARY KEY, target REAL NOT NULL);
 CREATE TABLE IF NOT EXISTS run_tool_shape (
   run_key TEXT PRIMARY KEY, shape TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS run_tool_depth (
+  run_key TEXT PRIMARY KEY, depth REAL NOT NULL);
 CREATE TABLE IF NOT EXISTS replans (
   run_key TEXT NOT NULL, position INTEGER NOT NULL, fraction REAL NOT NULL, repair TEXT NOT NULL,
   obstacles INTEGER NOT NULL, requested INTEGER NOT NULL, obstacles_json TEXT NOT NULL, status TEXT NOT NULL,

@@ -59,36 +59,48 @@ FluxProfile storedProfile(const Statement& s, int i) {
   return p;
 }
 
-/// The tool's shape in column i (run_tool_shape, alias ts): a disk when the run has no row.
-ToolShape storedShape(const Statement& s, int i) {
-  ToolShape shape = ToolShape::Disk;
-  if (!s.columnNull(i) && !parseToolShape(s.columnText(i), shape)) throw std::runtime_error("run_tool_shape: unknown shape " + s.columnText(i));
-  return shape;
-}
-
-/// Each tool configuration is its own group: with several, every column is "label @ tool" (a
-/// line tool's label names its shape: never pooled with the disk of its width).
-void labelTools(ResultSet& rs) {
-  std::set<std::tuple<double, double, ToolShape>> tools;
-  for (const ResultRow& r : rs.runs) tools.insert({r.tool.tool_width, r.tool.clearance, r.tool.shape});
-  if (tools.size() <= 1) return;
-  auto suffix = [](double w, double c, ToolShape shape) {
-    ToolParams t{w, c};
-    t.shape = shape;
-    return " @ " + toolLabel(t);
-  };
-  std::vector<std::string> columns;
-  for (const std::string& label : rs.planners)
-    for (const auto& [w, c, shape] : tools) columns.push_back(label + suffix(w, c, shape));
-  rs.planners = columns;
-  for (ResultRow& r : rs.runs) r.planner = r.config + suffix(r.tool.tool_width, r.tool.clearance, r.tool.shape);
-}
-
 /// Whether the database has the table `name` (one opened read-only may predate it).
 bool hasTable(sqlite3* db, const std::string& file, const std::string& name) {
   Statement t(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?", file);
   t.text(1, name);
   return t.step();
+}
+
+/// The tool's shape in column i (run_tool_shape, alias ts) and a rectangle's depth in column i + 1
+/// (run_tool_depth, alias td), into `tool`: a disk when the run has no row.
+void storedShape(const Statement& s, int i, ToolParams& tool) {
+  tool.shape = ToolShape::Disk;
+  if (!s.columnNull(i) && !parseToolShape(s.columnText(i), tool.shape)) throw std::runtime_error("run_tool_shape: unknown shape " + s.columnText(i));
+  tool.depth = tool.isRectangle() && !s.columnNull(i + 1) ? s.columnReal(i + 1) : 0.0;
+  if (tool.isRectangle() && !(tool.depth > 0.0)) throw std::runtime_error("run_tool_depth: a rectangle tool's run has no depth");
+}
+
+/// The two columns storedShape reads and their joins on the run key `key` ("r.key"), NULL where
+/// the database predates their tables.
+std::pair<std::string, std::string> shapeColumns(sqlite3* db, const std::string& file, const std::string& key) {
+  const bool shapes = hasTable(db, file, "run_tool_shape"), depths = hasTable(db, file, "run_tool_depth");
+  return {std::string(shapes ? "ts.shape" : "NULL") + ", " + (depths ? "td.depth" : "NULL"),
+          (shapes ? "LEFT JOIN run_tool_shape ts ON ts.run_key = " + key + " " : std::string()) +
+              (depths ? "LEFT JOIN run_tool_depth td ON td.run_key = " + key + " " : std::string())};
+}
+
+/// Each tool configuration is its own group: with several, every column is "label @ tool" (a
+/// line tool's label names its shape: never pooled with the disk of its width).
+void labelTools(ResultSet& rs) {
+  std::set<std::tuple<double, double, ToolShape, double>> tools;
+  for (const ResultRow& r : rs.runs) tools.insert({r.tool.tool_width, r.tool.clearance, r.tool.shape, r.tool.depth});
+  if (tools.size() <= 1) return;
+  auto suffix = [](double w, double c, ToolShape shape, double depth) {
+    ToolParams t{w, c};
+    t.shape = shape;
+    t.depth = depth;
+    return " @ " + toolLabel(t);
+  };
+  std::vector<std::string> columns;
+  for (const std::string& label : rs.planners)
+    for (const auto& [w, c, shape, depth] : tools) columns.push_back(label + suffix(w, c, shape, depth));
+  rs.planners = columns;
+  for (ResultRow& r : rs.runs) r.planner = r.config + suffix(r.tool.tool_width, r.tool.clearance, r.tool.shape, r.tool.depth);
 }
 
 /// A byte count in GiB, with one decimal ("1.5 GiB").
@@ -155,20 +167,20 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   std::map<std::string, std::size_t> index;
   {
     // The context (columns 0 .. 7), the options (8 .. 14), the profile (15 .. 20), the tool's
-    // shape (21), then the run's fields (22 ..).
+    // shape and depth (21, 22), then the run's fields (23 ..).
     const bool profiles = hasTable(db_, file_, "run_profile"), targets = hasTable(db_, file_, "run_profile_target");
-    const bool shapes = hasTable(db_, file_, "run_tool_shape");
+    const auto [shape_columns, shape_joins] = shapeColumns(db_, file_, "r.key");
     Statement s(db_,
                 "SELECT r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.seed, ws.name, r.planner_version, " +
                     std::string(kOptionColumns) + ", " + (profiles ? kProfileColumns : kNoProfileColumns) + ", " +
-                    (targets ? kTargetColumn : "NULL") + ", " + (shapes ? "ts.shape" : "NULL") + ", " +
+                    (targets ? kTargetColumn : "NULL") + ", " + shape_columns + ", " +
                     runFieldSelect("r") + " FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
                 "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 "
                 "JOIN walls ws ON ws.hash = r.wall_hash" + std::string(kOptionJoins) +
                     (profiles ? "LEFT JOIN run_profile pr ON pr.run_key = r.key " : "") +
                     (targets ? "LEFT JOIN run_profile_target pt ON pt.run_key = r.key " : "") +
-                    (shapes ? "LEFT JOIN run_tool_shape ts ON ts.run_key = r.key " : "") + "ORDER BY r.key",
+                    shape_joins + "ORDER BY r.key",
                 file_);
     s.integer(1, id);
     while (s.step()) {
@@ -185,10 +197,11 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
       row.wall_name = s.columnText(6);
       row.planner_version = s.columnText(7);
       row.tool = ToolParams{s.columnReal(3), s.columnReal(4), storedProfile(s, 15)};
-      row.tool.shape = storedShape(s, 21);
+      storedShape(s, 21, row.tool);
       if (row.tool.isLine()) row.pairing += "/line";  // runs pair only with the same tool
+      if (row.tool.isRectangle()) row.pairing += "/rectangle/" + shortNumber(row.tool.depth);
       storedOptions(s, 8, row.vehicle, row.transit);
-      int i = 22;
+      int i = 23;
       forEachRunField(static_cast<RunFields&>(row), [&](const RunField& f, auto& value) { readField(s, i++, file_, f, value); });
       // The measured fields the metric registry lists are the tables' metrics too.
       row.metrics["plan_time_ms"] = row.plan_time_ms;
@@ -289,22 +302,21 @@ std::vector<ResultsDb::RunSummary> ResultsDb::runSummaries(long long experiment)
   }
   const std::set<std::string> columns = runColumns();
   auto column = [&](const char* name) { return columns.count(name) ? std::string("r.") + name : std::string("NULL"); };
-  // The tool's profile (columns 11 .. 16) and shape (17), as load() reads them: a line or a
-  // profile is another tool than the plain disk of its width.
+  // The tool's profile (columns 11 .. 16), shape and depth (17, 18), as load() reads them: a line,
+  // a rectangle or a profile is another tool than the plain disk of its width.
   const bool profiles = hasTable(db_, file_, "run_profile"), targets = hasTable(db_, file_, "run_profile_target");
-  const bool shapes = hasTable(db_, file_, "run_tool_shape");
+  const auto [shape_columns, shape_joins] = shapeColumns(db_, file_, "e.run_key");
   Statement s(db_,
               "SELECT e.run_key, r.config_id, w.dataset, r.wall_hash, ws.name, r.status, r.tool_width, r.clearance, " +
                   column("plan_time_ms") + ", " + column("peak_memory_bytes") + ", COALESCE(o.transit, ''), " +
                   (profiles ? kProfileColumns : kNoProfileColumns) + ", " + (targets ? kTargetColumn : "NULL") + ", " +
-                  (shapes ? "ts.shape" : "NULL") +
+                  shape_columns +
                   " FROM experiment_runs e JOIN runs r ON r.key = e.run_key "
                   "JOIN experiment_walls w ON w.experiment_id = ?1 AND w.wall_hash = r.wall_hash "
                   "JOIN walls ws ON ws.hash = r.wall_hash LEFT JOIN run_options o ON o.run_key = e.run_key " +
                   (profiles ? "LEFT JOIN run_profile pr ON pr.run_key = e.run_key " : "") +
                   (targets ? "LEFT JOIN run_profile_target pt ON pt.run_key = e.run_key " : "") +
-                  (shapes ? "LEFT JOIN run_tool_shape ts ON ts.run_key = e.run_key " : "") +
-                  "WHERE e.experiment_id = ?1 ORDER BY e.run_key",
+                  shape_joins + "WHERE e.experiment_id = ?1 ORDER BY e.run_key",
               file_);
   s.integer(1, experiment);
   std::vector<RunSummary> out;
@@ -319,7 +331,7 @@ std::vector<ResultsDb::RunSummary> ResultsDb::runSummaries(long long experiment)
     r.wall_name = s.columnText(4);
     readField(s, 5, file_, kRunFields[1], r.status);
     r.tool = ToolParams{s.columnReal(6), s.columnReal(7), storedProfile(s, 11)};
-    r.tool.shape = storedShape(s, 17);
+    storedShape(s, 17, r.tool);
     r.plan_time_ms = s.columnReal(8);
     r.peak_memory_bytes = s.columnReal(9);
     transits.push_back(s.columnText(10).empty() ? TransitSpec{}.planner : s.columnText(10));
@@ -505,11 +517,16 @@ ResultsDb::StoredRun ResultsDb::storedRun(const std::string& key_prefix) {
   run.stderr_tail = s.columnText(16);  // after the 7 option columns
   if (s.step()) throw InputError(file_, "runs", "several run keys start with " + key_prefix + ": give more digits");
   if (std::optional<Path> p = path(run.key)) run.path = std::move(*p);
-  if (hasTable(db_, file_, "run_tool_shape")) {
-    Statement shape(db_, "SELECT shape FROM run_tool_shape WHERE run_key = ?", file_);
+  {
+    const auto [shape_columns, shape_joins] = shapeColumns(db_, file_, "r.key");
+    Statement shape(db_, "SELECT " + shape_columns + " FROM runs r " + shape_joins + "WHERE r.key = ?", file_);
     shape.text(1, run.key);
-    if (shape.step() && !parseToolShape(shape.columnText(0), run.tool.shape))
-      throw InputError(file_, "run_tool_shape", "unknown shape " + shape.columnText(0));
+    try {
+      if (shape.step()) storedShape(shape, 0, run.tool);
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      throw InputError(file_, what.substr(0, what.find(':')), what.substr(what.find(':') + 2));
+    }
   }
   // The tool's flux profile and the time model: the config's (the run key holds them).
   Statement c(db_,

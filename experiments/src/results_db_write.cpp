@@ -91,7 +91,7 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
   try {
     // A retried run replaces everything stored under its key.
     for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options",
-                              "run_car", "run_profile", "run_profile_target", "run_tool_shape", "replans", "replan_figures"}) {
+                              "run_car", "run_profile", "run_profile_target", "run_tool_shape", "run_tool_depth", "replans", "replan_figures"}) {
       Statement& d = prepared(std::string("DELETE FROM ") + table + " WHERE run_key = ?");
       d.text(1, rec.key).run();
     }
@@ -125,9 +125,13 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
         target.text(1, rec.key).real(2, p.target).run();
       }
     }
-    if (spec.tool.isLine()) {
+    if (spec.tool.turnsWithHeading()) {
       Statement& shape = prepared("INSERT INTO run_tool_shape (run_key, shape) VALUES (?,?)");
       shape.text(1, rec.key).text(2, toString(spec.tool.shape)).run();
+    }
+    if (spec.tool.isRectangle()) {
+      Statement& depth = prepared("INSERT INTO run_tool_depth (run_key, depth) VALUES (?,?)");
+      depth.text(1, rec.key).real(2, spec.tool.depth).run();
     }
     if (!rec.replans.empty()) {
       Statement& rr = prepared(

@@ -173,7 +173,8 @@ std::string runBaseKey(const RunSpec& spec) {
             "\nprofile.rate=" + exact(p.rate) + "\nprofile.depth=" + exact(p.depthFor(spec.tool.tool_width));  // 0 is s/10
   if (const FluxProfile& p = spec.tool.profile; p.target > 0.0)  // a profile without one keeps its old keys
     text += "\nprofile.target=" + exact(p.target);
-  if (spec.tool.isLine()) text += "\ntool_shape=" + toString(spec.tool.shape);  // a disk keeps its old keys
+  if (spec.tool.turnsWithHeading()) text += "\ntool_shape=" + toString(spec.tool.shape);  // a disk keeps its old keys
+  if (spec.tool.isRectangle()) text += "\ntool_depth=" + exact(spec.tool.depth);
   if (spec.exact_judge) text += "\njudge=exact";
   if (spec.vehicle.isCar())
     text += "\nvehicle=car\nturn_radius=" + exact(spec.vehicle.turn_radius) + "\nreverse=" + (spec.vehicle.reverse ? "1" : "0");
@@ -312,7 +313,7 @@ RunRecord executeRun(const RunSpec& spec) {
         }
       }
       rec.reason = withNote(rec.reason, coatNotScoredNote(m));
-      if (spec.tool.isLine()) rec.reason = withNote(rec.reason, lineToolNote(info));
+      rec.reason = withNote(rec.reason, toolShapeNote(info, spec.tool));
     } catch (const std::exception& e) {  // a path beyond the scoring limits, or a bug in the judge
       rec.status = RunStatus::MetricsError;
       rec.reason = std::string("the path could not be scored: ") + e.what();

@@ -14,6 +14,12 @@ void validateTool(const ToolParams& tool, const std::string& source) {
                                                       : ""));
   if (!std::isfinite(tool.clearance) || tool.clearance < 0.0 || tool.clearance > kMaxClearance)
     throw InputError(source, "clearance", "must be in [0, " + shortNumber(kMaxClearance) + "] m, got " + shortNumber(tool.clearance));
+  if (tool.isRectangle() && (!std::isfinite(tool.depth) || tool.depth < kMinToolWidth || tool.depth > kMaxToolWidth))
+    throw InputError(source, "tool_depth",
+                     "a rectangle's depth must be in [" + shortNumber(kMinToolWidth) + ", " + shortNumber(kMaxToolWidth) +
+                         "] m, got " + shortNumber(tool.depth));
+  if (!tool.isRectangle() && tool.depth != 0.0)
+    throw InputError(source, "tool_depth", "a depth belongs to a rectangle; a " + toString(tool.shape) + " has none");
 }
 
 namespace {

@@ -61,10 +61,17 @@ double segmentLength(const Path& path, std::size_t i) {
   return g.radius * std::fabs(g.sweep);
 }
 
-std::string toString(ToolShape shape) { return shape == ToolShape::Line ? "line" : "disk"; }
+std::string toString(ToolShape shape) {
+  switch (shape) {
+    case ToolShape::Line: return "line";
+    case ToolShape::Rectangle: return "rectangle";
+    case ToolShape::Disk: break;
+  }
+  return "disk";
+}
 
 bool parseToolShape(const std::string& name, ToolShape& shape) {
-  for (ToolShape k : {ToolShape::Disk, ToolShape::Line})
+  for (ToolShape k : {ToolShape::Disk, ToolShape::Line, ToolShape::Rectangle})
     if (name == toString(k)) {
       shape = k;
       return true;
@@ -72,10 +79,20 @@ bool parseToolShape(const std::string& name, ToolShape& shape) {
   return false;
 }
 
-std::string toolShapeProblem(const std::string& name) { return "must be disk or line, got '" + shownBytes(name) + "'"; }
+std::string toolShapeProblem(const std::string& name) { return "must be disk, line or rectangle, got '" + shownBytes(name) + "'"; }
+
+ToolParams circumscribedDisk(const ToolParams& tool) {
+  ToolParams disk = tool;
+  disk.tool_width = 2.0 * tool.reachRadius();
+  disk.shape = ToolShape::Disk;
+  disk.depth = 0.0;
+  return disk;
+}
 
 std::string toolLabel(const ToolParams& tool) {
-  return std::string(tool.isLine() ? "line " : "") + "s=" + shortNumber(tool.tool_width) + " m, c=" + shortNumber(tool.clearance) + " m";
+  const std::string shape = tool.shape == ToolShape::Disk ? "" : toString(tool.shape) + " ";
+  const std::string depth = tool.isRectangle() ? ", d=" + shortNumber(tool.depth) + " m" : "";
+  return shape + "s=" + shortNumber(tool.tool_width) + " m" + depth + ", c=" + shortNumber(tool.clearance) + " m";
 }
 
 std::string toolAndProfileLabel(const ToolParams& tool) {

@@ -133,13 +133,14 @@ struct Regions {
 
 Polygon polygonOf(const std::vector<P2>& points) { return Polygon(points.begin(), points.end()); }
 
-/// What a line tool sweeps with the tool on (exact_line.hpp), on `side`: each tool-on move's
-/// rectangle and the two sectors of each turn between two tool-on moves (zero-length moves
+/// What a line or rectangle tool sweeps with the tool on (exact_line.hpp), on `side`: each tool-on
+/// move's rectangle and the sectors of each turn between two tool-on moves (zero-length moves
 /// skipped), the sectors' arcs as chords of about kArcCoverageSagitta.
 std::vector<Polygon> lineSwept(const ToolParams& tool, const Path& path, Side side) {
   const bool outer = side == Side::Outer;
-  const double h = tool.radius();
-  const FT h2 = (FT(tool.tool_width) / 2) * (FT(tool.tool_width) / 2);
+  const ExactShape shape(tool);
+  const double reach = shape.reach();
+  const FT reach2 = shape.reach2();
   std::vector<Polygon> pieces;
   std::optional<V2> heading;
   for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
@@ -151,22 +152,23 @@ std::vector<Polygon> lineSwept(const ToolParams& tool, const Path& path, Side si
     if (a == b) continue;
     if (heading) {
       const ExactTurn t = exactTurn(*heading, b - a);
-      for (int s = 1; t.turns && s >= -1; s -= 2) {
-        const std::vector<Triangle> fan = sectorFan(a, t, h, h2, std::fmin(kArcCoverageSagitta, h / 2.0), outer, s);
-        if (fan.empty()) throw std::logic_error("judge: a line tool's turn has no certified fan");
-        for (const Triangle& tri : fan) pieces.push_back(Polygon(tri.begin(), tri.end()));
-      }
+      for (const ExactTurn& corner : t.turns ? cornerTurns(t, shape) : std::vector<ExactTurn>{})
+        for (int s = 1; s >= -1; s -= 2) {
+          const std::vector<Triangle> fan = sectorFan(a, corner, reach, reach2, std::fmin(kArcCoverageSagitta, reach / 2.0), outer, s);
+          if (fan.empty()) throw std::logic_error(std::string("judge: a ") + (tool.isLine() ? "line" : "rectangle") + " tool's turn has no certified fan");
+          for (const Triangle& tri : fan) pieces.push_back(Polygon(tri.begin(), tri.end()));
+        }
     }
-    pieces.push_back(polygonOf(lineRectangle(a, b, h, h2, outer)));
+    pieces.push_back(polygonOf(lineRectangle(a, b, shape, outer)));
     heading = b - a;
   }
   return pieces;
 }
 
 Regions buildRegions(const Wall& wall, const ToolParams& tool, const Path& path, int n, Side side) {
-  // A line tool reaches X, the wall minus its obstacles grown by c (docs/metrics.md#tool-shapes):
+  // A line or rectangle tool reaches X, the wall minus its obstacles grown by c (docs/metrics.md#tool-shapes):
   // F's construction with the tool's own radius 0.
-  const double r = tool.isLine() ? 0.0 : tool.radius();
+  const double r = tool.turnsWithHeading() ? 0.0 : tool.radius();
   // F is built with the opposite side's polygons (it shrinks as the disks grow).
   const Side f_side = side == Side::Inner ? Side::Outer : Side::Inner;
   const std::vector<V2> tool_disk = r > 0.0 ? diskPolygon(r, n, side) : std::vector<V2>{};
@@ -203,7 +205,7 @@ Regions buildRegions(const Wall& wall, const ToolParams& tool, const Path& path,
   std::vector<Polygon> reach = r > 0.0 ? boundaryHulls(free_region, tool_disk) : std::vector<Polygon>{};
   g.reachable = free_region;
   if (!reach.empty()) g.reachable.join(unionOf(reach));
-  if (tool.isLine()) {
+  if (tool.turnsWithHeading()) {
     g.swept = unionOf(lineSwept(tool, path, side));
     return g;
   }

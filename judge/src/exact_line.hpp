@@ -1,7 +1,8 @@
 #pragma once
-// The line tool (path.hpp: ToolShape::Line) for the judge's two CGAL units: how the line turns at
-// a waypoint, decided exactly, and rational polygons that contain (outer) or lie inside (inner)
-// the rectangle and the sectors it sweeps. The rectangle's corners and the sectors' arcs are
+// The line and rectangle tools (path.hpp: ToolShape) for the judge's two CGAL units: how the tool
+// turns at a waypoint, decided exactly, and rational polygons that contain (outer) or lie inside
+// (inner) the rectangles and the sectors it sweeps. A rectangle of half-width h and half-depth e
+// is a line of half-width h grown by e along the heading; a line is e = 0. The rectangle's corners and the sectors' arcs are
 // irrational in general; like an arc of a car's path, a shape is judged through a certified
 // container: a valid verdict holds for the shape itself, and a shape within about 1e-16 of its
 // limit (1e-7 m for a turn's arcs) may be refused.
@@ -10,6 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "coverbench/path.hpp"
 #include "exact_kernel.hpp"
 
 namespace coverbench::judge {
@@ -30,13 +32,37 @@ inline FT scaleFor(const V2& m, double rho, const FT& rho2, bool outer) {
   throw std::logic_error("judge: no rational scale of a line tool's half-width passed its exact check");
 }
 
-/// The rectangle the line of half-width h (h2 = h^2 exactly) sweeps from a to b (a != b): a
-/// rational rectangle square to b - a, as long, whose half-width is at least h (outer) or at most
-/// h (inner). Counter-clockwise.
-inline std::vector<P2> lineRectangle(const P2& a, const P2& b, double h, const FT& h2, bool outer) {
-  const V2 m = leftNormal(b - a);
-  const V2 km = m * scaleFor(m, h, h2, outer);
-  return {a - km, b - km, b + km, a + km};
+/// A tool's half-width h and half-depth e (e = 0: a line), and their squares exactly.
+struct ExactShape {
+  double h = 0.0, e = 0.0;
+  FT h2, e2;
+  explicit ExactShape(const ToolParams& tool)
+      : h(tool.radius()), e(tool.halfDepth()), h2((FT(tool.tool_width) / 2) * (FT(tool.tool_width) / 2)),
+        e2((FT(tool.depth) / 2) * (FT(tool.depth) / 2)) {
+    if (!tool.isRectangle()) e2 = 0;
+  }
+  /// The corners' distance from the centre: sqrt(h^2 + e^2), and its square exactly.
+  double reach() const { return std::hypot(h, e); }
+  FT reach2() const { return h2 + e2; }
+  /// A rational radius at least reach() (checked exactly): the disk that holds the tool in every
+  /// heading; a line's is h itself.
+  FT reachAtLeast() const {
+    if (e == 0.0) return h2 == FT(h) * FT(h) ? FT(h) : throw std::logic_error("judge: a line's half-width is not exact");
+    double r = reach();
+    while (FT(r) * FT(r) < reach2()) r = std::nextafter(r, INFINITY);
+    return FT(r);
+  }
+};
+
+/// The rectangle the tool sweeps from a to b (a != b): a rational rectangle square to b - a whose
+/// half-width is at least h and which reaches at least e behind a and past b (outer), or at most
+/// (inner). Counter-clockwise.
+inline std::vector<P2> lineRectangle(const P2& a, const P2& b, const ExactShape& s, bool outer) {
+  const V2 d = b - a, m = leftNormal(d);
+  const V2 km = m * scaleFor(m, s.h, s.h2, outer);
+  if (s.e == 0.0) return {a - km, b - km, b + km, a + km};
+  const V2 kd = d * scaleFor(d, s.e, s.e2, outer);
+  return {a - kd - km, b + kd - km, b + kd + km, a - kd + km};
 }
 
 /// How the line turns between a move along d1 and one along d2: from the ray of m1 (d1's left
@@ -68,11 +94,30 @@ inline ExactTurn exactTurn(const V2& d1, const V2& d2) {
 
 using Triangle = std::array<P2, 3>;
 
-/// One sector of a turn about p (side +1; -1: the opposite sector, its reflection through p) as
-/// a fan of triangles (p, A_j, A_j+1), A_0 on m1's ray and the last on m2's, every pair turning
-/// the turn's way. Outer: each triangle's far edge lies at least h from p (checked exactly), so
-/// the fan contains the sector; empty when a check fails (retry with a smaller sagitta). Inner:
-/// every A_j lies within h of p, so the fan lies in the sector. Each triangle is listed
+/// The turn of each corner of a tool: `t` with m1 and m2 replaced by the directions from the
+/// centre to one corner before and after the turn, one corner of each opposite pair (the others
+/// are their reflections through the centre: a fan's side -1). A line's are t itself (its ends);
+/// a rectangle's two are h m + e d and h m - e d, d the heading that has m as its left normal:
+/// rational, so each ray is exact.
+inline std::vector<ExactTurn> cornerTurns(const ExactTurn& t, const ExactShape& s) {
+  if (s.e == 0.0) return {t};
+  auto heading = [](const V2& m) { return V2(m.y(), -m.x()); };
+  std::vector<ExactTurn> out;
+  for (int sign : {1, -1}) {
+    ExactTurn c = t;
+    c.m1 = t.m1 * FT(s.h) + heading(t.m1) * FT(sign * s.e);
+    c.m2 = t.m2 * FT(s.h) + heading(t.m2) * FT(sign * s.e);
+    out.push_back(c);
+  }
+  return out;
+}
+
+/// One sector of radius h (h2 = h^2 exactly) of a turn about p (side +1; -1: the opposite
+/// sector, its reflection through p) as a fan of triangles (p, A_j, A_j+1), A_0 on m1's ray and
+/// the last on m2's, every pair turning the turn's way. Outer: each triangle's far edge lies at
+/// least h from p (checked exactly), so the fan contains the sector; empty when a check fails
+/// (retry with a smaller sagitta). Inner: every A_j lies within h of p, so the fan lies in the
+/// sector. Each triangle is listed
 /// counter-clockwise. The A_j between the ends are A_0 turned by rational rotations (cosine
 /// (1 - s^2) / (1 + s^2), sine 2 s / (1 + s^2)): exactly as far from p as A_0.
 inline std::vector<Triangle> sectorFan(const P2& p, const ExactTurn& t, double h, const FT& h2, double sagitta,

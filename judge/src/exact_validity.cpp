@@ -149,8 +149,11 @@ struct Round {
 /// The wall and the tool, exactly: what every check of a path compares against.
 class Scene {
  public:
+  /// The disk of a path's points is the one that holds the tool in every heading: a disk's own, a
+  /// line's circumscribed one, a rectangle's (its radius rounded up to a rational).
   Scene(const Wall& wall, const ToolParams& tool)
-      : r_(tool.radius()), c_(tool.clearance), r_exact_(FT(tool.tool_width) / 2),
+      : r_(CGAL::to_interval(ExactShape(tool).reachAtLeast()).second), c_(tool.clearance),
+        r_exact_(ExactShape(tool).reachAtLeast()),
         boundary_(polygonShape(wall.boundary)) {
     for (const Obstacle& o : wall.obstacles) {
       if (o.type == ObstacleType::Circle) {
@@ -285,18 +288,23 @@ class Scene {
     }
   }
 
-  /// The turn of a line tool of half-width h about p: its two sectors, through fans of triangles
-  /// that contain them (exact_line.hpp), tried with chords of 1e-3, 1e-5 and kArcChordSagitta m
-  /// as an arc is: a try that passes settles it; when the last fails, the turn is refused.
-  void turn(const P2& p, const ExactTurn& t, double h, const FT& h2, bool& outside, bool& close) const {
+  /// The turn of a line or rectangle tool about p: the sectors its corners sweep, through fans of
+  /// triangles that contain them (exact_line.hpp), tried with chords of 1e-3, 1e-5 and
+  /// kArcChordSagitta m as an arc is: a try that passes settles it; when the last fails, the turn
+  /// is refused.
+  void turn(const P2& p, const ExactTurn& t, const ExactShape& shape, bool& outside, bool& close) const {
     bool out = false, near = false;
+    const double reach = shape.reach();
+    const FT reach2 = shape.reach2();
+    const std::vector<ExactTurn> corners = cornerTurns(t, shape);
     for (double sagitta = 1e-3;; sagitta = std::fmax(sagitta / 100.0, kArcChordSagitta)) {
       out = near = false;
-      for (int side : {1, -1}) {
-        const std::vector<Triangle> fan = sectorFan(p, t, h, h2, std::fmin(sagitta, h / 2.0), true, side);
-        if (fan.empty()) out = true;  // no certified container: refused
-        for (const Triangle& tri : fan) convex(std::vector<P2>(tri.begin(), tri.end()), out, near);
-      }
+      for (const ExactTurn& corner : corners)
+        for (int side : {1, -1}) {
+          const std::vector<Triangle> fan = sectorFan(p, corner, reach, reach2, std::fmin(sagitta, reach / 2.0), true, side);
+          if (fan.empty()) out = true;  // no certified container: refused
+          for (const Triangle& tri : fan) convex(std::vector<P2>(tri.begin(), tri.end()), out, near);
+        }
       if ((!out && !near) || sagitta <= kArcChordSagitta) break;
     }
     outside = outside || out;
@@ -416,22 +424,21 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
   auto inDepotLeg = [&](std::size_t i) { return i < lead_in || i + 1 + lead_out >= n; };
   for (std::size_t i = 0; i + 1 < n; ++i)
     if (inDepotLeg(i)) v.depot_length += std::hypot(path.waypoints[i + 1].x - path.waypoints[i].x, path.waypoints[i + 1].y - path.waypoints[i].y);
-  // A line tool (exact_line.hpp): each move's rectangle on the wall and the turn at its start
-  // from the last such move (zero-length moves skipped). A path that never moves has no heading:
-  // its tool must fit in every one, as the disk does.
-  const bool line = tool.isLine() && std::any_of(points.begin(), points.end(), [&](const P2& p) { return p != points[0]; });
-  if (tool.isLine() && (vehicle.isCar() || std::any_of(path.bulge.begin(), path.bulge.end(), [](double b) { return b != 0.0; })))
-    throw std::invalid_argument("judge: a line tool's path is judged on straight moves only (no car, no arcs)");
-  const double h = tool.radius();
-  const FT h2 = (FT(tool.tool_width) / 2) * (FT(tool.tool_width) / 2);
+  // A line or rectangle tool (exact_line.hpp): each move's rectangle on the wall and the turn at
+  // its start from the last such move (zero-length moves skipped). A path that never moves has no
+  // heading: its tool must fit in every one (the Scene's disk).
+  const bool line = tool.turnsWithHeading() && std::any_of(points.begin(), points.end(), [&](const P2& p) { return p != points[0]; });
+  if (tool.turnsWithHeading() && (vehicle.isCar() || std::any_of(path.bulge.begin(), path.bulge.end(), [](double b) { return b != 0.0; })))
+    throw std::invalid_argument(std::string("judge: a ") + (tool.isLine() ? "line" : "rectangle") + " tool's path is judged on straight moves only (no car, no arcs)");
+  const ExactShape shape(tool);
   std::optional<V2> heading;  // the direction of the last move on the wall
   auto lineCheck = [&](std::size_t i) {
     if (points[i] == points[i + 1]) return;  // the line there is the one the moves around it end and start with
     bool outside = false, close = false;
-    scene.convex(lineRectangle(points[i], points[i + 1], h, h2, true), outside, close);
+    scene.convex(lineRectangle(points[i], points[i + 1], shape, true), outside, close);
     if (heading) {
       const ExactTurn t = exactTurn(*heading, points[i + 1] - points[i]);
-      if (t.turns) scene.turn(points[i], t, h, h2, outside, close);
+      if (t.turns) scene.turn(points[i], t, shape, outside, close);
     }
     heading = points[i + 1] - points[i];
     flag(v, i, outside, close);

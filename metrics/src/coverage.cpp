@@ -148,7 +148,7 @@ Region paintableRegion(const Wall& wall) {
   return subtract(regionFromRings({wall.boundary}), regionFromRings(obstacle_rings));
 }
 
-/// A line tool's R: X, the wall minus its obstacles grown by c (docs/metrics.md#tool-shapes).
+/// A line or rectangle tool's R: X, the wall minus its obstacles grown by c (docs/metrics.md#tool-shapes).
 Region lineReachableRegion(const Wall& wall, const ToolParams& tool, double arc_tolerance) {
   Region grown;
   for (const Obstacle& o : wall.obstacles) {
@@ -265,7 +265,7 @@ RegionAreas regionAreas(const Wall& wall, const ToolParams& tool) {
 }
 
 Region reachableRegion(const Wall& wall, const ToolParams& tool, double arc_tolerance) {
-  if (tool.isLine()) return lineReachableRegion(wall, tool, arc_tolerance);
+  if (tool.turnsWithHeading()) return lineReachableRegion(wall, tool, arc_tolerance);
   return reachableRegion(grownFreeRegion(wall, tool, arc_tolerance));
 }
 
@@ -303,10 +303,10 @@ RegionAreas recentRegionAreas(const Wall& wall, const ToolParams& tool) {
 
 CoverageRegions coverageRegions(const Wall& wall, const ToolParams& tool, const Path& path) {
   CoverageRegions g;
-  if (tool.isLine()) {
+  if (tool.turnsWithHeading()) {
     g.reachable = lineReachableRegion(wall, tool, kMetricArcTolerance);
     g.paintable = paintableRegion(wall);
-    g.swept = coveredAtLeast(line_tool::sweptRings(path, tool.radius()), 1);
+    g.swept = coveredAtLeast(line_tool::sweptRings(path, tool.radius(), tool.halfDepth()), 1);
     return g;
   }
   g.reachable = reachableRegion(grownFreeRegion(wall, tool));
@@ -329,7 +329,7 @@ Coverage coverage(const CoverageRegions& g) {
 Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path, const Validity& validity,
                   double swept_area) {
   if (!validity.valid) return coverage(coverageRegions(wall, tool, path));
-  if (tool.isLine()) {  // S lies in R and in P, as for a disk: their areas, and S's from the pass levels
+  if (tool.turnsWithHeading()) {  // S lies in R and in P, as for a disk: their areas, and S's from the pass levels
     Coverage c;
     c.reachable_area = area(lineReachableRegion(wall, tool, kMetricArcTolerance));
     c.paintable_area = recentRegionAreas(wall, tool).paintable;
@@ -352,7 +352,7 @@ Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path, co
 }
 
 Coverage coverage(const Wall& wall, const ToolParams& tool, const Path& path) {
-  if (tool.isLine()) return coverage(coverageRegions(wall, tool, path));
+  if (tool.turnsWithHeading()) return coverage(coverageRegions(wall, tool, path));
   return coverage(wall, tool, path, checkValidity(wall, tool, path), passLevelAreas(path, tool.radius(), 1)[0]);
 }
 
@@ -462,9 +462,9 @@ Passes passes(const Path& path, double radius, std::size_t bins) {
 }
 
 Passes passes(const Path& path, const ToolParams& tool, std::size_t bins) {
-  if (!tool.isLine()) return passes(path, tool.radius(), bins);
+  if (!tool.turnsWithHeading()) return passes(path, tool.radius(), bins);
   // The line's swept shapes as polygons: |{passes >= k}| from one union a level.
-  const std::vector<Ring> rings = line_tool::sweptRings(path, tool.radius());
+  const std::vector<Ring> rings = line_tool::sweptRings(path, tool.radius(), tool.halfDepth());
   std::vector<double> at_least(bins, 0.0);
   for (std::size_t k = 0; k < bins; ++k) {
     at_least[k] = coveredAtLeastArea(rings, static_cast<int>(k + 1));
@@ -474,7 +474,7 @@ Passes passes(const Path& path, const ToolParams& tool, std::size_t bins) {
 }
 
 Region passRegion(const Path& path, const ToolParams& tool, double resolution, int min_passes) {
-  if (tool.isLine()) return coveredAtLeast(line_tool::sweptRings(path, tool.radius()), min_passes);
+  if (tool.turnsWithHeading()) return coveredAtLeast(line_tool::sweptRings(path, tool.radius(), tool.halfDepth()), min_passes);
   return passRegion(path, tool.radius(), resolution, min_passes);
 }
 

@@ -1,5 +1,5 @@
-// The line tool in the fast engine (line_tool.hpp). A swept shape is checked through its boundary
-// curves, each measured in closed form by the ClearanceField (segments and arcs), with the shape
+// The line and rectangle tools in the fast engine (line_tool.hpp). A swept shape is checked
+// through its boundary curves, each measured in closed form by the ClearanceField (segments and arcs), with the shape
 // shrunk by kShrink so that touching the wall's edge or an obstacle (allowed) is told apart from
 // crossing it: a shape whose shrunk boundary meets an edge goes past it by more than kShrink.
 #include "line_tool.hpp"
@@ -61,12 +61,13 @@ Turn turnBetween(Point d1, Point d2) {
   return t;
 }
 
-Gaps segmentGaps(const ClearanceField& field, Point a, Point b, double h, double cutoff) {
+Gaps segmentGaps(const ClearanceField& field, Point a, Point b, double h, double e, double cutoff) {
   Gaps g;
-  const double len = distance(a, b);
-  const Point t = (b - a) * (1.0 / len), u = leftNormal(b - a);
+  const Point t = (b - a) * (1.0 / distance(a, b)), u = leftNormal(b - a);
+  const Point a1 = a - t * e, b1 = b + t * e;  // the rectangle's ends
+  const double len = distance(a1, b1);
   const double shrink = std::fmin(kShrink, len / 4.0), hh = std::fmax(h - kShrink, 0.0);
-  const Point a2 = a + t * shrink, b2 = b - t * shrink;
+  const Point a2 = a1 + t * shrink, b2 = b1 - t * shrink;
   const Point corner[4] = {a2 - u * hh, b2 - u * hh, b2 + u * hh, a2 + u * hh};
   for (int k = 0; k < 4; ++k) fold(field.measure(corner[k], corner[(k + 1) % 4], cutoff), g);
   Box box{INFINITY, INFINITY, -INFINITY, -INFINITY};
@@ -82,29 +83,40 @@ Gaps segmentGaps(const ClearanceField& field, Point a, Point b, double h, double
   return g;
 }
 
-Gaps turnGaps(const ClearanceField& field, Point p, const Turn& turn, double h, double cutoff) {
+std::vector<std::pair<Point, Point>> turnCorners(const Turn& turn, double h, double e) {
+  if (e == 0.0) return {{turn.u1, turn.u2}};
+  // The heading is u turned back by a right angle (u is its left normal), before and after.
+  const Point t1{turn.u1.y, -turn.u1.x}, t2{turn.u2.y, -turn.u2.x};
+  const double k = 1.0 / std::hypot(h, e);
+  return {{(turn.u1 * h + t1 * e) * k, (turn.u2 * h + t2 * e) * k}, {(turn.u1 * h - t1 * e) * k, (turn.u2 * h - t2 * e) * k}};
+}
+
+Gaps turnGaps(const ClearanceField& field, Point p, const Turn& turn, double h, double e, double cutoff) {
   Gaps g;
-  const double hh = std::fmax(h - kShrink, 0.0);
+  const double rr = std::fmax(std::hypot(h, e) - kShrink, 0.0);
   const double bulge = std::tan(turn.sweep / 4.0);
-  fold(field.measure(p - turn.u1 * hh, p + turn.u1 * hh, cutoff), g);
-  fold(field.measure(p - turn.u2 * hh, p + turn.u2 * hh, cutoff), g);
-  for (double side : {1.0, -1.0})
-    fold(field.measureArc(p + turn.u1 * (side * hh), p + turn.u2 * (side * hh), bulge, cutoff), g);
   const double sign = turn.sweep > 0.0 ? 1.0 : -1.0;
-  obstaclesWithin(field, Box{p.x - hh, p.y - hh, p.x + hh, p.y + hh}, [&](Point q) {
-    // The wedge from u1 to u2 (at most a right angle), or the opposite one.
-    auto inWedge = [&](Point v) { return sign * cross(turn.u1, v) >= 0.0 && sign * cross(v, turn.u2) >= 0.0; };
-    const Point v = q - p;
-    return norm(v) <= hh && (inWedge(v) || inWedge(v * -1.0));
-  }, g);
+  for (const auto& [c1, c2] : turnCorners(turn, h, e)) {
+    const Point k1 = c1 * rr, k2 = c2 * rr;
+    fold(field.measure(p - k1, p + k1, cutoff), g);
+    fold(field.measure(p - k2, p + k2, cutoff), g);
+    for (double side : {1.0, -1.0}) fold(field.measureArc(p + k1 * side, p + k2 * side, bulge, cutoff), g);
+    obstaclesWithin(field, Box{p.x - rr, p.y - rr, p.x + rr, p.y + rr}, [&](Point q) {
+      // The wedge from k1 to k2 (at most a right angle), or the opposite one.
+      auto inWedge = [&](Point v) { return sign * cross(k1, v) >= 0.0 && sign * cross(v, k2) >= 0.0; };
+      const Point v = q - p;
+      return norm(v) <= rr && (inWedge(v) || inWedge(v * -1.0));
+    }, g);
+  }
   settle(g);
   return g;
 }
 
-std::vector<Ring> sweptRings(const Path& path, double h) {
+std::vector<Ring> sweptRings(const Path& path, double h, double e) {
   std::vector<Ring> rings;
   bool have = false;      // a tool-on move came before, with only zero-length moves since
   Point last{0.0, 0.0};   // its direction
+  const double reach = std::hypot(h, e);
   for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
     const Point a = path.waypoints[i], b = path.waypoints[i + 1];
     if (!path.tool_on[i]) {
@@ -112,24 +124,27 @@ std::vector<Ring> sweptRings(const Path& path, double h) {
       continue;
     }
     if (a == b) continue;
-    const Point d = b - a, u = leftNormal(d);
+    const Point d = b - a, u = leftNormal(d), t = d * (1.0 / norm(d));
     if (have) {
       const Turn turn = turnBetween(last, d);
       if (turn.sweep != 0.0) {
-        const double sagitta = std::fmin(kSectorSagitta * h, 5e-5);
-        const auto chords = static_cast<int>(std::ceil(std::fabs(turn.sweep) / (2.0 * std::acos(1.0 - sagitta / h))));
-        const double start = std::atan2(turn.u1.y, turn.u1.x);
-        for (double side : {1.0, -1.0}) {
-          Ring sector{a};
-          for (int k = 0; k <= chords; ++k) {
-            const double angle = start + turn.sweep * k / chords;
-            sector.push_back(a + Point{std::cos(angle), std::sin(angle)} * (side * h));
+        const double sagitta = std::fmin(kSectorSagitta * reach, 5e-5);
+        const auto chords = static_cast<int>(std::ceil(std::fabs(turn.sweep) / (2.0 * std::acos(1.0 - sagitta / reach))));
+        for (const auto& corners : turnCorners(turn, h, e)) {
+          const double start = std::atan2(corners.first.y, corners.first.x);
+          for (double side : {1.0, -1.0}) {
+            Ring sector{a};
+            for (int k = 0; k <= chords; ++k) {
+              const double angle = start + turn.sweep * k / chords;
+              sector.push_back(a + Point{std::cos(angle), std::sin(angle)} * (side * reach));
+            }
+            rings.push_back(std::move(sector));
           }
-          rings.push_back(std::move(sector));
         }
       }
     }
-    rings.push_back({a - u * h, b - u * h, b + u * h, a + u * h});
+    const Point a1 = a - t * e, b1 = b + t * e;
+    rings.push_back({a1 - u * h, b1 - u * h, b1 + u * h, a1 + u * h});
     have = true;
     last = d;
   }

@@ -1,8 +1,11 @@
-// The line tool (path.hpp: ToolShape::Line) in the fast engine: where it turns, the gaps of the
-// shapes it sweeps, and the rings its coverage and passes are measured on (docs/metrics.md#tool-shapes).
+// The line and rectangle tools (path.hpp: ToolShape) in the fast engine: where they turn, the gaps
+// of the shapes they sweep, and the rings their coverage and passes are measured on
+// (docs/metrics.md#tool-shapes). A rectangle of half-width h and half-depth e is a line of
+// half-width h grown by e along the heading: every function takes e, and a line is e = 0.
 #pragma once
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "coverbench/clearance.hpp"
@@ -31,17 +34,24 @@ struct Gaps {
   bool outside = false;
   bool overlaps = false;
 };
-/// The rectangle the line of half-width h sweeps from a to b (a != b).
-Gaps segmentGaps(const ClearanceField& field, Point a, Point b, double h, double cutoff);
-/// The two sectors of radius h the line sweeps turning about p (turn.sweep != 0).
-Gaps turnGaps(const ClearanceField& field, Point p, const Turn& turn, double h, double cutoff);
+/// The rectangle the tool of half-width h and half-depth e sweeps from a to b (a != b): square to
+/// b - a, 2h wide, from e behind a to e past b.
+Gaps segmentGaps(const ClearanceField& field, Point a, Point b, double h, double e, double cutoff);
+/// The sectors the tool sweeps turning about p (turn.sweep != 0): one from each corner, of radius
+/// hypot(h, e), from the corner's direction before the turn to its direction after (a line's two
+/// ends; a rectangle's four corners).
+Gaps turnGaps(const ClearanceField& field, Point p, const Turn& turn, double h, double e, double cutoff);
+/// The direction from p of one corner of each opposite pair, before (`first`) and after (`second`)
+/// the turn, as unit vectors: {u} for a line, those of {h u + e t, h u - e t} for a rectangle (t:
+/// the heading, u its left normal). The opposite corners' are their negatives.
+std::vector<std::pair<Point, Point>> turnCorners(const Turn& turn, double h, double e);
 
 /// Sectors' arcs are chords through points on the arc with a sagitta of at most this fraction of
 /// their radius h (and at most 50 um): each sector's area is short by under 1.4e-4 of it.
 inline constexpr double kSectorSagitta = 1e-4;
-/// What the line of half-width h sweeps with the tool on: a rectangle per tool-on move, and the
-/// two sectors of each turn between two tool-on moves (zero-length moves are skipped: the turn is
-/// between the moves around them). The path has no arcs.
-std::vector<Ring> sweptRings(const Path& path, double h);
+/// What the tool of half-width h and half-depth e sweeps with the tool on: a rectangle per tool-on
+/// move, and the sectors of each turn between two tool-on moves (zero-length moves are skipped:
+/// the turn is between the moves around them). The path has no arcs.
+std::vector<Ring> sweptRings(const Path& path, double h, double e);
 
 }  // namespace coverbench::line_tool

@@ -37,18 +37,19 @@ void checkScorable(const Path& path, const std::string& source) {
 }
 
 
-void checkLineScorable(const Path& path, const VehicleModel& vehicle, const std::string& source) {
+void checkLineScorable(const Path& path, const ToolParams& tool, const VehicleModel& vehicle, const std::string& source) {
+  const std::string shape = toString(tool.shape);
   if (vehicle.isCar())
-    throw InputError(source, "tool.shape", "a line tool on a car is not scored yet (its arcs' swept shapes): use a disk");
+    throw InputError(source, "tool.shape", "a " + shape + " tool on a car is not scored yet (its arcs' swept shapes): use a disk");
   for (std::size_t i = 0; i < path.segments(); ++i)
     if (path.bulgeOf(i) != 0.0)
-      throw InputError(source, "bulge[" + std::to_string(i) + "]", "a line tool's path is scored on straight moves only, and this one is an arc");
+      throw InputError(source, "bulge[" + std::to_string(i) + "]", "a " + shape + " tool's path is scored on straight moves only, and this one is an arc");
 }
 
 PathMetrics computeMetrics(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle,
                            const MotionLimits& limits, Coat* coat, std::size_t block_cells) {
   checkScorable(path, "path");
-  if (tool.isLine()) checkLineScorable(path, vehicle, "path");
+  if (tool.turnsWithHeading()) checkLineScorable(path, tool, vehicle, "path");
   PathMetrics m;
   m.validity = checkValidity(wall, tool, path, vehicle);
   m.lengths = pathLengths(path);

@@ -157,7 +157,9 @@ const Path& measuredPath(const Path& path, Path& storage) {
 Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle) {
   Validity v;
   const ClearanceField field(wall);
-  const double r = tool.radius();
+  // The disk that holds the tool in every heading: the tool at a point of the path (before its
+  // first move, and for the lifted and depot rules), and any disk.
+  const double r = tool.reachRadius();
   const std::size_t n = path.waypoints.size();
   // A gantry's lifted move: the disk at both ends inside the wall's bounding box (then the whole
   // move is, the box being convex).
@@ -185,19 +187,19 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
   auto gaps = [&](const SegmentClearance& c) {
     return std::pair{c.inside ? c.boundary_distance - r : -c.boundary_distance - r, c.obstacle_distance - r};
   };
-  // A line tool (line_tool.hpp): the rectangle of each move it makes on the wall and the turn at
-  // the move's start, from the last such move (zero-length moves skipped: they turn nothing). A
-  // path that never moves has no heading: its tool must fit in every one, as the disk does.
-  const bool line = tool.isLine() && std::any_of(path.waypoints.begin(), path.waypoints.end(),
+  // A line or rectangle tool (line_tool.hpp): the rectangle of each move it makes on the wall and
+  // the turn at the move's start, from the last such move (zero-length moves skipped: they turn
+  // nothing). A path that never moves has no heading: its tool must fit in every one (the disk r).
+  const bool line = tool.turnsWithHeading() && std::any_of(path.waypoints.begin(), path.waypoints.end(),
                                                  [&](Point p) { return !(p == path.waypoints[0]); });
   std::optional<Point> heading;  // the direction of the last move on the wall
   auto lineGaps = [&](Point a, Point b) {
     const double cutoff = std::fmax(v.min_clearance, tool.clearance) + r;
-    line_tool::Gaps g = line_tool::segmentGaps(field, a, b, r, cutoff);
+    line_tool::Gaps g = line_tool::segmentGaps(field, a, b, tool.radius(), tool.halfDepth(), cutoff);
     if (heading) {
       const line_tool::Turn turn = line_tool::turnBetween(*heading, b - a);
       if (turn.sweep != 0.0) {
-        const line_tool::Gaps t = line_tool::turnGaps(field, a, turn, r, cutoff);
+        const line_tool::Gaps t = line_tool::turnGaps(field, a, turn, tool.radius(), tool.halfDepth(), cutoff);
         g.outside = g.outside || t.outside;
         g.overlaps = g.overlaps || t.overlaps;
         g.boundary = std::fmin(g.boundary, t.boundary);
@@ -312,14 +314,14 @@ std::string describeViolations(const Validity& validity, double required_clearan
     if (d.lifted) {
       what.push_back("leaves the wall's bounding box (a lifted move)");
     } else if (d.outside_boundary && std::isnan(d.boundary_gap)) {
-      what.push_back("crosses the wall's edge (the line tool's swept shape)");
+      what.push_back("crosses the wall's edge (the tool's swept shape)");
     } else if (d.outside_boundary) {
       what.push_back("leaves the wall's edge (gap " + shortfall(d.boundary_gap, 0.0) + ")");
     }
     if (d.too_close && std::isnan(d.clearance)) {
       const std::string name = d.obstacle_label.empty() ? "obstacles[" + std::to_string(d.obstacle) + "]"
                                                         : "obstacle \"" + d.obstacle_label + "\"";
-      what.push_back("overlaps " + name + " (the line tool's swept shape)");
+      what.push_back("overlaps " + name + " (the tool's swept shape)");
     } else if (d.too_close) {
       const std::string name = d.obstacle_label.empty() ? "obstacles[" + std::to_string(d.obstacle) + "]"
                                                         : "obstacle \"" + d.obstacle_label + "\"";

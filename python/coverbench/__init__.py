@@ -134,7 +134,7 @@ def planners() -> List[Dict[str, Any]]:
 
 def plan(wall: Wall, planner: str, params: Optional[Mapping[str, Union[bool, int, float, str]]] = None,
          tool_width: float = 0.1, clearance: float = 0.02, seed: int = 0, time_limit_s: float = 60.0,
-         memory_mb: float = 4096.0, profile: Profile = None, tool_shape: str = "disk") -> Plan:
+         memory_mb: float = 4096.0, profile: Profile = None, tool_shape: str = "disk", tool_depth: float = 0.0) -> Plan:
     """Plans `wall` with `planner` (a registered name or an external planner's manifest path) and
     judges the path as ``coverbench plan`` and a run judge it (the same code).
 
@@ -157,9 +157,10 @@ def plan(wall: Wall, planner: str, params: Optional[Mapping[str, Union[bool, int
 
     `params` are the planner's parameters by name. `profile` is the tool's flux profile (see
     ``Profile``): the planners that space rows for an even coat (``coat_ripple``) read it.
-    `tool_shape` is ``"disk"`` or ``"line"`` (a segment of length `tool_width` square to the
-    heading, docs/metrics.md#tool-shapes: planned for its circumscribed disk, scored as a line;
-    the reason says so). An external planner's processes are held to
+    `tool_shape` is ``"disk"``, ``"line"`` (a segment of length `tool_width` square to the
+    heading) or ``"rectangle"`` (`tool_width` across the heading and `tool_depth` along it):
+    docs/metrics.md#tool-shapes; planned for its circumscribed disk and scored as its shape (the
+    reason says so). An external planner's processes are held to
     `time_limit_s` and `memory_mb` (all of them together). Bad input raises ValueError."""
     try:  # read by the parameter codec, as the server reads a request's params
         settings = json.dumps(dict(params or {}), allow_nan=False)
@@ -167,14 +168,14 @@ def plan(wall: Wall, planner: str, params: Optional[Mapping[str, Union[bool, int
         raise ValueError(f"params: {e}") from None
     out: Plan = json.loads(_core.plan(_wall_text(wall), planner, settings, float(tool_width), float(clearance),
                                           int(seed), float(time_limit_s), float(memory_mb), _profile_in(profile),
-                                          str(tool_shape)))
+                                          str(tool_shape), float(tool_depth)))
     out["waypoints"] = _waypoints_out(out["waypoints"])
     return out
 
 
 def score(wall: Wall, waypoints: Waypoints, tool_on: Sequence[bool], tool_width: float = 0.1,
           clearance: float = 0.02, bulge: Optional[Sequence[float]] = None, judge: str = "fast",
-          profile: Profile = None, tool_shape: str = "disk") -> Dict[str, Any]:
+          profile: Profile = None, tool_shape: str = "disk", tool_depth: float = 0.0) -> Dict[str, Any]:
     """Scores a path from any source on `wall`: every metric of the fast engine by name
     (docs/metrics.md; None where one is not finite), ``valid`` as a bool, ``violations``,
     ``violating_segments`` (the first violating segments' indices), ``violation_details`` (what
@@ -187,11 +188,11 @@ def score(wall: Wall, waypoints: Waypoints, tool_on: Sequence[bool], tool_width:
     segment; `bulge`: none, or one per segment (0 straight). With a flux `profile` (see
     ``Profile``) the metrics include the coat's five: ``thickness_mean`` (µm), ``thickness_cv``,
     ``even_share``, ``thin_share``, ``thick_share``. Bad input raises ValueError (a bad profile:
-    ``profile: FIELD: PROBLEM``, the command line's checks). `tool_shape`: ``"disk"`` or ``"line"``
-    (docs/metrics.md#tool-shapes)."""
+    ``profile: FIELD: PROBLEM``, the command line's checks). `tool_shape`: ``"disk"``, ``"line"``
+    or ``"rectangle"`` with its `tool_depth` (docs/metrics.md#tool-shapes)."""
     result: Dict[str, Any] = json.loads(_core.score(
         _wall_text(wall), _points_in(waypoints), [bool(t) for t in tool_on], [float(b) for b in (bulge or [])],
-        float(tool_width), float(clearance), judge, _profile_in(profile), str(tool_shape)))
+        float(tool_width), float(clearance), judge, _profile_in(profile), str(tool_shape), float(tool_depth)))
     return result
 
 

@@ -15,11 +15,13 @@ def planners() -> str:
     """Every registered planner with its parameters, as JSON text."""
 
 def plan(wall: str, planner: str, params: str, tool_width: float, clearance: float, seed: int,
-         time_limit_s: float, memory_mb: float = 4096.0, profile: Dict[str, Any] = ..., tool_shape: str = ...) -> str:
+         time_limit_s: float, memory_mb: float = 4096.0, profile: Dict[str, Any] = ..., tool_shape: str = ...,
+         tool_depth: float = ...) -> str:
     """Plans and judges as `coverbench plan` does; the plan as JSON text."""
 
 def score(wall: str, waypoints: Sequence[Tuple[float, float]], tool_on: Sequence[bool], bulge: Sequence[float],
-          tool_width: float, clearance: float, judge: str, profile: Dict[str, Any] = ..., tool_shape: str = ...) -> str:
+          tool_width: float, clearance: float, judge: str, profile: Dict[str, Any] = ..., tool_shape: str = ...,
+          tool_depth: float = ...) -> str:
     """Every metric of the fast engine (and the exact judge's verdict), as JSON text."""
 
 def runs(database: str, experiment: int = 0) -> str:

@@ -38,9 +38,10 @@ class Planner(Protocol):
 class Problem:
     """One problem: the wall (as a wall file's JSON), the tool, the vehicle, the parameters.
 
-    From protocol 2 the tool has a ``tool_shape`` ("disk") and a ``profile``: None, or the flux
+    From protocol 2 the tool has a ``tool_shape`` ("disk", "line" or "rectangle"), a
+    ``tool_depth`` (a rectangle's, m; 0 for the others) and a ``profile``: None, or the flux
     profile's dict (``kind``; ``sigma`` or ``beta`` for their kinds; ``rate``, ``depth``; ``target`` when set). In
-    protocol 1 they are "disk" and None."""
+    protocol 1 they are "disk", 0 and None."""
 
     def __init__(self, data: Dict[str, Any]) -> None:
         self.data: Dict[str, Any] = data
@@ -48,6 +49,7 @@ class Problem:
         self.tool_width = float(data["tool"]["width"])
         self.clearance = float(data["tool"]["clearance"])
         self.tool_shape: str = data["tool"].get("shape", "disk")
+        self.tool_depth = float(data["tool"].get("depth", 0.0))
         self.profile: Optional[Dict[str, Any]] = data["tool"].get("profile")
         self.vehicle: Dict[str, Any] = data["vehicle"]
         self.params: Dict[str, Any] = data["params"]

@@ -104,11 +104,13 @@ ProfileOptions profileOptions(const py::dict& profile) {
 /// Python's spelling of profile errors: "profile: sigma: belongs to kind gaussian".
 const ProfileSpelling kPythonProfile{"kind", "sigma", "beta", "rate", "depth", "target", "profile", "profile"};
 
-/// The tool: its width and clearance checked as the command line checks them, its shape, then its profile.
-ToolParams toolOf(double tool_width, double clearance, const std::string& shape, const ProfileOptions& profile) {
+/// The tool: its shape, its width, clearance and a rectangle's depth checked as the command line
+/// checks them, then its profile.
+ToolParams toolOf(double tool_width, double clearance, const std::string& shape, double depth, const ProfileOptions& profile) {
   ToolParams tool{tool_width, clearance};
-  validateTool(tool, "tool");
   if (!parseToolShape(shape, tool.shape)) throw InputError("tool_shape", "tool.shape", toolShapeProblem(shape));
+  tool.depth = depth;
+  validateTool(tool, "tool");
   tool.profile = fluxProfileOf(profile, tool_width, kPythonProfile);
   return tool;
 }
@@ -123,7 +125,7 @@ void addCoat(ordered_json& out, const PathMetrics& metrics) {
 
 std::string plan(const std::string& wall_text, const std::string& planner, const std::string& params_json, double tool_width,
                  double clearance, std::uint64_t seed, double time_limit_s, double memory_mb, const ProfileOptions& profile,
-                 const std::string& tool_shape) {
+                 const std::string& tool_shape, double tool_depth) {
   const Wall wall = wallOf(wall_text, "wall");
   const PlannerInfo& info = external::plannerNamed(planner, "planner");
   validateTimeLimit(time_limit_s, "time_limit_s", "time_limit_s");
@@ -131,7 +133,7 @@ std::string plan(const std::string& wall_text, const std::string& planner, const
     throw InputError("memory_mb", "memory_mb", "must be in (0, 1048576] MiB, got " + shortNumber(memory_mb));
   ProblemInputs inputs;
   inputs.wall = &wall;
-  inputs.tool = toolOf(tool_width, clearance, tool_shape, profile);
+  inputs.tool = toolOf(tool_width, clearance, tool_shape, tool_depth, profile);
   const nlohmann::json params = parseJsonStrict(params_json, "params");
   if (!params.is_object()) throw InputError("params", "(document)", "must be a mapping of name: value");
   inputs.params = withDefaults(info, parseSettingsJson(info, params, "params"));
@@ -168,9 +170,10 @@ std::string plan(const std::string& wall_text, const std::string& planner, const
 
 std::string score(const std::string& wall_text, const std::vector<std::pair<double, double>>& waypoints,
                   const std::vector<bool>& tool_on, const std::vector<double>& bulge, double tool_width, double clearance,
-                  const std::string& judge, const ProfileOptions& profile, const std::string& tool_shape) {
+                  const std::string& judge, const ProfileOptions& profile, const std::string& tool_shape,
+                  double tool_depth) {
   const Wall wall = wallOf(wall_text, "wall");
-  const ToolParams tool = toolOf(tool_width, clearance, tool_shape, profile);
+  const ToolParams tool = toolOf(tool_width, clearance, tool_shape, tool_depth, profile);
   validateToolForWall(tool, wall, "tool");  // the same check a plan's problem gets (buildProblem)
   const Path path = pathOf(waypoints, tool_on, bulge);
   ordered_json out = ordered_json::object();
@@ -209,25 +212,29 @@ PYBIND11_MODULE(_core, m) {
   m.def("planners", &coverbench::planners, "Every registered planner with its parameters, as JSON text.");
   m.def("plan",
         [](const std::string& wall, const std::string& planner, const std::string& params, double tool_width, double clearance,
-           std::uint64_t seed, double time_limit_s, double memory_mb, const py::dict& profile, const std::string& tool_shape) {
+           std::uint64_t seed, double time_limit_s, double memory_mb, const py::dict& profile, const std::string& tool_shape,
+           double tool_depth) {
           const coverbench::ProfileOptions options = coverbench::profileOptions(profile);
           py::gil_scoped_release released;
-          return coverbench::plan(wall, planner, params, tool_width, clearance, seed, time_limit_s, memory_mb, options, tool_shape);
+          return coverbench::plan(wall, planner, params, tool_width, clearance, seed, time_limit_s, memory_mb, options, tool_shape,
+                                  tool_depth);
         },
         py::arg("wall"), py::arg("planner"), py::arg("params"), py::arg("tool_width"), py::arg("clearance"), py::arg("seed"),
         py::arg("time_limit_s"), py::arg("memory_mb") = 4096.0, py::arg("profile") = py::dict(), py::arg("tool_shape") = "disk",
+        py::arg("tool_depth") = 0.0,
         "Plans wall-file JSON text with a registered planner or an external planner's manifest and judges the "
         "path as `coverbench plan` does; the plan as JSON text.");
   m.def("score",
         [](const std::string& wall, const std::vector<std::pair<double, double>>& waypoints, const std::vector<bool>& tool_on,
            const std::vector<double>& bulge, double tool_width, double clearance, const std::string& judge,
-           const py::dict& profile, const std::string& tool_shape) {
+           const py::dict& profile, const std::string& tool_shape, double tool_depth) {
           const coverbench::ProfileOptions options = coverbench::profileOptions(profile);
           py::gil_scoped_release released;
-          return coverbench::score(wall, waypoints, tool_on, bulge, tool_width, clearance, judge, options, tool_shape);
+          return coverbench::score(wall, waypoints, tool_on, bulge, tool_width, clearance, judge, options, tool_shape, tool_depth);
         },
         py::arg("wall"), py::arg("waypoints"), py::arg("tool_on"), py::arg("bulge"), py::arg("tool_width"),
         py::arg("clearance"), py::arg("judge"), py::arg("profile") = py::dict(), py::arg("tool_shape") = "disk",
+        py::arg("tool_depth") = 0.0,
         "Every metric of the fast engine for a path (judge 'exact' adds the exact judge's verdict; a flux `profile` "
         "adds the coat's five), as JSON text.");
   m.def("runs", &coverbench::runs, py::arg("database"), py::arg("experiment") = 0,

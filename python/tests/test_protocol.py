@@ -133,8 +133,11 @@ class Protocol(unittest.TestCase):
         self.assertEqual([json.loads(a["reason"]) for a in answers[:3]],
                          [["disk", profile], ["disk", None], ["disk", None]])
         self.assertEqual(answers[3]["reason"], "this planner speaks protocol 1 or 2, not 3")
-        with self.assertRaises(jsonschema.ValidationError):  # a shape no tool has yet
-            jsonschema.validate(dict(v2, problem=dict(v2["problem"], tool=dict(v2["problem"]["tool"], shape="line"))),
+        for shape in ("line", "rectangle"):
+            jsonschema.validate(dict(v2, problem=dict(v2["problem"], tool=dict(v2["problem"]["tool"], shape=shape))),
+                                REQUEST)
+        with self.assertRaises(jsonschema.ValidationError):  # a shape no tool has
+            jsonschema.validate(dict(v2, problem=dict(v2["problem"], tool=dict(v2["problem"]["tool"], shape="square"))),
                                 REQUEST)
 
     def test_the_binary_writes_protocol_2_requests_the_schema_accepts(self):

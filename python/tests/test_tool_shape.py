@@ -1,4 +1,4 @@
-"""A line tool from Python (docs/metrics.md#tool-shapes): scored by the same engines as the command
+"""Line and rectangle tools from Python (docs/metrics.md#tool-shapes): scored by the same engines as the command
 line, with the hand values of tests/metrics/line_tool_test.cpp, and checked with the same message."""
 import math
 import os
@@ -38,10 +38,35 @@ class ToolShape(unittest.TestCase):
         self.assertTrue(p["valid"])
         self.assertIn("circumscribed disk", p["reason"])
 
+    def test_a_right_angle_turn_of_a_rectangle_sweeps_its_hand_area_in_both_engines(self):
+        # s = 0.2, d = 0.1: the moves' rectangles d longer, and the four corners' sectors
+        # (tests/metrics/line_tool_test.cpp, RectangleTool.ARightAngleTurnSweepsFourCornerSectors).
+        h, e = 0.1, 0.05
+        r2, a = h * h + e * e, math.atan(e / h)
+        hand = (2 * h * 1.1 + 2 * h * 0.6 - (h + e) ** 2 + 2 * (r2 * a - h * e) + r2 * (math.pi / 2 - 2 * a) / 2
+                - e * (h - e))
+        m = coverbench.score(WALL, [[0.5, 0.3], [1.5, 0.3], [1.5, 0.8]], [True, True], tool_width=0.2,
+                             tool_shape="rectangle", tool_depth=0.1, judge="exact")
+        self.assertTrue(m["valid"])
+        self.assertTrue(m["exact"]["valid"])
+        self.assertAlmostEqual(m["swept_area"], hand, delta=5e-6)
+        p = coverbench.plan(WALL, "zigzag", tool_width=0.2, tool_shape="rectangle", tool_depth=0.1)
+        self.assertEqual(p["status"], "ok")
+        self.assertTrue(p["valid"])
+        self.assertIn("rectangle tool's circumscribed disk", p["reason"])
+
+    def test_a_rectangle_needs_its_depth_and_only_a_rectangle_has_one(self):
+        with self.assertRaises(ValueError) as e:
+            coverbench.score(WALL, [[0.5, 0.5], [1, 0.5]], [True], tool_shape="rectangle")
+        self.assertEqual(str(e.exception), "tool: tool_depth: a rectangle's depth must be in [0.001, 10] m, got 0")
+        with self.assertRaises(ValueError) as e:
+            coverbench.score(WALL, [[0.5, 0.5], [1, 0.5]], [True], tool_depth=0.1)
+        self.assertEqual(str(e.exception), "tool: tool_depth: a depth belongs to a rectangle; a disk has none")
+
     def test_an_unknown_shape_is_one_line(self):
         with self.assertRaises(ValueError) as e:
             coverbench.score(WALL, [[0.5, 0.5], [1, 0.5]], [True], tool_shape="square")
-        self.assertEqual(str(e.exception), "tool_shape: tool.shape: must be disk or line, got 'square'")
+        self.assertEqual(str(e.exception), "tool_shape: tool.shape: must be disk, line or rectangle, got 'square'")
 
 
 if __name__ == "__main__":

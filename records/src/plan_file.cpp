@@ -62,7 +62,8 @@ std::string planFileJson(const PlanFile& plan) {
   doc["wall"] = plan.wall;
   doc["tool_width"] = plan.tool.tool_width;
   doc["clearance"] = plan.tool.clearance;
-  if (plan.tool.isLine()) doc["tool_shape"] = toString(plan.tool.shape);  // a disk: no key, as before shapes
+  if (plan.tool.turnsWithHeading()) doc["tool_shape"] = toString(plan.tool.shape);  // a disk: no key, as before shapes
+  if (plan.tool.isRectangle()) doc["tool_depth"] = plan.tool.depth;
   if (const FluxProfile& p = plan.tool.profile; p.set()) {
     ordered_json profile = {{"kind", toString(p.kind)}};
     if (p.kind == FluxProfile::Kind::Gaussian) profile["sigma"] = p.sigma;
@@ -154,17 +155,21 @@ LoadedPlan loadPlanFile(const std::string& file) {
     if (!plan.path.hasArcs()) plan.path.bulge.clear();
   }
   checkScorable(plan.path, file);
-  for (const char* key : {"tool_width", "clearance"}) {
+  for (const char* key : {"tool_width", "clearance", "tool_depth"}) {
     if (!doc.contains(key)) continue;
     if (!doc[key].is_number()) throw InputError(file, key, "must be a number");
-    (std::string(key) == "tool_width" ? plan.tool_width : plan.clearance) = doc[key].get<double>();
+    const std::string k = key;
+    (k == "tool_width" ? plan.tool_width : k == "clearance" ? plan.clearance : plan.tool_depth) = doc[key].get<double>();
   }
   if (doc.contains("tool_shape")) {
     ToolShape shape = ToolShape::Disk;
     if (!doc["tool_shape"].is_string() || !parseToolShape(doc["tool_shape"].get<std::string>(), shape))
-      throw InputError(file, "tool_shape", "must be \"disk\" or \"line\"");
+      throw InputError(file, "tool_shape", "must be \"disk\", \"line\" or \"rectangle\"");
     plan.tool_shape = shape;
   }
+  if (plan.tool_depth.has_value() != (plan.tool_shape == ToolShape::Rectangle))
+    throw InputError(file, "tool_depth", plan.tool_depth ? "belongs to a rectangle tool (tool_shape \"rectangle\")"
+                                                         : "missing: a rectangle tool has a depth");
   if (doc.contains("profile")) {  // as a config's tool.profile: each value belongs to its kind
     const auto& p = doc["profile"];
     FluxProfile profile;

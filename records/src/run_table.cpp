@@ -39,13 +39,14 @@ std::vector<std::string> metricColumns(const ResultSet& rs) {
 /// visibility, and `profile` (the tool's flux profile, FluxProfile::label; empty for a run
 /// without one) only when some run has one (so tables of runs from before them keep their columns).
 struct OptionColumns {
-  bool vehicle = false, transit = false, profile = false, shape = false;
+  bool vehicle = false, transit = false, profile = false, shape = false, depth = false;
   explicit OptionColumns(const ResultSet& rs) {
     for (const ResultRow& r : rs.runs) {
       vehicle = vehicle || !r.vehicle.isDefault();
       transit = transit || !r.transit.isDefault();
       profile = profile || r.tool.profile.set();
-      shape = shape || r.tool.isLine();
+      shape = shape || r.tool.turnsWithHeading();
+      depth = depth || r.tool.isRectangle();
     }
   }
 };
@@ -69,6 +70,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
       row["tool_width"] = r.tool.tool_width;
       row["clearance"] = r.tool.clearance;
       if (options.shape) row["tool_shape"] = toString(r.tool.shape);
+      if (options.depth) row["tool_depth"] = r.tool.depth;
       if (options.profile) row["profile"] = r.tool.profile.label();
       if (options.vehicle) row["vehicle"] = toString(r.vehicle.kind);
       if (options.transit) row["transit"] = r.transit.planner;
@@ -85,6 +87,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
   }
   std::string text = "key,dataset,wall,wall_hash,planner,params,planner_version,tool_width,clearance";
   text += options.shape ? ",tool_shape" : "";
+  text += options.depth ? ",tool_depth" : "";
   text += options.profile ? ",profile" : "";
   text += std::string(options.vehicle ? ",vehicle" : "") + (options.transit ? ",transit" : "");
   for (const RunField& f : kRunFields)
@@ -94,7 +97,7 @@ std::string renderRuns(const ResultSet& rs, bool json) {
   for (const ResultRow& r : rs.runs) {
     text += r.key + "," + escapeCsv(r.dataset) + "," + escapeCsv(r.wall_name) + "," + r.wall + "," + escapeCsv(r.config) +
             "," + escapeCsv(storedParamsJson(r.params).dump()) + "," + escapeCsv(r.planner_version) + "," + number(r.tool.tool_width) + "," + number(r.tool.clearance) +
-            (options.shape ? "," + toString(r.tool.shape) : "") + (options.profile ? "," + escapeCsv(r.tool.profile.label()) : "") + (options.vehicle ? "," + toString(r.vehicle.kind) : "") + (options.transit ? "," + r.transit.planner : "");
+            (options.shape ? "," + toString(r.tool.shape) : "") + (options.depth ? "," + number(r.tool.depth) : "") + (options.profile ? "," + escapeCsv(r.tool.profile.label()) : "") + (options.vehicle ? "," + toString(r.vehicle.kind) : "") + (options.transit ? "," + r.transit.planner : "");
     forEachRunField(r, [&](const RunField& f, const auto& value) {
       if (f.exported != RunExport::No) text += "," + csvCell(value);
     });

@@ -186,7 +186,8 @@ std::string reportDataJson(const ResultSet& rs, const ExperimentRecord& record, 
     });
     run["metrics"] = std::move(m);
     // Only a tool other than a disk names its shape, so disk reports stay as they were.
-    if (r->tool.isLine()) run["tool_shape"] = toString(r->tool.shape);
+    if (r->tool.turnsWithHeading()) run["tool_shape"] = toString(r->tool.shape);
+    if (r->tool.isRectangle()) run["tool_depth"] = r->tool.depth;
     // Only a tool with a flux profile names it (FluxProfile::label; the target in um, or null), so
     // other reports stay as they were.
     if (r->tool.profile.set())

@@ -309,8 +309,9 @@ std::string renderSvg(const SvgContent& c) {
     }
     // The painted runs are written once and drawn twice (the tool's swath, then its centre line).
     s << "<defs><g id=\"paint\">\n" << on_runs << "</g></defs>\n";
-    // A line tool's band has square ends (its rectangles); its turns are drawn as round joins.
-    const char* cap = c.tool.isLine() ? "butt" : "round";
+    // A line tool's band has square ends (its rectangles); its turns are drawn as round joins. A
+    // rectangle's is drawn as its line's: its ends reach d / 2 further than the picture shows.
+    const char* cap = c.tool.turnsWithHeading() ? "butt" : "round";
     s << "<use xlink:href=\"#paint\" fill=\"none\" stroke=\"#2f6fd0\" stroke-opacity=\"0.18\" stroke-width=\"" << fmt(tool_px)
       << "\" stroke-linecap=\"" << cap << "\" stroke-linejoin=\"round\"/>\n";
     // R not swept: R in red under a mask that hides what the tool's band covers. The band is the

@@ -62,12 +62,15 @@ std::size_t answerProblem(const std::string& line, std::string& why) {
   return 0;
 }
 
-/// The request's `tool`: width and clearance; from protocol 2 its shape and flux profile (null
-/// for none), the profile as a plan file writes it (docs/file_formats.md).
+/// The request's `tool`: width and clearance; from protocol 2 its shape (a rectangle's depth too)
+/// and flux profile (null for none), the profile as a plan file writes it (docs/file_formats.md).
 json toolJson(const ToolParams& tool, int protocol) {
+  // Protocol 1: the disk that holds the tool in every heading (a line's or a rectangle's
+  // circumscribed one), and nothing of a profile.
+  if (protocol < 2) return {{"width", circumscribedDisk(tool).tool_width}, {"clearance", tool.clearance}};
   json out = {{"width", tool.tool_width}, {"clearance", tool.clearance}};
-  if (protocol < 2) return out;  // protocol 1: the disk (a line's circumscribed one), and nothing of a profile
   out["shape"] = toString(tool.shape);
+  if (tool.isRectangle()) out["depth"] = tool.depth;
   const FluxProfile& p = tool.profile;
   if (!p.set()) {
     out["profile"] = nullptr;

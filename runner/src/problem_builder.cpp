@@ -29,8 +29,9 @@ Problem buildProblem(const PlannerInfo& planner, ProblemInputs inputs, const std
   if (!inputs.wall) throw std::logic_error("a problem needs a wall");
   validateToolForWall(inputs.tool, *inputs.wall, source);
   validateVehicle(inputs.vehicle, source, "vehicle");
-  if (inputs.tool.isLine() && inputs.vehicle.isCar())
-    throw InputError(source, "tool.shape", "a line tool is not built for a car yet: the arcs it drives (docs/metrics.md#tool-shapes); use a disk");
+  if (inputs.tool.turnsWithHeading() && inputs.vehicle.isCar())
+    throw InputError(source, "tool.shape", "a " + toString(inputs.tool.shape) +
+                                               " tool is not built for a car yet: the arcs it drives (docs/metrics.md#tool-shapes); use a disk");
   if (!findTransitPlanner(inputs.transit.planner))
     throw InputError(source, "transit", "'" + inputs.transit.planner + "' is not a transit planner");
   if (inputs.transit.iterations < 1 || inputs.transit.iterations > kMaxTransitIterations)
@@ -47,8 +48,9 @@ Problem buildProblem(const PlannerInfo& planner, ProblemInputs inputs, const std
   problem.params = std::move(inputs.params);
   problem.seed = inputs.seed;
   problem.memory_limit_bytes = inputs.memory_limit_bytes;
-  // A line tool is scored on straight moves only: planners leave F's round boundary as chords.
-  problem.straight_segments_only = problem.tool.isLine();
+  // A line or rectangle tool is scored on straight moves only: planners leave F's round boundary
+  // as chords.
+  problem.straight_segments_only = problem.tool.turnsWithHeading();
   return problem;
 }
 

@@ -194,6 +194,13 @@ void attachEnds(const Problem& problem, PlanResult& result, bool depot_legs) {
 
 namespace {
 
+/// The problem with its rectangle tool's circumscribed disk (circumscribedDisk) in its place.
+Problem withCircumscribedDisk(const Problem& problem) {
+  Problem disk = problem;
+  disk.tool = circumscribedDisk(problem.tool);
+  return disk;
+}
+
 /// Whether a planner drives the problem's car itself: it plans for cars and its `car_plan` (if
 /// it declares one) is not `smoothed`. The one place this is decided.
 bool plansForTheCar(const PlannerInfo& planner, const Problem& problem) {
@@ -245,8 +252,14 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
     if (problem.vehicle.isCar()) {
       result = planForCar(planner, problem, budget);
     } else {
-      result = planner.make()->plan(problem, budget);
-      attachEnds(problem, result, true);
+      // An in-tree planner that plans for disks plans a rectangle for its circumscribed disk (an
+      // external one is sent the rectangle, or under protocol 1 the disk's width); a depot leg
+      // ends in F, where the tool fits in every heading: for a rectangle, in its disk's F.
+      const std::optional<Problem> disk =
+          problem.tool.isRectangle() ? std::optional<Problem>(withCircumscribedDisk(problem)) : std::nullopt;
+      const bool for_disk = disk && !planner.plans_line_tool && planner.external_manifest.empty();
+      result = planner.make()->plan(for_disk ? *disk : problem, budget);
+      attachEnds(disk ? *disk : problem, result, true);
     }
   } catch (const std::exception& e) {
     result = PlanResult::failure(PlanStatus::Error, std::string("planner threw: ") + e.what());
@@ -274,10 +287,16 @@ RunStatus runStatusOf(PlanStatus status) {
   return RunStatus::Error;
 }
 
-std::string lineToolNote(const PlannerInfo& planner) {
-  return planner.plans_line_tool ? "" : "planned for the line tool's circumscribed disk (diameter s): " + planner.name +
-                                             " plans for disks; the line's path is scored as a line";
+std::string toolShapeNote(const PlannerInfo& planner, const ToolParams& tool) {
+  if (!tool.turnsWithHeading() || planner.plans_line_tool) return "";
+  if (tool.isLine())
+    return "planned for the line tool's circumscribed disk (diameter s): " + planner.name +
+           " plans for disks; the line's path is scored as a line";
+  return "planned for the rectangle tool's circumscribed disk (diameter sqrt(s^2 + d^2) = " +
+         shortNumber(2.0 * tool.reachRadius()) + " m): " + planner.name +
+         " plans for disks; the rectangle's path is scored as a rectangle";
 }
+
 
 JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, const Budget& budget) {
   JudgedPlan j;
@@ -301,7 +320,7 @@ JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, cons
                (j.result.reason.empty() ? "" : "; the planner said: " + j.result.reason);
   }
   j.reason = withNote(j.reason, coatNotScoredNote(j.metrics));
-  if (problem.tool.isLine() && j.result.hasPath()) j.reason = withNote(j.reason, lineToolNote(planner));
+  if (j.result.hasPath()) j.reason = withNote(j.reason, toolShapeNote(planner, problem.tool));
   return j;
 }
 

@@ -1,6 +1,7 @@
 // The tool's shape (docs/metrics.md#tool-shapes) through configs, run keys, the results database,
 // `coverbench runs`, shards, plan files and the command line: a line tool's runs are keyed,
-// stored, listed and scored as a line; a disk's keep everything they had.
+// stored, listed and scored as a line, a rectangle's as a rectangle of its depth; a disk's keep
+// everything they had.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -96,6 +97,40 @@ TEST_F(ToolShapeRuns, BothShapesInOneExperimentAreTwoToolsNeverPooled) {
   EXPECT_EQ(labels, (std::set<std::string>{"line s=0.2 m, c=0.02 m", "s=0.2 m, c=0.02 m"}));
 }
 
+// Rectangles of two depths beside a line of their width: three tools, each keyed, stored, listed
+// and paired on its own. Planners plan for the rectangle's circumscribed disk and say so; its
+// paths are valid as rectangles; a database without run_tool_depth refuses a rectangle's run.
+TEST_F(ToolShapeRuns, ARectanglesRunsAreKeyedStoredListedAndScoredWithItsDepth) {
+  const std::string db = experiment("rect", "tool:\n  width: 0.2\n  shape: [line, rectangle]\n  depth: [0.05, 0.1]\n");
+  EXPECT_EQ(test::sqlRows(db, "SELECT shape, COUNT(*) FROM run_tool_shape GROUP BY shape"), "line|2\nrectangle|4\n");
+  EXPECT_EQ(test::sqlRows(db, "SELECT depth, COUNT(*) FROM run_tool_depth GROUP BY depth"), "0.05|2\n0.1|2\n");
+  EXPECT_EQ(test::sqlRows(db, "SELECT COUNT(DISTINCT base_key) FROM runs"), "6\n");
+  const ResultSet rs = ResultsDb(db, ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(rs.runs.size(), 6u);
+  std::set<std::string> columns(rs.planners.begin(), rs.planners.end()), pairings;
+  EXPECT_TRUE(columns.count("zigzag @ rectangle s=0.2 m, d=0.05 m, c=0.02 m")) << *columns.begin();
+  EXPECT_TRUE(columns.count("zigzag @ rectangle s=0.2 m, d=0.1 m, c=0.02 m"));
+  EXPECT_TRUE(columns.count("zigzag @ line s=0.2 m, c=0.02 m"));
+  for (const ResultRow& r : rs.runs) {
+    pairings.insert(r.pairing);
+    EXPECT_EQ(std::string(toString(r.status)), "ok") << r.planner << ": " << r.reason;
+    if (!r.tool.isRectangle()) continue;
+    const std::string disk = shortNumber(2.0 * r.tool.reachRadius());
+    EXPECT_NE(r.reason.find("planned for the rectangle tool's circumscribed disk (diameter sqrt(s^2 + d^2) = " + disk + " m)"),
+              std::string::npos) << r.reason;
+    EXPECT_EQ(r.metrics.at("valid"), 1.0);
+  }
+  EXPECT_EQ(pairings.size(), 3u);  // a run pairs only with runs of its own tool
+  EXPECT_NE(runs(db, "--list").find("rectangle s=0.2 m, d=0.1 m, c=0.02 m"), std::string::npos);
+  EXPECT_EQ(runs(db, "").rfind("key,dataset,wall,wall_hash,planner,params,planner_version,tool_width,clearance,tool_shape,tool_depth,", 0), 0u);
+  const std::string key = test::sqlRows(db, "SELECT run_key FROM run_tool_depth WHERE depth = 0.1 LIMIT 1").substr(0, 12);
+  const ResultsDb::StoredRun stored = ResultsDb(db, ResultsDb::Mode::ReadOnly).storedRun(key);
+  EXPECT_TRUE(stored.tool.isRectangle());
+  EXPECT_EQ(stored.tool.depth, 0.1);
+  test::sqlRows(db, "DROP TABLE run_tool_depth");
+  EXPECT_THROW(ResultsDb(db, ResultsDb::Mode::ReadOnly).load(), std::exception);
+}
+
 TEST_F(ToolShapeRuns, ShardsMergeWithTheirShapes) {
   experiment("walls", "");
   const std::string config = write("shard.yaml", "name: shard\noutput: shard\ndatasets:\n  - folder: walls\n"
@@ -119,9 +154,13 @@ TEST_F(ToolShapeRuns, AShapeThatIsNotBuiltIsOneLineNamingTheField) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(dir_ / name / "results.sqlite")) << name;
   };
-  refused("square", "tool:\n  shape: square\n", "square.yaml:7: tool.shape: must be disk or line, got 'square'");
+  refused("square", "tool:\n  shape: square\n", "square.yaml:7: tool.shape: must be disk, line or rectangle, got 'square'");
   refused("twice", "tool:\n  shape: [line, line]\n", "twice.yaml:7: tool.shape: lists line twice");
   refused("car", "tool:\n  shape: line\nvehicle:\n  model: car\n", "tool.shape: a line tool is not built for a car yet");
+  refused("nodepth", "tool:\n  shape: rectangle\n", "nodepth.yaml:7: tool.depth: is missing: a rectangle tool's depth along the heading, m");
+  refused("diskdepth", "tool:\n  shape: line\n  depth: 0.1\n", "diskdepth.yaml:8: tool.depth: belongs to a rectangle tool");
+  refused("thin", "tool:\n  shape: rectangle\n  depth: 0\n", "thin.yaml:8: tool.depth: must be in [0.001, 10], got 0");
+  refused("rcar", "tool:\n  shape: rectangle\n  depth: 0.1\nvehicle:\n  model: car\n", "tool.shape: a rectangle tool is not built for a car yet");
 }
 
 TEST_F(ToolShapeRuns, PlanAndMetricsTakeTheShapeAndPlanFilesCarryIt) {
@@ -141,6 +180,22 @@ TEST_F(ToolShapeRuns, PlanAndMetricsTakeTheShapeAndPlanFilesCarryIt) {
   EXPECT_NEAR(line_r, 2.0, 1e-9);  // no obstacles: the whole wall
   EXPECT_EQ(line_r, doc["metrics"]["reachable_area"].get<double>());
   EXPECT_LT(nlohmann::json::parse(disk_json)["reachable_area"].get<double>(), line_r);
+  // A rectangle's plan file carries its depth; scored again from it, as that rectangle.
+  const std::string rect_plan = (dir_ / "rect.json").string();
+  ASSERT_EQ(run("plan --wall " + wall + " --planner zigzag --tool-width 0.2 --tool-shape rectangle --tool-depth 0.1 --out " + rect_plan, &out).exit_code, 0) << out;
+  const nlohmann::json rect_doc = nlohmann::json::parse(slurp(rect_plan));
+  EXPECT_EQ(rect_doc["tool_shape"], "rectangle");
+  EXPECT_EQ(rect_doc["tool_depth"], 0.1);
+  EXPECT_EQ(rect_doc["metrics"]["valid"], true);
+  std::string rect_json, shallow_json;
+  ASSERT_EQ(run("metrics --wall " + wall + " --plan " + rect_plan, &rect_json).exit_code, 0);
+  EXPECT_EQ(nlohmann::json::parse(rect_json)["swept_area"], rect_doc["metrics"]["swept_area"]);
+  ASSERT_EQ(run("metrics --wall " + wall + " --plan " + rect_plan + " --tool-depth 0.05", &shallow_json).exit_code, 0);
+  EXPECT_LT(nlohmann::json::parse(shallow_json)["swept_area"].get<double>(), rect_doc["metrics"]["swept_area"].get<double>());
+  const test::CommandRun deep = run("plan --wall " + wall + " --planner zigzag --tool-shape line --tool-depth 0.1 --out " + (dir_ / "bad.json").string());
+  EXPECT_EQ(deep.exit_code, 2);
+  EXPECT_NE(deep.err.find("tool_depth: a depth belongs to a rectangle; a line has none"), std::string::npos) << deep.err;
+  EXPECT_FALSE(fs::exists(dir_ / "bad.json"));
   // A disk's plan file has no key, as before shapes.
   const std::string disk_plan = (dir_ / "disk.json").string();
   ASSERT_EQ(run("plan --wall " + wall + " --planner zigzag --out " + disk_plan).exit_code, 0);
@@ -148,7 +203,7 @@ TEST_F(ToolShapeRuns, PlanAndMetricsTakeTheShapeAndPlanFilesCarryIt) {
   // An unknown shape: one line, exit 2, nothing written.
   const test::CommandRun bad = run("plan --wall " + wall + " --planner zigzag --tool-shape triangle --out " + (dir_ / "bad.json").string());
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_NE(bad.err.find("--tool-shape: tool.shape: must be disk or line, got 'triangle'"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("--tool-shape: tool.shape: must be disk, line or rectangle, got 'triangle'"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(dir_ / "bad.json"));
   const test::CommandRun bytes = run("plan --wall " + wall + " --planner zigzag --tool-shape \"$(printf 'li\\377ne\\001')\" --out " + (dir_ / "bad.json").string());
   EXPECT_EQ(bytes.exit_code, 2);
@@ -157,7 +212,7 @@ TEST_F(ToolShapeRuns, PlanAndMetricsTakeTheShapeAndPlanFilesCarryIt) {
   std::ofstream(dir_ / "odd.json") << R"({"waypoints": [[0.5, 0.5], [1, 0.5]], "tool_on": [true], "tool_shape": "blob"})";
   const test::CommandRun odd = run("metrics --wall " + wall + " --plan " + (dir_ / "odd.json").string());
   EXPECT_EQ(odd.exit_code, 2);
-  EXPECT_NE(odd.err.find("tool_shape: must be \"disk\" or \"line\""), std::string::npos) << odd.err;
+  EXPECT_NE(odd.err.find("tool_shape: must be \"disk\", \"line\" or \"rectangle\""), std::string::npos) << odd.err;
 }
 
 }  // namespace

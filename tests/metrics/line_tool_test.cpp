@@ -1,12 +1,13 @@
-// The line tool (docs/metrics.md#tool-shapes) in both engines: a straight pass and a right-angle
-// turn against hand-computed areas and verdicts, and random paths on random walls where the fast
-// engine and the exact judge must agree.
+// The line and rectangle tools (docs/metrics.md#tool-shapes) in both engines: a straight pass and
+// a right-angle turn against hand-computed areas and verdicts, and random paths on random walls
+// where the fast engine and the exact judge must agree.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "coverbench/judge.hpp"
+#include "coverbench/limits.hpp"
 #include "coverbench/metrics.hpp"
 #include "test_support.hpp"
 
@@ -36,6 +37,14 @@ ToolParams line(double width, double clearance = 0.02) {
   tool.tool_width = width;
   tool.clearance = clearance;
   tool.shape = ToolShape::Line;
+  return tool;
+}
+
+// A rectangle `width` across the heading and `depth` along it.
+ToolParams rectangle(double width, double depth, double clearance = 0.02) {
+  ToolParams tool = line(width, clearance);
+  tool.shape = ToolShape::Rectangle;
+  tool.depth = depth;
   return tool;
 }
 
@@ -161,6 +170,92 @@ TEST(LineTool, ItsReachableRegionIsTheWallMinusTheObstaclesGrownByTheClearance) 
   EXPECT_TRUE(exact.reachable_area.contains(2.0 - grown));
 }
 
+// A rectangle 0.25 x 0.125 m (h = 2e: every number a dyadic fraction, so "touching" is exact in
+// the judge). A pass sweeps its rectangle d longer than the move; ending d / 2 short of the edge
+// it touches it (valid), ending on it it crosses it (invalid), where a line is valid.
+TEST(RectangleTool, AStraightPassSweepsARectangleDLongerThanTheMove) {
+  const Wall wall = rectWall(2.0, 1.0);
+  const ToolParams tool = rectangle(0.25, 0.125);
+  const Path pass = polyline({{0.9375, 0.5}, {1.9375, 0.5}});
+  EXPECT_TRUE(bothVerdicts(wall, tool, pass).valid);
+  expectSwept(wall, tool, pass, 0.25 * 1.125);
+  const Path to_edge = polyline({{0.9375, 0.5}, {2.0, 0.5}});
+  const Validity v = bothVerdicts(wall, tool, to_edge);
+  EXPECT_EQ(v.outside_boundary, 1u);
+  EXPECT_NE(describeViolations(v, 0.02).find("crosses the wall's edge"), std::string::npos) << describeViolations(v, 0.02);
+  EXPECT_TRUE(bothVerdicts(wall, line(0.25), to_edge).valid);
+  // Along the bottom edge its long side runs on it (valid); 1 mm lower it leaves the wall.
+  EXPECT_TRUE(bothVerdicts(wall, tool, polyline({{0.5, 0.125}, {1.5, 0.125}})).valid);
+  EXPECT_EQ(bothVerdicts(wall, tool, polyline({{0.5, 0.124}, {1.5, 0.124}})).outside_boundary, 1u);
+}
+
+// East L1 = 1 m, then north L2 = 0.5 m about p = (1.5, 0.3), h = 0.1, e = 0.05, R = hypot(h, e).
+// The moves sweep A (L1 + 2e by 2h) and B (2h by L2 + 2e), overlapping in (h + e)^2 at p. The
+// turn's four corner sectors (radius R, a quarter turn each) add, relative to p: the circular
+// segments beyond y = -h and beyond x = h (each R^2 a - h e, a = atan(e / h)), and the part of
+// [e, h] x [-h, -e] within R (the sector between (e, -h) and (h, -e), R^2 (pi / 2 - 2a) / 2,
+// less the quadrilateral p, (e, -h), (e, -e), (h, -e) of area e (h - e)).
+TEST(RectangleTool, ARightAngleTurnSweepsFourCornerSectors) {
+  const Wall wall = rectWall(2.0, 1.0);
+  const ToolParams tool = rectangle(0.2, 0.1);
+  const Path turn = polyline({{0.5, 0.3}, {1.5, 0.3}, {1.5, 0.8}});
+  EXPECT_TRUE(bothVerdicts(wall, tool, turn).valid);
+  const double h = 0.1, e = 0.05, r2 = h * h + e * e, a = std::atan(e / h);
+  const double moves = 2 * h * (1.0 + 2 * e) + 2 * h * (0.5 + 2 * e) - (h + e) * (h + e);
+  const double corners = 2 * (r2 * a - h * e) + r2 * (kPi / 2 - 2 * a) / 2 - e * (h - e);
+  expectSwept(wall, tool, turn, moves + corners);
+  EXPECT_NEAR(moves + corners, 0.3206131, 1e-7);  // the same, in numbers
+  // Straight back is no turn for a rectangle either (it is the same turned half a circle).
+  const Path back = polyline({{0.5, 0.5}, {1.5, 0.5}, {0.5, 0.5}});
+  expectSwept(wall, tool, back, 2 * h * (1.0 + 2 * e));
+}
+
+// A 5 mm square 2.5 cm beyond both moves' rectangles (farther than c = 2 cm) but 10.6 cm from
+// the turn's centre, within the corners' reach R = 11.18 cm: the turn makes the path invalid in
+// both engines, each move alone is valid, and a gantry that turns the tool lifted is valid.
+TEST(RectangleTool, ATurnsCornerSectorIntoAnObstacleIsInvalid) {
+  const Wall wall = rectWall(2.0, 1.0, {rect(1.575, 0.22, 1.58, 0.225, "socket")});
+  const ToolParams tool = rectangle(0.2, 0.1);
+  const Path turn = polyline({{0.5, 0.3}, {1.5, 0.3}, {1.5, 0.8}});
+  const Validity v = bothVerdicts(wall, tool, turn);
+  EXPECT_EQ(v.too_close, 1u);
+  EXPECT_EQ(v.violating, std::vector<std::size_t>{1});
+  EXPECT_TRUE(bothVerdicts(wall, tool, polyline({{0.5, 0.3}, {1.5, 0.3}})).valid);
+  EXPECT_TRUE(bothVerdicts(wall, tool, polyline({{1.5, 0.3}, {1.5, 0.8}})).valid);
+  Path lifted = turn;
+  lifted.waypoints.insert(lifted.waypoints.begin() + 2, Point{1.5, 0.3});
+  lifted.tool_on = {true, false, true};
+  VehicleModel gantry;
+  gantry.kind = VehicleModel::Kind::Gantry;
+  EXPECT_TRUE(bothVerdicts(wall, tool, lifted, gantry).valid);
+}
+
+// A path that never moves has no heading: the rectangle must fit in every one, the disk of
+// radius R = hypot(h, e) = 0.1118 m, as the disk tool's must fit its own.
+TEST(RectangleTool, APathThatNeverMovesMustFitItsCircumscribedDisk) {
+  const Wall wall = rectWall(2.0, 1.0);
+  const ToolParams tool = rectangle(0.2, 0.1);
+  EXPECT_FALSE(bothVerdicts(wall, tool, polyline({{0.5, 0.105}, {0.5, 0.105}})).valid);
+  EXPECT_TRUE(bothVerdicts(wall, tool, polyline({{0.5, 0.115}, {0.5, 0.115}})).valid);
+}
+
+// A rectangle's depth is checked where every tool is, and only a rectangle has one.
+TEST(RectangleTool, ItsDepthIsCheckedAndBelongsToARectangleOnly) {
+  ToolParams tool = rectangle(0.2, 0.0);
+  try {
+    validateTool(tool, "here");
+    ADD_FAILURE() << "a rectangle without a depth was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "here: tool_depth: a rectangle's depth must be in [0.001, 10] m, got 0");
+  }
+  tool = line(0.2);
+  tool.depth = 0.1;
+  EXPECT_THROW(validateTool(tool, "here"), InputError);
+  EXPECT_NEAR(rectangle(0.2, 0.1).reachRadius(), std::sqrt(0.0125), 1e-15);
+  EXPECT_EQ(circumscribedDisk(rectangle(0.3, 0.4)).tool_width, 0.5);
+  EXPECT_EQ(toolLabel(rectangle(0.23, 0.05)), "rectangle s=0.23 m, d=0.05 m, c=0.02 m");
+}
+
 // Random polylines on random walls: both engines' verdicts agree, and on the valid ones the fast
 // engine's swept area and coverage lie within 1e-5 (relative) of the judge's intervals.
 TEST(LineToolProperty, BothEnginesAgreeOnRandomPathsOnRandomWalls) {
@@ -168,7 +263,9 @@ TEST(LineToolProperty, BothEnginesAgreeOnRandomPathsOnRandomWalls) {
   int compared = 0, invalid = 0, areas = 0;
   for (unsigned seed = 1; seed <= 24; ++seed) {
     const Wall wall = test::randomWall(seed);
-    const ToolParams tool = line(0.1 + 0.05 * (seed % 4), seed % 3 == 0 ? 0.0 : 0.02);
+    // Every other wall a rectangle, its depth from a tenth to the whole of its width.
+    const double width = 0.1 + 0.05 * (seed % 4), clearance = seed % 3 == 0 ? 0.0 : 0.02;
+    const ToolParams tool = seed % 2 == 0 ? rectangle(width, width * (0.1 + 0.3 * (seed % 4)), clearance) : line(width, clearance);
     Box box;
     for (Point p : wall.boundary) box.add(p);
     std::uniform_real_distribution<double> x(box.min_x, box.max_x), y(box.min_y, box.max_y);

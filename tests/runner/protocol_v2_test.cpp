@@ -100,6 +100,20 @@ TEST_F(Protocol2, AVersion1PlannersRequestIsTheSameBytesWithAProfile) {
   EXPECT_NE(slurp((dir_ / "request.1.json").string()).find(R"("protocol":2})"), std::string::npos);
 }
 
+// A rectangle 0.3 m across and 0.4 m deep: a version-1 planner is sent the width of its
+// circumscribed disk (0.5 m, as a line's is its own width); a version-2 planner the rectangle.
+TEST_F(Protocol2, ARectangleIsSentAsItsCircumscribedDiskToVersion1AndAsItselfToVersion2) {
+  const std::string rect = "--tool-width 0.3 --tool-shape rectangle --tool-depth 0.4";
+  EXPECT_EQ(reason(manifest("v1", 1, "record.py", kRecorder), rect), R"({"clearance": 0.02, "width": 0.5})");
+  EXPECT_EQ(reason(manifest("v2", 2, "record.py", kRecorder), rect),
+            R"({"clearance": 0.02, "depth": 0.4, "profile": null, "shape": "rectangle", "width": 0.3})");
+  const std::string echo = manifest("echo", 2, "depth.py",
+                                    "import json\nfrom coverbench.serve import serve\n\nclass Echo:\n    def plan(self, problem):\n"
+                                    "        return {'status': 'error', 'reason': json.dumps([problem.tool_shape, problem.tool_depth])}\n\n"
+                                    "serve(Echo())\n");
+  EXPECT_EQ(reason(echo, rect), R"(["rectangle", 0.4])");
+}
+
 TEST_F(Protocol2, TheVersionIsTheManifestsAndAnswersRepeatIt) {
   const std::string v3 = manifest("v3", 3, "record.py", kRecorder);
   try {

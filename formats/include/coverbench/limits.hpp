@@ -31,7 +31,8 @@ inline constexpr double kMaxTimeLimitSeconds = 86400.0;
 /// `allow_large: true`): they take hours to days.
 inline constexpr std::size_t kLargeExperimentRuns = 100000;
 
-/// Tool width in [kMinToolWidth, kMaxToolWidth] m and clearance in [0, kMaxClearance] m, finite.
+/// Tool width s in [kMinToolWidth, kMaxToolWidth] m (a rectangle's depth too; no other shape has one) and
+/// clearance in [0, kMaxClearance] m, finite.
 /// Throws InputError naming `source` and the field.
 void validateTool(const ToolParams& tool, const std::string& source);
 

@@ -1,6 +1,7 @@
 #pragma once
 /// A path and the tool that follows it: the value types planners produce and judges score.
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -68,12 +69,18 @@ enum class ToolShape {
   /// heading turns, rotates about its centre by the smaller angle (a line is the same turned by
   /// half a circle), sweeping two opposite sectors of radius s / 2.
   Line,
+  /// A rectangle s across the heading and d (ToolParams::depth) along it, centred on the path (a
+  /// mower deck, a wide roller with its frame, a sanding pad): a line of depth d. Along a move it
+  /// sweeps a rectangle d longer than the move; where the heading turns it rotates about its
+  /// centre by the smaller angle (it too is the same turned by half a circle), sweeping four
+  /// sectors of radius sqrt(s^2 + d^2) / 2, one from each corner.
+  Rectangle,
 };
-/// "disk" or "line".
+/// "disk", "line" or "rectangle".
 std::string toString(ToolShape shape);
 /// The shape named `name`; false when there is none.
 bool parseToolShape(const std::string& name, ToolShape& shape);
-/// What every reader says of a shape that is none: "must be disk or line, got 'NAME'", with bytes
+/// What every reader says of a shape that is none: "must be disk, line or rectangle, got 'NAME'", with bytes
 /// outside printable ASCII as \xHH (one line of valid text whatever was given).
 std::string toolShapeProblem(const std::string& name);
 
@@ -83,11 +90,24 @@ struct ToolParams {
   double clearance = 0.02;  ///< c: minimum gap between the tool and any obstacle
   FluxProfile profile = {};  ///< how it spreads what it sprays (none: a tool that only touches)
   ToolShape shape = ToolShape::Disk;
+  double depth = 0.0;  ///< d: a rectangle's depth along the heading (0 for a disk or a line)
   double radius() const { return tool_width / 2.0; }
   bool isLine() const { return shape == ToolShape::Line; }
+  bool isRectangle() const { return shape == ToolShape::Rectangle; }
+  /// A line or a rectangle: what it covers turns with the heading (docs/metrics.md#tool-shapes).
+  bool turnsWithHeading() const { return shape != ToolShape::Disk; }
+  /// d / 2: how far the shape reaches ahead of and behind its centre (0 for a line).
+  double halfDepth() const { return isRectangle() ? depth / 2.0 : 0.0; }
+  /// The radius of the disk around the centre that holds the tool in every heading: s / 2, or
+  /// half a rectangle's diagonal.
+  double reachRadius() const { return std::hypot(radius(), halfDepth()); }
 };
+/// The disk that holds `tool` in every heading (diameter 2 reachRadius()), with its clearance and
+/// profile: what a planner that plans for disks plans a rectangle for (a path valid for it is
+/// valid for the rectangle, which lies in it at every heading).
+ToolParams circumscribedDisk(const ToolParams& tool);
 /// The tool as every table, column, title and message names it: "s=0.1 m, c=0.02 m" (a disk),
-/// "line s=0.1 m, c=0.02 m".
+/// "line s=0.1 m, c=0.02 m", "rectangle s=0.23 m, d=0.05 m, c=0.02 m".
 std::string toolLabel(const ToolParams& tool);
 /// toolLabel, then the flux profile's label where there is one: "s=0.1 m, c=0.02 m, beta 2.5".
 std::string toolAndProfileLabel(const ToolParams& tool);

@@ -246,9 +246,9 @@ inline constexpr std::size_t kMaxArcChords = 100000;
 /// Throws InputError(source, field, problem) if `path` is beyond the scoring limits (waypoints,
 /// coordinates, an arc's chords), or its coordinates are not finite.
 void checkScorable(const Path& path, const std::string& source);
-/// Throws InputError if a line tool's path cannot be scored yet: a car's (field tool.shape) or
-/// one with an arc (field bulge[i]). Both engines score a line tool's straight moves only.
-void checkLineScorable(const Path& path, const VehicleModel& vehicle, const std::string& source);
+/// Throws InputError if a line or rectangle tool's path cannot be scored yet: a car's (field
+/// tool.shape) or one with an arc (field bulge[i]). Both engines score their straight moves only.
+void checkLineScorable(const Path& path, const ToolParams& tool, const VehicleModel& vehicle, const std::string& source);
 
 /// One named metric value, in the order metrics are written (plan files, tables).
 struct NamedMetric {

@@ -43,12 +43,13 @@ std::string metricsJson(const PathMetrics& metrics);
 std::string violationsJson(const Validity& validity);
 
 /// A path read from a plan file of any source: only `waypoints` and `tool_on` are required;
-/// `tool_width`, `clearance`, `tool_shape`, `profile`, `start`, `end` and `vehicle` are read when present.
+/// `tool_width`, `clearance`, `tool_shape`, `tool_depth`, `profile`, `start`, `end` and `vehicle` are read when present.
 struct LoadedPlan {
   Path path;
   std::optional<double> tool_width;
   std::optional<double> clearance;
   std::optional<ToolShape> tool_shape;  ///< `tool_shape`; none: a disk (plan files before shapes)
+  std::optional<double> tool_depth;     ///< `tool_depth`: a rectangle's d, and only a rectangle's
   std::optional<FluxProfile> profile;  ///< the tool's flux profile, not yet checked against its width
   std::optional<Point> start, end;
   std::optional<VehicleModel> vehicle;

@@ -99,8 +99,10 @@ class Analysis:
         self.tool_of = {}
         for c in self.columns:
             rs = self.by_column[c]
-            # A line tool is another tool than the disk of its width (docs/metrics.md#tool-shapes).
-            t = (rs[0]["tool_width"], rs[0]["clearance"], rs[0].get("tool_shape", "disk")) if rs else (math.nan, math.nan, "disk")
+            # A line or a rectangle is another tool than the disk of its width
+            # (docs/metrics.md#tool-shapes); a rectangle of another depth is another tool.
+            t = ((rs[0]["tool_width"], rs[0]["clearance"], rs[0].get("tool_shape", "disk"), rs[0].get("tool_depth", 0.0))
+                 if rs else (math.nan, math.nan, "disk", 0.0))
             self.tool_of[c] = t
             if t not in self.tools:
                 self.tools.append(t)

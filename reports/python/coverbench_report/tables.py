@@ -186,7 +186,8 @@ def render(tables, fmt, preamble=""):
 
 def tool_label(a, tool):
     shape = "" if tool[2] == "disk" else f"{tool[2]} "
-    return "" if len(a.tools) == 1 else f" at {shape}s={number(tool[0])} m, c={number(tool[1])} m"
+    depth = f", d={number(tool[3])} m" if tool[2] == "rectangle" else ""
+    return "" if len(a.tools) == 1 else f" at {shape}s={number(tool[0])} m{depth}, c={number(tool[1])} m"
 
 
 MEASURED_TITLE = "Measured on this machine"

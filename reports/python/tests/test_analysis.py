@@ -213,12 +213,13 @@ class ToolsNeverPooled(unittest.TestCase):
                         r["pairing"] += "/line"
                     runs.append(r)
         a = Analysis(data(runs, cols))
-        self.assertEqual(sorted(a.tools), [(0.1, 0.02, "disk"), (0.1, 0.02, "line")])
+        self.assertEqual(sorted(a.tools), [(0.1, 0.02, "disk", 0.0), (0.1, 0.02, "line", 0.0)])
         for r in a.paired_table("d", ["length_total"]):
             self.assertEqual(a.tool_of[r["column"]], a.tool_of[r["baseline"]])
             self.assertEqual(r["pairs"], 3)
-        self.assertEqual(T.tool_label(a, (0.1, 0.02, "line")), " at line s=0.100 m, c=0.0200 m")
-        self.assertEqual(T.tool_label(a, (0.1, 0.02, "disk")), " at s=0.100 m, c=0.0200 m")
+        self.assertEqual(T.tool_label(a, (0.1, 0.02, "line", 0.0)), " at line s=0.100 m, c=0.0200 m")
+        self.assertEqual(T.tool_label(a, (0.1, 0.02, "disk", 0.0)), " at s=0.100 m, c=0.0200 m")
+        self.assertEqual(T.tool_label(a, (0.1, 0.02, "rectangle", 0.05)), " at rectangle s=0.100 m, d=0.0500 m, c=0.0200 m")
 
 
 COAT_SPECS = SPECS + [

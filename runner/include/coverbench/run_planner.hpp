@@ -15,6 +15,8 @@ namespace coverbench {
 /// into an Error status; fills `plan_time_ms` with the wall-clock time of the call. For a car, a
 /// planner that plans for cars (PlannerInfo::plans_for_car) is given the car unless its `car_plan`
 /// is `smoothed`; every other plan is made for a tool that turns on the spot and smoothed here.
+/// An in-tree planner that plans for disks (not PlannerInfo::plans_line_tool) is given a
+/// rectangle tool's circumscribed disk (circumscribedDisk) in its place.
 PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const Budget& budget);
 
 /// A planner's status as a run's (a run adds what only an execution can end in).
@@ -34,8 +36,10 @@ struct JudgedPlan {
   bool succeeded() const { return verdict == RunStatus::Ok; }
 };
 JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, const Budget& budget);
-/// What a line tool's run says of its plan: "" when the planner plans for lines
-/// (PlannerInfo::plans_line_tool), else that it planned for the line's circumscribed disk.
-std::string lineToolNote(const PlannerInfo& planner);
+/// What a line or rectangle tool's run says of its plan: "" for a disk or when the planner plans
+/// for the tool's shape (PlannerInfo::plans_line_tool), else that it planned for the shape's
+/// circumscribed disk.
+std::string toolShapeNote(const PlannerInfo& planner, const ToolParams& tool);
+
 
 }  // namespace coverbench
