@@ -292,9 +292,10 @@ std::string toolShapeNote(const PlannerInfo& planner, const ToolParams& tool) {
   if (tool.isLine())
     return "planned for the line tool's circumscribed disk (diameter s): " + planner.name +
            " plans for disks; the line's path is scored as a line";
-  return "planned for the rectangle tool's circumscribed disk (diameter sqrt(s^2 + d^2) = " +
-         shortNumber(2.0 * tool.reachRadius()) + " m): " + planner.name +
-         " plans for disks; the rectangle's path is scored as a rectangle";
+  char diameter[32];
+  std::snprintf(diameter, sizeof diameter, "%.4g", circumscribedDisk(tool).tool_width);
+  return "planned for the rectangle tool's circumscribed disk (diameter sqrt(s^2 + d^2) = " + std::string(diameter) +
+         " m): " + planner.name + " plans for disks; the rectangle's path is scored as a rectangle";
 }
 
 

@@ -115,7 +115,8 @@ TEST_F(ToolShapeRuns, ARectanglesRunsAreKeyedStoredListedAndScoredWithItsDepth) 
     pairings.insert(r.pairing);
     EXPECT_EQ(std::string(toString(r.status)), "ok") << r.planner << ": " << r.reason;
     if (!r.tool.isRectangle()) continue;
-    const std::string disk = shortNumber(2.0 * r.tool.reachRadius());
+    // 2R = sqrt(0.2^2 + 0.05^2) = 0.2062 m, sqrt(0.2^2 + 0.1^2) = 0.2236 m.
+    const std::string disk = r.tool.depth == 0.05 ? "0.2062" : "0.2236";
     EXPECT_NE(r.reason.find("planned for the rectangle tool's circumscribed disk (diameter sqrt(s^2 + d^2) = " + disk + " m)"),
               std::string::npos) << r.reason;
     EXPECT_EQ(r.metrics.at("valid"), 1.0);
