@@ -130,7 +130,7 @@ Outcome planOnce(const Wall& wall, const PlannerInfo& planner, const ToolParams&
   o.plan.not_scored = judged.not_scored;
   // The plan file's reason says why its coat's metrics are null (a raster past the cap).
   o.plan.result.reason = withNote(o.plan.result.reason, coatNotScoredNote(judged.metrics));
-  if (o.plan.result.hasPath()) o.plan.result.reason = withNote(o.plan.result.reason, toolShapeNote(planner, tool));
+  o.plan.result.reason = withNote(o.plan.result.reason, toolShapeNote(planner, tool, o.plan.result));
   o.plan_json = planFileJson(o.plan);
   const bool scored = o.plan.not_scored.empty();
   const std::string title = wall.name + " / " + planner.name + "  (" + toolLabel(tool) + ")  " +

@@ -313,7 +313,7 @@ RunRecord executeRun(const RunSpec& spec) {
         }
       }
       rec.reason = withNote(rec.reason, coatNotScoredNote(m));
-      rec.reason = withNote(rec.reason, toolShapeNote(info, spec.tool));
+      rec.reason = withNote(rec.reason, toolShapeNote(info, spec.tool, result));
     } catch (const std::exception& e) {  // a path beyond the scoring limits, or a bug in the judge
       rec.status = RunStatus::MetricsError;
       rec.reason = std::string("the path could not be scored: ") + e.what();

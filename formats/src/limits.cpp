@@ -14,6 +14,8 @@ void validateTool(const ToolParams& tool, const std::string& source) {
                                                       : ""));
   if (!std::isfinite(tool.clearance) || tool.clearance < 0.0 || tool.clearance > kMaxClearance)
     throw InputError(source, "clearance", "must be in [0, " + shortNumber(kMaxClearance) + "] m, got " + shortNumber(tool.clearance));
+  if (tool.isRectangle() && tool.depth == 0.0)
+    throw InputError(source, "tool_depth", "is missing: a rectangle tool's depth along the heading, m");
   if (tool.isRectangle() && (!std::isfinite(tool.depth) || tool.depth < kMinToolWidth || tool.depth > kMaxToolWidth))
     throw InputError(source, "tool_depth",
                      "a rectangle's depth must be in [" + shortNumber(kMinToolWidth) + ", " + shortNumber(kMaxToolWidth) +

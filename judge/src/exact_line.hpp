@@ -19,8 +19,12 @@ namespace coverbench::judge {
 inline V2 leftNormal(const V2& d) { return V2(-d.y(), d.x()); }
 inline FT crossOf(const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-/// A rational k near rho / |m| with k^2 |m|^2 >= rho2 (outer) or <= rho2 (inner), checked exactly.
+/// A rational k near rho / |m| with k^2 |m|^2 >= rho2 (outer) or <= rho2 (inner), checked exactly;
+/// rho / |m| itself along an axis.
 inline FT scaleFor(const V2& m, double rho, const FT& rho2, bool outer) {
+  // Along an axis |m| is rational: k = rho / |m| exactly (so a rectangle that touches an edge at
+  // exactly its half-width or reach is judged touching).
+  if ((m.x() == 0) != (m.y() == 0) && FT(rho) * FT(rho) == rho2) return FT(rho) / CGAL::abs(m.x() == 0 ? m.y() : m.x());
   const FT len2 = m.squared_length();
   double k = rho / std::sqrt(CGAL::to_double(len2));
   for (int i = 0; i < 64; ++i) {
@@ -112,6 +116,23 @@ inline std::vector<ExactTurn> cornerTurns(const ExactTurn& t, const ExactShape& 
   return out;
 }
 
+/// A rational lambda >= 1 / cos(theta / 2), theta the angle between va and vb (at most a right
+/// angle), checked exactly: lambda^2 (va.vb) >= (2 - lambda^2) |va| |vb|, squared where both sides
+/// are positive. 0 when none is found.
+inline FT stretchFor(const V2& va, const V2& vb) {
+  const FT dot = va * vb, p = va.squared_length() * vb.squared_length();
+  if (dot < 0) return FT(0);
+  const double theta = std::acos(std::fmin(1.0, CGAL::to_double(dot) / std::sqrt(CGAL::to_double(p))));
+  double lambda = (1.0 / std::cos(theta / 2.0)) * (1.0 + 1e-9);
+  for (int i = 0; i < 64; ++i, lambda *= 1.0 + 1e-6) {
+    const FT l2 = FT(lambda) * FT(lambda);
+    if (l2 >= FT(2)) return FT(lambda);
+    const FT lhs = l2 * dot, rhs = FT(2) - l2;
+    if (lhs * lhs >= rhs * rhs * p) return FT(lambda);
+  }
+  return FT(0);
+}
+
 /// One sector of radius h (h2 = h^2 exactly) of a turn about p (side +1; -1: the opposite
 /// sector, its reflection through p) as a fan of triangles (p, A_j, A_j+1), A_0 on m1's ray and
 /// the last on m2's, every pair turning the turn's way. Outer: each triangle's far edge lies at
@@ -139,9 +160,15 @@ inline std::vector<Triangle> sectorFan(const P2& p, const ExactTurn& t, double h
   std::vector<Triangle> fan;
   const FT sign(side);
   for (std::size_t j = 0; j + 1 < arm.size(); ++j) {
-    const P2 a = p + arm[j] * sign, b = p + arm[j + 1] * sign;
+    P2 a = p + arm[j] * sign, b = p + arm[j + 1] * sign;
     if (CGAL::orientation(p, a, b) != t.way) return {};
-    if (outer && CGAL::squared_distance(p, K::Line_2(a, b)) < h2) return {};
+    if (outer && CGAL::squared_distance(p, K::Line_2(a, b)) < h2) {
+      // Arms of unequal length (a turn too small to space them): the triangle with both arms
+      // stretched by lambda >= 1 / cos(theta / 2) holds the sector, as both are at least h long.
+      const FT lambda = stretchFor(arm[j], arm[j + 1]);
+      if (lambda == 0) return {};
+      a = p + arm[j] * (sign * lambda), b = p + arm[j + 1] * (sign * lambda);
+    }
     fan.push_back(t.way == CGAL::LEFT_TURN ? Triangle{p, a, b} : Triangle{p, b, a});
   }
   return fan;

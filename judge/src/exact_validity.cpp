@@ -311,9 +311,22 @@ class Scene {
     close = close || near;
   }
 
-  /// A gantry's lifted segment from a to b: the disk at both ends within the wall's bounding box,
-  /// compared exactly (the box is convex, so the whole segment's disks are then inside it).
-  bool liftedInFrame(Point a, Point b) const { return inFrame(a) && inFrame(b); }
+  /// One end of a gantry's lifted segment: the disk at p within the wall's bounding box, compared
+  /// exactly (the box is convex: with both ends' tools inside it, the whole segment's are).
+  bool diskInFrame(Point p) const { return inFrame(p); }
+
+  /// A line or rectangle tool lowered or lifted at p with the heading d (the tool-on move it
+  /// begins or ends): its shape, through the rational rectangle that contains it, inside the
+  /// wall's bounding box, compared exactly.
+  bool shapeInFrame(const P2& p, const V2& d, const ExactShape& shape) const {
+    const V2 m = leftNormal(d), km = m * scaleFor(m, shape.h, shape.h2, true);
+    const V2 kd = shape.e == 0.0 ? V2(0, 0) : d * scaleFor(d, shape.e, shape.e2, true);
+    for (const V2& q : {km + kd, km - kd, -km + kd, -km - kd}) {
+      const P2 c = p + q;
+      if (c.x() < FT(lo_x_) || c.x() > FT(hi_x_) || c.y() < FT(lo_y_) || c.y() > FT(hi_y_)) return false;
+    }
+    return true;
+  }
 
   /// Whether p, taken as a point of the path, breaks either rule (it lies outside F).
   bool outsideF(const P2& p) const {
@@ -449,7 +462,18 @@ ExactValidity judgeValidity(const Wall& wall, const ToolParams& tool, const Path
       if (points[i] != points[i + 1]) heading = points[i + 1] - points[i];  // its end's turn is the next move's
       continue;
     } else if (vehicle.liftsTool() && !path.tool_on[i]) {
-      flag(v, i, !scene.liftedInFrame(path.waypoints[i], path.waypoints[i + 1]), false);
+      // A line or rectangle is lifted and lowered at the heading of the tool-on move it ends or
+      // begins; without one, at any heading (the Scene's disk).
+      bool outside = false;
+      for (const auto& [k, step] : {std::pair<std::size_t, int>{i, -1}, {i + 1, 1}}) {
+        const bool has = step < 0 ? k > 0 : k + 1 < n;
+        const std::size_t other = step < 0 ? k - 1 : k + 1, segment = std::min(k, other);
+        if (tool.turnsWithHeading() && has && path.tool_on[segment] && points[k] != points[other])
+          outside = outside || !scene.shapeInFrame(points[k], step < 0 ? points[k] - points[other] : points[other] - points[k], shape);
+        else
+          outside = outside || !scene.diskInFrame(path.waypoints[k]);
+      }
+      flag(v, i, outside, false);
       heading.reset();  // the tool turns lifted
     } else if (line) {
       lineCheck(i);

@@ -49,15 +49,74 @@ void settle(Gaps& g) {
   g.obstacle = std::fmax(g.obstacle, 0.0);
 }
 
+/// a + b = s + e exactly (Knuth's two-sum).
+void twoSum(double a, double b, double& s, double& e) {
+  s = a + b;
+  const double bb = s - a;
+  e = (a - (s - bb)) + (b - bb);
+}
+
+/// The sign of the exact sum of `terms`: Shewchuk's expansion growth, exact for doubles whose
+/// products neither overflow nor underflow (coordinates of at most 1e6 m and 1e-9 m apart).
+int signOfSum(const std::vector<double>& terms) {
+  std::vector<double> expansion;  // non-overlapping, in increasing magnitude
+  for (double q : terms) {
+    std::vector<double> grown;
+    for (double component : expansion) {
+      double sum = 0.0, error = 0.0;
+      twoSum(q, component, sum, error);
+      if (error != 0.0) grown.push_back(error);
+      q = sum;
+    }
+    if (q != 0.0) grown.push_back(q);
+    expansion = std::move(grown);
+  }
+  return expansion.empty() ? 0 : (expansion.back() > 0.0 ? 1 : -1);
+}
+
+/// The exact sign of d1 . d2 (`cross` false) or d1 x d2 (true), d1 = m1.b - m1.a and d2 =
+/// m2.b - m2.a taken exactly (each difference a two-sum, each product split by an fma).
+int exactSign(const Segment& m1, const Segment& m2, bool cross) {
+  double d[2][2][2];  // [move][x or y][value, error]
+  const Segment* moves[2] = {&m1, &m2};
+  for (int k = 0; k < 2; ++k) {
+    twoSum(moves[k]->b.x, -moves[k]->a.x, d[k][0][0], d[k][0][1]);
+    twoSum(moves[k]->b.y, -moves[k]->a.y, d[k][1][0], d[k][1][1]);
+  }
+  std::vector<double> terms;
+  auto product = [&](int i, int j, double sign) {  // sign * d1[i] * d2[j], all four parts
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const double p = d[0][i][a] * d[1][j][b];
+        terms.push_back(sign * p);
+        terms.push_back(sign * std::fma(d[0][i][a], d[1][j][b], -p));
+      }
+  };
+  if (cross) {
+    product(0, 1, 1.0);
+    product(1, 0, -1.0);
+  } else {
+    product(0, 0, 1.0);
+    product(1, 1, 1.0);
+  }
+  return signOfSum(terms);
+}
+
 }  // namespace
 
-Turn turnBetween(Point d1, Point d2) {
+Turn turnBetween(Segment m1, Segment m2) {
   Turn t;
+  const Point d1 = m1.b - m1.a, d2 = m2.b - m2.a;
   t.u1 = leftNormal(d1);
   t.u2 = leftNormal(d2);
-  if (dot(d1, d2) < 0.0) t.u2 = t.u2 * -1.0;  // more than a right angle: the line's shorter way round
-  if (cross(d1, d2) == 0.0) return t;         // straight on, or straight back: no turn
-  t.sweep = std::atan2(cross(t.u1, t.u2), dot(t.u1, t.u2));
+  // Which way and whether it turns at all are decided exactly from the waypoints, as the exact
+  // judge decides them: a right angle in doubles may be a hair over one (the other way round).
+  const int along = exactSign(m1, m2, false), turn = exactSign(m1, m2, true);
+  if (along < 0) t.u2 = t.u2 * -1.0;  // more than a right angle: the line's shorter way round
+  if (turn == 0) return t;            // straight on, or straight back: no turn
+  const double sweep = std::atan2(cross(t.u1, t.u2), dot(t.u1, t.u2));
+  // The sign the exact cross gives (a turn too small for doubles: the least one, that way).
+  t.sweep = std::copysign(std::fmax(std::fabs(sweep), 1e-300), static_cast<double>(turn * (along < 0 ? -1 : 1)));
   return t;
 }
 
@@ -115,7 +174,7 @@ Gaps turnGaps(const ClearanceField& field, Point p, const Turn& turn, double h, 
 std::vector<Ring> sweptRings(const Path& path, double h, double e) {
   std::vector<Ring> rings;
   bool have = false;      // a tool-on move came before, with only zero-length moves since
-  Point last{0.0, 0.0};   // its direction
+  Segment last{};         // that move
   const double reach = std::hypot(h, e);
   for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i) {
     const Point a = path.waypoints[i], b = path.waypoints[i + 1];
@@ -126,7 +185,7 @@ std::vector<Ring> sweptRings(const Path& path, double h, double e) {
     if (a == b) continue;
     const Point d = b - a, u = leftNormal(d), t = d * (1.0 / norm(d));
     if (have) {
-      const Turn turn = turnBetween(last, d);
+      const Turn turn = turnBetween(last, Segment{a, b});
       if (turn.sweep != 0.0) {
         const double sagitta = std::fmin(kSectorSagitta * reach, 5e-5);
         const auto chords = static_cast<int>(std::ceil(std::fabs(turn.sweep) / (2.0 * std::acos(1.0 - sagitta / reach))));
@@ -146,7 +205,7 @@ std::vector<Ring> sweptRings(const Path& path, double h, double e) {
     const Point a1 = a - t * e, b1 = b + t * e;
     rings.push_back({a1 - u * h, b1 - u * h, b1 + u * h, a1 + u * h});
     have = true;
-    last = d;
+    last = Segment{a, b};
   }
   return rings;
 }

@@ -15,15 +15,21 @@
 
 namespace coverbench::line_tool {
 
-/// How the line turns at a waypoint between a move in direction d1 and one in direction d2: from
-/// the half-line u1 (the unit left normal of d1) to u2 by the signed angle `sweep` in
-/// [-pi/2, pi/2], the smaller rotation (a line is the same turned by half a circle). At a right
-/// angle it turns the way the heading does. sweep 0: it does not turn (straight on, or back).
+/// A move from a to b.
+struct Segment {
+  Point a, b;
+};
+/// How the line turns at a waypoint between the move m1 and the move m2: from the half-line u1
+/// (the unit left normal of m1) to u2 by the signed angle `sweep` in [-pi/2, pi/2], the smaller
+/// rotation (a line is the same turned by half a circle). At a right angle it turns the way the
+/// heading does. sweep 0: it does not turn (straight on, or back). Whether it turns, and which
+/// way, are decided exactly from the four points (the signs of the moves' dot and cross
+/// products), as the exact judge decides them.
 struct Turn {
   Point u1, u2;
   double sweep = 0.0;
 };
-Turn turnBetween(Point d1, Point d2);
+Turn turnBetween(Segment m1, Segment m2);
 
 /// A swept shape's gaps (m): to the wall's edge and to the nearest obstacle, each 0 where the
 /// shape touches or crosses it (`outside`, `overlaps`: it does, by more than kValidityTolerance).

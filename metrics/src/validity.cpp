@@ -161,15 +161,38 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
   // first move, and for the lifted and depot rules), and any disk.
   const double r = tool.reachRadius();
   const std::size_t n = path.waypoints.size();
-  // A gantry's lifted move: the disk at both ends inside the wall's bounding box (then the whole
-  // move is, the box being convex).
+  // A gantry's lifted move: the tool at both ends inside the wall's bounding box (then the whole
+  // move is, the box being convex). A line or rectangle tool is lifted and lowered at the heading
+  // of the tool-on move it ends or begins (there its shape must be in the box); without one it
+  // may be lowered at any heading (its disk must be).
   const Box frame = boundingBox(wall.boundary);
   auto inFrame = [&](Point p) {
     return p.x - r >= frame.min_x - kValidityTolerance && p.x + r <= frame.max_x + kValidityTolerance &&
            p.y - r >= frame.min_y - kValidityTolerance && p.y + r <= frame.max_y + kValidityTolerance;
   };
+  auto pointInFrame = [&](Point q) {
+    return q.x >= frame.min_x - kValidityTolerance && q.x <= frame.max_x + kValidityTolerance &&
+           q.y >= frame.min_y - kValidityTolerance && q.y <= frame.max_y + kValidityTolerance;
+  };
+  // The tool-on move next to waypoint k, before it (step -1) or after it (+1): its direction.
+  auto toolOnHeading = [&](std::size_t k, int step) -> std::optional<Point> {
+    if (step < 0 ? k == 0 : k + 1 >= n) return std::nullopt;
+    const std::size_t other = step < 0 ? k - 1 : k + 1, segment = std::min(k, other);
+    if (!path.tool_on[segment] || path.waypoints[k] == path.waypoints[other]) return std::nullopt;
+    return step < 0 ? path.waypoints[k] - path.waypoints[other] : path.waypoints[other] - path.waypoints[k];
+  };
+  auto toolInFrame = [&](std::size_t k, int step) {
+    const std::optional<Point> d = tool.turnsWithHeading() ? toolOnHeading(k, step) : std::nullopt;
+    if (!d) return inFrame(path.waypoints[k]);
+    const Point p = path.waypoints[k], t = *d * (1.0 / norm(*d)), u{-t.y, t.x};
+    const double h = tool.radius(), e = tool.halfDepth();
+    for (double a : {-1.0, 1.0})
+      for (double b : {-1.0, 1.0})
+        if (!pointInFrame(p + u * (a * h) + t * (b * e))) return false;
+    return true;
+  };
   auto lifted = [&](std::size_t segment, Point a, Point b) {
-    const bool outside = !inFrame(a) || !inFrame(b);
+    const bool outside = !toolInFrame(segment, -1) || !toolInFrame(segment + 1, 1);
     v.outside_boundary += outside;
     v.violations += outside;
     if (outside && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
@@ -192,12 +215,12 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
   // nothing). A path that never moves has no heading: its tool must fit in every one (the disk r).
   const bool line = tool.turnsWithHeading() && std::any_of(path.waypoints.begin(), path.waypoints.end(),
                                                  [&](Point p) { return !(p == path.waypoints[0]); });
-  std::optional<Point> heading;  // the direction of the last move on the wall
+  std::optional<line_tool::Segment> heading;  // the last move on the wall
   auto lineGaps = [&](Point a, Point b) {
     const double cutoff = std::fmax(v.min_clearance, tool.clearance) + r;
     line_tool::Gaps g = line_tool::segmentGaps(field, a, b, tool.radius(), tool.halfDepth(), cutoff);
     if (heading) {
-      const line_tool::Turn turn = line_tool::turnBetween(*heading, b - a);
+      const line_tool::Turn turn = line_tool::turnBetween(*heading, line_tool::Segment{a, b});
       if (turn.sweep != 0.0) {
         const line_tool::Gaps t = line_tool::turnGaps(field, a, turn, tool.radius(), tool.halfDepth(), cutoff);
         g.outside = g.outside || t.outside;
@@ -207,7 +230,7 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
         g.obstacle = std::fmin(g.obstacle, t.obstacle);
       }
     }
-    heading = b - a;
+    heading = line_tool::Segment{a, b};
     return g;
   };
   auto check = [&](std::size_t segment, Point a, Point b) {
@@ -283,7 +306,7 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
   for (std::size_t i = 0; i + 1 < n; ++i)
     if (inDepotLeg(i)) {
       // The leg's tool may overhang; the turn at its end in F is checked with the move after it.
-      if (!(path.waypoints[i] == path.waypoints[i + 1])) heading = path.waypoints[i + 1] - path.waypoints[i];
+      if (!(path.waypoints[i] == path.waypoints[i + 1])) heading = line_tool::Segment{path.waypoints[i], path.waypoints[i + 1]};
       continue;
     }
     else if (lifts && !path.tool_on[i]) {

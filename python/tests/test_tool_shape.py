@@ -58,7 +58,7 @@ class ToolShape(unittest.TestCase):
     def test_a_rectangle_needs_its_depth_and_only_a_rectangle_has_one(self):
         with self.assertRaises(ValueError) as e:
             coverbench.score(WALL, [[0.5, 0.5], [1, 0.5]], [True], tool_shape="rectangle")
-        self.assertEqual(str(e.exception), "tool: tool_depth: a rectangle's depth must be in [0.001, 10] m, got 0")
+        self.assertEqual(str(e.exception), "tool: tool_depth: is missing: a rectangle tool's depth along the heading, m")
         with self.assertRaises(ValueError) as e:
             coverbench.score(WALL, [[0.5, 0.5], [1, 0.5]], [True], tool_depth=0.1)
         self.assertEqual(str(e.exception), "tool: tool_depth: a depth belongs to a rectangle; a disk has none")

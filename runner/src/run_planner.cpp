@@ -287,8 +287,14 @@ RunStatus runStatusOf(PlanStatus status) {
   return RunStatus::Error;
 }
 
-std::string toolShapeNote(const PlannerInfo& planner, const ToolParams& tool) {
-  if (!tool.turnsWithHeading() || planner.plans_line_tool) return "";
+std::string toolShapeNote(const PlannerInfo& planner, const ToolParams& tool, const PlanResult& result) {
+  if (!tool.turnsWithHeading() || planner.plans_line_tool || result.planned_for_shape) return "";
+  // Said of a path, and of a failure to find room (the disk may not fit where the shape would).
+  if (!result.hasPath() && result.status != PlanStatus::NoReachableArea) return "";
+  if (!planner.external_manifest.empty())
+    return planner.name + " is an external planner: it was sent the " + toString(tool.shape) +
+           " under protocol 2, its circumscribed disk's width under protocol 1; the path is scored as a " +
+           toString(tool.shape);
   if (tool.isLine())
     return "planned for the line tool's circumscribed disk (diameter s): " + planner.name +
            " plans for disks; the line's path is scored as a line";
@@ -321,7 +327,7 @@ JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, cons
                (j.result.reason.empty() ? "" : "; the planner said: " + j.result.reason);
   }
   j.reason = withNote(j.reason, coatNotScoredNote(j.metrics));
-  if (j.result.hasPath()) j.reason = withNote(j.reason, toolShapeNote(planner, problem.tool));
+  j.reason = withNote(j.reason, toolShapeNote(planner, problem.tool, j.result));
   return j;
 }
 

@@ -141,6 +141,32 @@ TEST(LineTool, ATurnIntoAnObstacleIsInvalidWhereTheMovesAloneAreNot) {
   EXPECT_FALSE(bothVerdicts(wall, line(0.2), lifted).valid);
 }
 
+// A gantry lowers and lifts a line at the heading of the row it begins or ends: rows from edge
+// to edge, joined by lifted moves along the edge, are valid in both engines (the line there lies
+// on the edge, inside the wall's box), where the disk's lifted rule (the disk at both ends inside
+// the box) would refuse them. A line lowered across the box's edge is refused.
+TEST(LineTool, AGantryLowersTheLineAtItsRowsHeading) {
+  const Wall wall = rectWall(2.0, 1.0);
+  VehicleModel gantry;
+  gantry.kind = VehicleModel::Kind::Gantry;
+  Path rows = polyline({{0.0, 0.1}, {2.0, 0.1}, {2.0, 0.3}, {0.0, 0.3}});
+  rows.tool_on = {true, false, true};
+  EXPECT_TRUE(bothVerdicts(wall, line(0.2), rows, gantry).valid);
+  // Lowered at (1, 0.05) to paint north, it lies along y = 0.05 (inside); to paint east, across it.
+  Path north = polyline({{0.5, 0.5}, {1.0, 0.05}, {1.0, 0.5}});
+  north.tool_on = {false, true};
+  EXPECT_TRUE(bothVerdicts(wall, line(0.2), north, gantry).valid);
+  Path east = polyline({{0.5, 0.5}, {1.0, 0.05}, {1.5, 0.05}});
+  east.tool_on = {false, true};
+  const Validity v = bothVerdicts(wall, line(0.2), east, gantry);
+  EXPECT_EQ(v.violating, (std::vector<std::size_t>{0, 1}));  // the lifted move lowers it outside, the row leaves the wall
+  // A rectangle's corners count: 0.1 deep, lowered at (1, 0.05) to paint north, it reaches y = 0.
+  EXPECT_TRUE(bothVerdicts(wall, rectangle(0.2, 0.1), north, gantry).valid);
+  Path low = polyline({{0.5, 0.5}, {1.0, 0.04}, {1.0, 0.5}});
+  low.tool_on = {false, true};
+  EXPECT_EQ(bothVerdicts(wall, rectangle(0.2, 0.1), low, gantry).violating, (std::vector<std::size_t>{0, 1}));
+}
+
 // Straight back is no turn for a line (it is the same line turned half a circle): an obstacle
 // beside the end, inside the disk a turn would sweep, is not touched, and the pass is doubled.
 TEST(LineTool, GoingStraightBackDoesNotTurnTheLine) {
@@ -179,6 +205,10 @@ TEST(RectangleTool, AStraightPassSweepsARectangleDLongerThanTheMove) {
   const Path pass = polyline({{0.9375, 0.5}, {1.9375, 0.5}});
   EXPECT_TRUE(bothVerdicts(wall, tool, pass).valid);
   expectSwept(wall, tool, pass, 0.25 * 1.125);
+  // At a length whose e / L is no double the judge still reads the touch exactly (along an axis
+  // its scales are exact rationals).
+  EXPECT_TRUE(bothVerdicts(wall, tool, polyline({{0.5, 0.5}, {1.9375, 0.5}})).valid);
+  EXPECT_TRUE(bothVerdicts(wall, tool, polyline({{0.5, 0.875}, {1.5, 0.875}})).valid);  // the side on the top edge
   const Path to_edge = polyline({{0.9375, 0.5}, {2.0, 0.5}});
   const Validity v = bothVerdicts(wall, tool, to_edge);
   EXPECT_EQ(v.outside_boundary, 1u);
@@ -246,7 +276,14 @@ TEST(RectangleTool, ItsDepthIsCheckedAndBelongsToARectangleOnly) {
     validateTool(tool, "here");
     ADD_FAILURE() << "a rectangle without a depth was accepted";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "here: tool_depth: a rectangle's depth must be in [0.001, 10] m, got 0");
+    EXPECT_EQ(std::string(e.what()), "here: tool_depth: is missing: a rectangle tool's depth along the heading, m");
+  }
+  tool.depth = -0.1;
+  try {
+    validateTool(tool, "here");
+    ADD_FAILURE() << "a negative depth was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "here: tool_depth: a rectangle's depth must be in [0.001, 10] m, got -0.1");
   }
   tool = line(0.2);
   tool.depth = 0.1;

@@ -130,6 +130,9 @@ struct PlanResult {
   /// The path was planned for the problem's car itself, and is drivable by it (checked): runPlanner
   /// does not smooth it.
   bool planned_for_car = false;
+  /// The planner planned for the problem's line tool itself (its rows run to the edge), not for
+  /// its circumscribed disk: runs say nothing of a disk (toolShapeNote).
+  bool planned_for_shape = false;
   /// A planner outside the tree (external/): the last bytes (external::kStderrTailBytes) its
   /// processes wrote to stderr during this plan call, as valid UTF-8 (other bytes replaced by
   /// U+FFFD); empty for in-tree planners.

@@ -37,9 +37,10 @@ struct JudgedPlan {
 };
 JudgedPlan planAndJudge(const PlannerInfo& planner, const Problem& problem, const Budget& budget);
 /// What a line or rectangle tool's run says of its plan: "" for a disk or when the planner plans
-/// for the tool's shape (PlannerInfo::plans_line_tool), else that it planned for the shape's
-/// circumscribed disk.
-std::string toolShapeNote(const PlannerInfo& planner, const ToolParams& tool);
+/// for the tool's shape (PlannerInfo::plans_line_tool) or planned this `result` for it
+/// (PlanResult::planned_for_shape), else, of a path or of no_reachable_area, that it planned for
+/// the shape's circumscribed disk (an external planner: what it was sent).
+std::string toolShapeNote(const PlannerInfo& planner, const ToolParams& tool, const PlanResult& result);
 
 
 }  // namespace coverbench
