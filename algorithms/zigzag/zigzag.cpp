@@ -55,6 +55,193 @@ std::vector<std::vector<Interval>> rowIntervals(const std::vector<Ring>& rings, 
   return rows;
 }
 
+/// Line rows (a line tool on a gantry): how far every row keeps clear of what its line may touch
+/// (m), across and along the row, so that the region grid's 1 um snapping and the exact judge's
+/// rational containers still read it as touching at most.
+constexpr double kLineMargin = 2e-6;
+/// Line rows: what the rows leave narrower than this (m) is a sliver of their margins, not a gap.
+constexpr double kLineSliver = 1e-4;
+/// Line rows: the chords of grown obstacles' arcs (m); they grow by this much more, so the chords
+/// lie outside the true offset.
+constexpr double kLineArcTolerance = 1e-5;
+
+/// What a line of half-width h square to the x axis may touch: the wall's outside and its
+/// obstacles grown by c; and where its centre may lie, the wall minus that set swept by the
+/// segment from (0, -h) to (0, h) (with kLineMargin across and along).
+struct LineRegions {
+  Region reachable;  ///< X: the wall minus its obstacles grown by c
+  Region centres;    ///< where the line's centre may lie, square to the x axis
+};
+LineRegions lineRegions(const Wall& wall, double h, double c) {
+  const Region wall_region = regionFromRings({wall.boundary});
+  const Box box = boundingBox(wall.boundary);
+  const double pad = 2.0 * h + c + 1.0;
+  const Ring frame{{box.min_x - pad, box.min_y - pad}, {box.max_x + pad, box.min_y - pad}, {box.max_x + pad, box.max_y + pad},
+                   {box.min_x - pad, box.max_y + pad}};
+  Region grown;
+  for (const Obstacle& o : wall.obstacles) {
+    Region piece = obstacleRegion(o, kLineArcTolerance);  // a circle's polygon contains it
+    if (c > 0.0) piece = offsetRegion(piece, c + kLineArcTolerance, kLineArcTolerance);
+    grown = grown.empty() ? std::move(piece) : unite(grown, piece);
+  }
+  LineRegions r;
+  r.reachable = grown.empty() ? wall_region : subtract(wall_region, grown);
+  const Region touched = unite(subtract(regionFromRings({frame}), wall_region), grown);
+  const Region swept = sweepAlong(sweepAlong(touched, {kLineMargin, 0.0}), {0.0, h + kLineMargin});
+  r.centres = subtract(wall_region, swept);
+  return r;
+}
+
+/// A region kept as its disjoint pieces with their boxes, so that a strip is met and cut only
+/// where it lies (a facade's left-overs are hundreds of pieces).
+class Pieces {
+ public:
+  explicit Pieces(Region region) {
+    for (PolygonWithHoles& piece : region) add(std::move(piece));
+  }
+  /// The pieces meeting `strip` (a ring inside `box`), met with it.
+  Region meet(const Ring& strip, const Box& box) const { return intersect(near(box), regionFromRings({strip})); }
+  /// Takes `strip` (inside `box`) away.
+  void cut(const Ring& strip, const Box& box) {
+    Region touched;
+    std::vector<PolygonWithHoles> kept;
+    std::vector<Box> kept_boxes;
+    for (std::size_t k = 0; k < pieces_.size(); ++k)
+      if (overlaps(boxes_[k], box)) touched.push_back(std::move(pieces_[k]));
+      else kept.push_back(std::move(pieces_[k])), kept_boxes.push_back(boxes_[k]);
+    pieces_ = std::move(kept);
+    boxes_ = std::move(kept_boxes);
+    for (PolygonWithHoles& piece : subtract(touched, regionFromRings({strip}))) add(std::move(piece));
+  }
+
+ private:
+  static bool overlaps(const Box& a, const Box& b) {
+    return a.min_x <= b.max_x && b.min_x <= a.max_x && a.min_y <= b.max_y && b.min_y <= a.max_y;
+  }
+  Region near(const Box& box) const {
+    Region out;
+    for (std::size_t k = 0; k < pieces_.size(); ++k)
+      if (overlaps(boxes_[k], box)) out.push_back(pieces_[k]);
+    return out;
+  }
+  void add(PolygonWithHoles piece) {
+    Box b;
+    for (Point p : piece.outer) b.add(p);
+    pieces_.push_back(std::move(piece));
+    boxes_.push_back(b);
+  }
+  Region pieces_;
+  std::vector<Box> boxes_;
+};
+
+/// The line's rows, `spacing` apart at most, over where its centre may lie: each free interval of
+/// each row is painted, joined by lifted moves. Then what the rows' strips and `before` (the
+/// shapes the path already paints) left of X next to obstacles gets rows of its own (see below).
+/// Appended to `path` (the frame's coordinates); the number of rows and intervals.
+struct LineRows {
+  std::size_t rows = 0, intervals = 0, patches = 0;
+};
+LineRows lineRows(const Wall& wall, double h, double c, double spacing, const std::vector<Ring>& before, Path& path) {
+  LineRows out;
+  const LineRegions regions = lineRegions(wall, h, c);
+  const std::vector<Ring> rings = allRings(regions.centres);
+  Box span;
+  for (const Ring& ring : rings)
+    for (Point p : ring) span.add(p);
+  if (span.empty()) return out;
+  const std::vector<double> heights = rowHeights(span.min_y, span.max_y, spacing);
+  auto strip = [&](double y, double x0, double x1) { return Ring{{x0, y - h}, {x1, y - h}, {x1, y + h}, {x0, y + h}}; };
+  // Each row piece over what `before` left (opened by kLineSliver): its x-extent, in [x0, x1].
+  std::vector<std::pair<double, std::pair<double, double>>> painted;  // (y, [x0, x1]) of every row piece
+  // The x-extents of what `left` holds in the strip at y over [x0, x1] (opened by kLineSliver: the
+  // rows' margins are no gap), in order.
+  auto spansLeft = [&](const Pieces& left, double y, double x0, double x1) {
+    std::vector<std::pair<double, double>> spans;
+    for (const PolygonWithHoles& piece : offsetRegion(left.meet(strip(y, x0, x1), Box{x0, y - h, x1, y + h}), -kLineSliver, kLineArcTolerance)) {
+      Box b;
+      for (Point q : piece.outer) b.add(q);
+      spans.push_back({b.min_x - kLineSliver, b.max_x + kLineSliver});
+    }
+    std::sort(spans.begin(), spans.end());
+    return spans;
+  };
+  // Row pieces at y over `spans` within [x0, x1] (overlapping spans are one piece); how many.
+  auto paint = [&](double y, const std::vector<std::pair<double, double>>& spans, double x0, double x1) {
+    std::size_t added = 0;
+    for (const auto& [a, b] : spans) {
+      const double lo = std::max(a, x0), hi = std::min(b, x1);
+      if (hi - lo <= kLineMargin) continue;
+      if (added > 0 && lo <= painted.back().second.second) painted.back().second.second = std::max(painted.back().second.second, hi);
+      else painted.push_back({y, {lo, hi}}), ++added;
+    }
+    return added;
+  };
+  const Pieces after_before(before.empty() ? Region{} : subtract(regions.reachable, regionFromRings(before)));
+  for (const auto& row : rowIntervals(rings, heights)) {
+    if (row.empty()) continue;
+    const std::vector<std::pair<double, double>> spans =
+        before.empty() ? std::vector<std::pair<double, double>>{{span.min_x, span.max_x}}
+                       : spansLeft(after_before, row.front().y, span.min_x, span.max_x);
+    for (const Interval& iv : row) paint(iv.y, spans, iv.lo.x, iv.hi.x);
+  }
+  out.rows = heights.size();
+  // What the strips leave of X lies next to what the line cannot pass: each level where the
+  // centres' region has a horizontal edge or a vertex above or below both its neighbours (just
+  // inside) gets a row over what is left there, in order, each taking what it paints away. What is
+  // left narrower than kLineSliver is the rows' margins, not a gap.
+  std::vector<Ring> strips = before;
+  for (const auto& [y, x] : painted) strips.push_back(strip(y, x.first, x.second));
+  Pieces left(strips.empty() ? regions.reachable : subtract(regions.reachable, regionFromRings(strips)));
+  std::vector<double> levels;
+  for (const Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point a = ring[(i + ring.size() - 1) % ring.size()], p = ring[i], b = ring[(i + 1) % ring.size()];
+      // Inside lies to the left of each edge: +x along the bottom, -x along the top.
+      if (b.y == p.y && b.x != p.x) levels.push_back(p.y + (b.x > p.x ? 1e-7 : -1e-7));
+      if (p.y < a.y && p.y < b.y) levels.push_back(p.y + 1e-7);
+      if (p.y > a.y && p.y > b.y) levels.push_back(p.y - 1e-7);
+    }
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end(), [](double a, double b) { return b - a < 1e-6; }), levels.end());
+  for (double y : levels) {
+    if (y <= span.min_y || y >= span.max_y) continue;
+    if (std::any_of(heights.begin(), heights.end(), [&](double r) { return std::fabs(r - y) < 1e-5; })) continue;
+    for (const auto& row : rowIntervals(rings, {y}))
+      for (const Interval& iv : row) {
+        const std::size_t from = painted.size();
+        out.patches += paint(y, spansLeft(left, y, iv.lo.x, iv.hi.x), iv.lo.x, iv.hi.x);
+        for (std::size_t k = from; k < painted.size(); ++k) {
+          const auto [x0, x1] = painted[k].second;
+          left.cut(strip(y, x0, x1), Box{x0, y - h, x1, y + h});
+        }
+      }
+  }
+  out.intervals = painted.size();
+  // In order: from the lowest row's left end, each time the nearest end of a row not yet painted
+  // (rows next to each other alternate; the rows by obstacles are taken on the way).
+  std::vector<bool> done(painted.size(), false);
+  Point at = path.waypoints.empty() ? Point{span.min_x, span.min_y} : path.waypoints.back();
+  for (std::size_t n = 0; n < painted.size(); ++n) {
+    std::size_t best = 0;
+    bool from_low = true;
+    double nearest = INFINITY;
+    for (std::size_t k = 0; k < painted.size(); ++k) {
+      if (done[k]) continue;
+      const auto& [y, x] = painted[k];
+      const double low = distance(at, {x.first, y}), high = distance(at, {x.second, y});
+      if (low < nearest) nearest = low, best = k, from_low = true;
+      if (high < nearest) nearest = high, best = k, from_low = false;
+    }
+    done[best] = true;
+    const auto& [y, x] = painted[best];
+    const Point from{from_low ? x.first : x.second, y}, to{from_low ? x.second : x.first, y};
+    if (path.waypoints.empty() || !(path.waypoints.back() == from)) path.moveTo(from, false);  // lifted
+    path.moveTo(to, true);
+    at = to;
+  }
+  return out;
+}
+
 /// The shorter walk along a ring from a point on edge e1 to a point on edge e2.
 std::vector<Point> ringWalk(const Ring& ring, Point from, std::size_t e1, Point to, std::size_t e2) {
   if (e1 == e2) return {from, to};
@@ -134,6 +321,46 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
     return result;
   }
 
+  /// A line tool on a gantry: the line's own rows from edge to edge of X, joined by lifted moves
+  /// (the tool turns in the air), not its circumscribed disk's (docs/metrics.md#tool-shapes).
+  PlanResult planLineRows(const Problem& problem, const ZigzagParams& params, double spacing, const Budget& budget,
+                          PlanFrame& frame) {
+    const double h = problem.tool.radius();
+    // The loops first (boundary_passes), along F's boundary as for the disk: a path valid for the
+    // disk is valid for the line, whose rectangles there paint the band along every edge the rows
+    // cannot reach (a slanted edge, a round obstacle's side).
+    PathBuilder builder(frame.ws());
+    std::size_t unreachable = 0;
+    std::vector<Ring> before;
+    if (params.boundary_passes > 0 && !frame.empty()) {
+      HeadlandOptions layout;
+      layout.spacing = spacing;
+      layout.radius = h;
+      layout.loops = static_cast<std::size_t>(params.boundary_passes);
+      layout.end_inset = params.row_end_inset;
+      layout.arc_tolerance = kRowArcTolerance;
+      unreachable = coverRings(builder, headland(frame.ws(), frame.covered(), layout).loops, 1.01 * spacing);
+      const Path& loops = builder.path();
+      for (std::size_t i = 0; i < loops.segments(); ++i) {
+        const Point a = loops.waypoints[i], b = loops.waypoints[i + 1];
+        if (!loops.tool_on[i] || a == b) continue;
+        const Point n = Point{a.y - b.y, b.x - a.x} * (h / distance(a, b));
+        before.push_back({a - n, b - n, b + n, a + n});
+      }
+    }
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in boundary passes");
+    Path path = builder.take();
+    const LineRows rows = lineRows(frame.ws().wall(), h, problem.tool.clearance, spacing, before, path);
+    if (path.waypoints.empty()) return PlanResult::failure(PlanStatus::NoReachableArea, "the line fits nowhere on the wall");
+    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in rows");
+    PlanResult result = frame.finish(builder, std::move(path), unreachable, false);
+    result.planned_for_shape = true;
+    result.stats["rows"] = static_cast<double>(rows.rows);
+    result.stats["intervals"] = static_cast<double>(rows.intervals);
+    result.stats["leftover_rows"] = static_cast<double>(rows.patches);
+    return result;
+  }
+
   PlanResult planAt(const Problem& problem, const ZigzagParams& params, const Budget& budget, double angle_deg) {
     const double angle = angle_deg * M_PI / 180.0;
     const double spacing = problem.tool.tool_width * (1.0 - params.overlap);
@@ -141,6 +368,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
 
     // Work in a frame where rows are horizontal; the result is turned back at the end.
     PlanFrame frame(problem, angle);
+    if (problem.tool.isLine() && problem.vehicle.liftsTool()) return planLineRows(problem, params, spacing, budget, frame);
     if (frame.empty()) return PlanFrame::fitsNowhere();
     if (problem.vehicle.isCar()) return planForCar(problem, params, budget, angle, frame);
     Workspace& ws = frame.ws();
@@ -259,7 +487,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
 
 PlannerInfo info() {
   return typedPlannerInfo<ZigzagPlanner>(
-      {.name = "zigzag", .version = "15", .code_folders = {"zigzag"},
+      {.name = "zigzag", .version = "16", .code_folders = {"zigzag"},
        .summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes",
        .reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013",
        .min_coverage_reachable = 0.995, .plans_for_car = true},
