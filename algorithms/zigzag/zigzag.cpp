@@ -64,18 +64,22 @@ constexpr double kLineSliver = 1e-4;
 /// Line rows: the chords of grown obstacles' arcs (m); they grow by this much more, so the chords
 /// lie outside the true offset.
 constexpr double kLineArcTolerance = 1e-5;
+/// Line rows: the share of X the rows alone may leave before loops are run first (what rows cannot
+/// reach lies along slanted and round edges): a window's round corners leave 0.5 %, a polygon's
+/// slanted edges 5-10 %.
+constexpr double kLoopsWhenLeft = 0.01;
 
-/// What a line of half-width h square to the x axis may touch: the wall's outside and its
-/// obstacles grown by c; and where its centre may lie, the wall minus that set swept by the
-/// segment from (0, -h) to (0, h) (with kLineMargin across and along).
+/// What a line of half-width h (a rectangle: and half-depth e) square to the x axis may touch: the
+/// wall's outside and its obstacles grown by c; and where its centre may lie, the wall minus that
+/// set swept by the rectangle [-e, e] x [-h, h] (with kLineMargin across and along).
 struct LineRegions {
   Region reachable;  ///< X: the wall minus its obstacles grown by c
   Region centres;    ///< where the line's centre may lie, square to the x axis
 };
-LineRegions lineRegions(const Wall& wall, double h, double c) {
+LineRegions lineRegions(const Wall& wall, double h, double e, double c) {
   const Region wall_region = regionFromRings({wall.boundary});
   const Box box = boundingBox(wall.boundary);
-  const double pad = 2.0 * h + c + 1.0;
+  const double pad = 2.0 * (h + e) + c + 1.0;
   const Ring frame{{box.min_x - pad, box.min_y - pad}, {box.max_x + pad, box.min_y - pad}, {box.max_x + pad, box.max_y + pad},
                    {box.min_x - pad, box.max_y + pad}};
   Region grown;
@@ -87,7 +91,7 @@ LineRegions lineRegions(const Wall& wall, double h, double c) {
   LineRegions r;
   r.reachable = grown.empty() ? wall_region : subtract(wall_region, grown);
   const Region touched = unite(subtract(regionFromRings({frame}), wall_region), grown);
-  const Region swept = sweepAlong(sweepAlong(touched, {kLineMargin, 0.0}), {0.0, h + kLineMargin});
+  const Region swept = sweepAlong(sweepAlong(touched, {e + kLineMargin, 0.0}), {0.0, h + kLineMargin});
   r.centres = subtract(wall_region, swept);
   return r;
 }
@@ -101,6 +105,8 @@ class Pieces {
   }
   /// The pieces meeting `strip` (a ring inside `box`), met with it.
   Region meet(const Ring& strip, const Box& box) const { return intersect(near(box), regionFromRings({strip})); }
+  /// Their area (m^2).
+  double totalArea() const { return area(pieces_); }
   /// Takes `strip` (inside `box`) away.
   void cut(const Ring& strip, const Box& box) {
     Region touched;
@@ -140,24 +146,29 @@ class Pieces {
 /// Appended to `path` (the frame's coordinates); the number of rows and intervals.
 struct LineRows {
   std::size_t rows = 0, intervals = 0, patches = 0;
+  double left_share = 0.0;  ///< of X, what every row leaves (before `before` is counted)
 };
-LineRows lineRows(const Wall& wall, double h, double c, double spacing, const std::vector<Ring>& before, Path& path) {
+LineRows lineRows(const Wall& wall, double h, double e, double c, double spacing, const std::vector<Ring>& before,
+                  Path& path) {
   LineRows out;
-  const LineRegions regions = lineRegions(wall, h, c);
+  const LineRegions regions = lineRegions(wall, h, e, c);
   const std::vector<Ring> rings = allRings(regions.centres);
   Box span;
   for (const Ring& ring : rings)
     for (Point p : ring) span.add(p);
   if (span.empty()) return out;
   const std::vector<double> heights = rowHeights(span.min_y, span.max_y, spacing);
-  auto strip = [&](double y, double x0, double x1) { return Ring{{x0, y - h}, {x1, y - h}, {x1, y + h}, {x0, y + h}}; };
-  // Each row piece over what `before` left (opened by kLineSliver): its x-extent, in [x0, x1].
+  // What a row at y with its centre from x0 to x1 paints.
+  auto strip = [&](double y, double x0, double x1) {
+    return Ring{{x0 - e, y - h}, {x1 + e, y - h}, {x1 + e, y + h}, {x0 - e, y + h}};
+  };
   std::vector<std::pair<double, std::pair<double, double>>> painted;  // (y, [x0, x1]) of every row piece
   // The x-extents of what `left` holds in the strip at y over [x0, x1] (opened by kLineSliver: the
   // rows' margins are no gap), in order.
   auto spansLeft = [&](const Pieces& left, double y, double x0, double x1) {
     std::vector<std::pair<double, double>> spans;
-    for (const PolygonWithHoles& piece : offsetRegion(left.meet(strip(y, x0, x1), Box{x0, y - h, x1, y + h}), -kLineSliver, kLineArcTolerance)) {
+    for (const PolygonWithHoles& piece :
+         offsetRegion(left.meet(strip(y, x0, x1), Box{x0 - e, y - h, x1 + e, y + h}), -kLineSliver, kLineArcTolerance)) {
       Box b;
       for (Point q : piece.outer) b.add(q);
       spans.push_back({b.min_x - kLineSliver, b.max_x + kLineSliver});
@@ -165,11 +176,17 @@ LineRows lineRows(const Wall& wall, double h, double c, double spacing, const st
     std::sort(spans.begin(), spans.end());
     return spans;
   };
-  // Row pieces at y over `spans` within [x0, x1] (overlapping spans are one piece); how many.
+  // Row pieces at y over `spans` with centres within [x0, x1] (a span [a, b] is painted from
+  // centres a + e to b - e, at least kLineSliver long; overlapping ones are one piece); how many.
   auto paint = [&](double y, const std::vector<std::pair<double, double>>& spans, double x0, double x1) {
     std::size_t added = 0;
     for (const auto& [a, b] : spans) {
-      const double lo = std::max(a, x0), hi = std::min(b, x1);
+      const double mid = (a + b) / 2.0;
+      double lo = std::clamp(std::min(a + e, mid - kLineSliver), x0, x1), hi = std::clamp(std::max(b - e, mid + kLineSliver), x0, x1);
+      if (hi - lo < kLineSliver) {  // beyond the centres' reach at one end: painted from there
+        const double at = std::clamp(mid, x0, x1);
+        lo = std::max(x0, at - kLineSliver), hi = std::min(x1, at + kLineSliver);
+      }
       if (hi - lo <= kLineMargin) continue;
       if (added > 0 && lo <= painted.back().second.second) painted.back().second.second = std::max(painted.back().second.second, hi);
       else painted.push_back({y, {lo, hi}}), ++added;
@@ -180,7 +197,7 @@ LineRows lineRows(const Wall& wall, double h, double c, double spacing, const st
   for (const auto& row : rowIntervals(rings, heights)) {
     if (row.empty()) continue;
     const std::vector<std::pair<double, double>> spans =
-        before.empty() ? std::vector<std::pair<double, double>>{{span.min_x, span.max_x}}
+        before.empty() ? std::vector<std::pair<double, double>>{{span.min_x - e, span.max_x + e}}
                        : spansLeft(after_before, row.front().y, span.min_x, span.max_x);
     for (const Interval& iv : row) paint(iv.y, spans, iv.lo.x, iv.hi.x);
   }
@@ -212,11 +229,13 @@ LineRows lineRows(const Wall& wall, double h, double c, double spacing, const st
         out.patches += paint(y, spansLeft(left, y, iv.lo.x, iv.hi.x), iv.lo.x, iv.hi.x);
         for (std::size_t k = from; k < painted.size(); ++k) {
           const auto [x0, x1] = painted[k].second;
-          left.cut(strip(y, x0, x1), Box{x0, y - h, x1, y + h});
+          left.cut(strip(y, x0, x1), Box{x0 - e, y - h, x1 + e, y + h});
         }
       }
   }
   out.intervals = painted.size();
+  const double reachable = area(regions.reachable);
+  out.left_share = reachable > 0.0 ? left.totalArea() / reachable : 0.0;
   // In order: from the lowest row's left end, each time the nearest end of a row not yet painted
   // (rows next to each other alternate; the rows by obstacles are taken on the way).
   std::vector<bool> done(painted.size(), false);
@@ -321,43 +340,52 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
     return result;
   }
 
-  /// A line tool on a gantry: the line's own rows from edge to edge of X, joined by lifted moves
-  /// (the tool turns in the air), not its circumscribed disk's (docs/metrics.md#tool-shapes).
+  /// A line or rectangle tool on a gantry: its own rows from edge to edge of X, joined by lifted
+  /// moves (the tool turns in the air), not its circumscribed disk's (docs/metrics.md#tool-shapes).
+  /// `frame` is the circumscribed disk's.
   PlanResult planLineRows(const Problem& problem, const ZigzagParams& params, double spacing, const Budget& budget,
                           PlanFrame& frame) {
-    const double h = problem.tool.radius();
-    // The loops first (boundary_passes), along F's boundary as for the disk: a path valid for the
-    // disk is valid for the line, whose rectangles there paint the band along every edge the rows
-    // cannot reach (a slanted edge, a round obstacle's side).
+    const double h = problem.tool.radius(), e = problem.tool.halfDepth();
+    // Rows alone first; for a line, where they leave more than kLoopsWhenLeft of X (slanted or
+    // round edges rows cannot reach), the loops first (boundary_passes), along the disk's F
+    // boundary: a path valid for the disk is valid for the line, whose rectangles there paint the
+    // band along every edge. On walls of straight edges square to the rows they would only paint
+    // again what the rows reach; a rectangle's, R from the edge, would paint most of it twice.
     PathBuilder builder(frame.ws());
+    Path path;
+    LineRows rows = lineRows(frame.ws().wall(), h, e, problem.tool.clearance, spacing, {}, path);
     std::size_t unreachable = 0;
-    std::vector<Ring> before;
-    if (params.boundary_passes > 0 && !frame.empty()) {
+    const bool loops_first = e == 0.0 && params.boundary_passes > 0 && !frame.empty() && rows.left_share > kLoopsWhenLeft;
+    if (loops_first) {
       HeadlandOptions layout;
       layout.spacing = spacing;
-      layout.radius = h;
+      layout.radius = problem.tool.reachRadius();
       layout.loops = static_cast<std::size_t>(params.boundary_passes);
       layout.end_inset = params.row_end_inset;
       layout.arc_tolerance = kRowArcTolerance;
       unreachable = coverRings(builder, headland(frame.ws(), frame.covered(), layout).loops, 1.01 * spacing);
+      std::vector<Ring> before;
       const Path& loops = builder.path();
       for (std::size_t i = 0; i < loops.segments(); ++i) {
         const Point a = loops.waypoints[i], b = loops.waypoints[i + 1];
         if (!loops.tool_on[i] || a == b) continue;
-        const Point n = Point{a.y - b.y, b.x - a.x} * (h / distance(a, b));
-        before.push_back({a - n, b - n, b + n, a + n});
+        const Point n = Point{a.y - b.y, b.x - a.x} * (h / distance(a, b)), t = (b - a) * (e / distance(a, b));
+        before.push_back({a - t - n, b + t - n, b + t + n, a - t + n});
       }
+      if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in boundary passes");
+      path = builder.take();
+      rows = lineRows(frame.ws().wall(), h, e, problem.tool.clearance, spacing, before, path);
     }
-    if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in boundary passes");
-    Path path = builder.take();
-    const LineRows rows = lineRows(frame.ws().wall(), h, problem.tool.clearance, spacing, before, path);
-    if (path.waypoints.empty()) return PlanResult::failure(PlanStatus::NoReachableArea, "the line fits nowhere on the wall");
+    if (path.waypoints.empty())
+      return PlanResult::failure(PlanStatus::NoReachableArea, "the " + toString(problem.tool.shape) + " fits nowhere on the wall");
     if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in rows");
     PlanResult result = frame.finish(builder, std::move(path), unreachable, false);
     result.planned_for_shape = true;
     result.stats["rows"] = static_cast<double>(rows.rows);
     result.stats["intervals"] = static_cast<double>(rows.intervals);
     result.stats["leftover_rows"] = static_cast<double>(rows.patches);
+    result.stats["rows_left_share"] = rows.left_share;
+    result.stats["loops_first"] = loops_first ? 1.0 : 0.0;
     return result;
   }
 
@@ -367,8 +395,13 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
     const auto passes = static_cast<std::size_t>(params.boundary_passes);
 
     // Work in a frame where rows are horizontal; the result is turned back at the end.
+    if (problem.tool.turnsWithHeading() && problem.vehicle.liftsTool()) {
+      Problem disk = problem;
+      disk.tool = circumscribedDisk(problem.tool);
+      PlanFrame disk_frame(disk, angle);
+      return planLineRows(problem, params, spacing, budget, disk_frame);
+    }
     PlanFrame frame(problem, angle);
-    if (problem.tool.isLine() && problem.vehicle.liftsTool()) return planLineRows(problem, params, spacing, budget, frame);
     if (frame.empty()) return PlanFrame::fitsNowhere();
     if (problem.vehicle.isCar()) return planForCar(problem, params, budget, angle, frame);
     Workspace& ws = frame.ws();
@@ -487,10 +520,10 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
 
 PlannerInfo info() {
   return typedPlannerInfo<ZigzagPlanner>(
-      {.name = "zigzag", .version = "16", .code_folders = {"zigzag"},
+      {.name = "zigzag", .version = "17", .code_folders = {"zigzag"},
        .summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes",
        .reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013",
-       .min_coverage_reachable = 0.995, .plans_for_car = true},
+       .min_coverage_reachable = 0.995, .plans_for_car = true, .plans_shapes_lifted = true},
       paramTable());
 }
 

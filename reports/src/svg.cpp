@@ -128,6 +128,27 @@ struct View {
   }
 };
 
+/// The run of tool-on moves from waypoint i to waypoint j of `path` drawn as a rectangle's swath
+/// centre: its first point moved back by e along its first move, its last moved on by e along its
+/// last (zero-length moves skipped); the moves between as they are.
+std::string rectangleRun(const View& v, const Path& path, std::size_t i, std::size_t j, double e) {
+  const std::vector<Point>& w = path.waypoints;
+  std::size_t first = i, last = j;
+  while (first < j && w[first] == w[first + 1]) ++first;
+  while (last > i && w[last - 1] == w[last]) --last;
+  PathData d;
+  if (first >= last) {  // no move: the rectangle where it stands is not drawn
+    v.moveTo(d, w[i]);
+    return d.str();
+  }
+  const Point t0 = (w[first + 1] - w[first]) * (1.0 / distance(w[first], w[first + 1]));
+  const Point t1 = (w[last] - w[last - 1]) * (1.0 / distance(w[last - 1], w[last]));
+  v.moveTo(d, w[first] - t0 * e);
+  for (std::size_t k = first + 1; k < last; ++k) v.lineTo(d, w[k]);
+  v.lineTo(d, w[last] + t1 * e);
+  return d.str();
+}
+
 /// A "nice" scale-bar length: 1, 2 or 5 times a power of ten, about a fifth of the width.
 double niceLength(double span) {
   const double target = span / 5.0;
@@ -284,7 +305,7 @@ std::string renderSvg(const SvgContent& c) {
     const Path& path = *c.path;
     // Runs of consecutive segments with the same tool state become one path element each (each
     // run's translucent swath is its own, so where runs cross the swaths darken).
-    std::string on_runs, off_runs;
+    std::string on_runs, off_runs, band_runs;
     for (std::size_t i = 0; i < path.tool_on.size();) {
       PathData d;
       v.moveTo(d, path.waypoints[i]);
@@ -305,21 +326,27 @@ std::string renderSvg(const SvgContent& c) {
       runs += "<path d=\"";
       runs += d.str();
       runs += "\"/>\n";
+      // A rectangle's swath reaches d / 2 before a run's first waypoint and past its last (along
+      // its first and last moves); it has straight moves only.
+      if (path.tool_on[i] && c.tool.isRectangle()) band_runs += "<path d=\"" + rectangleRun(v, path, i, j, c.tool.halfDepth()) + "\"/>\n";
       i = j;
     }
     // The painted runs are written once and drawn twice (the tool's swath, then its centre line).
-    s << "<defs><g id=\"paint\">\n" << on_runs << "</g></defs>\n";
-    // A line tool's band has square ends (its rectangles); its turns are drawn as round joins. A
-    // rectangle's is drawn as its line's: its ends reach d / 2 further than the picture shows.
+    s << "<defs><g id=\"paint\">\n" << on_runs << "</g>";
+    if (c.tool.isRectangle()) s << "<g id=\"band\">\n" << band_runs << "</g>";
+    s << "</defs>\n";
+    const char* band = c.tool.isRectangle() ? "#band" : "#paint";
+    // A line's and a rectangle's bands have square ends (their rectangles); their turns are drawn
+    // as round joins.
     const char* cap = c.tool.turnsWithHeading() ? "butt" : "round";
-    s << "<use xlink:href=\"#paint\" fill=\"none\" stroke=\"#2f6fd0\" stroke-opacity=\"0.18\" stroke-width=\"" << fmt(tool_px)
+    s << "<use xlink:href=\"" << band << "\" fill=\"none\" stroke=\"#2f6fd0\" stroke-opacity=\"0.18\" stroke-width=\"" << fmt(tool_px)
       << "\" stroke-linecap=\"" << cap << "\" stroke-linejoin=\"round\"/>\n";
     // R not swept: R in red under a mask that hides what the tool's band covers. The band is the
     // painted runs stroked at the tool's width with round caps and joins: S itself (the union of
     // the tool-on capsules), drawn by the viewer, so no polygon union of the path is computed.
     if (c.reachable && !c.reachable->empty()) {
       s << "<mask id=\"unswept\" maskUnits=\"userSpaceOnUse\" x=\"0\" y=\"0\" width=\"" << fmt(w_px) << "\" height=\""
-        << fmt(h_px) << "\"><rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/><use xlink:href=\"#paint\" fill=\"none\" "
+        << fmt(h_px) << "\"><rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/><use xlink:href=\"" << band << "\" fill=\"none\" "
         << "stroke=\"#000000\" stroke-width=\"" << fmt(tool_px) << "\" stroke-linecap=\"" << cap << "\" stroke-linejoin=\"round\"/></mask>\n";
       s << "<path d=\"" << v.regionPath(simplifyRegion(*c.reachable, draw_tolerance))
         << "\" fill=\"#e8383d\" fill-opacity=\"0.75\" fill-rule=\"evenodd\" stroke=\"none\" mask=\"url(#unswept)\"/>\n";

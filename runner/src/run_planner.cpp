@@ -257,7 +257,8 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
       // ends in F, where the tool fits in every heading: for a rectangle, in its disk's F.
       const std::optional<Problem> disk =
           problem.tool.isRectangle() ? std::optional<Problem>(withCircumscribedDisk(problem)) : std::nullopt;
-      const bool for_disk = disk && !planner.plans_line_tool && planner.external_manifest.empty();
+      const bool for_disk = disk && !planner.plans_line_tool && planner.external_manifest.empty() &&
+                            !(planner.plans_shapes_lifted && problem.vehicle.liftsTool());
       result = planner.make()->plan(for_disk ? *disk : problem, budget);
       attachEnds(disk ? *disk : problem, result, true);
     }

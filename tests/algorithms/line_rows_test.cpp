@@ -74,32 +74,55 @@ TEST(LineRows, OnABareWallTheRowsRunFromEdgeToEdge) {
 }
 
 // A window and a round socket: the rows stop c from each, and rows of their own take the bands
-// the regular rows leave above and below them. Both engines find it valid; rows alone cover more
-// of R than the disk's rows with a fifth of their paint twice, and with a loop first (the
-// default) more still, the loop's band overlapping the rows.
+// the regular rows leave above and below them. Both engines find it valid; it covers more of R
+// than the disk's rows with a fifth of their paint twice. The rows leave under 1 % of R (the
+// window's round corners), so no loops are run first (loops_first 0).
 TEST(LineRows, RowsOfTheirOwnCoverTheBandsBesideObstacles) {
   const Wall wall = test::rectWall(2.0, 1.0, {test::rect(0.8, 0.3, 0.3, 0.3), test::circle(1.6, 0.5, 0.1)});
-  const JudgedPlan rows = zigzag(wall, line(0.2), gantry(), {{"boundary_passes", "0"}});
+  const JudgedPlan rows = zigzag(wall, line(0.2), gantry());
   ASSERT_EQ(rows.verdict, RunStatus::Ok) << rows.reason;
   EXPECT_TRUE(test::isValidPath(wall, line(0.2), rows.result.path, gantry()));
   EXPECT_GT(rows.result.stats.at("leftover_rows"), 0.0);
+  EXPECT_EQ(rows.result.stats.at("loops_first"), 0.0);
+  EXPECT_LT(rows.result.stats.at("rows_left_share"), 0.01);
   const JudgedPlan holonomic = zigzag(wall, line(0.2), VehicleModel{});
   EXPECT_LT(holonomic.metrics.coverage.coverage_reachable, rows.metrics.coverage.coverage_reachable);
   EXPECT_LT(rows.metrics.passes.overlap, holonomic.metrics.passes.overlap / 4.0);
-  const JudgedPlan j = zigzag(wall, line(0.2), gantry());
-  ASSERT_EQ(j.verdict, RunStatus::Ok) << j.reason;
-  EXPECT_TRUE(test::isValidPath(wall, line(0.2), j.result.path, gantry()));
-  EXPECT_GT(j.metrics.coverage.coverage_reachable, rows.metrics.coverage.coverage_reachable);
   // At a sweep angle the rows turn with it, and stay valid.
   const JudgedPlan turned = zigzag(wall, line(0.2), gantry(), {{"sweep_angle", "30"}});
   ASSERT_EQ(turned.verdict, RunStatus::Ok) << turned.reason;
   EXPECT_TRUE(test::isValidPath(wall, line(0.2), turned.result.path, gantry()));
 }
 
+// A rectangle on a gantry is planned for itself too: its rows end d / 2 from the edges and cover
+// the bare wall whole, where its circumscribed disk's rows leave a quarter of a square pad's R.
+TEST(LineRows, ARectangleOnAGantryIsPlannedForItself) {
+  const Wall wall = test::rectWall(2.0, 1.0);
+  ToolParams pad = line(0.2);
+  pad.shape = ToolShape::Rectangle;
+  pad.depth = 0.2;
+  const JudgedPlan j = zigzag(wall, pad, gantry());
+  ASSERT_EQ(j.verdict, RunStatus::Ok) << j.reason;
+  EXPECT_TRUE(j.result.planned_for_shape);
+  EXPECT_EQ(j.reason.find("circumscribed"), std::string::npos) << j.reason;
+  EXPECT_TRUE(test::isValidPath(wall, pad, j.result.path, gantry()));
+  EXPECT_GT(j.metrics.coverage.coverage_reachable, 0.99998);
+  EXPECT_LT(j.metrics.passes.overlap, 1e-4);
+  for (std::size_t i = 0; i < j.result.path.segments(); ++i)
+    if (j.result.path.tool_on[i]) {
+      EXPECT_NEAR(std::min(j.result.path.waypoints[i].x, j.result.path.waypoints[i + 1].x), 0.1, 3e-6);
+      EXPECT_NEAR(std::max(j.result.path.waypoints[i].x, j.result.path.waypoints[i + 1].x), 1.9, 3e-6);
+    }
+  const JudgedPlan disk = zigzag(wall, pad, VehicleModel{});
+  EXPECT_NE(disk.reason.find("rectangle tool's circumscribed disk"), std::string::npos) << disk.reason;
+  EXPECT_LT(disk.metrics.coverage.coverage_reachable, 0.97);
+}
+
 // Random walls (polygons, overlapping obstacles touching the edge), widths 0.1 to 0.25 m, with and
 // without clearance: every path is valid in both engines and covers nearly all of R.
 TEST(LineRowsProperty, ValidInBothEnginesOnRandomWalls) {
   std::vector<double> coverage;
+  int loops = 0;  // walls whose slanted or round edges the rows leave more than 1 % of R along
   for (unsigned seed = 1; seed <= 16; ++seed) {
     const Wall wall = test::randomWall(seed);
     const ToolParams tool = line(0.1 + 0.05 * (seed % 4), seed % 3 == 0 ? 0.0 : 0.02);
@@ -109,11 +132,13 @@ TEST(LineRowsProperty, ValidInBothEnginesOnRandomWalls) {
     EXPECT_TRUE(j.result.planned_for_shape);
     EXPECT_TRUE(test::isValidPath(wall, tool, j.result.path, gantry())) << wall.name;
     coverage.push_back(j.metrics.coverage.coverage_reachable);
+    loops += j.result.stats.at("loops_first") > 0.0;
     // Not below the same line's rows planned for its disk (holonomic), a hair aside.
     const JudgedPlan disk = zigzag(wall, tool, VehicleModel{}, {{"sweep_angle", std::to_string(15 * (seed % 5))}});
     EXPECT_GT(coverage.back(), disk.metrics.coverage.coverage_reachable - 1e-3) << wall.name;
   }
   ASSERT_GE(coverage.size(), 12u);
+  EXPECT_GE(loops, 4);
   std::sort(coverage.begin(), coverage.end());
   EXPECT_GT(coverage[coverage.size() / 2], 0.99);
 }

@@ -190,6 +190,10 @@ struct PlannerInfo {
   /// circumscribed disk (a disk-valid path is line-valid: the line lies in the disk at every
   /// heading), and every run says so in its reason.
   bool plans_line_tool = false;
+  /// Given a line or rectangle tool on a vehicle that lifts its tool (a gantry), the planner plans
+  /// for the shape itself (PlanResult::planned_for_shape): runPlanner gives it the rectangle, not
+  /// its circumscribed disk.
+  bool plans_shapes_lifted = false;
   std::function<std::unique_ptr<Planner>()> make{};
 };
 
