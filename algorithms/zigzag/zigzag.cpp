@@ -238,22 +238,13 @@ LineRows lineRows(const Wall& wall, double h, double e, double c, double spacing
   out.left_share = reachable > 0.0 ? left.totalArea() / reachable : 0.0;
   // In order: from the lowest row's left end, each time the nearest end of a row not yet painted
   // (rows next to each other alternate; the rows by obstacles are taken on the way).
-  std::vector<bool> done(painted.size(), false);
+  std::vector<std::pair<Point, Point>> ends;
+  for (const auto& [y, x] : painted) ends.push_back({{x.first, y}, {x.second, y}});
+  std::vector<bool> done(ends.size(), false);
   Point at = path.waypoints.empty() ? Point{span.min_x, span.min_y} : path.waypoints.back();
-  for (std::size_t n = 0; n < painted.size(); ++n) {
-    std::size_t best = 0;
-    bool from_low = true;
-    double nearest = INFINITY;
-    for (std::size_t k = 0; k < painted.size(); ++k) {
-      if (done[k]) continue;
-      const auto& [y, x] = painted[k];
-      const double low = distance(at, {x.first, y}), high = distance(at, {x.second, y});
-      if (low < nearest) nearest = low, best = k, from_low = true;
-      if (high < nearest) nearest = high, best = k, from_low = false;
-    }
-    done[best] = true;
-    const auto& [y, x] = painted[best];
-    const Point from{from_low ? x.first : x.second, y}, to{from_low ? x.second : x.first, y};
+  for (std::size_t n = 0; n < ends.size(); ++n) {
+    const auto [best, backwards] = takeNearestPass(ends, done, at);
+    const Point from = backwards ? ends[best].second : ends[best].first, to = backwards ? ends[best].first : ends[best].second;
     if (path.waypoints.empty() || !(path.waypoints.back() == from)) path.moveTo(from, false);  // lifted
     path.moveTo(to, true);
     at = to;

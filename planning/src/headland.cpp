@@ -187,16 +187,7 @@ Leftovers coverLeftovers(Workspace& ws, PathBuilder& builder, const Region& unpa
   // The passes in greedy nearest order, each from its nearer end.
   std::vector<bool> done(passes.size(), false);
   for (std::size_t n = 0; n < passes.size(); ++n) {
-    std::size_t best = 0;
-    bool flip = false;
-    double best_d = INFINITY;
-    for (std::size_t i = 0; i < passes.size(); ++i) {
-      if (done[i]) continue;
-      const double d0 = distance(builder.current(), passes[i].first), d1 = distance(builder.current(), passes[i].second);
-      if (d0 < best_d) best_d = d0, best = i, flip = false;
-      if (d1 < best_d) best_d = d1, best = i, flip = true;
-    }
-    done[best] = true;
+    const auto [best, flip] = takeNearestPass(passes, done, builder.current());
     const auto [p, q] = flip ? std::pair{passes[best].second, passes[best].first} : passes[best];
     if (!builder.moveTo(p, false)) {
       ++out.unreachable;

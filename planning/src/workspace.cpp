@@ -67,6 +67,21 @@ bool PathBuilder::moveTo(Point to, bool tool_on_if_straight) {
   return true;
 }
 
+std::pair<std::size_t, bool> takeNearestPass(const std::vector<std::pair<Point, Point>>& passes, std::vector<bool>& done,
+                                             Point at) {
+  std::size_t best = 0;
+  bool flip = false;
+  double best_d = INFINITY;
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    if (done[i]) continue;
+    const double d0 = distance(at, passes[i].first), d1 = distance(at, passes[i].second);
+    if (d0 < best_d) best_d = d0, best = i, flip = false;
+    if (d1 < best_d) best_d = d1, best = i, flip = true;
+  }
+  done[best] = true;
+  return {best, flip};
+}
+
 std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max_painted_link) {
   std::size_t unreachable = 0;
   std::vector<Box> boxes;

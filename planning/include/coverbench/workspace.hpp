@@ -105,6 +105,11 @@ class PathBuilder {
 /// rings that could not be reached.
 std::size_t coverRings(PathBuilder& builder, std::vector<Ring> rings, double max_painted_link);
 
+/// Of the `passes` not yet `done`, the one with an end nearest `at` (the first such on ties,
+/// its first end before its second), marked done; and whether it is taken from its second end.
+std::pair<std::size_t, bool> takeNearestPass(const std::vector<std::pair<Point, Point>>& passes, std::vector<bool>& done,
+                                             Point at);
+
 /// Corners of a painted polyline at least this wide (radians) count as straight: no spur.
 inline constexpr double kStraightCorner = M_PI - 0.09;
 
