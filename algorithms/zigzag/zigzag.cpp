@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "coverbench/headland.hpp"
 #include "coverbench/param_table.hpp"
@@ -65,9 +66,12 @@ constexpr double kLineSliver = 1e-4;
 /// lie outside the true offset.
 constexpr double kLineArcTolerance = 1e-5;
 /// Line rows: the share of X the rows alone may leave before loops are run first (what rows cannot
-/// reach lies along slanted and round edges): a window's round corners leave 0.5 %, a polygon's
-/// slanted edges 5-10 %.
-constexpr double kLoopsWhenLeft = 0.01;
+/// reach lies along slanted and round edges): a window's round corners leave a line 0.5 %, a
+/// polygon's slanted edges 5-10 %, rows at 45 deg to a rectilinear wall a quarter. A rectangle's
+/// loops lie R from the edge and paint much of what its rows do: it takes them only past 5 %.
+constexpr double kLoopsWhenLeft = 0.01, kRectangleLoopsWhenLeft = 0.05;
+/// Line rows: the share of X the rows (and loops) may leave before the plan is partial.
+constexpr double kPartialWhenLeft = 0.05;
 
 /// What a line of half-width h (a rectangle: and half-depth e) square to the x axis may touch: the
 /// wall's outside and its obstacles grown by c; and where its centre may lie, the wall minus that
@@ -146,7 +150,7 @@ class Pieces {
 /// Appended to `path` (the frame's coordinates); the number of rows and intervals.
 struct LineRows {
   std::size_t rows = 0, intervals = 0, patches = 0;
-  double left_share = 0.0;  ///< of X, what every row leaves (before `before` is counted)
+  double left_share = 0.0;  ///< of X, what `before` and every row leave
 };
 LineRows lineRows(const Wall& wall, double h, double e, double c, double spacing, const std::vector<Ring>& before,
                   Path& path) {
@@ -335,18 +339,21 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
   /// moves (the tool turns in the air), not its circumscribed disk's (docs/metrics.md#tool-shapes).
   /// `frame` is the circumscribed disk's.
   PlanResult planLineRows(const Problem& problem, const ZigzagParams& params, double spacing, const Budget& budget,
-                          PlanFrame& frame) {
+                          PlanFrame& frame, double angle_deg) {
     const double h = problem.tool.radius(), e = problem.tool.halfDepth();
-    // Rows alone first; for a line, where they leave more than kLoopsWhenLeft of X (slanted or
-    // round edges rows cannot reach), the loops first (boundary_passes), along the disk's F
-    // boundary: a path valid for the disk is valid for the line, whose rectangles there paint the
-    // band along every edge. On walls of straight edges square to the rows they would only paint
-    // again what the rows reach; a rectangle's, R from the edge, would paint most of it twice.
+    // Rows alone first; where they leave more than kLoopsWhenLeft of X (a rectangle:
+    // kRectangleLoopsWhenLeft; slanted or round edges rows cannot reach, rows at a slant to the
+    // edges), the loops first (boundary_passes), along
+    // the circumscribed disk's F boundary: a path valid for the disk is valid for the shape, whose
+    // rectangles there paint the band along every edge, and the rows then paint what is left. On
+    // walls of straight edges square to the rows they would only paint again what the rows reach
+    // (a rectangle's, R from the edge, most of it).
     PathBuilder builder(frame.ws());
     Path path;
     LineRows rows = lineRows(frame.ws().wall(), h, e, problem.tool.clearance, spacing, {}, path);
     std::size_t unreachable = 0;
-    const bool loops_first = e == 0.0 && params.boundary_passes > 0 && !frame.empty() && rows.left_share > kLoopsWhenLeft;
+    const bool loops_first = params.boundary_passes > 0 && !frame.empty() &&
+                             rows.left_share > (e == 0.0 ? kLoopsWhenLeft : kRectangleLoopsWhenLeft);
     if (loops_first) {
       HeadlandOptions layout;
       layout.spacing = spacing;
@@ -367,11 +374,26 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
       path = builder.take();
       rows = lineRows(frame.ws().wall(), h, e, problem.tool.clearance, spacing, before, path);
     }
-    if (path.waypoints.empty())
-      return PlanResult::failure(PlanStatus::NoReachableArea, "the " + toString(problem.tool.shape) + " fits nowhere on the wall");
+    if (path.waypoints.empty()) {
+      char why[160];
+      std::snprintf(why, sizeof why, "the %s fits nowhere on the wall square to rows at sweep_angle %.6g deg",
+                    toString(problem.tool.shape).c_str(), angle_deg);
+      PlanResult none = PlanResult::failure(PlanStatus::NoReachableArea, why);
+      none.planned_for_shape = true;
+      return none;
+    }
     if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in rows");
     PlanResult result = frame.finish(builder, std::move(path), unreachable, false);
     result.planned_for_shape = true;
+    // What the rows could not reach, said: parts narrower than the shape, or out of its reach at
+    // this angle (the planner's own estimate; the metrics measure it).
+    if (rows.left_share > kPartialWhenLeft) {
+      char why[200];
+      std::snprintf(why, sizeof why, "the rows leave %.3g %% of the reachable region unpainted (narrower than the %s, or out of its reach at sweep_angle %.6g deg)",
+                    100.0 * rows.left_share, toString(problem.tool.shape).c_str(), angle_deg);
+      result.status = PlanStatus::Partial;
+      result.reason += (result.reason.empty() ? "" : "; ") + std::string(why);
+    }
     result.stats["rows"] = static_cast<double>(rows.rows);
     result.stats["intervals"] = static_cast<double>(rows.intervals);
     result.stats["leftover_rows"] = static_cast<double>(rows.patches);
@@ -390,7 +412,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
       Problem disk = problem;
       disk.tool = circumscribedDisk(problem.tool);
       PlanFrame disk_frame(disk, angle);
-      return planLineRows(problem, params, spacing, budget, disk_frame);
+      return planLineRows(problem, params, spacing, budget, disk_frame, angle_deg);
     }
     PlanFrame frame(problem, angle);
     if (frame.empty()) return PlanFrame::fitsNowhere();
