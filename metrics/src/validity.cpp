@@ -154,6 +154,33 @@ const Path& measuredPath(const Path& path, Path& storage) {
   return storage;
 }
 
+namespace {
+
+/// One end of a gantry's lifted move, waypoint k (the move before it: step -1; after it: +1): the
+/// tool there inside the wall's bounding box `frame` (with both ends inside, the whole move is,
+/// the box being convex). A line or rectangle tool is lifted and lowered at the heading of the
+/// tool-on move it ends or begins (there its own shape must be in the box); without one it may be
+/// lowered at any heading (the disk that holds it must be).
+bool toolInFrame(const Path& path, const ToolParams& tool, const Box& frame, std::size_t k, int step) {
+  auto inside = [&](Point q, double r) {
+    return q.x - r >= frame.min_x - kValidityTolerance && q.x + r <= frame.max_x + kValidityTolerance &&
+           q.y - r >= frame.min_y - kValidityTolerance && q.y + r <= frame.max_y + kValidityTolerance;
+  };
+  const Point p = path.waypoints[k];
+  const std::size_t n = path.waypoints.size();
+  if (!tool.turnsWithHeading() || (step < 0 ? k == 0 : k + 1 >= n)) return inside(p, tool.reachRadius());
+  const std::size_t other = step < 0 ? k - 1 : k + 1;
+  if (!path.tool_on[std::min(k, other)] || p == path.waypoints[other]) return inside(p, tool.reachRadius());
+  const Point d = step < 0 ? p - path.waypoints[other] : path.waypoints[other] - p;
+  const Point t = d * (1.0 / norm(d)), u{-t.y, t.x};
+  for (double a : {-1.0, 1.0})
+    for (double b : {-1.0, 1.0})
+      if (!inside(p + u * (a * tool.radius()) + t * (b * tool.halfDepth()), 0.0)) return false;
+  return true;
+}
+
+}  // namespace
+
 Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& path, const VehicleModel& vehicle) {
   Validity v;
   const ClearanceField field(wall);
@@ -161,38 +188,9 @@ Validity checkValidity(const Wall& wall, const ToolParams& tool, const Path& pat
   // first move, and for the lifted and depot rules), and any disk.
   const double r = tool.reachRadius();
   const std::size_t n = path.waypoints.size();
-  // A gantry's lifted move: the tool at both ends inside the wall's bounding box (then the whole
-  // move is, the box being convex). A line or rectangle tool is lifted and lowered at the heading
-  // of the tool-on move it ends or begins (there its shape must be in the box); without one it
-  // may be lowered at any heading (its disk must be).
   const Box frame = boundingBox(wall.boundary);
-  auto inFrame = [&](Point p) {
-    return p.x - r >= frame.min_x - kValidityTolerance && p.x + r <= frame.max_x + kValidityTolerance &&
-           p.y - r >= frame.min_y - kValidityTolerance && p.y + r <= frame.max_y + kValidityTolerance;
-  };
-  auto pointInFrame = [&](Point q) {
-    return q.x >= frame.min_x - kValidityTolerance && q.x <= frame.max_x + kValidityTolerance &&
-           q.y >= frame.min_y - kValidityTolerance && q.y <= frame.max_y + kValidityTolerance;
-  };
-  // The tool-on move next to waypoint k, before it (step -1) or after it (+1): its direction.
-  auto toolOnHeading = [&](std::size_t k, int step) -> std::optional<Point> {
-    if (step < 0 ? k == 0 : k + 1 >= n) return std::nullopt;
-    const std::size_t other = step < 0 ? k - 1 : k + 1, segment = std::min(k, other);
-    if (!path.tool_on[segment] || path.waypoints[k] == path.waypoints[other]) return std::nullopt;
-    return step < 0 ? path.waypoints[k] - path.waypoints[other] : path.waypoints[other] - path.waypoints[k];
-  };
-  auto toolInFrame = [&](std::size_t k, int step) {
-    const std::optional<Point> d = tool.turnsWithHeading() ? toolOnHeading(k, step) : std::nullopt;
-    if (!d) return inFrame(path.waypoints[k]);
-    const Point p = path.waypoints[k], t = *d * (1.0 / norm(*d)), u{-t.y, t.x};
-    const double h = tool.radius(), e = tool.halfDepth();
-    for (double a : {-1.0, 1.0})
-      for (double b : {-1.0, 1.0})
-        if (!pointInFrame(p + u * (a * h) + t * (b * e))) return false;
-    return true;
-  };
   auto lifted = [&](std::size_t segment, Point a, Point b) {
-    const bool outside = !toolInFrame(segment, -1) || !toolInFrame(segment + 1, 1);
+    const bool outside = !toolInFrame(path, tool, frame, segment, -1) || !toolInFrame(path, tool, frame, segment + 1, 1);
     v.outside_boundary += outside;
     v.violations += outside;
     if (outside && v.violating.size() < kMaxListedViolations) v.violating.push_back(segment);
