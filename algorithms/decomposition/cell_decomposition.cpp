@@ -258,4 +258,19 @@ Decomposition decompose(const PolygonWithHoles& polygon, Kind kind, double min_c
   return out;
 }
 
+Decomposition decomposeParts(const Region& region, Kind kind, double merge_width,
+                             const std::function<bool(const PolygonWithHoles&)>& keep) {
+  Decomposition cells;
+  for (const PolygonWithHoles& poly : region) {
+    if (keep && !keep(poly)) continue;
+    Decomposition d = decompose(poly, kind, 1e-9, merge_width);
+    const std::size_t base = cells.cells.size();
+    for (Contact& c : d.contacts) c.left += base, c.right += base;
+    cells.cells.insert(cells.cells.end(), d.cells.begin(), d.cells.end());
+    cells.contacts.insert(cells.contacts.end(), d.contacts.begin(), d.contacts.end());
+    cells.slabs += d.slabs;
+  }
+  return cells;
+}
+
 }  // namespace coverbench::decomposition

@@ -18,6 +18,7 @@
 /// never give zero-width cells; intervals of zero height are never formed.
 
 #include <cstddef>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -93,5 +94,10 @@ struct Decomposition {
 /// than at its end. 0 joins nothing.
 Decomposition decompose(const PolygonWithHoles& polygon, Kind kind, double min_contact = 1e-9,
                         double merge_width = 0.0);
+
+/// The cells of every part of `region` that `keep` admits (every part, when `keep` is empty), as
+/// one decomposition (cells and contacts numbered across the parts); merge_width as for decompose.
+Decomposition decomposeParts(const Region& region, Kind kind, double merge_width,
+                             const std::function<bool(const PolygonWithHoles&)>& keep = {});
 
 }  // namespace coverbench::decomposition

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "cell_ordering.hpp"
+#include "shape_cells.hpp"
 #include "coverbench/headland.hpp"
 #include "coverbench/param_table.hpp"
 #include "coverbench/plan_frame.hpp"
@@ -132,23 +133,6 @@ double eventMergeWidth(const ToolParams& tool, double spacing, const HeadlandOpt
     depth += static_cast<double>(layout->loops - 1) * layout->spacing +
              std::max(0.0, layout->end_inset - 0.5) * layout->spacing + kCellArcTolerance;
   return 2.0 * depth + 0.25 * spacing;
-}
-
-/// The cells of every part of `region` that `keep` admits, as one decomposition; events closer
-/// than `merge_width` along the sweep count as one (eventMergeWidth).
-template <class Keep>
-Decomposition decomposeParts(const Region& region, Kind kind, double merge_width, Keep keep) {
-  Decomposition cells;
-  for (const PolygonWithHoles& poly : region) {
-    if (!keep(poly)) continue;
-    Decomposition d = decompose(poly, kind, 1e-9, merge_width);
-    const std::size_t base = cells.cells.size();
-    for (Contact& c : d.contacts) c.left += base, c.right += base;
-    cells.cells.insert(cells.cells.end(), d.cells.begin(), d.cells.end());
-    cells.contacts.insert(cells.contacts.end(), d.contacts.begin(), d.contacts.end());
-    cells.slabs += d.slabs;
-  }
-  return cells;
 }
 
 /// The pass positions of every cell, on one grid: over the cells' extent, or, when `span` (a
@@ -549,7 +533,39 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
     return result;
   }
 
+  /// A line or rectangle tool on a gantry: its own rows (shape_rows.hpp) painted cell by cell
+  /// (shape_cells.hpp), in the order found under the sweep's objective (the time model's move
+  /// costs for `time`, else lengths); `boundary_loop` allows the loops run first.
+  PlanResult planShapeCells(const Problem& problem, const DecompositionParams& params, const Budget& budget,
+                            double angle_deg) {
+    Problem disk = problem;
+    disk.tool = circumscribedDisk(problem.tool);
+    PlanFrame frame(disk, angle_deg * M_PI / 180.0);  // rows along x
+    ShapeRowsOptions options;
+    options.spacing = problem.tool.tool_width * (1.0 - params.overlap);
+    options.loops = params.boundary_loop ? 1 : 0;
+    options.end_inset = params.row_end_inset;
+    options.arc_tolerance = kCellArcTolerance;
+    MoveCost move;
+    if (params.sweep.objective == SweepDirection::Objective::Time) move.clock = problem.motion;
+    ShapeCellOrder cells;
+    PlanResult result = planShapeRows(problem, frame, options, angle_deg, budget,
+                                      [&](const ShapeRowPieces& rows, Point from, bool after_loops) {
+                                        const Wall& wall = frame.ws().wall();
+                                        const TourCost tour{move, after_loops ? std::optional<Point>(from) : wall.start, wall.end};
+                                        cells = orderByCells(rows, kind_, params.order, tour, [&] { return !budget.expired(); });
+                                        return cells.order;
+                                      });
+    if (!result.hasPath()) return result;
+    result.stats["cells"] = static_cast<double>(cells.cells);
+    result.stats["cell_contacts"] = static_cast<double>(cells.contacts);
+    result.stats["pieces_outside_cells"] = static_cast<double>(cells.outside);
+    result.stats[std::string("order_estimate_") + move.unit()] = cells.estimated_cost;
+    return result;
+  }
+
   PlanResult planAt(const Problem& problem, const DecompositionParams& params, const Budget& budget, double angle_deg) {
+    if (problem.tool.turnsWithHeading() && problem.vehicle.liftsTool()) return planShapeCells(problem, params, budget, angle_deg);
     const auto t_start = CellSweep::Clock::now();
     // Passes run along `angle_deg`; in the working frame they are vertical (along +y), so the
     // working frame is the world turned by 90 - angle degrees.
@@ -579,6 +595,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
 PlannerInfo plannerInfo(Kind kind, PlannerInfo info) {
   info.min_coverage_reachable = 0.99;
   info.plans_for_car = true;
+  info.plans_shapes_lifted = true;
   return typedPlannerInfo<DecompositionPlanner>(std::move(info), paramTable(), kind);
 }
 
