@@ -533,7 +533,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
     return result;
   }
 
-  /// A line or rectangle tool on a gantry: its own rows (shape_rows.hpp) painted cell by cell
+  /// A line or rectangle tool on a gantry or a holonomic robot: its own rows (shape_rows.hpp) painted cell by cell
   /// (shape_cells.hpp), in the order found under the sweep's objective (the time model's move
   /// costs for `time`, else lengths); `boundary_loop` allows the loops run first.
   PlanResult planShapeCells(const Problem& problem, const DecompositionParams& params, const Budget& budget,
@@ -565,7 +565,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
   }
 
   PlanResult planAt(const Problem& problem, const DecompositionParams& params, const Budget& budget, double angle_deg) {
-    if (problem.tool.turnsWithHeading() && problem.vehicle.liftsTool()) return planShapeCells(problem, params, budget, angle_deg);
+    if (problem.tool.turnsWithHeading() && !problem.vehicle.isCar()) return planShapeCells(problem, params, budget, angle_deg);
     const auto t_start = CellSweep::Clock::now();
     // Passes run along `angle_deg`; in the working frame they are vertical (along +y), so the
     // working frame is the world turned by 90 - angle degrees.
@@ -595,7 +595,7 @@ class DecompositionPlanner final : public TypedPlanner<DecompositionParams> {
 PlannerInfo plannerInfo(Kind kind, PlannerInfo info) {
   info.min_coverage_reachable = 0.99;
   info.plans_for_car = true;
-  info.plans_shapes_lifted = true;
+  info.plans_shapes = true;
   return typedPlannerInfo<DecompositionPlanner>(std::move(info), paramTable(), kind);
 }
 

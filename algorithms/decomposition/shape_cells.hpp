@@ -1,10 +1,11 @@
 #pragma once
-/// A line or rectangle tool on a gantry, in the decomposition planners: the shape's own rows
+/// A line or rectangle tool on a gantry or a holonomic robot, in the decomposition planners: the shape's own rows
 /// (shape_rows.hpp, the same rows zigzag paints) painted cell by cell. The region where the
 /// shape's centre may stand is decomposed as the planner decomposes (boustrophedon or
 /// trapezoidal), each row piece belongs to the cell that holds it, the cells are ordered by the
 /// planner's order (cell_ordering.hpp), and in each cell its pieces are painted from one end to
-/// the other, alternating direction. Every move between pieces is lifted.
+/// the other, alternating direction. Moves between pieces are lifted on a gantry and on the wall
+/// for a holonomic robot (planShapeRows).
 
 #include <cstddef>
 #include <functional>

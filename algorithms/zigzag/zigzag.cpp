@@ -104,9 +104,8 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
     return result;
   }
 
-  /// A line or rectangle tool on a gantry: its own rows from edge to edge of X, joined by lifted
-  /// moves (the tool turns in the air), not its circumscribed disk's (shape_rows.hpp), each time
-  /// the nearest end next. `frame` is the circumscribed disk's.
+  /// A line or rectangle tool on a gantry or a holonomic robot: its own rows (shape_rows.hpp), not
+  /// its circumscribed disk's, each time the nearest end next. `frame` is the circumscribed disk's.
   PlanResult planLineRows(const Problem& problem, const ZigzagParams& params, double spacing, const Budget& budget,
                           PlanFrame& frame, double angle_deg) {
     ShapeRowsOptions options;
@@ -124,7 +123,7 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
     const auto passes = static_cast<std::size_t>(params.boundary_passes);
 
     // Work in a frame where rows are horizontal; the result is turned back at the end.
-    if (problem.tool.turnsWithHeading() && problem.vehicle.liftsTool()) {
+    if (problem.tool.turnsWithHeading() && !problem.vehicle.isCar()) {
       Problem disk = problem;
       disk.tool = circumscribedDisk(problem.tool);
       PlanFrame disk_frame(disk, angle);
@@ -249,10 +248,10 @@ class ZigzagPlanner final : public TypedPlanner<ZigzagParams> {
 
 PlannerInfo info() {
   return typedPlannerInfo<ZigzagPlanner>(
-      {.name = "zigzag", .version = "17", .code_folders = {"zigzag"},
+      {.name = "zigzag", .version = "18", .code_folders = {"zigzag"},
        .summary = "Boustrophedon rows over the free region, alternating direction, with boundary-following passes",
        .reference = "Galceran & Carreras, A survey on coverage path planning for robotics, RAS 2013",
-       .min_coverage_reachable = 0.995, .plans_for_car = true, .plans_shapes_lifted = true},
+       .min_coverage_reachable = 0.995, .plans_for_car = true, .plans_shapes = true},
       paramTable());
 }
 

@@ -120,10 +120,27 @@ class Pieces {
   std::vector<Box> boxes_;
 };
 
+/// [lo, hi] at height y cut to run from the first to the last of its points in `rings` (a region
+/// where the tool may turn); false when it has none.
+bool endsIn(const std::vector<Ring>& rings, double y, double& lo, double& hi) {
+  const std::vector<RingCrossing> c = scanlineCrossings(rings, {y}).front();
+  double first = INFINITY, last = -INFINITY;
+  for (std::size_t k = 0; k + 1 < c.size(); k += 2) {
+    const double a = std::max(c[k].x, lo), b = std::min(c[k + 1].x, hi);
+    if (a <= b) first = std::min(first, a), last = std::max(last, b);
+  }
+  if (!(first <= last)) return false;
+  lo = first, hi = last;
+  return true;
+}
+
 /// The shape's rows, `spacing` apart at most, over where its centre may lie: each free interval of
-/// each row (where `before`, the shapes the path already paints, left some of X). Then what the
-/// rows' strips and `before` left of X next to obstacles gets rows of its own (see below).
-ShapeRowPieces shapeRowPieces(const Wall& wall, double h, double e, double c, double spacing, const std::vector<Ring>& before) {
+/// each row (where `before`, the shapes the path already paints, left some of X), cut to end in
+/// `turns` when given (a vehicle that turns the tool on the wall at each row end: where its
+/// circumscribed disk fits). Then what the rows' strips and `before` left of X next to obstacles
+/// gets rows of its own (see below).
+ShapeRowPieces shapeRowPieces(const Wall& wall, double h, double e, double c, double spacing, const std::vector<Ring>& before,
+                              const std::vector<Ring>* turns) {
   ShapeRowPieces out;
   LineRegions regions = lineRegions(wall, h, e, c);
   const std::vector<Ring> rings = allRings(regions.centres);
@@ -161,6 +178,7 @@ ShapeRowPieces shapeRowPieces(const Wall& wall, double h, double e, double c, do
         const double at = std::clamp(mid, x0, x1);
         lo = std::max(x0, at - kLineSliver), hi = std::min(x1, at + kLineSliver);
       }
+      if (turns != nullptr && !endsIn(*turns, y, lo, hi)) continue;
       if (hi - lo <= kLineMargin) continue;
       if (added > 0 && lo <= painted.back().second.second) painted.back().second.second = std::max(painted.back().second.second, hi);
       else painted.push_back({y, {lo, hi}}), ++added;
@@ -244,6 +262,11 @@ PlanResult planShapeRows(const Problem& problem, PlanFrame& disk_frame, const Sh
                          double angle_deg, const Budget& budget, const OrderPieces& order) {
   const double h = problem.tool.radius(), e = problem.tool.halfDepth();
   const Wall& wall = disk_frame.ws().wall();
+  // A vehicle that does not lift the tool turns it on the wall at each row end: rows end where
+  // the circumscribed disk fits (in the part of its F the planner covers), and are joined there.
+  const bool lifted = problem.vehicle.liftsTool();
+  const std::vector<Ring> turn_rings = lifted ? std::vector<Ring>{} : allRings(disk_frame.covered());
+  const std::vector<Ring>* turns = lifted ? nullptr : &turn_rings;
   // Rows alone first; where they leave more than kLoopsWhenLeft of X (a rectangle:
   // kRectangleLoopsWhenLeft; slanted or round edges rows cannot reach, rows at a slant to the
   // edges), the loops first, along the circumscribed disk's F boundary: a path valid for the disk
@@ -251,11 +274,10 @@ PlanResult planShapeRows(const Problem& problem, PlanFrame& disk_frame, const Sh
   // then paint what is left. On walls of straight edges square to the rows they would only paint
   // again what the rows reach (a rectangle's, R from the edge, most of it).
   PathBuilder builder(disk_frame.ws());
-  ShapeRowPieces rows = shapeRowPieces(wall, h, e, problem.tool.clearance, options.spacing, {});
+  ShapeRowPieces rows = shapeRowPieces(wall, h, e, problem.tool.clearance, options.spacing, {}, turns);
   std::size_t unreachable = 0;
   const bool loops_first = options.loops > 0 && !disk_frame.empty() &&
                            rows.left_share > (e == 0.0 ? kLoopsWhenLeft : kRectangleLoopsWhenLeft);
-  Path path;
   if (loops_first) {
     HeadlandOptions layout;
     layout.spacing = options.spacing;
@@ -265,39 +287,51 @@ PlanResult planShapeRows(const Problem& problem, PlanFrame& disk_frame, const Sh
     layout.arc_tolerance = options.arc_tolerance;
     unreachable = coverRings(builder, headland(disk_frame.ws(), disk_frame.covered(), layout).loops, 1.01 * options.spacing);
     if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in boundary passes");
-    path = builder.take();
-    rows = shapeRowPieces(wall, h, e, problem.tool.clearance, options.spacing, paintedRectangles(path, h, e));
+    rows = shapeRowPieces(wall, h, e, problem.tool.clearance, options.spacing, paintedRectangles(builder.path(), h, e), turns);
   }
   if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in rows");
   Box span;
   for (const Ring& ring : allRings(rows.centres))
     for (Point p : ring) span.add(p);
-  const Point from = !path.waypoints.empty() ? path.waypoints.back() : span.empty() ? Point{} : Point{span.min_x, span.min_y};
-  for (const auto& [k, backwards] : order(rows, from, !path.waypoints.empty())) {
+  const bool after_loops = !builder.empty();
+  const Point from = after_loops ? builder.current() : span.empty() ? Point{} : Point{span.min_x, span.min_y};
+  for (const auto& [k, backwards] : order(rows, from, after_loops)) {
     const Point a = backwards ? rows.pieces[k].second : rows.pieces[k].first;
     const Point b = backwards ? rows.pieces[k].first : rows.pieces[k].second;
-    if (path.waypoints.empty() || !(path.waypoints.back() == a)) path.moveTo(a, false);  // lifted
-    path.moveTo(b, true);
+    if (lifted) {
+      if (builder.empty() || !(builder.current() == a)) builder.follow({a}, false);  // lifted
+    } else if (!builder.moveTo(a, !builder.empty() && distance(builder.current(), a) <= 1.01 * options.spacing)) {
+      ++unreachable;  // in a part of F the covered part does not reach
+      continue;
+    }
+    builder.follow({b}, true);  // the row lies where the shape may stand; it turns at a and b
   }
-  if (path.waypoints.empty()) {
-    char why[160];
-    std::snprintf(why, sizeof why, "the %s fits nowhere on the wall square to rows at sweep_angle %.6g deg",
-                  toString(problem.tool.shape).c_str(), angle_deg);
+  if (builder.empty()) {
+    char why[200];
+    if (lifted)
+      std::snprintf(why, sizeof why, "the %s fits nowhere on the wall square to rows at sweep_angle %.6g deg",
+                    toString(problem.tool.shape).c_str(), angle_deg);
+    else
+      std::snprintf(why, sizeof why,
+                    "the %s has nowhere to turn on the wall in rows at sweep_angle %.6g deg (its circumscribed disk "
+                    "fits nowhere a row could end)",
+                    toString(problem.tool.shape).c_str(), angle_deg);
     PlanResult none = PlanResult::failure(PlanStatus::NoReachableArea, why);
     none.planned_for_shape = true;
     return none;
   }
   if (budget.expired()) return PlanResult::failure(PlanStatus::Timeout, "time budget ran out in rows");
-  PlanResult result = disk_frame.finish(builder, std::move(path), unreachable, false);
+  PlanResult result = disk_frame.finish(builder, builder.take(), unreachable, false);
   result.planned_for_shape = true;
-  // What the rows could not reach, said: parts narrower than the shape, or out of its reach at
-  // this angle (the planner's own estimate; the metrics measure it).
+  // What the rows could not reach, said: parts narrower than the shape, out of its reach at this
+  // angle, or too near an edge for it to turn (the planner's own estimate; the metrics measure it).
   if (rows.left_share > kPartialWhenLeft) {
-    char why[200];
+    char why[240];
     std::snprintf(why, sizeof why,
-                  "the rows leave %.3g %% of the reachable region unpainted (narrower than the %s, or out of its reach at "
-                  "sweep_angle %.6g deg)",
-                  100.0 * rows.left_share, toString(problem.tool.shape).c_str(), angle_deg);
+                  "the rows leave %.3g %% of the reachable region unpainted (narrower than the %s, out of its reach at "
+                  "sweep_angle %.6g deg%s)",
+                  100.0 * rows.left_share, toString(problem.tool.shape).c_str(), angle_deg,
+                  lifted ? "" : ", or where it cannot turn at a row end");
     result.status = PlanStatus::Partial;
     result.reason += (result.reason.empty() ? "" : "; ") + std::string(why);
   }

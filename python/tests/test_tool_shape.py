@@ -33,10 +33,14 @@ class ToolShape(unittest.TestCase):
         self.assertFalse(coverbench.score(WALL, path, [True], tool_width=0.2)["valid"])
 
     def test_plan_says_it_planned_for_the_circumscribed_disk(self):
-        p = coverbench.plan(WALL, "zigzag", tool_width=0.2, tool_shape="line")
+        p = coverbench.plan(WALL, "spiral", tool_width=0.2, tool_shape="line")
         self.assertEqual(p["status"], "ok")
         self.assertTrue(p["valid"])
         self.assertIn("circumscribed disk", p["reason"])
+        # zigzag plans the line itself, and says nothing of a disk.
+        z = coverbench.plan(WALL, "zigzag", tool_width=0.2, tool_shape="line")
+        self.assertTrue(z["valid"])
+        self.assertNotIn("circumscribed", z["reason"])
 
     def test_a_right_angle_turn_of_a_rectangle_sweeps_its_hand_area_in_both_engines(self):
         # s = 0.2, d = 0.1: the moves' rectangles d longer, and the four corners' sectors
@@ -50,7 +54,7 @@ class ToolShape(unittest.TestCase):
         self.assertTrue(m["valid"])
         self.assertTrue(m["exact"]["valid"])
         self.assertAlmostEqual(m["swept_area"], hand, delta=5e-6)
-        p = coverbench.plan(WALL, "zigzag", tool_width=0.2, tool_shape="rectangle", tool_depth=0.1)
+        p = coverbench.plan(WALL, "spiral", tool_width=0.2, tool_shape="rectangle", tool_depth=0.1)
         self.assertEqual(p["status"], "ok")
         self.assertTrue(p["valid"])
         self.assertIn("rectangle tool's circumscribed disk", p["reason"])

@@ -258,7 +258,7 @@ PlanResult runPlanner(const PlannerInfo& planner, const Problem& problem, const 
       const std::optional<Problem> disk =
           problem.tool.isRectangle() ? std::optional<Problem>(withCircumscribedDisk(problem)) : std::nullopt;
       const bool for_disk = disk && !planner.plans_line_tool && planner.external_manifest.empty() &&
-                            !(planner.plans_shapes_lifted && problem.vehicle.liftsTool());
+                            !planner.plans_shapes;
       result = planner.make()->plan(for_disk ? *disk : problem, budget);
       attachEnds(disk ? *disk : problem, result, true);
     }

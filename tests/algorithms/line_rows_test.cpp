@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "coverbench/judge.hpp"
@@ -66,11 +67,15 @@ TEST(LineRows, OnABareWallTheRowsRunFromEdgeToEdge) {
   for (std::size_t k = 0; k < 5; ++k) EXPECT_NEAR(heights[k], 0.1 + 0.2 * static_cast<double>(k), 4e-6);
   EXPECT_GT(j.metrics.coverage.coverage_reachable, 0.99998);
   EXPECT_LT(j.metrics.passes.overlap, 1e-4);  // rows 0.19999 m apart: 1 um strips twice
-  // The same line planned for its circumscribed disk (holonomic) leaves the corners a disk cannot reach.
-  const JudgedPlan disk = zigzag(wall, line(0.2), VehicleModel{});
-  EXPECT_FALSE(disk.result.planned_for_shape);
-  EXPECT_NE(disk.reason.find("circumscribed disk"), std::string::npos) << disk.reason;
-  EXPECT_LT(disk.metrics.coverage.coverage_reachable, j.metrics.coverage.coverage_reachable);
+  // On a holonomic robot the line turns on the wall at each row end, so its rows end where its
+  // disk fits (h from the ends) and the wall's corners are left: less than on a gantry.
+  const JudgedPlan turning = zigzag(wall, line(0.2), VehicleModel{});
+  ASSERT_EQ(turning.verdict, RunStatus::Ok) << turning.reason;
+  EXPECT_TRUE(turning.result.planned_for_shape);
+  EXPECT_EQ(turning.reason.find("circumscribed"), std::string::npos) << turning.reason;
+  EXPECT_TRUE(test::isValidPath(wall, line(0.2), turning.result.path, VehicleModel{}));
+  EXPECT_LT(turning.metrics.coverage.coverage_reachable, j.metrics.coverage.coverage_reachable);
+  EXPECT_GT(turning.metrics.coverage.coverage_reachable, 0.99);  // the corners: (4 - pi) h^2 of 2 m^2
 }
 
 // A window and a round socket: the rows stop c from each, and rows of their own take the bands
@@ -113,9 +118,37 @@ TEST(LineRows, ARectangleOnAGantryIsPlannedForItself) {
       EXPECT_NEAR(std::min(j.result.path.waypoints[i].x, j.result.path.waypoints[i + 1].x), 0.1, 3e-6);
       EXPECT_NEAR(std::max(j.result.path.waypoints[i].x, j.result.path.waypoints[i + 1].x), 1.9, 3e-6);
     }
-  const JudgedPlan disk = zigzag(wall, pad, VehicleModel{});
-  EXPECT_NE(disk.reason.find("rectangle tool's circumscribed disk"), std::string::npos) << disk.reason;
-  EXPECT_LT(disk.metrics.coverage.coverage_reachable, 0.97);
+}
+
+// A square pad on a holonomic robot turns on the wall at each row end: a 90 deg turn sweeps the
+// whole disk of radius R = 0.1 sqrt(2) m, so every row ends where that disk fits (R from the
+// edges), and rows 0.1 m from the top and bottom edges cannot end anywhere. Loops along R's edge
+// paint the band from R - h to R + h; the rows, 0.2 m apart, paint the rest: only a strip R - h =
+// 0.041 m wide along the edges is left (the corners' turns paint a little of it). Planned for the
+// pad itself, not its 0.283 m disk, whose rows would lie 0.283 m apart.
+TEST(LineRows, ARectangleOnAHolonomicRobotTurnsWhereItsDiskFits) {
+  const Wall wall = test::rectWall(2.0, 1.0);
+  ToolParams pad = line(0.2);
+  pad.shape = ToolShape::Rectangle;
+  pad.depth = 0.2;
+  const double r = 0.1 * std::sqrt(2.0);
+  const JudgedPlan j = zigzag(wall, pad, VehicleModel{});
+  ASSERT_TRUE(j.result.hasPath()) << j.reason;
+  EXPECT_TRUE(j.result.planned_for_shape);
+  EXPECT_EQ(j.reason.find("circumscribed"), std::string::npos) << j.reason;
+  EXPECT_TRUE(test::isValidPath(wall, pad, j.result.path, VehicleModel{}));
+  EXPECT_EQ(j.result.stats.at("loops_first"), 1.0);
+  for (Point p : j.result.path.waypoints) {  // every turn where the disk of radius R fits
+    EXPECT_GE(std::min(p.x, 2.0 - p.x), r) << p.x << ", " << p.y;
+    EXPECT_GE(std::min(p.y, 1.0 - p.y), r) << p.x << ", " << p.y;
+  }
+  // Left: at most the strip R - h along the edges, 2 (2 + 1) (R - h) = 0.249 m^2 of 2 m^2.
+  const double strip = 2.0 * 3.0 * (r - 0.1) / 2.0;
+  EXPECT_GT(j.metrics.coverage.coverage_reachable, 1.0 - strip - 1e-3);
+  EXPECT_LT(j.metrics.coverage.coverage_reachable, 1.0 - strip / 2.0);
+  // The strip is over 5 % of R: the run is partial and says why.
+  EXPECT_EQ(j.result.status, PlanStatus::Partial);
+  EXPECT_NE(j.reason.find("where it cannot turn at a row end"), std::string::npos) << j.reason;
 }
 
 // Random walls (polygons, overlapping obstacles touching the edge), widths 0.1 to 0.25 m, with and
@@ -133,9 +166,12 @@ TEST(LineRowsProperty, ValidInBothEnginesOnRandomWalls) {
     EXPECT_TRUE(test::isValidPath(wall, tool, j.result.path, gantry())) << wall.name;
     coverage.push_back(j.metrics.coverage.coverage_reachable);
     loops += j.result.stats.at("loops_first") > 0.0;
-    // Not below the same line's rows planned for its disk (holonomic), a hair aside.
-    const JudgedPlan disk = zigzag(wall, tool, VehicleModel{}, {{"sweep_angle", std::to_string(15 * (seed % 5))}});
-    EXPECT_GT(coverage.back(), disk.metrics.coverage.coverage_reachable - 1e-3) << wall.name;
+    // On a holonomic robot (rows ending where the line can turn): valid in both engines too, and
+    // not above the gantry's rows, a hair aside.
+    const JudgedPlan turning = zigzag(wall, tool, VehicleModel{}, {{"sweep_angle", std::to_string(15 * (seed % 5))}});
+    if (turning.result.hasPath())
+      EXPECT_TRUE(test::isValidPath(wall, tool, turning.result.path, VehicleModel{})) << wall.name;
+    EXPECT_GT(coverage.back(), turning.metrics.coverage.coverage_reachable - 1e-3) << wall.name;
   }
   ASSERT_GE(coverage.size(), 12u);
   EXPECT_GE(loops, 4);

@@ -104,16 +104,21 @@ TEST(ShapeCells, ARectangleIsPlannedForItself) {
       EXPECT_NEAR(std::min(a.x, b.x), 0.1, 3e-6);
       EXPECT_NEAR(std::max(a.x, b.x), 1.9, 3e-6);
     }
-    // On a holonomic robot it is still planned for its circumscribed disk, and says so.
-    const JudgedPlan disk = plan(name, wall, pad, VehicleModel{});
-    EXPECT_NE(disk.reason.find("rectangle tool's circumscribed disk"), std::string::npos) << disk.reason;
-    EXPECT_LT(disk.metrics.coverage.coverage_reachable, j.metrics.coverage.coverage_reachable);
+    // On a holonomic robot it turns on the wall at each row end, as zigzag's rows do there.
+    const JudgedPlan turning = plan(name, wall, pad, VehicleModel{});
+    const JudgedPlan rows = plan("zigzag", wall, pad, VehicleModel{});
+    ASSERT_TRUE(turning.result.hasPath()) << turning.reason;
+    EXPECT_TRUE(turning.result.planned_for_shape);
+    EXPECT_TRUE(test::isValidPath(wall, pad, turning.result.path, VehicleModel{}));
+    EXPECT_LT(turning.metrics.coverage.coverage_reachable, j.metrics.coverage.coverage_reachable);
+    EXPECT_NEAR(turning.metrics.coverage.coverage_reachable, rows.metrics.coverage.coverage_reachable, 2e-3);
   }
 }
 
 // Random walls (polygons, overlapping obstacles touching the edge), lines and rectangles, several
 // sweep angles, with and without clearance: every path valid in both engines, every piece in a
-// cell, the coverage of zigzag's rows of the shape, never below the circumscribed disk's rows.
+// cell, the coverage of zigzag's rows of the shape; on a holonomic robot, which turns the shape at
+// each row end, valid too and never above the gantry's.
 TEST(ShapeCellsProperty, ValidInBothEnginesOnRandomWalls) {
   for (const std::string name : {"boustrophedon", "trapezoidal"}) {
     SCOPED_TRACE(name);
@@ -135,8 +140,11 @@ TEST(ShapeCellsProperty, ValidInBothEnginesOnRandomWalls) {
       const JudgedPlan rows = plan("zigzag", wall, tool, gantry(), angle);
       EXPECT_NEAR(coverage.back(), rows.metrics.coverage.coverage_reachable, 2e-3) << wall.name;
       EXPECT_EQ(j.result.stats.at("loops_first"), rows.result.stats.at("loops_first")) << wall.name;
-      const JudgedPlan disk = plan(name, wall, tool, VehicleModel{}, angle);
-      EXPECT_GT(coverage.back(), disk.metrics.coverage.coverage_reachable - 1e-3) << wall.name;
+      // On a holonomic robot (rows ending where the shape can turn): valid in both engines too.
+      const JudgedPlan turning = plan(name, wall, tool, VehicleModel{}, angle);
+      if (turning.result.hasPath())
+        EXPECT_TRUE(test::isValidPath(wall, tool, turning.result.path, VehicleModel{})) << wall.name;
+      EXPECT_GT(coverage.back(), turning.metrics.coverage.coverage_reachable - 1e-3) << wall.name;
     }
     ASSERT_GE(coverage.size(), 9u);
   }

@@ -190,10 +190,11 @@ struct PlannerInfo {
   /// circumscribed disk (a disk-valid path is line-valid: the line lies in the disk at every
   /// heading), and every run says so in its reason.
   bool plans_line_tool = false;
-  /// Given a line or rectangle tool on a vehicle that lifts its tool (a gantry), the planner plans
-  /// for the shape itself (PlanResult::planned_for_shape): runPlanner gives it the rectangle, not
-  /// its circumscribed disk.
-  bool plans_shapes_lifted = false;
+  /// Given a line or rectangle tool on a gantry (which lifts it between rows) or a holonomic robot
+  /// (which turns it on the wall at each row end), not a car, the planner plans for the shape
+  /// itself (PlanResult::planned_for_shape): runPlanner gives it the rectangle, not its
+  /// circumscribed disk.
+  bool plans_shapes = false;
   std::function<std::unique_ptr<Planner>()> make{};
 };
 

@@ -1,14 +1,17 @@
 #pragma once
-/// Rows of a line or rectangle tool on a gantry, planned for the shape itself, not for its
-/// circumscribed disk (docs/metrics.md#tool-shapes), shared by the row planners (zigzag,
-/// boustrophedon, trapezoidal): they differ only in the order the rows are painted.
+/// Rows of a line or rectangle tool on a gantry or a holonomic robot, planned for the shape itself,
+/// not for its circumscribed disk (docs/metrics.md#tool-shapes), shared by the row planners
+/// (zigzag, boustrophedon, trapezoidal): they differ only in the order the rows are painted.
 ///
 /// In the frame's coordinates rows run along x. The shape stands square to them: half-width h
 /// across (y), half-depth e along (x; a line has e = 0). A row runs from edge to edge of where its
 /// centre may stand (the wall minus its outside and its obstacles grown by c, swept by the
 /// rectangle [-e, e] x [-h, h]), so it paints to the edges; rows of their own take the bands the
-/// regular rows leave beside obstacles. Every move between rows is lifted: the gantry lowers the
-/// shape at the heading of the row it begins (both engines' lifted rule).
+/// regular rows leave beside obstacles. On a gantry every move between rows is lifted: it lowers
+/// the shape at the heading of the row it begins (both engines' lifted rule). A holonomic robot
+/// turns the shape on the wall at each row end, which sweeps (nearly) its circumscribed disk: its
+/// rows are cut to end where that disk fits, and joined there on the wall (straight, or along the
+/// disk's shortest route).
 ///
 /// Where the rows alone leave too much of X (slanted or round edges, rows at a slant), loops run
 /// first along the circumscribed disk's F boundary and the rows paint only what they left.
@@ -75,10 +78,11 @@ struct ShapeRowsOptions {
   double arc_tolerance = 1e-3;  ///< chords of the loops' arcs (m)
 };
 
-/// The plan of a line or rectangle tool (problem.tool) on a gantry, at `angle_deg`, on `disk_frame`
-/// (the frame opened on the problem with the tool's circumscribed disk, rows along x): loops when
-/// needed, the pieces in `order`, each joined by a lifted move. NoReachableArea when the shape fits
-/// nowhere square to the rows; Partial, with the share, when over 5 % of X is left; Timeout when
+/// The plan of a line or rectangle tool (problem.tool) on a gantry or a holonomic robot, at
+/// `angle_deg`, on `disk_frame` (the frame opened on the problem with the tool's circumscribed disk,
+/// rows along x): loops when needed, the pieces in `order`, each joined by a lifted move (gantry)
+/// or a move on the wall (holonomic; a piece it cannot reach counts as unreachable).
+/// NoReachableArea when the shape fits nowhere square to the rows (or has nowhere to turn); Partial, with the share, when over 5 % of X is left; Timeout when
 /// `budget` runs out. Stats rows, intervals, leftover_rows, rows_left_share, loops_first.
 PlanResult planShapeRows(const Problem& problem, PlanFrame& disk_frame, const ShapeRowsOptions& options,
                          double angle_deg, const Budget& budget, const OrderPieces& order);
