@@ -23,6 +23,12 @@ double Cell::area() const {
   return a;
 }
 
+Point Cell::centre() const {
+  const double mid = (minX() + maxX()) / 2.0;
+  const Span s = spanAt(mid);
+  return {mid, (s.bottom + s.top) / 2.0};
+}
+
 Span Cell::spanAt(double x) const {
   // The first slice whose right end is at or past x, and the next one when x is their boundary.
   auto it = std::lower_bound(slices.begin(), slices.end(), x, [](const Slice& s, double v) { return s.x1 < v; });

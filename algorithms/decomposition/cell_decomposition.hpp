@@ -61,6 +61,8 @@ struct Cell {
   double maxX() const { return slices.back().x1; }
   double area() const;
   Span spanAt(double x) const;
+  /// The middle of its span halfway between its ends.
+  Point centre() const;
   /// The floor (or ceiling) of the cell from x = a to x = b (either order) as a polyline on the
   /// polygon's boundary, vertical steps included; starts at spanAt(a) and ends at spanAt(b)'s
   /// bottom (or top).

@@ -418,6 +418,23 @@ Ordering greedyOrder(const std::vector<CellEnds>& cells, const TourCost& cost) {
   return straightRunTime(length, *clock) + 2.0 * (clock->turn_cost_s + rotationTime(M_PI / 2.0, *clock));
 }
 
+CellEnds alternatingEnds(const PassEnds& front, const PassEnds& back, std::size_t count, Point centre) {
+  CellEnds ends;
+  const std::size_t last = count - 1;
+  for (int o = 0; o < 4; ++o) {
+    const bool leftward = (o & 1) != 0, first_down = (o & 2) != 0;
+    const PassEnds& a = leftward ? back : front;
+    const PassEnds& b = leftward ? front : back;
+    const bool last_up = (last % 2 == 0) == !first_down;
+    ends.entry[o] = first_down ? a.second : a.first;
+    ends.exit[o] = last_up ? b.second : b.first;
+    // Backwards: from the other end, first pass the last one reversed.
+    ends.reverse[o] = (leftward ? 0 : 1) | (last_up ? 2 : 0);
+  }
+  ends.centre = centre;
+  return ends;
+}
+
 Ordering orderCells(const std::vector<CellEnds>& cells, const std::vector<CellLink>& links, Order order,
                     const std::function<bool()>& keep_going, const TourCost& cost) {
   if (cells.empty()) return {};

@@ -13,6 +13,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coverbench/geometry.hpp"
@@ -37,6 +38,13 @@ struct CellEnds {
   int reverse[4] = {0, 1, 2, 3};
   Point centre;
 };
+
+/// A pass's two ends: its low end, then its high end.
+using PassEnds = std::pair<Point, Point>;
+
+/// The CellEnds of a cell covered by `count` parallel passes in turn, alternating direction, the
+/// first `front` and the last `back` in their order; `centre` as given.
+CellEnds alternatingEnds(const PassEnds& front, const PassEnds& back, std::size_t count, Point centre);
 
 /// Two cells that touch.
 struct CellLink {

@@ -166,22 +166,11 @@ std::vector<std::vector<double>> cellPasses(const Decomposition& cells, const Bo
 
 /// Entry and exit of a cell for its four orientations (see CellEnds).
 CellEnds cellEnds(const Cell& cell, const std::vector<double>& xs) {
-  CellEnds ends;
-  const std::size_t last = xs.size() - 1;
-  for (int o = 0; o < 4; ++o) {
-    const bool leftward = (o & 1) != 0, first_down = (o & 2) != 0;
-    const double first_x = leftward ? xs.back() : xs.front(), last_x = leftward ? xs.front() : xs.back();
-    const bool last_up = (last % 2 == 0) == !first_down;
-    const Span a = cell.spanAt(first_x), b = cell.spanAt(last_x);
-    ends.entry[o] = {first_x, first_down ? a.top : a.bottom};
-    ends.exit[o] = {last_x, last_up ? b.top : b.bottom};
-    // Backwards: from the other end, first pass the last one reversed.
-    ends.reverse[o] = (leftward ? 0 : 1) | (last_up ? 2 : 0);
-  }
-  const double mid = (cell.minX() + cell.maxX()) / 2.0;
-  const Span s = cell.spanAt(mid);
-  ends.centre = {mid, (s.bottom + s.top) / 2.0};
-  return ends;
+  const auto pass = [&](double x) {
+    const Span s = cell.spanAt(x);
+    return PassEnds{{x, s.bottom}, {x, s.top}};
+  };
+  return alternatingEnds(pass(xs.front()), pass(xs.back()), xs.size(), cell.centre());
 }
 
 /// A move from p (on the floor or ceiling of cell `from`) to q (on the floor or ceiling of cell

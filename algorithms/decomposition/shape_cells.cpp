@@ -46,25 +46,6 @@ std::size_t holdingCell(const Decomposition& cells, const Pass& pass) {
   return best;
 }
 
-/// Entry and exit of a cell's passes (in x order) for the four orientations (CellEnds): bit 0,
-/// from the last pass to the first; bit 1, the first pass down.
-CellEnds passEnds(const Cell& cell, const std::vector<Pass>& passes) {
-  CellEnds ends;
-  const std::size_t last = passes.size() - 1;
-  for (int o = 0; o < 4; ++o) {
-    const bool leftward = (o & 1) != 0, first_down = (o & 2) != 0;
-    const Pass& a = leftward ? passes.back() : passes.front();
-    const Pass& b = leftward ? passes.front() : passes.back();
-    const bool last_up = (last % 2 == 0) == !first_down;
-    ends.entry[o] = {a.x, first_down ? a.y1 : a.y0};
-    ends.exit[o] = {b.x, last_up ? b.y1 : b.y0};
-    ends.reverse[o] = (leftward ? 0 : 1) | (last_up ? 2 : 0);
-  }
-  const double mid = (cell.minX() + cell.maxX()) / 2.0;
-  const Span s = cell.spanAt(mid);
-  ends.centre = {mid, (s.bottom + s.top) / 2.0};
-  return ends;
-}
 
 }  // namespace
 
@@ -94,7 +75,8 @@ ShapeCellOrder orderByCells(const ShapeRowPieces& rows, Kind kind, Order order, 
     std::sort(passes.begin(), passes.end(), [](const Pass& p, const Pass& q) { return std::tie(p.x, p.y0) < std::tie(q.x, q.y0); });
     index_of[c] = cell_of.size();
     cell_of.push_back(c);
-    ends.push_back(passEnds(all.cells[c], passes));
+    const auto ends_of = [](const Pass& p) { return PassEnds{{p.x, p.y0}, {p.x, p.y1}}; };
+    ends.push_back(alternatingEnds(ends_of(passes.front()), ends_of(passes.back()), passes.size(), all.cells[c].centre()));
   }
   std::vector<CellLink> links;
   for (const Contact& contact : all.contacts) {
