@@ -156,12 +156,18 @@ bool& DeadlineStream::malformed() {
 ssize_t DeadlineStream::read(char* ptr, size_t size) {
   if (read_ >= cap_) {
     if (refusal().status == 0) tooLarge() = true;
+    endRequest();  // its reading is over (see the read deadline below)
     return -1;
   }
   size = std::min(size, cap_ - read_);
   if (begin_ == end_) {
     if (!wait(POLLIN, remainingMs())) {
-      if (remainingMs() <= 0) timed_out_ = readTimedOut() = true;
+      if (remainingMs() <= 0) {
+        timed_out_ = readTimedOut() = true;
+        // Its reading is over: a large body's place is given back before the 408 is written, so a
+        // client that has the answer finds the place free.
+        endRequest();
+      }
       return -1;
     }
     ssize_t r;
