@@ -58,6 +58,7 @@ struct ShapeRowPieces {
   std::size_t rows = 0;          ///< regular rows
   std::size_t patches = 0;       ///< pieces of rows of their own beside obstacles
   double left_share = 0.0;       ///< of X, what the loops run first (if any) and every row leave
+  bool expired = false;          ///< the time budget ran out before they were all found
 };
 
 /// The order rows are painted in: each piece's index, and whether it is painted from its high end.
