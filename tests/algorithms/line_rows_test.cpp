@@ -185,12 +185,11 @@ TEST(LineRowsProperty, ValidInBothEnginesOnRandomWalls) {
     EXPECT_TRUE(test::isValidPath(wall, tool, j.result.path, gantry())) << wall.name;
     coverage.push_back(j.metrics.coverage.coverage_reachable);
     loops += j.result.stats.at("loops_first") > 0.0;
-    // On a holonomic robot (rows ending where the line can turn): valid in both engines too, and
-    // not above the gantry's rows, a hair aside.
+    // On a holonomic robot (rows ending where the line can turn): valid in both engines too. (Its
+    // coverage is not bounded by the gantry's: its short joins between rows paint on the wall.)
     const JudgedPlan turning = zigzag(wall, tool, VehicleModel{}, {{"sweep_angle", std::to_string(15 * (seed % 5))}});
     if (turning.result.hasPath())
       EXPECT_TRUE(test::isValidPath(wall, tool, turning.result.path, VehicleModel{})) << wall.name;
-    EXPECT_GT(coverage.back(), turning.metrics.coverage.coverage_reachable - 1e-3) << wall.name;
   }
   ASSERT_GE(coverage.size(), 12u);
   EXPECT_GE(loops, 4);
@@ -270,7 +269,7 @@ TEST(ShapeCells, ARectangleIsPlannedForItself) {
 // Random walls (polygons, overlapping obstacles touching the edge), lines and rectangles, several
 // sweep angles, with and without clearance: every path valid in both engines, every piece in a
 // cell, the coverage of zigzag's rows of the shape; on a holonomic robot, which turns the shape at
-// each row end, valid too and never above the gantry's.
+// each row end, valid too.
 TEST(ShapeCellsProperty, ValidInBothEnginesOnRandomWalls) {
   for (const std::string name : {"boustrophedon", "trapezoidal"}) {
     SCOPED_TRACE(name);
@@ -296,7 +295,6 @@ TEST(ShapeCellsProperty, ValidInBothEnginesOnRandomWalls) {
       const JudgedPlan turning = plan(name, wall, tool, VehicleModel{}, angle);
       if (turning.result.hasPath())
         EXPECT_TRUE(test::isValidPath(wall, tool, turning.result.path, VehicleModel{})) << wall.name;
-      EXPECT_GT(coverage.back(), turning.metrics.coverage.coverage_reachable - 1e-3) << wall.name;
     }
     ASSERT_GE(coverage.size(), 9u);
   }
