@@ -37,7 +37,7 @@ void split(const std::string& wall_file, const std::string& plan_file) {
   grid.nx = 2 * static_cast<std::size_t>(std::ceil(box.width() / grid.cell));
   grid.ny = 2 * static_cast<std::size_t>(std::ceil(box.height() / grid.cell));
   if (grid.nx * grid.ny > kCoatBandSamples) throw std::runtime_error(wall_file + ": raster past kCoatBandSamples");
-  depositionField(plan.path, tool, tool.profile, segmentSpeeds(plan.path), grid);
+  depositionField(plan.path, tool, tool.profile, segmentSpeeds(plan.path), MotionLimits{}.speed, grid);
   const std::vector<char> all = rasterMask(reachable, grid), in = rasterMask(inner, grid);
   std::vector<char> band(all.size());
   for (std::size_t k = 0; k < all.size(); ++k) band[k] = all[k] && !in[k];

@@ -374,7 +374,7 @@ int metricsCommand(const MetricsOptions& options) {
     throw InputError("--rotation-speed", "rotation_speed", "must be in [0, 100] rad/s, got " + shortNumber(options.rotation_speed));
   // The command line's profile, else the plan file's (the one its rows may have been spaced for).
   const ProfileOptions& coat = options.coat;
-  if (coat.named || coat.sigma || coat.beta || coat.rate || coat.fan_depth || coat.target || !plan.profile) {
+  if (coat.named || coat.sigma || coat.beta || coat.rate || coat.fan_depth || coat.target || coat.flow || !plan.profile) {
     tool.profile = fluxProfileOf(coat, tool.tool_width);
   } else {
     tool.profile = *plan.profile;

@@ -81,7 +81,7 @@ struct Commands {
   cli::ServeOptions serve;
 };
 
-/// --profile, --sigma, --beta, --rate, --fan-depth and --target: the tool's flux profile (docs/deposition.md).
+/// --profile, --sigma, --beta, --rate, --fan-depth, --target and --flow: the tool's flux profile (docs/deposition.md).
 void addProfileOptions(CLI::App* command, coverbench::ProfileOptions& coat, const std::string& what) {
   command->add_option("--profile", coat.profile,
                       "the tool's flux profile across its width, " + what + " (docs/deposition.md): "
@@ -94,6 +94,9 @@ void addProfileOptions(CLI::App* command, coverbench::ProfileOptions& coat, cons
   command->add_option("--fan-depth", coat.fan_depth, "the spray fan's depth along the motion, m (default and 0: s / 10)");
   command->add_option("--target", coat.target,
                       "the coat aimed at, micrometres: even/thin/thick shares of it, not of the mean (default: none)");
+  command->add_option("--flow", coat.flow,
+                      "the gun's flow: constant (default; the coat builds up where the tool slows down) or speed "
+                      "(it follows the tool's speed: the same coat per metre at any speed)");
 }
 
 /// `planners`, `metric-specs` and `plan`: what can plan, what is measured, and one plan.

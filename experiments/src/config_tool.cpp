@@ -7,7 +7,7 @@
 namespace coverbench::config_yaml {
 
 FluxProfile readProfile(Reader& r, const Yaml& p, const std::vector<double>& widths) {
-  r.onlyKeys(p, "tool.profile", {"kind", "sigma", "beta", "rate", "depth", "target"});
+  r.onlyKeys(p, "tool.profile", {"kind", "sigma", "beta", "rate", "depth", "target", "flow"});
   FluxProfile profile;
   const Yaml* kind = p.find("kind");
   if (!kind) r.fail(p, "tool.profile.kind", "is missing: uniform, gaussian or beta");
@@ -24,6 +24,9 @@ FluxProfile readProfile(Reader& r, const Yaml& p, const std::vector<double>& wid
   if (const Yaml* v = p.find("rate")) profile.rate = r.number(*v, "tool.profile.rate", 0.0, 1.0, true);
   if (const Yaml* v = p.find("depth")) profile.depth = r.number(*v, "tool.profile.depth", 0.0, kMaxToolWidth);
   if (const Yaml* v = p.find("target")) profile.target = r.number(*v, "tool.profile.target", 0.0, FluxProfile::kMaxTarget, true);
+  if (const Yaml* v = p.find("flow"))
+    if (const std::string flow = r.text(*v, "tool.profile.flow"); !parseFlow(flow, profile.flow))
+      r.fail(*v, "tool.profile.flow", "must be constant or speed, got '" + shownBytes(flow) + "'");
   for (double w : widths) {
     try {
       profile.check(w, "");

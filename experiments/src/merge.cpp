@@ -416,7 +416,7 @@ MergeSummary writeMerged(const MergeOptions& options, const std::vector<ShardFil
                  f.experiment, db, "INSERT INTO runs (" + runColumnList() + ") VALUES", file, &to_copy);
       }
       for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options",
-                                "run_car", "run_profile", "run_profile_target", "run_tool_shape", "run_tool_depth", "replans", "replan_figures"}) {
+                                "run_car", "run_profile", "run_profile_target", "run_profile_flow", "run_tool_shape", "run_tool_depth", "replans", "replan_figures"}) {
         Statement has(src.db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?", f.path);
         has.text(1, table);
         if (!has.step()) continue;  // a shard made before the table (run_profile, run_profile_target): none of its runs has a row

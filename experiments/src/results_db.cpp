@@ -35,7 +35,9 @@ namespace {
 /// run_profile (the tool's flux profile of each run that has one, docs/deposition.md: an older
 /// build lists such a run without it; a database without the table reads as disk tools without
 /// a profile); run_profile_target (the profile's target thickness, for a run whose profile has
-/// one: an older build lists and scores such a run against the mean); run_tool_shape (the tool's
+/// one: an older build lists and scores such a run against the mean); run_profile_flow (the
+/// profile's flow for a run whose gun's flow follows the speed: an older build would list such a
+/// run as a constant flow's; a database without the table reads as constant flows); run_tool_shape (the tool's
 /// shape of each run whose tool is not a disk, docs/metrics.md#tool-shapes: a database without
 /// the table reads as disk tools; an older build would read a line tool's run as a disk's);
 /// run_tool_depth (a rectangle tool's depth d, for each run whose tool is a rectangle). Run
@@ -96,6 +98,8 @@ CREATE TABLE IF NOT EXISTS run_profile (
   depth REAL NOT NULL);
 CREATE TABLE IF NOT EXISTS run_profile_target (
   run_key TEXT PRIMARY KEY, target REAL NOT NULL);
+CREATE TABLE IF NOT EXISTS run_profile_flow (
+  run_key TEXT PRIMARY KEY, flow TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS run_tool_shape (
   run_key TEXT PRIMARY KEY, shape TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS run_tool_depth (

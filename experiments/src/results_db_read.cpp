@@ -40,13 +40,8 @@ void storedOptions(const Statement& s, int i, VehicleModel& vehicle, TransitSpec
   }
 }
 
-/// The tool's flux profile (run_profile) a LEFT JOIN selects (alias pr), in the order storedProfile
-/// reads; NULLs from a database made before the table (its runs: no profile).
-constexpr const char* kProfileColumns = "pr.kind, pr.sigma, pr.beta, pr.rate, pr.depth";
-constexpr const char* kNoProfileColumns = "NULL, NULL, NULL, NULL, NULL";
-/// The profile's target (run_profile_target, alias pt); NULL for none and before the table.
-constexpr const char* kTargetColumn = "pt.target";
-/// The profile in columns i .. i + 5 (the target last): none when the run has no row in run_profile.
+/// The profile in columns i .. i + 6 (profileColumns: the target and the flow last): none when the
+/// run has no row in run_profile.
 FluxProfile storedProfile(const Statement& s, int i) {
   FluxProfile p;
   if (s.columnNull(i)) return p;
@@ -56,6 +51,8 @@ FluxProfile storedProfile(const Statement& s, int i) {
   p.rate = s.columnReal(i + 3);
   p.depth = s.columnReal(i + 4);
   if (!s.columnNull(i + 5)) p.target = s.columnReal(i + 5);
+  if (!s.columnNull(i + 6) && !parseFlow(s.columnText(i + 6), p.flow))
+    throw std::runtime_error("run_profile_flow: unknown flow " + s.columnText(i + 6));
   return p;
 }
 
@@ -82,6 +79,19 @@ std::pair<std::string, std::string> shapeColumns(sqlite3* db, const std::string&
   return {std::string(shapes ? "ts.shape" : "NULL") + ", " + (depths ? "td.depth" : "NULL"),
           (shapes ? "LEFT JOIN run_tool_shape ts ON ts.run_key = " + key + " " : std::string()) +
               (depths ? "LEFT JOIN run_tool_depth td ON td.run_key = " + key + " " : std::string())};
+}
+
+/// The seven columns storedProfile reads (run_profile, run_profile_target, run_profile_flow) and
+/// their joins on the run key `key`, NULL where a database made before a table lacks it (its runs:
+/// no profile, no target, a constant flow).
+std::pair<std::string, std::string> profileColumns(sqlite3* db, const std::string& file, const std::string& key) {
+  const bool profiles = hasTable(db, file, "run_profile"), targets = hasTable(db, file, "run_profile_target"),
+             flows = hasTable(db, file, "run_profile_flow");
+  return {std::string(profiles ? "pr.kind, pr.sigma, pr.beta, pr.rate, pr.depth" : "NULL, NULL, NULL, NULL, NULL") + ", " +
+              (targets ? "pt.target" : "NULL") + ", " + (flows ? "pf.flow" : "NULL"),
+          (profiles ? "LEFT JOIN run_profile pr ON pr.run_key = " + key + " " : std::string()) +
+              (targets ? "LEFT JOIN run_profile_target pt ON pt.run_key = " + key + " " : std::string()) +
+              (flows ? "LEFT JOIN run_profile_flow pf ON pf.run_key = " + key + " " : std::string())};
 }
 
 /// Each tool configuration is its own group: with several, every column is "label @ tool" (a
@@ -166,20 +176,17 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
   }
   std::map<std::string, std::size_t> index;
   {
-    // The context (columns 0 .. 7), the options (8 .. 14), the profile (15 .. 20), the tool's
-    // shape and depth (21, 22), then the run's fields (23 ..).
-    const bool profiles = hasTable(db_, file_, "run_profile"), targets = hasTable(db_, file_, "run_profile_target");
+    // The context (columns 0 .. 7), the options (8 .. 14), the profile (15 .. 21), the tool's
+    // shape and depth (22, 23), then the run's fields (24 ..).
+    const auto [profile_columns, profile_joins] = profileColumns(db_, file_, "r.key");
     const auto [shape_columns, shape_joins] = shapeColumns(db_, file_, "r.key");
     Statement s(db_,
                 "SELECT r.config_id, w.dataset, r.wall_hash, r.tool_width, r.clearance, r.seed, ws.name, r.planner_version, " +
-                    std::string(kOptionColumns) + ", " + (profiles ? kProfileColumns : kNoProfileColumns) + ", " +
-                    (targets ? kTargetColumn : "NULL") + ", " + shape_columns + ", " +
+                    std::string(kOptionColumns) + ", " + profile_columns + ", " + shape_columns + ", " +
                     runFieldSelect("r") + " FROM runs r "
                 "JOIN experiment_runs e ON e.run_key = r.key AND e.experiment_id = ?1 "
                 "JOIN experiment_walls w ON w.wall_hash = r.wall_hash AND w.experiment_id = ?1 "
-                "JOIN walls ws ON ws.hash = r.wall_hash" + std::string(kOptionJoins) +
-                    (profiles ? "LEFT JOIN run_profile pr ON pr.run_key = r.key " : "") +
-                    (targets ? "LEFT JOIN run_profile_target pt ON pt.run_key = r.key " : "") +
+                "JOIN walls ws ON ws.hash = r.wall_hash" + std::string(kOptionJoins) + profile_joins +
                     shape_joins + "ORDER BY r.key",
                 file_);
     s.integer(1, id);
@@ -197,11 +204,11 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
       row.wall_name = s.columnText(6);
       row.planner_version = s.columnText(7);
       row.tool = ToolParams{s.columnReal(3), s.columnReal(4), storedProfile(s, 15)};
-      storedShape(s, 21, row.tool);
+      storedShape(s, 22, row.tool);
       if (row.tool.isLine()) row.pairing += "/line";  // runs pair only with the same tool
       if (row.tool.isRectangle()) row.pairing += "/rectangle/" + shortNumber(row.tool.depth);
       storedOptions(s, 8, row.vehicle, row.transit);
-      int i = 23;
+      int i = 24;
       forEachRunField(static_cast<RunFields&>(row), [&](const RunField& f, auto& value) { readField(s, i++, file_, f, value); });
       // The measured fields the metric registry lists are the tables' metrics too.
       row.metrics["plan_time_ms"] = row.plan_time_ms;
@@ -302,21 +309,18 @@ std::vector<ResultsDb::RunSummary> ResultsDb::runSummaries(long long experiment)
   }
   const std::set<std::string> columns = runColumns();
   auto column = [&](const char* name) { return columns.count(name) ? std::string("r.") + name : std::string("NULL"); };
-  // The tool's profile (columns 11 .. 16), shape and depth (17, 18), as load() reads them: a line,
+  // The tool's profile (columns 11 .. 17), shape and depth (18, 19), as load() reads them: a line,
   // a rectangle or a profile is another tool than the plain disk of its width.
-  const bool profiles = hasTable(db_, file_, "run_profile"), targets = hasTable(db_, file_, "run_profile_target");
+  const auto [profile_columns, profile_joins] = profileColumns(db_, file_, "e.run_key");
   const auto [shape_columns, shape_joins] = shapeColumns(db_, file_, "e.run_key");
   Statement s(db_,
               "SELECT e.run_key, r.config_id, w.dataset, r.wall_hash, ws.name, r.status, r.tool_width, r.clearance, " +
                   column("plan_time_ms") + ", " + column("peak_memory_bytes") + ", COALESCE(o.transit, ''), " +
-                  (profiles ? kProfileColumns : kNoProfileColumns) + ", " + (targets ? kTargetColumn : "NULL") + ", " +
-                  shape_columns +
+                  profile_columns + ", " + shape_columns +
                   " FROM experiment_runs e JOIN runs r ON r.key = e.run_key "
                   "JOIN experiment_walls w ON w.experiment_id = ?1 AND w.wall_hash = r.wall_hash "
                   "JOIN walls ws ON ws.hash = r.wall_hash LEFT JOIN run_options o ON o.run_key = e.run_key " +
-                  (profiles ? "LEFT JOIN run_profile pr ON pr.run_key = e.run_key " : "") +
-                  (targets ? "LEFT JOIN run_profile_target pt ON pt.run_key = e.run_key " : "") +
-                  shape_joins + "WHERE e.experiment_id = ?1 ORDER BY e.run_key",
+                  profile_joins + shape_joins + "WHERE e.experiment_id = ?1 ORDER BY e.run_key",
               file_);
   s.integer(1, experiment);
   std::vector<RunSummary> out;
@@ -331,7 +335,7 @@ std::vector<ResultsDb::RunSummary> ResultsDb::runSummaries(long long experiment)
     r.wall_name = s.columnText(4);
     readField(s, 5, file_, kRunFields[1], r.status);
     r.tool = ToolParams{s.columnReal(6), s.columnReal(7), storedProfile(s, 11)};
-    storedShape(s, 17, r.tool);
+    storedShape(s, 18, r.tool);
     r.plan_time_ms = s.columnReal(8);
     r.peak_memory_bytes = s.columnReal(9);
     transits.push_back(s.columnText(10).empty() ? TransitSpec{}.planner : s.columnText(10));

@@ -91,7 +91,7 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
   try {
     // A retried run replaces everything stored under its key.
     for (const char* table : {"run_repetitions", "metrics", "planner_stats", "planner_timings", "paths", "run_options",
-                              "run_car", "run_profile", "run_profile_target", "run_tool_shape", "run_tool_depth", "replans", "replan_figures"}) {
+                              "run_car", "run_profile", "run_profile_target", "run_profile_flow", "run_tool_shape", "run_tool_depth", "replans", "replan_figures"}) {
       Statement& d = prepared(std::string("DELETE FROM ") + table + " WHERE run_key = ?");
       d.text(1, rec.key).run();
     }
@@ -123,6 +123,10 @@ void ResultsDb::storeRun(const RunSpec& spec, const RunRecord& rec) {
       if (p.target > 0.0) {
         Statement& target = prepared("INSERT INTO run_profile_target (run_key, target) VALUES (?,?)");
         target.text(1, rec.key).real(2, p.target).run();
+      }
+      if (p.flow == FluxProfile::Flow::Speed) {
+        Statement& flow = prepared("INSERT INTO run_profile_flow (run_key, flow) VALUES (?,?)");
+        flow.text(1, rec.key).text(2, toString(p.flow)).run();
       }
     }
     if (spec.tool.turnsWithHeading()) {

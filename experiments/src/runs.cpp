@@ -173,6 +173,7 @@ std::string runBaseKey(const RunSpec& spec) {
             "\nprofile.rate=" + exact(p.rate) + "\nprofile.depth=" + exact(p.depthFor(spec.tool.tool_width));  // 0 is s/10
   if (const FluxProfile& p = spec.tool.profile; p.target > 0.0)  // a profile without one keeps its old keys
     text += "\nprofile.target=" + exact(p.target);
+  if (spec.tool.profile.flow == FluxProfile::Flow::Speed) text += "\nprofile.flow=speed";  // a constant flow keeps its keys
   if (spec.tool.turnsWithHeading()) text += "\ntool_shape=" + toString(spec.tool.shape);  // a disk keeps its old keys
   if (spec.tool.isRectangle()) text += "\ntool_depth=" + exact(spec.tool.depth);
   if (spec.exact_judge) text += "\njudge=exact";

@@ -60,6 +60,17 @@ std::string toString(FluxProfile::Kind kind) {
   return "none";
 }
 
+std::string toString(FluxProfile::Flow flow) { return flow == FluxProfile::Flow::Speed ? "speed" : "constant"; }
+
+bool parseFlow(const std::string& name, FluxProfile::Flow& flow) {
+  for (FluxProfile::Flow f : {FluxProfile::Flow::Constant, FluxProfile::Flow::Speed})
+    if (toString(f) == name) {
+      flow = f;
+      return true;
+    }
+  return false;
+}
+
 bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind) {
   for (FluxProfile::Kind k : {FluxProfile::Kind::None, FluxProfile::Kind::Uniform, FluxProfile::Kind::Gaussian, FluxProfile::Kind::Beta})
     if (toString(k) == name) {
@@ -74,7 +85,8 @@ std::string FluxProfile::describe(double s) const {
   if (kind == Kind::Gaussian) out = "gaussian profile, sigma " + shortNumber(sigma) + " m";
   if (kind == Kind::Beta) out = "beta profile, beta " + shortNumber(beta);
   out += ", " + shortNumber(rate) + " m3/s, fan depth " + shortNumber(depthFor(s)) + " m";
-  return target > 0.0 ? out + ", target " + shortNumber(target) + " \u00b5m" : out;
+  if (target > 0.0) out += ", target " + shortNumber(target) + " \u00b5m";
+  return flow == Flow::Speed ? out + ", flow follows speed" : out;
 }
 
 std::string FluxProfile::label() const {
@@ -85,6 +97,7 @@ std::string FluxProfile::label() const {
   if (rate != FluxProfile{}.rate) out += ", " + shortNumber(rate) + " m3/s";
   if (depth != 0.0) out += ", fan depth " + shortNumber(depth) + " m";
   if (target != 0.0) out += ", target " + shortNumber(target) + " um";
+  if (flow == Flow::Speed) out += ", flow follows speed";
   return out;
 }
 
@@ -111,9 +124,10 @@ FluxProfile fluxProfileOf(const ProfileOptions& options, double s, const Profile
                      "must be none, uniform, gaussian or beta, got '" + shownBytes(options.profile) + "'");
   const bool gaussian = profile.kind == FluxProfile::Kind::Gaussian, beta = profile.kind == FluxProfile::Kind::Beta;
   // As a config reads tool.profile: each value belongs to its profile, and none goes unused.
-  if (!profile.set() && (options.sigma || options.beta || options.rate || options.fan_depth || options.target))
+  if (!profile.set() && (options.sigma || options.beta || options.rate || options.fan_depth || options.target || options.flow))
     throw InputError(source(n.kind), kind_field,
-                     n.sigma + ", " + n.beta + ", " + n.rate + ", " + n.depth + " and " + n.target + " need " + n.kind);
+                     n.sigma + ", " + n.beta + ", " + n.rate + ", " + n.depth + ", " + n.target + " and " + n.flow + " need " +
+                         n.kind);
   if (options.sigma && !gaussian) throw InputError(source(n.sigma), "sigma", "belongs to " + n.kind + " gaussian");
   if (options.beta && !beta) throw InputError(source(n.beta), "beta", "belongs to " + n.kind + " beta");
   if (gaussian && !options.sigma) throw InputError(source(n.sigma), "sigma", "is missing: a gaussian profile's standard deviation, m");
@@ -128,6 +142,8 @@ FluxProfile fluxProfileOf(const ProfileOptions& options, double s, const Profile
       throw InputError(source(n.target), "target", "must be in (0, 1e+06] um, got " + shortNumber(*options.target));
     profile.target = *options.target;
   }
+  if (options.flow && !parseFlow(*options.flow, profile.flow))
+    throw InputError(source(n.flow), "flow", "must be constant or speed, got '" + shownBytes(*options.flow) + "'");
   if (profile.set()) profile.check(s, n.checked);
   return profile;
 }

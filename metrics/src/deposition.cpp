@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "coverbench/input_error.hpp"
 #include "coverbench/metrics.hpp"
@@ -58,11 +59,14 @@ void DepositionGrid::range(double lo, double hi, double origin, std::size_t coun
 }
 
 void depositionField(const Path& path, const ToolParams& tool, const FluxProfile& profile,
-                     const std::vector<SegmentSpeed>& speeds, DepositionGrid& grid) {
+                     const std::vector<SegmentSpeed>& speeds, double cruise, DepositionGrid& grid) {
   grid.thickness.assign(grid.nx * grid.ny, 0.0);
   const double r = tool.radius(), depth = profile.depthFor(tool.tool_width), h = grid.cell;
   const double scale = profile.rate / depth;  // Q / l
   const FluxDensity density(profile, r);
+  const bool per_metre = profile.flow == FluxProfile::Flow::Speed;
+  if (per_metre && !(cruise > 0.0 && std::isfinite(cruise)))
+    throw std::invalid_argument("depositionField: a flow that follows the speed needs a finite time model speed");
   for (const Piece& p : pieces(path, speeds, h)) {
     const Point d = p.b - p.a;
     const double len = norm(d);
@@ -89,7 +93,10 @@ void depositionField(const Path& path, const ToolParams& tool, const FluxProfile
         last_x = x;
         last_f = density(x);
       }
-      const double tau = p.speed->timeAt(p.s0 + hi * ratio) - p.speed->timeAt(p.s0 + lo * ratio);
+      // The time the fan's depth spends over the sample, or (a flow that follows the speed) the
+      // distance over it at the time model's speed.
+      const double tau = per_metre ? (hi - lo) * ratio / cruise
+                                   : p.speed->timeAt(p.s0 + hi * ratio) - p.speed->timeAt(p.s0 + lo * ratio);
       grid.thickness[j * grid.nx + i] += scale * last_f * tau;
     };
     // (Each sample gains at most once from a piece, so the walk's order leaves every sum as it is.)
@@ -211,7 +218,7 @@ Coat coat(const Wall& wall, const ToolParams& tool, const Path& path, const Flux
   const auto fill = [&](std::size_t row0) {
     grid.row0 = row0;
     grid.ny = std::min(band, rows - row0);
-    depositionField(path, tool, profile, speeds, grid);
+    depositionField(path, tool, profile, speeds, limits.speed, grid);
     mask = rasterMask(reachable, grid);
   };
   CoatBlocks& b = out.blocks;

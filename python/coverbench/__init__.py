@@ -9,7 +9,7 @@
   fast engine, ``valid`` as a bool with the violating segments, and with the exact judge its
   certified verdict.
 - Tool profiles: ``plan`` and ``score`` take ``profile={"kind": "beta", "beta": 2.5}`` (kind
-  uniform, gaussian with ``sigma`` or beta with ``beta``; ``rate``, ``depth`` and ``target`` optional; or just
+  uniform, gaussian with ``sigma`` or beta with ``beta``; ``rate``, ``depth``, ``target`` and ``flow`` optional; or just
   the kind's name): the tool's flux profile, read and checked as ``--profile`` is, which adds the
   five coat metrics (docs/deposition.md).
 - Results: ``runs(database)`` reads an experiment's runs as dicts; ``runs_dataframe(database)`` as
@@ -54,7 +54,8 @@ Plan = Dict[str, Any]
 #: A tool's flux profile: None (no profile), a kind's name ("uniform"), or a dict of ``kind``
 #: ("uniform", "gaussian", "beta"), ``sigma`` (gaussian, m), ``beta`` (beta), ``rate`` (m³/s,
 #: default 1e-6), ``depth`` (the fan's depth, m; default and 0: a tenth of the tool width) and
-#: ``target`` (the coat aimed at, micrometres: the shares are then of it; default: none).
+#: ``target`` (the coat aimed at, micrometres: the shares are then of it; default: none) and
+#: ``flow`` ("constant", the default, or "speed": the gun's flow follows the tool's speed).
 Profile = Union[None, str, Mapping[str, Any]]
 
 

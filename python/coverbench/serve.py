@@ -40,7 +40,8 @@ class Problem:
 
     From protocol 2 the tool has a ``tool_shape`` ("disk", "line" or "rectangle"), a
     ``tool_depth`` (a rectangle's, m; 0 for the others) and a ``profile``: None, or the flux
-    profile's dict (``kind``; ``sigma`` or ``beta`` for their kinds; ``rate``, ``depth``; ``target`` when set). In
+    profile's dict (``kind``; ``sigma`` or ``beta`` for their kinds; ``rate``, ``depth``; ``target`` when set;
+    ``flow`` "speed" when the gun's flow follows the tool's speed). In
     protocol 1 they are "disk", 0 and None."""
 
     def __init__(self, data: Dict[str, Any]) -> None:

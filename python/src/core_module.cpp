@@ -87,13 +87,18 @@ ProfileOptions profileOptions(const py::dict& profile) {
       o.profile = v.cast<std::string>();
       continue;
     }
+    if (key == "flow") {
+      if (!py::isinstance<py::str>(v)) throw InputError("profile", "flow", "must be a string: constant or speed");
+      o.flow = v.cast<std::string>();
+      continue;
+    }
     std::optional<double>* value = key == "sigma" ? &o.sigma
                                    : key == "beta" ? &o.beta
                                    : key == "rate" ? &o.rate
                                    : key == "depth" ? &o.fan_depth
                                    : key == "target" ? &o.target
                                                     : nullptr;
-    if (!value) throw InputError("profile", key, "is not a profile key (kind, sigma, beta, rate, depth, target)");
+    if (!value) throw InputError("profile", key, "is not a profile key (kind, sigma, beta, rate, depth, target, flow)");
     if (py::isinstance<py::bool_>(v) || !(py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v)))
       throw InputError("profile", key, "must be a number");
     *value = v.cast<double>();
@@ -102,7 +107,7 @@ ProfileOptions profileOptions(const py::dict& profile) {
 }
 
 /// Python's spelling of profile errors: "profile: sigma: belongs to kind gaussian".
-const ProfileSpelling kPythonProfile{"kind", "sigma", "beta", "rate", "depth", "target", "profile", "profile"};
+const ProfileSpelling kPythonProfile{"kind", "sigma", "beta", "rate", "depth", "target", "flow", "profile", "profile"};
 
 /// The tool: its shape, its width, clearance and a rectangle's depth checked as the command line
 /// checks them, then its profile.

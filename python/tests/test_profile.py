@@ -58,6 +58,13 @@ class Profile(unittest.TestCase):
         # The swath at cruise (1.82 m of the 2 m pass, ramps of 0.09 m) is 0.2 x 1.82 m of R's area.
         self.assertGreaterEqual(aimed["even_share"], 0.2 * 1.82 / long["reachable_area"] - 0.01)
         self.assertLess(twice["even_share"], aimed["even_share"])
+        # A gun whose flow follows the speed lays the cruise coat on the ramps too (docs/deposition.md):
+        # the same mean as the 2 m at cruise would give, more of the swath even, and a lower CV.
+        following = coverbench.score(STRIP, [[0.5, 0.5], [2.5, 0.5]], [True], tool_width=s,
+                                     profile={"kind": "uniform", "target": coat_um, "flow": "speed"})
+        self.assertGreater(following["even_share"], aimed["even_share"])
+        self.assertLess(following["thickness_cv"], aimed["thickness_cv"])
+        self.assertLess(following["thickness_mean"], aimed["thickness_mean"])
         self.assertGreater(twice["thin_share"], aimed["thin_share"] + 0.2 * 1.82 / long["reachable_area"] - 0.01)
         self.assertGreater(long["thick_share"], aimed["thick_share"])  # the swath is over 1.1 times the mean
         # Without a profile (None, or kind none) there are no coat metrics.
@@ -148,13 +155,15 @@ class Profile(unittest.TestCase):
                 ({"kind": "uniform", "rate": float("nan")}, "profile: rate: must be in (0, 1] m3/s, got nan"),
                 ({"kind": "uniform", "sigma": 0.02}, "profile: sigma: belongs to kind gaussian"),
                 ({"kind": "gaussian", "sigma": 0.02, "beta": 2}, "profile: beta: belongs to kind beta"),
-                ({"sigma": 0.02}, "profile: kind: sigma, beta, rate, depth and target need kind"),
+                ({"sigma": 0.02}, "profile: kind: sigma, beta, rate, depth, target and flow need kind"),
+                ({"kind": "uniform", "flow": "fast"}, "profile: flow: must be constant or speed, got 'fast'"),
+                ({"kind": "uniform", "flow": 1}, "profile: flow: must be a string: constant or speed"),
                 ({"kind": "uniform", "rate": "1e-6"}, "profile: rate: must be a number"),
                 ({"kind": "uniform", "target": float("nan")}, "profile: target: must be in (0, 1e+06] um, got nan"),
                 ({"kind": "uniform", "target": "25"}, "profile: target: must be a number"),
                 ({"kind": "uniform", "rate": True}, "profile: rate: must be a number"),
                 ({"kind": 3}, "profile: kind: must be a string: none, uniform, gaussian or beta"),
-                ({"kind": "uniform", "width": 1}, "profile: width: is not a profile key (kind, sigma, beta, rate, depth, target)")]:
+                ({"kind": "uniform", "width": 1}, "profile: width: is not a profile key (kind, sigma, beta, rate, depth, target, flow)")]:
             with self.assertRaises(ValueError) as caught:
                 coverbench.score(WALL, [[0.2, 0.2], [1.0, 0.2]], [True], profile=profile)
             self.assertEqual(str(caught.exception), message)

@@ -71,6 +71,7 @@ std::string planFileJson(const PlanFile& plan) {
     profile["rate"] = p.rate;
     profile["depth"] = p.depthFor(plan.tool.tool_width);
     if (p.target > 0.0) profile["target"] = p.target;  // micrometres; none: no key
+    if (p.flow == FluxProfile::Flow::Speed) profile["flow"] = toString(p.flow);  // constant: no key
     doc["profile"] = profile;
   }
   if (plan.start) doc["start"] = {plan.start->x, plan.start->y};
@@ -177,8 +178,8 @@ LoadedPlan loadPlanFile(const std::string& file) {
         !parseFluxProfileKind(p["kind"].get<std::string>(), profile.kind) || !profile.set())
       throw InputError(file, "profile.kind", "must be \"uniform\", \"gaussian\" or \"beta\"");
     for (const auto& [key, value] : p.items())
-      if (key != "kind" && key != "sigma" && key != "beta" && key != "rate" && key != "depth" && key != "target")
-        throw InputError(file, "profile", "has an unknown key (known: kind, sigma, beta, rate, depth, target)");
+      if (key != "kind" && key != "sigma" && key != "beta" && key != "rate" && key != "depth" && key != "target" && key != "flow")
+        throw InputError(file, "profile", "has an unknown key (known: kind, sigma, beta, rate, depth, target, flow)");
     const std::string kind = toString(profile.kind);
     for (const auto& [key, into, belongs] :
          {std::tuple<const char*, double*, bool>{"sigma", &profile.sigma, kind == "gaussian"}, {"beta", &profile.beta, kind == "beta"},
@@ -194,6 +195,8 @@ LoadedPlan loadPlanFile(const std::string& file) {
     }
     if (p.contains("target") && !(profile.target > 0.0 && profile.target <= FluxProfile::kMaxTarget))
       throw InputError(file, "profile.target", "must be in (0, 1e+06] um, got " + shortNumber(profile.target));
+    if (p.contains("flow") && !(p["flow"].is_string() && parseFlow(p["flow"].get<std::string>(), profile.flow)))
+      throw InputError(file, "profile.flow", "must be \"constant\" or \"speed\"");
     plan.profile = profile;  // checked against the tool's width by whoever scores it
   }
   for (const char* key : {"start", "end"}) {

@@ -82,6 +82,7 @@ json toolJson(const ToolParams& tool, int protocol) {
   profile["rate"] = p.rate;
   profile["depth"] = p.depthFor(tool.tool_width);
   if (p.target > 0.0) profile["target"] = p.target;  // micrometres; none: no key
+  if (p.flow == FluxProfile::Flow::Speed) profile["flow"] = toString(p.flow);  // constant: no key
   out["profile"] = profile;
   return out;
 }

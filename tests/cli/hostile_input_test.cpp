@@ -486,8 +486,8 @@ TEST_F(Hostile, OutOfRangeFluxProfilesAreRefusedWithOneLine) {
       {"--profile beta --beta 2 --sigma 0.05", "--sigma: sigma: belongs to --profile gaussian"},
       {"--profile gaussian --sigma 0.05 --beta 2", "--beta: beta: belongs to --profile beta"},
       {"--profile uniform --sigma 0.05", "--sigma: sigma: belongs to --profile gaussian"},
-      {"--rate 1e-6", "--profile: profile: --sigma, --beta, --rate, --fan-depth and --target need --profile"},
-      {"--fan-depth 0.01", "--profile: profile: --sigma, --beta, --rate, --fan-depth and --target need --profile"},
+      {"--rate 1e-6", "--profile: profile: --sigma, --beta, --rate, --fan-depth, --target and --flow need --profile"},
+      {"--fan-depth 0.01", "--profile: profile: --sigma, --beta, --rate, --fan-depth, --target and --flow need --profile"},
       {"--coat-svg " + (dir_ / "coat.svg").string(), "--coat-svg: profile: the coat's picture needs the tool's flux profile (--profile)"},
       {"--profile gaussian --sigma -0.02", "command line: sigma: must be in [s/50, 100] m"},
       {"--profile gaussian --sigma 1e-9", "command line: sigma: must be in [s/50, 100] m"},
@@ -497,12 +497,15 @@ TEST_F(Hostile, OutOfRangeFluxProfilesAreRefusedWithOneLine) {
       {"--profile uniform --rate -1", "command line: rate: must be in (0, 1] m3/s"},
       {"--profile uniform --fan-depth 5", "command line: depth: must be in [0, s] m (0: s/10; s = 0.1 m), got 5"},
       {"--profile cone", "--profile: profile: must be none, uniform, gaussian or beta, got 'cone'"},
-      {"--sigma 0.02", "--profile: profile: --sigma, --beta, --rate, --fan-depth and --target need --profile"},
-      {"--target 25", "--profile: profile: --sigma, --beta, --rate, --fan-depth and --target need --profile"},
+      {"--sigma 0.02", "--profile: profile: --sigma, --beta, --rate, --fan-depth, --target and --flow need --profile"},
+      {"--target 25", "--profile: profile: --sigma, --beta, --rate, --fan-depth, --target and --flow need --profile"},
       {"--profile uniform --target 0", "--target: target: must be in (0, 1e+06] um, got 0"},
       {"--profile uniform --target -25", "--target: target: must be in (0, 1e+06] um, got -25"},
       {"--profile uniform --target 2e6", "--target: target: must be in (0, 1e+06] um, got 2e+06"},
       {"--profile uniform --target nan", "--target: must be a finite number"},
+      {"--flow speed", "--profile: profile: --sigma, --beta, --rate, --fan-depth, --target and --flow need --profile"},
+      {"--profile uniform --flow fast", "--flow: flow: must be constant or speed, got 'fast'"},
+      {"--profile uniform --flow \xff", "--flow: flow: must be constant or speed, got '\\xff'"},
   };
   for (const auto& [flags, message] : cases) {
     std::string printed;

@@ -134,6 +134,12 @@ TEST_F(Experiments, AToolsFluxProfileIsReadForEveryToolAndItsErrorsNameTheKey) {
   EXPECT_EQ(error(with("    kind: uniform\n    target: -3\n")), file + ":17: tool.profile.target: must be in (0, 1e+06], got -3");
   EXPECT_EQ(error(with("    kind: uniform\n    target: 2e6\n")), file + ":17: tool.profile.target: must be in (0, 1e+06], got 2e6");
   EXPECT_EQ(error(with("    kind: uniform\n    target: .nan\n")), file + ":17: tool.profile.target: must be a number, got '.nan'");
+  // The gun's flow: constant (the default) or speed (it follows the tool's speed).
+  EXPECT_EQ(c.tools[0].profile.flow, FluxProfile::Flow::Constant);
+  EXPECT_EQ(loadExperimentConfig(config(with("    kind: uniform\n    flow: speed\n"))).tools[1].profile.flow, FluxProfile::Flow::Speed);
+  EXPECT_EQ(loadExperimentConfig(config(with("    kind: uniform\n    flow: constant\n"))).tools[1].profile.flow,
+            FluxProfile::Flow::Constant);
+  EXPECT_EQ(error(with("    kind: uniform\n    flow: fast\n")), file + ":17: tool.profile.flow: must be constant or speed, got 'fast'");
 }
 
 TEST_F(Experiments, AllMeansEveryRegisteredPlanner) {

@@ -54,6 +54,9 @@ TEST(FluxProfileLabel, NamesTheKindItsValueAndWhatIsNotTheDefault) {
   p.rate = 2e-6;
   p.depth = 0.05;
   EXPECT_EQ(p.label(), "gaussian 0.02 m, 2e-06 m3/s, fan depth 0.05 m");
+  p.flow = FluxProfile::Flow::Speed;
+  EXPECT_EQ(p.label(), "gaussian 0.02 m, 2e-06 m3/s, fan depth 0.05 m, flow follows speed");
+  EXPECT_EQ(p.describe(0.2), "gaussian profile, sigma 0.02 m, 2e-06 m3/s, fan depth 0.05 m, flow follows speed");
 }
 
 TEST_F(ProfileRuns, ARunWithAProfileIsStoredAndListedWithIt) {
@@ -138,6 +141,46 @@ TEST_F(ProfileRuns, RunsWithoutAProfileAndDatabasesFromBeforeItListAsBefore) {
 }
 
 // Shards merge with their runs' profiles; a shard made before run_profile merges as disk tools.
+// A gun whose flow follows the speed: stored (run_profile_flow), listed, part of the run key only
+// when it does (a constant flow keeps the keys pinned above), scored with its coat (no build-up
+// where the tool brakes into zigzag's row ends: a thinner mean coat that varies less), merged
+// from shards, and a database made before the table reads as constant flows.
+TEST_F(ProfileRuns, AFlowThatFollowsTheSpeedIsStoredListedAndKeyedOnlyWhenSet) {
+  const std::string plain = experiment("coat", "tool:\n  width: [0.2, 0.3]\n  profile: {kind: beta, beta: 2.5, rate: 2e-6}\n");
+  EXPECT_EQ(test::sqlRows(plain, "SELECT COUNT(*) FROM run_profile_flow"), "0\n");
+  EXPECT_EQ(all(plain).find("flow"), std::string::npos);
+  const std::string tool = "tool:\n  width: [0.2, 0.3]\n  profile: {kind: beta, beta: 2.5, rate: 2e-6, flow: speed}\n";
+  const std::string following = experiment("following", tool);
+  EXPECT_EQ(test::sqlRows(following, "SELECT COUNT(*) FROM runs WHERE base_key IN ('5b02f92382e4ac9106d8bed1bb7975a7096d7c82acb8335e03ac7cf21d8dd595', "
+                                     "'ad871fbf70325c885e9a58de9a3af2a0ff584f58e6dd29ad827d6a0c6c90452e')"),
+            "0\n");
+  EXPECT_EQ(test::sqlRows(following, "SELECT flow, COUNT(*) FROM run_profile_flow GROUP BY flow"), "speed|2\n");
+  const ResultSet with = ResultsDb(following, ResultsDb::Mode::ReadOnly).load(), without = ResultsDb(plain, ResultsDb::Mode::ReadOnly).load();
+  ASSERT_EQ(with.runs.size(), 2u);
+  std::map<double, const ResultRow*> by_width;
+  for (const ResultRow& r : without.runs) by_width[r.tool.tool_width] = &r;
+  for (const ResultRow& r : with.runs) {
+    EXPECT_EQ(r.tool.profile.flow, FluxProfile::Flow::Speed);
+    const ResultRow& o = *by_width.at(r.tool.tool_width);
+    EXPECT_EQ(o.tool.profile.flow, FluxProfile::Flow::Constant);
+    EXPECT_EQ(r.metrics.at("length_total"), o.metrics.at("length_total"));  // the same path
+    EXPECT_LT(r.metrics.at("thickness_cv"), o.metrics.at("thickness_cv")) << r.tool.tool_width;
+    EXPECT_LT(r.metrics.at("thickness_mean"), o.metrics.at("thickness_mean")) << r.tool.tool_width;
+  }
+  const std::string list = runs(following, "--list");
+  EXPECT_NE(list.find("  zigzag  s=0.3 m, c=0.02 m, beta 2.5, 2e-06 m3/s, flow follows speed  walls/a\n"), std::string::npos) << list;
+  // Shards merge with the table.
+  const std::string config = write("shard.yaml", "name: shard\noutput: shard\ndatasets:\n  - folder: walls\nplanners: [zigzag]\n" + tool);
+  for (const char* shard : {"0/2", "1/2"}) ASSERT_EQ(run("run " + config + " --shard " + shard).exit_code, 0) << shard;
+  const std::string shards = (dir_ / "shard" / "shards").string(), merged = (dir_ / "merged.sqlite").string();
+  ASSERT_EQ(run("merge " + merged + " " + shards + "/shard-0-of-2.sqlite " + shards + "/shard-1-of-2.sqlite").exit_code, 0);
+  EXPECT_EQ(test::sqlRows(merged, "SELECT flow, COUNT(*) FROM run_profile_flow GROUP BY flow"), "speed|2\n");
+  // A database made before run_profile_flow reads its runs as constant flows.
+  test::sqlRows(following, "DROP TABLE run_profile_flow");
+  for (const ResultRow& r : ResultsDb(following, ResultsDb::Mode::ReadOnly).load().runs)
+    EXPECT_EQ(r.tool.profile.flow, FluxProfile::Flow::Constant);
+}
+
 TEST_F(ProfileRuns, ShardsMergeWithTheirProfiles) {
   experiment("coat", "");  // the wall
   const std::string config = write("shard.yaml", "name: shard\noutput: shard\ndatasets:\n  - folder: walls\n"

@@ -43,7 +43,7 @@ DepositionGrid field(const Path& path, const FluxProfile& profile, const MotionL
   g.cell = cell;
   g.nx = nx;
   g.ny = ny;
-  depositionField(path, kTool, profile, segmentSpeeds(path, limits), g);
+  depositionField(path, kTool, profile, segmentSpeeds(path, limits), limits.speed, g);
   return g;
 }
 
@@ -220,6 +220,50 @@ TEST(Deposition, ThicknessFollowsTheTimeModelsSpeedWhereItBrakes) {
   // At the stop the speed is 0, yet the coat is finite: the ramp to standstill takes finite time.
   EXPECT_TRUE(std::isfinite(g.thickness[1999]));
   EXPECT_GT(g.thickness[1999], g.thickness[1969]);
+}
+
+// A gun whose flow follows the speed (docs/deposition.md, "A flow that follows the speed") lays the
+// cruise coat Q f(x) / v all along the same braking pass, to the stop: nothing builds up where it
+// slows down. Hand value: the cruise coat at 0.5 mm off the line, as above; the constant gun's is
+// 0.3 / v times it on the braking stretch, the following gun's the same as at cruise.
+TEST(Deposition, AFlowThatFollowsTheSpeedLaysTheCruiseCoatWhereTheToolBrakes) {
+  Path path;
+  path.moveTo({0, 0}, false);
+  path.moveTo({2, 0}, true);
+  FluxProfile profile = gaussian(0.03);
+  profile.depth = 0.005;
+  profile.flow = FluxProfile::Flow::Speed;
+  const MotionLimits limits;
+  const DepositionGrid g = field(path, profile, limits, 0.0, 0.0, 0.001, 2000, 1);
+  const double cruise = profile.rate * profile.density(0.0005, 0.1) / 0.3;
+  for (std::size_t i = 3; i < 1997; ++i)  // every sample the whole fan's depth passes over
+    ASSERT_NEAR(g.thickness[i], cruise, 1e-9 * cruise) << "at " << g.centre(i, 0).x << " m";
+  // Within half the fan's depth of the ends, the share of it that passes over the sample.
+  EXPECT_NEAR(g.thickness[1999], cruise * 0.003 / 0.005, 1e-9 * cruise);
+  EXPECT_NEAR(g.thickness[0], cruise * 0.003 / 0.005, 1e-9 * cruise);
+  // The same pass with a constant flow is thicker on the braking stretch: 0.3 / v there.
+  profile.flow = FluxProfile::Flow::Constant;
+  const DepositionGrid constant = field(path, profile, limits, 0.0, 0.0, 0.001, 2000, 1);
+  EXPECT_NEAR(constant.thickness[1000], cruise, 1e-9 * cruise);
+  const double v = segmentSpeeds(path, limits)[0].speedAt(constant.centre(1950, 0).x);  // 4.95 cm from the stop
+  EXPECT_NEAR(constant.thickness[1950] / cruise, 0.3 / v, 1e-3 * 0.3 / v);
+  EXPECT_GT(0.3 / v, 1.3);
+  // What it sprays, Q v / V at speed v, is Q / V per metre: the raster holds Q L / V for a path
+  // of length L, against Q times the time for the constant gun (with the default clock's ramps,
+  // L / V is less than the time).
+  Path turn;
+  turn.moveTo({0.3, 0.3}, false);
+  turn.moveTo({1.5, 0.3}, true);
+  turn.moveTo({1.5, 1.0}, true);
+  turn.arcTo({0.9, 1.0}, 1.0, true);  // a half circle of radius 0.3 m, under its arc speed limit
+  FluxProfile following = gaussian(0.025);
+  following.flow = FluxProfile::Flow::Speed;
+  const double cell = depositionCell(kTool, following);
+  const DepositionGrid h = field(turn, following, limits, 0.0, 0.0, cell, std::lround(2.0 / cell), std::lround(2.0 / cell), true);
+  double volume = 0.0;
+  for (double t : h.thickness) volume += t * cell * cell / 4;
+  const double length = 1.2 + 0.7 + M_PI * 0.3;
+  EXPECT_NEAR(volume, following.rate * length / 0.3, 1e-4 * following.rate * length / 0.3);
 }
 
 // What the tool sprays is what the raster holds: sum of thickness x cell area = Q x tool-on time

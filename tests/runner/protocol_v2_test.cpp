@@ -80,6 +80,11 @@ TEST_F(Protocol2, AVersion2PlannerReceivesTheToolsShapeAndProfile) {
   // A target thickness (micrometres) only when there is one.
   EXPECT_EQ(json::parse(reason(echo, "--profile uniform --target 25")),
             json::parse(R"({"shape": "disk", "profile": {"kind": "uniform", "rate": 1e-6, "depth": 0.01, "target": 25}})"));
+  // A flow that follows the speed only when it does.
+  EXPECT_EQ(json::parse(reason(echo, "--profile uniform --flow speed")),
+            json::parse(R"({"shape": "disk", "profile": {"kind": "uniform", "rate": 1e-6, "depth": 0.01, "flow": "speed"}})"));
+  EXPECT_EQ(json::parse(reason(echo, "--profile uniform --flow constant")),
+            json::parse(R"({"shape": "disk", "profile": {"kind": "uniform", "rate": 1e-6, "depth": 0.01}})"));
 }
 
 TEST_F(Protocol2, AVersion1PlannersRequestIsTheSameBytesWithAProfile) {

@@ -17,6 +17,11 @@ namespace coverbench {
 /// A tool's flux profile across its width, its rate and its fan's depth (kind None: no profile).
 struct FluxProfile {
   enum class Kind { None, Uniform, Gaussian, Beta };
+  /// How the gun's flow follows the tool's speed: Constant sprays `rate` whatever the speed (the
+  /// coat builds up where the tool slows down); Speed sprays rate x v / V, V the time model's
+  /// speed (MotionLimits::speed; speed-proportional flow control, as painting robots' guns have):
+  /// the same coat per metre of path at any speed, braking and stopping included.
+  enum class Flow { Constant, Speed };
   Kind kind = Kind::None;
   double sigma = 0.0;   ///< gaussian: standard deviation, m
   double beta = 0.0;    ///< beta: exponent beta (f proportional to (1 - u^2)^(beta - 1))
@@ -25,6 +30,7 @@ struct FluxProfile {
   /// The coat aimed at, micrometres; 0: none, and the coat's shares are of its mean. With a target,
   /// even_share, thin_share and thick_share are of it (docs/deposition.md).
   double target = 0.0;
+  Flow flow = Flow::Constant;
   bool set() const { return kind != Kind::None; }
   /// The largest target thickness accepted, micrometres (a metre of coat).
   static constexpr double kMaxTarget = 1e6;
@@ -37,10 +43,11 @@ struct FluxProfile {
   double spread(double r) const;
   /// The profile as run listings show it beside the tool: "uniform", "gaussian 0.02 m" (sigma),
   /// "beta 2.5", then the rate and the fan's depth where they are not the defaults and the target
-  /// where there is one ("beta 2.5, 2e-06 m3/s, fan depth 0.05 m, target 25 um"); "" for none.
+  /// where there is one, and a flow that follows the speed ("beta 2.5, 2e-06 m3/s, fan depth 0.05 m,
+  /// target 25 um, flow follows speed"); "" for none.
   std::string label() const;
   /// "gaussian profile, sigma 0.02 m, 1e-06 m3/s, fan depth 0.01 m" for a tool of width s, then
-  /// ", target 25 µm" where there is a target.
+  /// ", target 25 µm" where there is a target and ", flow follows speed" where it does.
   std::string describe(double s) const;
   /// Throws InputError(source, field, problem) for a value out of range for a tool of width s:
   /// sigma in [s/50, 100 m], beta in [1, 100], rate in (0, 1] m^3/s, depth in (0, s] (0: the default),
@@ -62,6 +69,10 @@ class FluxDensity {
 
 /// "uniform", "gaussian", "beta" (or "none").
 std::string toString(FluxProfile::Kind kind);
+/// "constant", "speed".
+std::string toString(FluxProfile::Flow flow);
+/// The flow named `name` ("constant" or "speed"); false when there is none.
+bool parseFlow(const std::string& name, FluxProfile::Flow& flow);
 /// The kind named `name`; false when there is none.
 bool parseFluxProfileKind(const std::string& name, FluxProfile::Kind& kind);
 
@@ -73,6 +84,7 @@ struct ProfileOptions {
   /// plan file's".
   bool named = false;
   std::optional<double> sigma, beta, rate, fan_depth, target;
+  std::optional<std::string> flow;  ///< "constant" or "speed"
 };
 /// How a caller names the kind and the values in its messages. The default is the command line's:
 /// each error's source is the flag it is about ("--sigma: sigma: belongs to --profile gaussian"),
@@ -80,7 +92,7 @@ struct ProfileOptions {
 /// names the value by its key (Python: "profile: sigma: belongs to kind gaussian").
 struct ProfileSpelling {
   std::string kind = "--profile", sigma = "--sigma", beta = "--beta", rate = "--rate", depth = "--fan-depth",
-              target = "--target";
+              target = "--target", flow = "--flow";
   std::string source;                   ///< empty: the flag each error is about
   std::string checked = "command line";  ///< the source of out-of-range values (FluxProfile::check)
 };

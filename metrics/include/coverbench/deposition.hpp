@@ -19,7 +19,10 @@
 /// constant speed v that is Q f(x) / v (the fan's steady profile); where the tool brakes it is the
 /// mean of Q f(x) / v over the fan's depth, so a stop (speed 0 at a segment's end) deposits a
 /// finite amount: the ramp to standstill takes finite time. Waits do not deposit: rotations in place
-/// (rotation_speed) and a gantry's lowering and lifting are taken with the spray off. Thickness is
+/// (rotation_speed) and a gantry's lowering and lifting are taken with the spray off. A gun whose flow
+/// follows the speed (FluxProfile::Flow::Speed) sprays Q v / V at speed v (V the time model's
+/// speed): h_i(p) = Q f(x) (min(L_i, t + l/2) - max(0, t - l/2)) / (l V), the steady coat at any
+/// speed, so nothing builds up where the tool brakes or stops. Thickness is
 /// the sum over tool-on segments; an arc is taken as chords with a sagitta under a hundredth of a
 /// raster cell, each carrying its share of the arc's speed profile.
 ///
@@ -77,9 +80,11 @@ struct DepositionGrid {
   void range(double lo, double hi, double origin, std::size_t count, std::size_t& first, std::size_t& last) const;
 };
 /// The thickness field of `path` on the raster `grid` (its thickness is overwritten), with the
-/// speeds of segmentSpeeds(path, ...).
+/// speeds of segmentSpeeds(path, ...) and `cruise`, the time model's speed V (MotionLimits::speed):
+/// a profile whose flow follows the speed (FluxProfile::Flow::Speed) sprays rate x v / V, so a
+/// piece of a segment lays Q f(x) / (l V) per metre of it, whatever its speed.
 void depositionField(const Path& path, const ToolParams& tool, const FluxProfile& profile,
-                     const std::vector<SegmentSpeed>& speeds, DepositionGrid& grid);
+                     const std::vector<SegmentSpeed>& speeds, double cruise, DepositionGrid& grid);
 /// Per sample of `grid`, whether it lies in `region` (scanlines through the samples).
 std::vector<char> rasterMask(const Region& region, const DepositionGrid& grid);
 
