@@ -40,19 +40,26 @@ void storedOptions(const Statement& s, int i, VehicleModel& vehicle, TransitSpec
   }
 }
 
+/// A stored name as a message shows it: its first 40 bytes, odd bytes as \xHH.
+std::string storedName(const std::string& name) {
+  return "'" + shownBytes(name.substr(0, 40)) + (name.size() > 40 ? "...'" : "'");
+}
+
 /// The profile in columns i .. i + 6 (profileColumns: the target and the flow last): none when the
-/// run has no row in run_profile.
-FluxProfile storedProfile(const Statement& s, int i) {
+/// run has no row in run_profile. A kind or a flow this build does not know is an InputError naming
+/// the database `file` and the table.
+FluxProfile storedProfile(const Statement& s, int i, const std::string& file) {
   FluxProfile p;
   if (s.columnNull(i)) return p;
-  if (!parseFluxProfileKind(s.columnText(i), p.kind) || !p.set()) throw std::runtime_error("run_profile: unknown kind " + s.columnText(i));
+  if (!parseFluxProfileKind(s.columnText(i), p.kind) || !p.set())
+    throw InputError(file, "run_profile.kind", "must be uniform, gaussian or beta, got " + storedName(s.columnText(i)));
   p.sigma = s.columnReal(i + 1);
   p.beta = s.columnReal(i + 2);
   p.rate = s.columnReal(i + 3);
   p.depth = s.columnReal(i + 4);
   if (!s.columnNull(i + 5)) p.target = s.columnReal(i + 5);
   if (!s.columnNull(i + 6) && !parseFlow(s.columnText(i + 6), p.flow))
-    throw std::runtime_error("run_profile_flow: unknown flow " + s.columnText(i + 6));
+    throw InputError(file, "run_profile_flow.flow", "must be constant or speed, got " + storedName(s.columnText(i + 6)));
   return p;
 }
 
@@ -203,7 +210,7 @@ ResultSet ResultsDb::load(std::optional<long long> experiment) {
       row.config = row.planner;
       row.wall_name = s.columnText(6);
       row.planner_version = s.columnText(7);
-      row.tool = ToolParams{s.columnReal(3), s.columnReal(4), storedProfile(s, 15)};
+      row.tool = ToolParams{s.columnReal(3), s.columnReal(4), storedProfile(s, 15, file_)};
       storedShape(s, 22, row.tool);
       if (row.tool.isLine()) row.pairing += "/line";  // runs pair only with the same tool
       if (row.tool.isRectangle()) row.pairing += "/rectangle/" + shortNumber(row.tool.depth);
@@ -334,7 +341,7 @@ std::vector<ResultsDb::RunSummary> ResultsDb::runSummaries(long long experiment)
     r.wall = s.columnText(3);
     r.wall_name = s.columnText(4);
     readField(s, 5, file_, kRunFields[1], r.status);
-    r.tool = ToolParams{s.columnReal(6), s.columnReal(7), storedProfile(s, 11)};
+    r.tool = ToolParams{s.columnReal(6), s.columnReal(7), storedProfile(s, 11, file_)};
     storedShape(s, 18, r.tool);
     r.plan_time_ms = s.columnReal(8);
     r.peak_memory_bytes = s.columnReal(9);

@@ -80,16 +80,26 @@ Path pathOf(const std::vector<std::pair<double, double>>& waypoints, const std::
 /// Called with the GIL held.
 ProfileOptions profileOptions(const py::dict& profile) {
   ProfileOptions o;
+  // A str that is not text (a lone surrogate) cannot become UTF-8: one line, as for any bad value.
+  const auto text = [](const py::handle& v, const std::string& field) {
+    try {
+      return v.cast<std::string>();
+    } catch (const py::cast_error&) {
+      throw InputError("profile", field, "is not valid text (a lone surrogate)");
+    } catch (const py::error_already_set&) {
+      throw InputError("profile", field, "is not valid text (a lone surrogate)");
+    }
+  };
   for (const auto& [k, v] : profile) {
-    const std::string key = py::str(k).cast<std::string>();
+    const std::string key = text(py::str(k), "(key)");
     if (key == "kind") {
       if (!py::isinstance<py::str>(v)) throw InputError("profile", "kind", "must be a string: none, uniform, gaussian or beta");
-      o.profile = v.cast<std::string>();
+      o.profile = text(v, "kind");
       continue;
     }
     if (key == "flow") {
       if (!py::isinstance<py::str>(v)) throw InputError("profile", "flow", "must be a string: constant or speed");
-      o.flow = v.cast<std::string>();
+      o.flow = text(v, "flow");
       continue;
     }
     std::optional<double>* value = key == "sigma" ? &o.sigma

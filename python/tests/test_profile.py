@@ -158,6 +158,8 @@ class Profile(unittest.TestCase):
                 ({"sigma": 0.02}, "profile: kind: sigma, beta, rate, depth, target and flow need kind"),
                 ({"kind": "uniform", "flow": "fast"}, "profile: flow: must be constant or speed, got 'fast'"),
                 ({"kind": "uniform", "flow": 1}, "profile: flow: must be a string: constant or speed"),
+                ({"kind": "uniform", "flow": "sp\udcffed"}, "profile: flow: is not valid text (a lone surrogate)"),
+                ({"kind": "be\udcffta"}, "profile: kind: is not valid text (a lone surrogate)"),
                 ({"kind": "uniform", "rate": "1e-6"}, "profile: rate: must be a number"),
                 ({"kind": "uniform", "target": float("nan")}, "profile: target: must be in (0, 1e+06] um, got nan"),
                 ({"kind": "uniform", "target": "25"}, "profile: target: must be a number"),

@@ -175,6 +175,11 @@ TEST_F(ProfileRuns, AFlowThatFollowsTheSpeedIsStoredListedAndKeyedOnlyWhenSet) {
   const std::string shards = (dir_ / "shard" / "shards").string(), merged = (dir_ / "merged.sqlite").string();
   ASSERT_EQ(run("merge " + merged + " " + shards + "/shard-0-of-2.sqlite " + shards + "/shard-1-of-2.sqlite").exit_code, 0);
   EXPECT_EQ(test::sqlRows(merged, "SELECT flow, COUNT(*) FROM run_profile_flow GROUP BY flow"), "speed|2\n");
+  // A flow this build does not know (a damaged database) is one line naming the file and the table.
+  test::sqlRows(merged, "UPDATE run_profile_flow SET flow = 'fa' || char(27) || 'st'");
+  const test::CommandRun damaged = run("runs " + merged + " --list");
+  EXPECT_EQ(damaged.exit_code, 2) << damaged.err;
+  EXPECT_EQ(damaged.err, "coverbench: " + merged + ": run_profile_flow.flow: must be constant or speed, got 'fa\\x1bst'\n");
   // A database made before run_profile_flow reads its runs as constant flows.
   test::sqlRows(following, "DROP TABLE run_profile_flow");
   for (const ResultRow& r : ResultsDb(following, ResultsDb::Mode::ReadOnly).load().runs)
