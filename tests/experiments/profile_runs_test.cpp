@@ -85,6 +85,11 @@ TEST_F(ProfileRuns, ARunWithAProfileIsStoredAndListedWithIt) {
   EXPECT_EQ(tools, (std::set<std::string>{"s=0.2 m, c=0.02 m, beta 2.5, 2e-06 m3/s", "s=0.3 m, c=0.02 m, beta 2.5, 2e-06 m3/s"}));
 }
 
+/// How many runs have the base keys of the plain profile's runs below (pinned: commit 682a1a8).
+constexpr const char* kPlainKeyRuns =
+    "SELECT COUNT(*) FROM runs WHERE base_key IN ('5b02f92382e4ac9106d8bed1bb7975a7096d7c82acb8335e03ac7cf21d8dd595', "
+    "'ad871fbf70325c885e9a58de9a3af2a0ff584f58e6dd29ad827d6a0c6c90452e')";
+
 // A profile's target thickness: stored (run_profile_target), listed, scored against, and part of
 // the run key only when there is one. The base keys of the run above (no target) are those the
 // build before the target gave it (commit 682a1a8: `coverbench run` of this config).
@@ -97,8 +102,7 @@ TEST_F(ProfileRuns, ATargetIsStoredListedAndKeyedOnlyWhenSet) {
   EXPECT_EQ(runs(plain, "--list").find("target"), std::string::npos);
   const std::string aimed =
       experiment("aimed", "tool:\n  width: [0.2, 0.3]\n  profile: {kind: beta, beta: 2.5, rate: 2e-6, target: 25}\n");
-  EXPECT_EQ(test::sqlRows(aimed, "SELECT COUNT(*) FROM runs WHERE base_key IN ('5b02f92382e4ac9106d8bed1bb7975a7096d7c82acb8335e03ac7cf21d8dd595', "
-                                 "'ad871fbf70325c885e9a58de9a3af2a0ff584f58e6dd29ad827d6a0c6c90452e')"),
+  EXPECT_EQ(test::sqlRows(aimed, kPlainKeyRuns),
             "0\n");
   EXPECT_EQ(test::sqlRows(aimed, "SELECT DISTINCT target FROM run_profile_target"), "25.0\n");
   const ResultSet with = ResultsDb(aimed, ResultsDb::Mode::ReadOnly).load(), without = ResultsDb(plain, ResultsDb::Mode::ReadOnly).load();
@@ -151,8 +155,7 @@ TEST_F(ProfileRuns, AFlowThatFollowsTheSpeedIsStoredListedAndKeyedOnlyWhenSet) {
   EXPECT_EQ(all(plain).find("flow"), std::string::npos);
   const std::string tool = "tool:\n  width: [0.2, 0.3]\n  profile: {kind: beta, beta: 2.5, rate: 2e-6, flow: speed}\n";
   const std::string following = experiment("following", tool);
-  EXPECT_EQ(test::sqlRows(following, "SELECT COUNT(*) FROM runs WHERE base_key IN ('5b02f92382e4ac9106d8bed1bb7975a7096d7c82acb8335e03ac7cf21d8dd595', "
-                                     "'ad871fbf70325c885e9a58de9a3af2a0ff584f58e6dd29ad827d6a0c6c90452e')"),
+  EXPECT_EQ(test::sqlRows(following, kPlainKeyRuns),
             "0\n");
   EXPECT_EQ(test::sqlRows(following, "SELECT flow, COUNT(*) FROM run_profile_flow GROUP BY flow"), "speed|2\n");
   const ResultSet with = ResultsDb(following, ResultsDb::Mode::ReadOnly).load(), without = ResultsDb(plain, ResultsDb::Mode::ReadOnly).load();

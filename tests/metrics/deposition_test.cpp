@@ -194,12 +194,24 @@ TEST(Deposition, TheMetricsTakeTheProfilesTarget) {
 // from 1/v at the centre by about (l^2 / 24) (1/v)'' / (1/v) = l^2 / (32 e^2), e the distance to
 // the stop: under 0.07 % from e = 3.5 cm on. (Within l / 2 of where braking starts, 9 cm from the
 // stop, the kink of v(s) makes the fan's mean differ by up to 0.35 %: those cells are left out.)
-TEST(Deposition, ThicknessFollowsTheTimeModelsSpeedWhereItBrakes) {
+/// A 2 m pass along x from standstill to standstill.
+Path twoMetrePass() {
   Path path;
   path.moveTo({0, 0}, false);
   path.moveTo({2, 0}, true);
+  return path;
+}
+
+/// The braking tests' fan: a Gaussian of sigma 3 cm, 5 mm deep.
+FluxProfile narrowFan() {
   FluxProfile profile = gaussian(0.03);
   profile.depth = 0.005;
+  return profile;
+}
+
+TEST(Deposition, ThicknessFollowsTheTimeModelsSpeedWhereItBrakes) {
+  const Path path = twoMetrePass();
+  const FluxProfile profile = narrowFan();
   const MotionLimits limits;  // v 0.3 m/s, a 0.5 m/s^2: braking over the last 0.09 m
   const std::vector<SegmentSpeed> speeds = segmentSpeeds(path, limits);
   ASSERT_EQ(speeds.size(), 1u);
@@ -227,11 +239,8 @@ TEST(Deposition, ThicknessFollowsTheTimeModelsSpeedWhereItBrakes) {
 // slows down. Hand value: the cruise coat at 0.5 mm off the line, as above; the constant gun's is
 // 0.3 / v times it on the braking stretch, the following gun's the same as at cruise.
 TEST(Deposition, AFlowThatFollowsTheSpeedLaysTheCruiseCoatWhereTheToolBrakes) {
-  Path path;
-  path.moveTo({0, 0}, false);
-  path.moveTo({2, 0}, true);
-  FluxProfile profile = gaussian(0.03);
-  profile.depth = 0.005;
+  const Path path = twoMetrePass();
+  FluxProfile profile = narrowFan();
   profile.flow = FluxProfile::Flow::Speed;
   const MotionLimits limits;
   const DepositionGrid g = field(path, profile, limits, 0.0, 0.0, 0.001, 2000, 1);
