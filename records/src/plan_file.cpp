@@ -56,6 +56,19 @@ std::string violationsJson(const Validity& validity) {
   return out.dump();
 }
 
+std::string profileJson(const ToolParams& tool) {
+  const FluxProfile& p = tool.profile;
+  if (!p.set()) return "null";
+  ordered_json profile = {{"kind", toString(p.kind)}};
+  if (p.kind == FluxProfile::Kind::Gaussian) profile["sigma"] = p.sigma;
+  if (p.kind == FluxProfile::Kind::Beta) profile["beta"] = p.beta;
+  profile["rate"] = p.rate;
+  profile["depth"] = p.depthFor(tool.tool_width);
+  if (p.target > 0.0) profile["target"] = p.target;  // micrometres; none: no key
+  if (p.flow == FluxProfile::Flow::Speed) profile["flow"] = toString(p.flow);  // constant: no key
+  return profile.dump();
+}
+
 std::string planFileJson(const PlanFile& plan) {
   ordered_json doc;
   doc["planner"] = plan.planner;
@@ -64,16 +77,7 @@ std::string planFileJson(const PlanFile& plan) {
   doc["clearance"] = plan.tool.clearance;
   if (plan.tool.turnsWithHeading()) doc["tool_shape"] = toString(plan.tool.shape);  // a disk: no key, as before shapes
   if (plan.tool.isRectangle()) doc["tool_depth"] = plan.tool.depth;
-  if (const FluxProfile& p = plan.tool.profile; p.set()) {
-    ordered_json profile = {{"kind", toString(p.kind)}};
-    if (p.kind == FluxProfile::Kind::Gaussian) profile["sigma"] = p.sigma;
-    if (p.kind == FluxProfile::Kind::Beta) profile["beta"] = p.beta;
-    profile["rate"] = p.rate;
-    profile["depth"] = p.depthFor(plan.tool.tool_width);
-    if (p.target > 0.0) profile["target"] = p.target;  // micrometres; none: no key
-    if (p.flow == FluxProfile::Flow::Speed) profile["flow"] = toString(p.flow);  // constant: no key
-    doc["profile"] = profile;
-  }
+  if (plan.tool.profile.set()) doc["profile"] = ordered_json::parse(profileJson(plan.tool));
   if (plan.start) doc["start"] = {plan.start->x, plan.start->y};
   if (plan.end) doc["end"] = {plan.end->x, plan.end->y};
   if (!plan.vehicle.isDefault()) doc["vehicle"] = ordered_json::parse(vehicleJson(plan.vehicle));

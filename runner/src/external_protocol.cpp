@@ -7,6 +7,7 @@
 #include "coverbench/files.hpp"
 #include "coverbench/json_input.hpp"
 #include "coverbench/param_codec.hpp"
+#include "coverbench/plan_file.hpp"
 #include "coverbench/wall_file.hpp"
 
 namespace coverbench::external {
@@ -71,19 +72,7 @@ json toolJson(const ToolParams& tool, int protocol) {
   json out = {{"width", tool.tool_width}, {"clearance", tool.clearance}};
   out["shape"] = toString(tool.shape);
   if (tool.isRectangle()) out["depth"] = tool.depth;
-  const FluxProfile& p = tool.profile;
-  if (!p.set()) {
-    out["profile"] = nullptr;
-    return out;
-  }
-  json profile = {{"kind", toString(p.kind)}};
-  if (p.kind == FluxProfile::Kind::Gaussian) profile["sigma"] = p.sigma;
-  if (p.kind == FluxProfile::Kind::Beta) profile["beta"] = p.beta;
-  profile["rate"] = p.rate;
-  profile["depth"] = p.depthFor(tool.tool_width);
-  if (p.target > 0.0) profile["target"] = p.target;  // micrometres; none: no key
-  if (p.flow == FluxProfile::Flow::Speed) profile["flow"] = toString(p.flow);  // constant: no key
-  out["profile"] = profile;
+  out["profile"] = json::parse(profileJson(tool));
   return out;
 }
 

@@ -56,6 +56,10 @@ struct LoadedPlan {
 };
 /// The plan file's `vehicle` object: {"model": "gantry", "lift_s": 1, "lower_s": 1}.
 std::string vehicleJson(const VehicleModel& vehicle);
+/// The tool's flux profile as a plan file and protocol 2 write it: {"kind", "sigma" or "beta" for
+/// their kinds, "rate", "depth" (resolved: s / 10 when 0), "target" only when there is one, "flow"
+/// only when it follows the speed}; "null" for a tool without a profile.
+std::string profileJson(const ToolParams& tool);
 /// Throws InputError (file, field, problem) for anything malformed, and for paths beyond the
 /// scoring limits (kMaxScoredWaypoints, kMaxPathCoordinate).
 LoadedPlan loadPlanFile(const std::string& file);
