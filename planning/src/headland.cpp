@@ -58,7 +58,8 @@ Headland headland(const Workspace& ws, const Region& free, const HeadlandOptions
   // region reaches anywhere in that strip (past a slanted edge, under an obstacle just above),
   // and never out of F.
   const Point half = o.along_x ? Point{0.0, o.spacing / 2.0} : Point{o.spacing / 2.0, 0.0};
-  Region reach = inside(o.end_inset * o.spacing);
+  // (At least `tol` deep, as every region here: an inset of 0 ends rows on the loop's line.)
+  Region reach = inside(std::fmax(o.end_inset * o.spacing, tol));
   if (o.end_inset > 0.5) {
     // Thin parts: F half a spacing deep (where rows can end without leaving anything unpainted)
     // that the deeper region, opened back out by the difference, does not reach: a corridor too
@@ -95,9 +96,10 @@ Headland headland(const Workspace& ws, const Region& free, const HeadlandOptions
 }
 
 ParamSpec rowEndInsetParam() {
-  return {"row_end_inset", ParamType::Number, HeadlandOptions{}.end_inset, 0.5, 1.0, {}, "",
+  return {"row_end_inset", ParamType::Number, HeadlandOptions{}.end_inset, 0.0, 1.0, {}, "",
           "where rows end, in spacings inside the boundary loop: 0.5 paints everything; more paints less "
-          "twice but leaves scallops between row ends (docs/planner_quality.md)"};
+          "twice but leaves scallops between row ends (docs/planner_quality.md); less runs them into the "
+          "loop's band, 0 to its line (a sprayed coat's evenness: docs/deposition.md)"};
 }
 
 ParamSpec fillLeftoversParam() {

@@ -113,6 +113,76 @@ TEST(Headland, ARowEndInsetTradesOverlapForScallops) {
   EXPECT_LT(last_coverage, 0.999);  // 1.0: the scallops of zigzag with the rows in `inner`
 }
 
+TEST(Headland, BelowHalfASpacingRowsRunIntoTheLoopsBandAndAtZeroToItsLine) {
+  // An open 5 m x 5 m wall, s = 0.1 m: the loop runs on F's edge, the square of the path's
+  // extreme waypoints [e, 5 - e]. A row (a painted straight segment off the loop's lines) ends
+  // row_end_inset spacings (0.1 m) inside the loop: at e + 0.1 i and 5 - e - 0.1 i along its
+  // direction, and at 0 on the loop's line within the planner's offset tolerance (zigzag 1 mm,
+  // the decomposition planners 2 mm). Farther in paints less twice.
+  const ToolParams tool{0.1, 0.02};
+  const Wall wall = test::rectWall(5.0, 5.0);
+  for (const auto& [planner, tolerance] : {std::pair{"zigzag", 1e-3}, {"boustrophedon", 2e-3}, {"trapezoidal", 2e-3}}) {
+    double last_overlap = INFINITY;
+    for (const char* inset : {"0", "0.25", "0.5"}) {
+      const PlanResult r = test::planWith(planner, wall, tool, {{"row_end_inset", inset}});
+      ASSERT_EQ(r.status, PlanStatus::Ok) << planner << " " << inset << ": " << r.reason;
+      EXPECT_TRUE(test::isValidPath(wall, tool, r.path)) << planner << " " << inset;
+      double e = INFINITY;
+      for (const Point& p : r.path.waypoints) e = std::fmin(e, std::fmin(p.x, p.y));
+      EXPECT_NEAR(e, 0.05, 1e-4) << planner;  // F's edge: r from the wall's, and a hair more
+      const auto onLoop = [&](double v) { return std::fabs(v - e) < 1e-9 || std::fabs(v - (5.0 - e)) < 1e-9; };
+      // Rows along x (their ends' x) and along y (their ends' y): [lowest, highest, how many].
+      double ends[2][3] = {{INFINITY, -INFINITY, 0}, {INFINITY, -INFINITY, 0}};
+      for (std::size_t i = 0; i < r.path.segments(); ++i) {
+        const Point a = r.path.waypoints[i], b = r.path.waypoints[i + 1];
+        if (!r.path.tool_on[i] || r.path.bulgeOf(i) != 0.0) continue;
+        for (int axis = 0; axis < 2; ++axis) {
+          const double across = axis == 0 ? a.y : a.x, along_a = axis == 0 ? a.x : a.y, along_b = axis == 0 ? b.x : b.y;
+          if (std::fabs(across - (axis == 0 ? b.y : b.x)) > 1e-9 || onLoop(across)) continue;
+          ends[axis][0] = std::fmin(ends[axis][0], std::fmin(along_a, along_b));
+          ends[axis][1] = std::fmax(ends[axis][1], std::fmax(along_a, along_b));
+          ends[axis][2] += 1;
+        }
+      }
+      const double* rows = ends[0][2] > ends[1][2] ? ends[0] : ends[1];
+      EXPECT_GE(rows[2], 40.0) << planner << " " << inset;
+      const double end = std::fmax(0.1 * std::stod(inset), tolerance);
+      EXPECT_NEAR(rows[0], e + end, 1e-6) << planner << " " << inset;
+      EXPECT_NEAR(rows[1], 5.0 - e - end, 1e-6) << planner << " " << inset;
+      const double overlap = computeMetrics(wall, tool, r.path).passes.overlap;
+      EXPECT_LT(overlap, last_overlap) << planner << " " << inset;
+      last_overlap = overlap;
+    }
+  }
+}
+
+TEST(Headland, RowsToTheLoopsLineLeaveMoreOfASprayedCoatNearItsMean) {
+  // A 2 m x 1.5 m wall with a 0.6 m x 0.5 m window, a beta fan (2.5) on a gun whose flow follows
+  // the speed, rows spaced for it (coat_ripple 0.02). Rows run to the loop's line paint their ends
+  // into the loop's band: more paint there (a higher mean), and more of R within 10 % of the mean
+  // than rows ending half a spacing inside (zigzag 0.739 against 0.725, the decomposition planners
+  // 0.754 against 0.655), for a higher CV (the band where both paint is thicker). The same
+  // coverage: the loop paints what the row ends reach either way.
+  ToolParams tool{0.1, 0.02};
+  tool.profile.kind = FluxProfile::Kind::Beta;
+  tool.profile.beta = 2.5;
+  tool.profile.flow = FluxProfile::Flow::Speed;
+  const Wall wall = test::rectWall(2.0, 1.5, {test::rect(0.7, 0.5, 0.6, 0.5)});
+  for (const char* planner : {"zigzag", "boustrophedon", "trapezoidal"}) {
+    const PlanResult line = test::planWith(planner, wall, tool, {{"coat_ripple", "0.02"}, {"row_end_inset", "0"}});
+    const PlanResult half = test::planWith(planner, wall, tool, {{"coat_ripple", "0.02"}, {"row_end_inset", "0.5"}});
+    ASSERT_EQ(line.status, PlanStatus::Ok) << planner << ": " << line.reason;
+    ASSERT_EQ(half.status, PlanStatus::Ok) << planner << ": " << half.reason;
+    const PathMetrics a = computeMetrics(wall, tool, line.path), b = computeMetrics(wall, tool, half.path);
+    ASSERT_TRUE(a.deposition && b.deposition) << planner;
+    EXPECT_TRUE(a.validity.valid) << planner;
+    EXPECT_GT(a.deposition->even_share, b.deposition->even_share + 0.01) << planner;
+    EXPECT_GT(a.deposition->mean_um, b.deposition->mean_um) << planner;
+    EXPECT_GT(a.deposition->cv, b.deposition->cv) << planner;
+    EXPECT_NEAR(a.coverage.coverage_reachable, b.coverage.coverage_reachable, 1e-6) << planner;
+  }
+}
+
 TEST(Headland, RowsUnderAWindowBetweenTwoRowsStillPaintItsBand) {
   // A window whose bottom lies between two rows: the row just below reaches under it (its strip
   // does), so the band under the window is painted without a pass of its own. Windows at several
