@@ -189,7 +189,7 @@ Point pointOption(const std::string& text, const std::string& flag) {
   const bool x_ok = !xs.empty() && *end == '\0';
   const double y = std::strtod(ys.c_str(), &end);
   if (comma == std::string::npos || !x_ok || ys.empty() || *end != '\0' || !std::isfinite(x) || !std::isfinite(y))
-    throw InputError(flag, "(value)", "must be X,Y in metres, got '" + text + "'");
+    throw InputError(flag, "(value)", "must be X,Y in metres, got '" + shownBytes(text) + "'");
   return {x, y};
 }
 
@@ -357,9 +357,12 @@ int metricsCommand(const MetricsOptions& options) {
   MotionLimits limits;
   limits.speed = options.speed;
   limits.acceleration = options.acceleration;
-  if (!(limits.speed > 0.0) || !std::isfinite(limits.speed)) throw InputError("--speed", "speed", "must be positive and finite");
-  if (!(limits.acceleration > 0.0) || std::isnan(limits.acceleration))
-    throw InputError("--acceleration", "acceleration", "must be positive (inf: no ramp)");
+  // The config's bounds (motion.speed, motion.acceleration): slower than a micrometre a second, a
+  // duration or a constant gun's coat may pass what a double holds.
+  if (!(limits.speed >= kMinMotion && limits.speed <= kMaxMotion))
+    throw InputError("--speed", "speed", "must be in [1e-06, 1000] m/s, got " + shortNumber(limits.speed));
+  if (!((limits.acceleration >= kMinMotion && limits.acceleration <= kMaxMotion) || limits.acceleration == HUGE_VAL))
+    throw InputError("--acceleration", "acceleration", "must be in [1e-06, 1000] m/s^2 (inf: no ramp), got " + shortNumber(limits.acceleration));
   if (options.stops != "turns" && options.stops != "waypoints")
     throw InputError("--stops", "stops", "must be turns or waypoints, got '" + options.stops + "'");
   limits.stops = options.stops == "waypoints" ? MotionLimits::Stops::Waypoints : MotionLimits::Stops::Turns;

@@ -28,7 +28,7 @@ CLI::Validator valueReader(const std::string& type, const std::string& infinity 
         if (type == "INT" || type == "UINT") {
           const char* first = value.data();
           const char* last = value.data() + value.size();
-          if (type == "UINT" && *first == '-') return "must be a whole number of at least 0, got '" + value + "'";
+          if (type == "UINT" && *first == '-') return "must be a whole number of at least 0, got '" + coverbench::shownBytes(value) + "'";
           long long s = 0;
           unsigned long long u = 0;
           const auto [end, ec] = type == "INT" ? std::from_chars(first, last, s) : std::from_chars(first, last, u);
@@ -36,8 +36,8 @@ CLI::Validator valueReader(const std::string& type, const std::string& infinity 
             return "must be a whole number of at most " +
                    (type == "INT" ? std::to_string(std::numeric_limits<long long>::max())
                                   : std::to_string(std::numeric_limits<unsigned long long>::max())) +
-                   ", got '" + value + "'";
-          if (ec != std::errc() || end != last) return "must be a whole number, got '" + value + "'";
+                   ", got '" + coverbench::shownBytes(value) + "'";
+          if (ec != std::errc() || end != last) return "must be a whole number, got '" + coverbench::shownBytes(value) + "'";
         } else if (type == "FLOAT") {
           char* end = nullptr;
           const double v = std::strtod(value.c_str(), &end);

@@ -323,7 +323,7 @@ void HostCheck::check(const httplib::Request& req) const {
     throw HttpError(403, "Sec-Fetch-Site: a cross-site request may not change anything here");
   const std::string type = req.get_header_value("Content-Type");
   if (type.substr(0, type.find(';')) != "application/json")
-    throw HttpError(415, "Content-Type: must be application/json, got '" + type + "'");
+    throw HttpError(415, "Content-Type: must be application/json, got '" + shownBytes(type) + "'");
 }
 
 bool HostCheck::allowedHost(const std::string& host) const {

@@ -1,6 +1,7 @@
 // The one-line input error and the numbers messages show (input_error.hpp).
 #include "coverbench/input_error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -26,12 +27,14 @@ std::string shortNumber(double v) {
 
 std::string shownBytes(const std::string& name) {
   static const char* hex = "0123456789abcdef";
+  const std::size_t shown = std::min(name.size(), kShownBytes);
   std::string out;
-  for (const char ch : name) {
-    const auto c = static_cast<unsigned char>(ch);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const auto c = static_cast<unsigned char>(name[i]);
     if (c < 0x20 || c >= 0x7f) out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
-    else out += ch;
+    else out += name[i];
   }
+  if (shown < name.size()) out += "... (" + std::to_string(name.size()) + " bytes)";
   return out;
 }
 

@@ -41,14 +41,17 @@ PlannerConfig makeConfig(const PlannerInfo& info, ParamSettings settings) {
 MotionLimits readMotion(Reader& r, const Yaml& m, const std::string& where = "motion") {
   r.onlyKeys(m, where, {"speed", "acceleration", "stops", "stop_angle", "turn_cost_s", "rotation_speed"});
   MotionLimits limits;
-  if (const Yaml* v = m.find("speed")) limits.speed = r.number(*v, where + ".speed", 0, 1000, true);
+  // At least a micrometre a second (kMinMotion): slower, a duration or a constant gun's coat may
+  // pass what a double holds.
+  if (const Yaml* v = m.find("speed")) limits.speed = r.number(*v, where + ".speed", kMinMotion, kMaxMotion);
   if (const Yaml* v = m.find("acceleration"))  // "inf": no ramp
-    limits.acceleration = r.text(*v, where + ".acceleration") == "inf" ? HUGE_VAL : r.number(*v, where + ".acceleration", 0, 1000, true);
+    limits.acceleration =
+        r.text(*v, where + ".acceleration") == "inf" ? HUGE_VAL : r.number(*v, where + ".acceleration", kMinMotion, kMaxMotion);
   if (const Yaml* v = m.find("rotation_speed")) limits.rotation_speed = r.number(*v, where + ".rotation_speed", 0, 100);
   if (const Yaml* v = m.find("stops")) {
     const std::string stops = r.text(*v, where + ".stops");
     if (stops == "waypoints") limits.stops = MotionLimits::Stops::Waypoints;
-    else if (stops != "turns") r.fail(*v, where + ".stops", "must be turns or waypoints, got '" + stops + "'");
+    else if (stops != "turns") r.fail(*v, where + ".stops", "must be turns or waypoints, got '" + shownBytes(stops) + "'");
   }
   if (const Yaml* v = m.find("stop_angle")) {
     if (limits.stops == MotionLimits::Stops::Waypoints) r.fail(*v, where + ".stop_angle", "applies to stops: turns only");

@@ -123,24 +123,24 @@ class Reader {
     } catch (...) {
       used = 0;
     }
-    if (used != t.size() || t.empty() || !std::isfinite(v)) fail(n, field, "must be a number, got '" + t + "'");
+    if (used != t.size() || t.empty() || !std::isfinite(v)) fail(n, field, "must be a number, got '" + shownBytes(t) + "'");
     // std::stod also reads hexadecimal ("0x10" as 16), which a config does not mean.
-    if (t.find_first_of("xX") != std::string::npos) fail(n, field, "must be a decimal number, got '" + t + "'");
+    if (t.find_first_of("xX") != std::string::npos) fail(n, field, "must be a decimal number, got '" + shownBytes(t) + "'");
     if (v < lo || v > hi || (open_lo && v == lo) || (open_hi && v == hi))
       fail(n, field, "must be in " + std::string(open_lo ? "(" : "[") + shortNumber(lo) + ", " + shortNumber(hi) + (open_hi ? ")" : "]") +
-                         ", got " + t);
+                         ", got " + shownBytes(t));
     return v;
   }
   long long integer(const Yaml& n, const std::string& field, long long lo, long long hi) const {
     const double v = number(n, field, static_cast<double>(lo), static_cast<double>(hi));
-    if (v != std::floor(v)) fail(n, field, "must be a whole number, got " + text(n, field));
+    if (v != std::floor(v)) fail(n, field, "must be a whole number, got " + shownBytes(text(n, field)));
     return static_cast<long long>(v);
   }
   bool boolean(const Yaml& n, const std::string& field) const {
     const std::string t = text(n, field);
     if (t == "true") return true;
     if (t == "false") return false;
-    fail(n, field, "must be true or false, got '" + t + "'");
+    fail(n, field, "must be true or false, got '" + shownBytes(t) + "'");
   }
   /// A scalar or a list of scalars, as a list.
   std::vector<const Yaml*> values(const Yaml& n, const std::string& field) const {

@@ -13,7 +13,7 @@ FluxProfile readProfile(Reader& r, const Yaml& p, const std::vector<double>& wid
   if (!kind) r.fail(p, "tool.profile.kind", "is missing: uniform, gaussian or beta");
   const std::string name = r.text(*kind, "tool.profile.kind");
   if (!parseFluxProfileKind(name, profile.kind) || !profile.set())
-    r.fail(*kind, "tool.profile.kind", "must be uniform, gaussian or beta, got '" + name + "'");
+    r.fail(*kind, "tool.profile.kind", "must be uniform, gaussian or beta, got '" + shownBytes(name) + "'");
   const bool gaussian = profile.kind == FluxProfile::Kind::Gaussian, beta = profile.kind == FluxProfile::Kind::Beta;
   if (!gaussian && p.find("sigma")) r.fail(*p.find("sigma"), "tool.profile.sigma", "belongs to a gaussian profile");
   if (!beta && p.find("beta")) r.fail(*p.find("beta"), "tool.profile.beta", "belongs to a beta profile");

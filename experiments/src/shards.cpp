@@ -27,11 +27,11 @@ Shard parseShard(const std::string& text, const std::string& source) {
   const auto index = slash == std::string::npos ? std::nullopt : decimal(text.substr(0, slash));
   const auto count = slash == std::string::npos ? std::nullopt : decimal(text.substr(slash + 1));
   if (!index || !count)
-    throw InputError(source, "shard", "must be I/N with whole numbers 0 <= I < N (e.g. 0/8), got '" + text + "'");
+    throw InputError(source, "shard", "must be I/N with whole numbers 0 <= I < N (e.g. 0/8), got '" + shownBytes(text) + "'");
   if (*count < 1 || *count > kMaxShards)
-    throw InputError(source, "shard", "N must be in [1, " + std::to_string(kMaxShards) + "], got '" + text + "'");
+    throw InputError(source, "shard", "N must be in [1, " + std::to_string(kMaxShards) + "], got '" + shownBytes(text) + "'");
   if (*index >= *count)
-    throw InputError(source, "shard", "I must be below N (shards are numbered 0 to N-1), got '" + text + "'");
+    throw InputError(source, "shard", "I must be below N (shards are numbered 0 to N-1), got '" + shownBytes(text) + "'");
   return Shard{static_cast<unsigned>(*index), static_cast<unsigned>(*count)};
 }
 

@@ -49,9 +49,9 @@ void checkSlurmTime(const std::string& time) {
               : !m[3].matched ? static_cast<double>(f[0]) * 60.0 + static_cast<double>(f[1])
                               : (static_cast<double>(f[0]) * 60.0 + static_cast<double>(f[1])) * 60.0 + static_cast<double>(f[2]);
   if (seconds < 0.0)
-    throw InputError("--time", "time", "must be in Slurm's format (minutes, HH:MM:SS or D-HH:MM:SS), got '" + time + "'");
+    throw InputError("--time", "time", "must be in Slurm's format (minutes, HH:MM:SS or D-HH:MM:SS), got '" + shownBytes(time) + "'");
   if (seconds > 366.0 * 86400.0)
-    throw InputError("--time", "time", "must be at most a year (366-00:00:00; UNLIMITED for none), got '" + time + "'");
+    throw InputError("--time", "time", "must be at most a year (366-00:00:00; UNLIMITED for none), got '" + shownBytes(time) + "'");
 }
 
 /// A whole number with an optional K, M, G or T suffix (Slurm's default unit is M), at most 1 PiB
@@ -61,12 +61,12 @@ void checkSlurmMemory(const std::string& mem) {
   static const std::regex mem_re(R"(^(\d+)([KMGT]?)$)");
   std::smatch m;
   if (!std::regex_match(mem, m, mem_re))
-    throw InputError("--mem", "mem", "must be a whole number with an optional K, M, G or T suffix (e.g. 4G), got '" + mem + "'");
+    throw InputError("--mem", "mem", "must be a whole number with an optional K, M, G or T suffix (e.g. 4G), got '" + shownBytes(mem) + "'");
   const std::string digits = m[1].str(), unit = m[2].matched && m[2].length() ? m[2].str() : "M";
   const double scale = unit == "K" ? 1.0 / 1024.0 : unit == "M" ? 1.0 : unit == "G" ? 1024.0 : 1024.0 * 1024.0;
   const double mib = digits.size() > 18 ? HUGE_VAL : static_cast<double>(std::stoull(digits)) * scale;
   if (mib > 1024.0 * 1024.0 * 1024.0)
-    throw InputError("--mem", "mem", "must be at most 1 PiB (1073741824M) per task, got '" + mem + "'");
+    throw InputError("--mem", "mem", "must be at most 1 PiB (1073741824M) per task, got '" + shownBytes(mem) + "'");
 }
 
 }  // namespace

@@ -172,9 +172,9 @@ std::string MotionLimits::describe() const {
 }
 
 void MotionLimits::check() const {
-  if (!(speed > 0.0) || !std::isfinite(speed) || speed > 1000.0) throw std::invalid_argument("speed: must be in (0, 1000] m/s");
-  if (!(acceleration > 0.0) || (acceleration > 1000.0 && !std::isinf(acceleration)))
-    throw std::invalid_argument("acceleration: must be in (0, 1000] m/s2, or inf (no ramp)");
+  if (!(speed >= kMinMotion && speed <= kMaxMotion)) throw std::invalid_argument("speed: must be in [1e-06, 1000] m/s");
+  if (!((acceleration >= kMinMotion && acceleration <= kMaxMotion) || acceleration == HUGE_VAL))
+    throw std::invalid_argument("acceleration: must be in [1e-06, 1000] m/s2, or inf (no ramp)");
   if (!(stop_angle_deg > 0.0) || !(stop_angle_deg < 180.0)) throw std::invalid_argument("stop_angle: must be in (0, 180) degrees");
   if (!(turn_cost_s >= 0.0) || !std::isfinite(turn_cost_s) || turn_cost_s > 3600.0)
     throw std::invalid_argument("turn_cost_s: must be in [0, 3600] s");

@@ -155,6 +155,11 @@ struct CoatTally {
       }
   }
   double mean() const { return sum / static_cast<double>(cells); }
+  /// A coat past what a double holds has no mean, spread or shares: not scored, never "even".
+  void checkFinite() const {
+    if (!std::isfinite(sum) || (cells > 0 && !std::isfinite(mean() * 1e6)))
+      throw InputError("deposition", "thickness", "is not finite over R (the rate over the speed is past what a double holds)");
+  }
   void second(const DepositionGrid& grid, const std::vector<char>& mask, double c) {
     const double m = mean();
     for (std::size_t k = 0; k < grid.thickness.size(); ++k)
@@ -188,6 +193,7 @@ struct CoatTally {
 Deposition depositionStats(const DepositionGrid& grid, const std::vector<char>& mask, double target_um) {
   CoatTally tally;
   tally.first(grid, mask);
+  tally.checkFinite();
   if (tally.cells > 0) tally.second(grid, mask, tally.reference(target_um));
   return tally.result(grid.cell);
 }
@@ -246,6 +252,7 @@ Coat coat(const Wall& wall, const ToolParams& tool, const Path& path, const Flux
           ++counts[k];
         }
   }
+  tally.checkFinite();
   for (std::size_t k = 0; k < b.mean.size(); ++k) b.mean[k] = counts[k] ? b.mean[k] / static_cast<double>(counts[k]) : NAN;
   if (tally.cells > 0)
     for (std::size_t row0 = 0; row0 < rows; row0 += band) {

@@ -1057,5 +1057,36 @@ TEST_F(Hostile, HexadecimalNumbersBadBytesAndRawProfileNamesAreRefusedWithOneLin
   EXPECT_NE(p.err.find("overlap: '0x0.1p0' is not a decimal number"), std::string::npos) << p.err;
 }
 
+TEST_F(Hostile, ACrawlingClockAndAMegabyteValueGetOneShortLine) {
+  // A speed of 1e-308 m/s made every duration and a constant gun's coat infinite: null metrics,
+  // "even_share" 1, exit 0. Speeds and accelerations are now read in [1e-06, 1000] everywhere.
+  const std::string plan = (dir_ / "p.json").string();
+  ASSERT_EQ(run("plan --wall " + wall_ + " --planner zigzag --out " + plan).exit_code, 0);
+  const std::string metrics = "metrics --wall " + wall_ + " --plan " + plan + " --profile beta --beta 2.5";
+  std::string printed;
+  CommandRun r = run(metrics + " --speed 1e-308", &printed);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "coverbench: --speed: speed: must be in [1e-06, 1000] m/s, got 1e-308\n");
+  EXPECT_EQ(printed, "");
+  r = run(metrics + " --acceleration 1e-308");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "coverbench: --acceleration: acceleration: must be in [1e-06, 1000] m/s^2 (inf: no ramp), got 1e-308\n");
+  ASSERT_EQ(run(metrics + " --speed 1e-6", &printed).exit_code, 0) << printed;
+  const nlohmann::json slow = nlohmann::json::parse(printed);
+  EXPECT_TRUE(slow["thickness_mean"].is_number()) << printed;  // about 1e8 times the coat at 0.3 m/s: still a number
+  EXPECT_TRUE(slow["duration_s"].is_number()) << printed;
+  const std::string file = (dir_ / "c.yaml").string(), planners = "planners: [zigzag]\n";
+  EXPECT_EQ(configError(kHead + planners + "motion: {speed: 1e-7}\n"), file + ":6: motion.speed: must be in [1e-06, 1000], got 1e-7");
+  EXPECT_EQ(configError(kHead + planners + "motion: {acceleration: 0}\n"), file + ":6: motion.acceleration: must be in [1e-06, 1000], got 0");
+  // A megabyte where a number goes is quoted by its first 80 bytes and its size.
+  const std::string junk(1 << 20, 'x');
+  EXPECT_EQ(configError(kHead + planners + "seed: " + junk + "\n"),
+            file + ":6: seed: must be a number, got '" + junk.substr(0, kShownBytes) + "... (1048576 bytes)'");
+  r = run(metrics + " --flow " + std::string(100000, 'y'));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_LT(r.err.size(), 200u) << r.err.size();
+  EXPECT_NE(r.err.find("... (100000 bytes)'"), std::string::npos) << r.err.substr(0, 300);
+}
+
 }  // namespace
 }  // namespace coverbench

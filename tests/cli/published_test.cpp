@@ -167,7 +167,7 @@ TEST_F(HostilePublished, TheSectionNeedsATableAndItsClock) {
   EXPECT_EQ(configError("published:\n  table: t.csv\n"), c + ":10: published.clock: missing");
   EXPECT_EQ(configError("published:\n  table: t.csv\n  clock: fast\n"),
             c + ":11: published.clock: must be unknown or a time model with the keys of motion: ({} is the default one)");
-  EXPECT_EQ(configError("published:\n  table: t.csv\n  clock: {speed: 0}\n"), c + ":11: published.clock.speed: must be in (0, 1000], got 0");
+  EXPECT_EQ(configError("published:\n  table: t.csv\n  clock: {speed: 0}\n"), c + ":11: published.clock.speed: must be in [1e-06, 1000], got 0");
   EXPECT_EQ(configError("published:\n  table: t.csv\n  clock: unknown\n  label: x\n"),
             c + ":12: published.label: unknown key (allowed: table, clock)");
   EXPECT_EQ(configError("published:\n  table: none.csv\n  clock: unknown\n"),

@@ -475,6 +475,24 @@ TEST(Deposition, ProfilesAreNormalisedDensities) {
 namespace coverbench {
 namespace {
 
+// A coat past what a double holds (a constant gun at a crawl) has no mean: one line, never "even".
+TEST(Deposition, ACoatPastWhatADoubleHoldsIsNotScored) {
+  DepositionGrid g;
+  g.nx = 4, g.ny = 1, g.cell = 0.01;
+  g.thickness = {1e-6, 1e308, 1e308, 1e-6};
+  try {
+    depositionStats(g, std::vector<char>(4, 1));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "deposition: thickness: is not finite over R (the rate over the speed is past what a double holds)");
+  }
+  g.thickness = {1e-6, 1e307, 1e307, 1e-6};  // a finite sum, but a mean of 5e312 um
+  EXPECT_THROW(depositionStats(g, std::vector<char>(4, 1)), InputError);
+  g.thickness = {1e-6, 1e290, 1e290, 1e-6};  // absurd, and a number: 5e295 um
+  EXPECT_NEAR(depositionStats(g, std::vector<char>(4, 1)).mean_um / 5e295, 1.0, 1e-12);
+}
+
 // A wall whose raster would pass the cap is refused before any work, naming the profile, never a
 // coat computed on a coarser raster than stated: deposition() throws, and computeMetrics keeps
 // every other metric and says why the coat has none (its five names listed with no value).

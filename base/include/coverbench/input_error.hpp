@@ -2,6 +2,7 @@
 /// What every library reports bad input with, and how messages write numbers: the base of the
 /// layers (docs/architecture.md), below the geometry.
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -24,7 +25,9 @@ class InputError : public std::runtime_error {
 /// ("0.1", "1e-09", "3600.0000001").
 std::string shortNumber(double v);
 /// A name from input as a message quotes it: bytes outside printable ASCII (control bytes, bytes
-/// that may not be UTF-8) as \xHH, so the message is one line of valid text whatever was given.
+/// that may not be UTF-8) as \xHH, so the message is one line of valid text whatever was given;
+/// past its first kShownBytes bytes, "... (N bytes)" (a megabyte of junk is not echoed back).
+inline constexpr std::size_t kShownBytes = 80;
 std::string shownBytes(const std::string& name);
 
 }  // namespace coverbench

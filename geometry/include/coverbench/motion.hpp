@@ -20,6 +20,10 @@ namespace coverbench {
 /// θ / ω (a robot with a differential drive; Bormann et al., ICRA 2018 time their robot so, with
 /// v 0.3 m/s, ω 0.52 rad/s and no ramp). An acceleration of infinity is no ramp: every run takes
 /// its length / v, and arcs are driven at v.
+/// The bounds every reader puts on a speed (m/s) and an acceleration (m/s^2, or infinity): below a
+/// micrometre a second, a duration or a constant gun's coat may pass what a double holds.
+inline constexpr double kMinMotion = 1e-6, kMaxMotion = 1000.0;
+
 struct MotionLimits {
   enum class Stops { Turns, Waypoints };
   double speed = 0.3;         ///< v, m/s
