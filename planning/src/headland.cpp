@@ -99,7 +99,8 @@ ParamSpec rowEndInsetParam() {
   return {"row_end_inset", ParamType::Number, HeadlandOptions{}.end_inset, 0.0, 1.0, {}, "",
           "where rows end, in spacings inside the boundary loop: 0.5 paints everything; more paints less "
           "twice but leaves scallops between row ends (docs/planner_quality.md); less runs them into the "
-          "loop's band, 0 to its line (a sprayed coat's evenness: docs/deposition.md)"};
+          "loop's band, 0 to its line (a sprayed coat's evenness: docs/deposition.md). Only with a loop; a car's "
+          "rows end at least 0.5 in (its turns), a line or rectangle tool's rows at F's edge"};
 }
 
 ParamSpec fillLeftoversParam() {
