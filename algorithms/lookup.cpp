@@ -48,7 +48,7 @@ const PlannerInfo& findPlanner(const std::string& name, const std::string& sourc
   if (const PlannerInfo* p = lookupPlanner(name)) return *p;
   std::string known;
   for (const PlannerInfo& p : registeredPlanners()) known += (known.empty() ? "" : ", ") + p.name;
-  throw InputError(source, name, "unknown planner (registered: " + known + ")");
+  throw InputError(source, shownBytes(name), "unknown planner (registered: " + known + ")");
 }
 
 }  // namespace coverbench

@@ -59,7 +59,7 @@ ToolShape toolShapeOption(const std::string& name) {
 /// The command line's vehicle over `base` (the default, or the plan file's), checked.
 VehicleModel resolveVehicle(const VehicleOptions& given, VehicleModel base) {
   if (given.model && !parseVehicleKind(*given.model, base.kind))
-    throw InputError("--vehicle", "vehicle", "must be holonomic, gantry or car, not '" + *given.model + "'");
+    throw InputError("--vehicle", "vehicle", "must be holonomic, gantry or car, not '" + shownBytes(*given.model) + "'");
   if ((given.lift_s || given.lower_s) && !base.liftsTool())
     throw InputError(given.lift_s ? "--lift-s" : "--lower-s", "vehicle",
                      std::string("lift and lower times belong to a gantry (--vehicle gantry); ") +
@@ -213,7 +213,7 @@ int planCommand(const PlanOptions& options) {
   Params params = resolveParams(planner, splitSettings(options.params));
   const VehicleModel vehicle = resolveVehicle(options.vehicle, VehicleModel{});
   const TransitPlannerInfo* transit = findTransitPlanner(options.transit.planner);
-  if (!transit) throw InputError("--transit", "transit", "'" + options.transit.planner + "' is not a transit planner (see `coverbench planners`)");
+  if (!transit) throw InputError("--transit", "transit", "'" + shownBytes(options.transit.planner) + "' is not a transit planner (see `coverbench planners`)");
   if (!transit->sampling && options.transit_options_given)
     throw InputError("--transit-iterations", "transit", "iterations and a time cap belong to a sampling planner; visibility has neither");
   if (options.transit.iterations < 1 || options.transit.iterations > kMaxTransitIterations)
@@ -364,7 +364,7 @@ int metricsCommand(const MetricsOptions& options) {
   if (!((limits.acceleration >= kMinMotion && limits.acceleration <= kMaxMotion) || limits.acceleration == HUGE_VAL))
     throw InputError("--acceleration", "acceleration", "must be in [1e-06, 1000] m/s^2 (inf: no ramp), got " + shortNumber(limits.acceleration));
   if (options.stops != "turns" && options.stops != "waypoints")
-    throw InputError("--stops", "stops", "must be turns or waypoints, got '" + options.stops + "'");
+    throw InputError("--stops", "stops", "must be turns or waypoints, got '" + shownBytes(options.stops) + "'");
   limits.stops = options.stops == "waypoints" ? MotionLimits::Stops::Waypoints : MotionLimits::Stops::Turns;
   limits.stop_angle_deg = options.stop_angle;
   if (!(limits.stop_angle_deg > 0.0 && limits.stop_angle_deg < 180.0))

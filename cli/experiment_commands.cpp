@@ -226,7 +226,7 @@ int exportOmplCommand(const ExportOmplOptions& o) {
 }
 
 int runsCommand(const RunsOptions& o) {
-  if (o.format != "csv" && o.format != "json") throw InputError("--format", "format", "must be csv or json, got '" + o.format + "'");
+  if (o.format != "csv" && o.format != "json") throw InputError("--format", "format", "must be csv or json, got '" + shownBytes(o.format) + "'");
   ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
   const ResultSet rs = db.load(o.experiment);
   std::cout << (o.list ? listRuns(rs) : renderRuns(rs, o.format == "json"));

@@ -1,4 +1,5 @@
 // The `coverbench` command. Every user error surfaces here as one line on stderr and exit code 2.
+#include <cctype>
 #include <CLI/CLI.hpp>
 
 #include <charconv>
@@ -39,15 +40,33 @@ CLI::Validator valueReader(const std::string& type, const std::string& infinity 
                    ", got '" + coverbench::shownBytes(value) + "'";
           if (ec != std::errc() || end != last) return "must be a whole number, got '" + coverbench::shownBytes(value) + "'";
         } else if (type == "FLOAT") {
+          // As a config reads numbers: decimal only (strtod also reads "0x10" as 16 and skips
+          // leading white space).
+          if (value.find_first_of("xX") != std::string::npos || (!value.empty() && std::isspace(static_cast<unsigned char>(value[0]))))
+            return "must be a decimal number, got '" + coverbench::shownBytes(value) + "'";
           char* end = nullptr;
           const double v = std::strtod(value.c_str(), &end);
           if (end != value.c_str() + value.size() || !std::isfinite(v))
             return "must be a finite number" + (infinity.empty() ? std::string() : " or inf (" + infinity + ")") + ", got '" +
-                   value + "'";
+                   coverbench::shownBytes(value) + "'";
         }
         return std::string();
       },
       "", "value");
+}
+
+/// One of `names`, or a one-line error quoting the value as every other message does (CLI11's
+/// IsMember echoes it whole).
+CLI::Validator oneOf(std::vector<std::string> names) {
+  std::string list;
+  for (std::size_t i = 0; i < names.size(); ++i) list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  return CLI::Validator(
+      [names, list](std::string& value) {
+        for (const std::string& n : names)
+          if (value == n) return std::string();
+        return "must be " + list + ", got '" + coverbench::shownBytes(value) + "'";
+      },
+      list, "one of");
 }
 
 void readValuesOneWay(CLI::App& app) {
@@ -158,7 +177,7 @@ void addCheckCommands(CLI::App& app, Commands& o) {
   conformance_cmd->add_option("--param", conformance.params, "planner parameter key=value (repeatable)");
   conformance_cmd->add_option("--walls", conformance.walls,
                               "folder of wall files (repeatable; default: datasets/canonical and datasets/conformance)");
-  conformance_cmd->add_option("--format", conformance.format, "md or json")->capture_default_str()->check(CLI::IsMember({"md", "json"}));
+  conformance_cmd->add_option("--format", conformance.format, "md or json")->capture_default_str()->check(oneOf({"md", "json"}));
   conformance_cmd->add_option("--out", conformance.out, "file to write (default: standard output)");
   conformance_cmd->add_option("--time-limit", conformance.time_limit_s, "seconds per plan")->capture_default_str();
   conformance_cmd->callback([&o] { o.exit_code = cli::conformanceCommand(o.conformance); });
@@ -196,7 +215,7 @@ void addCheckCommands(CLI::App& app, Commands& o) {
       ->capture_default_str();
   metrics_cmd->add_option("--judge", metrics.judge,
                           "fast: the metrics engine; exact: also CGAL's exact judge, with the difference (docs/metrics.md)")
-      ->check(CLI::IsMember({"fast", "exact"}))
+      ->check(oneOf({"fast", "exact"}))
       ->capture_default_str();
   metrics_cmd->add_option("--arc-vertices", metrics.arc_vertices,
                           "vertices of the exact judge's inscribed and circumscribed disk polygons (multiple of 8)")

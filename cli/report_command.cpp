@@ -242,7 +242,7 @@ ResultSet loadResults(ResultsDb& db, const ReportOptions& o) {
   ResultSet results = db.load(o.experiment);
   if (!o.baseline.empty()) {
     if (std::none_of(results.runs.begin(), results.runs.end(), [&](const ResultRow& r) { return r.config == o.baseline; }))
-      throw InputError("--baseline", "baseline", "'" + o.baseline + "' is not a planner configuration of this experiment");
+      throw InputError("--baseline", "baseline", "'" + shownBytes(o.baseline) + "' is not a planner configuration of this experiment");
     results.baseline = o.baseline;
   }
   return results;
@@ -407,7 +407,7 @@ int reportCommand(const ReportOptions& o) {
     return 0;
   }
   const auto f = formats.find(o.format);
-  if (f == formats.end()) throw InputError("--format", "format", "must be html, md, csv or latex, got '" + o.format + "'");
+  if (f == formats.end()) throw InputError("--format", "format", "must be html, md, csv or latex, got '" + shownBytes(o.format) + "'");
   ResultsDb db(o.database, ResultsDb::Mode::ReadOnly);
   const ResultSet results = loadResults(db, o);
   const ExperimentRecord record = db.record(o.experiment);

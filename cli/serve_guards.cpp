@@ -314,11 +314,11 @@ HostCheck::HostCheck(const std::string& host, int port) : port_(port) {
 void HostCheck::check(const httplib::Request& req) const {
   const std::string host = req.get_header_value("Host");
   if (!allowedHost(host))
-    throw HttpError(403, "Host: '" + host + "' is not a name this server answers to (it serves " + *names_.begin() + " and the like)");
+    throw HttpError(403, "Host: '" + shownBytes(host) + "' is not a name this server answers to (it serves " + *names_.begin() + " and the like)");
   if (req.method == "GET" || req.method == "HEAD") return;
   const std::string origin = req.get_header_value("Origin");
   if (req.has_header("Origin") && origin != "http://" + host)
-    throw HttpError(403, "Origin: '" + origin + "' may not change anything here (only pages of http://" + host + " may)");
+    throw HttpError(403, "Origin: '" + shownBytes(origin) + "' may not change anything here (only pages of http://" + host + " may)");
   if (req.get_header_value("Sec-Fetch-Site") == "cross-site")
     throw HttpError(403, "Sec-Fetch-Site: a cross-site request may not change anything here");
   const std::string type = req.get_header_value("Content-Type");

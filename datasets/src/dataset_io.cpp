@@ -101,7 +101,7 @@ Dataset readDataset(const std::string& dir) {
         throw InputError(source, field, "must have \"file\" and \"sha256\" strings");
       DatasetEntry e{w["file"].get<std::string>(), w.value("name", ""), d.family, w["sha256"].get<std::string>()};
       if (e.file.empty() || e.file.find('/') != std::string::npos || e.file == "." || e.file == "..")
-        throw InputError(source, field + ".file", "must be a file name in the dataset's folder, got '" + e.file + "'");
+        throw InputError(source, field + ".file", "must be a file name in the dataset's folder, got '" + shownBytes(e.file) + "'");
       const std::string path = (folder / e.file).string();
       const std::string text = readFile(path);
       if (sha256Hex(text) != e.sha256)

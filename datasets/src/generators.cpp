@@ -461,7 +461,7 @@ const FamilyInfo& findFamily(const std::string& family, const std::string& sourc
     if (f.name == family) return f;
   std::string known;
   for (const FamilyInfo& f : wallFamilies()) known += (known.empty() ? "" : ", ") + f.name;
-  throw InputError(source, field, "unknown family '" + family + "' (known: " + known + ")");
+  throw InputError(source, field, "unknown family '" + shownBytes(family) + "' (known: " + known + ")");
 }
 
 std::size_t suiteSize(const std::string& suite) {

@@ -127,7 +127,7 @@ void readGeneratedDataset(Reader& r, const Yaml& d, const std::string& where, Da
     spec.kind = DatasetSpec::Kind::Family;
     spec.family = r.text(*family, where + ".family");
     try {
-      if (findFamily(spec.family, "", "").fixed_suite) r.fail(*family, where + ".family", "'" + spec.family + "' is a suite: write suite: " + spec.family);
+      if (findFamily(spec.family, "", "").fixed_suite) r.fail(*family, where + ".family", "'" + shownBytes(spec.family) + "' is a suite: write suite: " + spec.family);
     } catch (const InputError& e) {
       if (e.source().empty()) r.fail(*family, where + ".family", e.problem());
       throw;
@@ -139,7 +139,7 @@ void readGeneratedDataset(Reader& r, const Yaml& d, const std::string& where, Da
     spec.kind = DatasetSpec::Kind::Suite;
     spec.family = r.text(*suite, where + ".suite");
     try {
-      if (!findFamily(spec.family, "", "").fixed_suite) r.fail(*suite, where + ".suite", "'" + spec.family + "' is a generator family: write family, count and seed");
+      if (!findFamily(spec.family, "", "").fixed_suite) r.fail(*suite, where + ".suite", "'" + shownBytes(spec.family) + "' is a generator family: write family, count and seed");
     } catch (const InputError& e) {
       if (e.source().empty()) r.fail(*suite, where + ".suite", e.problem());
       throw;
@@ -155,7 +155,7 @@ void readFolderDataset(const ConfigFile& f, const Yaml& d, const std::string& wh
   spec.kind = DatasetSpec::Kind::Folder;
   spec.folder = f.resolve(r.text(folder, where + ".folder"));
   if (d.find("count") || d.find("seed")) r.fail(d, where, "a folder has a fixed set of walls: no count or seed");
-  if (!fs::is_directory(spec.folder)) r.fail(folder, where + ".folder", "'" + spec.folder + "' is not a folder");
+  if (!fs::is_directory(spec.folder)) r.fail(folder, where + ".folder", "'" + shownBytes(spec.folder) + "' is not a folder");
   for (const auto& entry : fs::directory_iterator(spec.folder))
     spec.count += entry.path().extension() == ".json" && entry.path().filename() != "manifest.json";
 }
@@ -332,7 +332,7 @@ void readPlanner(const ConfigFile& f, const Yaml& p, const std::string& where, P
   if (!info) {
     std::string known;
     for (const PlannerInfo& candidate : registeredPlanners()) known += (known.empty() ? "" : ", ") + candidate.name;
-    r.fail(*name_node, where + ".name", "unknown planner '" + name + "' (registered: " + known + ")");
+    r.fail(*name_node, where + ".name", "unknown planner '" + shownBytes(name) + "' (registered: " + known + ")");
   }
   const std::string label = readLabel(r, p, where, info->name);
   std::vector<PlannerConfig> configs;
@@ -357,7 +357,7 @@ void readVehicle(Reader& r, const Yaml& v, VehicleModel& vehicle) {
   if (!model) r.fail(v, "vehicle.model", "missing (holonomic, gantry or car)");
   const std::string name = r.text(*model, "vehicle.model");
   if (!parseVehicleKind(name, vehicle.kind))
-    r.fail(*model, "vehicle.model", "must be holonomic, gantry or car, not '" + name + "'");
+    r.fail(*model, "vehicle.model", "must be holonomic, gantry or car, not '" + shownBytes(name) + "'");
   if (const Yaml* t = v.find("lift_s")) vehicle.lift_s = r.number(*t, "vehicle.lift_s", 0.0, kMaxLiftTime);
   if (const Yaml* t = v.find("lower_s")) vehicle.lower_s = r.number(*t, "vehicle.lower_s", 0.0, kMaxLiftTime);
   if (const Yaml* t = v.find("turn_radius"))
@@ -387,7 +387,7 @@ void readTransits(Reader& r, const Yaml& t, std::vector<TransitSpec>& transits) 
     if (!info) {
       std::string known;
       for (const TransitPlannerInfo& p : transitPlanners()) known += (known.empty() ? "" : ", ") + p.name;
-      r.fail(*v, "transit.planner", "'" + spec.planner + "' is not a transit planner (" + known + ")");
+      r.fail(*v, "transit.planner", "'" + shownBytes(spec.planner) + "' is not a transit planner (" + known + ")");
     }
     for (const TransitSpec& before : transits)
       if (before.planner == spec.planner) r.fail(*v, "transit.planner", "lists " + spec.planner + " twice");
@@ -423,7 +423,7 @@ void readReplanning(Reader& r, const Yaml& p, ReplanningSpec& replanning) {
     for (const Yaml* v : r.values(*k, field)) {
       typename std::decay_t<decltype(into)>::value_type value;
       const std::string name = r.text(*v, field);
-      if (!parse(name, value)) r.fail(*v, field, "must be " + known + ", not '" + name + "'");
+      if (!parse(name, value)) r.fail(*v, field, "must be " + known + ", not '" + shownBytes(name) + "'");
       if (std::find(into.begin(), into.end(), value) != into.end()) r.fail(*v, field, "lists " + name + " twice");
       into.push_back(value);
     }
@@ -447,7 +447,7 @@ void readRunSettings(Reader& r, const Yaml& doc, ExperimentConfig& c) {
   if (const Yaml* n = doc.find("allow_large")) c.allow_large = r.boolean(*n, "allow_large");
   if (const Yaml* n = doc.find("judge")) {
     const std::string judge = r.text(*n, "judge");
-    if (judge != "fast" && judge != "exact") r.fail(*n, "judge", "must be fast or exact, not '" + judge + "'");
+    if (judge != "fast" && judge != "exact") r.fail(*n, "judge", "must be fast or exact, not '" + shownBytes(judge) + "'");
     c.exact_judge = judge == "exact";
   }
 }
@@ -460,7 +460,7 @@ void readBaseline(Reader& r, const Yaml& doc, const PlannerList& list, Experimen
     if (!list.where_label.count(c.baseline)) {
       std::string known;
       for (const PlannerConfig& pc : c.planners) known += (known.empty() ? "" : ", ") + pc.label;
-      r.fail(*b, "baseline", "'" + c.baseline + "' is not one of the planner configurations (" + known + ")");
+      r.fail(*b, "baseline", "'" + shownBytes(c.baseline) + "' is not one of the planner configurations (" + known + ")");
     }
   }
 }

@@ -32,6 +32,9 @@ bool fields(const std::smatch& m, std::vector<unsigned long long>& out) {
   return true;
 }
 
+/// The longest --time, --mem, --partition or --account read (Slurm's own names are shorter).
+constexpr std::size_t kMaxSlurmValue = 256;
+
 /// Slurm's time formats (M, M:S, H:M:S, D-H, D-H:M, D-H:M:S, or UNLIMITED), at most a year.
 void checkSlurmTime(const std::string& time) {
   if (time == "UNLIMITED" || time == "INFINITE") return;
@@ -77,16 +80,21 @@ SlurmScripts slurmScripts(const ExperimentConfig& config, const SlurmOptions& o)
     throw InputError("--shards", "shards", "must be in [1, " + std::to_string(kMaxShards) + "], got " + std::to_string(o.shards));
   if (o.cpus_per_task < 1 || o.cpus_per_task > 1024)
     throw InputError("--cpus-per-task", "cpus_per_task", "must be in [1, 1024], got " + std::to_string(o.cpus_per_task));
+  // Before any pattern: std::regex recurses per character, and a value of 50 kB overflows the stack.
+  for (const auto& [flag, value] : {std::pair<const char*, const std::string&>{"--time", o.time}, {"--mem", o.mem},
+                                    {"--partition", o.partition}, {"--account", o.account}})
+    if (value.size() > kMaxSlurmValue)
+      throw InputError(flag, flag + 2, "must be at most " + std::to_string(kMaxSlurmValue) + " bytes, got " + std::to_string(value.size()));
   // Slurm's time formats: M, M:S, H:M:S, D-H, D-H:M, D-H:M:S; or UNLIMITED.
   checkSlurmTime(o.time);
   checkSlurmMemory(o.mem);
   static const std::regex name_re(R"(^[A-Za-z0-9_.,-]+$)");
   if (!o.partition.empty() && !std::regex_match(o.partition, name_re))
-    throw InputError("--partition", "partition", "must be a partition name (letters, digits, _ . , -), got '" + o.partition + "'");
+    throw InputError("--partition", "partition", "must be a partition name (letters, digits, _ . , -), got '" + shownBytes(o.partition) + "'");
   if (!o.account.empty() && !std::regex_match(o.account, name_re))
-    throw InputError("--account", "account", "must be an account name (letters, digits, _ . , -), got '" + o.account + "'");
+    throw InputError("--account", "account", "must be an account name (letters, digits, _ . , -), got '" + shownBytes(o.account) + "'");
   if (o.binary.empty() || !fs::path(o.binary).is_absolute())
-    throw InputError("slurm", "binary", "the coverbench executable's absolute path is needed, got '" + o.binary + "'");
+    throw InputError("slurm", "binary", "the coverbench executable's absolute path is needed, got '" + shownBytes(o.binary) + "'");
 
   SlurmScripts s;
   const fs::path output = fs::absolute(config.output);

@@ -112,7 +112,7 @@ Obstacle parseObstacle(const Reader& r, const json& v, const std::string& field)
     o.radius = r.positiveSize(v, "radius", field + ".radius");
     if (2 * o.radius > kMaxExtent) r.fail(field + ".radius", "absurd size (over 10 km)");
   } else {
-    r.fail(field + ".type", "unknown obstacle type '" + type + "' (expected rect, polygon or circle)");
+    r.fail(field + ".type", "unknown obstacle type '" + shownBytes(type) + "' (expected rect, polygon or circle)");
   }
   return o;
 }

@@ -107,8 +107,10 @@ void FluxProfile::check(double s, const std::string& source) const {
   if (kind == Kind::Beta && !(beta >= 1.0 && beta <= 100.0))
     throw InputError(source, "beta", "must be in [1, 100], got " + shortNumber(beta));
   if (!(rate > 0.0 && rate <= 1.0)) throw InputError(source, "rate", "must be in (0, 1] m3/s, got " + shortNumber(rate));
-  if (!(depth >= 0.0 && depth <= s))
-    throw InputError(source, "depth", "must be in [0, s] m (0: s/10; s = " + shortNumber(s) + " m), got " + shortNumber(depth));
+  // At least s/1000: a fan far thinner than the raster's cell (1e-50 m) lost its coat to rounding.
+  if (!(depth == 0.0 || (depth >= s / 1000.0 && depth <= s)))
+    throw InputError(source, "depth",
+                     "must be in [s/1000, s] m (or 0: s/10; s = " + shortNumber(s) + " m), got " + shortNumber(depth));
   if (!(target == 0.0 || (target > 0.0 && target <= kMaxTarget)))
     throw InputError(source, "target", "must be in (0, 1e+06] um (or 0: none), got " + shortNumber(target));
 }

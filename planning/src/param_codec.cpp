@@ -47,7 +47,7 @@ const ParamSpec& paramSpec(const PlannerInfo& planner, const std::string& name, 
     if (s.name == name) return s;
   std::string known;
   for (const ParamSpec& s : planner.params) known += (known.empty() ? "" : ", ") + s.name;
-  throw InputError(source, name,
+  throw InputError(source, shownBytes(name),
                    "planner '" + planner.name + "' has no such parameter (it has: " + (known.empty() ? "none" : known) + ")");
 }
 
@@ -57,9 +57,9 @@ ParamValue parseParam(const ParamSpec& spec, const std::string& text, const std:
     case ParamType::Number: {
       char* end = nullptr;
       const double v = std::strtod(text.c_str(), &end);
-      if (text.empty() || *end != '\0' || !std::isfinite(v)) return fail("'" + text + "' is not a finite number");
+      if (text.empty() || *end != '\0' || !std::isfinite(v)) return fail("'" + shownBytes(text) + "' is not a finite number");
       // strtod also reads hexadecimal ("0x10" as 16), which no parameter means.
-      if (text.find_first_of("xX") != std::string::npos) return fail("'" + text + "' is not a decimal number");
+      if (text.find_first_of("xX") != std::string::npos) return fail("'" + shownBytes(text) + "' is not a decimal number");
       if (v < spec.min || v > spec.max)
         return fail(text + " is out of range [" + paramText(spec.min) + ", " + paramText(spec.max) + "]" +
                     (spec.unit.empty() ? "" : " " + spec.unit));
@@ -68,7 +68,7 @@ ParamValue parseParam(const ParamSpec& spec, const std::string& text, const std:
     case ParamType::Integer: {
       char* end = nullptr;
       const long long v = std::strtoll(text.c_str(), &end, 10);
-      if (text.empty() || *end != '\0') return fail("'" + text + "' is not an integer");
+      if (text.empty() || *end != '\0') return fail("'" + shownBytes(text) + "' is not an integer");
       if (static_cast<double>(v) < spec.min || static_cast<double>(v) > spec.max)
         return fail(text + " is out of range [" + paramText(spec.min) + ", " + paramText(spec.max) + "]");
       return v;
@@ -76,14 +76,14 @@ ParamValue parseParam(const ParamSpec& spec, const std::string& text, const std:
     case ParamType::Bool:
       if (text == "true" || text == "1" || text == "on") return true;
       if (text == "false" || text == "0" || text == "off") return false;
-      return fail("'" + text + "' is not a boolean (true or false)");
+      return fail("'" + shownBytes(text) + "' is not a boolean (true or false)");
     case ParamType::Choice:
       for (const std::string& c : spec.choices)
         if (c == text) return text;
       {
         std::string list;
         for (const std::string& c : spec.choices) list += (list.empty() ? "" : ", ") + c;
-        return fail("'" + text + "' is not one of: " + list);
+        return fail("'" + shownBytes(text) + "' is not one of: " + list);
       }
   }
   return fail("unsupported parameter type");
@@ -195,7 +195,7 @@ ParamSpec paramSpecFromJson(const json& p, const std::string& source, const std:
       r.fail(where + ".default", "must be one of the choices");
     s.default_value = d.get<std::string>();
   } else {
-    r.fail(where + ".type", "must be number, integer, bool or choice, not '" + type + "'");
+    r.fail(where + ".type", "must be number, integer, bool or choice, not '" + shownBytes(type) + "'");
   }
   return s;
 }

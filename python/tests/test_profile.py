@@ -132,7 +132,7 @@ class Profile(unittest.TestCase):
                 ({"kind": "gaussian", "sigma": 0.001}, "profile: sigma: must be in [s/50, 100] m (s/50 = 0.002 m), got 0.001",
                  ["--profile", "gaussian", "--sigma", "0.001"]),
                 ({"kind": "uniform", "rate": 0}, "profile: rate: must be in (0, 1] m3/s, got 0", ["--profile", "uniform", "--rate", "0"]),
-                ({"kind": "uniform", "depth": 0.5}, "profile: depth: must be in [0, s] m (0: s/10; s = 0.1 m), got 0.5",
+                ({"kind": "uniform", "depth": 0.5}, "profile: depth: must be in [s/1000, s] m (or 0: s/10; s = 0.1 m), got 0.5",
                  ["--profile", "uniform", "--fan-depth", "0.5"]),
                 ({"kind": "gaussian"}, "profile: sigma: is missing: a gaussian profile's standard deviation, m",
                  ["--profile", "gaussian"]),

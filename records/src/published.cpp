@@ -103,9 +103,9 @@ void checkMetric(const std::string& name, const std::string& source) {
     throw InputError(source, "metric", "unknown metric '" + shortened(name) + "' (docs/metrics.md lists them)");
   }
   if (spec->kind == MetricKind::Measured)
-    throw InputError(source, "metric", "'" + name + "' is measured on a machine: a value from another machine is not comparable");
+    throw InputError(source, "metric", "'" + shownBytes(name) + "' is measured on a machine: a value from another machine is not comparable");
   if (spec->kind != MetricKind::Quality || spec->better == 0)
-    throw InputError(source, "metric", "'" + name + "' is not a compared quality metric (docs/metrics.md)");
+    throw InputError(source, "metric", "'" + shownBytes(name) + "' is not a compared quality metric (docs/metrics.md)");
 }
 
 }  // namespace

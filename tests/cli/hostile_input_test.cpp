@@ -495,7 +495,7 @@ TEST_F(Hostile, OutOfRangeFluxProfilesAreRefusedWithOneLine) {
       {"--profile beta --beta 0.5", "command line: beta: must be in [1, 100]"},
       {"--profile beta --beta 1e300", "command line: beta: must be in [1, 100]"},
       {"--profile uniform --rate -1", "command line: rate: must be in (0, 1] m3/s"},
-      {"--profile uniform --fan-depth 5", "command line: depth: must be in [0, s] m (0: s/10; s = 0.1 m), got 5"},
+      {"--profile uniform --fan-depth 5", "command line: depth: must be in [s/1000, s] m (or 0: s/10; s = 0.1 m), got 5"},
       {"--profile cone", "--profile: profile: must be none, uniform, gaussian or beta, got 'cone'"},
       {"--sigma 0.02", "--profile: profile: --sigma, --beta, --rate, --fan-depth, --target and --flow need --profile"},
       {"--target 25", "--profile: profile: --sigma, --beta, --rate, --fan-depth, --target and --flow need --profile"},
@@ -1086,6 +1086,45 @@ TEST_F(Hostile, ACrawlingClockAndAMegabyteValueGetOneShortLine) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_LT(r.err.size(), 200u) << r.err.size();
   EXPECT_NE(r.err.find("... (100000 bytes)'"), std::string::npos) << r.err.substr(0, 300);
+}
+
+TEST_F(Hostile, EveryQuotedValueIsCutShortAndEveryNumberIsDecimal) {
+  // Found by an attack: 50 kB Slurm names overflowed std::regex's stack (exit 139, no message);
+  // options, parameters, planner names and choices echoed 100 kB values whole, with bytes that are
+  // not UTF-8; the command line read "0x10" as 16 and " 1" as 1 where a config refuses both; a fan
+  // 1e-50 m deep lost its whole coat to rounding and scored it, exit 0.
+  const std::string plan = (dir_ / "p.json").string(), cfg = write("c.yaml", std::string(kHead) + "planners: [zigzag]\n");
+  ASSERT_EQ(run("plan --wall " + wall_ + " --planner zigzag --out " + plan).exit_code, 0);
+  const std::string big(50000, 'y'), cut = big.substr(0, kShownBytes) + "... (50000 bytes)";
+  const std::string metrics = "metrics --wall " + wall_ + " --plan " + plan;
+  const std::pair<std::string, std::string> cases[] = {
+      {"slurm " + cfg + " --partition " + big, "coverbench: --partition: partition: must be at most 256 bytes, got 50000\n"},
+      {"slurm " + cfg + " --time " + std::string(50000, '1'), "coverbench: --time: time: must be at most 256 bytes, got 50000\n"},
+      {metrics + " --speed " + big, "coverbench: --speed: must be a finite number, got '" + cut + "'\n"},
+      {metrics + " --speed 0x10", "coverbench: --speed: must be a decimal number, got '0x10'\n"},
+      {metrics + " --speed ' 1'", "coverbench: --speed: must be a decimal number, got ' 1'\n"},
+      {metrics + " --speed \"$(printf '1\\377')\"", "coverbench: --speed: must be a finite number, got '1\\xff'\n"},
+      {metrics + " --judge " + big, "coverbench: --judge: must be fast or exact, got '" + cut + "'\n"},
+      {metrics + " --vehicle " + big, "coverbench: --vehicle: vehicle: must be holonomic, gantry or car, not '" + cut + "'\n"},
+      {metrics + " --profile beta --beta 2.5 --fan-depth 1e-50",
+       "coverbench: command line: depth: must be in [s/1000, s] m (or 0: s/10; s = 0.1 m), got 1e-50\n"},
+      {"plan --wall " + wall_ + " --planner " + big + " --out " + plan, "coverbench: --planner: " + cut + ": unknown planner"},
+      {"plan --wall " + wall_ + " --planner zigzag --param row_end_inset=" + big + " --out " + plan,
+       "coverbench: --param: row_end_inset: '" + cut + "' is not a finite number"},
+      {"plan --wall " + wall_ + " --planner zigzag --param " + big + "=1 --out " + plan,
+       "coverbench: --param: " + cut + ": planner 'zigzag' has no such parameter"},
+  };
+  for (const auto& [command, line] : cases) {
+    std::string printed;
+    const CommandRun r = run(command, &printed);
+    EXPECT_EQ(r.exit_code, 2) << command.substr(0, 120);
+    EXPECT_EQ(r.err.substr(0, line.size()), line) << command.substr(0, 120);
+    EXPECT_LT(r.err.size(), 400u) << command.substr(0, 120);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << command.substr(0, 120);
+  }
+  // The plan file is the first run's: no failing command wrote over it.
+  std::string printed;
+  EXPECT_EQ(run(metrics + " --profile beta --beta 2.5 --fan-depth 0.0001", &printed).exit_code, 0) << printed;
 }
 
 }  // namespace
