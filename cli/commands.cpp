@@ -37,7 +37,7 @@ std::vector<std::pair<std::string, std::string>> splitSettings(const std::vector
   std::vector<std::pair<std::string, std::string>> out;
   for (const std::string& item : items) {
     const auto eq = item.find('=');
-    if (eq == std::string::npos || eq == 0) throw InputError("--param", item, "expected key=value");
+    if (eq == std::string::npos || eq == 0) throw InputError("--param", shownBytes(item), "expected key=value");
     out.emplace_back(item.substr(0, eq), item.substr(eq + 1));
   }
   return out;
@@ -183,6 +183,9 @@ namespace {
 /// `X,Y` as a point; InputError naming `flag`.
 Point pointOption(const std::string& text, const std::string& flag) {
   const std::size_t comma = text.find(',');
+  // Decimal numbers only, as everywhere (strtod reads "0x1" and skips white space).
+  if (text.find_first_of("xX \t\n\r\f\v") != std::string::npos)
+    throw InputError(flag, "(value)", "must be X,Y in metres, got '" + shownBytes(text) + "'");
   char* end = nullptr;
   const std::string xs = text.substr(0, comma), ys = comma == std::string::npos ? "" : text.substr(comma + 1);
   const double x = std::strtod(xs.c_str(), &end);

@@ -99,11 +99,13 @@ int runCommand(const RunOptions& o) {
   options.command_line = o.command_line;
   if (!o.shard.empty()) options.shard = parseShard(o.shard);
   const RunnerSummary s = runExperiment(config, options);
+  // The name as the terminal shows it: as written when it is one printable line, else escaped.
+  const std::string name = isValidUtf8(config.name) && isPrintableLine(config.name) ? config.name : shownBytes(config.name);
   if (options.shard)
-    std::printf("experiment %s, shard %s: %zu of the config's %zu runs", config.name.c_str(), toString(*options.shard).c_str(),
+    std::printf("experiment %s, shard %s: %zu of the config's %zu runs", name.c_str(), toString(*options.shard).c_str(),
                 s.total, s.config_runs);
   else
-    std::printf("experiment %s: %zu walls, %zu runs", config.name.c_str(), s.walls, s.total);
+    std::printf("experiment %s: %zu walls, %zu runs", name.c_str(), s.walls, s.total);
   std::printf(" (%zu executed, %zu already stored", s.executed, s.skipped);
   if (s.reused) std::printf(", %zu reused from other builds", s.reused);
   std::printf(") on %u worker processes in %.1f s", s.threads, s.seconds);

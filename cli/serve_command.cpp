@@ -240,7 +240,7 @@ void ServeApp::Impl::addRefusalHandlers() {
       else if (res.status == 414)
         answerError(res, 414, "request: its address (path and query) is over " + std::to_string(CPPHTTPLIB_REQUEST_URI_MAX_LENGTH) + " bytes");
       else if (res.status == 404)
-        answerError(res, 404, req.path + ": no such page or API (see docs/explorer.md)");
+        answerError(res, 404, shownBytes(req.path) + ": no such page or API (see docs/explorer.md)");
       else
         answerError(res, res.status, req.path + ": refused (HTTP " + std::to_string(res.status) + ")");
     } catch (...) {

@@ -105,7 +105,7 @@ class Reader {
         if (editDistance(e.key, a) < best) best = editDistance(e.key, a), hint = a;
       std::string known;
       for (const std::string& a : allowed) known += (known.empty() ? "" : ", ") + a;
-      fail(e.key_line, where.empty() ? e.key : where + "." + e.key,
+      fail(e.key_line, where.empty() ? shownBytes(e.key) : where + "." + shownBytes(e.key),
            "unknown key" + (hint.empty() ? " (allowed: " + known + ")" : " (did you mean '" + hint + "'?)"));
     }
   }

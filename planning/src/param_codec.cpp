@@ -4,6 +4,7 @@
 #include "coverbench/json_input.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -59,18 +60,21 @@ ParamValue parseParam(const ParamSpec& spec, const std::string& text, const std:
       const double v = std::strtod(text.c_str(), &end);
       if (text.empty() || *end != '\0' || !std::isfinite(v)) return fail("'" + shownBytes(text) + "' is not a finite number");
       // strtod also reads hexadecimal ("0x10" as 16), which no parameter means.
-      if (text.find_first_of("xX") != std::string::npos) return fail("'" + shownBytes(text) + "' is not a decimal number");
+      // (Nor leading white space, which strtod skips.)
+      if (text.find_first_of("xX") != std::string::npos || std::isspace(static_cast<unsigned char>(text[0])))
+        return fail("'" + shownBytes(text) + "' is not a decimal number");
       if (v < spec.min || v > spec.max)
-        return fail(text + " is out of range [" + paramText(spec.min) + ", " + paramText(spec.max) + "]" +
+        return fail(shownBytes(text) + " is out of range [" + paramText(spec.min) + ", " + paramText(spec.max) + "]" +
                     (spec.unit.empty() ? "" : " " + spec.unit));
       return v == 0.0 ? 0.0 : v;  // -0 is 0: one configuration, one key
     }
     case ParamType::Integer: {
       char* end = nullptr;
       const long long v = std::strtoll(text.c_str(), &end, 10);
-      if (text.empty() || *end != '\0') return fail("'" + shownBytes(text) + "' is not an integer");
+      if (text.empty() || *end != '\0' || std::isspace(static_cast<unsigned char>(text[0])))
+        return fail("'" + shownBytes(text) + "' is not an integer");
       if (static_cast<double>(v) < spec.min || static_cast<double>(v) > spec.max)
-        return fail(text + " is out of range [" + paramText(spec.min) + ", " + paramText(spec.max) + "]");
+        return fail(shownBytes(text) + " is out of range [" + paramText(spec.min) + ", " + paramText(spec.max) + "]");
       return v;
     }
     case ParamType::Bool:

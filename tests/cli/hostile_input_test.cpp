@@ -1113,6 +1113,16 @@ TEST_F(Hostile, EveryQuotedValueIsCutShortAndEveryNumberIsDecimal) {
        "coverbench: --param: row_end_inset: '" + cut + "' is not a finite number"},
       {"plan --wall " + wall_ + " --planner zigzag --param " + big + "=1 --out " + plan,
        "coverbench: --param: " + cut + ": planner 'zigzag' has no such parameter"},
+      {"plan --wall " + wall_ + " --planner zigzag --param \"$(printf 'a\\nb')\" --out " + plan,
+       "coverbench: --param: a\\x0ab: expected key=value\n"},
+      {"plan --wall " + wall_ + " --planner zigzag --param overlap=1." + std::string(3000, '0') + " --out " + plan,
+       "coverbench: --param: overlap: 1." + std::string(78, '0') + "... (3002 bytes) is out of range [0, 0.9]\n"},
+      {"plan --wall " + wall_ + " --planner zigzag --param 'sweep_angle= 45' --out " + plan,
+       "coverbench: --param: sweep_angle: ' 45' is not a decimal number\n"},
+      {"plan --wall " + wall_ + " --planner zigzag --param 'boundary_passes= 1' --out " + plan,
+       "coverbench: --param: boundary_passes: ' 1' is not an integer\n"},
+      {"plan --wall " + wall_ + " --planner zigzag --start 0x1,1 --out " + plan, "coverbench: --start: (value): must be X,Y in metres, got '0x1,1'\n"},
+      {"plan --wall " + wall_ + " --planner zigzag --start '1, 1' --out " + plan, "coverbench: --start: (value): must be X,Y in metres, got '1, 1'\n"},
   };
   for (const auto& [command, line] : cases) {
     std::string printed;
@@ -1122,6 +1132,17 @@ TEST_F(Hostile, EveryQuotedValueIsCutShortAndEveryNumberIsDecimal) {
     EXPECT_LT(r.err.size(), 400u) << command.substr(0, 120);
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << command.substr(0, 120);
   }
+  // A config's unknown key and its name are one line of printable text.
+  const std::string file = (dir_ / "c.yaml").string(), planners = "planners: [zigzag]\n";
+  EXPECT_NE(configError(kHead + planners + "\"a\\nb\": 1\n").find(":6: a\\x0ab: unknown key"), std::string::npos)
+      << configError(kHead + planners + "\"a\\nb\": 1\n");
+  // An experiment's name with an escape sequence is printed escaped (the terminal would act on it).
+  const std::string named = write("n.yaml", "name: \"\\e[31mred\"\noutput: out_named\ndatasets:\n  - family: open\n    count: 1\n"
+                                            "    seed: 1\nplanners: [zigzag]\n");
+  std::string said;
+  ASSERT_EQ(run("run " + named + " --no-report", &said).exit_code, 0) << said;
+  EXPECT_EQ(said.find('\x1b'), std::string::npos) << said;
+  EXPECT_NE(said.find("experiment \\x1b[31mred: 1 walls"), std::string::npos) << said;
   // The plan file is the first run's: no failing command wrote over it.
   std::string printed;
   EXPECT_EQ(run(metrics + " --profile beta --beta 2.5 --fan-depth 0.0001", &printed).exit_code, 0) << printed;

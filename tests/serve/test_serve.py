@@ -282,6 +282,10 @@ class Serve(unittest.TestCase):
         self.assertEqual(self.refused("GET", "/../../etc/passwd")[0], 404)  # nothing outside what it serves
         self.assertEqual(self.refused("GET", "/%2e%2e/%2e%2e/etc/passwd")[0], 404)
         self.assertEqual(self.refused("GET", "/reports/web/index.html")[0], 404)
+        # A long or control-laden path is quoted by its first 80 bytes, escaped (an attack found 8 kB).
+        self.assertEqual(self.refused("GET", "/" + "h" * 8000),
+                         (404, "/" + "h" * 79 + "... (8001 bytes): no such page or API (see docs/explorer.md)"))
+        self.assertEqual(self.refused("GET", "/a%01%1b[31mb"), (404, "/a\\x01\\x1b[31mb: no such page or API (see docs/explorer.md)"))
         self.assertEqual(self.refused("GET", f"/api/experiments/7/{self.exp['id']}/runs"), (404, "no database 7 (serving 1)"))
         self.assertEqual(self.refused("GET", f"/api/experiments/{self.exp['db']}/999/runs")[0], 404)
         self.assertEqual(self.refused("GET", e + "/runs?sort=nonsense"),
